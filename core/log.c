@@ -1,0 +1,41 @@
+#include "log.h"
+#include <stdio.h>
+#include <string.h>
+
+sl_log_level sl_log_threshold = SL_LOG_INFO;
+static int counts[4];
+static char *capture_buf;
+static size_t capture_size;
+
+void sl_log_capture(char *buf, size_t size) {
+    capture_buf = buf;
+    capture_size = size;
+    if (buf && size) buf[0] = 0;
+}
+
+int sl_log_count(sl_log_level level) { return counts[level]; }
+
+void sl_logv(sl_log_level level, const char *prefix, const char *fmt, va_list ap) {
+    counts[level]++;
+    static const char *names[] = {"debug", "info", "warning", "error"};
+    char msg[4096];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    char line[4300];
+    if (level == SL_LOG_INFO)
+        snprintf(line, sizeof line, "%s%s%s\n", prefix ? prefix : "", prefix ? ": " : "", msg);
+    else
+        snprintf(line, sizeof line, "%s: %s%s%s\n", names[level], prefix ? prefix : "",
+                 prefix ? ": " : "", msg);
+    if (capture_buf) {
+        size_t used = strlen(capture_buf);
+        if (used + 1 < capture_size) snprintf(capture_buf + used, capture_size - used, "%s", line);
+    }
+    if (level >= sl_log_threshold) fputs(line, stderr);
+}
+
+void sl_log(sl_log_level level, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    sl_logv(level, NULL, fmt, ap);
+    va_end(ap);
+}

@@ -1,0 +1,140 @@
+/* The scene graph: what a JSON scene (or the built-in default) describes, after loading.
+ * Pure CPU data; the renderer uploads meshes and textures. Schema-free for material and light
+ * properties: the parameter store validates them against the plugins' declared keys. */
+#ifndef SL_SCENE_H
+#define SL_SCENE_H
+
+#include <shadelab/shadelab.h>
+
+/* Triangle mesh, interleaving-free arrays. tangents are xyz + handedness w (±1), generated
+ * when the source has none (bitangent = w · cross(normal, tangent)). */
+typedef struct sl_mesh_data {
+    int vertex_count, index_count;
+    float *positions;   /* 3 per vertex */
+    float *normals;     /* 3 */
+    float *tangents;    /* 4 */
+    float *uvs;         /* 2 */
+    uint32_t *indices;  /* 3 per triangle */
+    float bounds_min[3], bounds_max[3];
+} sl_mesh_data;
+
+/* A raw key/value read from the scene file for materials, lights and parameter assignments.
+ * Numbers and arrays are kept as floats; the parameter store interprets them per schema. */
+typedef enum sl_prop_kind { SL_PROP_NUMBER, SL_PROP_BOOL, SL_PROP_STRING, SL_PROP_VEC } sl_prop_kind;
+typedef struct sl_prop {
+    char *key;
+    sl_prop_kind kind;
+    float v[4];      /* NUMBER: v[0]; VEC: v[0..count-1]; BOOL: v[0] = 0/1 */
+    int count;       /* VEC: 2..4 */
+    char *str;       /* STRING: text (texture path or procedural spec, enum name, …) */
+    int line;        /* 1-based line in the scene file, 0 if unknown */
+} sl_prop;
+
+typedef struct sl_prop_list { sl_prop *items; int count; } sl_prop_list;
+
+typedef struct sl_material {
+    char *name;
+    char *model;            /* shading model ("lambert" by default) */
+    bool cast_shadows;      /* default true */
+    sl_prop_list props;     /* everything else: base_color, base_color_map, alpha, … */
+    int line;
+} sl_material;
+
+typedef struct sl_mesh {
+    char *name;
+    sl_mesh_data data;
+    int material;           /* index into scene.materials */
+} sl_mesh;
+
+typedef struct sl_node {
+    char *name;
+    int parent;             /* -1 = root */
+    float local[16];        /* column-major: translation * rotation * scale */
+    float world[16];        /* filled by sl_scene_update_transforms */
+    int *meshes;            /* indices into scene.meshes */
+    int mesh_count;
+} sl_node;
+
+typedef struct sl_light {
+    char *name;
+    char *type;             /* "directional", "point", or a plugin type ("spot") */
+    float position[3];
+    float direction[3];     /* unit, the direction light travels */
+    float color[3];         /* linear RGB */
+    float intensity;        /* directional: irradiance E; point/spot: intensity I (E = I/d²) */
+    bool enabled;           /* default true */
+    bool cast_shadows;      /* default false */
+    sl_prop_list props;     /* type-specific keys (cone_angle, falloff, radius, …) */
+    int line;
+} sl_light;
+
+typedef struct sl_camera {
+    char *name;
+    float position[3], target[3], up[3];
+    float fov_y_deg;        /* vertical field of view, default 45 */
+    float znear, zfar;      /* default 0.05, 100 */
+} sl_camera;
+
+typedef struct sl_environment {
+    char *map;              /* image path (resolved), NULL = none */
+    float color[3];         /* constant radiance when map is NULL (default 0) */
+    float intensity;        /* multiplier, default 1 */
+    float yaw_deg;          /* rotation about +Y */
+    sl_prop_list props;     /* plugin keys */
+} sl_environment;
+
+typedef struct sl_scene {
+    char *path;             /* file it came from ("<default>" for the built-in one) */
+    char *dir;              /* directory used to resolve relative asset paths */
+    sl_material *materials; int material_count;
+    sl_mesh *meshes;        int mesh_count;
+    sl_node *nodes;         int node_count;
+    sl_light *lights;       int light_count;
+    sl_camera *cameras;     int camera_count;
+    sl_environment environment;
+    char **plugins;         int plugin_count;   /* plugin NAMES only (never paths) */
+    sl_prop_list params;    /* "plugin.param": value assignments from the scene */
+    float bounds_min[3], bounds_max[3];         /* world bounds after transforms */
+} sl_scene;
+
+/* Where relative asset paths are looked up, in order: the scene file's directory, then
+ * data_dir (--data DIR or SHADELAB_DATA). */
+typedef struct sl_scene_load_opts {
+    const char *data_dir;   /* may be NULL */
+} sl_scene_load_opts;
+
+/* Loads a JSON scene file. On failure returns false and writes a message naming the file,
+ * line and column and the cause into err. Warnings (unknown keys with the nearest valid key)
+ * go to stderr through sl_log. Meshes referenced by file go through assimp. */
+bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_opts *opts,
+                        char *err, size_t err_size);
+/* Same from text in memory; `name` is used in messages and `dir` for relative paths. */
+bool sl_scene_load_text(sl_scene *scene, const char *text, const char *name, const char *dir,
+                        const sl_scene_load_opts *opts, char *err, size_t err_size);
+void sl_scene_free(sl_scene *scene);
+/* Recomputes node world matrices and scene bounds. */
+void sl_scene_update_transforms(sl_scene *scene);
+/* Resolves an asset path as documented above; returns a malloc'd path or NULL and writes
+ * where it looked into err. */
+char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const char *rel,
+                            char *err, size_t err_size);
+
+const sl_prop *sl_prop_find(const sl_prop_list *list, const char *key);
+
+/* Procedural primitives (core/scene/primitives.c). All have normals, uvs and tangents. */
+bool sl_mesh_sphere(sl_mesh_data *m, float radius, int segments, int rings);
+bool sl_mesh_plane(sl_mesh_data *m, float size_x, float size_z, int subdivisions); /* +Y up */
+bool sl_mesh_cube(sl_mesh_data *m, float size);
+bool sl_mesh_torus(sl_mesh_data *m, float major_radius, float minor_radius, int segments, int sides);
+/* The Utah teapot from Newell's 32 bicubic Bezier patches, tessellated per patch. */
+bool sl_mesh_teapot(sl_mesh_data *m, float size, int tessellation);
+/* Loads every mesh in a glTF/OBJ/… file through assimp, appending meshes, materials, lights
+ * and cameras to the scene under a new node (see scene_assimp.c). */
+bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
+/* Generates tangents (xyz + handedness w) from positions, normals and uvs; degenerate UVs
+ * fall back to an arbitrary tangent orthogonal to the normal. */
+void sl_mesh_generate_tangents(sl_mesh_data *m);
+void sl_mesh_compute_bounds(sl_mesh_data *m);
+void sl_mesh_free(sl_mesh_data *m);
+
+#endif

@@ -1,0 +1,104 @@
+/* The host interface a plugin receives in create(). Every function takes the host pointer the
+ * plugin was given (it identifies the plugin). Registration functions may only be called from
+ * create(); the rest say when they may be called. All functions are called on the main thread.
+ */
+#ifndef SHADELAB_HOST_H
+#define SHADELAB_HOST_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sl_program sl_program; /* a compiled program owned by the host (hot-reloaded) */
+
+typedef struct sl_key_desc {
+    uint32_t struct_size;
+    const char *key;          /* "1".."9", "A".."Z", "F1".."F12" */
+    const char *description;  /* shown in the panel and --help-keys */
+    /* Either toggle/cycle a parameter of this plugin (bool: toggle, enum: next value) … */
+    const char *param;
+    /* … or call back (main thread, GL context current). */
+    void (*on_press)(void *user);
+    void *user;
+} sl_key_desc;
+
+/* How a plugin's ground truth is rendered (shadelab-bench, --reference). */
+typedef struct sl_reference_desc {
+    uint32_t struct_size;
+    /* Parameter assignments applied on top of the scene, "id=value" separated by spaces:
+     * "spotlight-shadow.method=reference spotlight-shadow.samples=256". */
+    const char *settings;
+    /* > 1: average this many frames (Monte Carlo); sl_frame.accumulate_index varies. */
+    int accumulate_frames;
+    const char *description; /* one sentence: how the truth is obtained */
+} sl_reference_desc;
+
+/* One light of the scene, as the core packs it (read-only to plugins). */
+typedef struct sl_light_info {
+    uint32_t struct_size;
+    const char *name;
+    const char *type;          /* "directional", "point", or a plugin light type */
+    float position[3];         /* world */
+    float direction[3];        /* world, unit, the direction light travels (spot/directional) */
+    float color[3];            /* linear RGB times intensity */
+    float params[8];           /* light-scope keys packed by their light_slot */
+    bool enabled;
+    bool cast_shadows;
+    int index;                 /* index in the GLSL light buffer; -1 when disabled */
+} sl_light_info;
+
+typedef struct sl_host sl_host;
+struct sl_host {
+    uint32_t struct_size;      /* sizeof(sl_host) as the host knows it */
+    uint32_t abi_major, abi_minor;
+    const char *host_version;
+
+    /* Any time. printf-style; the host prefixes the plugin id. */
+    void (*log)(const sl_host *host, sl_log_level level, const char *fmt, ...)
+        __attribute__((format(printf, 3, 4)));
+    /* Directory holding the plugin's GLSL and data (the directory of its .so). */
+    const char *(*resource_dir)(const sl_host *host);
+
+    /* ---- registration: create() only ---- */
+    sl_status (*add_param)(const sl_host *host, const sl_param_desc *desc);
+    sl_status (*add_shader_chunk)(const sl_host *host, const sl_shader_chunk_desc *desc);
+    sl_status (*add_pass)(const sl_host *host, const sl_pass_desc *desc);
+    sl_status (*add_key)(const sl_host *host, const sl_key_desc *desc);
+    sl_status (*set_reference)(const sl_host *host, const sl_reference_desc *desc);
+    /* Called with the GL id of each composed program that contains this plugin's chunks, each
+     * time the host binds it for drawing: set the plugin's own uniforms and samplers there.
+     * (Global parameters are set by the host already.) */
+    sl_status (*set_bind_callback)(const sl_host *host,
+                                   void (*bind)(void *user, unsigned program, const sl_frame *frame),
+                                   void *user);
+    /* A texture unit reserved for this plugin for the whole run (textures it binds in
+     * begin_frame/bind stay bound). */
+    int (*reserve_texture_unit)(const sl_host *host);
+
+    /* ---- queries: any time after create() ---- */
+    sl_value (*get_param)(const sl_host *host, const char *id); /* full id "plugin.param" */
+    bool (*plugin_enabled)(const sl_host *host, const char *plugin_id);
+    /* An extension ("shadelab.shadow-maps/1") provided by an enabled plugin, or NULL. */
+    const void *(*get_extension)(const sl_host *host, const char *id);
+    /* The scene's lights (stable until the next frame). */
+    const sl_light_info *(*lights)(const sl_host *host, int *count);
+    /* GL: any time a context is current (activate … deactivate). */
+    void *(*gl_get_proc_address)(const char *name);
+    bool (*is_gpu)(const sl_host *host);  /* false on llvmpipe/OSMesa */
+
+    /* ---- programs and passes: GL context current ---- */
+    sl_program *(*load_program)(const sl_host *host, const sl_program_desc *desc);
+    unsigned (*program_id)(const sl_host *host, sl_program *program); /* 0 if never compiled */
+    /* Inside execute(): GL texture of an input or output resource by name. */
+    unsigned (*pass_texture)(const sl_host *host, sl_pass_ctx *ctx, const char *name);
+    /* Inside execute(): bind a framebuffer with the pass's outputs (layer: for arrays) and set
+     * the viewport to their size. */
+    sl_status (*bind_outputs)(const sl_host *host, sl_pass_ctx *ctx, int layer);
+    void (*draw_scene)(const sl_host *host, sl_pass_ctx *ctx, const sl_draw_scene_desc *desc);
+    void (*draw_fullscreen)(const sl_host *host, sl_pass_ctx *ctx); /* bound program, 1 tri */
+};
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,78 @@
+/* Parameters: one declarative schema per parameter. The same schema drives the GUI panel,
+ * `--set id=value`, scene files and `--dump-params` (JSON). Never describe a parameter twice.
+ *
+ * Addressing:
+ *   plugin globals       "<plugin>.<id>"             e.g. "ggx.zero_specular"
+ *   per-material values  "material.<NAME>.<key>"     e.g. "material.skin.alpha"
+ *   per-light values     "light.<NAME>.<key>"        e.g. "light.key.enabled"
+ * Precedence: schema default < scene file < command line (--set) < GUI.
+ * Changes apply at frame boundaries. */
+#ifndef SHADELAB_PARAMS_H
+#define SHADELAB_PARAMS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sl_param_type {
+    SL_PARAM_BOOL = 1,
+    SL_PARAM_INT,
+    SL_PARAM_FLOAT,
+    SL_PARAM_ENUM,    /* one of enum_values; stored as the index */
+    SL_PARAM_COLOR,   /* linear RGB, 3 floats */
+    SL_PARAM_VEC3,    /* 3 floats (directions, positions) */
+    SL_PARAM_TEXTURE  /* material scope only: an image path or a procedural texture */
+} sl_param_type;
+
+/* Where a parameter lives. */
+typedef enum sl_param_scope {
+    SL_SCOPE_GLOBAL = 0, /* one value per plugin: "<plugin>.<id>" */
+    SL_SCOPE_MATERIAL,   /* a key a material may carry: "material.<NAME>.<id>" */
+    SL_SCOPE_LIGHT       /* a key a light may carry:    "light.<NAME>.<id>" */
+} sl_param_scope;
+
+enum sl_param_flags {
+    /* Value becomes a GLSL #define (permutation): changing it recompiles programs.
+     * Without it, global parameters reach GLSL as uniforms "<plugin>_<id>" (dashes become
+     * underscores) and material keys as uniforms "sl_mat_<id>". */
+    SL_PARAM_NEEDS_RECOMPILE = 1u << 0,
+    /* Trades quality for time; swept by shadelab-bench. */
+    SL_PARAM_QUALITY_KNOB = 1u << 1,
+    /* Textures only: data texture (normals, roughness, masks): no sRGB decoding. */
+    SL_PARAM_LINEAR_DATA = 1u << 2,
+    /* Not shown in the GUI (still settable and dumped). */
+    SL_PARAM_HIDDEN = 1u << 3
+};
+
+/* A parameter value. Which member is meaningful follows the type. */
+typedef struct sl_value {
+    bool b;
+    int i;        /* INT, and ENUM (index into enum_values) */
+    float f[4];   /* FLOAT: f[0]; COLOR/VEC3: f[0..2] */
+    const char *s; /* TEXTURE: path or procedural spec (owned by the host) */
+} sl_value;
+
+typedef struct sl_param_desc {
+    uint32_t struct_size;            /* sizeof(sl_param_desc) */
+    const char *id;                  /* [a-z0-9_]; unique within the plugin and scope */
+    sl_param_type type;
+    sl_param_scope scope;
+    sl_value default_value;          /* zero is a valid default for every type */
+    float min, max;                  /* INT/FLOAT range (inclusive); min == max: unbounded */
+    float step;                      /* GUI step; 0 = automatic */
+    const char *unit;                /* "px", "ms", "deg", "" … shown in the GUI and help */
+    const char *group;               /* GUI group within the plugin's panel; NULL = none */
+    const char *description;         /* one sentence; shown as tooltip and in --dump-params */
+    const char *const *enum_values;  /* ENUM: NULL-terminated names */
+    uint32_t flags;                  /* sl_param_flags */
+    /* LIGHT scope: which float of the light record's params[0..7] receives the value
+     * (COLOR/VEC3 take three consecutive slots). Ignored for other scopes. */
+    int light_slot;
+    /* LIGHT scope: the light type this key belongs to ("spot"); NULL = every light. */
+    const char *light_type;
+} sl_param_desc;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

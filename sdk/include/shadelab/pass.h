@@ -1,0 +1,104 @@
+/* Render graph passes. A pass declares the named resources it reads and writes; the core
+ * orders passes by stage, checks that every input is produced earlier, allocates the targets
+ * (and re-allocates them on resize), times each pass and skips passes that are inactive or
+ * whose signature did not change since they last ran.
+ *
+ * Resources the core provides:
+ *   "color"  RGBA16F (RGBA32F with --float), viewport size: linear HDR radiance. Written by the
+ *            core's forward pass (stage OPAQUE). A POST pass that lists "color" both as input and
+ *            output gets two different textures (ping-pong); later passes see its output.
+ *   "depth"  DEPTH32F, viewport size, from the forward pass.
+ * After the last POST pass the core's display pass clamps to [0,1] and applies the sRGB
+ * encoding (a tone-mapping plugin runs before it, at stage POST).
+ */
+#ifndef SHADELAB_PASS_H
+#define SHADELAB_PASS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sl_stage {
+    SL_STAGE_SHADOW = 100,   /* light-space passes (shadow maps) */
+    SL_STAGE_PREPASS = 200,  /* anything the forward pass samples (texture-space lighting) */
+    SL_STAGE_OPAQUE = 300,   /* the core's forward pass; plugins may add passes after it */
+    SL_STAGE_POST = 400      /* full-screen passes on "color" (blurs, tone mapping) */
+} sl_stage;
+
+typedef enum sl_format {
+    SL_FORMAT_RGBA8 = 1,
+    SL_FORMAT_RGBA16F,
+    SL_FORMAT_RGBA32F,
+    SL_FORMAT_RG16F,
+    SL_FORMAT_R32F,
+    SL_FORMAT_DEPTH32F
+} sl_format;
+
+typedef struct sl_target_desc {
+    const char *name;   /* resource name, unique in the graph ("shadow.maps") */
+    sl_format format;
+    int width, height;  /* 0 = viewport size (times `scale` when scale > 0) */
+    float scale;
+    int layers;         /* > 1: a 2D array texture (e.g. one layer per shadow-casting light) */
+    bool compare;       /* depth formats: enable GL_COMPARE_REF_TO_TEXTURE (hardware PCF) */
+} sl_target_desc;
+
+/* Everything a pass or hook needs to know about the frame being rendered. */
+typedef struct sl_frame {
+    uint32_t struct_size;
+    uint64_t index;          /* frames rendered since start */
+    double time;             /* seconds, the `sl_time` uniform (fixed steps with --frames) */
+    int width, height;       /* viewport */
+    float view[16], proj[16], view_proj[16]; /* column-major, camera */
+    float camera_pos[3];
+    float scene_min[3], scene_max[3];        /* world-space bounds of all geometry */
+    /* Change counters: a pass may use them in its signature to skip work. */
+    uint64_t camera_version, geometry_version, lights_version, params_version;
+    int accumulate_index;    /* 0-based frame within an accumulated render; 0 otherwise */
+    int accumulate_count;    /* frames being accumulated (1 = none) */
+} sl_frame;
+
+typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() */
+
+typedef struct sl_pass_desc {
+    uint32_t struct_size;           /* sizeof(sl_pass_desc) */
+    const char *name;               /* unique pass name; shown in timings ("shadow-maps") */
+    sl_stage stage;                 /* coarse order; registration order within a stage */
+    const char *const *inputs;      /* NULL-terminated resource names read, or NULL */
+    const sl_target_desc *outputs;  /* targets written (allocated by the core) */
+    int output_count;
+    /* Records the pass. GL context current; outputs are NOT bound: call host->bind_outputs. */
+    void (*execute)(void *user, sl_pass_ctx *ctx, const sl_frame *frame);
+    /* Optional: false = the pass does not run this frame and costs nothing (e.g. no shadowed
+     * light in the scene). Its outputs keep their last contents. */
+    bool (*is_active)(void *user, const sl_frame *frame);
+    /* Optional: when it returns the value it returned last time the pass ran (and nothing was
+     * resized), the pass is skipped and its outputs are reused. */
+    uint64_t (*signature)(void *user, const sl_frame *frame);
+    void *user;
+} sl_pass_desc;
+
+/* host->draw_scene: draw every visible mesh of the scene with a view. */
+typedef enum sl_draw_mode {
+    SL_DRAW_DEPTH_ONLY = 1, /* core depth program (vertex hooks applied); for shadow maps */
+    SL_DRAW_PROGRAM         /* the given program; the core sets per-object uniforms
+                               sl_model (mat4), sl_normal_matrix (mat3) and the camera uniforms,
+                               and binds attributes 0 position, 1 normal, 2 tangent (xyz+w),
+                               3 uv */
+} sl_draw_mode;
+
+typedef struct sl_draw_scene_desc {
+    uint32_t struct_size;
+    sl_draw_mode mode;
+    float view[16], proj[16];        /* column-major */
+    struct sl_program *program;      /* SL_DRAW_PROGRAM */
+    bool shadow_casters_only;        /* skip materials with cast_shadows = false */
+    bool uv_space;                   /* rasterise at uv*2-1 instead of projecting (texture-space
+                                        passes); world position still reaches the program */
+    int cull;                        /* 0 none, 1 back (default), 2 front */
+} sl_draw_scene_desc;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,66 @@
+/* The plugin descriptor and its lifecycle.
+ *
+ *   load (dlopen, entry symbol, ABI check)
+ *     → create(host)        no GL context. Register parameters, chunks, passes, keys here.
+ *     → activate()          GL context current. Create GL objects.
+ *     → per frame:
+ *          begin_frame()    GL current, before any pass; only while the plugin is enabled
+ *          pass execute()   GL current (see pass.h)
+ *          bind callback    GL current, when a program with this plugin's chunks is bound
+ *     → resize(w, h)        GL current, after the viewport changed
+ *     → deactivate()        GL current. Delete GL objects.
+ *     → destroy()           no GL context. Free memory.
+ * All callbacks run on the main thread. A plugin that is loaded but disabled
+ * ("<id>.enabled" = false) gets no per-frame calls and none of its chunks or passes are used.
+ */
+#ifndef SHADELAB_PLUGIN_H
+#define SHADELAB_PLUGIN_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SL_PLUGIN_ENTRY_SYMBOL "shadelab_plugin_entry"
+
+typedef struct sl_plugin_desc {
+    uint32_t abi_major;         /* SL_ABI_MAJOR the plugin was built with */
+    uint32_t abi_minor;         /* SL_ABI_MINOR the plugin was built with */
+    uint32_t struct_size;       /* sizeof(sl_plugin_desc) */
+    const char *id;             /* [a-z0-9-]; prefix of the plugin's parameters */
+    const char *version;
+    const char *description;
+    const char *const *requires;  /* NULL-terminated plugin ids that must load first, or NULL */
+    const char *const *conflicts; /* NULL-terminated plugin ids that must not be loaded */
+
+    /* Returns SL_OK and sets *user, or an error (logged; the plugin becomes disabled). */
+    sl_status (*create)(const sl_host *host, void **user);
+    sl_status (*activate)(void *user);
+    void (*begin_frame)(void *user, const sl_frame *frame);
+    void (*resize)(void *user, int width, int height);
+    void (*deactivate)(void *user);
+    void (*destroy)(void *user);
+    /* Extensions this plugin offers to others, by id with revision ("shadelab.shadow-maps/1");
+     * NULL when not provided. May be NULL. */
+    const void *(*get_extension)(void *user, const char *id);
+} sl_plugin_desc;
+
+#if defined(__GNUC__)
+#define SL_EXPORT __attribute__((visibility("default")))
+#else
+#define SL_EXPORT
+#endif
+
+/* The one symbol a plugin exports. Use once per plugin:
+ *   static const sl_plugin_desc desc = { SL_PLUGIN_HEADER, .id = "my-plugin", … };
+ *   SL_DEFINE_PLUGIN(desc)                                                       */
+#define SL_PLUGIN_HEADER \
+    .abi_major = SL_ABI_MAJOR, .abi_minor = SL_ABI_MINOR, .struct_size = sizeof(sl_plugin_desc)
+#define SL_DEFINE_PLUGIN(desc) \
+    SL_EXPORT const sl_plugin_desc *shadelab_plugin_entry(void) { return &(desc); }
+
+typedef const sl_plugin_desc *(*sl_plugin_entry_fn)(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

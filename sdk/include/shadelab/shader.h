@@ -1,0 +1,91 @@
+/* Shader hooks: how a plugin adds GLSL to the composed forward material shader.
+ *
+ * Plugins never edit core templates. They register chunks: a GLSL file (relative to the
+ * plugin's resource directory) plus the name of a function with the signature fixed by the
+ * hook below. The composer includes a chunk only in the programs of materials that use it, so
+ * a material without, say, a normal map compiles no normal-map code. Errors in a chunk are
+ * reported with the plugin file and line (#line mapping).
+ *
+ * GLSL types available to every chunk (shaders/surface.glsl):
+ *   struct SlVertex  { vec3 position; vec3 normal; vec4 tangent; vec2 uv; };      object space
+ *   struct SlSurface { vec3 position; vec3 normal; vec3 geometric_normal;
+ *                      vec3 tangent; vec3 bitangent; vec2 uv; vec3 view;        world space
+ *                      vec3 base_color; float alpha; float specular; float ao; float opacity; };
+ *   struct SlLight   { vec4 position; vec4 direction; vec4 color; vec4 params[2]; };
+ *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
+ *             int sl_frame_index; vec2 sl_viewport_size.
+ *
+ * Hook signatures (FN is sl_shader_chunk_desc.function):
+ *   VERTEX           void FN(inout SlVertex v)                   object space, before skinning
+ *                                                                to world; sl_time available
+ *   SURFACE          void FN(inout SlSurface s)                  edits the surface record
+ *                                                                (normal maps, gloss/AO maps)
+ *   SHADING_MODEL    vec3 FN(SlSurface s, vec3 l, vec3 E)        outgoing radiance towards
+ *                                                                s.view from one light; l points
+ *                                                                to the light, E is its
+ *                                                                irradiance at normal incidence;
+ *                                                                the model applies max(0, n·l)
+ *   MODEL_AMBIENT    vec3 FN(SlSurface s, vec3 ambient_irradiance)
+ *                                                                optional per-model term
+ *                                                                outside the light loop
+ *   LIGHT            bool FN(SlLight L, SlSurface s, out vec3 l, out vec3 E)
+ *                                                                evaluates one light of type
+ *                                                                `name`; false = no light here
+ *   AMBIENT          vec3 FN(SlSurface s)                        added irradiance-like term
+ *                                                                (environment lighting);
+ *                                                                summed over plugins
+ *   DEBUG_VIEW       vec3 FN(SlSurface s)                        replaces the output when the
+ *                                                                view `name` is selected
+ *   DEBUG_VIEW_LIGHT vec3 FN(SlSurface s, vec3 l, vec3 E)       like DEBUG_VIEW, summed over
+ *                                                                the lights (e.g. "GGX D")
+ *   LIBRARY          (no function)                               helper code included whenever
+ *                                                                the plugin is enabled
+ */
+#ifndef SHADELAB_SHADER_H
+#define SHADELAB_SHADER_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sl_hook {
+    SL_HOOK_VERTEX = 1,
+    SL_HOOK_SURFACE,
+    SL_HOOK_SHADING_MODEL,
+    SL_HOOK_MODEL_AMBIENT,
+    SL_HOOK_LIGHT,
+    SL_HOOK_AMBIENT,
+    SL_HOOK_DEBUG_VIEW,
+    SL_HOOK_DEBUG_VIEW_LIGHT,
+    SL_HOOK_LIBRARY
+} sl_hook;
+
+typedef struct sl_shader_chunk_desc {
+    uint32_t struct_size;  /* sizeof(sl_shader_chunk_desc) */
+    sl_hook hook;
+    const char *file;      /* GLSL file relative to the plugin's resource directory */
+    const char *function;  /* entry function (see the signatures above); NULL for LIBRARY */
+    /* SHADING_MODEL / MODEL_AMBIENT: the model name materials select ("ggx").
+     * LIGHT: the light type ("spot"). DEBUG_VIEW(_LIGHT): the view name ("ggx-d"). */
+    const char *name;
+    /* VERTEX/SURFACE/AMBIENT: include the chunk only for materials carrying this material
+     * key (e.g. "normal_map"); NULL = every material. */
+    const char *when_material_has;
+    int order;             /* SURFACE/VERTEX hooks run in ascending order, then by plugin */
+    const char *description; /* DEBUG_VIEW: shown in the GUI and --list-debug-views */
+} sl_shader_chunk_desc;
+
+/* A stand-alone program (for passes: shadow maps, blurs, post effects). Files are relative to
+ * the plugin's resource directory; "sl:" prefixes name the core's shader library
+ * ("sl:fullscreen.vert"). `defines` is a newline-separated list of "NAME VALUE" lines. */
+typedef struct sl_program_desc {
+    uint32_t struct_size;
+    const char *vertex;
+    const char *fragment;
+    const char *defines;
+} sl_program_desc;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

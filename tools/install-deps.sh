@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every build/test dependency of shadelab from Debian 12's packages, only when missing.
+# Nothing is downloaded from anywhere else. Safe to run repeatedly.
+set -euo pipefail
+
+PKGS=(
+  build-essential cmake pkg-config
+  libglfw3-dev            # window + input
+  libosmesa6-dev          # headless CPU GL (llvmpipe)
+  libegl-dev libegl1-mesa-dev libgl-dev libgles-dev mesa-common-dev libgbm-dev
+  libgl1-mesa-dri         # llvmpipe/DRI drivers used by OSMesa and EGL surfaceless
+  libopenimageio-dev openimageio-tools  # images in and out, image compare
+  libcjson-dev            # JSON scenes
+  libassimp-dev           # glTF / OBJ meshes
+  libcglm-dev             # vector/matrix math
+  libimgui-dev            # GUI (C++ adapter only)
+  gnuplot-nox             # benchmark charts
+  xvfb xauth              # GUI smoke test
+  clang libclang-rt-14-dev  # fuzzing (libFuzzer) and sanitizers
+)
+
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all dependencies present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
