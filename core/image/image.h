@@ -1,51 +1,150 @@
 /* Images in and out, through OpenImageIO (image_oiio.cpp is the only C++ here), and
- * procedural textures. Pixels are float RGBA in memory unless stated otherwise. */
+ * procedural textures. Pixels are float RGBA in memory unless stated otherwise.
+ *
+ * Conventions for every function here:
+ *  - row 0 is the TOP of the image (file order). OpenGL's glReadPixels returns bottom-up
+ *    rows: use sl_image_flip_rows. When an image is uploaded to GL as is (row 0 first), row 0
+ *    sits at texture coordinate t = 0, i.e. the glTF convention "uv origin at the top left".
+ *  - "linear" means linear-light values in the sRGB/Rec.709 primaries; "encoded" means
+ *    sRGB-encoded per IEC 61966-2-1. Alpha is never encoded.
+ *  - Error messages are written into err (if err && err_size), NUL-terminated and truncated
+ *    to err_size; functions that fail leave their output image zeroed (safe to free). */
 #ifndef SL_IMAGE_H
 #define SL_IMAGE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
+/* Largest width or height sl_image_load and sl_image_procedural accept (a 16384² RGBA float
+ * image is 4 GiB already); larger files are refused before any pixel memory is allocated. */
+#define SL_IMAGE_MAX_DIM 16384
+
 typedef struct sl_image {
     int width, height;
     int channels;     /* always 4 after loading (RGBA) */
     float *pixels;    /* width*height*4, row 0 = top of the image */
-    int source_bits;  /* 8, 16 or 32 (float) — bit depth of the file */
-    bool source_srgb; /* the file stores sRGB-encoded values (8/16-bit PNG/JPEG) */
+    int source_bits;  /* bits per channel in the file: 8, 16 or 32. 16 is ambiguous (16-bit
+                         integer PNG/TIFF or half-float EXR): see source_float */
+    bool source_srgb; /* the file stores sRGB-encoded values: true for 8/16-bit integer files
+                         (PNG, JPEG, TIFF…) unless OIIO's "oiio:ColorSpace" metadata says linear
+                         (e.g. a PNG with gAMA 1.0); false for float files (EXR, HDR) and for
+                         procedural textures. Describes the FILE: sl_image_srgb_to_linear does
+                         not change it. */
+    bool source_float; /* the file stores floating-point samples (half or float) */
 } sl_image;
 
-/* Loads any format OpenImageIO reads (PNG, JPEG, HDR, EXR, 8/16/32-bit) as float RGBA,
- * unmodified values (no colour conversion: see sl_image_to_linear). On failure writes
- * "path: reason" into err. */
+/* Loads any format OpenImageIO reads (PNG, JPEG, HDR, EXR, TIFF…; 8/16-bit integer, half,
+ * float) as float RGBA, unmodified values (integers normalised to [0,1], no colour conversion:
+ * see sl_image_srgb_to_linear). One channel = grey, replicated to RGB; two channels = grey +
+ * alpha; a missing alpha is 1. Only the first subimage / mip level is read; EXIF orientation
+ * is not applied. On failure writes "path: reason" into err (no such file, is a directory,
+ * permission denied, empty file, unsupported format, corrupt or truncated data, too large)
+ * and returns false with *img zeroed. Never aborts on bad input. */
 bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size);
-/* sRGB-encoded → linear in place (RGB only), per IEC 61966-2-1. */
+/* sRGB-encoded → linear in place (RGB only, alpha untouched), per IEC 61966-2-1 (see
+ * sl_srgb_decode: inputs are clamped to [0,1] and NaN becomes 0). Call it exactly once, for
+ * colour textures whose img->source_srgb is true. */
 void sl_image_srgb_to_linear(sl_image *img);
-/* Writes float RGBA. ".exr": linear half float, as is. ".png": `display_encoded` says the
- * pixels are already display-encoded in [0,1] (written as 8-bit); otherwise they are clamped
- * and sRGB-encoded first. Format from the extension; err names the path and cause. */
+/* Writes float RGBA (width*height*4, row 0 = top). Format from the extension
+ * (case-insensitive):
+ *   .png         8-bit RGBA. If display_encoded, values are taken as already encoded;
+ *                otherwise RGB is clamped to [0,1] and sRGB-encoded. Either way each value
+ *                is clamped to [0,1] and rounded to nearest (NaN → 0). Alpha is written
+ *                linear, clamped: pass alpha 1 for an opaque image.
+ *   .jpg/.jpeg   8-bit RGB (alpha dropped), as .png, quality 95.
+ *   .exr         half-float RGBA, linear, values as is (NaN/Inf kept; |x| > 65504 → ±Inf,
+ *                which is half's range). display_encoded is ignored.
+ *   .hdr         Radiance RGBE, float RGB (alpha dropped; ~1% precision, negatives → 0).
+ * The file is written to a temporary name in the same directory and renamed into place, so
+ * a failed write leaves any existing file untouched. err names the path and the cause
+ * (unknown extension, directory missing, permission denied, OIIO's message). */
 bool sl_image_write(const char *path, const float *rgba, int width, int height,
                     bool display_encoded, char *err, size_t err_size);
 void sl_image_free(sl_image *img);
 
-/* Procedural textures for scenes that need no files: spec strings such as
- * "checker:8:0.9,0.9,0.9:0.2,0.3,0.8" (squares per side, colour A, colour B, linear RGB),
- * "grid:…", "gradient". Output is linear RGBA float. */
+/* Procedural textures for scenes that need no files. Output is linear RGBA float, size×size,
+ * alpha 1 (unless an r,g,b,a colour gives one), source_bits 32, source_srgb false. Colours
+ * are linear "r,g,b" or "r,g,b,a", finite and ≥ 0. size is 1..SL_IMAGE_MAX_DIM.
+ *   "checker:N:A:B"   N×N squares (N = 1..size); the square holding texel (0,0) (top left) is
+ *                     A and colours alternate, texel (x,y) is A when (x*N/size + y*N/size) is
+ *                     even (integer division, so squares differ by at most one texel).
+ *                     e.g. "checker:8:0.9,0.9,0.9:0.2,0.3,0.8"
+ *   "grid:N:A:B"      lines of colour A on background B: N×N cells, a line along the top and
+ *                     left edge of each cell (so the texture tiles seamlessly), line width
+ *                     max(1, size/(16N)) texels.
+ *   "gradient"        red = x/(size-1), green = y/(size-1) (0 at the top-left texel, exactly
+ *                     1 at the last), blue 0: a full-range ramp.
+ *   "uv"              red = u = (x+0.5)/size, green = v = (y+0.5)/size, blue 0: the texel
+ *                     centre's texture coordinate (row 0 = v near 0, see above), so sampling
+ *                     it shows the UVs a mesh uses.
+ *   "constant:A"      one colour.
+ * A malformed spec gives an error naming the spec, what is wrong and the expected form, e.g.
+ * "procedural texture 'checker:8': expected 'checker:N:r,g,b:r,g,b'". */
 bool sl_image_procedural(sl_image *img, const char *spec, int size, char *err, size_t err_size);
 
-/* Image comparison (stated metrics, on linear RGB(A) floats). */
+/* Image comparison (stated metrics, on linear RGB(A) floats). a and b hold width*height
+ * pixels of `channels` (1..4) floats each; the metrics use the colour channels only (the
+ * first min(channels, 3)). A pixel with a NaN/Inf in any of its channels is "non-finite";
+ * pixels non-finite in EITHER image are left out of rmse/psnr/max_abs/mean_abs (and counted
+ * in nonfinite_a / nonfinite_b and in pixels_over). */
 typedef struct sl_image_diff {
-    double rmse;          /* sqrt(mean((a-b)^2)) over RGB */
-    double psnr;          /* 20 log10(peak / rmse), peak = 1 */
+    double rmse;          /* sqrt(mean((a-b)^2)) over RGB of the compared pixels */
+    double psnr;          /* 20 log10(peak / rmse), peak = 1, in dB; INFINITY when rmse = 0
+                             (identical images) */
     double max_abs;       /* largest |a-b| over RGB */
-    double mean_abs;
-    long nonfinite_a, nonfinite_b; /* NaN/Inf counts */
-    long pixels_over;     /* pixels with any channel |a-b| > threshold */
+    double mean_abs;      /* mean |a-b| over RGB */
+    long nonfinite_a, nonfinite_b; /* pixels with a NaN/Inf channel (any channel, alpha too) */
+    long pixels_over;     /* pixels with any RGB channel |a-b| > threshold, plus every pixel
+                             that is non-finite in either image */
+    long pixels_compared; /* pixels that entered the sums (finite in both). When it is 0,
+                             rmse, psnr, max_abs and mean_abs are NaN (undefined) */
 } sl_image_diff;
 void sl_image_compare(const float *a, const float *b, int width, int height, int channels,
                       double threshold, sl_image_diff *out);
 
-/* sRGB OETF, IEC 61966-2-1 piecewise (scalar, for tests and CPU paths). */
+/* sRGB OETF, IEC 61966-2-1 piecewise (scalar, for tests and CPU paths), computed in double.
+ * encode: 12.92·x for x ≤ 0.0031308, else 1.055·x^(1/2.4) − 0.055.
+ * decode: x/12.92 for x ≤ 0.04045, else ((x + 0.055)/1.055)^2.4.
+ * Both clamp their input to [0,1] first and map NaN to 0, so the result is always finite and
+ * in [0,1] (−Inf → 0, +Inf → 1). */
 float sl_srgb_encode(float linear);
 float sl_srgb_decode(float encoded);
+
+/* Reverses the row order in place (GL reads bottom-up; files are top-down). */
+void sl_image_flip_rows(float *pixels, int width, int height, int channels);
+/* The same for any pixel layout: `height` rows of `row_bytes` bytes each. */
+void sl_image_flip_rows_raw(void *data, size_t row_bytes, int height);
+/* Float RGBA (row 0 = top) → 8-bit RGBA for display or PNG: RGB sRGB-encoded unless
+ * display_encoded, then every value clamped to [0,1], ×255, rounded to nearest; NaN → 0. out
+ * holds width*height*4 bytes. */
+void sl_image_to_rgba8(const float *rgba, int width, int height, bool display_encoded,
+                       unsigned char *out);
+
+#ifdef SL_IMAGE_INTERNAL
+/* Internal: the OpenImageIO adapter (image_oiio.cpp), used only by image.c. Every function
+ * catches all C++ exceptions and reports them as errors (message without the path). */
+typedef struct sl_oiio_info {
+    int width, height, depth, channels;
+    int alpha_channel;      /* −1 when none */
+    int bits;               /* bits per sample of the file's pixel type (8, 16, 32…) */
+    bool is_float;          /* half / float / double samples */
+    bool deep;              /* deep (multi-sample) image */
+    char format_name[32];   /* OIIO's reader name: "png", "openexr"… */
+    char colorspace[64];    /* "oiio:ColorSpace" metadata, "" when absent */
+} sl_oiio_info;
+typedef struct sl_oiio_input sl_oiio_input;
+sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, char *err, size_t err_size);
+/* Reads channels [chbegin, chend) of subimage 0, mip 0 as float, tightly packed. */
+bool sl_oiio_read(sl_oiio_input *in, int chbegin, int chend, float *out, char *err,
+                  size_t err_size);
+void sl_oiio_close(sl_oiio_input *in);
+/* Writes `channels` channels of either uint8 (pixels8) or float (pixelsf) data; file_type is
+ * "uint8", "half" or "float". `format` is OIIO's writer name or extension ("png", "exr"…). */
+bool sl_oiio_write(const char *path, const char *format, const unsigned char *pixels8,
+                   const float *pixelsf, int width, int height, int channels,
+                   const char *file_type, int jpeg_quality, char *err, size_t err_size);
+/* True when some OIIO reader claims the extension (without the dot, lower case). */
+bool sl_oiio_extension_known(const char *ext);
+#endif
 
 #endif

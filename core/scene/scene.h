@@ -6,8 +6,12 @@
 
 #include <shadelab/shadelab.h>
 
-/* Triangle mesh, interleaving-free arrays. tangents are xyz + handedness w (±1), generated
- * when the source has none (bitangent = w · cross(normal, tangent)). */
+/* Triangle mesh, interleaving-free arrays, counter-clockwise front faces. tangents are xyz +
+ * handedness w (±1), generated when the source has none (bitangent = w · cross(normal,
+ * tangent)). UV convention: v = 0 is the TOP row of the image (glTF; see core/image/image.h),
+ * so the tangent points toward increasing u and the bitangent toward DECREASING v, i.e. "up"
+ * in the image: the direction a normal map's green channel encodes (OpenGL/glTF "+Y up"). An
+ * unmirrored layout has w = +1, a mirrored one w = −1. */
 typedef struct sl_mesh_data {
     int vertex_count, index_count;
     float *positions;   /* 3 per vertex */
@@ -76,7 +80,8 @@ typedef struct sl_camera {
 } sl_camera;
 
 typedef struct sl_environment {
-    char *map;              /* image path (resolved), NULL = none */
+    char *map;              /* image path (resolved at load: absolute or relative to the
+                               working directory), or a procedural spec; NULL = none */
     float color[3];         /* constant radiance when map is NULL (default 0) */
     float intensity;        /* multiplier, default 1 */
     float yaw_deg;          /* rotation about +Y */
@@ -103,14 +108,22 @@ typedef struct sl_scene_load_opts {
     const char *data_dir;   /* may be NULL */
 } sl_scene_load_opts;
 
-/* Loads a JSON scene file. On failure returns false and writes a message naming the file,
- * line and column and the cause into err. Warnings (unknown keys with the nearest valid key)
- * go to stderr through sl_log. Meshes referenced by file go through assimp. */
+/* Loads a JSON scene file (format: scenes/README.md). On failure returns false and writes a
+ * message naming the file, line and column and the cause into err. Warnings (unknown keys with
+ * the nearest valid key) go to stderr through sl_log. Meshes referenced by file go through
+ * assimp. On success *scene is overwritten (it must not hold a scene: free it first or pass a
+ * zeroed one); on failure *scene is left untouched, so a viewer can keep the scene it has.
+ * opts may be NULL; a NULL data_dir falls back to the SHADELAB_DATA environment variable. */
 bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_opts *opts,
                         char *err, size_t err_size);
-/* Same from text in memory; `name` is used in messages and `dir` for relative paths. */
+/* Same from NUL-terminated text in memory; `name` is used in messages and `dir` for relative
+ * paths (NULL: only the data directory is searched). */
 bool sl_scene_load_text(sl_scene *scene, const char *text, const char *name, const char *dir,
                         const sl_scene_load_opts *opts, char *err, size_t err_size);
+/* The built-in default scene (scenes/default.json, embedded at build time; path "<default>"). */
+bool sl_scene_load_default(sl_scene *scene, const sl_scene_load_opts *opts, char *err,
+                           size_t err_size);
+/* Frees everything and zeroes *scene (safe on a zeroed scene, twice, or NULL). */
 void sl_scene_free(sl_scene *scene);
 /* Recomputes node world matrices and scene bounds. */
 void sl_scene_update_transforms(sl_scene *scene);
@@ -119,6 +132,7 @@ void sl_scene_update_transforms(sl_scene *scene);
 char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const char *rel,
                             char *err, size_t err_size);
 
+/* The property with this key, or NULL. */
 const sl_prop *sl_prop_find(const sl_prop_list *list, const char *key);
 
 /* Procedural primitives (core/scene/primitives.c). All have normals, uvs and tangents. */
@@ -136,5 +150,53 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
 void sl_mesh_generate_tangents(sl_mesh_data *m);
 void sl_mesh_compute_bounds(sl_mesh_data *m);
 void sl_mesh_free(sl_mesh_data *m);
+
+/* ---- building blocks (used by the loaders; handy for tools and tests) -------------------- */
+
+/* Deepest node nesting the loaders accept ("children" inside "children"…, imported
+ * hierarchies included); deeper is an error, never a stack overflow. */
+#define SL_SCENE_MAX_DEPTH 64
+
+/* Allocates the five arrays (zeroed) for vertex_count vertices and index_count indices; false
+ * (and *m zeroed) on overflow or out of memory. */
+bool sl_mesh_alloc(sl_mesh_data *m, int vertex_count, int index_count);
+/* Makes every normal unit and every tangent unit, orthogonal to its normal, with w = ±1:
+ * non-finite or zero normals become the face normal of a triangle using the vertex (or +Y),
+ * bad tangents any vector orthogonal to the normal. Returns how many vertices were repaired. */
+int sl_mesh_repair_frames(sl_mesh_data *m);
+
+/* Index of the named item, or -1. */
+int sl_scene_find_material(const sl_scene *scene, const char *name);
+int sl_scene_find_node(const sl_scene *scene, const char *name);
+int sl_scene_find_light(const sl_scene *scene, const char *name);
+int sl_scene_find_camera(const sl_scene *scene, const char *name);
+
+/* Append an item and return its index (-1 when out of memory). Strings are copied; indices
+ * stay valid, pointers into the arrays do not (they may move on the next append).
+ * Materials: model NULL = "lambert", cast_shadows true. Nodes: identity transform; parent
+ * must be -1 or an existing node (parents always come before their children).
+ * Meshes: takes ownership of *data (zeroed on return, also on failure). Lights: white,
+ * intensity 1, enabled, direction (0,-1,0). Cameras: at (0,0,5) looking at the origin, 45°,
+ * near 0.05, far 100. */
+int sl_scene_add_material(sl_scene *scene, const char *name, const char *model);
+int sl_scene_add_node(sl_scene *scene, const char *name, int parent);
+int sl_scene_add_mesh(sl_scene *scene, const char *name, sl_mesh_data *data, int material);
+bool sl_scene_node_add_mesh(sl_scene *scene, int node, int mesh);
+int sl_scene_add_light(sl_scene *scene, const char *name, const char *type);
+int sl_scene_add_camera(sl_scene *scene, const char *name);
+
+/* Set (add or replace) a property; returns it, or NULL when out of memory. */
+sl_prop *sl_prop_set_number(sl_prop_list *list, const char *key, float value, int line);
+sl_prop *sl_prop_set_bool(sl_prop_list *list, const char *key, bool value, int line);
+sl_prop *sl_prop_set_string(sl_prop_list *list, const char *key, const char *value, int line);
+sl_prop *sl_prop_set_vec(sl_prop_list *list, const char *key, const float *v, int count, int line);
+void sl_prop_list_free(sl_prop_list *list);
+
+/* local = T · R · S (column-major). rotation_xyzw is a unit quaternion (x, y, z, w). */
+void sl_mat4_from_trs(float out[16], const float translate[3], const float rotation_xyzw[4],
+                      const float scale[3]);
+/* Quaternion (x, y, z, w) for Euler angles in degrees, applied about the fixed X axis first,
+ * then Y, then Z: R = Rz · Ry · Rx. */
+void sl_quat_from_euler_deg(float out_xyzw[4], const float degrees_xyz[3]);
 
 #endif

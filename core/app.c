@@ -1,0 +1,470 @@
+#include "app.h"
+#include "core_plugin.h"
+#include "image/image.h"
+#include "log.h"
+#include "render/composer.h"
+#include "render/renderer.h"
+#define SL_GL_IMPLEMENTATION
+#include <shadelab/gl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+void sl_plugins_set_gl_app(sl_app *app);
+
+/* ------------------------------------------------------------ material and light values */
+
+sl_mat_value *sl_app_material_value(sl_app *app, int m, const char *key) {
+    if (m < 0 || m >= app->scene.material_count || !app->materials) return NULL;
+    sl_mat_state *ms = &app->materials[m];
+    for (int i = 0; i < ms->count; i++)
+        if (!strcmp(app->params.items[ms->values[i].param].full_id, key)) return &ms->values[i];
+    return NULL;
+}
+
+/* A scene prop as text, so one parser (sl_param_parse) validates scene, CLI and GUI input. */
+static void prop_text(const sl_prop *p, char *buf, size_t n) {
+    switch (p->kind) {
+    case SL_PROP_NUMBER: snprintf(buf, n, "%.9g", p->v[0]); break;
+    case SL_PROP_BOOL: snprintf(buf, n, "%s", p->v[0] != 0 ? "true" : "false"); break;
+    case SL_PROP_STRING: snprintf(buf, n, "%s", p->str ? p->str : ""); break;
+    case SL_PROP_VEC: {
+        size_t u = 0;
+        buf[0] = 0;
+        for (int i = 0; i < p->count && u < n; i++) u += snprintf(buf + u, n - u, "%s%.9g", i ? "," : "", p->v[i]);
+        break;
+    }
+    }
+}
+
+static bool set_material_value(sl_app *app, int m, sl_mat_value *v, const char *text, char *err, size_t n) {
+    sl_param *q = &app->params.items[v->param];
+    sl_value val;
+    if (!sl_param_parse(q, text, &val, err, n)) return false;
+    if (q->desc.type == SL_PARAM_TEXTURE) {
+        free(v->str);
+        v->str = strdup(text);
+        val.s = v->str;
+    }
+    v->v = val;
+    v->present = true;
+    app->materials_version++;
+    return true;
+}
+
+
+static bool set_light_value(sl_app *app, int li, const char *key, const char *text, char *err, size_t n) {
+    sl_light *L = &app->scene.lights[li];
+    sl_param *q = sl_params_find_key(&app->params, SL_SCOPE_LIGHT, key, L->type);
+    if (!q) {
+        const char *near = sl_params_nearest(&app->params, SL_SCOPE_LIGHT, key);
+        snprintf(err, n, "light \"%s\" (type %s): unknown key \"%s\"%s%s%s", L->name, L->type, key,
+                 near ? "; did you mean \"" : "", near ? near : "", near ? "\"?" : "");
+        return false;
+    }
+    sl_value v;
+    char what[300];
+    snprintf(what, sizeof what, "light.%s.%s", L->name, key);
+    sl_param tmp = *q;
+    tmp.full_id = what;
+    if (!sl_param_parse(&tmp, text, &v, err, n)) return false;
+    if (!strcmp(key, "enabled")) L->enabled = v.b;
+    else if (!strcmp(key, "cast_shadows")) L->cast_shadows = v.b;
+    else if (!strcmp(key, "intensity")) L->intensity = v.f[0];
+    else if (!strcmp(key, "color")) memcpy(L->color, v.f, 12);
+    else if (!strcmp(key, "position")) memcpy(L->position, v.f, 12);
+    else if (!strcmp(key, "direction")) {
+        float len = sqrtf(v.f[0] * v.f[0] + v.f[1] * v.f[1] + v.f[2] * v.f[2]);
+        if (!(len > 0)) { snprintf(err, n, "%s: direction must not be zero", what); return false; }
+        for (int i = 0; i < 3; i++) L->direction[i] = v.f[i] / len;
+    } else {
+        int slot = q->desc.light_slot;
+        int comps = q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3 ? 3 : 1;
+        if (slot + comps > 8) { snprintf(err, n, "%s: light_slot out of range", what); return false; }
+        for (int c = 0; c < comps; c++)
+            app->light_params[li][slot + c] = q->desc.type == SL_PARAM_BOOL ? (float)v.b
+                                            : q->desc.type == SL_PARAM_INT || q->desc.type == SL_PARAM_ENUM ? (float)v.i
+                                            : v.f[c];
+    }
+    app->lights_version++;
+    return true;
+}
+
+static int find_material(sl_app *app, const char *name) {
+    for (int i = 0; i < app->scene.material_count; i++)
+        if (!strcmp(app->scene.materials[i].name, name)) return i;
+    return -1;
+}
+
+static int find_light(sl_app *app, const char *name) {
+    for (int i = 0; i < app->scene.light_count; i++)
+        if (!strcmp(app->scene.lights[i].name, name)) return i;
+    return -1;
+}
+
+static void list_names(char *buf, size_t n, int count, const char *(*get)(sl_app *, int), sl_app *app) {
+    size_t u = 0;
+    buf[0] = 0;
+    for (int i = 0; i < count && u < n; i++) u += snprintf(buf + u, n - u, "%s%s", i ? ", " : "", get(app, i));
+    if (!count) snprintf(buf, n, "(none)");
+}
+static const char *mat_name(sl_app *a, int i) { return a->scene.materials[i].name; }
+static const char *light_name(sl_app *a, int i) { return a->scene.lights[i].name; }
+static const char *cam_name(sl_app *a, int i) { return a->scene.cameras[i].name; }
+
+bool sl_app_set(sl_app *app, const char *assignment, sl_param_source src, char *err, size_t n) {
+    const char *eq = strchr(assignment, '=');
+    if (!eq || eq == assignment) {
+        snprintf(err, n, "--set expects ID=VALUE, got \"%s\"", assignment);
+        return false;
+    }
+    char id[512];
+    snprintf(id, sizeof id, "%.*s", (int)(eq - assignment), assignment);
+    const char *value = eq + 1;
+    bool is_mat = !strncmp(id, "material.", 9), is_light = !strncmp(id, "light.", 6);
+    if (is_mat || is_light) {
+        char *name = id + (is_mat ? 9 : 6);
+        char *dot = strrchr(name, '.');
+        if (!dot || dot == name) {
+            snprintf(err, n, "\"%s\": expected %s.NAME.KEY", id, is_mat ? "material" : "light");
+            return false;
+        }
+        *dot = 0;
+        const char *key = dot + 1;
+        char names[2048];
+        if (is_light) {
+            int li = find_light(app, name);
+            if (li < 0) {
+                list_names(names, sizeof names, app->scene.light_count, light_name, app);
+                snprintf(err, n, "no light named \"%s\" in the scene (lights: %s)", name, names);
+                return false;
+            }
+            return set_light_value(app, li, key, value, err, n);
+        }
+        int m = find_material(app, name);
+        if (m < 0) {
+            list_names(names, sizeof names, app->scene.material_count, mat_name, app);
+            snprintf(err, n, "no material named \"%s\" in the scene (materials: %s)", name, names);
+            return false;
+        }
+        sl_mat_value *v = sl_app_material_value(app, m, key);
+        if (!v) {
+            const char *near = sl_params_nearest(&app->params, SL_SCOPE_MATERIAL, key);
+            snprintf(err, n, "material \"%s\": unknown key \"%s\"%s%s%s (keys come from the loaded plugins; see --dump-params)",
+                     name, key, near ? "; did you mean \"" : "", near ? near : "", near ? "\"?" : "");
+            return false;
+        }
+        char full[600];
+        snprintf(full, sizeof full, "material.%s.%s", name, key);
+        sl_param tmp = app->params.items[v->param];
+        char *saved = app->params.items[v->param].full_id;
+        app->params.items[v->param].full_id = full; /* messages name the full address */
+        bool ok = set_material_value(app, m, v, value, err, n);
+        app->params.items[v->param].full_id = saved;
+        (void)tmp;
+        return ok;
+    }
+    return sl_params_set(&app->params, id, value, src, err, n);
+}
+
+/* Validates and applies material/light props from the scene against the plugins' schema. */
+static bool apply_scene_values(sl_app *app, char *err, size_t n) {
+    sl_scene *s = &app->scene;
+    app->materials = calloc(s->material_count + 1, sizeof *app->materials);
+    int nkeys = 0;
+    for (int i = 0; i < app->params.count; i++) nkeys += app->params.items[i].desc.scope == SL_SCOPE_MATERIAL;
+    for (int m = 0; m < s->material_count; m++) {
+        sl_mat_state *ms = &app->materials[m];
+        ms->values = calloc(nkeys + 1, sizeof *ms->values);
+        for (int i = 0; i < app->params.count; i++) {
+            const sl_param *q = &app->params.items[i];
+            if (q->desc.scope != SL_SCOPE_MATERIAL) continue;
+            sl_mat_value *v = &ms->values[ms->count++];
+            v->param = i;
+            v->v = q->desc.default_value;
+            v->v.s = NULL;
+        }
+        const sl_material *mat = &s->materials[m];
+        for (int k = 0; k < mat->props.count; k++) {
+            const sl_prop *p = &mat->props.items[k];
+            sl_mat_value *v = sl_app_material_value(app, m, p->key);
+            if (!v) {
+                const char *near = sl_params_nearest(&app->params, SL_SCOPE_MATERIAL, p->key);
+                SL_WARN("%s:%d: material \"%s\": unknown key \"%s\"%s%s%s (ignored; keys come from the loaded plugins)",
+                        s->path, p->line, mat->name, p->key, near ? "; did you mean \"" : "", near ? near : "",
+                        near ? "\"?" : "");
+                continue;
+            }
+            char text[1024], why[1024];
+            prop_text(p, text, sizeof text);
+            if (!set_material_value(app, m, v, text, why, sizeof why)) {
+                snprintf(err, n, "%s:%d: material \"%s\": %s", s->path, p->line, mat->name, why);
+                return false;
+            }
+        }
+        /* a material naming a model nobody provides falls back to lambert, loudly */
+        bool provided = false;
+        for (int c = 0; c < app->plugins.chunk_count; c++) {
+            const sl_chunk_reg *ch = &app->plugins.chunks[c];
+            provided |= ch->d.hook == SL_HOOK_SHADING_MODEL && !strcmp(ch->d.name, mat->model) && app->plugins.items[ch->owner]->ok;
+        }
+        if (!provided)
+            SL_WARN("%s:%d: material \"%s\": shading model \"%s\" is not provided by any loaded plugin; using lambert "
+                    "(load it with --plugin %s)", s->path, mat->line, mat->name, mat->model, mat->model);
+    }
+    app->light_params = calloc(s->light_count + 1, sizeof *app->light_params);
+    for (int li = 0; li < s->light_count; li++) {
+        sl_light *L = &s->lights[li];
+        /* light-type keys start at their schema defaults */
+        for (int i = 0; i < app->params.count; i++) {
+            const sl_param *q = &app->params.items[i];
+            if (q->desc.scope != SL_SCOPE_LIGHT || !q->desc.light_type || strcmp(q->desc.light_type, L->type)) continue;
+            int comps = q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3 ? 3 : 1;
+            for (int c = 0; c < comps && q->desc.light_slot + c < 8; c++)
+                app->light_params[li][q->desc.light_slot + c] =
+                    q->desc.type == SL_PARAM_BOOL ? q->desc.default_value.b
+                    : (q->desc.type == SL_PARAM_INT || q->desc.type == SL_PARAM_ENUM) ? q->desc.default_value.i
+                    : q->desc.default_value.f[c];
+        }
+        for (int k = 0; k < L->props.count; k++) {
+            const sl_prop *p = &L->props.items[k];
+            char text[1024], why[1024];
+            prop_text(p, text, sizeof text);
+            if (!sl_params_find_key(&app->params, SL_SCOPE_LIGHT, p->key, L->type)) {
+                const char *near = sl_params_nearest(&app->params, SL_SCOPE_LIGHT, p->key);
+                SL_WARN("%s:%d: light \"%s\" (type %s): unknown key \"%s\"%s%s%s (ignored)", s->path, p->line, L->name,
+                        L->type, p->key, near ? "; did you mean \"" : "", near ? near : "", near ? "\"?" : "");
+                continue;
+            }
+            if (!set_light_value(app, li, p->key, text, why, sizeof why)) {
+                snprintf(err, n, "%s:%d: %s", s->path, p->line, why);
+                return false;
+            }
+        }
+        bool provided = false;
+        for (int c = 0; c < app->plugins.chunk_count; c++) {
+            const sl_chunk_reg *ch = &app->plugins.chunks[c];
+            provided |= ch->d.hook == SL_HOOK_LIGHT && !strcmp(ch->d.name, L->type) && app->plugins.items[ch->owner]->ok;
+        }
+        if (!provided)
+            SL_WARN("%s:%d: light \"%s\": type \"%s\" is not provided by any loaded plugin; the light is ignored",
+                    s->path, L->line, L->name, L->type);
+    }
+    return true;
+}
+
+static void default_camera(sl_app *app) {
+    sl_scene *s = &app->scene;
+    sl_camera c = {.fov_y_deg = 45, .znear = 0.05f, .zfar = 100, .up = {0, 1, 0}};
+    float radius = 0;
+    for (int i = 0; i < 3; i++) {
+        c.target[i] = 0.5f * (s->bounds_min[i] + s->bounds_max[i]);
+        float e = s->bounds_max[i] - s->bounds_min[i];
+        radius += e * e;
+    }
+    radius = sqrtf(radius) * 0.5f;
+    if (!(radius > 0) || !isfinite(radius)) radius = 1;
+    float dist = radius / sinf(c.fov_y_deg * (float)M_PI / 360.f) * 1.05f;
+    c.position[0] = c.target[0];
+    c.position[1] = c.target[1] + dist * 0.3f;
+    c.position[2] = c.target[2] + dist * 0.95f;
+    c.znear = dist * 0.01f;
+    c.zfar = dist * 4 + radius * 4;
+    sl_camera_from_scene(&app->camera, &c);
+}
+
+bool sl_app_set_debug_view(sl_app *app, const char *name, char *err, size_t n) {
+    if (!name || !*name || !strcmp(name, "final") || !strcmp(name, "none")) {
+        free(app->debug_view);
+        app->debug_view = NULL;
+        return true;
+    }
+    const char *best = NULL;
+    int best_d = 1 << 30;
+    for (int i = 0; i < app->plugins.chunk_count; i++) {
+        const sl_chunk_reg *c = &app->plugins.chunks[i];
+        if (c->d.hook != SL_HOOK_DEBUG_VIEW && c->d.hook != SL_HOOK_DEBUG_VIEW_LIGHT) continue;
+        if (!sl_plugin_enabled(app, c->owner)) continue;
+        if (!strcmp(c->d.name, name)) {
+            free(app->debug_view);
+            app->debug_view = strdup(name);
+            return true;
+        }
+        int d = sl_levenshtein(name, c->d.name);
+        if (d < best_d) { best_d = d; best = c->d.name; }
+    }
+    snprintf(err, n, "unknown debug view \"%s\"%s%s%s (see --list-debug-views)", name, best ? "; did you mean \"" : "",
+             best ? best : "", best ? "\"?" : "");
+    return false;
+}
+
+bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
+    memset(app, 0, sizeof *app);
+    app->opt = *opt;
+    if (app->opt.width <= 0) app->opt.width = 1280;
+    if (app->opt.height <= 0) app->opt.height = 720;
+    if (app->opt.accumulate < 1) app->opt.accumulate = 1;
+    if (app->opt.fixed_dt <= 0) app->opt.fixed_dt = 1.0 / 60.0;
+    if (!app->opt.data_dir) app->opt.data_dir = getenv("SHADELAB_DATA");
+    sl_params_init(&app->params);
+
+    sl_scene_load_opts lo = {.data_dir = app->opt.data_dir};
+    bool ok;
+    if (opt->scene_path) ok = sl_scene_load_file(&app->scene, opt->scene_path, &lo, err, n);
+    else if (opt->scene_text) ok = sl_scene_load_text(&app->scene, opt->scene_text, "<text>", ".", &lo, err, n);
+    else ok = sl_scene_load_text(&app->scene, sl_default_scene_json, "<built-in default scene>", ".", &lo, err, n);
+    if (!ok) return false;
+    app->scene_loaded = true;
+    sl_scene_update_transforms(&app->scene);
+
+    /* plugins: the core first, then the command line, then the scene's names */
+    sl_plugins_add_builtin(app, &sl_core_plugin);
+    free(app->plugins.items[0]->resource_dir);
+    app->plugins.items[0]->resource_dir = strdup(sl_shader_dir());
+    for (int i = 0; i < opt->plugin_count; i++) sl_plugins_load(app, opt->plugins[i], "command line", true);
+    for (int i = 0; i < app->scene.plugin_count; i++) sl_plugins_load(app, app->scene.plugins[i], "scene", false);
+    sl_plugins_create_all(app);
+    if (!app->plugins.items[0]->ok) {
+        snprintf(err, n, "the core failed to register its shaders (see above)");
+        return false;
+    }
+    if (opt->strict) {
+        for (int i = 0; i < app->plugins.count; i++)
+            if (!app->plugins.items[i]->ok) {
+                snprintf(err, n, "--strict: plugin %s failed: %s", app->plugins.items[i]->id,
+                         app->plugins.items[i]->disabled_reason);
+                return false;
+            }
+    }
+    /* parameter precedence: defaults < scene < command line (< GUI at run time) */
+    for (int i = 0; i < app->scene.params.count; i++) {
+        const sl_prop *p = &app->scene.params.items[i];
+        char text[1024], why[1024];
+        prop_text(p, text, sizeof text);
+        if (!sl_params_set(&app->params, p->key, text, SL_SRC_SCENE, why, sizeof why)) {
+            snprintf(err, n, "%s:%d: %s", app->scene.path, p->line, why);
+            return false;
+        }
+    }
+    if (!apply_scene_values(app, err, n)) return false;
+    for (int i = 0; i < opt->setting_count; i++) {
+        char why[2048];
+        if (!sl_app_set(app, opt->settings[i], SL_SRC_CLI, why, sizeof why)) {
+            snprintf(err, n, "--set %s: %s", opt->settings[i], why);
+            return false;
+        }
+    }
+    /* camera */
+    if (opt->camera) {
+        int found = -1;
+        for (int i = 0; i < app->scene.camera_count; i++)
+            if (!strcmp(app->scene.cameras[i].name, opt->camera)) found = i;
+        if (found < 0) {
+            char names[1024];
+            list_names(names, sizeof names, app->scene.camera_count, cam_name, app);
+            snprintf(err, n, "--camera %s: no such camera in %s (cameras: %s)", opt->camera, app->scene.path, names);
+            return false;
+        }
+        sl_camera_from_scene(&app->camera, &app->scene.cameras[found]);
+    } else if (app->scene.camera_count) {
+        sl_camera_from_scene(&app->camera, &app->scene.cameras[0]);
+    } else {
+        default_camera(app);
+    }
+    if (opt->debug_view && !sl_app_set_debug_view(app, opt->debug_view, err, n)) return false;
+    return true;
+}
+
+static bool is_cpu_renderer(const char *renderer) {
+    return renderer && (strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") || strstr(renderer, "SWR"));
+}
+
+bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
+    if (!sl_backend_create(&app->backend, app->opt.backend, app->opt.width, app->opt.height, "shadelab", err, n))
+        return false;
+    app->gl_ready = true;
+    const char *missing = NULL;
+    if (!sl_gl_load(app->backend.get_proc_address, &missing)) {
+        snprintf(err, n, "%s backend: OpenGL entry point %s is missing", app->backend.name, missing);
+        return false;
+    }
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    if (is_cpu_renderer(renderer)) app->backend.is_gpu = false;
+    SL_DEBUG("backend %s: %s, OpenGL %s", app->backend.name, renderer, glGetString(GL_VERSION));
+    sl_plugins_set_gl_app(app);
+    for (int i = 1; i < app->plugins.count; i++) {
+        sl_plugin_rec *r = app->plugins.items[i];
+        if (!r->ok) continue;
+        if (r->desc.activate) {
+            sl_status st = r->desc.activate(r->user);
+            if (st != SL_OK) {
+                r->ok = false;
+                free(r->disabled_reason);
+                char why[128];
+                snprintf(why, sizeof why, "activate() failed with status %d", (int)st);
+                r->disabled_reason = strdup(why);
+                SL_ERROR("plugin %s disabled: %s", r->id, why);
+                if (app->opt.strict) { snprintf(err, n, "--strict: plugin %s: %s", r->id, why); return false; }
+                continue;
+            }
+        }
+        r->active = true;
+    }
+    if (!sl_renderer_create(app, err, n)) return false;
+    return true;
+}
+
+bool sl_app_render_frame(sl_app *app) {
+    bool ok = sl_renderer_frame(app, 0, app->opt.accumulate);
+    return ok;
+}
+
+bool sl_app_read_color(sl_app *app, float *rgba) { return sl_renderer_read(app, "color", rgba); }
+bool sl_app_read_display(sl_app *app, float *rgba) { return sl_renderer_read(app, "display", rgba); }
+
+bool sl_app_save(sl_app *app, const char *path, char *err, size_t n) {
+    int w = app->backend.width, h = app->backend.height;
+    const sl_frame_stats *st = sl_renderer_stats(app);
+    (void)st;
+    float *px = malloc((size_t)w * h * 4 * sizeof(float));
+    const char *ext = strrchr(path, '.');
+    bool hdr = ext && (!strcasecmp(ext, ".exr") || !strcasecmp(ext, ".hdr"));
+    bool ok = hdr ? sl_app_read_color(app, px) : sl_app_read_display(app, px);
+    if (ok) ok = sl_image_write(path, px, w, h, !hdr, err, n);
+    else snprintf(err, n, "nothing rendered yet");
+    free(px);
+    return ok;
+}
+
+void sl_app_resize(sl_app *app, int w, int h) {
+    app->backend.width = w;
+    app->backend.height = h;
+    sl_renderer_resize(app, w, h);
+}
+
+void sl_app_shutdown(sl_app *app) {
+    if (app->gl_ready) {
+        for (int i = app->plugins.count - 1; i >= 1; i--) {
+            sl_plugin_rec *r = app->plugins.items[i];
+            if (r->active && r->desc.deactivate) r->desc.deactivate(r->user);
+            r->active = false;
+        }
+        sl_renderer_destroy(app);
+    }
+    sl_plugins_shutdown(app);
+    if (app->gl_ready) sl_backend_destroy(&app->backend);
+    sl_plugins_set_gl_app(NULL);
+    if (app->materials) {
+        for (int m = 0; m < app->scene.material_count; m++) {
+            for (int i = 0; i < app->materials[m].count; i++) free(app->materials[m].values[i].str);
+            free(app->materials[m].values);
+        }
+        free(app->materials);
+    }
+    free(app->light_params);
+    if (app->scene_loaded) sl_scene_free(&app->scene);
+    sl_params_free(&app->params);
+    free(app->debug_view);
+    memset(app, 0, sizeof *app);
+}

@@ -1,0 +1,61 @@
+/* The core registers its own shading model, light types, debug views and keys through the
+ * same host interface plugins use: one path for everything, and the core is the first example
+ * of the API. Its GLSL lives in shaders/. */
+#include "core_plugin.h"
+
+static sl_status core_create(const sl_host *host, void **user) {
+    static const sl_param_desc params[] = {
+        /* material keys */
+        {.struct_size = sizeof(sl_param_desc), .id = "base_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
+         .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material",
+         .description = "Diffuse albedo k_d (linear RGB); multiplies base_color_map when both are given."},
+        {.struct_size = sizeof(sl_param_desc), .id = "base_color_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
+         .group = "material", .description = "Diffuse colour texture (sRGB), or a procedural spec such as checker:8:r,g,b:r,g,b."},
+        /* light keys every light has (they map onto the light record's own fields) */
+        {.struct_size = sizeof(sl_param_desc), .id = "enabled", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
+         .default_value = {.b = true}, .group = "light", .description = "Per-light on/off."},
+        {.struct_size = sizeof(sl_param_desc), .id = "intensity", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT,
+         .default_value = {.f = {1}}, .min = 0, .max = 1e6f, .group = "light",
+         .description = "Directional: irradiance E at normal incidence (W/m²); point/spot: intensity I (E = I/d²)."},
+        {.struct_size = sizeof(sl_param_desc), .id = "color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_LIGHT,
+         .default_value = {.f = {1, 1, 1}}, .group = "light", .description = "Linear RGB tint, multiplied by intensity."},
+        {.struct_size = sizeof(sl_param_desc), .id = "position", .type = SL_PARAM_VEC3, .scope = SL_SCOPE_LIGHT,
+         .group = "light", .unit = "m", .description = "World position (point and spot lights)."},
+        {.struct_size = sizeof(sl_param_desc), .id = "direction", .type = SL_PARAM_VEC3, .scope = SL_SCOPE_LIGHT,
+         .default_value = {.f = {0, -1, 0}}, .group = "light",
+         .description = "Direction light travels (directional and spot lights); normalised."},
+        {.struct_size = sizeof(sl_param_desc), .id = "cast_shadows", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
+         .group = "light", .description = "Whether a shadow plugin renders a shadow map for this light."},
+    };
+    for (size_t i = 0; i < sizeof params / sizeof *params; i++)
+        if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
+
+    static const sl_shader_chunk_desc chunks[] = {
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SHADING_MODEL, .file = "lambert.glsl",
+         .function = "sl_model_lambert", .name = "lambert"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_MODEL_AMBIENT, .file = "lambert.glsl",
+         .function = "sl_model_lambert_ambient", .name = "lambert"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_LIGHT, .file = "lights.glsl",
+         .function = "sl_light_directional", .name = "directional"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_LIGHT, .file = "lights.glsl",
+         .function = "sl_light_point", .name = "point"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = "debug_views.glsl",
+         .function = "sl_debug_diffuse_texture", .name = "diffuse-texture", .description = "base colour (texture × factor)"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = "debug_views.glsl",
+         .function = "sl_debug_normal", .name = "normal", .description = "shading normal, n·0.5 + 0.5"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = "debug_views.glsl",
+         .function = "sl_debug_uv", .name = "uv", .description = "texture coordinates (fract(u), fract(v), 0)"},
+    };
+    for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
+        if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
+    *user = NULL;
+    return SL_OK;
+}
+
+const sl_plugin_desc sl_core_plugin = {
+    SL_PLUGIN_HEADER,
+    .id = "core",
+    .version = SL_VERSION,
+    .description = "Lambert shading, directional and point lights, debug views (built in).",
+    .create = core_create,
+};

@@ -1,0 +1,181 @@
+/* The test harness (sdk/include/shadelab/harness.h) over the application object. */
+#include <shadelab/harness.h>
+#include "app.h"
+#include "image/image.h"
+#include "log.h"
+#include "render/composer.h"
+#include "render/renderer.h"
+#include <shadelab/gl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct sl_harness { sl_app app; };
+
+sl_harness *sl_harness_create(const sl_harness_desc *in, char *err, size_t n) {
+    sl_harness_desc d = {0};
+    memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
+    sl_app_options opt = {0};
+    opt.width = d.width > 0 ? d.width : 64;
+    opt.height = d.height > 0 ? d.height : 64;
+    opt.scene_path = d.scene_file;
+    opt.scene_text = d.scene_json;
+    opt.debug_view = d.debug_view;
+    opt.accumulate = d.accumulate;
+    opt.float32 = d.float32;
+    opt.strict = d.strict;
+    opt.backend = SL_BACKEND_OSMESA;
+    const char *b = getenv("SHADELAB_TEST_BACKEND");
+    if (b && *b && !sl_backend_parse(b, &opt.backend)) {
+        snprintf(err, n, "SHADELAB_TEST_BACKEND=%s: unknown backend", b);
+        return NULL;
+    }
+    for (const char *const *p = d.plugins; p && *p && opt.plugin_count < 64; p++) opt.plugins[opt.plugin_count++] = *p;
+    for (const char *const *s = d.settings; s && *s && opt.setting_count < 128; s++) opt.settings[opt.setting_count++] = *s;
+    sl_harness *h = calloc(1, sizeof *h);
+    if (!sl_app_init(&h->app, &opt, err, n) || !sl_app_start_gl(&h->app, err, n)) {
+        sl_app_shutdown(&h->app);
+        free(h);
+        return NULL;
+    }
+    return h;
+}
+
+void sl_harness_destroy(sl_harness *h) {
+    if (!h) return;
+    sl_app_shutdown(&h->app);
+    free(h);
+}
+
+bool sl_harness_set(sl_harness *h, const char *a, char *err, size_t n) { return sl_app_set(&h->app, a, SL_SRC_GUI, err, n); }
+bool sl_harness_set_debug_view(sl_harness *h, const char *v, char *err, size_t n) {
+    return sl_app_set_debug_view(&h->app, v, err, n);
+}
+
+bool sl_harness_render(sl_harness *h, float *rgba) {
+    h->app.time = h->app.frame_index * h->app.opt.fixed_dt;
+    return sl_app_render_frame(&h->app) && (!rgba || sl_app_read_color(&h->app, rgba));
+}
+
+bool sl_harness_read_display(sl_harness *h, float *rgba) { return sl_app_read_display(&h->app, rgba); }
+bool sl_harness_save(sl_harness *h, const char *path, char *err, size_t n) { return sl_app_save(&h->app, path, err, n); }
+
+void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out) {
+    memset(out, 0, sizeof *out);
+    const sl_frame_stats *st = sl_renderer_stats(&h->app);
+    if (!st) return;
+    out->draw_calls = st->draw_calls;
+    for (int i = 0; i < st->pass_count; i++)
+        if (st->passes[i].ran && out->pass_count < 64) out->passes[out->pass_count++] = st->passes[i].name;
+    out->program_count = st->program_count;
+    memcpy(out->program_hashes, st->program_hashes, sizeof out->program_hashes);
+}
+
+void sl_harness_compare(const float *a, const float *b, int w, int h, double threshold, sl_compare *out) {
+    sl_image_diff d;
+    sl_image_compare(a, b, w, h, 4, threshold, &d);
+    out->rmse = d.rmse;
+    out->psnr = d.psnr;
+    out->max_abs = d.max_abs;
+    out->mean_abs = d.mean_abs;
+    out->nonfinite = d.nonfinite_a + d.nonfinite_b;
+    out->pixels_over = d.pixels_over;
+}
+
+long sl_harness_count_nonfinite(const float *p, int w, int h) {
+    long c = 0;
+    for (long i = 0; i < (long)w * h * 4; i++) c += !isfinite(p[i]);
+    return c;
+}
+
+long sl_harness_count_negative(const float *p, int w, int h) {
+    long c = 0;
+    for (long i = 0; i < (long)w * h * 4; i++) c += p[i] < 0;
+    return c;
+}
+
+static unsigned grid_texture(const float *data, int w, int h) {
+    unsigned t;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, GL_RGBA32F, w, h);
+    if (data) glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, data);
+    else {
+        float *zero = calloc((size_t)w * h * 4, sizeof(float));
+        glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, zero);
+        free(zero);
+    }
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+bool sl_harness_eval_glsl(sl_harness *h, const sl_glsl_eval_desc *in, float *out, char *err, size_t n) {
+    sl_glsl_eval_desc d = {0};
+    memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
+    if (!d.expression || d.width < 1 || d.height < 1 || d.width > 4096 || d.height > 4096) {
+        snprintf(err, n, "eval_glsl: needs an expression and a grid size in 1..4096");
+        return false;
+    }
+    const char *dir = sl_shader_dir();
+    if (d.plugin) {
+        int idx = sl_plugins_find(&h->app.plugins, d.plugin);
+        if (idx < 0 || !h->app.plugins.items[idx]->ok) {
+            snprintf(err, n, "eval_glsl: plugin %s is not loaded", d.plugin);
+            return false;
+        }
+        dir = h->app.plugins.items[idx]->resource_dir;
+    }
+    sl_program p = {0};
+    p.label = "glsl unit test";
+    sl_sb_append(&p.vs.text, "#version 450 core\n");
+    if (!sl_source_include(&p.vs, "sl:fullscreen.vert", err, n)) return false;
+    sl_sb_append(&p.fs.text, "#version 450 core\n");
+    if (d.defines) {
+        char *copy = strdup(d.defines), *save = NULL;
+        for (char *l = strtok_r(copy, "\n", &save); l; l = strtok_r(NULL, "\n", &save)) sl_sb_printf(&p.fs.text, "#define %s\n", l);
+        free(copy);
+    }
+    bool ok = sl_source_include(&p.fs, "sl:common.glsl", err, n);
+    for (const char *const *f = d.files; ok && f && *f; f++) {
+        char path[2048];
+        snprintf(path, sizeof path, "%s/%s", dir, *f);
+        ok = sl_source_include(&p.fs, path, err, n);
+    }
+    if (ok) {
+        sl_strbuf def = {0};
+        sl_sb_printf(&def, "#define SL_EVAL_EXPRESSION (%s)\n", d.expression);
+        sl_source_generated(&p.fs, def.s);
+        sl_sb_free(&def);
+        ok = sl_source_include(&p.fs, "sl:glsl_eval.frag", err, n);
+    }
+    p.label = NULL;
+    if (ok) ok = sl_program_build(&p, err, n);
+    if (ok) {
+        unsigned t0 = grid_texture(d.in0, d.width, d.height), t1 = grid_texture(d.in1, d.width, d.height);
+        unsigned target, fbo;
+        glCreateTextures(GL_TEXTURE_2D, 1, &target);
+        glTextureStorage2D(target, 1, GL_RGBA32F, d.width, d.height);
+        glCreateFramebuffers(1, &fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, d.width, d.height);
+        glUseProgram(p.id);
+        glBindTextureUnit(0, t0);
+        glBindTextureUnit(1, t1);
+        glUniform1i(glGetUniformLocation(p.id, "sl_eval_in0"), 0);
+        glUniform1i(glGetUniformLocation(p.id, "sl_eval_in1"), 1);
+        sl_renderer_draw_fullscreen(&h->app, NULL);
+        glGetTextureImage(target, 0, GL_RGBA, GL_FLOAT, d.width * d.height * 4 * (int)sizeof(float), out);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glUseProgram(0);
+        glDeleteFramebuffers(1, &fbo);
+        glDeleteTextures(1, &target);
+        glDeleteTextures(1, &t0);
+        glDeleteTextures(1, &t1);
+        glDeleteProgram(p.id);
+    }
+    sl_source_free(&p.vs);
+    sl_source_free(&p.fs);
+    free(p.error);
+    return ok;
+}

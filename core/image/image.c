@@ -1,0 +1,629 @@
+/* Images: the policy side of loading/writing (path checks, size limits, channel layout,
+ * colour handling, messages), sRGB transfer functions, procedural textures, comparison and
+ * small conversions. OpenImageIO is reached only through image_oiio.cpp. */
+#define SL_IMAGE_INTERNAL
+#include "image/image.h"
+#include "log.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdatomic.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static void set_err(char *err, size_t err_size, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static void set_err(char *err, size_t err_size, const char *fmt, ...) {
+    if (!err || !err_size) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, err_size, fmt, ap);
+    va_end(ap);
+}
+
+/* ---- sRGB (IEC 61966-2-1) --------------------------------------------------------------- */
+
+float sl_srgb_encode(float linear) {
+    double x = linear;
+    if (!(x > 0.0)) return 0.0f; /* NaN, -Inf, negatives, 0 */
+    if (x >= 1.0) return 1.0f;   /* +Inf too */
+    return (float)(x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055);
+}
+
+float sl_srgb_decode(float encoded) {
+    double x = encoded;
+    if (!(x > 0.0)) return 0.0f;
+    if (x >= 1.0) return 1.0f;
+    return (float)(x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4));
+}
+
+void sl_image_srgb_to_linear(sl_image *img) {
+    if (!img || !img->pixels || img->channels < 3) return;
+    size_t n = (size_t)img->width * (size_t)img->height;
+    int ch = img->channels;
+    /* 8-bit sources hold only 256 codes: a table makes this ~6× faster than pow per sample
+     * (17 vs 100 ms for 2048², measured). A value is taken from the table only when it is
+     * within 1e-4 of a code (×255), where the result differs from the formula's by < 1e-6;
+     * anything else (16-bit, float, NaN) uses the formula. */
+    float table[256];
+    for (int k = 0; k < 256; k++) table[k] = sl_srgb_decode((float)k / 255.0f);
+    for (size_t i = 0; i < n; i++) {
+        float *p = img->pixels + i * ch;
+        for (int c = 0; c < 3; c++) {
+            float v = p[c], scaled = v * 255.0f;
+            if (scaled >= 0.0f && scaled <= 255.0f) {
+                int k = (int)(scaled + 0.5f);
+                if (fabsf(scaled - (float)k) < 1e-4f) {
+                    p[c] = table[k];
+                    continue;
+                }
+            }
+            p[c] = sl_srgb_decode(v);
+        }
+    }
+}
+
+/* ---- small conversions ------------------------------------------------------------------ */
+
+void sl_image_flip_rows_raw(void *data, size_t row_bytes, int height) {
+    if (!data || height < 2) return;
+    unsigned char *top = data, *bottom = (unsigned char *)data + (size_t)(height - 1) * row_bytes;
+    while (top < bottom) {
+        for (size_t i = 0; i < row_bytes; i++) {
+            unsigned char t = top[i];
+            top[i] = bottom[i];
+            bottom[i] = t;
+        }
+        top += row_bytes;
+        bottom -= row_bytes;
+    }
+}
+
+void sl_image_flip_rows(float *pixels, int width, int height, int channels) {
+    if (width <= 0 || channels <= 0) return;
+    sl_image_flip_rows_raw(pixels, (size_t)width * (size_t)channels * sizeof(float), height);
+}
+
+static unsigned char to_byte(float v) {
+    if (!(v > 0.0f)) return 0; /* NaN too */
+    if (v >= 1.0f) return 255;
+    return (unsigned char)(v * 255.0f + 0.5f);
+}
+
+void sl_image_to_rgba8(const float *rgba, int width, int height, bool display_encoded,
+                       unsigned char *out) {
+    if (!rgba || !out || width <= 0 || height <= 0) return;
+    size_t n = (size_t)width * (size_t)height * 4;
+    for (size_t i = 0; i < n; i++) {
+        float v = rgba[i];
+        if (i % 4 != 3 && !display_encoded) v = sl_srgb_encode(v);
+        out[i] = to_byte(v);
+    }
+}
+
+/* ---- paths ------------------------------------------------------------------------------ */
+
+/* Lower-case extension without the dot ("" when none) of the last path component. */
+static void path_extension(const char *path, char *ext, size_t size) {
+    ext[0] = 0;
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base) return;
+    size_t i = 0;
+    for (const char *p = dot + 1; *p && i + 1 < size; p++) ext[i++] = (char)tolower((unsigned char)*p);
+    ext[i] = 0;
+}
+
+/* ---- loading ---------------------------------------------------------------------------- */
+
+static bool colorspace_is_linear(const char *cs) {
+    static const char *const linear_names[] = {"linear", "scene_linear", "lin_srgb", "lin_rec709",
+                                               "acescg", "aces2065-1", "lin_ap1", "lin_ap0",
+                                               "gammacorrected1.0", "gamma1.0"};
+    for (size_t i = 0; i < sizeof linear_names / sizeof *linear_names; i++)
+        if (strcasecmp(cs, linear_names[i]) == 0) return true;
+    return false;
+}
+
+bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) {
+    if (!img) {
+        set_err(err, err_size, "%s: no output image given", path ? path : "(null)");
+        return false;
+    }
+    memset(img, 0, sizeof *img);
+    if (!path || !*path) {
+        set_err(err, err_size, "(empty path): no image path given");
+        return false;
+    }
+
+    /* File-system problems first: OIIO's messages for these are vague ("could not open"). */
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        int e = errno;
+        if (e == ENOENT) set_err(err, err_size, "%s: no such file", path);
+        else if (e == ENOTDIR) set_err(err, err_size, "%s: no such file (a parent is not a directory)", path);
+        else if (e == EACCES) set_err(err, err_size, "%s: permission denied", path);
+        else set_err(err, err_size, "%s: cannot access: %s", path, strerror(e));
+        return false;
+    }
+    if (S_ISDIR(st.st_mode)) {
+        set_err(err, err_size, "%s: is a directory, not an image file", path);
+        return false;
+    }
+    if (!S_ISREG(st.st_mode)) { /* a FIFO or device could block or never end */
+        set_err(err, err_size, "%s: not a regular file", path);
+        return false;
+    }
+    if (st.st_size == 0) {
+        set_err(err, err_size, "%s: empty file (0 bytes)", path);
+        return false;
+    }
+    if (access(path, R_OK) != 0) {
+        set_err(err, err_size, "%s: permission denied (cannot read)", path);
+        return false;
+    }
+
+    char ext[16], msg[1024] = "";
+    path_extension(path, ext, sizeof ext);
+    sl_oiio_info info;
+    sl_oiio_input *in = sl_oiio_open(path, &info, msg, sizeof msg);
+    if (!in) {
+        /* OIIO tries every reader when the one named by the extension fails, so a known
+         * extension here means the content is damaged or not what the name says. */
+        if (!ext[0])
+            set_err(err, err_size, "%s: unsupported format: no OpenImageIO reader recognises it (%s)",
+                    path, msg);
+        else if (!sl_oiio_extension_known(ext))
+            set_err(err, err_size, "%s: unsupported format '.%s': no OpenImageIO reader recognises it (%s)",
+                    path, ext, msg);
+        else
+            set_err(err, err_size, "%s: corrupt, truncated or not a valid .%s file (%s)", path,
+                    ext, msg);
+        return false;
+    }
+
+    bool ok = false;
+    if (info.deep) {
+        set_err(err, err_size, "%s: deep (multi-sample) images are not supported", path);
+    } else if (info.width <= 0 || info.height <= 0 || info.depth > 1 || info.channels < 1) {
+        set_err(err, err_size, "%s: invalid image dimensions %dx%dx%d with %d channels", path,
+                info.width, info.height, info.depth, info.channels);
+    } else if (info.width > SL_IMAGE_MAX_DIM || info.height > SL_IMAGE_MAX_DIM) {
+        set_err(err, err_size,
+                "%s: image is %dx%d, larger than the %dx%d limit (would need %.1f GiB as float "
+                "RGBA); refusing to load",
+                path, info.width, info.height, SL_IMAGE_MAX_DIM, SL_IMAGE_MAX_DIM,
+                (double)info.width * info.height * 16.0 / (1024.0 * 1024.0 * 1024.0));
+    } else {
+        ok = true;
+    }
+    if (!ok) {
+        sl_oiio_close(in);
+        return false;
+    }
+
+    /* Read the first min(channels, 4) channels packed at the start of the RGBA buffer, then
+     * expand in place from the last pixel backwards (a destination pixel never overlaps a
+     * source pixel not yet read). An alpha channel beyond index 3 (rare: OIIO orders EXR
+     * channels RGBA first) is read separately. */
+    int alpha = info.alpha_channel;
+    int nread = info.channels < 4 ? info.channels : 4;
+    bool alpha_far = alpha >= 4 && alpha < info.channels;
+    if (alpha_far) nread = 3;
+    size_t npix = (size_t)info.width * (size_t)info.height;
+    float *buf = malloc(npix * 4 * sizeof(float));
+    float *abuf = alpha_far ? malloc(npix * sizeof(float)) : NULL;
+    if (!buf || (alpha_far && !abuf)) {
+        set_err(err, err_size, "%s: out of memory for a %dx%d image", path, info.width, info.height);
+        free(buf);
+        free(abuf);
+        sl_oiio_close(in);
+        return false;
+    }
+    if (!sl_oiio_read(in, 0, nread, buf, msg, sizeof msg) ||
+        (alpha_far && !sl_oiio_read(in, alpha, alpha + 1, abuf, msg, sizeof msg))) {
+        set_err(err, err_size, "%s: corrupt or truncated image data (%s)", path, msg);
+        free(buf);
+        free(abuf);
+        sl_oiio_close(in);
+        return false;
+    }
+    sl_oiio_close(in);
+
+    for (size_t i = npix; i-- > 0;) {
+        const float *s = buf + i * nread;
+        float r, g, b, a = 1.0f;
+        if (nread == 1) {
+            r = g = b = s[0];
+        } else if (nread == 2) {
+            if (alpha == 1) r = g = b = s[0], a = s[1];
+            else r = s[0], g = s[1], b = 0.0f;
+        } else {
+            r = s[0], g = s[1], b = s[2];
+            if (alpha == 3 && nread == 4) a = s[3];
+            else if (alpha_far) a = abuf[i];
+        }
+        float *d = buf + i * 4;
+        d[0] = r, d[1] = g, d[2] = b, d[3] = a;
+    }
+    free(abuf);
+
+    if (info.is_float) { /* HDR files with NaN/Inf are legal but poison shading: say so */
+        long bad = 0;
+        for (size_t i = 0; i < npix * 4; i++) bad += !isfinite(buf[i]);
+        if (bad) SL_WARN("%s: %ld sample%s NaN or Inf (kept as is)", path, bad, bad == 1 ? " is" : "s are");
+    }
+
+    img->width = info.width;
+    img->height = info.height;
+    img->channels = 4;
+    img->pixels = buf;
+    img->source_bits = info.bits > 32 ? 32 : info.bits;
+    img->source_float = info.is_float;
+    img->source_srgb = !info.is_float && !colorspace_is_linear(info.colorspace);
+    return true;
+}
+
+void sl_image_free(sl_image *img) {
+    if (!img) return;
+    free(img->pixels);
+    memset(img, 0, sizeof *img);
+}
+
+/* ---- writing ---------------------------------------------------------------------------- */
+
+bool sl_image_write(const char *path, const float *rgba, int width, int height,
+                    bool display_encoded, char *err, size_t err_size) {
+    if (!path || !*path) {
+        set_err(err, err_size, "(empty path): no output path given");
+        return false;
+    }
+    if (!rgba || width <= 0 || height <= 0) {
+        set_err(err, err_size, "%s: nothing to write (%dx%d image%s)", path, width, height,
+                rgba ? "" : ", no pixels");
+        return false;
+    }
+
+    char ext[16];
+    path_extension(path, ext, sizeof ext);
+    const char *format, *file_type;
+    int channels, quality = 0;
+    if (!strcmp(ext, "png")) format = "png", file_type = "uint8", channels = 4;
+    else if (!strcmp(ext, "jpg") || !strcmp(ext, "jpeg"))
+        format = "jpeg", file_type = "uint8", channels = 3, quality = 95;
+    else if (!strcmp(ext, "exr")) format = "openexr", file_type = "half", channels = 4;
+    else if (!strcmp(ext, "hdr")) format = "hdr", file_type = "float", channels = 3;
+    else {
+        const char *supported = ".png, .jpg, .jpeg, .exr, .hdr";
+        if (ext[0])
+            set_err(err, err_size, "%s: unknown extension '.%s' (supported: %s)", path, ext,
+                    supported);
+        else
+            set_err(err, err_size, "%s: no file extension to choose the format (supported: %s)",
+                    path, supported);
+        return false;
+    }
+
+    /* Directory checks, for messages better than "could not open". */
+    const char *slash = strrchr(path, '/');
+    char dir[4096];
+    if (!slash) snprintf(dir, sizeof dir, ".");
+    else if (slash == path) snprintf(dir, sizeof dir, "/");
+    else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    struct stat st;
+    if (stat(dir, &st) != 0) {
+        int e = errno;
+        if (e == ENOENT) set_err(err, err_size, "%s: directory '%s' does not exist", path, dir);
+        else set_err(err, err_size, "%s: cannot access directory '%s': %s", path, dir, strerror(e));
+        return false;
+    }
+    if (!S_ISDIR(st.st_mode)) {
+        set_err(err, err_size, "%s: '%s' is not a directory", path, dir);
+        return false;
+    }
+    if (access(dir, W_OK) != 0) {
+        set_err(err, err_size, "%s: cannot write in directory '%s' (permission denied)", path, dir);
+        return false;
+    }
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        set_err(err, err_size, "%s: is a directory", path);
+        return false;
+    }
+
+    size_t npix = (size_t)width * (size_t)height;
+    unsigned char *bytes = NULL;
+    float *floats = NULL;
+    const float *float_src = NULL;
+    if (!strcmp(file_type, "uint8")) {
+        bytes = malloc(npix * 4);
+        if (!bytes) goto oom;
+        sl_image_to_rgba8(rgba, width, height, display_encoded, bytes);
+        if (channels == 3) /* pack RGBA → RGB in place (dst never overtakes src) */
+            for (size_t i = 0; i < npix; i++) memmove(bytes + i * 3, bytes + i * 4, 3);
+    } else if (channels == 4) {
+        float_src = rgba;
+    } else { /* .hdr: RGB; RGBE holds neither negatives, NaN nor Inf */
+        floats = malloc(npix * 3 * sizeof(float));
+        if (!floats) goto oom;
+        for (size_t i = 0; i < npix; i++)
+            for (int c = 0; c < 3; c++) {
+                float v = rgba[i * 4 + c];
+                floats[i * 3 + c] = !(v > 0.0f) ? 0.0f : v > 1e38f ? 1e38f : v;
+            }
+        float_src = floats;
+    }
+
+    static atomic_uint counter;
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp-%ld-%u", path, (long)getpid(), atomic_fetch_add(&counter, 1));
+    char msg[1024] = "";
+    bool ok = sl_oiio_write(tmp, format, bytes, float_src, width, height, channels, file_type,
+                            quality, msg, sizeof msg);
+    free(bytes);
+    free(floats);
+    if (!ok) {
+        unlink(tmp);
+        /* OIIO names the temporary file; the user only knows the real one */
+        char *at = strstr(msg, tmp);
+        if (at) {
+            size_t tl = strlen(tmp), pl = strlen(path);
+            if (pl <= tl) {
+                memcpy(at, path, pl);
+                memmove(at + pl, at + tl, strlen(at + tl) + 1);
+            }
+        }
+        set_err(err, err_size, "%s: cannot write %s: %s", path, ext, msg);
+        return false;
+    }
+    if (rename(tmp, path) != 0) {
+        int e = errno;
+        unlink(tmp);
+        set_err(err, err_size, "%s: cannot move the written file into place: %s", path, strerror(e));
+        return false;
+    }
+    return true;
+
+oom:
+    free(bytes);
+    set_err(err, err_size, "%s: out of memory for a %dx%d image", path, width, height);
+    return false;
+}
+
+/* ---- procedural textures ---------------------------------------------------------------- */
+
+/* Strict integer: digits only (optional surrounding spaces), within [lo, hi]. */
+static bool parse_int(const char *s, size_t len, long lo, long hi, long *out) {
+    char buf[32];
+    if (len == 0 || len >= sizeof buf) return false;
+    memcpy(buf, s, len);
+    buf[len] = 0;
+    char *end;
+    errno = 0;
+    long v = strtol(buf, &end, 10);
+    while (*end == ' ') end++;
+    if (end == buf || *end || errno || v < lo || v > hi) return false;
+    *out = v;
+    return true;
+}
+
+/* "r,g,b" or "r,g,b,a": finite, ≥ 0. On failure writes why. */
+static bool parse_colour(const char *s, size_t len, float rgba[4], char *why, size_t why_size) {
+    char buf[256];
+    if (len == 0) {
+        snprintf(why, why_size, "a colour is empty");
+        return false;
+    }
+    if (len >= sizeof buf) {
+        snprintf(why, why_size, "a colour is too long");
+        return false;
+    }
+    memcpy(buf, s, len);
+    buf[len] = 0;
+    int n = 0;
+    const char *p = buf;
+    for (;;) {
+        char *end;
+        errno = 0;
+        double v = strtod(p, &end);
+        while (*end == ' ') end++;
+        if (end == p || (*end && *end != ',')) {
+            snprintf(why, why_size, "colour '%.100s' is not a list of numbers r,g,b", buf);
+            return false;
+        }
+        if (n == 4) {
+            snprintf(why, why_size, "colour '%.100s' has more than 4 components", buf);
+            return false;
+        }
+        if (!isfinite(v) || v < 0.0 || v > FLT_MAX) {
+            snprintf(why, why_size, "colour '%.100s' has a component that is negative or not finite", buf);
+            return false;
+        }
+        rgba[n++] = (float)v;
+        if (!*end) break;
+        p = end + 1;
+    }
+    if (n < 3) {
+        snprintf(why, why_size, "colour '%.100s' has %d component%s, needs 3 (r,g,b) or 4 (r,g,b,a)",
+                 buf, n, n == 1 ? "" : "s");
+        return false;
+    }
+    if (n == 3) rgba[3] = 1.0f;
+    return true;
+}
+
+bool sl_image_procedural(sl_image *img, const char *spec, int size, char *err, size_t err_size) {
+    if (!img) return false;
+    memset(img, 0, sizeof *img);
+    if (!spec || !*spec) {
+        set_err(err, err_size, "procedural texture: empty spec (known: checker, grid, gradient, uv, constant)");
+        return false;
+    }
+    if (size < 1 || size > SL_IMAGE_MAX_DIM) {
+        set_err(err, err_size, "procedural texture '%s': size %d out of range 1..%d", spec, size,
+                SL_IMAGE_MAX_DIM);
+        return false;
+    }
+
+    /* Split on ':' into at most 5 fields (one more than any form takes, to detect extras). */
+    const char *field[5];
+    size_t flen[5];
+    int nf = 0;
+    for (const char *p = spec;;) {
+        const char *colon = strchr(p, ':');
+        size_t len = colon ? (size_t)(colon - p) : strlen(p);
+        if (nf < 5) field[nf] = p, flen[nf] = len;
+        nf++;
+        if (!colon) break;
+        p = colon + 1;
+    }
+    const char *name = field[0];
+    size_t nlen = flen[0];
+#define NAME_IS(s) (nlen == strlen(s) && !strncmp(name, s, nlen))
+
+    enum { CHECKER, GRID, GRADIENT, UV, CONSTANT } kind;
+    const char *form;
+    int want_fields;
+    if (NAME_IS("checker")) kind = CHECKER, form = "checker:N:r,g,b:r,g,b", want_fields = 4;
+    else if (NAME_IS("grid")) kind = GRID, form = "grid:N:r,g,b:r,g,b", want_fields = 4;
+    else if (NAME_IS("gradient")) kind = GRADIENT, form = "gradient", want_fields = 1;
+    else if (NAME_IS("uv")) kind = UV, form = "uv", want_fields = 1;
+    else if (NAME_IS("constant")) kind = CONSTANT, form = "constant:r,g,b", want_fields = 2;
+    else {
+        set_err(err, err_size,
+                "procedural texture '%s': unknown kind '%.*s' (known: checker, grid, gradient, uv, constant)",
+                spec, (int)nlen, name);
+        return false;
+    }
+#undef NAME_IS
+    if (nf != want_fields) {
+        set_err(err, err_size, "procedural texture '%s': %s: expected '%s'", spec,
+                nf < want_fields ? "missing fields" : "too many fields", form);
+        return false;
+    }
+
+    long n = 1;
+    float ca[4] = {0, 0, 0, 1}, cb[4] = {0, 0, 0, 1};
+    char why[300];
+    if (kind == CHECKER || kind == GRID) {
+        if (!parse_int(field[1], flen[1], 1, size, &n)) {
+            set_err(err, err_size,
+                    "procedural texture '%s': N '%.*s' must be a whole number from 1 to the size "
+                    "%d: expected '%s'",
+                    spec, (int)flen[1], field[1], size, form);
+            return false;
+        }
+        if (!parse_colour(field[2], flen[2], ca, why, sizeof why) ||
+            !parse_colour(field[3], flen[3], cb, why, sizeof why)) {
+            set_err(err, err_size, "procedural texture '%s': %s: expected '%s'", spec, why, form);
+            return false;
+        }
+    } else if (kind == CONSTANT) {
+        if (!parse_colour(field[1], flen[1], ca, why, sizeof why)) {
+            set_err(err, err_size, "procedural texture '%s': %s: expected '%s'", spec, why, form);
+            return false;
+        }
+    }
+
+    size_t npix = (size_t)size * (size_t)size;
+    float *px = malloc(npix * 4 * sizeof(float));
+    if (!px) {
+        set_err(err, err_size, "procedural texture '%s': out of memory for %dx%d", spec, size, size);
+        return false;
+    }
+    long line_width = size / (16 * n);
+    if (line_width < 1) line_width = 1;
+    for (long y = 0; y < size; y++) {
+        for (long x = 0; x < size; x++) {
+            float *d = px + ((size_t)y * size + (size_t)x) * 4;
+            const float *c = NULL;
+            switch (kind) {
+            case CHECKER:
+                c = ((x * n / size + y * n / size) & 1) ? cb : ca;
+                break;
+            case GRID: {
+                long cx = x * n / size, cy = y * n / size;
+                long sx = (cx * size + n - 1) / n, sy = (cy * size + n - 1) / n; /* cell start */
+                c = (x - sx < line_width || y - sy < line_width) ? ca : cb;
+                break;
+            }
+            case CONSTANT:
+                c = ca;
+                break;
+            case GRADIENT:
+                d[0] = size > 1 ? (float)x / (float)(size - 1) : 0.0f;
+                d[1] = size > 1 ? (float)y / (float)(size - 1) : 0.0f;
+                d[2] = 0.0f, d[3] = 1.0f;
+                break;
+            case UV:
+                d[0] = ((float)x + 0.5f) / (float)size;
+                d[1] = ((float)y + 0.5f) / (float)size;
+                d[2] = 0.0f, d[3] = 1.0f;
+                break;
+            }
+            if (c) memcpy(d, c, 4 * sizeof(float));
+        }
+    }
+    img->width = img->height = size;
+    img->channels = 4;
+    img->pixels = px;
+    img->source_bits = 32;
+    img->source_float = true;
+    img->source_srgb = false;
+    return true;
+}
+
+/* ---- comparison ------------------------------------------------------------------------- */
+
+static bool pixel_finite(const float *p, int channels) {
+    for (int c = 0; c < channels; c++)
+        if (!isfinite(p[c])) return false;
+    return true;
+}
+
+void sl_image_compare(const float *a, const float *b, int width, int height, int channels,
+                      double threshold, sl_image_diff *out) {
+    if (!out) return;
+    memset(out, 0, sizeof *out);
+    out->rmse = out->psnr = out->max_abs = out->mean_abs = NAN;
+    if (!a || !b || width <= 0 || height <= 0 || channels < 1) return;
+    int nc = channels < 3 ? channels : 3;
+    size_t npix = (size_t)width * (size_t)height;
+    double sum2 = 0.0, sum1 = 0.0, maxd = 0.0;
+    long compared = 0;
+    for (size_t i = 0; i < npix; i++) {
+        const float *pa = a + i * channels, *pb = b + i * channels;
+        bool fa = pixel_finite(pa, channels), fb = pixel_finite(pb, channels);
+        if (!fa) out->nonfinite_a++;
+        if (!fb) out->nonfinite_b++;
+        if (!fa || !fb) {
+            out->pixels_over++;
+            continue;
+        }
+        compared++;
+        bool over = false;
+        for (int c = 0; c < nc; c++) {
+            double d = fabs((double)pa[c] - (double)pb[c]);
+            sum2 += d * d;
+            sum1 += d;
+            if (d > maxd) maxd = d;
+            if (d > threshold) over = true;
+        }
+        if (over) out->pixels_over++;
+    }
+    out->pixels_compared = compared;
+    if (compared == 0) return;
+    double count = (double)compared * nc;
+    out->rmse = sqrt(sum2 / count);
+    out->mean_abs = sum1 / count;
+    out->max_abs = maxd;
+    out->psnr = out->rmse > 0.0 ? -20.0 * log10(out->rmse) : INFINITY;
+}

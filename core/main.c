@@ -1,0 +1,448 @@
+/* shadelab command line: headless renders, the window viewer, plugin/parameter listings. */
+#include "app.h"
+#include "log.h"
+#include "render/renderer.h"
+#include <cjson/cJSON.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+
+static const char *usage =
+    "usage: shadelab [options]\n"
+    "  --scene FILE           JSON scene (default: the built-in scene, no files needed)\n"
+    "  --headless             render without a window (EGL on a GPU, else OSMesa)\n"
+    "  --backend NAME         auto | headless | glfw | osmesa | egl\n"
+    "  --size WxH             viewport size (default 1280x720)\n"
+    "  --frames N             render N frames, then write --output and exit (headless default 1)\n"
+    "  --output FILE          .png (display-encoded) or .exr (linear HDR); headless default out.png\n"
+    "  --stats FILE.json      per-pass and frame times (median/mean/min over the frames)\n"
+    "  --bench                print median frame and per-pass times over the frames (use --frames >= 30)\n"
+    "  --plugin NAME|PATH     load a plugin (repeatable)\n"
+    "  --set ID=VALUE         set a parameter: plugin.param, material.NAME.key, light.NAME.key (repeatable)\n"
+    "  --camera NAME          start from a scene camera\n"
+    "  --debug-view NAME      replace the output with a debug view (--list-debug-views)\n"
+    "  --accumulate N         average N frames per output (Monte Carlo references)\n"
+    "  --reference PLUGIN     render PLUGIN's declared ground truth (its settings and accumulation)\n"
+    "  --float                RGBA32F colour target instead of RGBA16F\n"
+    "  --data DIR             data directory for assets (also SHADELAB_DATA)\n"
+    "  --time T               scene time in seconds for the first frame (default 0)\n"
+    "  --strict               a plugin that fails to load is fatal\n"
+    "  --list-plugins         loaded plugins, disabled ones with their reasons\n"
+    "  --list-debug-views     debug views of the loaded plugins\n"
+    "  --dump-params          the parameter schema and values as JSON\n"
+    "  --explain              passes, programs and plugins the scene really runs, with their cost\n"
+    "  --help-keys            key bindings of the viewer and the plugins\n"
+    "  -v, --verbose | -q, --quiet | --version | --help\n";
+
+typedef struct cli {
+    sl_app_options opt;
+    const char *output, *stats, *reference;
+    int frames;
+    bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys;
+    double start_time;
+} cli;
+
+static int die(const char *msg) {
+    fprintf(stderr, "shadelab: %s\n", msg);
+    return 1;
+}
+
+static bool parse_size(const char *s, int *w, int *h) {
+    return sscanf(s, "%dx%d", w, h) == 2 && *w > 0 && *h > 0 && *w <= 16384 && *h <= 16384;
+}
+
+static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
+    memset(c, 0, sizeof *c);
+    c->frames = -1;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+#define NEXT() (i + 1 < argc ? argv[++i] : (snprintf(err, n, "%s needs a value", a), (char *)NULL))
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); return 2; }
+        else if (!strcmp(a, "--version")) { printf("shadelab %s (plugin ABI %d.%d)\n", SL_VERSION, SL_ABI_MAJOR, SL_ABI_MINOR); return 2; }
+        else if (!strcmp(a, "--scene")) { if (!(c->opt.scene_path = NEXT())) return 1; }
+        else if (!strcmp(a, "--headless")) c->headless = true;
+        else if (!strcmp(a, "--backend")) {
+            const char *v = NEXT();
+            if (!v) return 1;
+            if (!sl_backend_parse(v, &c->opt.backend)) { snprintf(err, n, "--backend %s: expected auto, headless, glfw, osmesa or egl", v); return 1; }
+        } else if (!strcmp(a, "--size")) {
+            const char *v = NEXT();
+            if (!v) return 1;
+            if (!parse_size(v, &c->opt.width, &c->opt.height)) { snprintf(err, n, "--size %s: expected WxH, 1..16384 each", v); return 1; }
+        } else if (!strcmp(a, "--frames")) {
+            const char *v = NEXT();
+            if (!v) return 1;
+            char *end;
+            long f = strtol(v, &end, 10);
+            if (*end || f < 1 || f > 1000000) { snprintf(err, n, "--frames %s: expected a count >= 1", v); return 1; }
+            c->frames = (int)f;
+        } else if (!strcmp(a, "--output")) { if (!(c->output = NEXT())) return 1; }
+        else if (!strcmp(a, "--stats")) { if (!(c->stats = NEXT())) return 1; }
+        else if (!strcmp(a, "--bench")) c->bench = true;
+        else if (!strcmp(a, "--plugin")) {
+            if (c->opt.plugin_count == 64) { snprintf(err, n, "too many --plugin"); return 1; }
+            if (!(c->opt.plugins[c->opt.plugin_count++] = NEXT())) return 1;
+        } else if (!strcmp(a, "--set")) {
+            if (c->opt.setting_count == 128) { snprintf(err, n, "too many --set"); return 1; }
+            if (!(c->opt.settings[c->opt.setting_count++] = NEXT())) return 1;
+        } else if (!strcmp(a, "--camera")) { if (!(c->opt.camera = NEXT())) return 1; }
+        else if (!strcmp(a, "--debug-view")) { if (!(c->opt.debug_view = NEXT())) return 1; }
+        else if (!strcmp(a, "--accumulate")) {
+            const char *v = NEXT();
+            if (!v) return 1;
+            c->opt.accumulate = atoi(v);
+            if (c->opt.accumulate < 1 || c->opt.accumulate > 1000000) { snprintf(err, n, "--accumulate %s: expected >= 1", v); return 1; }
+        } else if (!strcmp(a, "--reference")) { if (!(c->reference = NEXT())) return 1; }
+        else if (!strcmp(a, "--float")) c->opt.float32 = true;
+        else if (!strcmp(a, "--data")) { if (!(c->opt.data_dir = NEXT())) return 1; }
+        else if (!strcmp(a, "--time")) { const char *v = NEXT(); if (!v) return 1; c->start_time = atof(v); }
+        else if (!strcmp(a, "--strict")) c->opt.strict = true;
+        else if (!strcmp(a, "--list-plugins")) c->list_plugins = true;
+        else if (!strcmp(a, "--list-debug-views")) c->list_views = true;
+        else if (!strcmp(a, "--dump-params")) c->dump_params = true;
+        else if (!strcmp(a, "--explain")) c->explain = true;
+        else if (!strcmp(a, "--help-keys")) c->help_keys = true;
+        else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) sl_log_threshold = SL_LOG_DEBUG;
+        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) sl_log_threshold = SL_LOG_WARN;
+        else { snprintf(err, n, "unknown option %s (see --help)", a); return 1; }
+#undef NEXT
+    }
+    if (c->headless && c->opt.backend == SL_BACKEND_AUTO) c->opt.backend = SL_BACKEND_HEADLESS;
+    return 0;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+static double median(double *v, int n) {
+    if (n <= 0) return 0;
+    qsort(v, n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Per-pass time series over the frames of a run. */
+typedef struct series { const char *name, *owner; double *ms; int n; } series;
+typedef struct recorder { series s[65]; int count; double *frame; int frames; } recorder;
+
+static void record(recorder *rec, const sl_frame_stats *st) {
+    rec->frame = realloc(rec->frame, (rec->frames + 1) * sizeof *rec->frame);
+    rec->frame[rec->frames++] = st->frame_ms;
+    for (int i = 0; i < st->pass_count; i++) {
+        if (!st->passes[i].ran) continue;
+        series *s = NULL;
+        for (int k = 0; k < rec->count; k++)
+            if (!strcmp(rec->s[k].name, st->passes[i].name)) s = &rec->s[k];
+        if (!s && rec->count < 65) { s = &rec->s[rec->count++]; s->name = st->passes[i].name; s->owner = st->passes[i].owner; }
+        if (!s) continue;
+        s->ms = realloc(s->ms, (s->n + 1) * sizeof *s->ms);
+        s->ms[s->n++] = st->passes[i].ms;
+    }
+}
+
+static void summarise(const double *v, int n, double *med, double *mean, double *mn) {
+    double *copy = malloc((n ? n : 1) * sizeof *copy);
+    memcpy(copy, v, n * sizeof *copy);
+    *med = median(copy, n);
+    double sum = 0;
+    *mn = n ? v[0] : 0;
+    for (int i = 0; i < n; i++) { sum += v[i]; if (v[i] < *mn) *mn = v[i]; }
+    *mean = n ? sum / n : 0;
+    free(copy);
+}
+
+static bool write_stats(const char *path, sl_app *app, recorder *rec, double first_frame_ms, int warmup) {
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "backend", app->backend.name);
+    cJSON_AddBoolToObject(root, "gpu", app->backend.is_gpu);
+    cJSON_AddStringToObject(root, "timing", sl_renderer_stats(app)->timing_mode);
+    cJSON_AddStringToObject(root, "scene", app->scene.path);
+    cJSON_AddNumberToObject(root, "width", app->backend.width);
+    cJSON_AddNumberToObject(root, "height", app->backend.height);
+    cJSON_AddNumberToObject(root, "frames", rec->frames);
+    cJSON_AddNumberToObject(root, "warmup_frames_excluded", warmup);
+    cJSON_AddNumberToObject(root, "startup_to_first_frame_ms", first_frame_ms);
+    double med, mean, mn;
+    int skip = rec->frames > warmup ? warmup : 0;
+    summarise(rec->frame + skip, rec->frames - skip, &med, &mean, &mn);
+    cJSON *fr = cJSON_AddObjectToObject(root, "frame_ms");
+    cJSON_AddNumberToObject(fr, "median", med);
+    cJSON_AddNumberToObject(fr, "mean", mean);
+    cJSON_AddNumberToObject(fr, "min", mn);
+    cJSON *passes = cJSON_AddArrayToObject(root, "passes");
+    for (int i = 0; i < rec->count; i++) {
+        series *s = &rec->s[i];
+        int sk = s->n > warmup ? warmup : 0;
+        summarise(s->ms + sk, s->n - sk, &med, &mean, &mn);
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddStringToObject(p, "name", s->name);
+        cJSON_AddStringToObject(p, "plugin", s->owner);
+        cJSON_AddNumberToObject(p, "runs", s->n - sk);
+        cJSON_AddNumberToObject(p, "median_ms", med);
+        cJSON_AddNumberToObject(p, "mean_ms", mean);
+        cJSON_AddNumberToObject(p, "min_ms", mn);
+        cJSON_AddItemToArray(passes, p);
+    }
+    const sl_frame_stats *st = sl_renderer_stats(app);
+    cJSON_AddNumberToObject(root, "draw_calls", st->draw_calls);
+    cJSON_AddNumberToObject(root, "programs", st->program_count);
+    char *text = cJSON_Print(root);
+    FILE *f = fopen(path, "w");
+    bool ok = f != NULL;
+    if (f) { fprintf(f, "%s\n", text); fclose(f); }
+    else fprintf(stderr, "shadelab: cannot write %s\n", path);
+    free(text);
+    cJSON_Delete(root);
+    return ok;
+}
+
+static void print_bench(sl_app *app, recorder *rec, int warmup) {
+    double med, mean, mn;
+    int skip = rec->frames > warmup ? warmup : 0;
+    summarise(rec->frame + skip, rec->frames - skip, &med, &mean, &mn);
+    printf("%s, %dx%d, %s timing, %d frames after %d warm-up\n", app->backend.name, app->backend.width, app->backend.height,
+           sl_renderer_stats(app)->timing_mode, rec->frames - skip, skip);
+    printf("  %-24s %10s %10s %10s\n", "pass", "median ms", "mean ms", "min ms");
+    for (int i = 0; i < rec->count; i++) {
+        series *s = &rec->s[i];
+        int sk = s->n > warmup ? warmup : 0;
+        double a, b, c;
+        summarise(s->ms + sk, s->n - sk, &a, &b, &c);
+        printf("  %-24s %10.3f %10.3f %10.3f\n", s->name, a, b, c);
+    }
+    printf("  %-24s %10.3f %10.3f %10.3f\n", "frame (CPU wall)", med, mean, mn);
+}
+
+static void list_views(sl_app *app) {
+    printf("final                    the shaded image (default)\n");
+    for (int i = 0; i < app->plugins.chunk_count; i++) {
+        const sl_chunk_reg *c = &app->plugins.chunks[i];
+        if (c->d.hook != SL_HOOK_DEBUG_VIEW && c->d.hook != SL_HOOK_DEBUG_VIEW_LIGHT) continue;
+        printf("%-24s %s [%s]\n", c->d.name, c->d.description ? c->d.description : "", app->plugins.items[c->owner]->id);
+    }
+}
+
+/* ---------------------------------------------------------------- window viewer -------- */
+
+typedef struct viewer { sl_app *app; double last_x, last_y; bool dragging[3]; bool screenshot; } viewer;
+
+static void print_keys(sl_app *app) {
+    printf("viewer keys:\n"
+           "  left drag     orbit            right/middle drag  pan\n"
+           "  wheel         zoom             W A S D Q E        fly\n"
+           "  C             print camera     F5                 reload shaders\n"
+           "  P             screenshot       Esc                quit\n");
+    if (app->plugins.key_count) printf("plugin keys:\n");
+    for (int i = 0; i < app->plugins.key_count; i++) {
+        const sl_key_reg *k = &app->plugins.keys[i];
+        printf("  %-13s %s [%s]\n", k->d.key, k->d.description ? k->d.description : "", app->plugins.items[k->owner]->id);
+    }
+}
+
+static void on_key(GLFWwindow *w, int key, int sc, int action, int mods) {
+    viewer *v = glfwGetWindowUserPointer(w);
+    if (action != GLFW_PRESS) return;
+    sl_app *app = v->app;
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, 1);
+    else if (key == GLFW_KEY_C) sl_camera_print(&app->camera, stdout);
+    else if (key == GLFW_KEY_F5) {
+        int failed = sl_renderer_reload_shaders(app);
+        fprintf(stderr, "shaders reloaded%s\n", failed ? " with errors (last good programs kept)" : "");
+    } else if (key == GLFW_KEY_P) v->screenshot = true;
+    const char *name = glfwGetKeyName(key, sc);
+    char buf[8];
+    if (key >= GLFW_KEY_F1 && key <= GLFW_KEY_F12) { snprintf(buf, sizeof buf, "F%d", key - GLFW_KEY_F1 + 1); name = buf; }
+    for (int i = 0; name && i < app->plugins.key_count; i++) {
+        const sl_key_reg *k = &app->plugins.keys[i];
+        if (strcasecmp(k->d.key, name) || !sl_plugin_enabled(app, k->owner)) continue;
+        if (k->d.on_press) k->d.on_press(k->d.user);
+        else if (k->d.param) {
+            char id[300], err[512];
+            snprintf(id, sizeof id, "%s.%s", app->plugins.items[k->owner]->id, k->d.param);
+            sl_param *q = sl_params_find(&app->params, id);
+            if (!q) continue;
+            sl_value val = q->value;
+            if (q->desc.type == SL_PARAM_BOOL) val.b = !val.b;
+            else if (q->desc.type == SL_PARAM_ENUM) {
+                int nv = 0;
+                while (q->desc.enum_values[nv]) nv++;
+                val.i = (val.i + 1) % nv;
+            }
+            sl_params_set_value(&app->params, q, val, SL_SRC_GUI);
+            char text[256];
+            sl_param_format(q, &val, text, sizeof text);
+            fprintf(stderr, "%s = %s\n", id, text);
+            (void)err;
+        }
+    }
+}
+
+static void on_cursor(GLFWwindow *w, double x, double y) {
+    viewer *v = glfwGetWindowUserPointer(w);
+    double dx = x - v->last_x, dy = y - v->last_y;
+    v->last_x = x;
+    v->last_y = y;
+    if (v->dragging[0]) sl_camera_orbit(&v->app->camera, (float)-dx * 0.005f, (float)dy * 0.005f);
+    if (v->dragging[1] || v->dragging[2]) sl_camera_pan(&v->app->camera, (float)-dx * 0.0015f, (float)dy * 0.0015f);
+}
+
+static void on_button(GLFWwindow *w, int button, int action, int mods) {
+    viewer *v = glfwGetWindowUserPointer(w);
+    if (button < 3) v->dragging[button] = action == GLFW_PRESS;
+}
+
+static void on_scroll(GLFWwindow *w, double dx, double dy) {
+    viewer *v = glfwGetWindowUserPointer(w);
+    sl_camera_zoom(&v->app->camera, powf(0.9f, (float)dy));
+}
+
+bool sl_renderer_poll_reload(sl_app *app);
+
+static int run_window(sl_app *app, cli *c) {
+    GLFWwindow *w = (GLFWwindow *)app->backend.window;
+    viewer v = {.app = app};
+    glfwSetWindowUserPointer(w, &v);
+    glfwSetKeyCallback(w, on_key);
+    glfwSetCursorPosCallback(w, on_cursor);
+    glfwSetMouseButtonCallback(w, on_button);
+    glfwSetScrollCallback(w, on_scroll);
+    double t0 = glfwGetTime(), last_poll = t0, last = t0;
+    int shots = 0;
+    while (!glfwWindowShouldClose(w)) {
+        glfwPollEvents();
+        double t = glfwGetTime(), dt = t - last;
+        last = t;
+        float speed = 2.0f * (float)dt * (glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) ? 4.f : 1.f);
+        float fwd = (glfwGetKey(w, GLFW_KEY_W) - glfwGetKey(w, GLFW_KEY_S)) * speed;
+        float right = (glfwGetKey(w, GLFW_KEY_D) - glfwGetKey(w, GLFW_KEY_A)) * speed;
+        float up = (glfwGetKey(w, GLFW_KEY_E) - glfwGetKey(w, GLFW_KEY_Q)) * speed;
+        if (fwd || right || up) sl_camera_fly(&app->camera, fwd, right, up);
+        int fw, fh;
+        glfwGetFramebufferSize(w, &fw, &fh);
+        if (fw > 0 && fh > 0) sl_app_resize(app, fw, fh);
+        if (t - last_poll > 0.5) { sl_renderer_poll_reload(app); last_poll = t; }
+        app->time = c->start_time + (t - t0);
+        sl_app_render_frame(app);
+        if (v.screenshot) {
+            char name[64], err[512];
+            snprintf(name, sizeof name, "shadelab-%03d.png", shots);
+            if (sl_app_save(app, name, err, sizeof err)) fprintf(stderr, "saved %s\n", name);
+            snprintf(name, sizeof name, "shadelab-%03d.exr", shots++);
+            if (sl_app_save(app, name, err, sizeof err)) fprintf(stderr, "saved %s\n", name);
+            v.screenshot = false;
+        }
+        sl_backend_swap(&app->backend);
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- main ------------------ */
+
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+int main(int argc, char **argv) {
+    double start = now_ms();
+    cli c;
+    char err[16384] = "";
+    int pr = parse_args(argc, argv, &c, err, sizeof err);
+    if (pr == 2) return 0;
+    if (pr) return die(err);
+    /* references: the plugin's declared settings become --set values, its accumulation count applies */
+    const char *ref_settings[64];
+    int nref = 0;
+    char *ref_copy = NULL;
+    sl_app app;
+    if (!sl_app_init(&app, &c.opt, err, sizeof err)) {
+        sl_app_shutdown(&app);
+        return die(err);
+    }
+    if (c.reference) {
+        int idx = sl_plugins_find(&app.plugins, c.reference);
+        if (idx < 0 || !app.plugins.items[idx]->ok) {
+            sl_app_shutdown(&app);
+            snprintf(err, sizeof err, "--reference %s: plugin not loaded (add --plugin %s)", c.reference, c.reference);
+            return die(err);
+        }
+        sl_plugin_rec *r = app.plugins.items[idx];
+        if (!r->has_reference) {
+            sl_app_shutdown(&app);
+            snprintf(err, sizeof err, "--reference %s: the plugin declares no reference", c.reference);
+            return die(err);
+        }
+        ref_copy = strdup(r->reference.settings ? r->reference.settings : "");
+        char *save = NULL;
+        for (char *t = strtok_r(ref_copy, " ", &save); t && nref < 64; t = strtok_r(NULL, " ", &save)) ref_settings[nref++] = t;
+        int acc = r->reference.accumulate_frames;
+        sl_app_shutdown(&app);
+        for (int i = 0; i < nref && c.opt.setting_count < 128; i++) c.opt.settings[c.opt.setting_count++] = ref_settings[i];
+        if (acc > 1 && c.opt.accumulate <= 1) c.opt.accumulate = acc;
+        if (!sl_app_init(&app, &c.opt, err, sizeof err)) {
+            sl_app_shutdown(&app);
+            free(ref_copy);
+            return die(err);
+        }
+        fprintf(stderr, "reference for %s: %s\n", c.reference, r->reference.description ? r->reference.description : "");
+    }
+    if (c.list_plugins || c.dump_params || c.list_views || c.help_keys) {
+        if (c.list_plugins) sl_plugins_print(&app, stdout);
+        if (c.dump_params) sl_params_dump_json(&app.params, stdout);
+        if (c.list_views) list_views(&app);
+        if (c.help_keys) print_keys(&app);
+        sl_app_shutdown(&app);
+        free(ref_copy);
+        return 0;
+    }
+    if (!sl_app_start_gl(&app, err, sizeof err)) {
+        die(err);
+        sl_app_shutdown(&app);
+        free(ref_copy);
+        return 1;
+    }
+    int rc = 0;
+    if (app.backend.has_window && c.frames < 0) {
+        rc = run_window(&app, &c);
+    } else {
+        if (!app.backend.has_window && !c.output && !c.stats && !c.bench && !c.explain) c.output = "out.png";
+        int frames = c.frames > 0 ? c.frames : 1;
+        int warmup = frames >= 10 ? 3 : 0;
+        recorder rec = {0};
+        double first_frame_ms = 0;
+        double last_report = now_ms();
+        for (int f = 0; f < frames; f++) {
+            app.time = c.start_time + f * app.opt.fixed_dt;
+            sl_app_render_frame(&app);
+            if (f == 0) first_frame_ms = now_ms() - start;
+            record(&rec, sl_renderer_stats(&app));
+            if (app.backend.has_window) { glfwPollEvents(); sl_backend_swap(&app.backend); }
+            if (frames > 1 && now_ms() - last_report > 2000) {
+                fprintf(stderr, "frame %d of %d\n", f + 1, frames);
+                last_report = now_ms();
+            }
+        }
+        if (c.output) {
+            if (!sl_app_save(&app, c.output, err, sizeof err)) rc = die(err);
+            else fprintf(stderr, "wrote %s (%dx%d, %s%s)\n", c.output, app.backend.width, app.backend.height,
+                         app.backend.name, app.backend.has_window ? "" : ", headless");
+        }
+        if (c.stats && !write_stats(c.stats, &app, &rec, first_frame_ms, warmup)) rc = 1;
+        if (c.bench) {
+            print_bench(&app, &rec, warmup);
+            printf("  startup to first frame: %.1f ms\n", first_frame_ms);
+        }
+        if (c.explain) sl_renderer_explain(&app, stdout);
+        for (int i = 0; i < rec.count; i++) free(rec.s[i].ms);
+        free(rec.frame);
+    }
+    sl_app_shutdown(&app);
+    free(ref_copy);
+    return rc;
+}

@@ -1,0 +1,343 @@
+#include "render/composer.h"
+#include "log.h"
+#include <shadelab/gl.h>
+#include <errno.h>
+#include <libgen.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define SL_LINE_STRIDE 100000
+
+void sl_sb_append(sl_strbuf *b, const char *t) {
+    size_t l = strlen(t);
+    if (b->len + l + 1 > b->cap) {
+        b->cap = (b->len + l + 1) * 2;
+        b->s = realloc(b->s, b->cap);
+    }
+    memcpy(b->s + b->len, t, l + 1);
+    b->len += l;
+}
+
+void sl_sb_printf(sl_strbuf *b, const char *fmt, ...) {
+    char tmp[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    int l = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (l < (int)sizeof tmp) { sl_sb_append(b, tmp); return; }
+    char *big = malloc(l + 1);
+    va_start(ap, fmt);
+    vsnprintf(big, l + 1, fmt, ap);
+    va_end(ap);
+    sl_sb_append(b, big);
+    free(big);
+}
+
+void sl_sb_free(sl_strbuf *b) { free(b->s); memset(b, 0, sizeof *b); }
+
+uint64_t sl_hash64(const void *data, size_t len, uint64_t h) {
+    /* FNV-1a, 64-bit */
+    const unsigned char *p = data;
+    if (!h) h = 1469598103934665603ull;
+    for (size_t i = 0; i < len; i++) { h ^= p[i]; h *= 1099511628211ull; }
+    return h;
+}
+
+const char *sl_shader_dir(void) {
+    static char dir[1024];
+    if (dir[0]) return dir;
+    const char *env = getenv("SHADELAB_SHADER_DIR");
+    struct stat st;
+    if (env && *env) snprintf(dir, sizeof dir, "%s", env);
+    else if (stat(SL_SOURCE_SHADER_DIR "/common.glsl", &st) == 0) snprintf(dir, sizeof dir, "%s", SL_SOURCE_SHADER_DIR);
+    else {
+        char exe[1024];
+        ssize_t l = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        exe[l > 0 ? l : 0] = 0;
+        snprintf(dir, sizeof dir, "%s/../%s/shadelab/shaders", dirname(exe), SL_INSTALL_DATADIR);
+    }
+    return dir;
+}
+
+const char *sl_display_path(const char *p, char *buf, size_t n) {
+    size_t l = strlen(SL_SOURCE_DIR);
+    if (!strncmp(p, SL_SOURCE_DIR, l) && p[l] == '/') snprintf(buf, n, "%s", p + l + 1);
+    else snprintf(buf, n, "%s", p);
+    return buf;
+}
+
+void sl_source_init(sl_source *s) { memset(s, 0, sizeof *s); }
+
+void sl_source_free(sl_source *s) {
+    sl_sb_free(&s->text);
+    for (int i = 0; i < s->file_count; i++) free(s->files[i]);
+    memset(s, 0, sizeof *s);
+}
+
+static char *read_file(const char *path, char *err, size_t n) {
+    FILE *f = fopen(path, "rb");
+    if (!f) { snprintf(err, n, "%s: cannot open (%s)", path, strerror(errno)); return NULL; }
+    fseek(f, 0, SEEK_END);
+    long len = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc(len + 1);
+    size_t got = fread(buf, 1, len, f);
+    buf[got] = 0;
+    fclose(f);
+    return buf;
+}
+
+static int file_index(sl_source *s, const char *abs, bool *added) {
+    for (int i = 0; i < s->file_count; i++)
+        if (!strcmp(s->files[i], abs)) { *added = false; return i; }
+    if (s->file_count == 64) return -1;
+    struct stat st;
+    s->mtimes[s->file_count] = stat(abs, &st) == 0 ? st.st_mtime : 0;
+    s->files[s->file_count] = strdup(abs);
+    *added = true;
+    return s->file_count++;
+}
+
+/* GLSL source string number 0 is reserved for generated text. */
+static void ensure_generated_slot(sl_source *s) {
+    if (s->file_count == 0) {
+        s->files[0] = strdup("<generated>");
+        s->mtimes[0] = 0;
+        s->file_count = 1;
+    }
+}
+
+static bool include_file(sl_source *s, const char *path, int depth, char *err, size_t n) {
+    ensure_generated_slot(s);
+    char resolved[2048];
+    if (!strncmp(path, "sl:", 3)) snprintf(resolved, sizeof resolved, "%s/%s", sl_shader_dir(), path + 3);
+    else snprintf(resolved, sizeof resolved, "%s", path);
+    char *abs = realpath(resolved, NULL);
+    if (!abs) { snprintf(err, n, "%s: no such shader file", resolved); return false; }
+    bool added;
+    int idx = file_index(s, abs, &added);
+    if (idx < 0) { snprintf(err, n, "%s: too many included files", abs); free(abs); return false; }
+    if (!added) { free(abs); return true; } /* each file once */
+    if (depth > 16) { snprintf(err, n, "%s: #include nested too deeply", abs); free(abs); return false; }
+    char *text = read_file(abs, err, n);
+    if (!text) { free(abs); return false; }
+    char dir[2048];
+    snprintf(dir, sizeof dir, "%s", abs);
+    char *d = dirname(dir);
+    /* Mesa drops the source-string number from its logs, so the file index is also encoded in
+     * the line number: line = file * SL_LINE_STRIDE + line in file. */
+    sl_sb_printf(&s->text, "#line %d %d\n", idx * SL_LINE_STRIDE + 1, idx);
+    int line = 1;
+    bool ok = true;
+    for (char *p = text; *p && ok;) {
+        char *end = strchr(p, '\n');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        const char *q = p;
+        while (*q == ' ' || *q == '\t') q++;
+        if (!strncmp(q, "#include", 8)) {
+            const char *a = strchr(q, '"'), *b = a ? strchr(a + 1, '"') : NULL;
+            if (!a || !b || b > p + len) {
+                char shown[1024];
+                snprintf(err, n, "%s:%d: malformed #include (expected #include \"file\")",
+                         sl_display_path(abs, shown, sizeof shown), line);
+                ok = false;
+                break;
+            }
+            char inc[1024], full[3072];
+            snprintf(inc, sizeof inc, "%.*s", (int)(b - a - 1), a + 1);
+            if (!strncmp(inc, "sl:", 3) || inc[0] == '/') snprintf(full, sizeof full, "%s", inc);
+            else snprintf(full, sizeof full, "%s/%s", d, inc);
+            char sub[1024] = "";
+            if (!include_file(s, full, depth + 1, sub, sizeof sub)) {
+                char shown[1024];
+                snprintf(err, n, "%s:%d: %s", sl_display_path(abs, shown, sizeof shown), line, sub);
+                ok = false;
+                break;
+            }
+            sl_sb_printf(&s->text, "#line %d %d\n", idx * SL_LINE_STRIDE + line + 1, idx);
+        } else {
+            sl_sb_printf(&s->text, "%.*s\n", (int)len, p);
+        }
+        line++;
+        p = end ? end + 1 : p + len;
+    }
+    free(text);
+    free(abs);
+    return ok;
+}
+
+bool sl_source_include(sl_source *s, const char *path, char *err, size_t n) {
+    return include_file(s, path, 0, err, n);
+}
+
+void sl_source_generated(sl_source *s, const char *text) {
+    ensure_generated_slot(s);
+    /* number generated lines by their position in the whole text so errors stay findable */
+    int line = 1;
+    for (const char *c = s->text.s; c && *c; c++) line += *c == '\n';
+    sl_sb_printf(&s->text, "#line %d 0\n", line + 1);
+    sl_sb_append(&s->text, text);
+    if (text[0] && text[strlen(text) - 1] != '\n') sl_sb_append(&s->text, "\n");
+}
+
+void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n) {
+    out[0] = 0;
+    size_t used = 0;
+    for (const char *p = log; *p && used + 1 < n;) {
+        const char *end = strchr(p, '\n');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        int file, line, consumed = 0;
+        char shown[1024];
+        /* Mesa: "0:12(5): error: …"; NVIDIA: "0(12) : error …" */
+        bool mesa = sscanf(p, "%d:%d%n", &file, &line, &consumed) == 2;
+        bool nv = !mesa && sscanf(p, "%d(%d)%n", &file, &line, &consumed) == 2;
+        if ((mesa || nv) && line >= SL_LINE_STRIDE) {
+            file = line / SL_LINE_STRIDE;
+            line %= SL_LINE_STRIDE;
+        }
+        if (mesa && file >= 0 && file < s->file_count) {
+            used += snprintf(out + used, n - used, "%s:%d%.*s\n", sl_display_path(s->files[file], shown, sizeof shown),
+                             line, (int)(len - consumed), p + consumed);
+        } else if (nv && file >= 0 && file < s->file_count) {
+            used += snprintf(out + used, n - used, "%s:%d%.*s\n", sl_display_path(s->files[file], shown, sizeof shown),
+                             line, (int)(len - consumed), p + consumed);
+        } else if (len) {
+            used += snprintf(out + used, n - used, "%.*s\n", (int)len, p);
+        }
+        if (used >= n) break;
+        p = end ? end + 1 : p + len;
+    }
+}
+
+static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size_t n) {
+    unsigned sh = glCreateShader(type);
+    const char *text = src->text.s;
+    glShaderSource(sh, 1, &text, NULL);
+    glCompileShader(sh);
+    int ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[8192] = "";
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        sl_source_map_log(src, log, err, n);
+        glDeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+bool sl_program_build(sl_program *p, char *err, size_t n) {
+    char log[8192] = "";
+    unsigned vs = compile_stage(GL_VERTEX_SHADER, &p->vs, log, sizeof log);
+    unsigned fs = vs ? compile_stage(GL_FRAGMENT_SHADER, &p->fs, log, sizeof log) : 0;
+    unsigned prog = 0;
+    if (vs && fs) {
+        prog = glCreateProgram();
+        glAttachShader(prog, vs);
+        glAttachShader(prog, fs);
+        glLinkProgram(prog);
+        int ok = 0;
+        glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+        if (!ok) {
+            char raw[8192] = "";
+            glGetProgramInfoLog(prog, sizeof raw, NULL, raw);
+            sl_source_map_log(&p->fs, raw, log, sizeof log);
+            glDeleteProgram(prog);
+            prog = 0;
+        }
+    }
+    if (vs) glDeleteShader(vs);
+    if (fs) glDeleteShader(fs);
+    free(p->error);
+    p->error = NULL;
+    if (!prog) {
+        p->error = strdup(log);
+        snprintf(err, n, "%s: shader compile failed%s:\n%s", p->label ? p->label : "program",
+                 p->id ? " (keeping the last good program)" : "", log);
+        return false;
+    }
+    if (p->id) glDeleteProgram(p->id);
+    p->id = prog;
+    return true;
+}
+
+static bool compose_files(sl_program *p, const char *dir, char *err, size_t n) {
+    sl_source_free(&p->vs);
+    sl_source_free(&p->fs);
+    const char *paths[2] = {p->vs_path, p->fs_path};
+    sl_source *srcs[2] = {&p->vs, &p->fs};
+    for (int k = 0; k < 2; k++) {
+        sl_strbuf head = {0};
+        sl_sb_append(&head, "#version 450 core\n");
+        if (p->defines) {
+            char *copy = strdup(p->defines), *save = NULL;
+            for (char *l = strtok_r(copy, "\n", &save); l; l = strtok_r(NULL, "\n", &save))
+                sl_sb_printf(&head, "#define %s\n", l);
+            free(copy);
+        }
+        sl_sb_append(&srcs[k]->text, head.s);
+        sl_sb_free(&head);
+        ensure_generated_slot(srcs[k]);
+        char full[2048];
+        if (!strncmp(paths[k], "sl:", 3) || paths[k][0] == '/' || !dir || !*dir) snprintf(full, sizeof full, "%s", paths[k]);
+        else snprintf(full, sizeof full, "%s/%s", dir, paths[k]);
+        if (!sl_source_include(srcs[k], full, err, n)) return false;
+    }
+    p->hash = sl_hash64(p->vs.text.s, p->vs.text.len, sl_hash64(p->fs.text.s, p->fs.text.len, 0));
+    return true;
+}
+
+sl_program *sl_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
+                                  char *err, size_t n) {
+    sl_program *p = calloc(1, sizeof *p);
+    p->vs_path = strdup(vs);
+    p->fs_path = strdup(fs);
+    p->defines = defines ? strdup(defines) : NULL;
+    char label[1024];
+    snprintf(label, sizeof label, "%s + %s", vs, fs);
+    p->label = strdup(label);
+    if (!compose_files(p, dir, err, n) || !sl_program_build(p, err, n)) {
+        return p; /* id 0; error kept; a later reload may fix it */
+    }
+    return p;
+}
+
+bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t n) {
+    sl_program tmp = *p;
+    memset(&tmp.vs, 0, sizeof tmp.vs);
+    memset(&tmp.fs, 0, sizeof tmp.fs);
+    if (!compose_files(&tmp, dir, err, n)) {
+        sl_source_free(&tmp.vs);
+        sl_source_free(&tmp.fs);
+        free(p->error);
+        p->error = strdup(err);
+        return false;
+    }
+    sl_source_free(&p->vs);
+    sl_source_free(&p->fs);
+    p->vs = tmp.vs;
+    p->fs = tmp.fs;
+    p->hash = tmp.hash;
+    return sl_program_build(p, err, n);
+}
+
+bool sl_source_changed(const sl_source *s) {
+    for (int i = 1; i < s->file_count; i++) {
+        struct stat st;
+        if (stat(s->files[i], &st) != 0 || st.st_mtime != s->mtimes[i]) return true;
+    }
+    return false;
+}
+
+void sl_program_free(sl_program *p) {
+    if (!p) return;
+    if (p->id) glDeleteProgram(p->id);
+    sl_source_free(&p->vs);
+    sl_source_free(&p->fs);
+    free(p->label); free(p->error); free(p->vs_path); free(p->fs_path); free(p->defines);
+    free(p);
+}

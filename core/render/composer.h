@@ -1,0 +1,59 @@
+/* Shader composer: assembles GLSL from files with #include, keeps a file table so #line
+ * directives map compile errors back to "file:line", links programs, caches them by the hash of
+ * their final source and rebuilds them when their files change (keeping the last good program
+ * when the new source fails). */
+#ifndef SL_COMPOSER_H
+#define SL_COMPOSER_H
+#include <shadelab/shadelab.h>
+#include <time.h>
+
+typedef struct sl_strbuf { char *s; size_t len, cap; } sl_strbuf;
+void sl_sb_append(sl_strbuf *b, const char *text);
+void sl_sb_printf(sl_strbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void sl_sb_free(sl_strbuf *b);
+
+/* One composed source: text plus the files it was built from (index = GLSL source number in
+ * #line directives). */
+typedef struct sl_source {
+    sl_strbuf text;
+    char *files[64]; int file_count;
+    time_t mtimes[64];
+} sl_source;
+
+void sl_source_init(sl_source *s);
+void sl_source_free(sl_source *s);
+/* Appends `path`'s contents (resolved, with nested #include "x" relative to it and
+ * #include "sl:x" from the core shader directory), each file once, with #line mapping.
+ * Returns false and fills err ("file:line: cause") when a file is missing. */
+bool sl_source_include(sl_source *s, const char *path, char *err, size_t n);
+/* Appends generated text (reported as "<generated>" in errors). */
+void sl_source_generated(sl_source *s, const char *text);
+/* Rewrites a driver info log ("0:12(5): error: …") into "path:12(5): error: …". */
+void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n);
+
+struct sl_program {
+    uint64_t hash;          /* of vertex + fragment source */
+    unsigned id;            /* GL program; 0 until compiled successfully */
+    char *label;
+    sl_source vs, fs;
+    char *error;            /* last compile/link error (mapped), NULL when good */
+    char *vs_path, *fs_path, *defines; /* for stand-alone programs: rebuilt on reload */
+    int owner;
+    bool composed;          /* forward material program (rebuilt by the material code) */
+};
+
+/* Compiles and links; on failure keeps any previous id and stores the mapped error. */
+bool sl_program_build(sl_program *p, char *err, size_t n);
+/* Loads a stand-alone program from files (relative to dir; "sl:" = core shader dir). */
+sl_program *sl_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
+                                  char *err, size_t n);
+bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t n);
+bool sl_source_changed(const sl_source *s);
+void sl_program_free(sl_program *p);
+
+/* The directory holding the core's GLSL (source tree in a build tree; installed otherwise). */
+const char *sl_shader_dir(void);
+uint64_t sl_hash64(const void *data, size_t len, uint64_t seed);
+/* Path shown to users: relative to the source tree when inside it. */
+const char *sl_display_path(const char *abs_path, char *buf, size_t n);
+#endif

@@ -1,0 +1,306 @@
+#include "render/forward.h"
+#include "app.h"
+#include "log.h"
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+void sl_glsl_ident(const char *in, char *out, size_t n, bool upper) {
+    size_t i = 0;
+    for (; in[i] && i + 1 < n; i++) {
+        char c = in[i];
+        out[i] = isalnum((unsigned char)c) ? (upper ? toupper((unsigned char)c) : c) : '_';
+    }
+    out[i] = 0;
+}
+
+int sl_forward_light_types(sl_app *app, const char **types, int max) {
+    int n = 0;
+    for (int i = 0; i < app->scene.light_count; i++) {
+        const sl_light *L = &app->scene.lights[i];
+        if (!L->enabled) continue;
+        bool seen = false;
+        for (int k = 0; k < n; k++) seen |= !strcmp(types[k], L->type);
+        if (!seen && n < max) types[n++] = L->type;
+    }
+    return n;
+}
+
+static const sl_chunk_reg *find_named(sl_app *app, sl_hook hook, const char *name) {
+    for (int i = 0; i < app->plugins.chunk_count; i++) {
+        const sl_chunk_reg *c = &app->plugins.chunks[i];
+        if (c->d.hook == hook && c->d.name && !strcmp(c->d.name, name) && sl_plugin_enabled(app, c->owner)) return c;
+    }
+    return NULL;
+}
+
+static bool material_has(sl_app *app, int m, const char *key) {
+    sl_mat_value *v = sl_app_material_value(app, m, key);
+    return v && v->present;
+}
+
+static int cmp_chunk_order(const void *a, const void *b) {
+    const sl_chunk_reg *x = *(const sl_chunk_reg *const *)a, *y = *(const sl_chunk_reg *const *)b;
+    if (x->d.order != y->d.order) return x->d.order < y->d.order ? -1 : 1;
+    return x->owner - y->owner;
+}
+
+/* #define lines for a value that needs recompiling (bools 0/1, enums by index + names). */
+static void define_value(sl_strbuf *b, const char *macro, const sl_param *q, const sl_value *v) {
+    switch (q->desc.type) {
+    case SL_PARAM_BOOL: sl_sb_printf(b, "#define %s %d\n", macro, v->b ? 1 : 0); break;
+    case SL_PARAM_INT: sl_sb_printf(b, "#define %s %d\n", macro, v->i); break;
+    case SL_PARAM_FLOAT: sl_sb_printf(b, "#define %s %.9g\n", macro, v->f[0]); break;
+    case SL_PARAM_ENUM:
+        sl_sb_printf(b, "#define %s %d\n", macro, v->i);
+        for (int k = 0; q->desc.enum_values[k]; k++) {
+            char id[128];
+            sl_glsl_ident(q->desc.enum_values[k], id, sizeof id, true);
+            sl_sb_printf(b, "#define %s_%s %d\n", macro, id, k);
+        }
+        break;
+    case SL_PARAM_COLOR:
+    case SL_PARAM_VEC3: sl_sb_printf(b, "#define %s vec3(%.9g, %.9g, %.9g)\n", macro, v->f[0], v->f[1], v->f[2]); break;
+    case SL_PARAM_TEXTURE: break;
+    }
+}
+
+static const char *glsl_type(sl_param_type t) {
+    switch (t) {
+    case SL_PARAM_BOOL: return "bool";
+    case SL_PARAM_INT: case SL_PARAM_ENUM: return "int";
+    case SL_PARAM_FLOAT: return "float";
+    case SL_PARAM_COLOR: case SL_PARAM_VEC3: return "vec3";
+    case SL_PARAM_TEXTURE: return "sampler2D";
+    }
+    return "float";
+}
+
+bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_variant *out, sl_program ***cache,
+                        int *cache_count, char *err, size_t n) {
+    sl_plugins *P = &app->plugins;
+    const sl_material *mat = &app->scene.materials[m];
+    uint64_t owners = 1; /* the core */
+    const sl_chunk_reg *list[256];
+    int count = 0;
+    sl_strbuf explain = {0};
+
+    /* shading model */
+    const char *model = mat->model ? mat->model : "lambert";
+    const sl_chunk_reg *model_chunk = find_named(app, SL_HOOK_SHADING_MODEL, model);
+    if (!model_chunk) {
+        model_chunk = find_named(app, SL_HOOK_SHADING_MODEL, "lambert");
+        model = "lambert";
+    }
+    const sl_chunk_reg *model_ambient = find_named(app, SL_HOOK_MODEL_AMBIENT, model);
+    /* debug view */
+    const sl_chunk_reg *view = NULL;
+    if (app->debug_view) {
+        view = find_named(app, SL_HOOK_DEBUG_VIEW, app->debug_view);
+        if (!view) view = find_named(app, SL_HOOK_DEBUG_VIEW_LIGHT, app->debug_view);
+    }
+    /* light types present */
+    const char *types[32];
+    int ntypes = sl_forward_light_types(app, types, 32);
+    const sl_chunk_reg *light_chunks[32] = {0};
+    for (int t = 0; t < ntypes; t++) light_chunks[t] = find_named(app, SL_HOOK_LIGHT, types[t]);
+
+    /* hooks gated on material keys */
+    const sl_chunk_reg *vertex_hooks[64], *surface_hooks[64], *ambient_hooks[64];
+    int nv = 0, ns = 0, na = 0;
+    for (int i = 0; i < P->chunk_count; i++) {
+        const sl_chunk_reg *c = &P->chunks[i];
+        if (!sl_plugin_enabled(app, c->owner)) continue;
+        if (c->d.hook != SL_HOOK_VERTEX && c->d.hook != SL_HOOK_SURFACE && c->d.hook != SL_HOOK_AMBIENT) continue;
+        if (c->d.when_material_has && !material_has(app, m, c->d.when_material_has)) continue;
+        if (c->d.hook == SL_HOOK_VERTEX && nv < 64) vertex_hooks[nv++] = c;
+        if (c->d.hook == SL_HOOK_SURFACE && ns < 64) surface_hooks[ns++] = c;
+        if (c->d.hook == SL_HOOK_AMBIENT && na < 64) ambient_hooks[na++] = c;
+    }
+    qsort(vertex_hooks, nv, sizeof *vertex_hooks, cmp_chunk_order);
+    qsort(surface_hooks, ns, sizeof *surface_hooks, cmp_chunk_order);
+
+    /* the fragment-stage chunk list, in include order */
+#define ADD(c) do { if ((c) && count < 256) { list[count++] = (c); owners |= 1ull << ((c)->owner & 63); } } while (0)
+    if (kind == SL_VARIANT_FORWARD) {
+        for (int i = 0; i < ns; i++) ADD(surface_hooks[i]);
+        for (int t = 0; t < ntypes; t++) ADD(light_chunks[t]);
+        ADD(model_chunk);
+        ADD(model_ambient);
+        for (int i = 0; i < na; i++) ADD(ambient_hooks[i]);
+        ADD(view);
+    }
+    for (int i = 0; i < nv; i++) owners |= 1ull << (vertex_hooks[i]->owner & 63);
+#undef ADD
+
+    /* ---- common prelude: defines and uniforms for the owners involved ---- */
+    sl_strbuf pre = {0};
+    sl_sb_append(&pre, "#version 450 core\n");
+    if (view) {
+        char id[128];
+        sl_glsl_ident(view->d.name, id, sizeof id, true);
+        sl_sb_printf(&pre, "#define SL_DEBUG_VIEW_%s 1\n", id);
+    }
+    sl_strbuf uni = {0};
+    out->texture_count = 0;
+    for (int i = 0; i < app->params.count; i++) {
+        const sl_param *q = &app->params.items[i];
+        int owner = sl_plugins_find(P, q->owner);
+        if (owner < 0 || !(owners & (1ull << (owner & 63)))) continue;
+        char id[160], up[160];
+        if (q->desc.scope == SL_SCOPE_MATERIAL) {
+            sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
+            if (!v) continue;
+            sl_glsl_ident(q->full_id, up, sizeof up, true);
+            if (v->present) sl_sb_printf(&pre, "#define SL_MAT_HAS_%s 1\n", up);
+            if (q->desc.type == SL_PARAM_TEXTURE) {
+                if (v->present && out->texture_count < 16) {
+                    sl_sb_printf(&uni, "layout(binding = %d) uniform sampler2D sl_mat_%s;\n", out->texture_count, q->full_id);
+                    out->texture_params[out->texture_count++] = i;
+                }
+            } else if (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE) {
+                char macro[200];
+                snprintf(macro, sizeof macro, "SL_MAT_%s", up);
+                define_value(&pre, macro, q, &v->v);
+            } else {
+                sl_sb_printf(&uni, "uniform %s sl_mat_%s;\n", glsl_type(q->desc.type), q->full_id);
+            }
+        } else if (q->desc.scope == SL_SCOPE_GLOBAL && strcmp(q->desc.id, "enabled")) {
+            char owner_id[128];
+            sl_glsl_ident(q->owner, owner_id, sizeof owner_id, false);
+            snprintf(id, sizeof id, "%s_%s", owner_id, q->desc.id);
+            if (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE) {
+                sl_glsl_ident(id, up, sizeof up, true);
+                define_value(&pre, up, q, &q->value);
+            } else {
+                sl_sb_printf(&uni, "uniform %s %s;\n", glsl_type(q->desc.type), id);
+            }
+        }
+    }
+
+    sl_program *p = calloc(1, sizeof *p);
+    bool ok = true;
+    /* ---- vertex stage ---- */
+    sl_sb_append(&p->vs.text, pre.s);
+    sl_sb_append(&p->vs.text, "#define SL_VERTEX_STAGE 1\n");
+    ok = ok && sl_source_include(&p->vs, "sl:common.glsl", err, n);
+    sl_source_generated(&p->vs, uni.s ? uni.s : "");
+    sl_strbuf gen = {0};
+    for (int i = 0; i < nv && ok; i++) {
+        char path[2048];
+        snprintf(path, sizeof path, "%s/%s", P->items[vertex_hooks[i]->owner]->resource_dir, vertex_hooks[i]->d.file);
+        ok = sl_source_include(&p->vs, path, err, n);
+    }
+    sl_sb_append(&gen, "void sl_run_vertex_hooks(inout SlVertex v) {\n");
+    for (int i = 0; i < nv; i++) sl_sb_printf(&gen, "    %s(v);\n", vertex_hooks[i]->d.function);
+    sl_sb_append(&gen, "}\n");
+    sl_source_generated(&p->vs, gen.s);
+    sl_sb_free(&gen);
+    ok = ok && sl_source_include(&p->vs, "sl:forward.vert", err, n);
+
+    /* ---- fragment stage ---- */
+    sl_sb_append(&p->fs.text, pre.s);
+    sl_sb_append(&p->fs.text, "#define SL_FRAGMENT_STAGE 1\n");
+    ok = ok && sl_source_include(&p->fs, "sl:common.glsl", err, n);
+    if (kind == SL_VARIANT_DEPTH) {
+        ok = ok && sl_source_include(&p->fs, "sl:depth.frag", err, n);
+    } else {
+        sl_strbuf decl = {0};
+        sl_sb_append(&decl, uni.s ? uni.s : "");
+        sl_sb_append(&decl, "layout(std430, binding = 0) readonly buffer SlLightBuffer { SlLight sl_lights[]; };\n"
+                            "uniform vec3 sl_ambient_irradiance; // π × constant environment radiance\n");
+        for (int t = 0; t < ntypes; t++) {
+            char id[128];
+            sl_glsl_ident(types[t], id, sizeof id, false);
+            sl_sb_printf(&decl, "uniform ivec2 sl_lights_%s; // [first, end) in sl_lights\n", id);
+        }
+        sl_source_generated(&p->fs, decl.s);
+        sl_sb_free(&decl);
+        ok = ok && sl_source_include(&p->fs, "sl:material.glsl", err, n);
+        /* chunks, each file once; LIBRARY chunks of every owner involved come first */
+        for (int i = 0; i < P->chunk_count && ok; i++) {
+            const sl_chunk_reg *c = &P->chunks[i];
+            if (c->d.hook != SL_HOOK_LIBRARY || !(owners & (1ull << (c->owner & 63))) || !sl_plugin_enabled(app, c->owner)) continue;
+            char path[2048];
+            snprintf(path, sizeof path, "%s/%s", P->items[c->owner]->resource_dir, c->d.file);
+            ok = sl_source_include(&p->fs, path, err, n);
+        }
+        for (int i = 0; i < count && ok; i++) {
+            char path[2048];
+            snprintf(path, sizeof path, "%s/%s", P->items[list[i]->owner]->resource_dir, list[i]->d.file);
+            ok = sl_source_include(&p->fs, path, err, n);
+            sl_sb_printf(&explain, "%s%s:%s", explain.len ? ", " : "", P->items[list[i]->owner]->id,
+                         list[i]->d.name ? list[i]->d.name : list[i]->d.function);
+        }
+        sl_sb_append(&gen, "void sl_run_surface_hooks(inout SlSurface s) {\n");
+        for (int i = 0; i < ns; i++) sl_sb_printf(&gen, "    %s(s);\n", surface_hooks[i]->d.function);
+        sl_sb_append(&gen, "}\n");
+        /* the light loop, one loop per light type present */
+        const char *per_light = view && view->d.hook == SL_HOOK_DEBUG_VIEW_LIGHT ? view->d.function : model_chunk->d.function;
+        sl_sb_append(&gen, "vec3 sl_direct_lighting(SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
+        for (int t = 0; t < ntypes; t++) {
+            if (!light_chunks[t]) continue; /* warned at load: no plugin provides this light type */
+            char id[128];
+            sl_glsl_ident(types[t], id, sizeof id, false);
+            sl_sb_printf(&gen,
+                         "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) {\n"
+                         "        vec3 l, E;\n"
+                         "        if (%s(sl_lights[i], s, l, E)) Lo += %s(s, l, E);\n"
+                         "    }\n",
+                         id, id, light_chunks[t]->d.function, per_light);
+        }
+        sl_sb_append(&gen, "    return Lo;\n}\n");
+        sl_sb_append(&gen, "vec3 sl_shade_surface(SlSurface s) {\n");
+        if (view && view->d.hook == SL_HOOK_DEBUG_VIEW) {
+            sl_sb_printf(&gen, "    return %s(s);\n}\n", view->d.function);
+        } else if (view) {
+            sl_sb_append(&gen, "    return sl_direct_lighting(s);\n}\n");
+        } else {
+            sl_sb_append(&gen, "    vec3 Lo = sl_direct_lighting(s);\n");
+            if (na) {
+                for (int i = 0; i < na; i++) sl_sb_printf(&gen, "    Lo += %s(s);\n", ambient_hooks[i]->d.function);
+            } else if (model_ambient) {
+                sl_sb_printf(&gen, "    Lo += %s(s, sl_ambient_irradiance);\n", model_ambient->d.function);
+            } else {
+                sl_sb_append(&gen, "    Lo += s.base_color * SL_INV_PI * sl_ambient_irradiance * s.ao;\n");
+            }
+            sl_sb_append(&gen, "    return Lo;\n}\n");
+        }
+        sl_source_generated(&p->fs, gen.s);
+        ok = ok && sl_source_include(&p->fs, "sl:forward.frag", err, n);
+    }
+    sl_sb_free(&gen);
+    sl_sb_free(&pre);
+    sl_sb_free(&uni);
+
+    char label[512];
+    snprintf(label, sizeof label, "material \"%s\" (%s%s)", mat->name, kind == SL_VARIANT_DEPTH ? "depth, " : "", model);
+    p->label = strdup(label);
+    p->composed = true;
+    free(out->chunks);
+    out->chunks = explain.s ? explain.s : strdup("");
+    out->owners = owners;
+    if (!ok) {
+        SL_ERROR("%s", err);
+        sl_program_free(p);
+        return false;
+    }
+    p->hash = sl_hash64(p->vs.text.s, p->vs.text.len, sl_hash64(p->fs.text.s, p->fs.text.len, 0));
+    for (int i = 0; i < *cache_count; i++) {
+        if ((*cache)[i]->hash == p->hash && (*cache)[i]->id) {
+            sl_program_free(p);
+            out->program = (*cache)[i];
+            return true;
+        }
+    }
+    if (!sl_program_build(p, err, n)) {
+        SL_ERROR("%s", err);
+        /* keep the previous program of this variant (hot reload) */
+        sl_program_free(p);
+        return false;
+    }
+    *cache = realloc(*cache, (*cache_count + 1) * sizeof **cache);
+    (*cache)[(*cache_count)++] = p;
+    out->program = p;
+    return true;
+}

@@ -1,0 +1,29 @@
+/* Composition of the forward material programs: for each material, the core template plus
+ * exactly the plugin chunks that material uses (its shading model, surface hooks for the keys
+ * it carries, the light types present in the scene, the active debug view). */
+#ifndef SL_FORWARD_H
+#define SL_FORWARD_H
+#include <shadelab/shadelab.h>
+#include "render/composer.h"
+
+struct sl_app;
+
+typedef struct sl_forward_variant {
+    sl_program *program;
+    uint64_t owners;            /* bit i: plugin i contributed chunks (bind callbacks, uniforms) */
+    int texture_params[16];     /* material texture keys bound to units 0.. (param indices) */
+    int texture_count;
+    char *chunks;               /* human-readable list of the chunks included (--explain) */
+} sl_forward_variant;
+
+typedef enum sl_variant_kind { SL_VARIANT_FORWARD, SL_VARIANT_DEPTH } sl_variant_kind;
+
+/* Builds the program source for material m and compiles it unless a program with the same
+ * hash exists in `cache`. Returns false with a message (the variant keeps its last program). */
+bool sl_forward_compose(struct sl_app *app, int material, sl_variant_kind kind, sl_forward_variant *out,
+                        sl_program ***cache, int *cache_count, char *err, size_t n);
+/* Light types present among the scene's enabled lights, in packing order. */
+int sl_forward_light_types(struct sl_app *app, const char **types, int max);
+/* GLSL-safe identifier from a name ("spotlight-shadow" → "spotlight_shadow"). */
+void sl_glsl_ident(const char *in, char *out, size_t n, bool upper);
+#endif

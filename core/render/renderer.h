@@ -1,0 +1,45 @@
+/* The renderer: GPU scene (meshes, textures, materials), composed programs, the render graph
+ * and its timing. Everything here runs with the GL context current. */
+#ifndef SL_RENDERER_H
+#define SL_RENDERER_H
+#include <shadelab/shadelab.h>
+#include <stdio.h>
+
+struct sl_app;
+
+bool sl_renderer_create(struct sl_app *app, char *err, size_t n);
+void sl_renderer_destroy(struct sl_app *app);
+/* Renders one frame through the graph (sub-frame of an accumulation when app->opt.accumulate > 1). */
+bool sl_renderer_frame(struct sl_app *app, int accumulate_index, int accumulate_count);
+/* Marks materials/lights/params dirty after a change (recompiles lazily). */
+void sl_renderer_invalidate(struct sl_app *app);
+void sl_renderer_resize(struct sl_app *app, int w, int h);
+/* Re-reads every shader file and rebuilds programs; keeps the last good program on error. */
+int sl_renderer_reload_shaders(struct sl_app *app);
+
+/* Read-back of the last frame (rows top to bottom). */
+bool sl_renderer_read(struct sl_app *app, const char *resource, float *rgba);
+
+/* Statistics of the last frame, for --stats, --explain and the structural tests. */
+typedef struct sl_pass_stat { const char *name; const char *owner; double ms; bool ran; } sl_pass_stat;
+typedef struct sl_frame_stats {
+    sl_pass_stat passes[64]; int pass_count;
+    double frame_ms;
+    int draw_calls;
+    int program_count;
+    uint64_t program_hashes[256]; /* hash of each composed program in use, sorted */
+    const char *timing_mode;     /* "glfinish" or "timer-query" */
+} sl_frame_stats;
+const sl_frame_stats *sl_renderer_stats(struct sl_app *app);
+/* Per material: the composed program's hash and which chunks it includes (for --explain). */
+void sl_renderer_explain(struct sl_app *app, FILE *f);
+
+/* Host-interface implementations (see sdk/include/shadelab/host.h). */
+sl_program *sl_renderer_load_program(struct sl_app *app, int owner, const sl_program_desc *desc);
+unsigned sl_renderer_program_id(sl_program *p);
+unsigned sl_renderer_pass_texture(struct sl_app *app, sl_pass_ctx *ctx, const char *name);
+sl_status sl_renderer_bind_outputs(struct sl_app *app, sl_pass_ctx *ctx, int layer);
+void sl_renderer_draw_scene(struct sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_desc *d);
+void sl_renderer_draw_fullscreen(struct sl_app *app, sl_pass_ctx *ctx);
+const sl_light_info *sl_renderer_lights(struct sl_app *app, int *count);
+#endif

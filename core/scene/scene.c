@@ -1,0 +1,421 @@
+/* Scene graph bookkeeping: building blocks, freeing, transforms, bounds, asset paths. */
+#include "scene/scene.h"
+
+#include <cglm/cglm.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* ---- small utilities -------------------------------------------------------------------- */
+
+static char *dup_str(const char *s) { return s ? strdup(s) : NULL; }
+
+/* Grows *items (each `size` bytes) so that index `count` fits; zero-fills the new slot. */
+static bool grow(void **items, int count, size_t size) {
+    if (count < 0 || count >= (1 << 28)) return false;
+    /* capacity doubles: realloc on powers of two only */
+    if (count == 0 || (count & (count - 1)) == 0) {
+        size_t cap = count == 0 ? 4 : (size_t)count * 2;
+        void *p = realloc(*items, cap * size);
+        if (!p) return false;
+        *items = p;
+    }
+    memset((char *)*items + (size_t)count * size, 0, size);
+    return true;
+}
+
+/* ---- properties --------------------------------------------------------------------------- */
+
+const sl_prop *sl_prop_find(const sl_prop_list *list, const char *key) {
+    if (!list || !key) return NULL;
+    for (int i = 0; i < list->count; i++)
+        if (strcmp(list->items[i].key, key) == 0) return &list->items[i];
+    return NULL;
+}
+
+static sl_prop *prop_slot(sl_prop_list *list, const char *key, int line) {
+    for (int i = 0; i < list->count; i++) {
+        sl_prop *p = &list->items[i];
+        if (strcmp(p->key, key) == 0) {
+            free(p->str);
+            p->str = NULL;
+            memset(p->v, 0, sizeof p->v);
+            p->count = 0;
+            p->line = line;
+            return p;
+        }
+    }
+    if (!grow((void **)&list->items, list->count, sizeof(sl_prop))) return NULL;
+    sl_prop *p = &list->items[list->count];
+    p->key = strdup(key);
+    if (!p->key) return NULL;
+    p->line = line;
+    list->count++;
+    return p;
+}
+
+sl_prop *sl_prop_set_number(sl_prop_list *list, const char *key, float value, int line) {
+    sl_prop *p = prop_slot(list, key, line);
+    if (!p) return NULL;
+    p->kind = SL_PROP_NUMBER;
+    p->v[0] = value;
+    p->count = 1;
+    return p;
+}
+
+sl_prop *sl_prop_set_bool(sl_prop_list *list, const char *key, bool value, int line) {
+    sl_prop *p = prop_slot(list, key, line);
+    if (!p) return NULL;
+    p->kind = SL_PROP_BOOL;
+    p->v[0] = value ? 1.0f : 0.0f;
+    p->count = 1;
+    return p;
+}
+
+sl_prop *sl_prop_set_string(sl_prop_list *list, const char *key, const char *value, int line) {
+    sl_prop *p = prop_slot(list, key, line);
+    if (!p) return NULL;
+    p->kind = SL_PROP_STRING;
+    p->str = strdup(value ? value : "");
+    return p->str ? p : NULL;
+}
+
+sl_prop *sl_prop_set_vec(sl_prop_list *list, const char *key, const float *v, int count, int line) {
+    if (count < 1 || count > 4) return NULL;
+    sl_prop *p = prop_slot(list, key, line);
+    if (!p) return NULL;
+    p->kind = count == 1 ? SL_PROP_NUMBER : SL_PROP_VEC;
+    memcpy(p->v, v, sizeof(float) * (size_t)count);
+    p->count = count;
+    return p;
+}
+
+void sl_prop_list_free(sl_prop_list *list) {
+    if (!list) return;
+    for (int i = 0; i < list->count; i++) {
+        free(list->items[i].key);
+        free(list->items[i].str);
+    }
+    free(list->items);
+    list->items = NULL;
+    list->count = 0;
+}
+
+/* ---- meshes ------------------------------------------------------------------------------- */
+
+bool sl_mesh_alloc(sl_mesh_data *m, int vertex_count, int index_count) {
+    memset(m, 0, sizeof *m);
+    if (vertex_count < 0 || index_count < 0 || vertex_count > (1 << 26) || index_count > (1 << 28))
+        return false;
+    size_t v = (size_t)(vertex_count > 0 ? vertex_count : 1);
+    size_t i = (size_t)(index_count > 0 ? index_count : 1);
+    m->positions = calloc(v * 3, sizeof(float));
+    m->normals = calloc(v * 3, sizeof(float));
+    m->tangents = calloc(v * 4, sizeof(float));
+    m->uvs = calloc(v * 2, sizeof(float));
+    m->indices = calloc(i, sizeof(uint32_t));
+    if (!m->positions || !m->normals || !m->tangents || !m->uvs || !m->indices) {
+        sl_mesh_free(m);
+        return false;
+    }
+    m->vertex_count = vertex_count;
+    m->index_count = index_count;
+    return true;
+}
+
+void sl_mesh_free(sl_mesh_data *m) {
+    if (!m) return;
+    free(m->positions);
+    free(m->normals);
+    free(m->tangents);
+    free(m->uvs);
+    free(m->indices);
+    memset(m, 0, sizeof *m);
+}
+
+void sl_mesh_compute_bounds(sl_mesh_data *m) {
+    if (m->vertex_count <= 0) {
+        memset(m->bounds_min, 0, sizeof m->bounds_min);
+        memset(m->bounds_max, 0, sizeof m->bounds_max);
+        return;
+    }
+    for (int c = 0; c < 3; c++) m->bounds_min[c] = m->bounds_max[c] = m->positions[c];
+    for (int i = 1; i < m->vertex_count; i++)
+        for (int c = 0; c < 3; c++) {
+            float x = m->positions[3 * i + c];
+            if (x < m->bounds_min[c]) m->bounds_min[c] = x;
+            if (x > m->bounds_max[c]) m->bounds_max[c] = x;
+        }
+}
+
+/* ---- scene items -------------------------------------------------------------------------- */
+
+#define FIND_BY_NAME(array, count)                                                           \
+    if (!scene || !name) return -1;                                                          \
+    for (int i = 0; i < scene->count; i++)                                                   \
+        if (scene->array[i].name && strcmp(scene->array[i].name, name) == 0) return i;       \
+    return -1;
+
+int sl_scene_find_material(const sl_scene *scene, const char *name) { FIND_BY_NAME(materials, material_count) }
+int sl_scene_find_node(const sl_scene *scene, const char *name) { FIND_BY_NAME(nodes, node_count) }
+int sl_scene_find_light(const sl_scene *scene, const char *name) { FIND_BY_NAME(lights, light_count) }
+int sl_scene_find_camera(const sl_scene *scene, const char *name) { FIND_BY_NAME(cameras, camera_count) }
+
+int sl_scene_add_material(sl_scene *scene, const char *name, const char *model) {
+    if (!grow((void **)&scene->materials, scene->material_count, sizeof(sl_material))) return -1;
+    sl_material *m = &scene->materials[scene->material_count];
+    m->name = dup_str(name ? name : "");
+    m->model = dup_str(model ? model : "lambert");
+    m->cast_shadows = true;
+    if (!m->name || !m->model) {
+        free(m->name);
+        free(m->model);
+        return -1;
+    }
+    return scene->material_count++;
+}
+
+static const float identity16[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+int sl_scene_add_node(sl_scene *scene, const char *name, int parent) {
+    if (parent < -1 || parent >= scene->node_count) return -1;
+    if (!grow((void **)&scene->nodes, scene->node_count, sizeof(sl_node))) return -1;
+    sl_node *n = &scene->nodes[scene->node_count];
+    n->name = dup_str(name ? name : "");
+    if (!n->name) return -1;
+    n->parent = parent;
+    memcpy(n->local, identity16, sizeof identity16);
+    memcpy(n->world, identity16, sizeof identity16);
+    return scene->node_count++;
+}
+
+int sl_scene_add_mesh(sl_scene *scene, const char *name, sl_mesh_data *data, int material) {
+    if (!grow((void **)&scene->meshes, scene->mesh_count, sizeof(sl_mesh))) {
+        sl_mesh_free(data);
+        return -1;
+    }
+    sl_mesh *m = &scene->meshes[scene->mesh_count];
+    m->name = dup_str(name ? name : "");
+    if (!m->name) {
+        sl_mesh_free(data);
+        return -1;
+    }
+    m->data = *data;
+    memset(data, 0, sizeof *data);
+    m->material = material;
+    return scene->mesh_count++;
+}
+
+bool sl_scene_node_add_mesh(sl_scene *scene, int node, int mesh) {
+    if (node < 0 || node >= scene->node_count || mesh < 0 || mesh >= scene->mesh_count) return false;
+    sl_node *n = &scene->nodes[node];
+    if (!grow((void **)&n->meshes, n->mesh_count, sizeof(int))) return false;
+    n->meshes[n->mesh_count++] = mesh;
+    return true;
+}
+
+int sl_scene_add_light(sl_scene *scene, const char *name, const char *type) {
+    if (!grow((void **)&scene->lights, scene->light_count, sizeof(sl_light))) return -1;
+    sl_light *l = &scene->lights[scene->light_count];
+    l->name = dup_str(name ? name : "");
+    l->type = dup_str(type ? type : "point");
+    if (!l->name || !l->type) {
+        free(l->name);
+        free(l->type);
+        return -1;
+    }
+    l->direction[1] = -1.0f;
+    l->color[0] = l->color[1] = l->color[2] = 1.0f;
+    l->intensity = 1.0f;
+    l->enabled = true;
+    return scene->light_count++;
+}
+
+int sl_scene_add_camera(sl_scene *scene, const char *name) {
+    if (!grow((void **)&scene->cameras, scene->camera_count, sizeof(sl_camera))) return -1;
+    sl_camera *c = &scene->cameras[scene->camera_count];
+    c->name = dup_str(name ? name : "");
+    if (!c->name) return -1;
+    c->position[2] = 5.0f;
+    c->up[1] = 1.0f;
+    c->fov_y_deg = 45.0f;
+    c->znear = 0.05f;
+    c->zfar = 100.0f;
+    return scene->camera_count++;
+}
+
+void sl_scene_free(sl_scene *scene) {
+    if (!scene) return;
+    free(scene->path);
+    free(scene->dir);
+    for (int i = 0; i < scene->material_count; i++) {
+        free(scene->materials[i].name);
+        free(scene->materials[i].model);
+        sl_prop_list_free(&scene->materials[i].props);
+    }
+    free(scene->materials);
+    for (int i = 0; i < scene->mesh_count; i++) {
+        free(scene->meshes[i].name);
+        sl_mesh_free(&scene->meshes[i].data);
+    }
+    free(scene->meshes);
+    for (int i = 0; i < scene->node_count; i++) {
+        free(scene->nodes[i].name);
+        free(scene->nodes[i].meshes);
+    }
+    free(scene->nodes);
+    for (int i = 0; i < scene->light_count; i++) {
+        free(scene->lights[i].name);
+        free(scene->lights[i].type);
+        sl_prop_list_free(&scene->lights[i].props);
+    }
+    free(scene->lights);
+    for (int i = 0; i < scene->camera_count; i++) free(scene->cameras[i].name);
+    free(scene->cameras);
+    free(scene->environment.map);
+    sl_prop_list_free(&scene->environment.props);
+    for (int i = 0; i < scene->plugin_count; i++) free(scene->plugins[i]);
+    free(scene->plugins);
+    sl_prop_list_free(&scene->params);
+    memset(scene, 0, sizeof *scene);
+}
+
+/* ---- transforms --------------------------------------------------------------------------- */
+
+void sl_mat4_from_trs(float out[16], const float t[3], const float q_xyzw[4], const float s[3]) {
+    /* cglm's mat4/versor are aligned types: work on aligned locals, copy out. */
+    mat4 m;
+    versor q = {q_xyzw[0], q_xyzw[1], q_xyzw[2], q_xyzw[3]};
+    glm_quat_normalize(q);
+    glm_quat_mat4(q, m);
+    for (int c = 0; c < 3; c++)
+        for (int r = 0; r < 3; r++) m[c][r] *= s[c];
+    m[3][0] = t[0];
+    m[3][1] = t[1];
+    m[3][2] = t[2];
+    memcpy(out, m, sizeof(float) * 16);
+}
+
+void sl_quat_from_euler_deg(float out[4], const float deg[3]) {
+    versor qx, qy, qz, qyx, q;
+    glm_quatv(qx, glm_rad(deg[0]), (vec3){1, 0, 0});
+    glm_quatv(qy, glm_rad(deg[1]), (vec3){0, 1, 0});
+    glm_quatv(qz, glm_rad(deg[2]), (vec3){0, 0, 1});
+    glm_quat_mul(qy, qx, qyx); /* X first, then Y … */
+    glm_quat_mul(qz, qyx, q);  /* … then Z */
+    memcpy(out, q, sizeof(float) * 4);
+}
+
+static void transform_point(const float m[16], const float p[3], float out[3]) {
+    for (int r = 0; r < 3; r++)
+        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+}
+
+void sl_scene_update_transforms(sl_scene *scene) {
+    bool any = false;
+    for (int i = 0; i < scene->node_count; i++) {
+        sl_node *n = &scene->nodes[i];
+        mat4 local, world;
+        memcpy(local, n->local, sizeof local);
+        /* Parents come first (sl_scene_add_node enforces it); anything else is a root. */
+        if (n->parent >= 0 && n->parent < i) {
+            mat4 parent;
+            memcpy(parent, scene->nodes[n->parent].world, sizeof parent);
+            glm_mat4_mul(parent, local, world);
+        } else {
+            glm_mat4_copy(local, world);
+        }
+        memcpy(n->world, world, sizeof world);
+        for (int k = 0; k < n->mesh_count; k++) {
+            int mi = n->meshes[k];
+            if (mi < 0 || mi >= scene->mesh_count || scene->meshes[mi].data.vertex_count == 0) continue;
+            const sl_mesh_data *d = &scene->meshes[mi].data;
+            for (int corner = 0; corner < 8; corner++) {
+                float p[3] = {(corner & 1) ? d->bounds_max[0] : d->bounds_min[0],
+                              (corner & 2) ? d->bounds_max[1] : d->bounds_min[1],
+                              (corner & 4) ? d->bounds_max[2] : d->bounds_min[2]};
+                float w[3];
+                transform_point(n->world, p, w);
+                for (int c = 0; c < 3; c++) {
+                    if (!any || w[c] < scene->bounds_min[c]) scene->bounds_min[c] = w[c];
+                    if (!any || w[c] > scene->bounds_max[c]) scene->bounds_max[c] = w[c];
+                }
+                any = true;
+            }
+        }
+    }
+    if (!any) {
+        memset(scene->bounds_min, 0, sizeof scene->bounds_min);
+        memset(scene->bounds_max, 0, sizeof scene->bounds_max);
+    }
+}
+
+/* ---- asset paths -------------------------------------------------------------------------- */
+
+/* Why `path` cannot be used as a file: NULL when it is a readable regular file. */
+static const char *file_problem(const char *path) {
+    struct stat st;
+    if (stat(path, &st) != 0) return strerror(errno);
+    if (S_ISDIR(st.st_mode)) return "is a directory";
+    FILE *f = fopen(path, "rb");
+    if (!f) return strerror(errno);
+    fclose(f);
+    return NULL;
+}
+
+static char *join_path(const char *dir, const char *rel) {
+    size_t n = strlen(dir) + strlen(rel) + 2;
+    char *p = malloc(n);
+    if (!p) return NULL;
+    size_t dl = strlen(dir);
+    snprintf(p, n, "%s%s%s", dir, (dl && dir[dl - 1] != '/') ? "/" : "", rel);
+    return p;
+}
+
+char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const char *rel,
+                            char *err, size_t err_size) {
+    if (err && err_size) err[0] = 0;
+    if (!rel || !rel[0]) {
+        if (err && err_size) snprintf(err, err_size, "empty path");
+        return NULL;
+    }
+    if (!data_dir || !data_dir[0]) data_dir = getenv("SHADELAB_DATA");
+    if (rel[0] == '/') {
+        const char *why = file_problem(rel);
+        if (!why) return strdup(rel);
+        if (err && err_size) snprintf(err, err_size, "'%s': %s", rel, why);
+        return NULL;
+    }
+    const char *dirs[2] = {scene && scene->dir && scene->dir[0] ? scene->dir : NULL,
+                           data_dir && data_dir[0] ? data_dir : NULL};
+    const char *labels[2] = {"scene directory", "data directory"};
+    char tried[2048];
+    size_t used = 0;
+    tried[0] = 0;
+    for (int i = 0; i < 2; i++) {
+        if (!dirs[i]) continue;
+        char *full = join_path(dirs[i], rel);
+        if (!full) break;
+        const char *why = file_problem(full);
+        if (!why) return full;
+        if (used < sizeof tried) {
+            int w = snprintf(tried + used, sizeof tried - used, "%s%s %s (%s)", used ? "; " : "",
+                             labels[i], full, why);
+            if (w > 0) used += (size_t)w;
+        }
+        free(full);
+    }
+    if (err && err_size) {
+        if (!used)
+            snprintf(err, err_size, "'%s' not found: no scene directory and no data directory "
+                     "(--data DIR or SHADELAB_DATA) to look in", rel);
+        else
+            snprintf(err, err_size, "'%s' not found; looked in: %s%s", rel, tried,
+                     dirs[1] ? "" : " (no data directory set: --data DIR or SHADELAB_DATA)");
+    }
+    return NULL;
+}

@@ -1,0 +1,417 @@
+/* Mesh files (glTF 2.0, OBJ and everything else assimp reads) imported into the scene graph.
+ *
+ * What comes along: the node hierarchy with its transforms, triangle meshes (positions,
+ * normals, UVs, tangents), materials (base colour factor and texture, normal texture,
+ * metallic/roughness factors, opacity), KHR_lights_punctual lights and cameras.
+ *
+ * UVs: assimp hands out UVs with v = 0 at the BOTTOM of the image (it flips glTF's on import);
+ * the scene convention is v = 0 at the top (scene.h), so v becomes 1 − v here. assimp's
+ * bitangent points toward increasing assimp-v, i.e. up in the image, which is exactly the
+ * direction scene.h gives w · cross(n, t): w = sign(dot(cross(n, t), bitangent)).
+ *
+ * Names: the imported root and its descendants are named "<prefix>/<assimp node name>", with
+ * prefix the parent node's name (or the file stem at the top level); lights and cameras
+ * "<prefix>/<name>"; materials "<file stem>/<material name>", and a material of that name that
+ * already exists (defined in the scene, or imported before) is reused rather than duplicated.
+ * Names are made unique with a "#2", "#3"… suffix where needed. */
+#include "log.h"
+#include "scene/scene.h"
+
+#include <assimp/cimport.h>
+#include <assimp/config.h>
+#include <assimp/light.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+typedef struct importer {
+    sl_scene *scene;
+    const struct aiScene *ai;
+    const char *path;
+    char stem[256];
+    char dir[4096];     /* absolute directory of the file */
+    char prefix[512];
+    bool is_gltf;       /* .gltf/.glb: cameras follow the glTF spec (see import_cameras) */
+    int *mesh_map;      /* ai mesh index → scene mesh index (−1: skipped) */
+    int *material_map;  /* ai material index → scene material index */
+    const struct aiNode **ai_nodes; /* visited ai nodes … */
+    int *scene_nodes;               /* … and the scene nodes made from them */
+    int node_count, node_cap;
+    char *err;
+    size_t err_size;
+} importer;
+
+static bool fail(importer *im, const char *fmt, const char *arg) {
+    if (im->err && im->err_size) snprintf(im->err, im->err_size, fmt, im->path, arg);
+    return false;
+}
+
+/* "base", "base#2", "base#3"… the first one that `taken` does not know. */
+static void unique_name(char *out, size_t size, const char *base, const sl_scene *s,
+                        int (*taken)(const sl_scene *, const char *)) {
+    snprintf(out, size, "%s", base);
+    for (int i = 2; taken(s, out) >= 0 && i < INT_MAX; i++) snprintf(out, size, "%s#%d", base, i);
+}
+
+static void mat_vec(const float m[16], const float v[3], float w, float out[3]) {
+    for (int r = 0; r < 3; r++) out[r] = m[r] * v[0] + m[4 + r] * v[1] + m[8 + r] * v[2] + m[12 + r] * w;
+}
+
+static void normalize(float v[3]) {
+    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0 && isfinite(l)) v[0] /= l, v[1] /= l, v[2] /= l;
+}
+
+/* ---- materials --------------------------------------------------------------------------- */
+
+/* A texture path as the renderer can open it: absolute, relative to the mesh file. */
+static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiTextureType type,
+                         char *out, size_t size) {
+    struct aiString p;
+    if (aiGetMaterialTextureCount(mat, type) == 0) return false;
+    if (aiGetMaterialTexture(mat, type, 0, &p, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
+        return false;
+    if (p.length == 0) return false;
+    if (p.data[0] == '*') {
+        SL_WARN("%s: embedded texture %s is not supported yet (skipped); extract it next to the "
+                "file and reference it by name", im->path, p.data);
+        return false;
+    }
+    if (p.data[0] == '/') snprintf(out, size, "%s", p.data);
+    else snprintf(out, size, "%s/%s", im->dir, p.data);
+    struct stat st;
+    if (stat(out, &st) != 0) SL_WARN("%s: texture '%s' not found (%s)", im->path, out, p.data);
+    return true;
+}
+
+/* The scene material for ai material i, created on first use (files often carry unused
+ * defaults); −1 when out of memory. */
+static int material_for(importer *im, unsigned i) {
+    if (i >= im->ai->mNumMaterials) {
+        int mi = sl_scene_find_material(im->scene, "default");
+        return mi >= 0 ? mi : sl_scene_add_material(im->scene, "default", "lambert");
+    }
+    if (im->material_map[i] >= 0) return im->material_map[i];
+    {
+        const struct aiMaterial *mat = im->ai->mMaterials[i];
+        struct aiString ainame;
+        char name[600];
+        if (aiGetMaterialString(mat, AI_MATKEY_NAME, &ainame) == aiReturn_SUCCESS && ainame.length)
+            snprintf(name, sizeof name, "%.250s/%.300s", im->stem, ainame.data);
+        else
+            snprintf(name, sizeof name, "%s/material%u", im->stem, i);
+        int existing = sl_scene_find_material(im->scene, name);
+        if (existing >= 0) return im->material_map[i] = existing;
+        int mi = sl_scene_add_material(im->scene, name, "lambert");
+        if (mi < 0) return -1;
+        im->material_map[i] = mi;
+        sl_prop_list *props = &im->scene->materials[mi].props;
+        struct aiColor4D c;
+        if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) == aiReturn_SUCCESS ||
+            aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) {
+            float rgb[3] = {c.r, c.g, c.b};
+            sl_prop_set_vec(props, "base_color", rgb, 3, 0);
+            if (c.a < 1.0f && c.a >= 0.0f) sl_prop_set_number(props, "alpha", c.a, 0);
+        }
+        char tex[4096 + 1024];
+        if (texture_path(im, mat, aiTextureType_BASE_COLOR, tex, sizeof tex) ||
+            texture_path(im, mat, aiTextureType_DIFFUSE, tex, sizeof tex))
+            sl_prop_set_string(props, "base_color_map", tex, 0);
+        if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) {
+            sl_prop_set_string(props, "normal_map", tex, 0);
+            sl_prop_set_string(props, "normal_space", "tangent", 0);
+        }
+        ai_real f;
+        unsigned n = 1;
+        if (aiGetMaterialFloatArray(mat, AI_MATKEY_METALLIC_FACTOR, &f, &n) == aiReturn_SUCCESS && n == 1)
+            sl_prop_set_number(props, "metallic", (float)f, 0);
+        n = 1;
+        if (aiGetMaterialFloatArray(mat, AI_MATKEY_ROUGHNESS_FACTOR, &f, &n) == aiReturn_SUCCESS && n == 1)
+            sl_prop_set_number(props, "roughness", (float)f, 0);
+        n = 1;
+        if (!sl_prop_find(props, "alpha") &&
+            aiGetMaterialFloatArray(mat, AI_MATKEY_OPACITY, &f, &n) == aiReturn_SUCCESS && n == 1 &&
+            f < 1.0f && f >= 0.0f)
+            sl_prop_set_number(props, "alpha", (float)f, 0);
+        return mi;
+    }
+}
+
+/* ---- meshes ------------------------------------------------------------------------------ */
+
+static int import_mesh(importer *im, unsigned index) {
+    const struct aiMesh *am = im->ai->mMeshes[index];
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || am->mNumFaces == 0 || am->mNumVertices == 0) {
+        SL_WARN("%s: mesh '%s' has no triangles (points or lines only): skipped", im->path, am->mName.data);
+        return -1;
+    }
+    unsigned tris = 0;
+    for (unsigned f = 0; f < am->mNumFaces; f++) tris += am->mFaces[f].mNumIndices == 3;
+    sl_mesh_data d;
+    if (am->mNumVertices > (1u << 26) || tris > (1u << 26) ||
+        !sl_mesh_alloc(&d, (int)am->mNumVertices, (int)(3 * tris))) {
+        SL_WARN("%s: mesh '%s' is too large (%u vertices): skipped", im->path, am->mName.data, am->mNumVertices);
+        return -1;
+    }
+    for (unsigned v = 0; v < am->mNumVertices; v++) {
+        const struct aiVector3D *p = &am->mVertices[v];
+        if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) {
+            SL_WARN("%s: mesh '%s' has a non-finite vertex position (vertex %u): skipped", im->path,
+                    am->mName.data, v);
+            sl_mesh_free(&d);
+            return -1;
+        }
+        d.positions[3 * v] = p->x, d.positions[3 * v + 1] = p->y, d.positions[3 * v + 2] = p->z;
+        if (am->mNormals) {
+            d.normals[3 * v] = am->mNormals[v].x;
+            d.normals[3 * v + 1] = am->mNormals[v].y;
+            d.normals[3 * v + 2] = am->mNormals[v].z;
+        }
+        if (am->mTextureCoords[0]) {
+            d.uvs[2 * v] = am->mTextureCoords[0][v].x;
+            d.uvs[2 * v + 1] = 1.0f - am->mTextureCoords[0][v].y; /* bottom-left → top-left origin */
+        }
+    }
+    uint32_t *ix = d.indices;
+    for (unsigned f = 0; f < am->mNumFaces; f++) {
+        const struct aiFace *face = &am->mFaces[f];
+        if (face->mNumIndices != 3) continue;
+        bool ok = true;
+        for (int k = 0; k < 3; k++) ok = ok && face->mIndices[k] < am->mNumVertices;
+        if (!ok) continue;
+        for (int k = 0; k < 3; k++) *ix++ = face->mIndices[k];
+    }
+    d.index_count = (int)(ix - d.indices);
+    if (am->mTangents && am->mBitangents && am->mTextureCoords[0]) {
+        for (unsigned v = 0; v < am->mNumVertices; v++) {
+            const float *n = d.normals + 3 * v;
+            float t[3] = {am->mTangents[v].x, am->mTangents[v].y, am->mTangents[v].z};
+            float b[3] = {am->mBitangents[v].x, am->mBitangents[v].y, am->mBitangents[v].z};
+            float c[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+            memcpy(d.tangents + 4 * v, t, sizeof t);
+            d.tangents[4 * v + 3] = c[0] * b[0] + c[1] * b[1] + c[2] * b[2] < 0.0f ? -1.0f : 1.0f;
+        }
+        sl_mesh_repair_frames(&d); /* assimp leaves NaN on degenerate UVs */
+    } else {
+        sl_mesh_generate_tangents(&d); /* no UVs: tangents orthogonal to the normals */
+    }
+    sl_mesh_compute_bounds(&d);
+    char name[600];
+    if (am->mName.length) snprintf(name, sizeof name, "%.250s/%.300s", im->stem, am->mName.data);
+    else snprintf(name, sizeof name, "%s/mesh%u", im->stem, index);
+    int material = material_for(im, am->mMaterialIndex);
+    if (material < 0) {
+        sl_mesh_free(&d);
+        return -1;
+    }
+    return sl_scene_add_mesh(im->scene, name, &d, material);
+}
+
+/* ---- nodes ------------------------------------------------------------------------------- */
+
+static bool import_node(importer *im, const struct aiNode *an, int parent, int depth) {
+    if (depth > SL_SCENE_MAX_DEPTH) {
+        char msg[64];
+        snprintf(msg, sizeof msg, "%d", SL_SCENE_MAX_DEPTH);
+        return fail(im, "%s: the node hierarchy is deeper than %s levels", msg);
+    }
+    char base[1200], name[1300];
+    snprintf(base, sizeof base, "%.500s/%.600s", im->prefix, an->mName.length ? an->mName.data : "node");
+    unique_name(name, sizeof name, base, im->scene, sl_scene_find_node);
+    int ni = sl_scene_add_node(im->scene, name, parent);
+    if (ni < 0) return fail(im, "%s: %s", "out of memory");
+    const struct aiMatrix4x4 *m = &an->mTransformation; /* row-major */
+    float local[16] = {m->a1, m->b1, m->c1, m->d1, m->a2, m->b2, m->c2, m->d2,
+                       m->a3, m->b3, m->c3, m->d3, m->a4, m->b4, m->c4, m->d4};
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(local[i])) return fail(im, "%s: node '%s' has a non-finite transform", an->mName.data);
+    memcpy(im->scene->nodes[ni].local, local, sizeof local);
+    for (unsigned k = 0; k < an->mNumMeshes; k++) {
+        unsigned mi = an->mMeshes[k];
+        if (mi >= im->ai->mNumMeshes || im->mesh_map[mi] < 0) continue;
+        if (!sl_scene_node_add_mesh(im->scene, ni, im->mesh_map[mi])) return fail(im, "%s: %s", "out of memory");
+    }
+    if (im->node_count == im->node_cap) {
+        int cap = im->node_cap ? 2 * im->node_cap : 64;
+        const struct aiNode **a = realloc(im->ai_nodes, sizeof(*a) * (size_t)cap);
+        if (!a) return fail(im, "%s: %s", "out of memory");
+        im->ai_nodes = a;
+        int *s = realloc(im->scene_nodes, sizeof(int) * (size_t)cap);
+        if (!s) return fail(im, "%s: %s", "out of memory");
+        im->scene_nodes = s;
+        im->node_cap = cap;
+    }
+    im->ai_nodes[im->node_count] = an;
+    im->scene_nodes[im->node_count++] = ni;
+    for (unsigned c = 0; c < an->mNumChildren; c++)
+        if (!import_node(im, an->mChildren[c], ni, depth + 1)) return false;
+    return true;
+}
+
+/* The world matrix of the scene node made from the ai node called `name` (identity if none). */
+static const float *node_world(importer *im, const struct aiString *name) {
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    for (int i = 0; i < im->node_count; i++)
+        if (strcmp(im->ai_nodes[i]->mName.data, name->data) == 0)
+            return im->scene->nodes[im->scene_nodes[i]].world;
+    return identity;
+}
+
+/* ---- lights and cameras ------------------------------------------------------------------- */
+
+static bool import_lights(importer *im) {
+    for (unsigned i = 0; i < im->ai->mNumLights; i++) {
+        const struct aiLight *al = im->ai->mLights[i];
+        const char *type = al->mType == aiLightSource_DIRECTIONAL ? "directional"
+                         : al->mType == aiLightSource_POINT       ? "point"
+                         : al->mType == aiLightSource_SPOT        ? "spot"
+                                                                  : NULL;
+        if (!type) {
+            SL_WARN("%s: light '%s' is of a type shadelab does not import (area/ambient): skipped",
+                    im->path, al->mName.data);
+            continue;
+        }
+        char base[1200], name[1300];
+        snprintf(base, sizeof base, "%.500s/%.600s", im->prefix, al->mName.length ? al->mName.data : "light");
+        unique_name(name, sizeof name, base, im->scene, sl_scene_find_light);
+        int li = sl_scene_add_light(im->scene, name, type);
+        if (li < 0) return fail(im, "%s: %s", "out of memory");
+        sl_light *l = &im->scene->lights[li];
+        const float *w = node_world(im, &al->mName);
+        float p[3] = {al->mPosition.x, al->mPosition.y, al->mPosition.z};
+        float d[3] = {al->mDirection.x, al->mDirection.y, al->mDirection.z};
+        mat_vec(w, p, 1.0f, l->position);
+        mat_vec(w, d, 0.0f, l->direction);
+        normalize(l->direction);
+        if (!(fabsf(l->direction[0]) + fabsf(l->direction[1]) + fabsf(l->direction[2]) > 0.5f)) {
+            l->direction[0] = 0, l->direction[1] = 0, l->direction[2] = -1;
+        }
+        /* colour × intensity arrives premultiplied: split it into a unit-max colour and I or E */
+        float c[3] = {al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b};
+        float peak = fmaxf(c[0], fmaxf(c[1], c[2]));
+        if (peak > 0.0f && isfinite(peak)) {
+            for (int k = 0; k < 3; k++) l->color[k] = fmaxf(c[k], 0.0f) / peak;
+            l->intensity = peak;
+        } else {
+            l->intensity = 0.0f;
+        }
+        if (al->mType == aiLightSource_SPOT) {
+            sl_prop_set_number(&l->props, "cone_angle", (float)(al->mAngleOuterCone * 180.0 / M_PI), 0);
+            sl_prop_set_number(&l->props, "inner_cone_angle", (float)(al->mAngleInnerCone * 180.0 / M_PI), 0);
+            sl_prop_set_string(&l->props, "falloff", "gltf", 0);
+        }
+    }
+    return true;
+}
+
+static bool import_cameras(importer *im) {
+    for (unsigned i = 0; i < im->ai->mNumCameras; i++) {
+        const struct aiCamera *ac = im->ai->mCameras[i];
+        char base[1200], name[1300];
+        snprintf(base, sizeof base, "%.500s/%.600s", im->prefix, ac->mName.length ? ac->mName.data : "camera");
+        unique_name(name, sizeof name, base, im->scene, sl_scene_find_camera);
+        int ci = sl_scene_add_camera(im->scene, name);
+        if (ci < 0) return fail(im, "%s: %s", "out of memory");
+        sl_camera *c = &im->scene->cameras[ci];
+        const float *w = node_world(im, &ac->mName);
+        float p[3] = {ac->mPosition.x, ac->mPosition.y, ac->mPosition.z};
+        float look[3] = {ac->mLookAt.x, ac->mLookAt.y, ac->mLookAt.z};
+        float up[3] = {ac->mUp.x, ac->mUp.y, ac->mUp.z};
+        if (im->is_gltf) {
+            /* glTF cameras sit at their node's origin looking down its −Z, +Y up. assimp 5.2
+             * also copies the node's translation into mPosition (applying it twice). */
+            p[0] = p[1] = p[2] = 0;
+            look[0] = look[1] = 0, look[2] = -1;
+            up[0] = up[2] = 0, up[1] = 1;
+        }
+        float dir[3];
+        mat_vec(w, p, 1.0f, c->position);
+        mat_vec(w, look, 0.0f, dir);
+        mat_vec(w, up, 0.0f, c->up);
+        normalize(dir);
+        normalize(c->up);
+        for (int k = 0; k < 3; k++) c->target[k] = c->position[k] + dir[k];
+        /* assimp documents mHorizontalFOV as the HALF horizontal angle; mAspect = width/height
+         * (0 when unknown). Its glTF importer (5.2) instead stores yfov · aspectRatio, so for
+         * glTF yfov = mHorizontalFOV / mAspect exactly. */
+        double hfov = ac->mHorizontalFOV, aspect = ac->mAspect > 0 ? ac->mAspect : 1.0;
+        double vfov = im->is_gltf ? hfov / aspect : 2.0 * atan(tan(hfov) / aspect);
+        vfov *= 180.0 / M_PI;
+        if (vfov > 0.5 && vfov < 179.0) c->fov_y_deg = (float)vfov;
+        if (ac->mClipPlaneNear > 0 && isfinite(ac->mClipPlaneNear)) c->znear = ac->mClipPlaneNear;
+        if (ac->mClipPlaneFar > c->znear && isfinite(ac->mClipPlaneFar)) c->zfar = ac->mClipPlaneFar;
+    }
+    return true;
+}
+
+/* ---- entry ------------------------------------------------------------------------------- */
+
+bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
+    if (err && err_size) err[0] = 0;
+    importer im = {.scene = scene, .path = path, .err = err, .err_size = err_size};
+    if (parent_node < -1 || parent_node >= scene->node_count) return fail(&im, "%s: %s", "invalid parent node");
+
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    snprintf(im.stem, sizeof im.stem, "%s", base);
+    char *dot = strrchr(im.stem, '.');
+    im.is_gltf = dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
+    if (dot && dot != im.stem) *dot = 0;
+    char *abs = realpath(path, NULL);
+    snprintf(im.dir, sizeof im.dir, "%s", abs ? abs : path);
+    free(abs);
+    char *slash = strrchr(im.dir, '/');
+    if (slash) *slash = 0;
+    else snprintf(im.dir, sizeof im.dir, ".");
+    snprintf(im.prefix, sizeof im.prefix, "%s", parent_node >= 0 ? scene->nodes[parent_node].name : im.stem);
+
+    struct aiPropertyStore *store = aiCreatePropertyStore();
+    if (store) /* drop the point and line primitives SortByPType splits off */
+        aiSetImportPropertyInteger(store, AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_CalcTangentSpace |
+                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                     aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
+    im.ai = aiImportFileExWithProperties(path, flags, NULL, store);
+    if (store) aiReleasePropertyStore(store);
+    if (!im.ai) {
+        const char *why = aiGetErrorString();
+        return fail(&im, "%s: assimp could not import it: %s", why && why[0] ? why : "unknown error");
+    }
+    bool ok = true;
+    if (!im.ai->mRootNode) ok = fail(&im, "%s: %s", "the file has no scene (no root node)");
+    if (ok) {
+        im.mesh_map = calloc(im.ai->mNumMeshes + 1, sizeof(int));
+        im.material_map = malloc(sizeof(int) * (im.ai->mNumMaterials + 1));
+        if (!im.mesh_map || !im.material_map) ok = fail(&im, "%s: %s", "out of memory");
+        for (unsigned i = 0; ok && i < im.ai->mNumMaterials; i++) im.material_map[i] = -1;
+        for (unsigned i = 0; ok && i < im.ai->mNumMeshes; i++) im.mesh_map[i] = import_mesh(&im, i);
+    }
+    if (ok) ok = import_node(&im, im.ai->mRootNode, parent_node, 0);
+    if (ok) {
+        sl_scene_update_transforms(scene);
+        ok = import_lights(&im) && import_cameras(&im);
+    }
+    if (ok) {
+        bool any = false;
+        for (unsigned i = 0; i < im.ai->mNumMeshes; i++) any = any || im.mesh_map[i] >= 0;
+        if (!any && im.ai->mNumLights == 0 && im.ai->mNumCameras == 0)
+            SL_WARN("%s: the file contains no triangle meshes", path);
+    }
+    free(im.mesh_map);
+    free(im.material_map);
+    free(im.ai_nodes);
+    free(im.scene_nodes);
+    aiReleaseImport(im.ai);
+    return ok;
+}

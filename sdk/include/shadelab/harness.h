@@ -1,0 +1,86 @@
+/* Headless test harness for plugin and core tests (link libshadelab_harness / shadelab_core).
+ *
+ *   sl_harness *h = sl_harness_create(&(sl_harness_desc){ .struct_size = sizeof(sl_harness_desc),
+ *       .width = 64, .height = 64, .scene_json = "...", .plugins = (const char *[]){"ggx", NULL} },
+ *       err, sizeof err);
+ *   float *img = malloc(64 * 64 * 4 * sizeof(float));
+ *   sl_harness_render(h, img);                 // linear HDR radiance, rows top to bottom
+ *   sl_harness_eval_glsl(h, &eval, out, err, sizeof err);  // GLSL unit tests
+ *   sl_harness_destroy(h);
+ *
+ * One harness (one GL context) at a time per process. Renders use OSMesa unless
+ * SHADELAB_TEST_BACKEND names another backend. */
+#ifndef SHADELAB_HARNESS_H
+#define SHADELAB_HARNESS_H
+#include "shadelab.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sl_harness sl_harness;
+
+typedef struct sl_harness_desc {
+    uint32_t struct_size;
+    int width, height;               /* default 64×64 */
+    const char *scene_file;          /* or */
+    const char *scene_json;          /* scene as JSON text; both NULL = built-in default scene */
+    const char *const *plugins;      /* NULL-terminated plugin names or paths */
+    const char *const *settings;     /* NULL-terminated "id=value" (as --set) */
+    const char *debug_view;
+    int accumulate;                  /* frames averaged per render (>= 1) */
+    bool float32;                    /* RGBA32F colour target */
+    bool strict;                     /* fail when a plugin fails */
+} sl_harness_desc;
+
+sl_harness *sl_harness_create(const sl_harness_desc *desc, char *err, size_t err_size);
+void sl_harness_destroy(sl_harness *h);
+/* Applies "id=value" between renders (same addressing as --set). */
+bool sl_harness_set(sl_harness *h, const char *assignment, char *err, size_t err_size);
+bool sl_harness_set_debug_view(sl_harness *h, const char *view, char *err, size_t err_size);
+/* Renders one frame; writes linear HDR RGBA (width*height*4 floats, top row first). */
+bool sl_harness_render(sl_harness *h, float *rgba);
+/* The display-encoded image of the last render (sRGB, [0,1]). */
+bool sl_harness_read_display(sl_harness *h, float *rgba);
+bool sl_harness_save(sl_harness *h, const char *path, char *err, size_t err_size);
+
+/* Structure of the last frame, for "unused costs nothing" checks. */
+typedef struct sl_harness_structure {
+    int draw_calls;
+    int pass_count;
+    const char *passes[64];          /* names of the passes that ran */
+    int program_count;
+    uint64_t program_hashes[256];    /* one per material, in material order */
+} sl_harness_structure;
+void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out);
+
+/* Image comparison on linear floats (RGB channels). */
+typedef struct sl_compare {
+    double rmse, psnr, max_abs, mean_abs;
+    long nonfinite;                  /* NaN/Inf values in either image */
+    long pixels_over;                /* pixels with a channel differing by more than threshold */
+} sl_compare;
+void sl_harness_compare(const float *a, const float *b, int width, int height, double threshold, sl_compare *out);
+/* Counts NaN/Inf values and negative values in an RGBA image. */
+long sl_harness_count_nonfinite(const float *rgba, int width, int height);
+long sl_harness_count_negative(const float *rgba, int width, int height);
+
+/* GLSL unit tests: evaluates `expression` (a GLSL expression convertible to vec4, reading the
+ * per-texel inputs `in0` and `in1`) over a width×height grid, after including `files` from the
+ * plugin's resource directory (plugin NULL = the core's shader library), and reads back RGBA32F.
+ * This compiles the plugin's own GLSL: compare the result with values computed in C. */
+typedef struct sl_glsl_eval_desc {
+    uint32_t struct_size;
+    const char *plugin;
+    const char *const *files;        /* NULL-terminated */
+    const char *expression;
+    const char *defines;             /* "NAME VALUE" lines */
+    int width, height;
+    const float *in0, *in1;          /* width*height*4 floats each, or NULL (zeros) */
+} sl_glsl_eval_desc;
+bool sl_harness_eval_glsl(sl_harness *h, const sl_glsl_eval_desc *desc, float *out, char *err, size_t err_size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,57 @@
+// shadelab core GLSL library: constants, the records every hook sees, and the uniforms the
+// core sets for every program. Conventions (sdk/docs/conventions.md): linear HDR radiance,
+// right-handed world space, Y up; directional lights carry irradiance E, point lights
+// intensity I (E = I/d²); Lambert BRDF = k_d/π.
+const float SL_PI = 3.14159265358979323846;
+const float SL_INV_PI = 0.31830988618379067154;
+
+// Object-space vertex, edited by VERTEX hooks.
+struct SlVertex {
+    vec3 position;
+    vec3 normal;
+    vec4 tangent;   // xyz + handedness w (±1)
+    vec2 uv;
+};
+
+// World-space shading record, filled by the core and edited by SURFACE hooks.
+struct SlSurface {
+    vec3 position;
+    vec3 normal;           // shading normal (unit, facing the viewer's side of the surface)
+    vec3 geometric_normal; // unit triangle normal, same side as normal
+    vec3 tangent;          // unit, orthogonal to normal
+    vec3 bitangent;        // unit, handedness applied
+    vec2 uv;
+    vec3 view;             // unit, surface → camera
+    vec3 base_color;       // linear; material base_color × base_color_map
+    float alpha;           // GGX α (plugins fill it; 1 by default)
+    float specular;        // specular scale k_s (1 by default)
+    float ao;              // ambient occlusion (1 by default)
+    float opacity;         // 1 by default
+};
+
+// One light as packed by the core (std430, 80 bytes).
+struct SlLight {
+    vec4 position;   // xyz world
+    vec4 direction;  // xyz unit, the direction light travels
+    vec4 color;      // rgb = colour × intensity
+    vec4 params[2];  // light-type keys by light_slot (0..7)
+};
+
+uniform float sl_time;
+uniform mat4 sl_view;
+uniform mat4 sl_proj;
+uniform mat4 sl_view_proj;
+uniform vec3 sl_camera_pos;
+uniform int sl_frame_index;
+uniform vec2 sl_viewport_size;
+uniform mat4 sl_model;
+uniform mat3 sl_normal_matrix;
+
+float sl_saturate(float x) { return clamp(x, 0.0, 1.0); }
+vec3 sl_saturate(vec3 x) { return clamp(x, 0.0, 1.0); }
+
+// sRGB OETF (IEC 61966-2-1), per channel.
+vec3 sl_srgb_encode(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}

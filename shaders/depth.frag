@@ -1,0 +1,2 @@
+// Depth-only fragment stage (shadow maps): nothing to write but depth.
+void main() {}

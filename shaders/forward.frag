@@ -1,0 +1,46 @@
+// Forward material fragment stage. The composer places the generated functions
+// sl_base_color(), sl_run_surface_hooks() and sl_shade_surface() before this file.
+in vec3 v_world_pos;
+in vec3 v_normal;
+in vec4 v_tangent;
+in vec2 v_uv;
+
+layout(location = 0) out vec4 o_color;
+
+SlSurface sl_surface_from_varyings() {
+    SlSurface s;
+    s.position = v_world_pos;
+    s.view = normalize(sl_camera_pos - v_world_pos);
+    vec3 g = cross(dFdx(v_world_pos), dFdy(v_world_pos));
+    float glen = length(g);
+    vec3 n = v_normal;
+    float nlen = length(n);
+    // Degenerate interpolated normals (zero-area triangles, bad meshes) fall back to the
+    // geometric normal, then to the view direction, so shading never sees NaN.
+    n = nlen > 1e-12 ? n / nlen : (glen > 1e-20 ? g / glen : s.view);
+    if (!gl_FrontFacing) n = -n;
+    s.normal = n;
+    s.geometric_normal = glen > 1e-20 ? g / glen : n;
+    if (dot(s.geometric_normal, n) < 0.0) s.geometric_normal = -s.geometric_normal;
+    vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
+    float tlen = length(t);
+    if (tlen < 1e-8) { // no usable tangent: any vector orthogonal to n
+        t = abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : cross(vec3(1.0, 0.0, 0.0), n);
+        tlen = length(t);
+    }
+    s.tangent = t / tlen;
+    s.bitangent = cross(n, s.tangent) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
+    s.uv = v_uv;
+    s.base_color = sl_base_color(v_uv);
+    s.alpha = 1.0;
+    s.specular = 1.0;
+    s.ao = 1.0;
+    s.opacity = 1.0;
+    return s;
+}
+
+void main() {
+    SlSurface s = sl_surface_from_varyings();
+    sl_run_surface_hooks(s);
+    o_color = vec4(sl_shade_surface(s), 1.0);
+}

@@ -1,0 +1,24 @@
+// Forward material vertex stage. The composer places the generated sl_run_vertex_hooks()
+// before this file.
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec4 a_tangent;
+layout(location = 3) in vec2 a_uv;
+
+out vec3 v_world_pos;
+out vec3 v_normal;
+out vec4 v_tangent;
+out vec2 v_uv;
+
+uniform int sl_uv_space; // texture-space passes rasterise at uv*2-1
+
+void main() {
+    SlVertex v = SlVertex(a_position, a_normal, a_tangent, a_uv);
+    sl_run_vertex_hooks(v);
+    vec4 world = sl_model * vec4(v.position, 1.0);
+    v_world_pos = world.xyz;
+    v_normal = sl_normal_matrix * v.normal;
+    v_tangent = vec4(mat3(sl_model) * v.tangent.xyz, v.tangent.w);
+    v_uv = v.uv;
+    gl_Position = sl_uv_space != 0 ? vec4(v.uv * 2.0 - 1.0, 0.0, 1.0) : sl_view_proj * world;
+}

@@ -1,0 +1,13 @@
+// The core's material inputs: base_color (linear RGB) and base_color_map (sRGB texture).
+// A map without an explicit base_color is used as is (factor 1, as in glTF).
+vec3 sl_base_color(vec2 uv) {
+#if defined(SL_MAT_HAS_BASE_COLOR_MAP)
+#if defined(SL_MAT_HAS_BASE_COLOR)
+    return sl_mat_base_color * texture(sl_mat_base_color_map, uv).rgb;
+#else
+    return texture(sl_mat_base_color_map, uv).rgb;
+#endif
+#else
+    return sl_mat_base_color;
+#endif
+}
