@@ -393,6 +393,7 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
     if (is_cpu_renderer(renderer)) app->backend.is_gpu = false;
     SL_DEBUG("backend %s: %s, OpenGL %s", app->backend.name, renderer, glGetString(GL_VERSION));
     sl_plugins_set_gl_app(app);
+    if (!sl_renderer_create(app, err, n)) return false;
     for (int i = 1; i < app->plugins.count; i++) {
         sl_plugin_rec *r = app->plugins.items[i];
         if (!r->ok) continue;
@@ -411,8 +412,7 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
         }
         r->active = true;
     }
-    if (!sl_renderer_create(app, err, n)) return false;
-    return true;
+    return sl_renderer_load_scene(app, err, n);
 }
 
 bool sl_app_render_frame(sl_app *app) {

@@ -5,6 +5,10 @@
 
 static sl_status core_create(const sl_host *host, void **user) {
     static const sl_param_desc params[] = {
+        {.struct_size = sizeof(sl_param_desc), .id = "ssaa", .type = SL_PARAM_INT, .default_value = {.i = 1},
+         .min = 1, .max = 8, .step = 1, .unit = "x", .group = "quality", .flags = SL_PARAM_QUALITY_KNOB,
+         .description = "Supersampling: the forward pass renders at ssaa x the viewport per axis and is box-filtered "
+                        "down in linear HDR."},
         /* material keys */
         {.struct_size = sizeof(sl_param_desc), .id = "base_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material",
@@ -48,6 +52,10 @@ static sl_status core_create(const sl_host *host, void **user) {
     };
     for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
         if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
+    static const sl_reference_desc reference = {
+        .struct_size = sizeof reference, .settings = "core.ssaa=8",
+        .description = "8x8 supersampling (64 samples per pixel, box filter) of the same scene."};
+    host->set_reference(host, &reference);
     *user = NULL;
     return SL_OK;
 }

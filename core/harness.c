@@ -138,7 +138,8 @@ bool sl_harness_eval_glsl(sl_harness *h, const sl_glsl_eval_desc *in, float *out
     bool ok = sl_source_include(&p.fs, "sl:common.glsl", err, n);
     for (const char *const *f = d.files; ok && f && *f; f++) {
         char path[2048];
-        snprintf(path, sizeof path, "%s/%s", dir, *f);
+        if ((*f)[0] == '/' || !strncmp(*f, "sl:", 3)) snprintf(path, sizeof path, "%s", *f);
+        else snprintf(path, sizeof path, "%s/%s", dir, *f);
         ok = sl_source_include(&p.fs, path, err, n);
     }
     if (ok) {

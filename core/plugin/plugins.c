@@ -316,7 +316,7 @@ int sl_plugin_search_dirs(char dirs[][1024], int max) {
     if (env && *env) {
         char *copy = strdup(env), *save = NULL;
         for (char *tok = strtok_r(copy, ":", &save); tok && n < max; tok = strtok_r(NULL, ":", &save))
-            snprintf(dirs[n++], 1024, "%s", tok);
+            if (*tok) snprintf(dirs[n++], 1024, "%s", tok);
         free(copy);
     }
     char exe[1024];
@@ -326,7 +326,23 @@ int sl_plugin_search_dirs(char dirs[][1024], int max) {
         /* test binaries live in the build tree's root or tests/: look beside the build root too */
         if (n < max) snprintf(dirs[n++], 1024, "%s/../plugins", exe);
     }
-    return n;
+    /* drop duplicates (the same directory reached two ways) */
+    int w = 0;
+    for (int i = 0; i < n; i++) {
+        char *ri = realpath(dirs[i], NULL);
+        bool dup = false;
+        for (int j = 0; j < w && ri; j++) {
+            char *rj = realpath(dirs[j], NULL);
+            dup |= rj && !strcmp(ri, rj);
+            free(rj);
+        }
+        free(ri);
+        if (!dup) {
+            if (w != i) memcpy(dirs[w], dirs[i], 1024);
+            w++;
+        }
+    }
+    return w;
 }
 
 static bool file_exists(const char *p) {

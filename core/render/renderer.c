@@ -33,7 +33,7 @@ typedef struct resource {
 typedef struct graph_pass {
     const sl_pass_desc *d;
     int owner;            /* plugin index; -1 = core pass */
-    bool core_forward, core_display;
+    bool core_forward, core_display, core_resolve;
     unsigned fbo;
     uint64_t last_signature; bool has_run;
     bool broken;          /* disabled at plan time (message given) */
@@ -48,7 +48,8 @@ typedef struct sl_renderer {
     sl_program **cache; int cache_count;          /* composed forward/depth programs */
     sl_program **programs; int program_count;     /* stand-alone programs (plugins, core) */
     int *program_owner;
-    sl_program *display_prog, *accum_prog;
+    sl_program *display_prog, *accum_prog, *resolve_prog;
+    int ssaa;
     unsigned empty_vao, light_buffer;
     sl_light_info *lights; int light_count;
     int type_range[32][2]; const char *types[32]; int ntypes;
@@ -431,6 +432,10 @@ static const sl_target_desc core_color32 = {.name = "color", .format = SL_FORMAT
 static const sl_target_desc core_depth = {.name = "depth", .format = SL_FORMAT_DEPTH32F};
 static const sl_target_desc core_display = {.name = "display", .format = SL_FORMAT_RGBA8};
 static sl_target_desc forward_outputs[2];
+static const char *resolve_inputs[] = {"forward.ssaa", NULL};
+static sl_target_desc resolve_outputs[1];
+static sl_pass_desc resolve_pass = {.struct_size = sizeof(sl_pass_desc), .name = "ssaa-resolve", .stage = SL_STAGE_OPAQUE,
+                                    .inputs = resolve_inputs, .outputs = resolve_outputs, .output_count = 1};
 static const char *display_inputs[] = {"color", NULL};
 static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
                                     .outputs = forward_outputs, .output_count = 2};
@@ -525,11 +530,21 @@ static int cmp_stage(const void *a, const void *b) {
 static void plan(sl_app *app) {
     sl_renderer *r = R(app);
     free_resources(r);
+    /* core.ssaa > 1: the forward pass renders "forward.ssaa" at k× the viewport and the resolve
+     * pass box-filters it into the viewport-sized "color" everything downstream sees. */
+    sl_param *ssaa = sl_params_find(&app->params, "core.ssaa");
+    r->ssaa = ssaa && ssaa->value.i > 1 ? ssaa->value.i : 1;
     forward_outputs[0] = app->opt.float32 ? core_color32 : core_color;
     forward_outputs[1] = core_depth;
-    int total = app->plugins.pass_count + 2;
+    resolve_outputs[0] = forward_outputs[0];
+    if (r->ssaa > 1) {
+        forward_outputs[0].name = "forward.ssaa";
+        forward_outputs[0].scale = forward_outputs[1].scale = (float)r->ssaa;
+    }
+    int total = app->plugins.pass_count + 3;
     r->passes = calloc(total, sizeof *r->passes);
     r->passes[r->pass_count++] = (graph_pass){.d = &forward_pass, .owner = -1, .core_forward = true};
+    if (r->ssaa > 1) r->passes[r->pass_count++] = (graph_pass){.d = &resolve_pass, .owner = -1, .core_resolve = true};
     for (int i = 0; i < app->plugins.pass_count; i++) {
         sl_pass_reg *reg = &app->plugins.passes[i];
         if (!sl_plugin_enabled(app, reg->owner)) continue; /* disabled plugins cost nothing */
@@ -564,18 +579,17 @@ static void plan(sl_app *app) {
     r->plan_dirty = false;
 }
 
-static int out_index(graph_pass *g, const char *name) {
-    for (int k = 0; k < g->d->output_count; k++)
-        if (!strcmp(g->d->outputs[k].name, name)) return k;
-    return -1;
-}
-
+/* For a resource a pass both reads and writes ("color" in a post pass), pass_texture gives the
+ * input (current contents) and bind_outputs attaches the other half of the ping-pong pair. */
 unsigned sl_renderer_pass_texture(sl_app *app, sl_pass_ctx *ctx, const char *name) {
     sl_renderer *r = R(app);
     resource *e = find_res(r, name);
     if (!e || !ctx) return 0;
-    int k = out_index(ctx->pass, name);
-    if (k >= 0 && e->tex[1] && lists_name(ctx->pass->d->inputs, name)) return e->tex[1 - e->current]; /* ping-pong output */
+    return e->tex[e->current];
+}
+
+static unsigned output_texture(sl_pass_ctx *ctx, resource *e) {
+    if (e->tex[1] && lists_name(ctx->pass->d->inputs, e->name)) return e->tex[1 - e->current];
     return e->tex[e->current];
 }
 
@@ -588,7 +602,7 @@ sl_status sl_renderer_bind_outputs(sl_app *app, sl_pass_ctx *ctx, int layer) {
     for (int k = 0; k < g->d->output_count && k < 8; k++) {
         const sl_target_desc *o = &g->d->outputs[k];
         resource *e = find_res(r, o->name);
-        unsigned tex = sl_renderer_pass_texture(app, ctx, o->name);
+        unsigned tex = output_texture(ctx, e);
         bool depth = o->format == SL_FORMAT_DEPTH32F;
         GLenum att = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0 + nc;
         if (o->layers > 1) glNamedFramebufferTextureLayer(g->fbo, att, tex, 0, layer);
@@ -634,12 +648,25 @@ static void run_display(sl_app *app, sl_pass_ctx *ctx) {
     sl_renderer_draw_fullscreen(app, ctx);
 }
 
+static void run_resolve(sl_app *app, sl_pass_ctx *ctx) {
+    sl_renderer *r = R(app);
+    sl_renderer_bind_outputs(app, ctx, 0);
+    unsigned prog = r->resolve_prog->id;
+    if (!prog) return;
+    glUseProgram(prog);
+    glBindTextureUnit(0, sl_renderer_pass_texture(app, ctx, "forward.ssaa"));
+    glUniform1i(glGetUniformLocation(prog, "sl_src"), 0);
+    glUniform1i(glGetUniformLocation(prog, "sl_factor"), r->ssaa);
+    sl_renderer_draw_fullscreen(app, ctx);
+}
+
 static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
     sl_renderer *r = R(app);
     sl_pass_ctx ctx = {.pass = g};
     r->current = &ctx;
     if (g->core_forward) run_forward(app, &ctx);
     else if (g->core_display) run_display(app, &ctx);
+    else if (g->core_resolve) run_resolve(app, &ctx);
     else g->d->execute(g->d->user, &ctx, &r->frame);
     r->current = NULL;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -898,12 +925,20 @@ bool sl_renderer_create(sl_app *app, char *err, size_t n) {
     if (!r->display_prog->id) return false;
     r->accum_prog = sl_program_from_files(NULL, "sl:fullscreen.vert", "sl:accumulate.frag", NULL, err, n);
     if (!r->accum_prog->id) return false;
+    r->resolve_prog = sl_program_from_files(NULL, "sl:fullscreen.vert", "sl:resolve.frag", NULL, err, n);
+    if (!r->resolve_prog->id) return false;
     /* the core's own programs hot-reload like plugin programs */
-    r->programs = malloc(2 * sizeof *r->programs);
+    r->programs = malloc(3 * sizeof *r->programs);
     r->programs[0] = r->display_prog;
     r->programs[1] = r->accum_prog;
-    r->display_prog->owner = r->accum_prog->owner = -1;
-    r->program_count = 2;
+    r->programs[2] = r->resolve_prog;
+    r->display_prog->owner = r->accum_prog->owner = r->resolve_prog->owner = -1;
+    r->program_count = 3;
+    return true;
+}
+
+bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
+    sl_renderer *r = R(app);
     sl_scene *s = &app->scene;
     r->meshes = calloc(s->mesh_count + 1, sizeof *r->meshes);
     for (int i = 0; i < s->mesh_count; i++) upload_mesh(&r->meshes[i], &s->meshes[i].data);

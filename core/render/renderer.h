@@ -7,7 +7,10 @@
 
 struct sl_app;
 
+/* GL basics (core programs); plugins may load programs after this. */
 bool sl_renderer_create(struct sl_app *app, char *err, size_t n);
+/* Uploads the scene, composes the material programs and plans the graph (after plugins activate). */
+bool sl_renderer_load_scene(struct sl_app *app, char *err, size_t n);
 void sl_renderer_destroy(struct sl_app *app);
 /* Renders one frame through the graph (sub-frame of an accumulation when app->opt.accumulate > 1). */
 bool sl_renderer_frame(struct sl_app *app, int accumulate_index, int accumulate_count);

@@ -269,7 +269,8 @@ static const char *describe(const cJSON *v, char *buf, size_t size) {
     if (cJSON_IsArray(v)) {
         int n = cJSON_GetArraySize(v), numbers = 0;
         for (const cJSON *e = v->child; e; e = e->next) numbers += cJSON_IsNumber(e) != 0;
-        if (n == numbers) snprintf(buf, size, "an array of %d number%s", n, n == 1 ? "" : "s");
+        if (n == 0) snprintf(buf, size, "an empty array");
+        else if (n == numbers) snprintf(buf, size, "an array of %d number%s", n, n == 1 ? "" : "s");
         else snprintf(buf, size, "an array of %d value%s, not all numbers", n, n == 1 ? "" : "s");
         return buf;
     }
@@ -954,7 +955,7 @@ static bool load_nodes(loader *L, const cJSON *arr) {
 /* Why cJSON stopped at `at`: a best guess at the usual mistakes. */
 static void parse_cause(const char *text, size_t len, size_t at, char *out, size_t size) {
     size_t first = 0;
-    while (first < len && (unsigned char)text[first] <= 32) first++;
+    while (first < len && strchr(" \t\r\n", text[first]) && text[first]) first++;
     if (first >= len) {
         snprintf(out, size, "the file is empty (expected a JSON object { … })");
         return;
@@ -981,7 +982,9 @@ static void parse_cause(const char *text, size_t len, size_t at, char *out, size
         snprintf(out, size, "nested deeper than %d levels", CJSON_NESTING_LIMIT);
     else if (in_string || (c == 0 && last == '"' && at >= len))
         snprintf(out, size, "unterminated string");
-    else if (at >= len || c == 0)
+    else if (at < len && c == 0)
+        snprintf(out, size, "unexpected byte 0x00 (a NUL byte: is this a binary file?)");
+    else if (at >= len)
         snprintf(out, size, "unexpected end of file (%d unclosed '{' or '[')", depth > 0 ? depth : 1);
     else if (c == '"') {
         size_t i = at + 1;
@@ -1014,6 +1017,50 @@ static void parse_cause(const char *text, size_t len, size_t at, char *out, size
 }
 
 static bool fail_parse(loader *L, size_t at) {
+    /* cJSON skips every byte < 32 as whitespace; JSON allows only space, tab, CR and LF, so a
+     * stray control byte before the failure point is the likelier culprit. */
+    bool in_string = false;
+    for (size_t i = 0; i < at && i < L->len; i++) {
+        char c = L->text[i];
+        if (in_string) {
+            if (c == '\\') i++;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if ((unsigned char)c < 32 && !strchr("\t\r\n", c)) {
+            at = i;
+            break;
+        }
+    }
+    /* Where cJSON expected a string (a key after '{' or ',') it reports the byte AFTER the
+     * offending one: step back onto it. */
+    if (at > 0 && at <= L->len) {
+        char culprit = L->text[at - 1];
+        size_t j = at - 1;
+        while (j > 0 && strchr(" \t\r\n", L->text[j - 1])) j--;
+        char before = j > 0 ? L->text[j - 1] : 0;
+        /* innermost open bracket before the culprit: only objects expect keys */
+        char stack[CJSON_NESTING_LIMIT + 2];
+        int depth = 0;
+        bool str = false;
+        for (size_t i = 0; i + 1 < at; i++) {
+            char c = L->text[i];
+            if (str) {
+                if (c == '\\') i++;
+                else if (c == '"') str = false;
+            } else if (c == '"') {
+                str = true;
+            } else if ((c == '{' || c == '[') && depth < CJSON_NESTING_LIMIT + 1) {
+                stack[depth++] = c;
+            } else if ((c == '}' || c == ']') && depth > 0) {
+                depth--;
+            }
+        }
+        bool in_object = depth > 0 && stack[depth - 1] == '{';
+        if (in_object && !str && culprit != '"' && !strchr(" \t\r\n,{[:", culprit) &&
+            (before == '{' || before == ','))
+            at--;
+    }
     int line = 1;
     size_t line_start = 0;
     for (size_t i = 0; i < at && i < L->len; i++)

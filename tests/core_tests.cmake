@@ -1,0 +1,52 @@
+# Core tests: closed-form renders, GLSL unit tests, bad input, loader failure paths and the
+# structural zero-cost checks. Test plugins are built from tests/plugins/test_plugin.c in
+# variants that each exercise one loader path.
+set(SL_TP_DIR ${PROJECT_BINARY_DIR}/tests/plugins)
+
+add_library(tp_dep SHARED ${CMAKE_CURRENT_SOURCE_DIR}/plugins/tp_dep.c)
+set_target_properties(tp_dep PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${SL_TP_DIR}/deps)
+
+function(sl_test_plugin name glsl)
+  cmake_parse_arguments(T "NO_RPATH" "" "DEFS;LIBS" ${ARGN})
+  add_library(tp_${name} MODULE ${CMAKE_CURRENT_SOURCE_DIR}/plugins/test_plugin.c)
+  set_target_properties(tp_${name} PROPERTIES PREFIX "" OUTPUT_NAME ${name}
+    LIBRARY_OUTPUT_DIRECTORY ${SL_TP_DIR}/${name} C_VISIBILITY_PRESET hidden)
+  if(T_NO_RPATH)
+    set_target_properties(tp_${name} PROPERTIES SKIP_BUILD_RPATH TRUE)
+  endif()
+  target_link_libraries(tp_${name} PRIVATE shadelab_sdk ${T_LIBS})
+  target_compile_definitions(tp_${name} PRIVATE TP_ID="${name}" TP_MODEL="${name}-model"
+                             TP_GLSL="${glsl}" ${T_DEFS})
+  foreach(f ${glsl} tp_gain.frag)
+    file(MAKE_DIRECTORY ${SL_TP_DIR}/${name})
+    file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR}/plugins/${f} ${SL_TP_DIR}/${name}/${f} SYMBOLIC)
+  endforeach()
+  set(SL_TEST_PLUGINS ${SL_TEST_PLUGINS} tp_${name} PARENT_SCOPE)
+endfunction()
+
+sl_test_plugin(tp-good test_plugin.glsl)
+sl_test_plugin(tp-other test_plugin.glsl)
+sl_test_plugin(tp-abi-major test_plugin.glsl DEFS SL_ABI_MAJOR=2)
+sl_test_plugin(tp-abi-minor test_plugin.glsl DEFS SL_ABI_MINOR=99)
+sl_test_plugin(tp-no-entry test_plugin.glsl DEFS TP_NO_ENTRY)
+sl_test_plugin(tp-undefined test_plugin.glsl DEFS TP_UNDEFINED_SYMBOL)
+sl_test_plugin(tp-missing-dep test_plugin.glsl NO_RPATH DEFS TP_DEPENDENCY LIBS tp_dep)
+sl_test_plugin(tp-dup-model test_plugin.glsl DEFS TP_DUP_MODEL)
+sl_test_plugin(tp-bad-glsl test_plugin_bad.glsl)
+sl_test_plugin(tp-fail-create test_plugin.glsl DEFS TP_FAIL_CREATE)
+sl_test_plugin(tp-requires test_plugin.glsl DEFS TP_REQUIRES="tp-nonexistent")
+sl_test_plugin(tp-requires-good test_plugin.glsl DEFS TP_REQUIRES="tp-good")
+sl_test_plugin(tp-conflicts test_plugin.glsl DEFS TP_CONFLICTS="tp-good")
+
+foreach(t core_render core_glsl core_bad_input core_plugins core_zero_cost)
+  sl_add_test(${t} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_${t}.c)
+  target_compile_definitions(test_${t} PRIVATE SL_TEST_PLUGIN_DIR="${SL_TP_DIR}"
+                             SL_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
+  add_dependencies(test_${t} ${SL_TEST_PLUGINS})
+endforeach()
+
+# The command line end to end: the bundled scenes render headless, and bad input exits
+# non-zero with the cause named.
+add_test(NAME cli_scenes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli_scenes.sh $<TARGET_FILE:shadelab>
+         ${PROJECT_SOURCE_DIR}/scenes ${PROJECT_BINARY_DIR}/tests/cli)
+set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300)

@@ -1,0 +1,129 @@
+/* One test plugin source, built in several variants (see tests/core_tests.cmake) to drive the
+ * loader's success and failure paths. TP_ID is the plugin id. */
+#include <shadelab/shadelab.h>
+#define SL_GL_IMPLEMENTATION
+#include <shadelab/gl.h>
+#include <stdlib.h>
+
+#ifdef TP_DUP_MODEL
+#undef TP_MODEL
+#define TP_MODEL "lambert"
+#endif
+#ifdef TP_UNDEFINED_SYMBOL
+void tp_function_that_does_not_exist(void);
+#endif
+#ifdef TP_DEPENDENCY
+int tp_dependency_value(void);
+#endif
+
+typedef struct tp {
+    const sl_host *host;
+    sl_program *scale;
+} tp;
+
+static const char *gain_inputs[] = {"color", NULL};
+static const sl_target_desc gain_outputs[] = {{.name = "color", .format = SL_FORMAT_RGBA16F}};
+
+static bool gain_active(void *user, const sl_frame *f) {
+    tp *t = user;
+    char id[64];
+    return t->host->get_param(t->host, TP_ID ".gain").f[0] != 1.0f;
+    (void)id;
+}
+
+static void gain_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
+    tp *t = user;
+    const sl_host *h = t->host;
+    if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
+    unsigned prog = h->program_id(h, t->scale);
+    if (!prog) return;
+    glUseProgram(prog);
+    glBindTextureUnit(0, h->pass_texture(h, ctx, "color"));
+    glUniform1i(glGetUniformLocation(prog, "tp_src"), 0);
+    glUniform1f(glGetUniformLocation(prog, "tp_gain"), h->get_param(h, TP_ID ".gain").f[0]);
+    h->draw_fullscreen(h, ctx);
+}
+
+static sl_status tp_create(const sl_host *host, void **user) {
+#ifdef TP_FAIL_CREATE
+    host->log(host, SL_LOG_ERROR, "refusing to start (test)");
+    return SL_ERR_FAILED;
+#endif
+#ifdef TP_UNDEFINED_SYMBOL
+    tp_function_that_does_not_exist();
+#endif
+#ifdef TP_DEPENDENCY
+    if (tp_dependency_value() != 42) return SL_ERR_FAILED;
+#endif
+    tp *t = calloc(1, sizeof *t);
+    t->host = host;
+    *user = t;
+    const sl_param_desc params[] = {
+        {.struct_size = sizeof(sl_param_desc), .id = "tint", .type = SL_PARAM_COLOR, .default_value = {.f = {1, 0.5f, 0.25f}},
+         .description = "Multiplies the base colour of materials carrying tp_mark."},
+        {.struct_size = sizeof(sl_param_desc), .id = "gain", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}},
+         .min = 0, .max = 16, .description = "Post pass: multiplies the HDR colour (inactive at 1)."},
+        {.struct_size = sizeof(sl_param_desc), .id = "tp_mark", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
+         .description = "Materials with this key get the tint surface hook."},
+        {.struct_size = sizeof(sl_param_desc), .id = "level", .type = SL_PARAM_INT, .default_value = {.i = 2},
+         .min = 1, .max = 4, .flags = SL_PARAM_QUALITY_KNOB, .description = "A quality knob for schema tests."},
+    };
+    for (size_t i = 0; i < sizeof params / sizeof *params; i++)
+        if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
+    const sl_shader_chunk_desc chunks[] = {
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SURFACE, .file = TP_GLSL,
+         .function = "tp_surface", .when_material_has = "tp_mark"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SHADING_MODEL, .file = TP_GLSL,
+         .function = "tp_model", .name = TP_MODEL},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = TP_GLSL,
+         .function = "tp_view", .name = TP_ID "-view", .description = "constant test colour"},
+    };
+    for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
+        if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
+    const sl_pass_desc pass = {.struct_size = sizeof pass, .name = TP_ID "-gain", .stage = SL_STAGE_POST,
+                               .inputs = gain_inputs, .outputs = gain_outputs, .output_count = 1,
+                               .execute = gain_execute, .is_active = gain_active, .user = t};
+    if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
+    const sl_key_desc key = {.struct_size = sizeof key, .key = "T", .param = "tp_mark", .description = "test key"};
+    (void)key;
+    return SL_OK;
+}
+
+static sl_status tp_activate(void *user) {
+    tp *t = user;
+    if (!sl_gl_load(t->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
+    t->scale = t->host->load_program(t->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                  .vertex = "sl:fullscreen.vert", .fragment = "tp_gain.frag"});
+    return t->scale ? SL_OK : SL_ERR_GL;
+}
+
+static void tp_destroy(void *user) { free(user); }
+
+#ifdef TP_REQUIRES
+static const char *const tp_requires[] = {TP_REQUIRES, NULL};
+#endif
+#ifdef TP_CONFLICTS
+static const char *const tp_conflicts[] = {TP_CONFLICTS, NULL};
+#endif
+
+static const sl_plugin_desc tp_desc = {
+    SL_PLUGIN_HEADER,
+    .id = TP_ID,
+    .version = "1.0",
+    .description = "shadelab test plugin",
+#ifdef TP_REQUIRES
+    .requires = tp_requires,
+#endif
+#ifdef TP_CONFLICTS
+    .conflicts = tp_conflicts,
+#endif
+    .create = tp_create,
+    .activate = tp_activate,
+    .destroy = tp_destroy,
+};
+
+#ifndef TP_NO_ENTRY
+SL_DEFINE_PLUGIN(tp_desc)
+#else
+SL_EXPORT const sl_plugin_desc *not_the_entry_symbol(void) { return &tp_desc; }
+#endif

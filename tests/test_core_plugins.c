@@ -1,0 +1,171 @@
+/* The plugin loader's paths: success, every failure reported with its real cause and the
+ * viewer going on without the plugin, requires/conflicts, duplicate shading models, scene
+ * plugin names, shader compile errors naming the plugin file and line. */
+#include "check.h"
+#include "app.h"
+#include "log.h"
+#include <shadelab/harness.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+static char err[16384];
+static char logbuf[65536];
+static const char *scene =
+    "{\"materials\": [{\"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5]}],\n"
+    " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"sphere\"}, \"material\": \"m\"}],\n"
+    " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -1, -1]}]}\n";
+
+#define TP(name) SL_TEST_PLUGIN_DIR "/" name "/" name ".so"
+
+/* Loads the given plugins; returns the record of the last one. */
+static sl_plugin_rec *load(sl_app *app, const char *const *plugins, const char *json, bool strict, bool *ok) {
+    sl_app_options opt = {.scene_text = json ? json : scene, .backend = SL_BACKEND_OSMESA, .width = 32, .height = 32,
+                          .strict = strict};
+    for (const char *const *p = plugins; *p; p++) opt.plugins[opt.plugin_count++] = *p;
+    sl_log_capture(logbuf, sizeof logbuf);
+    err[0] = 0;
+    *ok = sl_app_init(app, &opt, err, sizeof err);
+    sl_log_capture(NULL, 0);
+    return app->plugins.count ? app->plugins.items[app->plugins.count - 1] : NULL;
+}
+
+static void expect_disabled(const char *path, const char *fragment1, const char *fragment2) {
+    sl_app app;
+    bool ok;
+    load(&app, (const char *[]){path, NULL}, NULL, false, &ok);
+    sl_plugin_rec *r = app.plugins.count > 1 ? app.plugins.items[1] : NULL; /* [0] is the core */
+    CHECK_MSG(ok, "viewer should go on without %s: %s", path, err);
+    CHECK(r && !r->ok);
+    if (r && r->disabled_reason) {
+        CHECK_CONTAINS(r->disabled_reason, fragment1);
+        if (fragment2) CHECK_CONTAINS(r->disabled_reason, fragment2);
+    }
+    /* and it still renders */
+    if (ok) {
+        CHECK(sl_app_start_gl(&app, err, sizeof err));
+        CHECK(sl_app_render_frame(&app));
+    }
+    sl_app_shutdown(&app);
+    /* --strict makes it fatal */
+    load(&app, (const char *[]){path, NULL}, NULL, true, &ok);
+    CHECK(!ok);
+    CHECK_CONTAINS(err, fragment1);
+    sl_app_shutdown(&app);
+}
+
+int main(void) {
+    setenv("SHADELAB_PLUGIN_PATH", SL_TEST_PLUGIN_DIR, 1);
+    sl_app app;
+    bool ok;
+
+    /* a good plugin by path and by name */
+    sl_plugin_rec *r = load(&app, (const char *[]){TP("tp-good"), NULL}, NULL, false, &ok);
+    CHECK(ok && r && r->ok);
+    CHECK(sl_params_find(&app.params, "tp-good.gain") != NULL);
+    CHECK(sl_params_find(&app.params, "tp-good.enabled") != NULL);
+    sl_app_shutdown(&app);
+    r = load(&app, (const char *[]){"tp-good", NULL}, NULL, false, &ok);
+    CHECK(ok && r && r->ok && !strcmp(r->id, "tp-good"));
+    sl_app_shutdown(&app);
+
+    /* every failure names its cause */
+    expect_disabled(TP("tp-abi-major"), "plugin built for ABI 2.0", "host provides ABI 1.0");
+    expect_disabled(TP("tp-abi-minor"), "plugin built for ABI 1.99", "host provides ABI 1.0");
+    expect_disabled(TP("tp-no-entry"), "no shadelab_plugin_entry", NULL);
+    expect_disabled(TP("tp-undefined"), "missing symbol", "tp_function_that_does_not_exist");
+    expect_disabled(TP("tp-missing-dep"), "missing dependency library", "libtp_dep.so");
+    expect_disabled(TP("tp-fail-create"), "create() failed", NULL);
+    expect_disabled("no-such-plugin", "not found", SL_TEST_PLUGIN_DIR "/no-such-plugin/no-such-plugin.so");
+    expect_disabled("/tmp/definitely/not/here.so", "does not exist", NULL);
+    expect_disabled(TP("tp-requires"), "requires plugin tp-nonexistent", "not found");
+    {
+        FILE *f = fopen("not_a_library.so", "w");
+        fputs("this is text", f);
+        fclose(f);
+        char cwd[1024], path[1100];
+        snprintf(path, sizeof path, "%s/not_a_library.so", getcwd(cwd, sizeof cwd));
+        expect_disabled(path, "not a shared library", NULL);
+    }
+
+    /* requires pulls in the dependency by name, in order */
+    r = load(&app, (const char *[]){"tp-requires-good", NULL}, NULL, false, &ok);
+    CHECK(ok);
+    CHECK(sl_plugins_find(&app.plugins, "tp-good") >= 0);
+    CHECK(app.plugins.items[sl_plugins_find(&app.plugins, "tp-requires-good")]->ok);
+    sl_app_shutdown(&app);
+
+    /* conflicts: both named */
+    r = load(&app, (const char *[]){"tp-good", "tp-conflicts", NULL}, NULL, false, &ok);
+    CHECK(ok && r && !r->ok);
+    if (r && r->disabled_reason) CHECK_CONTAINS(r->disabled_reason, "conflicts with plugin tp-good");
+    sl_app_shutdown(&app);
+
+    /* two providers of one shading model: a load error naming both */
+    r = load(&app, (const char *[]){"tp-dup-model", NULL}, NULL, false, &ok);
+    CHECK(ok && r && !r->ok);
+    CHECK_CONTAINS(logbuf, "shading model \"lambert\" is already provided by plugin core");
+    CHECK(sl_params_find(&app.params, "tp-dup-model.gain") == NULL); /* registrations rolled back */
+    sl_app_shutdown(&app);
+
+    /* a scene may only name plugins */
+    const char *scene_path =
+        "{\"plugins\": [\"" SL_TEST_PLUGIN_DIR "/tp-good/tp-good.so\"],\n"
+        " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"cube\"}}]}\n";
+    sl_app_options opt = {.scene_text = scene_path, .backend = SL_BACKEND_OSMESA};
+    sl_log_capture(logbuf, sizeof logbuf);
+    bool loaded = sl_app_init(&app, &opt, err, sizeof err);
+    sl_log_capture(NULL, 0);
+    bool refused = !loaded || sl_plugins_find(&app.plugins, "tp-good") < 0 ||
+                   !app.plugins.items[sl_plugins_find(&app.plugins, "tp-good")]->ok;
+    CHECK(refused);
+    CHECK(strstr(err, "path") || strstr(logbuf, "path"));
+    sl_app_shutdown(&app);
+    const char *scene_name =
+        "{\"plugins\": [\"tp-good\"],\n \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"cube\"}}]}\n";
+    opt.scene_text = scene_name;
+    CHECK(sl_app_init(&app, &opt, err, sizeof err));
+    CHECK(sl_plugins_find(&app.plugins, "tp-good") >= 0 && app.plugins.items[sl_plugins_find(&app.plugins, "tp-good")]->ok);
+    sl_app_shutdown(&app);
+
+    /* a shader compile error names the plugin's file and line */
+    const char *bad_scene =
+        "{\"materials\": [{\"name\": \"m\", \"model\": \"tp-bad-glsl-model\"}],\n"
+        " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"cube\"}, \"material\": \"m\"}],\n"
+        " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\"}]}\n";
+    r = load(&app, (const char *[]){"tp-bad-glsl", NULL}, bad_scene, false, &ok);
+    CHECK(ok);
+    sl_log_capture(logbuf, sizeof logbuf);
+    bool started = sl_app_start_gl(&app, err, sizeof err);
+    sl_log_capture(NULL, 0);
+    CHECK(!started);
+    CHECK_CONTAINS(logbuf, "tests/plugins/test_plugin_bad.glsl:4");
+    CHECK_CONTAINS(logbuf, "undefined_identifier");
+    sl_app_shutdown(&app);
+
+    /* the plugin's model, hook and pass work when used */
+    const char *mark_scene =
+        "{\"materials\": [{\"name\": \"m\", \"model\": \"tp-good-model\", \"base_color\": [0.5, 0.5, 0.5], \"tp_mark\": true}],\n"
+        " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3], \"target\": [0, 0, 0]}],\n"
+        " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"plane\", \"size\": 10}, \"rotate\": [90, 0, 0], \"material\": \"m\"}],\n"
+        " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 1}]}\n";
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 16, .height = 16,
+                                                          .scene_json = mark_scene, .float32 = true,
+                                                          .plugins = (const char *[]){"tp-good", NULL},
+                                                          .settings = (const char *[]){"tp-good.tint=1,0.5,0.25", NULL}},
+                                      err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    if (h) {
+        static float px[16 * 16 * 4];
+        CHECK(sl_harness_render(h, px));
+        int c = (8 * 16 + 8) * 4;
+        /* tp_model: base_color·E·cos (no 1/π), base_color tinted by the surface hook */
+        CHECK_NEAR(px[c + 0], 0.5, 2e-3);
+        CHECK_NEAR(px[c + 1], 0.25, 2e-3);
+        CHECK_NEAR(px[c + 2], 0.125, 2e-3);
+        CHECK(sl_harness_set(h, "tp-good.gain=2", err, sizeof err));
+        CHECK(sl_harness_render(h, px));
+        CHECK_NEAR(px[c + 0], 1.0, 4e-3);
+        sl_harness_destroy(h);
+    }
+    return check_result();
+}

@@ -1,0 +1,197 @@
+/* Closed-form image tests of the core's shading: Lambert under directional and point lights
+ * (radiance computed per pixel in C from the camera, independently of the renderer), the white
+ * furnace, debug views, the display encoding, accumulation and supersampling. */
+#include "check.h"
+#include <shadelab/harness.h>
+#include <cglm/cglm.h>
+#include <stdlib.h>
+
+#define W 96
+#define H 72
+static float img[W * H * 4], img2[W * H * 4];
+
+static sl_harness *make(const char *json, const char *const *settings) {
+    char err[4096];
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                          .scene_json = json, .settings = settings, .float32 = true},
+                                      err, sizeof err);
+    if (!h) fprintf(stderr, "harness: %s\n", err);
+    return h;
+}
+
+/* Camera rays from the same definition the scene gives: position, target, vertical fov. */
+static const float cam_pos[3] = {0, 5, 5}, cam_target[3] = {0, 0, 0}, fov_deg = 50;
+
+static bool plane_hit(int px, int py, float hit[3]) {
+    mat4 view, proj, vp, inv;
+    glm_lookat((float *)cam_pos, (float *)cam_target, (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(fov_deg), (float)W / H, 0.1f, 100.f, proj);
+    glm_mat4_mul(proj, view, vp);
+    glm_mat4_inv(vp, inv);
+    float nx = (px + 0.5f) / W * 2 - 1, ny = 1 - (py + 0.5f) / H * 2;
+    vec4 a = {nx, ny, -1, 1}, b = {nx, ny, 1, 1}, wa, wb;
+    glm_mat4_mulv(inv, a, wa);
+    glm_mat4_mulv(inv, b, wb);
+    vec3 o = {wa[0] / wa[3], wa[1] / wa[3], wa[2] / wa[3]}, e = {wb[0] / wb[3], wb[1] / wb[3], wb[2] / wb[3]}, d;
+    glm_vec3_sub(e, o, d);
+    if (d[1] >= 0) return false;
+    float t = -o[1] / d[1];
+    for (int i = 0; i < 3; i++) hit[i] = o[i] + t * d[i];
+    return fabsf(hit[0]) < 9.5f && fabsf(hit[2]) < 9.5f;
+}
+
+#define PLANE_SCENE(LIGHTS, ENV) \
+    "{ \"cameras\": [{\"name\": \"c\", \"position\": [0,5,5], \"target\": [0,0,0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}]," \
+    "  \"materials\": [{\"name\": \"m\", \"base_color\": [0.7, 0.5, 0.3]}]," \
+    "  \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}]," \
+    "  \"lights\": [" LIGHTS "]" ENV "}"
+
+static void test_directional(void) {
+    /* E = 2 arriving at 60° from the normal: L = k_d/π · E · cos 60° */
+    sl_harness *h = make(PLANE_SCENE("{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -0.5, -0.8660254], \"intensity\": 2}", ""), NULL);
+    CHECK(h != NULL);
+    if (!h) return;
+    CHECK(sl_harness_render(h, img));
+    const float kd[3] = {0.7f, 0.5f, 0.3f};
+    int checked = 0;
+    for (int y = 0; y < H; y += 7)
+        for (int x = 0; x < W; x += 7) {
+            float p[3];
+            if (!plane_hit(x, y, p)) continue;
+            for (int c = 0; c < 3; c++) CHECK_NEAR(img[(y * W + x) * 4 + c], kd[c] / M_PI * 2 * 0.5, 2e-3);
+            checked++;
+        }
+    CHECK_MSG(checked > 50, "only %d plane pixels sampled", checked);
+    sl_harness_destroy(h);
+}
+
+static void test_point_light(void) {
+    /* I = 10 at (0.5, 1.5, -0.3): L = k_d/π · I/d² · max(0, n·l), per pixel from the camera ray */
+    sl_harness *h = make(PLANE_SCENE("{\"name\": \"bulb\", \"type\": \"point\", \"position\": [0.5, 1.5, -0.3], \"intensity\": 10}", ""), NULL);
+    CHECK(h != NULL);
+    if (!h) return;
+    CHECK(sl_harness_render(h, img));
+    const float kd[3] = {0.7f, 0.5f, 0.3f}, lp[3] = {0.5f, 1.5f, -0.3f};
+    int checked = 0;
+    double worst = 0;
+    for (int y = 0; y < H; y += 5)
+        for (int x = 0; x < W; x += 5) {
+            float p[3];
+            if (!plane_hit(x, y, p)) continue;
+            float d[3] = {lp[0] - p[0], lp[1] - p[1], lp[2] - p[2]};
+            float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            float cosv = d[1] / sqrtf(d2);
+            for (int c = 0; c < 3; c++) {
+                double expect = kd[c] / M_PI * 10 / d2 * cosv;
+                double rel = fabs(img[(y * W + x) * 4 + c] - expect) / expect;
+                if (rel > worst) worst = rel;
+            }
+            checked++;
+        }
+    CHECK_MSG(worst < 0.01, "worst relative error %.4f over %d pixels", worst, checked);
+    CHECK(checked > 50);
+    /* per-light on/off: disabling the only light leaves the (black) ambient */
+    char err[512];
+    CHECK(sl_harness_set(h, "light.bulb.enabled=false", err, sizeof err));
+    CHECK(sl_harness_render(h, img2));
+    double sum = 0;
+    for (int i = 0; i < W * H * 4; i += 4) sum += img2[i];
+    CHECK_NEAR(sum, 0, 1e-6);
+    sl_harness_destroy(h);
+}
+
+static void test_furnace(void) {
+    /* unit white environment, white Lambert spheres: every pixel reads exactly 1 */
+    char path[1024];
+    snprintf(path, sizeof path, "%s/furnace.json", SL_SCENES_DIR);
+    char err[4096];
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                          .scene_file = path, .float32 = true}, err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    if (!h) return;
+    CHECK(sl_harness_render(h, img));
+    double maxdev = 0;
+    for (int i = 0; i < W * H * 4; i++)
+        if (i % 4 != 3 && fabs(img[i] - 1.0) > maxdev) maxdev = fabs(img[i] - 1.0);
+    CHECK_MSG(maxdev < 1e-4, "furnace deviates by %g", maxdev);
+    /* the furnace is not trivially white: the normal debug view shows the spheres */
+    CHECK(sl_harness_set_debug_view(h, "normal", err, sizeof err));
+    CHECK(sl_harness_render(h, img2));
+    sl_compare cmp;
+    sl_harness_compare(img, img2, W, H, 0.05, &cmp);
+    CHECK_MSG(cmp.pixels_over > W * H / 10, "normal view differs on only %ld pixels", cmp.pixels_over);
+    sl_harness_destroy(h);
+}
+
+static void test_debug_views_and_display(void) {
+    sl_harness *h = make(PLANE_SCENE("{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -1, 0], \"intensity\": 7}", ""), NULL);
+    CHECK(h != NULL);
+    if (!h) return;
+    char err[512];
+    /* normal view of an upward plane: (0,1,0)·0.5 + 0.5 */
+    CHECK(sl_harness_set_debug_view(h, "normal", err, sizeof err));
+    CHECK(sl_harness_render(h, img));
+    int c = (H / 2 * W + W / 2) * 4;
+    CHECK_NEAR(img[c + 0], 0.5, 1e-3);
+    CHECK_NEAR(img[c + 1], 1.0, 1e-3);
+    CHECK_NEAR(img[c + 2], 0.5, 1e-3);
+    CHECK(sl_harness_set_debug_view(h, "diffuse-texture", err, sizeof err));
+    CHECK(sl_harness_render(h, img));
+    CHECK_NEAR(img[c + 0], 0.7, 1e-3);
+    CHECK(!sl_harness_set_debug_view(h, "normals", err, sizeof err));
+    CHECK_CONTAINS(err, "did you mean \"normal\"");
+    /* display transform: sRGB(clamp(L)); E = 7 overexposes the red channel (0.7/π·7 > 1) */
+    CHECK(sl_harness_set_debug_view(h, "final", err, sizeof err));
+    CHECK(sl_harness_render(h, img));
+    CHECK(sl_harness_read_display(h, img2));
+    double worst = 0;
+    for (int i = 0; i < W * H * 4; i++) {
+        if (i % 4 == 3) continue;
+        float l = img[i] < 0 ? 0 : img[i] > 1 ? 1 : img[i];
+        float e = l <= 0.0031308f ? 12.92f * l : 1.055f * powf(l, 1 / 2.4f) - 0.055f;
+        if (fabs(img2[i] - e) > worst) worst = fabs(img2[i] - e);
+    }
+    CHECK_MSG(worst <= 1.0 / 255 + 1e-6, "display encoding off by %g", worst);
+    CHECK_NEAR(img2[c + 0], 1.0, 1e-6);
+    sl_harness_destroy(h);
+}
+
+static void test_accumulate_and_ssaa(void) {
+    const char *json = PLANE_SCENE("{\"name\": \"bulb\", \"type\": \"point\", \"position\": [0.5, 1.5, -0.3], \"intensity\": 10}", "");
+    sl_harness *h = make(json, NULL);
+    CHECK(h != NULL);
+    if (!h) return;
+    CHECK(sl_harness_render(h, img));
+    sl_harness_destroy(h);
+    /* a static scene accumulated over 5 frames is the single frame */
+    char err[1024];
+    h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                             .scene_json = json, .float32 = true, .accumulate = 5}, err, sizeof err);
+    CHECK(h != NULL);
+    if (!h) return;
+    CHECK(sl_harness_render(h, img2));
+    sl_compare cmp;
+    sl_harness_compare(img, img2, W, H, 1e-5, &cmp);
+    CHECK_MSG(cmp.max_abs < 1e-5, "accumulated static frame differs by %g", cmp.max_abs);
+    sl_harness_destroy(h);
+    /* supersampling changes the silhouette of the plane's far edge but not its smooth interior */
+    h = make(json, (const char *[]){"core.ssaa=4", NULL});
+    CHECK(h != NULL);
+    if (!h) return;
+    CHECK(sl_harness_render(h, img2));
+    sl_harness_compare(img, img2, W, H, 1e-3, &cmp);
+    CHECK_MSG(cmp.pixels_over > 0, "ssaa changed nothing");
+    CHECK_MSG(cmp.pixels_over < W * H / 4, "ssaa changed %ld pixels (expected only edges)", cmp.pixels_over);
+    int c = (H * 3 / 4 * W + W / 2) * 4;
+    CHECK_NEAR(img2[c], img[c], 2e-3 * img[c] + 1e-4);
+    sl_harness_destroy(h);
+}
+
+int main(void) {
+    test_directional();
+    test_point_light();
+    test_furnace();
+    test_debug_views_and_display();
+    test_accumulate_and_ssaa();
+    return check_result();
+}
