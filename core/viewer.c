@@ -17,6 +17,9 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+/* render/renderer.c: re-reads shader files whose modification time changed (not in its header) */
+bool sl_renderer_poll_reload(sl_app *app);
+
 /* ------------------------------------------------------------------ key bindings -------- */
 
 /* Keys the viewer itself uses; Shift+fly keys are taken too (Shift = fly faster). */

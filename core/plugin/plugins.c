@@ -160,7 +160,7 @@ static sl_status host_set_reference(const sl_host *h, const sl_reference_desc *i
     return SL_OK;
 }
 
-static sl_status host_set_bind(const sl_host *h, void (*bind)(void *, unsigned, const sl_frame *), void *user) {
+static sl_status host_set_bind(const sl_host *h, void (*bind)(void *, unsigned, int, const sl_frame *), void *user) {
     HOST_REC(h)->bind = bind;
     HOST_REC(h)->bind_user = user;
     return SL_OK;
@@ -202,6 +202,28 @@ static const void *host_get_extension(const sl_host *h, const char *id) {
 }
 
 static const sl_light_info *host_lights(const sl_host *h, int *count) { return sl_renderer_lights(HOST_APP(h), count); }
+
+static int host_material_count(const sl_host *h) { return HOST_APP(h)->scene.material_count; }
+
+static const char *host_material_name(const sl_host *h, int m) {
+    sl_app *app = HOST_APP(h);
+    return m >= 0 && m < app->scene.material_count ? app->scene.materials[m].name : NULL;
+}
+
+static bool host_material_value(const sl_host *h, int m, const char *key, sl_value *out, char *path, size_t n) {
+    sl_app *app = HOST_APP(h);
+    sl_mat_value *v = sl_app_material_value(app, m, key);
+    if (path && n) path[0] = 0;
+    if (!v || !v->present) return false;
+    if (out) *out = v->v;
+    if (path && n && v->str && app->params.items[v->param].desc.type == SL_PARAM_TEXTURE && !sl_texture_is_procedural(v->str)) {
+        char err[1024];
+        char *resolved = sl_scene_resolve_path(&app->scene, app->opt.data_dir, v->str, err, sizeof err);
+        if (resolved) snprintf(path, n, "%s", resolved);
+        free(resolved);
+    }
+    return true;
+}
 static void *host_gl_proc(const char *name);
 static sl_app *g_gl_app; /* the app whose context is current (one per process) */
 static void *host_gl_proc(const char *name) {
@@ -247,6 +269,9 @@ static sl_host_impl *make_host(sl_app *app, int index) {
     h->plugin_enabled = host_plugin_enabled;
     h->get_extension = host_get_extension;
     h->lights = host_lights;
+    h->material_count = host_material_count;
+    h->material_name = host_material_name;
+    h->material_value = host_material_value;
     h->gl_get_proc_address = host_gl_proc;
     h->is_gpu = host_is_gpu;
     h->load_program = host_load_program;

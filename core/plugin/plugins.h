@@ -36,7 +36,7 @@ typedef struct sl_plugin_rec {
     char *disabled_reason; /* why it is not ok */
     void *user;
     sl_host_impl *host;
-    void (*bind)(void *user, unsigned program, const sl_frame *frame);
+    void (*bind)(void *user, unsigned program, int material, const sl_frame *frame);
     void *bind_user;
     sl_reference_desc reference; bool has_reference;
     char *reference_settings, *reference_description;

@@ -105,7 +105,7 @@ static void upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
 
 /* ------------------------------------------------------------------ textures -------- */
 
-static bool is_procedural(const char *spec) {
+bool sl_texture_is_procedural(const char *spec) {
     static const char *prefixes[] = {"checker:", "grid:", "constant:", "gradient", "uv"};
     for (size_t i = 0; i < sizeof prefixes / sizeof *prefixes; i++) {
         size_t l = strlen(prefixes[i]);
@@ -126,7 +126,7 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data) {
     char err[1024] = "";
     bool ok;
     bool srgb_storage = false;
-    if (is_procedural(spec)) {
+    if (sl_texture_is_procedural(spec)) {
         ok = sl_image_procedural(&img, spec, 256, err, sizeof err);
         /* procedural colours are linear already */
     } else {
@@ -304,7 +304,7 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
     }
     for (int i = 0; i < app->plugins.count; i++) {
         sl_plugin_rec *pr = app->plugins.items[i];
-        if ((var->owners & (1ull << (i & 63))) && pr->bind && sl_plugin_enabled(app, i)) pr->bind(pr->bind_user, prog, &r->frame);
+        if ((var->owners & (1ull << (i & 63))) && pr->bind && sl_plugin_enabled(app, i)) pr->bind(pr->bind_user, prog, m, &r->frame);
     }
     return prog;
 }

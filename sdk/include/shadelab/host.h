@@ -66,10 +66,11 @@ struct sl_host {
     sl_status (*add_key)(const sl_host *host, const sl_key_desc *desc);
     sl_status (*set_reference)(const sl_host *host, const sl_reference_desc *desc);
     /* Called with the GL id of each composed program that contains this plugin's chunks, each
-     * time the host binds it for drawing: set the plugin's own uniforms and samplers there.
-     * (Global parameters are set by the host already.) */
+     * time the host binds it for drawing material `material` (index, see material_name): set the
+     * plugin's own uniforms and samplers there. Global parameters and material keys are set by
+     * the host already. GL context current. */
     sl_status (*set_bind_callback)(const sl_host *host,
-                                   void (*bind)(void *user, unsigned program, const sl_frame *frame),
+                                   void (*bind)(void *user, unsigned program, int material, const sl_frame *frame),
                                    void *user);
     /* A texture unit reserved for this plugin for the whole run (textures it binds in
      * begin_frame/bind stay bound). */
@@ -82,6 +83,14 @@ struct sl_host {
     const void *(*get_extension)(const sl_host *host, const char *id);
     /* The scene's lights (stable until the next frame). */
     const sl_light_info *(*lights)(const sl_host *host, int *count);
+    /* The scene's materials: count, names, and the value of a material key. material_value
+     * returns false when the material does not carry the key (defaults are not "carried");
+     * for TEXTURE keys out->s is the spec as written and *resolved_path (when given) receives
+     * the file path resolved against the scene and data directories (NULL for procedural specs). */
+    int (*material_count)(const sl_host *host);
+    const char *(*material_name)(const sl_host *host, int material);
+    bool (*material_value)(const sl_host *host, int material, const char *key, sl_value *out,
+                           char *resolved_path, size_t path_size);
     /* GL: any time a context is current (activate … deactivate). */
     void *(*gl_get_proc_address)(const char *name);
     bool (*is_gpu)(const sl_host *host);  /* false on llvmpipe/OSMesa */

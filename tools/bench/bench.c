@@ -1,0 +1,1038 @@
+/* shadelab-bench engine (see bench.h and docs/benchmarks.md).
+ *
+ * Every setting gets a fresh application (scene, plugins, GL context): nothing a previous
+ * setting changed can leak into the next one, and the first frames (shader compilation,
+ * uploads) are excluded as warm-up. Timed frames advance the clock as the viewer does, so
+ * passes that skip unchanged work skip here too; the image that is compared with the reference
+ * is rendered afterwards at time 0, as the reference is. */
+#include "bench.h"
+#include "pareto.h"
+#include "image/image.h"
+#include "log.h"
+#include "render/composer.h"
+#include "render/renderer.h"
+#include <shadelab/gl.h>
+#include <cjson/cJSON.h>
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#define CACHE_FORMAT "shadelab-bench-reference/1"
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static char *xstrdup(const char *s) { return s ? strdup(s) : NULL; }
+
+static char *xasprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static char *xasprintf(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    char *s = NULL;
+    if (vasprintf(&s, fmt, ap) < 0) s = NULL;
+    va_end(ap);
+    return s;
+}
+
+/* ------------------------------------------------------------------ files and hashes -- */
+
+bool sl_bench_mkdirs(const char *dir, char *err, size_t n) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s", dir);
+    for (char *p = path + 1; ; p++) {
+        if (*p == '/' || !*p) {
+            char c = *p;
+            *p = 0;
+            if (mkdir(path, 0755) && errno != EEXIST) {
+                snprintf(err, n, "cannot create directory %s: %s", path, strerror(errno));
+                return false;
+            }
+            *p = c;
+            if (!c) break;
+        }
+    }
+    return true;
+}
+
+const char *sl_bench_default_cache_dir(char *buf, size_t n) {
+    const char *e = getenv("SHADELAB_CACHE");
+    if (e && *e) snprintf(buf, n, "%s", e);
+    else if ((e = getenv("XDG_CACHE_HOME")) && *e) snprintf(buf, n, "%s/shadelab", e);
+    else if ((e = getenv("HOME")) && *e) snprintf(buf, n, "%s/.cache/shadelab", e);
+    else snprintf(buf, n, "shadelab-cache");
+    return buf;
+}
+
+static char *read_text(const char *path, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *buf = NULL;
+    size_t cap = 0, n = 0;
+    for (;;) {
+        if (n + 65536 + 1 > cap) {
+            cap = cap ? cap * 2 : 65536 * 2;
+            char *b = realloc(buf, cap);
+            if (!b) { free(buf); fclose(f); return NULL; }
+            buf = b;
+        }
+        size_t r = fread(buf + n, 1, 65536, f);
+        n += r;
+        if (r < 65536) break;
+    }
+    fclose(f);
+    buf[n] = 0;
+    if (len) *len = n;
+    return buf;
+}
+
+uint64_t sl_bench_scene_hash(const char *scene_path) {
+    if (!scene_path) return sl_hash64(sl_default_scene_json, strlen(sl_default_scene_json), 0);
+    size_t len;
+    char *text = read_text(scene_path, &len);
+    if (!text) return 0;
+    uint64_t h = sl_hash64(text, len, 0);
+    free(text);
+    return h;
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* Hash of a directory's files (names and contents, sorted, following links, 3 levels): a
+ * plugin's .so and GLSL, the core's shader library. A changed shader changes the key. */
+static uint64_t hash_dir(const char *dir, uint64_t h, int depth) {
+    DIR *d = opendir(dir);
+    if (!d) return sl_hash64(dir, strlen(dir), h);
+    char **names = NULL;
+    int count = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (e->d_name[0] == '.') continue;
+        names = realloc(names, sizeof *names * (count + 1));
+        names[count++] = strdup(e->d_name);
+    }
+    closedir(d);
+    qsort(names, count, sizeof *names, cmp_str);
+    for (int i = 0; i < count; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        struct stat st;
+        if (!stat(path, &st)) {
+            if (S_ISDIR(st.st_mode) && depth < 3) {
+                h = sl_hash64(names[i], strlen(names[i]), h);
+                h = hash_dir(path, h, depth + 1);
+            } else if (S_ISREG(st.st_mode) && st.st_size < (64 << 20)) {
+                size_t len;
+                char *text = read_text(path, &len);
+                h = sl_hash64(names[i], strlen(names[i]) + 1, h);
+                if (text) h = sl_hash64(text, len, h);
+                free(text);
+            }
+        }
+        free(names[i]);
+    }
+    free(names);
+    return h;
+}
+
+/* --------------------------------------------------------------------- settings ------- */
+
+typedef struct tokens { char *buf; const char *items[128]; int count; } tokens;
+
+/* Splits "a=1 b=2" on white space (values cannot contain spaces). */
+static bool split_settings(const char *text, tokens *t, char *err, size_t n) {
+    t->buf = strdup(text ? text : "");
+    t->count = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(t->buf, " \t\n", &save); tok; tok = strtok_r(NULL, " \t\n", &save)) {
+        if (t->count == 128) { snprintf(err, n, "too many assignments in \"%s\"", text); return false; }
+        if (!strchr(tok, '=')) { snprintf(err, n, "\"%s\" in \"%s\": expected id=value", tok, text); return false; }
+        t->items[t->count++] = tok;
+    }
+    return true;
+}
+
+char *sl_bench_label(const char *settings, const char *plugin) {
+    size_t plen = plugin ? strlen(plugin) : 0;
+    char *out = calloc(1, strlen(settings) + 1);
+    const char *p = settings;
+    size_t u = 0;
+    while (*p) {
+        while (*p == ' ' || *p == '\t') p++;
+        if (!*p) break;
+        if (u) out[u++] = ' ';
+        if (plen && !strncmp(p, plugin, plen) && p[plen] == '.') p += plen + 1;
+        while (*p && *p != ' ' && *p != '\t') out[u++] = *p++;
+    }
+    out[u] = 0;
+    return out;
+}
+
+/* ----------------------------------------------------------------------- the app -------- */
+
+typedef struct bench_app {
+    sl_app app;
+    tokens base, extra;
+    bool inited, started;
+} bench_app;
+
+static void close_app(bench_app *b) {
+    if (b->inited) sl_app_shutdown(&b->app);
+    free(b->base.buf);
+    free(b->extra.buf);
+    memset(b, 0, sizeof *b);
+}
+
+/* Scene + plugins + base settings + `settings`; GL started when `gl`. */
+static bool open_app(const sl_bench_options *o, const char *settings, int accumulate, bool gl, bench_app *b,
+                     char *err, size_t n) {
+    memset(b, 0, sizeof *b);
+    sl_app_options opt = {0};
+    opt.scene_path = o->scene_path;
+    opt.data_dir = o->data_dir;
+    opt.backend = o->backend ? o->backend : SL_BACKEND_OSMESA;
+    opt.width = o->width > 0 ? o->width : 320;
+    opt.height = o->height > 0 ? o->height : 180;
+    opt.float32 = o->float32;
+    opt.accumulate = accumulate > 1 ? accumulate : 1;
+    opt.strict = true; /* measure exactly the plugins asked for, or stop */
+    if (o->plugin && strcmp(o->plugin, "core")) opt.plugins[opt.plugin_count++] = o->plugin;
+    for (int i = 0; i < o->plugin_count && opt.plugin_count < 64; i++) opt.plugins[opt.plugin_count++] = o->plugins[i];
+    char *base_text = NULL;
+    size_t blen = 0;
+    for (int i = 0; i < o->base_setting_count; i++) blen += strlen(o->base_settings[i]) + 1;
+    base_text = calloc(1, blen + 1);
+    for (int i = 0; i < o->base_setting_count; i++) { strcat(base_text, o->base_settings[i]); strcat(base_text, " "); }
+    bool ok = split_settings(base_text, &b->base, err, n) && split_settings(settings, &b->extra, err, n);
+    free(base_text);
+    if (!ok) return false;
+    if (b->base.count + b->extra.count > 128) { snprintf(err, n, "more than 128 assignments"); return false; }
+    for (int i = 0; i < b->base.count; i++) opt.settings[opt.setting_count++] = b->base.items[i];
+    for (int i = 0; i < b->extra.count; i++) opt.settings[opt.setting_count++] = b->extra.items[i];
+    b->inited = true;
+    if (!sl_app_init(&b->app, &opt, err, n)) return false;
+    int idx = o->plugin ? sl_plugins_find(&b->app.plugins, o->plugin) : 0;
+    if (idx < 0 || !b->app.plugins.items[idx]->ok) {
+        snprintf(err, n, "plugin %s is not loaded%s", o->plugin,
+                 idx >= 0 && b->app.plugins.items[idx]->disabled_reason ? b->app.plugins.items[idx]->disabled_reason : "");
+        return false;
+    }
+    if (gl) {
+        if (!sl_app_start_gl(&b->app, err, n)) return false;
+        b->started = true;
+    }
+    return true;
+}
+
+static sl_plugin_rec *plugin_rec(sl_app *app, const char *plugin) {
+    int idx = plugin ? sl_plugins_find(&app->plugins, plugin) : 0;
+    return idx >= 0 ? app->plugins.items[idx] : NULL;
+}
+
+/* ------------------------------------------------------------------- enumeration ------ */
+
+typedef struct knob { const sl_param *p; char **values; int count; } knob;
+
+static void knob_add(knob *k, const char *v) {
+    for (int i = 0; i < k->count; i++)
+        if (!strcmp(k->values[i], v)) return;
+    k->values = realloc(k->values, sizeof *k->values * (k->count + 1));
+    k->values[k->count++] = strdup(v);
+}
+
+static void knob_values(knob *k, const char *vary) {
+    const sl_param *p = k->p;
+    const sl_param_desc *d = &p->desc;
+    char buf[64];
+    if (vary) {
+        char *copy = strdup(vary), *save = NULL;
+        for (char *t = strtok_r(copy, ",", &save); t; t = strtok_r(NULL, ",", &save)) knob_add(k, t);
+        free(copy);
+        return;
+    }
+    bool bounded = d->max > d->min;
+    switch (d->type) {
+    case SL_PARAM_BOOL: knob_add(k, "false"); knob_add(k, "true"); break;
+    case SL_PARAM_ENUM:
+        for (const char *const *e = d->enum_values; e && *e; e++) knob_add(k, *e);
+        break;
+    case SL_PARAM_INT: {
+        if (!bounded) { /* around the default: ×1/4 … ×4 */
+            int v0 = d->default_value.i ? d->default_value.i : 1;
+            int f[] = {-4, -2, 1, 2, 4};
+            for (int i = 0; i < 5; i++) {
+                int v = f[i] < 0 ? v0 / -f[i] : v0 * f[i];
+                snprintf(buf, sizeof buf, "%d", v);
+                knob_add(k, buf);
+            }
+            break;
+        }
+        int lo = (int)d->min, hi = (int)d->max, step = d->step >= 1 ? (int)d->step : 1;
+        if ((hi - lo) / step + 1 <= 12) {
+            for (int v = lo; v <= hi; v += step) { snprintf(buf, sizeof buf, "%d", v); knob_add(k, buf); }
+        } else if (lo >= 1) { /* sizes and counts: powers of two */
+            snprintf(buf, sizeof buf, "%d", lo);
+            knob_add(k, buf);
+            for (long v = 1; v <= hi; v *= 2)
+                if (v > lo) { snprintf(buf, sizeof buf, "%ld", v); knob_add(k, buf); }
+            snprintf(buf, sizeof buf, "%d", hi);
+            knob_add(k, buf);
+        } else {
+            for (int i = 0; i < 9; i++) {
+                int v = lo + (int)lround((double)(hi - lo) * i / 8.0);
+                v = lo + (v - lo) / step * step;
+                snprintf(buf, sizeof buf, "%d", v);
+                knob_add(k, buf);
+            }
+        }
+        break;
+    }
+    case SL_PARAM_FLOAT:
+        if (bounded) {
+            for (int i = 0; i < 5; i++) { snprintf(buf, sizeof buf, "%g", d->min + (d->max - d->min) * i / 4.0); knob_add(k, buf); }
+        } else {
+            double v0 = d->default_value.f[0] != 0 ? d->default_value.f[0] : 1.0;
+            double f[] = {0.25, 0.5, 1, 2, 4};
+            for (int i = 0; i < 5; i++) { snprintf(buf, sizeof buf, "%g", v0 * f[i]); knob_add(k, buf); }
+        }
+        break;
+    default: break; /* colours, vectors, textures are not sweepable */
+    }
+}
+
+static void push(char ***list, int *count, char *s) {
+    *list = realloc(*list, sizeof **list * (*count + 1));
+    (*list)[(*count)++] = s;
+}
+
+bool sl_bench_enumerate(const sl_bench_options *o, char ***out, int *out_count, char *err, size_t n) {
+    *out = NULL;
+    *out_count = 0;
+    if (o->setting_count > 0) {
+        for (int i = 0; i < o->setting_count; i++) push(out, out_count, strdup(o->settings[i]));
+        return true;
+    }
+    bench_app b;
+    if (!open_app(o, "", 1, false, &b, err, n)) { close_app(&b); return false; }
+    sl_params *ps = &b.app.params;
+    knob knobs[32];
+    int nk = 0;
+    for (int i = 0; i < ps->count && nk < 32; i++) {
+        const sl_param *p = &ps->items[i];
+        if (p->desc.scope != SL_SCOPE_GLOBAL || !(p->desc.flags & SL_PARAM_QUALITY_KNOB) || strcmp(p->owner, o->plugin)) continue;
+        knob *k = &knobs[nk] = (knob){.p = p};
+        const char *vary = NULL;
+        size_t idlen = strlen(p->full_id);
+        for (int v = 0; v < o->vary_count; v++)
+            if (!strncmp(o->vary[v], p->full_id, idlen) && o->vary[v][idlen] == '=') vary = o->vary[v] + idlen + 1;
+        knob_values(k, vary);
+        if (k->count) nk++;
+        else free(k->values);
+    }
+    /* every --vary must name a knob of this plugin */
+    for (int v = 0; v < o->vary_count; v++) {
+        bool found = false;
+        for (int i = 0; i < nk; i++) {
+            size_t l = strlen(knobs[i].p->full_id);
+            found |= !strncmp(o->vary[v], knobs[i].p->full_id, l) && o->vary[v][l] == '=';
+        }
+        if (!found) {
+            snprintf(err, n, "--vary %s: not a quality knob of %s (see shadelab --plugin %s --dump-params)", o->vary[v],
+                     o->plugin, o->plugin);
+            for (int i = 0; i < nk; i++) { for (int k = 0; k < knobs[i].count; k++) free(knobs[i].values[k]); free(knobs[i].values); }
+            close_app(&b);
+            return false;
+        }
+    }
+    bool ok = true;
+    if (!nk) {
+        snprintf(err, n, "plugin %s declares no quality knobs (parameters flagged SL_PARAM_QUALITY_KNOB); "
+                 "give the settings to compare with --settings \"id=value …\"", o->plugin);
+        ok = false;
+    } else {
+        long product = 1;
+        for (int i = 0; i < nk && product <= 100000; i++) product *= knobs[i].count;
+        bool grid = o->sweep == SL_SWEEP_GRID || (o->sweep == SL_SWEEP_AUTO && product <= 64);
+        if (grid && product > 4096) {
+            snprintf(err, n, "a grid over %d knobs would be %ld settings; use --one-at-a-time or --vary", nk, product);
+            ok = false;
+        } else if (grid) {
+            int idx[32] = {0};
+            for (long c = 0; c < product; c++) {
+                char buf[4096] = "";
+                size_t u = 0;
+                for (int i = 0; i < nk; i++)
+                    u += snprintf(buf + u, sizeof buf - u, "%s%s=%s", i ? " " : "", knobs[i].p->full_id, knobs[i].values[idx[i]]);
+                push(out, out_count, strdup(buf));
+                for (int i = nk - 1; i >= 0; i--) { /* last knob fastest */
+                    if (++idx[i] < knobs[i].count) break;
+                    idx[i] = 0;
+                }
+            }
+        } else {
+            for (int i = 0; i < nk; i++)
+                for (int v = 0; v < knobs[i].count; v++) {
+                    char buf[512];
+                    snprintf(buf, sizeof buf, "%s=%s", knobs[i].p->full_id, knobs[i].values[v]);
+                    push(out, out_count, strdup(buf));
+                }
+        }
+    }
+    for (int i = 0; i < nk; i++) { for (int k = 0; k < knobs[i].count; k++) free(knobs[i].values[k]); free(knobs[i].values); }
+    close_app(&b);
+    return ok;
+}
+
+/* -------------------------------------------------------------------- timing ---------- */
+
+typedef struct series { const char *name, *owner; double *ms; int n; } series;
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static void summarise(const double *v, int n, double *med, double *mean, double *mn) {
+    if (n <= 0) { *med = *mean = *mn = NAN; return; }
+    double *c = malloc(sizeof *c * n);
+    memcpy(c, v, sizeof *c * n);
+    qsort(c, n, sizeof *c, cmp_double);
+    *med = n % 2 ? c[n / 2] : 0.5 * (c[n / 2 - 1] + c[n / 2]);
+    *mn = c[0];
+    double s = 0;
+    for (int i = 0; i < n; i++) s += c[i];
+    *mean = s / n;
+    free(c);
+}
+
+/* Renders warm-up + timed frames and fills the row's timing; then renders the frame at time 0
+ * whose colour is compared with the reference. */
+static bool time_setting(sl_app *app, int warmup, int frames, sl_bench_row *row, float *image) {
+    series s[64];
+    int ns = 0;
+    double *frame = calloc(frames + 1, sizeof *frame);
+    bool ok = true;
+    for (int f = 0; f < warmup + frames && ok; f++) {
+        app->time = f * app->opt.fixed_dt;
+        ok = sl_app_render_frame(app);
+        if (!ok || f < warmup) continue;
+        const sl_frame_stats *st = sl_renderer_stats(app);
+        frame[f - warmup] = st->frame_ms;
+        for (int i = 0; i < st->pass_count; i++) {
+            if (!st->passes[i].ran) continue;
+            series *e = NULL;
+            for (int k = 0; k < ns; k++)
+                if (!strcmp(s[k].name, st->passes[i].name)) e = &s[k];
+            if (!e && ns < 64) e = &s[ns++], *e = (series){.name = st->passes[i].name, .owner = st->passes[i].owner};
+            if (!e) continue;
+            e->ms = realloc(e->ms, sizeof *e->ms * (e->n + 1));
+            e->ms[e->n++] = st->passes[i].ms;
+        }
+    }
+    if (ok) {
+        row->frames = frames;
+        summarise(frame, frames, &row->frame_ms_median, &row->frame_ms_mean, &row->frame_ms_min);
+        row->passes = calloc(ns + 1, sizeof *row->passes);
+        row->passes_ms = 0;
+        for (int k = 0; k < ns; k++) {
+            sl_bench_pass *p = &row->passes[row->pass_count++];
+            p->name = strdup(s[k].name);
+            p->owner = strdup(s[k].owner ? s[k].owner : "");
+            p->runs = s[k].n;
+            summarise(s[k].ms, s[k].n, &p->median_ms, &p->mean_ms, &p->min_ms);
+            row->passes_ms += p->median_ms;
+        }
+        app->time = 0;
+        ok = sl_app_render_frame(app) && sl_app_read_color(app, image);
+    }
+    for (int k = 0; k < ns; k++) free(s[k].ms);
+    free(frame);
+    return ok;
+}
+
+/* ------------------------------------------------------------------ reference cache --- */
+
+typedef struct cache_header { char magic[8]; int32_t width, height; uint64_t key; } cache_header;
+
+static bool cache_load(const char *path, uint64_t key, int w, int h, float *px) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    cache_header hd;
+    size_t count = (size_t)w * h * 4;
+    bool ok = fread(&hd, sizeof hd, 1, f) == 1 && !memcmp(hd.magic, "SLREF01", 8) && hd.width == w && hd.height == h &&
+              hd.key == key && fread(px, sizeof(float), count, f) == count;
+    fclose(f);
+    return ok;
+}
+
+static bool cache_store(const char *dir, const char *path, uint64_t key, int w, int h, const float *px,
+                        const char *description, char *err, size_t n) {
+    if (!sl_bench_mkdirs(dir, err, n)) return false;
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp%d", path, (int)getpid());
+    FILE *f = fopen(tmp, "wb");
+    if (!f) { snprintf(err, n, "cannot write %s: %s", tmp, strerror(errno)); return false; }
+    cache_header hd = {.magic = "SLREF01", .width = w, .height = h, .key = key};
+    size_t count = (size_t)w * h * 4;
+    bool ok = fwrite(&hd, sizeof hd, 1, f) == 1 && fwrite(px, sizeof(float), count, f) == count;
+    ok = (fclose(f) == 0) && ok;
+    if (ok && rename(tmp, path)) ok = false;
+    if (!ok) { snprintf(err, n, "cannot write %s: %s", path, strerror(errno)); unlink(tmp); return false; }
+    /* a readable note beside it: what this reference is */
+    char note[4300];
+    snprintf(note, sizeof note, "%.*s.txt", (int)(strlen(path) - 4), path);
+    FILE *t = fopen(note, "w");
+    if (t) { fputs(description, t); fclose(t); }
+    return true;
+}
+
+/* The key: everything that changes the reference's pixels. */
+static uint64_t reference_key(const sl_bench_options *o, sl_app *app, const char *settings, int accumulate,
+                              char *desc, size_t dn) {
+    uint64_t h = sl_hash64(CACHE_FORMAT, sizeof CACHE_FORMAT, 0);
+    h = sl_hash64(SL_VERSION, sizeof SL_VERSION, h);
+    uint64_t scene = sl_bench_scene_hash(o->scene_path);
+    h = sl_hash64(&scene, sizeof scene, h);
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    size_t u = snprintf(desc, dn, "%s\nscene: %s (%016llx)\nrenderer: %s (%s)\nsize: %dx%d%s\naccumulate: %d\nsettings:",
+                        CACHE_FORMAT, o->scene_path ? o->scene_path : "<built-in default scene>",
+                        (unsigned long long)scene, renderer ? renderer : "?", app->backend.name, app->backend.width,
+                        app->backend.height, app->opt.float32 ? " RGBA32F" : "", accumulate);
+    h = sl_hash64(renderer ? renderer : "", renderer ? strlen(renderer) + 1 : 1, h);
+    h = sl_hash64(app->backend.name, strlen(app->backend.name) + 1, h);
+    int dims[3] = {app->backend.width, app->backend.height, accumulate};
+    h = sl_hash64(dims, sizeof dims, h);
+    h = sl_hash64(&app->opt.float32, sizeof app->opt.float32, h);
+    for (int i = 0; i < app->opt.setting_count; i++) {
+        h = sl_hash64(app->opt.settings[i], strlen(app->opt.settings[i]) + 1, h);
+        if (u < dn) u += snprintf(desc + u, dn - u, " %s", app->opt.settings[i]);
+    }
+    (void)settings;
+    if (u < dn) u += snprintf(desc + u, dn - u, "\nplugins:");
+    for (int i = 0; i < app->plugins.count; i++) {
+        sl_plugin_rec *r = app->plugins.items[i];
+        if (!r->ok) continue;
+        h = sl_hash64(r->id, strlen(r->id) + 1, h);
+        if (r->desc.version) h = sl_hash64(r->desc.version, strlen(r->desc.version) + 1, h);
+        if (r->resource_dir) h = hash_dir(r->resource_dir, h, 0);
+        if (u < dn) u += snprintf(desc + u, dn - u, " %s %s", r->id, r->desc.version ? r->desc.version : "");
+    }
+    if (u < dn) snprintf(desc + u, dn - u, "\n");
+    return h;
+}
+
+static bool render_reference(const sl_bench_options *o, sl_bench_result *res, char *err, size_t n) {
+    /* the declared reference, read from a GL-less app */
+    bench_app b;
+    if (!open_app(o, "", 1, false, &b, err, n)) { close_app(&b); return false; }
+    sl_plugin_rec *r = plugin_rec(&b.app, o->plugin);
+    const char *settings = o->reference_settings ? o->reference_settings : r->has_reference ? r->reference.settings : NULL;
+    if (!settings) {
+        snprintf(err, n, "plugin %s declares no reference (host->set_reference); give one with --reference-settings", o->plugin);
+        close_app(&b);
+        return false;
+    }
+    res->reference.settings = strdup(settings);
+    res->reference.description = xstrdup(o->reference_settings ? "given on the command line"
+                                         : r->reference.description ? r->reference.description : "");
+    int acc = o->reference_accumulate > 0 ? o->reference_accumulate
+              : r->has_reference && r->reference.accumulate_frames > 1 ? r->reference.accumulate_frames : 1;
+    res->reference.accumulate = acc;
+    close_app(&b);
+
+    if (o->progress) fprintf(stderr, "[bench] reference: %s, %d frame%s accumulated\n", settings, acc, acc > 1 ? "s" : "");
+    if (!open_app(o, settings, acc, true, &b, err, n)) { close_app(&b); return false; }
+    int w = b.app.backend.width, h = b.app.backend.height;
+    res->reference.pixels = malloc(sizeof(float) * 4 * w * h);
+    char desc[8192];
+    uint64_t key = reference_key(o, &b.app, settings, acc, desc, sizeof desc);
+    snprintf(res->reference.key, sizeof res->reference.key, "%016llx", (unsigned long long)key);
+    char dir[4096], path[4200];
+    if (!o->no_cache) {
+        char base[4000];
+        snprintf(dir, sizeof dir, "%s/references", o->cache_dir ? o->cache_dir : sl_bench_default_cache_dir(base, sizeof base));
+        snprintf(path, sizeof path, "%s/%s.f32", dir, res->reference.key);
+        if (cache_load(path, key, w, h, res->reference.pixels)) {
+            res->reference.from_cache = true;
+            res->reference.cache_path = strdup(path);
+            if (o->progress) fprintf(stderr, "[bench] reference: from the cache %s\n", path);
+            close_app(&b);
+            return true;
+        }
+    }
+    double t0 = now_s();
+    b.app.time = 0;
+    bool ok = sl_app_render_frame(&b.app) && sl_app_read_color(&b.app, res->reference.pixels);
+    res->reference.render_s = now_s() - t0;
+    close_app(&b);
+    if (!ok) { snprintf(err, n, "the reference render failed"); return false; }
+    long bad = 0;
+    for (long i = 0; i < (long)w * h * 4; i++) bad += !isfinite(res->reference.pixels[i]);
+    if (bad) SL_WARN("the reference has %ld non-finite values; those pixels are left out of every metric", bad);
+    if (o->progress) fprintf(stderr, "[bench] reference: rendered in %.1f s\n", res->reference.render_s);
+    if (!o->no_cache) {
+        char why[1024];
+        if (cache_store(dir, path, key, w, h, res->reference.pixels, desc, why, sizeof why)) res->reference.cache_path = strdup(path);
+        else SL_WARN("reference not cached: %s", why);
+    }
+    return true;
+}
+
+/* ----------------------------------------------------------------------- run ---------- */
+
+void sl_bench_mark_fronts(sl_bench_result *res) {
+    int n = res->row_count;
+    double *cost = malloc(sizeof(double) * (n + 1)), *error = malloc(sizeof(double) * (n + 1));
+    bool *front = malloc(sizeof(bool) * (n + 1));
+    for (int m = 0; m < SL_METRIC_COUNT; m++) {
+        for (int i = 0; i < n; i++) {
+            cost[i] = res->rows[i].ok ? res->rows[i].frame_ms_median : NAN;
+            error[i] = res->rows[i].ok ? sl_metric_value(&res->rows[i].error, (sl_metric)m) : NAN;
+        }
+        sl_pareto_front(cost, error, n, front);
+        for (int i = 0; i < n; i++) res->rows[i].front[m] = front[i];
+    }
+    free(cost);
+    free(error);
+    free(front);
+}
+
+static void fmt_duration(double s, char *buf, size_t n) {
+    if (s < 60) snprintf(buf, n, "%.1f s", s);
+    else if (s < 3600) snprintf(buf, n, "%d min %02d s", (int)s / 60, (int)s % 60);
+    else snprintf(buf, n, "%d h %02d min", (int)s / 3600, (int)s % 3600 / 60);
+}
+
+static void save_image(const sl_bench_options *o, const char *label, const float *px, int w, int h) {
+    char path[4096], clean[256];
+    size_t u = 0;
+    for (const char *p = label; *p && u + 1 < sizeof clean; p++)
+        clean[u++] = (*p == ' ' || *p == '/' || *p == ',') ? '_' : *p;
+    clean[u] = 0;
+    snprintf(path, sizeof path, "%s-%s.png", o->image_prefix, clean);
+    char err[1024];
+    if (!sl_image_write(path, px, w, h, false, err, sizeof err)) SL_WARN("%s", err);
+}
+
+bool sl_bench_run(const sl_bench_options *o, sl_bench_result *res, char *err, size_t n) {
+    memset(res, 0, sizeof *res);
+    if (!o->plugin) { snprintf(err, n, "no plugin given (--plugin NAME, or core)"); return false; }
+    double t_start = now_s();
+    time_t now = time(NULL);
+    strftime(res->created, sizeof res->created, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+    res->scene = strdup(o->scene_path ? o->scene_path : "<built-in default scene>");
+    snprintf(res->scene_hash, sizeof res->scene_hash, "%016llx", (unsigned long long)sl_bench_scene_hash(o->scene_path));
+    res->plugin = strdup(o->plugin);
+    res->frames = o->frames > 0 ? o->frames : 30;
+    res->warmup = o->warmup >= 0 ? o->warmup : 5;
+    if (o->warmup == 0 && o->frames == 0) res->warmup = 5; /* zeroed options: the defaults */
+    char **settings = NULL;
+    int count = 0;
+    if (!sl_bench_enumerate(o, &settings, &count, err, n)) return false;
+    if (!render_reference(o, res, err, n)) {
+        for (int i = 0; i < count; i++) free(settings[i]);
+        free(settings);
+        return false;
+    }
+    res->rows = calloc(count + 1, sizeof *res->rows);
+    double t_settings = now_s();
+    float *image = NULL;
+    for (int i = 0; i < count; i++) {
+        sl_bench_row *row = &res->rows[res->row_count++];
+        row->settings = settings[i];
+        row->label = sl_bench_label(settings[i], o->plugin);
+        double t0 = now_s();
+        if (o->progress) fprintf(stderr, "[bench] setting %d of %d: %s …\n", i + 1, count, row->settings);
+        bench_app b;
+        char why[4096] = "";
+        if (open_app(o, row->settings, 1, true, &b, why, sizeof why)) {
+            int w = b.app.backend.width, h = b.app.backend.height;
+            if (!res->backend) {
+                res->width = w;
+                res->height = h;
+                res->backend = strdup(b.app.backend.name);
+                const char *rs = (const char *)glGetString(GL_RENDERER);
+                res->renderer = strdup(rs ? rs : "?");
+                res->gpu = b.app.backend.is_gpu;
+                char list[2048] = "";
+                size_t u = 0;
+                for (int k = 0; k < b.app.plugins.count && u < sizeof list; k++)
+                    if (b.app.plugins.items[k]->ok)
+                        u += snprintf(list + u, sizeof list - u, "%s%s %s", u ? ", " : "", b.app.plugins.items[k]->id,
+                                      b.app.plugins.items[k]->desc.version ? b.app.plugins.items[k]->desc.version : "");
+                res->plugins_loaded = strdup(list);
+            }
+            if (!image) image = malloc(sizeof(float) * 4 * w * h);
+            if (time_setting(&b.app, res->warmup, res->frames, row, image)) {
+                row->ok = true;
+                if (!res->timing_mode) res->timing_mode = strdup(sl_renderer_stats(&b.app)->timing_mode);
+                sl_metric_all(image, res->reference.pixels, w, h, &row->error);
+                if (o->image_prefix) save_image(o, row->label, image, w, h);
+            } else {
+                snprintf(why, sizeof why, "rendering failed");
+            }
+        }
+        close_app(&b);
+        if (!row->ok) {
+            row->failure = strdup(why);
+            SL_ERROR("setting %s: %s", row->settings, why);
+        }
+        row->wall_s = now_s() - t0;
+        if (o->progress) {
+            double elapsed = now_s() - t_start, per = (now_s() - t_settings) / (i + 1);
+            char e[64], left[64];
+            fmt_duration(elapsed, e, sizeof e);
+            fmt_duration(per * (count - i - 1), left, sizeof left);
+            if (row->ok)
+                fprintf(stderr, "[bench] setting %d of %d: %s: %.3f ms/frame (median of %d), rmse %.3g, ssim %.4f; "
+                        "elapsed %s, about %s left\n", i + 1, count, row->label, row->frame_ms_median, row->frames,
+                        row->error.rmse, row->error.ssim, e, left);
+            else
+                fprintf(stderr, "[bench] setting %d of %d: %s FAILED; elapsed %s, about %s left\n", i + 1, count, row->label, e, left);
+        }
+    }
+    if (o->image_prefix && res->width) save_image(o, "reference", res->reference.pixels, res->width, res->height);
+    free(image);
+    free(settings);
+    sl_bench_mark_fronts(res);
+    res->total_s = now_s() - t_start;
+    if (!res->backend) { snprintf(err, n, "every setting failed (see above)"); return false; }
+    return true;
+}
+
+void sl_bench_result_free(sl_bench_result *res) {
+    for (int i = 0; i < res->row_count; i++) {
+        sl_bench_row *r = &res->rows[i];
+        free(r->settings);
+        free(r->label);
+        free(r->failure);
+        for (int k = 0; k < r->pass_count; k++) { free(r->passes[k].name); free(r->passes[k].owner); }
+        free(r->passes);
+    }
+    free(res->rows);
+    free(res->scene);
+    free(res->plugin);
+    free(res->plugins_loaded);
+    free(res->backend);
+    free(res->renderer);
+    free(res->timing_mode);
+    free(res->reference.settings);
+    free(res->reference.description);
+    free(res->reference.cache_path);
+    free(res->reference.pixels);
+    memset(res, 0, sizeof *res);
+}
+
+/* ---------------------------------------------------------------------- output -------- */
+
+static void csv_string(FILE *f, const char *s) {
+    fputc('"', f);
+    for (; s && *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+static void csv_number(FILE *f, double v) {
+    if (isnan(v)) fputs(",", f);
+    else if (isinf(v)) fprintf(f, ",%s", v > 0 ? "inf" : "-inf");
+    else fprintf(f, ",%.6g", v);
+}
+
+static int union_passes(const sl_bench_result *res, const char **names, int max) {
+    int count = 0;
+    for (int i = 0; i < res->row_count; i++)
+        for (int k = 0; k < res->rows[i].pass_count; k++) {
+            bool seen = false;
+            for (int j = 0; j < count; j++) seen |= !strcmp(names[j], res->rows[i].passes[k].name);
+            if (!seen && count < max) names[count++] = res->rows[i].passes[k].name;
+        }
+    return count;
+}
+
+static double pass_median(const sl_bench_row *r, const char *name) {
+    for (int k = 0; k < r->pass_count; k++)
+        if (!strcmp(r->passes[k].name, name)) return r->passes[k].median_ms;
+    return NAN;
+}
+
+bool sl_bench_write_csv(const sl_bench_result *res, const char *path, sl_metric primary, char *err, size_t n) {
+    FILE *f = fopen(path, "w");
+    if (!f) { snprintf(err, n, "cannot write %s: %s", path, strerror(errno)); return false; }
+    const char *passes[64];
+    int np = union_passes(res, passes, 64);
+    fprintf(f, "settings,label,ok,frame_ms_median,frame_ms_mean,frame_ms_min,passes_ms,rmse,relmse,psnr,ssim,dssim,max_abs,"
+               "nonfinite_pixels,pareto_%s", sl_metric_name(primary));
+    for (int k = 0; k < np; k++) fprintf(f, ",ms_%s", passes[k]);
+    fputc('\n', f);
+    for (int i = 0; i < res->row_count; i++) {
+        const sl_bench_row *r = &res->rows[i];
+        csv_string(f, r->settings);
+        fputc(',', f);
+        csv_string(f, r->label);
+        fprintf(f, ",%d", r->ok);
+        csv_number(f, r->frame_ms_median);
+        csv_number(f, r->frame_ms_mean);
+        csv_number(f, r->frame_ms_min);
+        csv_number(f, r->passes_ms);
+        csv_number(f, r->ok ? r->error.rmse : NAN);
+        csv_number(f, r->ok ? r->error.relmse : NAN);
+        csv_number(f, r->ok ? r->error.psnr : NAN);
+        csv_number(f, r->ok ? r->error.ssim : NAN);
+        csv_number(f, r->ok ? 1 - r->error.ssim : NAN);
+        csv_number(f, r->ok ? r->error.max_abs : NAN);
+        fprintf(f, ",%ld,%d", r->error.nonfinite, r->front[primary]);
+        for (int k = 0; k < np; k++) csv_number(f, pass_median(r, passes[k]));
+        fputc('\n', f);
+    }
+    bool ok = !ferror(f);
+    ok = (fclose(f) == 0) && ok;
+    if (!ok) snprintf(err, n, "cannot write %s", path);
+    return ok;
+}
+
+static cJSON *num(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
+
+bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric primary, char *err, size_t n) {
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "format", "shadelab-bench/1");
+    cJSON_AddStringToObject(root, "created", res->created);
+    cJSON_AddStringToObject(root, "shadelab_version", SL_VERSION);
+    cJSON_AddStringToObject(root, "scene", res->scene);
+    cJSON_AddStringToObject(root, "scene_hash", res->scene_hash);
+    cJSON_AddStringToObject(root, "plugin", res->plugin);
+    cJSON_AddStringToObject(root, "plugins_loaded", res->plugins_loaded ? res->plugins_loaded : "");
+    cJSON_AddNumberToObject(root, "width", res->width);
+    cJSON_AddNumberToObject(root, "height", res->height);
+    cJSON_AddStringToObject(root, "backend", res->backend ? res->backend : "");
+    cJSON_AddStringToObject(root, "renderer", res->renderer ? res->renderer : "");
+    cJSON_AddBoolToObject(root, "gpu", res->gpu);
+    cJSON_AddStringToObject(root, "timing", res->timing_mode ? res->timing_mode : "");
+    cJSON_AddNumberToObject(root, "frames", res->frames);
+    cJSON_AddNumberToObject(root, "warmup_frames", res->warmup);
+    cJSON_AddStringToObject(root, "cost", "frame_ms_median: median CPU wall time of a whole frame over the timed frames");
+    cJSON_AddStringToObject(root, "primary_metric", sl_metric_name(primary));
+    cJSON *md = cJSON_AddObjectToObject(root, "metrics");
+    cJSON_AddStringToObject(md, "rmse", "sqrt(mean((a-b)^2)) over RGB, linear radiance");
+    cJSON_AddStringToObject(md, "relmse", "mean((a-b)^2/(b^2+eps)) over RGB, linear radiance, b = reference");
+    cJSON_AddNumberToObject(md, "relmse_epsilon", SL_RELMSE_EPSILON);
+    cJSON_AddStringToObject(md, "psnr", "20 log10(1/rmse) dB, peak 1, linear radiance");
+    cJSON_AddStringToObject(md, "ssim", "mean SSIM (Wang et al. 2004), 11x11 Gaussian sigma 1.5, K1 0.01, K2 0.03, L 1, valid "
+                                        "windows only, on Y' = 0.2126R'+0.7152G'+0.0722B' of the sRGB-encoded image clamped to [0,1]");
+    cJSON_AddStringToObject(md, "dssim", "1 - ssim");
+    cJSON *ref = cJSON_AddObjectToObject(root, "reference");
+    cJSON_AddStringToObject(ref, "settings", res->reference.settings ? res->reference.settings : "");
+    cJSON_AddNumberToObject(ref, "accumulate", res->reference.accumulate);
+    cJSON_AddStringToObject(ref, "description", res->reference.description ? res->reference.description : "");
+    cJSON_AddStringToObject(ref, "cache_key", res->reference.key);
+    cJSON_AddBoolToObject(ref, "from_cache", res->reference.from_cache);
+    cJSON_AddItemToObject(ref, "render_s", num(res->reference.render_s));
+    cJSON *rows = cJSON_AddArrayToObject(root, "settings");
+    cJSON *front = cJSON_CreateArray();
+    for (int i = 0; i < res->row_count; i++) {
+        const sl_bench_row *r = &res->rows[i];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "settings", r->settings);
+        cJSON_AddStringToObject(o, "label", r->label);
+        cJSON_AddBoolToObject(o, "ok", r->ok);
+        if (!r->ok) cJSON_AddStringToObject(o, "failure", r->failure ? r->failure : "");
+        if (r->ok) {
+            cJSON *fm = cJSON_AddObjectToObject(o, "frame_ms");
+            cJSON_AddItemToObject(fm, "median", num(r->frame_ms_median));
+            cJSON_AddItemToObject(fm, "mean", num(r->frame_ms_mean));
+            cJSON_AddItemToObject(fm, "min", num(r->frame_ms_min));
+            cJSON_AddItemToObject(o, "passes_ms", num(r->passes_ms));
+            cJSON *ps = cJSON_AddArrayToObject(o, "passes");
+            for (int k = 0; k < r->pass_count; k++) {
+                cJSON *p = cJSON_CreateObject();
+                cJSON_AddStringToObject(p, "name", r->passes[k].name);
+                cJSON_AddStringToObject(p, "plugin", r->passes[k].owner);
+                cJSON_AddItemToObject(p, "median_ms", num(r->passes[k].median_ms));
+                cJSON_AddItemToObject(p, "mean_ms", num(r->passes[k].mean_ms));
+                cJSON_AddItemToObject(p, "min_ms", num(r->passes[k].min_ms));
+                cJSON_AddNumberToObject(p, "runs", r->passes[k].runs);
+                cJSON_AddItemToArray(ps, p);
+            }
+            cJSON *e = cJSON_AddObjectToObject(o, "error");
+            cJSON_AddItemToObject(e, "rmse", num(r->error.rmse));
+            cJSON_AddItemToObject(e, "relmse", num(r->error.relmse));
+            cJSON_AddItemToObject(e, "psnr", isinf(r->error.psnr) && r->error.psnr > 0 ? cJSON_CreateString("inf") : num(r->error.psnr));
+            cJSON_AddItemToObject(e, "ssim", num(r->error.ssim));
+            cJSON_AddItemToObject(e, "dssim", num(1 - r->error.ssim));
+            cJSON_AddItemToObject(e, "max_abs", num(r->error.max_abs));
+            cJSON_AddNumberToObject(e, "nonfinite_pixels", r->error.nonfinite);
+            cJSON *pf = cJSON_AddObjectToObject(o, "pareto");
+            for (int m = 0; m < SL_METRIC_COUNT; m++) cJSON_AddBoolToObject(pf, sl_metric_name((sl_metric)m), r->front[m]);
+        }
+        cJSON_AddItemToArray(rows, o);
+        if (r->front[primary]) cJSON_AddItemToArray(front, cJSON_CreateString(r->settings));
+    }
+    cJSON_AddItemToObject(root, "front", front);
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    FILE *f = fopen(path, "w");
+    bool ok = f && text;
+    if (f) {
+        ok = fputs(text, f) >= 0 && fputc('\n', f) != EOF && ok;
+        ok = (fclose(f) == 0) && ok;
+    }
+    if (!ok) snprintf(err, n, "cannot write %s: %s", path, strerror(errno));
+    free(text);
+    return ok;
+}
+
+/* gnuplot on PATH (or $SHADELAB_GNUPLOT)? */
+static const char *find_gnuplot(char *buf, size_t n) {
+    const char *env = getenv("SHADELAB_GNUPLOT");
+    if (env && *env) return access(env, X_OK) ? NULL : env;
+    const char *path = getenv("PATH");
+    if (!path) path = "/usr/bin:/bin";
+    char *copy = strdup(path), *save = NULL;
+    const char *found = NULL;
+    for (char *d = strtok_r(copy, ":", &save); d && !found; d = strtok_r(NULL, ":", &save)) {
+        snprintf(buf, n, "%s/gnuplot", *d ? d : ".");
+        if (!access(buf, X_OK)) found = buf;
+    }
+    free(copy);
+    return found;
+}
+
+/* gnuplot single-quoted string: ' doubles. */
+static void gp_string(FILE *f, const char *s) {
+    fputc('\'', f);
+    for (; *s; s++) {
+        if (*s == '\'') fputc('\'', f);
+        fputc(*s, f);
+    }
+    fputc('\'', f);
+}
+
+static int cmp_cost(const void *a, const void *b) {
+    const double *x = a, *y = b;
+    return x[0] < y[0] ? -1 : x[0] > y[0] ? 1 : (x[1] > y[1]) - (x[1] < y[1]);
+}
+
+int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric metric, char *err, size_t n) {
+    char gpbuf[4096];
+    const char *gp = find_gnuplot(gpbuf, sizeof gpbuf);
+    if (!gp) {
+        snprintf(err, n, "gnuplot not found on PATH: chart %s skipped (install gnuplot-nox, e.g. tools/install-deps.sh; "
+                 "the CSV and JSON are written)", png);
+        return 0;
+    }
+    bool psnr = metric == SL_METRIC_PSNR;
+    /* Zero errors cannot sit on a log axis and PSNR = inf on no axis: such settings (identical
+     * to the reference) are drawn at the bottom (top for PSNR) with their own marker. */
+    double minpos = INFINITY, peak = -INFINITY;
+    for (int i = 0; i < res->row_count; i++) {
+        const sl_bench_row *r = &res->rows[i];
+        if (!r->ok) continue;
+        double y = psnr ? r->error.psnr : sl_metric_value(&r->error, metric);
+        if (!psnr && y > 0 && y < minpos) minpos = y;
+        if (psnr && isfinite(y) && y > peak) peak = y;
+    }
+    double special_y = psnr ? (isfinite(peak) ? peak + 6 : 60) : (isfinite(minpos) ? minpos / 4 : 1e-6);
+    char dir[] = "/tmp/shadelab-chart-XXXXXX";
+    if (!mkdtemp(dir)) { snprintf(err, n, "mkdtemp: %s", strerror(errno)); return -1; }
+    char pts[4200], frt[4200], zero[4200], script[4200];
+    snprintf(pts, sizeof pts, "%s/points.dat", dir);
+    snprintf(frt, sizeof frt, "%s/front.dat", dir);
+    snprintf(zero, sizeof zero, "%s/zero.dat", dir);
+    snprintf(script, sizeof script, "%s/chart.gp", dir);
+    FILE *fp = fopen(pts, "w"), *ff = fopen(frt, "w"), *fz = fopen(zero, "w");
+    double (*front)[2] = calloc(res->row_count + 1, sizeof *front);
+    int nf = 0, nz = 0, npts = 0;
+    for (int i = 0; i < res->row_count && fp && ff && fz; i++) {
+        const sl_bench_row *r = &res->rows[i];
+        if (!r->ok) continue;
+        double y = psnr ? r->error.psnr : sl_metric_value(&r->error, metric);
+        if (isnan(y)) continue;
+        if (psnr ? isinf(y) : y <= 0) {
+            y = special_y;
+            fprintf(fz, "%.6g %.6g \"%s\"\n", r->frame_ms_median, y, r->label);
+            nz++;
+        } else {
+            fprintf(fp, "%.6g %.6g \"%s\"\n", r->frame_ms_median, y, r->label);
+            npts++;
+        }
+        if (r->front[metric]) { front[nf][0] = r->frame_ms_median; front[nf][1] = y; nf++; }
+    }
+    qsort(front, nf, sizeof *front, cmp_cost);
+    for (int i = 0; ff && i < nf; i++) fprintf(ff, "%.6g %.6g\n", front[i][0], front[i][1]);
+    free(front);
+    if (fp) fclose(fp);
+    if (ff) fclose(ff);
+    if (fz) fclose(fz);
+    FILE *g = fopen(script, "w");
+    if (!g) { snprintf(err, n, "cannot write %s", script); return -1; }
+    const char *metric_title = metric == SL_METRIC_RMSE     ? "RMSE vs reference (linear radiance, log scale)"
+                               : metric == SL_METRIC_RELMSE ? "relative MSE vs reference (eps 0.01, log scale)"
+                               : metric == SL_METRIC_DSSIM  ? "1 - SSIM vs reference (display luma, log scale)"
+                                                            : "PSNR vs reference (dB, peak 1, linear radiance; higher is better)";
+    char title[2048];
+    snprintf(title, sizeof title, "%s quality knobs on %s, %dx%d\n%s (%s), %s timing; reference: %s%s",
+             res->plugin, res->scene, res->width, res->height, res->backend, res->renderer ? res->renderer : "?",
+             res->timing_mode ? res->timing_mode : "?", res->reference.settings,
+             res->reference.accumulate > 1 ? " (accumulated)" : "");
+    fprintf(g, "set terminal pngcairo size 960,640 font 'DejaVu Sans,10' noenhanced\n");
+    fprintf(g, "set output ");
+    gp_string(g, png);
+    fprintf(g, "\nset title ");
+    gp_string(g, title);
+    fprintf(g, "\nset xlabel ");
+    char xl[256];
+    snprintf(xl, sizeof xl, "median frame time (ms, %d frames after %d warm-up)", res->frames, res->warmup);
+    gp_string(g, xl);
+    fprintf(g, "\nset ylabel ");
+    gp_string(g, metric_title);
+    fprintf(g, "\nset grid\nset key top right box opaque\nset offsets graph 0.05, graph 0.12, graph 0.08, graph 0.08\n");
+    if (!psnr) fprintf(g, "set logscale y\nset format y '%%g'\n");
+    fprintf(g, "plot ");
+    bool first = true;
+    if (npts) {
+        fprintf(g, "'%s' using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'setting', \\\n", pts);
+        fprintf(g, "     '%s' using 1:2:3 with labels offset char 0.8,0.7 left tc rgb '#333333' notitle", pts);
+        first = false;
+    }
+    if (nz) {
+        fprintf(g, "%s'%s' using 1:2 with points pt 6 ps 1.8 lc rgb '#2ca02c' title '%s', \\\n", first ? "" : ", \\\n     ",
+                zero, psnr ? "identical to the reference (PSNR = inf), drawn at the top"
+                           : "error 0 (identical to the reference), drawn at the axis floor");
+        fprintf(g, "     '%s' using 1:2:3 with labels offset char 0.8,-0.7 left tc rgb '#333333' notitle", zero);
+        first = false;
+    }
+    if (nf) fprintf(g, "%s'%s' using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#d62728' title 'Pareto front'",
+                    first ? "" : ", \\\n     ", frt);
+    fprintf(g, "\n");
+    fclose(g);
+    char cmd[9000];
+    snprintf(cmd, sizeof cmd, "'%s' '%s' 2>'%s/gnuplot.err'", gp, script, dir);
+    int rc = system(cmd);
+    int result = 1;
+    if (rc != 0) {
+        char ep[4300];
+        snprintf(ep, sizeof ep, "%s/gnuplot.err", dir);
+        char *msg = read_text(ep, NULL);
+        snprintf(err, n, "gnuplot failed on %s: %s", png, msg && *msg ? msg : "(no message)");
+        free(msg);
+        result = -1;
+    }
+    /* clean the temporary directory */
+    const char *files[] = {"points.dat", "front.dat", "zero.dat", "chart.gp", "gnuplot.err"};
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        char p[4300];
+        snprintf(p, sizeof p, "%s/%s", dir, files[i]);
+        unlink(p);
+    }
+    rmdir(dir);
+    return result;
+}
