@@ -3,7 +3,7 @@
  * furnace, debug views, the display encoding, accumulation and supersampling. */
 #include "check.h"
 #include <shadelab/harness.h>
-#include <cglm/cglm.h>
+#include "camera_rays.h"
 #include <stdlib.h>
 
 #define W 96
@@ -20,25 +20,8 @@ static sl_harness *make(const char *json, const char *const *settings) {
 }
 
 /* Camera rays from the same definition the scene gives: position, target, vertical fov. */
-static const float cam_pos[3] = {0, 5, 5}, cam_target[3] = {0, 0, 0}, fov_deg = 50;
-
-static bool plane_hit(int px, int py, float hit[3]) {
-    mat4 view, proj, vp, inv;
-    glm_lookat((float *)cam_pos, (float *)cam_target, (vec3){0, 1, 0}, view);
-    glm_perspective(glm_rad(fov_deg), (float)W / H, 0.1f, 100.f, proj);
-    glm_mat4_mul(proj, view, vp);
-    glm_mat4_inv(vp, inv);
-    float nx = (px + 0.5f) / W * 2 - 1, ny = 1 - (py + 0.5f) / H * 2;
-    vec4 a = {nx, ny, -1, 1}, b = {nx, ny, 1, 1}, wa, wb;
-    glm_mat4_mulv(inv, a, wa);
-    glm_mat4_mulv(inv, b, wb);
-    vec3 o = {wa[0] / wa[3], wa[1] / wa[3], wa[2] / wa[3]}, e = {wb[0] / wb[3], wb[1] / wb[3], wb[2] / wb[3]}, d;
-    glm_vec3_sub(e, o, d);
-    if (d[1] >= 0) return false;
-    float t = -o[1] / d[1];
-    for (int i = 0; i < 3; i++) hit[i] = o[i] + t * d[i];
-    return fabsf(hit[0]) < 9.5f && fabsf(hit[2]) < 9.5f;
-}
+static const test_camera cam = {{0, 5, 5}, {0, 0, 0}, 50, W, H};
+static bool plane_hit(int px, int py, float hit[3]) { return test_camera_hit_ground(&cam, px, py, 9.5f, hit); }
 
 #define PLANE_SCENE(LIGHTS, ENV) \
     "{ \"cameras\": [{\"name\": \"c\", \"position\": [0,5,5], \"target\": [0,0,0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}]," \

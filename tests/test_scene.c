@@ -351,6 +351,24 @@ static void test_nesting_limits(void) {
     CHECK_CONTAINS(err, "nested deeper than 64 levels");
     free(text);
 
+    /* counts: too many entries or keys is refused before any quadratic work */
+    text = malloc(20001 * 3 + 64);
+    strcpy(text, "{ \"lights\": [");
+    char *w = text + strlen(text);
+    for (int i = 0; i < 20001; i++) w += sprintf(w, "%s{}", i ? "," : "");
+    strcpy(w, "] }");
+    CHECK(!load_text(&s, text));
+    CHECK_CONTAINS(err, "\"lights\" has 20001 entries; at most 20000 are allowed");
+    free(text);
+    text = malloc(1100 * 16 + 64);
+    strcpy(text, "{ \"materials\": [ { \"name\": \"m\"");
+    w = text + strlen(text);
+    for (int i = 0; i < 1100; i++) w += sprintf(w, ", \"k%d\": 1", i);
+    strcpy(w, " } ] }");
+    CHECK(!load_text(&s, text));
+    CHECK_CONTAINS(err, "material 'm' has 1101 keys; at most 1024 are allowed");
+    free(text);
+
     /* JSON nesting beyond cJSON's limit */
     text = malloc(5000);
     strcpy(text, "{ \"x\": ");

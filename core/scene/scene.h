@@ -135,15 +135,22 @@ char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const c
 /* The property with this key, or NULL. */
 const sl_prop *sl_prop_find(const sl_prop_list *list, const char *key);
 
-/* Procedural primitives (core/scene/primitives.c). All have normals, uvs and tangents. */
+/* Procedural primitives (core/scene/primitives.c). All have normals, uvs and tangents (w = +1),
+ * CCW front faces, bounds; each returns false with *m zeroed on invalid arguments (non-positive
+ * or non-finite sizes, too few or too many segments). UV layouts: scenes/README.md. */
+/* Lat-long UV sphere: u = φ/2π, v = θ/π for d = (sin θ sin φ, cos θ, sin θ cos φ). */
 bool sl_mesh_sphere(sl_mesh_data *m, float radius, int segments, int rings);
 bool sl_mesh_plane(sl_mesh_data *m, float size_x, float size_z, int subdivisions); /* +Y up */
 bool sl_mesh_cube(sl_mesh_data *m, float size);
 bool sl_mesh_torus(sl_mesh_data *m, float major_radius, float minor_radius, int segments, int sides);
-/* The Utah teapot from Newell's 32 bicubic Bezier patches, tessellated per patch. */
+/* The Utah teapot from Newell's 32 bicubic Bezier patches, tessellated per patch
+ * (tessellation² quads each), Y up, standing on y = 0, height `size`. */
 bool sl_mesh_teapot(sl_mesh_data *m, float size, int tessellation);
 /* Loads every mesh in a glTF/OBJ/… file through assimp, appending meshes, materials, lights
- * and cameras to the scene under a new node (see scene_assimp.c). */
+ * and cameras to the scene under a new node, child of parent_node (−1: a root). path is used
+ * as given (resolve it first). Needs the parent's world matrix (sl_scene_update_transforms)
+ * to place lights and cameras. On failure err says why ("path: assimp could not import it:
+ * …") and the scene may hold part of the file (a loader then discards the whole scene). */
 bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
 /* Generates tangents (xyz + handedness w) from positions, normals and uvs; degenerate UVs
  * fall back to an arbitrary tangent orthogonal to the normal. */

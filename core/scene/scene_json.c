@@ -26,6 +26,10 @@
 extern const char sl_default_scene_json[]; /* generated from scenes/default.json */
 
 #define MAX_SCENE_FILE_BYTES (64u << 20)
+/* Name and key checks are linear scans: bounded counts keep hostile files from taking
+ * quadratic time. Far above any hand-written scene. */
+#define MAX_ITEMS 20000 /* materials, cameras, lights, nodes (each) */
+#define MAX_KEYS 1024   /* keys in one object */
 
 typedef struct pos_entry { const cJSON *item; int line, col; } pos_entry;
 
@@ -403,9 +407,12 @@ static bool in_list(const char *key, const char *const *list, int count) {
     return false;
 }
 
-/* Warns about unknown keys (structural objects) and duplicate keys (any object). */
-static void check_keys(loader *L, const cJSON *obj, const char *ctx, const char *const *valid,
+/* Warns about unknown keys (structural objects) and duplicate keys (any object); fails on an
+ * object with more than MAX_KEYS keys. */
+static bool check_keys(loader *L, const cJSON *obj, const char *ctx, const char *const *valid,
                        int count, bool unknown_is_prop) {
+    if (cJSON_GetArraySize(obj) > MAX_KEYS)
+        return failf(L, obj, "%s has %d keys; at most %d are allowed", ctx, cJSON_GetArraySize(obj), MAX_KEYS);
     for (const cJSON *k = obj->child; k; k = k->next) {
         for (const cJSON *e = obj->child; e != k; e = e->next)
             if (strcmp(e->string, k->string) == 0) {
@@ -426,6 +433,13 @@ static void check_keys(loader *L, const cJSON *obj, const char *ctx, const char 
                       k->string, near);
         }
     }
+    return true;
+}
+
+static bool check_count(loader *L, const cJSON *arr, const char *what) {
+    int n = cJSON_GetArraySize(arr);
+    if (n > MAX_ITEMS) return failf(L, arr, "\"%s\" has %d entries; at most %d are allowed", what, n, MAX_ITEMS);
+    return true;
 }
 
 /* Names: non-empty strings without control characters, at most 255 bytes. */
@@ -461,6 +475,7 @@ static bool load_plugins(loader *L, const cJSON *arr) {
     if (!cJSON_IsArray(arr))
         return failf(L, arr, "\"plugins\" must be an array of plugin names, found %s",
                      describe(arr, buf, sizeof buf));
+    if (!check_count(L, arr, "plugins")) return false;
     for (const cJSON *e = arr->child; e; e = e->next) {
         if (!cJSON_IsString(e) || !e->valuestring[0])
             return failf(L, e, "\"plugins\": each entry must be a plugin name (a string), found %s",
@@ -494,7 +509,7 @@ static bool load_params(loader *L, const cJSON *obj) {
     if (!cJSON_IsObject(obj))
         return failf(L, obj, "\"params\" must be an object of \"plugin.param\": value, found %s",
                      describe(obj, buf, sizeof buf));
-    check_keys(L, obj, "params", NULL, 0, true);
+    if (!check_keys(L, obj, "params", NULL, 0, true)) return false;
     for (const cJSON *e = obj->child; e; e = e->next) {
         if (strcmp(e->string, "comment") == 0) continue;
         const char *dot = strchr(e->string, '.');
@@ -516,6 +531,7 @@ static bool load_materials(loader *L, const cJSON *arr) {
     char buf[96];
     if (!cJSON_IsArray(arr))
         return failf(L, arr, "\"materials\" must be an array of objects, found %s", describe(arr, buf, sizeof buf));
+    if (!check_count(L, arr, "materials")) return false;
     int index = 0;
     for (const cJSON *o = arr->child; o; o = o->next, index++) {
         if (!cJSON_IsObject(o))
@@ -537,7 +553,7 @@ static bool load_materials(loader *L, const cJSON *arr) {
         bool cast = true;
         if ((v = cJSON_GetObjectItemCaseSensitive(o, "cast_shadows")) && !get_bool(L, v, ctx, &cast)) return false;
         L->scene->materials[mi].cast_shadows = cast;
-        check_keys(L, o, ctx, material_known, 9, true);
+        if (!check_keys(L, o, ctx, material_known, 9, true)) return false;
         for (const cJSON *e = o->child; e; e = e->next) {
             if (in_list(e->string, material_keys, 3) || strcmp(e->string, "comment") == 0) continue;
             if (!get_prop(L, e, ctx, &L->scene->materials[mi].props)) return false;
@@ -552,6 +568,7 @@ static bool load_cameras(loader *L, const cJSON *arr) {
     char buf[96];
     if (!cJSON_IsArray(arr))
         return failf(L, arr, "\"cameras\" must be an array of objects, found %s", describe(arr, buf, sizeof buf));
+    if (!check_count(L, arr, "cameras")) return false;
     int index = 0;
     for (const cJSON *o = arr->child; o; o = o->next, index++) {
         if (!cJSON_IsObject(o))
@@ -563,7 +580,7 @@ static bool load_cameras(loader *L, const cJSON *arr) {
         if (prev >= 0)
             return failf(L, o, "duplicate camera name '%s' (%s); names must be unique", name,
                          first_defined(prev < L->camera_lines_n ? L->camera_lines[prev] : 0, buf, sizeof buf));
-        check_keys(L, o, ctx, camera_keys, 7, false);
+        if (!check_keys(L, o, ctx, camera_keys, 7, false)) return false;
         int ci = sl_scene_add_camera(L->scene, name);
         if (ci < 0 || !remember_line(&L->camera_lines, &L->camera_lines_n, ci, line_of(L, o)))
             return failf(L, o, "out of memory");
@@ -596,6 +613,7 @@ static bool load_lights(loader *L, const cJSON *arr) {
     char buf[96];
     if (!cJSON_IsArray(arr))
         return failf(L, arr, "\"lights\" must be an array of objects, found %s", describe(arr, buf, sizeof buf));
+    if (!check_count(L, arr, "lights")) return false;
     int index = 0;
     for (const cJSON *o = arr->child; o; o = o->next, index++) {
         if (!cJSON_IsObject(o))
@@ -611,7 +629,7 @@ static bool load_lights(loader *L, const cJSON *arr) {
         const char *type = NULL;
         if (!v) return failf(L, o, "%s has no \"type\" (\"directional\", \"point\" or a plugin's light type such as \"spot\")", ctx);
         if (!get_string(L, v, ctx, &type)) return false;
-        check_keys(L, o, ctx, light_keys, 8, true);
+        if (!check_keys(L, o, ctx, light_keys, 8, true)) return false;
         int li = sl_scene_add_light(L->scene, name, type);
         if (li < 0) return failf(L, o, "out of memory");
         sl_light *l = &L->scene->lights[li];
@@ -650,7 +668,7 @@ static bool load_environment(loader *L, const cJSON *o) {
     char buf[96];
     const char *ctx = "environment";
     if (!cJSON_IsObject(o)) return failf(L, o, "\"environment\" must be an object, found %s", describe(o, buf, sizeof buf));
-    check_keys(L, o, ctx, environment_keys, 4, true);
+    if (!check_keys(L, o, ctx, environment_keys, 4, true)) return false;
     sl_environment *env = &L->scene->environment;
     const cJSON *v;
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "map"))) {
@@ -708,7 +726,7 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
     if (strcmp(kind, "sphere") == 0) {
         float radius = 1.0f;
         int segments = 64, rings = 32;
-        check_keys(L, mesh, ctx, sphere_keys, 4, false);
+        if (!check_keys(L, mesh, ctx, sphere_keys, 4, false)) return false;
         OPT_NUM("radius", &radius, 0.0, true, FLT_MAX);
         OPT_INT("segments", &segments, 3, 2048);
         OPT_INT("rings", &rings, 2, 1024);
@@ -716,7 +734,7 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
     } else if (strcmp(kind, "plane") == 0) {
         float size[2] = {10.0f, 10.0f};
         int subdivisions = 1;
-        check_keys(L, mesh, ctx, plane_keys, 3, false);
+        if (!check_keys(L, mesh, ctx, plane_keys, 3, false)) return false;
         if ((v = cJSON_GetObjectItemCaseSensitive(mesh, "size"))) {
             if (cJSON_IsArray(v)) {
                 if (!get_vec(L, v, ctx, 2, size, false)) return false;
@@ -731,13 +749,13 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
         ok = sl_mesh_plane(out, size[0], size[1], subdivisions);
     } else if (strcmp(kind, "cube") == 0) {
         float size = 1.0f;
-        check_keys(L, mesh, ctx, cube_keys, 2, false);
+        if (!check_keys(L, mesh, ctx, cube_keys, 2, false)) return false;
         OPT_NUM("size", &size, 0.0, true, FLT_MAX);
         ok = sl_mesh_cube(out, size);
     } else if (strcmp(kind, "torus") == 0) {
         float major = 1.0f, minor = 0.25f;
         int segments = 64, sides = 32;
-        check_keys(L, mesh, ctx, torus_keys, 5, false);
+        if (!check_keys(L, mesh, ctx, torus_keys, 5, false)) return false;
         OPT_NUM("major_radius", &major, 0.0, true, FLT_MAX);
         OPT_NUM("minor_radius", &minor, 0.0, true, FLT_MAX);
         OPT_INT("segments", &segments, 3, 2048);
@@ -749,7 +767,7 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
     } else {
         float size = 1.0f;
         int tessellation = 16;
-        check_keys(L, mesh, ctx, teapot_keys, 3, false);
+        if (!check_keys(L, mesh, ctx, teapot_keys, 3, false)) return false;
         OPT_NUM("size", &size, 0.0, true, FLT_MAX);
         OPT_INT("tessellation", &tessellation, 1, 128);
         ok = sl_mesh_teapot(out, size, tessellation);
@@ -795,7 +813,7 @@ static bool load_mesh(loader *L, const cJSON *mesh, int node, int material, cons
     if (!get_string(L, file, ctx, &rel)) return false;
     const cJSON *v;
     if ((v = cJSON_GetObjectItemCaseSensitive(mesh, "model")) && !get_string(L, v, ctx, &model)) return false;
-    check_keys(L, mesh, ctx, file_keys, 2, false);
+    if (!check_keys(L, mesh, ctx, file_keys, 2, false)) return false;
     char why[2048];
     char *path = sl_scene_resolve_path(L->scene, L->data_dir, rel, why, sizeof why);
     if (!path) return failf(L, file, "%s: mesh file %s", ctx, why);
@@ -822,6 +840,7 @@ static const char *const node_keys[] = {"name", "parent", "children", "translate
 static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *counter) {
     char buf[96];
     int index = (*counter)++;
+    if (index >= MAX_ITEMS) return failf(L, o, "more than %d nodes; at most %d are allowed", MAX_ITEMS, MAX_ITEMS);
     if (!cJSON_IsObject(o)) return failf(L, o, "node #%d must be an object, found %s", index, describe(o, buf, sizeof buf));
     if (depth > SL_SCENE_MAX_DEPTH)
         return failf(L, o, "nodes are nested deeper than %d levels of \"children\"", SL_SCENE_MAX_DEPTH);
@@ -833,7 +852,7 @@ static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *cou
         return failf(L, cJSON_GetObjectItemCaseSensitive(o, "name"), "duplicate node name '%s' "
                      "(%s); names must be unique", name,
                      first_defined(prev < L->node_lines_n ? L->node_lines[prev] : 0, buf, sizeof buf));
-    check_keys(L, o, ctx, node_keys, 9, false);
+    if (!check_keys(L, o, ctx, node_keys, 9, false)) return false;
     const cJSON *v;
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "parent"))) {
         const char *pname;
@@ -1121,7 +1140,10 @@ static bool load(loader *L, const char *dir) {
         goto done;
     }
     s->environment.intensity = 1.0f;
-    check_keys(L, root, "top level", top_keys, 7, false);
+    if (!check_keys(L, root, "top level", top_keys, 7, false)) {
+        ok = false;
+        goto done;
+    }
     const cJSON *v;
     if (ok && (v = cJSON_GetObjectItemCaseSensitive(root, "plugins"))) ok = load_plugins(L, v);
     if (ok && (v = cJSON_GetObjectItemCaseSensitive(root, "params"))) ok = load_params(L, v);

@@ -3,6 +3,7 @@
 #include "bench.h"
 #include "pareto.h"
 #include "log.h"
+#include "render/composer.h"
 #include <cjson/cJSON.h>
 #include <dirent.h>
 #include <math.h>
@@ -156,7 +157,7 @@ static bool add_path(front_list *l, const char *path, bool must_exist, char *err
 }
 
 static uint64_t app_scene_hash(sl_app *app) {
-    if (app->opt.scene_text) return sl_hash64_text(app->opt.scene_text);
+    if (app->opt.scene_text) return sl_hash64(app->opt.scene_text, strlen(app->opt.scene_text), 0);
     return sl_bench_scene_hash(app->opt.scene_path);
 }
 

@@ -34,16 +34,6 @@ static double now_s(void) {
 
 static char *xstrdup(const char *s) { return s ? strdup(s) : NULL; }
 
-static char *xasprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static char *xasprintf(const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    char *s = NULL;
-    if (vasprintf(&s, fmt, ap) < 0) s = NULL;
-    va_end(ap);
-    return s;
-}
-
 /* ------------------------------------------------------------------ files and hashes -- */
 
 bool sl_bench_mkdirs(const char *dir, char *err, size_t n) {
@@ -192,15 +182,15 @@ static void close_app(bench_app *b) {
 }
 
 /* Scene + plugins + base settings + `settings`; GL started when `gl`. */
-static bool open_app(const sl_bench_options *o, const char *settings, int accumulate, bool gl, bench_app *b,
+static bool open_app(const sl_bench_options *o, const char *settings, int accumulate, int scale, bool gl, bench_app *b,
                      char *err, size_t n) {
     memset(b, 0, sizeof *b);
     sl_app_options opt = {0};
     opt.scene_path = o->scene_path;
     opt.data_dir = o->data_dir;
     opt.backend = o->backend ? o->backend : SL_BACKEND_OSMESA;
-    opt.width = o->width > 0 ? o->width : 320;
-    opt.height = o->height > 0 ? o->height : 180;
+    opt.width = (o->width > 0 ? o->width : 320) * scale;
+    opt.height = (o->height > 0 ? o->height : 180) * scale;
     opt.float32 = o->float32;
     opt.accumulate = accumulate > 1 ? accumulate : 1;
     opt.strict = true; /* measure exactly the plugins asked for, or stop */
@@ -321,14 +311,15 @@ bool sl_bench_enumerate(const sl_bench_options *o, char ***out, int *out_count, 
         return true;
     }
     bench_app b;
-    if (!open_app(o, "", 1, false, &b, err, n)) { close_app(&b); return false; }
+    if (!open_app(o, "", 1, 1, false, &b, err, n)) { close_app(&b); return false; }
     sl_params *ps = &b.app.params;
     knob knobs[32];
     int nk = 0;
     for (int i = 0; i < ps->count && nk < 32; i++) {
         const sl_param *p = &ps->items[i];
         if (p->desc.scope != SL_SCOPE_GLOBAL || !(p->desc.flags & SL_PARAM_QUALITY_KNOB) || strcmp(p->owner, o->plugin)) continue;
-        knob *k = &knobs[nk] = (knob){.p = p};
+        knobs[nk] = (knob){.p = p};
+        knob *k = &knobs[nk];
         const char *vary = NULL;
         size_t idlen = strlen(p->full_id);
         for (int v = 0; v < o->vary_count; v++)
@@ -400,6 +391,13 @@ static int cmp_double(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
+static void summarise(const double *v, int n, double *med, double *mean, double *mn);
+static double median_of(const double *v, int n) {
+    double med, mean, mn;
+    summarise(v, n, &med, &mean, &mn);
+    return med;
+}
+
 static void summarise(const double *v, int n, double *med, double *mean, double *mn) {
     if (n <= 0) { *med = *mean = *mn = NAN; return; }
     double *c = malloc(sizeof *c * n);
@@ -413,49 +411,60 @@ static void summarise(const double *v, int n, double *med, double *mean, double 
     free(c);
 }
 
-/* Renders warm-up + timed frames and fills the row's timing; then renders the frame at time 0
- * whose colour is compared with the reference. */
-static bool time_setting(sl_app *app, int warmup, int frames, sl_bench_row *row, float *image) {
-    series s[64];
-    int ns = 0;
-    double *frame = calloc(frames + 1, sizeof *frame);
+/* Raw timings of one setting, pooled over rounds. */
+typedef struct samples { series s[64]; int ns; double *frame; int nframe; } samples;
+
+static void samples_free(samples *sm) {
+    for (int k = 0; k < sm->ns; k++) { free((char *)sm->s[k].name); free((char *)sm->s[k].owner); free(sm->s[k].ms); }
+    free(sm->frame);
+    memset(sm, 0, sizeof *sm);
+}
+
+/* Renders warm-up + timed frames, appending their times; then, when image is not NULL,
+ * renders the frame at time 0 whose colour is compared with the reference. */
+static bool time_setting(sl_app *app, int warmup, int frames, samples *sm, float *image) {
     bool ok = true;
+    sm->frame = realloc(sm->frame, sizeof *sm->frame * (sm->nframe + frames + 1));
     for (int f = 0; f < warmup + frames && ok; f++) {
         app->time = f * app->opt.fixed_dt;
         ok = sl_app_render_frame(app);
         if (!ok || f < warmup) continue;
         const sl_frame_stats *st = sl_renderer_stats(app);
-        frame[f - warmup] = st->frame_ms;
+        sm->frame[sm->nframe++] = st->frame_ms;
         for (int i = 0; i < st->pass_count; i++) {
             if (!st->passes[i].ran) continue;
             series *e = NULL;
-            for (int k = 0; k < ns; k++)
-                if (!strcmp(s[k].name, st->passes[i].name)) e = &s[k];
-            if (!e && ns < 64) e = &s[ns++], *e = (series){.name = st->passes[i].name, .owner = st->passes[i].owner};
+            for (int k = 0; k < sm->ns; k++)
+                if (!strcmp(sm->s[k].name, st->passes[i].name)) e = &sm->s[k];
+            if (!e && sm->ns < 64) { /* names are copied: a plugin's strings go with its app */
+                e = &sm->s[sm->ns++];
+                *e = (series){.name = strdup(st->passes[i].name), .owner = strdup(st->passes[i].owner ? st->passes[i].owner : "")};
+            }
             if (!e) continue;
             e->ms = realloc(e->ms, sizeof *e->ms * (e->n + 1));
             e->ms[e->n++] = st->passes[i].ms;
         }
     }
-    if (ok) {
-        row->frames = frames;
-        summarise(frame, frames, &row->frame_ms_median, &row->frame_ms_mean, &row->frame_ms_min);
-        row->passes = calloc(ns + 1, sizeof *row->passes);
-        row->passes_ms = 0;
-        for (int k = 0; k < ns; k++) {
-            sl_bench_pass *p = &row->passes[row->pass_count++];
-            p->name = strdup(s[k].name);
-            p->owner = strdup(s[k].owner ? s[k].owner : "");
-            p->runs = s[k].n;
-            summarise(s[k].ms, s[k].n, &p->median_ms, &p->mean_ms, &p->min_ms);
-            row->passes_ms += p->median_ms;
-        }
+    if (ok && image) {
         app->time = 0;
         ok = sl_app_render_frame(app) && sl_app_read_color(app, image);
     }
-    for (int k = 0; k < ns; k++) free(s[k].ms);
-    free(frame);
     return ok;
+}
+
+static void finish_row(sl_bench_row *row, const samples *sm) {
+    row->frames = sm->nframe;
+    summarise(sm->frame, sm->nframe, &row->frame_ms_median, &row->frame_ms_mean, &row->frame_ms_min);
+    row->passes = calloc(sm->ns + 1, sizeof *row->passes);
+    row->passes_ms = 0;
+    for (int k = 0; k < sm->ns; k++) {
+        sl_bench_pass *p = &row->passes[row->pass_count++];
+        p->name = strdup(sm->s[k].name);
+        p->owner = strdup(sm->s[k].owner);
+        p->runs = sm->s[k].n;
+        summarise(sm->s[k].ms, sm->s[k].n, &p->median_ms, &p->mean_ms, &p->min_ms);
+        row->passes_ms += p->median_ms;
+    }
 }
 
 /* ------------------------------------------------------------------ reference cache --- */
@@ -529,10 +538,23 @@ static uint64_t reference_key(const sl_bench_options *o, sl_app *app, const char
     return h;
 }
 
+/* K×K box filter of a (K·w)×(K·h) image down to w×h (--reference-scale). */
+static void box_filter(const float *big, int w, int h, int k, float *out) {
+    const size_t bw = (size_t)w * k;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            for (int c = 0; c < 4; c++) {
+                double s = 0;
+                for (int j = 0; j < k; j++)
+                    for (int i = 0; i < k; i++) s += big[((size_t)(y * k + j) * bw + (size_t)x * k + i) * 4 + c];
+                out[((size_t)y * w + x) * 4 + c] = (float)(s / (k * k));
+            }
+}
+
 static bool render_reference(const sl_bench_options *o, sl_bench_result *res, char *err, size_t n) {
     /* the declared reference, read from a GL-less app */
     bench_app b;
-    if (!open_app(o, "", 1, false, &b, err, n)) { close_app(&b); return false; }
+    if (!open_app(o, "", 1, 1, false, &b, err, n)) { close_app(&b); return false; }
     sl_plugin_rec *r = plugin_rec(&b.app, o->plugin);
     const char *settings = o->reference_settings ? o->reference_settings : r->has_reference ? r->reference.settings : NULL;
     if (!settings) {
@@ -547,10 +569,15 @@ static bool render_reference(const sl_bench_options *o, sl_bench_result *res, ch
               : r->has_reference && r->reference.accumulate_frames > 1 ? r->reference.accumulate_frames : 1;
     res->reference.accumulate = acc;
     close_app(&b);
+    settings = res->reference.settings; /* the app that owned the declared text is gone */
 
-    if (o->progress) fprintf(stderr, "[bench] reference: %s, %d frame%s accumulated\n", settings, acc, acc > 1 ? "s" : "");
-    if (!open_app(o, settings, acc, true, &b, err, n)) { close_app(&b); return false; }
-    int w = b.app.backend.width, h = b.app.backend.height;
+    if (o->progress)
+        fprintf(stderr, "[bench] reference: %s, %d frame%s accumulated%s\n", settings, acc, acc > 1 ? "s" : "",
+                o->reference_scale > 1 ? ", rendered at a larger size and box-filtered down" : "");
+    int scale = o->reference_scale > 1 ? o->reference_scale : 1;
+    res->reference.scale = scale;
+    if (!open_app(o, settings, acc, scale, true, &b, err, n)) { close_app(&b); return false; }
+    int w = b.app.backend.width / scale, h = b.app.backend.height / scale;
     res->reference.pixels = malloc(sizeof(float) * 4 * w * h);
     char desc[8192];
     uint64_t key = reference_key(o, &b.app, settings, acc, desc, sizeof desc);
@@ -570,7 +597,10 @@ static bool render_reference(const sl_bench_options *o, sl_bench_result *res, ch
     }
     double t0 = now_s();
     b.app.time = 0;
-    bool ok = sl_app_render_frame(&b.app) && sl_app_read_color(&b.app, res->reference.pixels);
+    float *big = scale > 1 ? malloc(sizeof(float) * 4 * (size_t)w * h * scale * scale) : res->reference.pixels;
+    bool ok = big && sl_app_render_frame(&b.app) && sl_app_read_color(&b.app, big);
+    if (ok && scale > 1) box_filter(big, w, h, scale, res->reference.pixels);
+    if (big != res->reference.pixels) free(big);
     res->reference.render_s = now_s() - t0;
     close_app(&b);
     if (!ok) { snprintf(err, n, "the reference render failed"); return false; }
@@ -643,62 +673,90 @@ bool sl_bench_run(const sl_bench_options *o, sl_bench_result *res, char *err, si
         return false;
     }
     res->rows = calloc(count + 1, sizeof *res->rows);
+    res->row_count = count;
+    samples *sm = calloc(count + 1, sizeof *sm);
+    /* rounds: every setting is timed in each round, so a burst of load on a shared machine
+     * spreads over all settings instead of biasing one */
+    int rounds = o->rounds > 1 ? o->rounds : 1;
+    int per_round = (res->frames + rounds - 1) / rounds;
+    res->rounds = rounds;
+    res->frames = per_round * rounds;
     double t_settings = now_s();
     float *image = NULL;
+    int steps = count * rounds, step = 0;
+    for (int round = 0; round < rounds; round++)
+        for (int i = 0; i < count; i++) {
+            sl_bench_row *row = &res->rows[i];
+            step++;
+            if (round == 0) {
+                row->settings = settings[i];
+                row->label = sl_bench_label(settings[i], o->plugin);
+            } else if (!row->ok) {
+                continue;
+            }
+            double t0 = now_s();
+            if (o->progress && rounds > 1)
+                fprintf(stderr, "[bench] step %d of %d (setting %d of %d, round %d of %d): %s …\n", step, steps, i + 1, count,
+                        round + 1, rounds, row->settings);
+            else if (o->progress)
+                fprintf(stderr, "[bench] setting %d of %d: %s …\n", i + 1, count, row->settings);
+            bench_app b;
+            char why[4096] = "";
+            bool ok = false;
+            if (open_app(o, row->settings, 1, 1, true, &b, why, sizeof why)) {
+                int w = b.app.backend.width, h = b.app.backend.height;
+                if (!res->backend) {
+                    res->width = w;
+                    res->height = h;
+                    res->backend = strdup(b.app.backend.name);
+                    const char *rs = (const char *)glGetString(GL_RENDERER);
+                    res->renderer = strdup(rs ? rs : "?");
+                    res->gpu = b.app.backend.is_gpu;
+                    char list[2048] = "";
+                    size_t u = 0;
+                    for (int k = 0; k < b.app.plugins.count && u < sizeof list; k++)
+                        if (b.app.plugins.items[k]->ok)
+                            u += snprintf(list + u, sizeof list - u, "%s%s %s", u ? ", " : "", b.app.plugins.items[k]->id,
+                                          b.app.plugins.items[k]->desc.version ? b.app.plugins.items[k]->desc.version : "");
+                    res->plugins_loaded = strdup(list);
+                }
+                if (!image) image = malloc(sizeof(float) * 4 * w * h);
+                ok = time_setting(&b.app, res->warmup, per_round, &sm[i], round == 0 ? image : NULL);
+                if (ok && round == 0) {
+                    if (!res->timing_mode) res->timing_mode = strdup(sl_renderer_stats(&b.app)->timing_mode);
+                    sl_metric_all(image, res->reference.pixels, w, h, &row->error);
+                    if (o->image_prefix) save_image(o, row->label, image, w, h);
+                }
+                if (!ok) snprintf(why, sizeof why, "rendering failed");
+            }
+            close_app(&b);
+            if (round == 0) row->ok = ok;
+            if (!ok) {
+                row->ok = false;
+                free(row->failure);
+                row->failure = strdup(why);
+                SL_ERROR("setting %s: %s", row->settings, why);
+            }
+            row->wall_s += now_s() - t0;
+            if (o->progress) {
+                double elapsed = now_s() - t_start, per = (now_s() - t_settings) / step;
+                char e[64], left[64];
+                fmt_duration(elapsed, e, sizeof e);
+                fmt_duration(per * (steps - step), left, sizeof left);
+                if (row->ok)
+                    fprintf(stderr, "[bench]   %s: %.3f ms/frame (median of this round's %d), rmse %.3g, ssim %.4f; "
+                            "elapsed %s, about %s left\n", row->label,
+                            median_of(sm[i].frame + sm[i].nframe - per_round, per_round), per_round,
+                            row->error.rmse, row->error.ssim, e, left);
+                else
+                    fprintf(stderr, "[bench]   %s FAILED; elapsed %s, about %s left\n", row->label, e, left);
+            }
+        }
     for (int i = 0; i < count; i++) {
-        sl_bench_row *row = &res->rows[res->row_count++];
-        row->settings = settings[i];
-        row->label = sl_bench_label(settings[i], o->plugin);
-        double t0 = now_s();
-        if (o->progress) fprintf(stderr, "[bench] setting %d of %d: %s …\n", i + 1, count, row->settings);
-        bench_app b;
-        char why[4096] = "";
-        if (open_app(o, row->settings, 1, true, &b, why, sizeof why)) {
-            int w = b.app.backend.width, h = b.app.backend.height;
-            if (!res->backend) {
-                res->width = w;
-                res->height = h;
-                res->backend = strdup(b.app.backend.name);
-                const char *rs = (const char *)glGetString(GL_RENDERER);
-                res->renderer = strdup(rs ? rs : "?");
-                res->gpu = b.app.backend.is_gpu;
-                char list[2048] = "";
-                size_t u = 0;
-                for (int k = 0; k < b.app.plugins.count && u < sizeof list; k++)
-                    if (b.app.plugins.items[k]->ok)
-                        u += snprintf(list + u, sizeof list - u, "%s%s %s", u ? ", " : "", b.app.plugins.items[k]->id,
-                                      b.app.plugins.items[k]->desc.version ? b.app.plugins.items[k]->desc.version : "");
-                res->plugins_loaded = strdup(list);
-            }
-            if (!image) image = malloc(sizeof(float) * 4 * w * h);
-            if (time_setting(&b.app, res->warmup, res->frames, row, image)) {
-                row->ok = true;
-                if (!res->timing_mode) res->timing_mode = strdup(sl_renderer_stats(&b.app)->timing_mode);
-                sl_metric_all(image, res->reference.pixels, w, h, &row->error);
-                if (o->image_prefix) save_image(o, row->label, image, w, h);
-            } else {
-                snprintf(why, sizeof why, "rendering failed");
-            }
-        }
-        close_app(&b);
-        if (!row->ok) {
-            row->failure = strdup(why);
-            SL_ERROR("setting %s: %s", row->settings, why);
-        }
-        row->wall_s = now_s() - t0;
-        if (o->progress) {
-            double elapsed = now_s() - t_start, per = (now_s() - t_settings) / (i + 1);
-            char e[64], left[64];
-            fmt_duration(elapsed, e, sizeof e);
-            fmt_duration(per * (count - i - 1), left, sizeof left);
-            if (row->ok)
-                fprintf(stderr, "[bench] setting %d of %d: %s: %.3f ms/frame (median of %d), rmse %.3g, ssim %.4f; "
-                        "elapsed %s, about %s left\n", i + 1, count, row->label, row->frame_ms_median, row->frames,
-                        row->error.rmse, row->error.ssim, e, left);
-            else
-                fprintf(stderr, "[bench] setting %d of %d: %s FAILED; elapsed %s, about %s left\n", i + 1, count, row->label, e, left);
-        }
+        if (res->rows[i].ok) finish_row(&res->rows[i], &sm[i]);
+        samples_free(&sm[i]);
     }
+    free(sm);
     if (o->image_prefix && res->width) save_image(o, "reference", res->reference.pixels, res->width, res->height);
     free(image);
     free(settings);
@@ -819,6 +877,7 @@ bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric
     cJSON_AddStringToObject(root, "timing", res->timing_mode ? res->timing_mode : "");
     cJSON_AddNumberToObject(root, "frames", res->frames);
     cJSON_AddNumberToObject(root, "warmup_frames", res->warmup);
+    cJSON_AddNumberToObject(root, "rounds", res->rounds);
     cJSON_AddStringToObject(root, "cost", "frame_ms_median: median CPU wall time of a whole frame over the timed frames");
     cJSON_AddStringToObject(root, "primary_metric", sl_metric_name(primary));
     cJSON *md = cJSON_AddObjectToObject(root, "metrics");
@@ -832,6 +891,7 @@ bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric
     cJSON *ref = cJSON_AddObjectToObject(root, "reference");
     cJSON_AddStringToObject(ref, "settings", res->reference.settings ? res->reference.settings : "");
     cJSON_AddNumberToObject(ref, "accumulate", res->reference.accumulate);
+    cJSON_AddNumberToObject(ref, "scale", res->reference.scale);
     cJSON_AddStringToObject(ref, "description", res->reference.description ? res->reference.description : "");
     cJSON_AddStringToObject(ref, "cache_key", res->reference.key);
     cJSON_AddBoolToObject(ref, "from_cache", res->reference.from_cache);
@@ -906,14 +966,15 @@ static const char *find_gnuplot(char *buf, size_t n) {
     return found;
 }
 
-/* gnuplot single-quoted string: ' doubles. */
+/* gnuplot double-quoted string: backslash, quote and newline escaped. */
 static void gp_string(FILE *f, const char *s) {
-    fputc('\'', f);
+    fputc('"', f);
     for (; *s; s++) {
-        if (*s == '\'') fputc('\'', f);
+        if (*s == '\n') { fputs("\\n", f); continue; }
+        if (*s == '"' || *s == '\\') fputc('\\', f);
         fputc(*s, f);
     }
-    fputc('\'', f);
+    fputc('"', f);
 }
 
 static int cmp_cost(const void *a, const void *b) {
@@ -983,6 +1044,10 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
              res->plugin, res->scene, res->width, res->height, res->backend, res->renderer ? res->renderer : "?",
              res->timing_mode ? res->timing_mode : "?", res->reference.settings,
              res->reference.accumulate > 1 ? " (accumulated)" : "");
+    if (res->reference.scale > 1) {
+        size_t u = strlen(title);
+        snprintf(title + u, sizeof title - u, " at %dx the size, box-filtered", res->reference.scale);
+    }
     fprintf(g, "set terminal pngcairo size 960,640 font 'DejaVu Sans,10' noenhanced\n");
     fprintf(g, "set output ");
     gp_string(g, png);
@@ -990,11 +1055,14 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     gp_string(g, title);
     fprintf(g, "\nset xlabel ");
     char xl[256];
-    snprintf(xl, sizeof xl, "median frame time (ms, %d frames after %d warm-up)", res->frames, res->warmup);
+    if (res->rounds > 1)
+        snprintf(xl, sizeof xl, "median frame time (ms, %d frames in %d rounds, %d warm-up each)", res->frames, res->rounds, res->warmup);
+    else
+        snprintf(xl, sizeof xl, "median frame time (ms, %d frames after %d warm-up)", res->frames, res->warmup);
     gp_string(g, xl);
     fprintf(g, "\nset ylabel ");
     gp_string(g, metric_title);
-    fprintf(g, "\nset grid\nset key top right box opaque\nset offsets graph 0.05, graph 0.12, graph 0.08, graph 0.08\n");
+    fprintf(g, "\nset grid\nset key top right box opaque\nset offsets graph 0.05, graph 0.12, 0, 0\n");
     if (!psnr) fprintf(g, "set logscale y\nset format y '%%g'\n");
     fprintf(g, "plot ");
     bool first = true;

@@ -32,8 +32,12 @@ typedef struct sl_bench_options {
     int width, height;               /* default 320x180 */
     sl_backend_kind backend;         /* default OSMesa */
     int frames, warmup;              /* timed frames (default 30) after warm-up (default 5) */
+    int rounds;                      /* > 1: time the settings in turn, frames/rounds each time */
     const char *reference_settings;  /* NULL: the plugin's declared reference settings */
     int reference_accumulate;        /* 0: the declared accumulation (or 1) */
+    /* > 1: render the reference at scale× the size and box-filter it down (scale² more samples
+     * per pixel; for methods whose result does not depend on the pixel size). */
+    int reference_scale;
     const char *cache_dir;           /* NULL: sl_bench_default_cache_dir() */
     bool no_cache;                   /* always render the reference (and do not store it) */
     const char *data_dir;
@@ -70,10 +74,11 @@ typedef struct sl_bench_result {
     int width, height;
     char *backend, *renderer, *timing_mode;
     bool gpu;
-    int frames, warmup;
+    int frames, warmup, rounds;
     struct {
         char *settings, *description;
         int accumulate;
+        int scale;                   /* rendered at scale× the size, box-filtered down */
         char key[17];                /* cache key (hex) */
         char *cache_path;            /* NULL when not cached */
         bool from_cache;

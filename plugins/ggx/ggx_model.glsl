@@ -1,0 +1,66 @@
+// The "ggx" shading model: L_o = (k_d/π + k_s f_s) E max(0, n·l) with f_s = F D G/(4|n·l||n·v|)
+// (the core's convention), or the glTF metallic-roughness combination when
+// fresnel = metallic-roughness: f = (1 − F)(1 − metallic) base/π + F D G/(4|n·l||n·v|),
+// F0 = mix(0.04, base, metallic).
+#include "ggx_brdf.glsl"
+
+// Vectors in the space the lighting is evaluated in (world by default; camera space as a
+// check: a rotation, so both agree up to rounding).
+void ggx_to_space(inout vec3 n, inout vec3 l, inout vec3 v) {
+#if GGX_SPACE == GGX_SPACE_CAMERA
+    mat3 r = mat3(sl_view);
+    n = r * n;
+    l = r * l;
+    v = r * v;
+#endif
+}
+
+vec3 ggx_fresnel(float l_dot_h, SlSurface s) {
+#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_SCHLICK
+    return ggx_fresnel_schlick(l_dot_h, vec3(ggx_f0_from_eta(sl_mat_eta)));
+#elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+    return ggx_fresnel_schlick(l_dot_h, mix(vec3(0.04), s.base_color, sl_mat_metallic));
+#else
+    return vec3(ggx_fresnel_exact(l_dot_h, sl_mat_eta));
+#endif
+}
+
+vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
+    vec3 n = s.normal, v = s.view;
+    ggx_to_space(n, l, v);
+    float n_dot_l = max(dot(n, l), 0.0);
+    vec3 h;
+    float dg = ggx_DG_over_4(n, l, v, s.alpha, h);
+    vec3 F = ggx_fresnel(dot(l, h), s);
+#if GGX_ZERO_SPECULAR
+    dg = 0.0;
+#endif
+#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+    vec3 diffuse = (1.0 - F) * (1.0 - sl_mat_metallic) * s.base_color * SL_INV_PI;
+    return (diffuse + F * dg) * E * n_dot_l;
+#else
+    return (s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;
+#endif
+}
+
+// Debug views (the head assignment's modes 4–6), summed over the lights.
+vec3 ggx_debug_D(SlSurface s, vec3 l, vec3 E) {
+    vec3 n = s.normal, v = s.view;
+    ggx_to_space(n, l, v);
+    vec3 h = normalize(l + v);
+    return vec3(ggx_D(dot(n, h), max(s.alpha, GGX_MIN_ALPHA)));
+}
+vec3 ggx_debug_G(SlSurface s, vec3 l, vec3 E) {
+    vec3 n = s.normal, v = s.view;
+    ggx_to_space(n, l, v);
+    vec3 h = normalize(l + v);
+    float a = max(s.alpha, GGX_MIN_ALPHA);
+    return vec3(ggx_G1(v, n, h, a) * ggx_G1(l, n, h, a));
+}
+vec3 ggx_debug_F(SlSurface s, vec3 l, vec3 E) {
+    vec3 n = s.normal, v = s.view;
+    ggx_to_space(n, l, v);
+    if (dot(n, l) <= 0.0) return vec3(0.0); // light not visible: shown as 0
+    vec3 h = normalize(l + v);
+    return ggx_fresnel(dot(l, h), s);
+}

@@ -1,0 +1,33 @@
+// Surface hooks filling s.alpha (GGX α) and s.specular (k_s) from the material. Each runs only
+// for materials carrying its key (when_material_has), so a material pays only for its inputs.
+#ifdef SL_MAT_HAS_ALPHA
+void ggx_surface_alpha(inout SlSurface s) { s.alpha = sl_mat_alpha; }
+#endif
+#ifdef SL_MAT_HAS_ROUGHNESS
+void ggx_surface_roughness(inout SlSurface s) { s.alpha = sl_mat_roughness * sl_mat_roughness; }
+#endif
+#ifdef SL_MAT_HAS_ROUGHNESS_MAP
+// Perceptual roughness in the map's green channel (glTF metallic-roughness layout), times
+// the roughness factor when given; α = roughness².
+void ggx_surface_roughness_map(inout SlSurface s) {
+#ifdef SL_MAT_HAS_ROUGHNESS
+    float r = sl_mat_roughness * texture(sl_mat_roughness_map, s.uv).g;
+#else
+    float r = texture(sl_mat_roughness_map, s.uv).g;
+#endif
+    s.alpha = r * r;
+}
+#endif
+#ifdef SL_MAT_HAS_SPECULAR
+void ggx_surface_specular(inout SlSurface s) { s.specular = sl_mat_specular; }
+#endif
+#ifdef SL_MAT_HAS_SPECULAR_MAP
+// k_s from the red channel of a (linear) specular map, times the specular factor when given.
+void ggx_surface_specular_map(inout SlSurface s) {
+#ifdef SL_MAT_HAS_SPECULAR
+    s.specular = sl_mat_specular * texture(sl_mat_specular_map, s.uv).r;
+#else
+    s.specular = texture(sl_mat_specular_map, s.uv).r;
+#endif
+}
+#endif

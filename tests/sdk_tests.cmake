@@ -1,0 +1,10 @@
+# SDK for third parties (issue 3): install, out-of-tree example, ABI refusals.
+# sl-imgdiff: image comparison with a stated tolerance, for the shell-driven tests.
+add_executable(sl-imgdiff ${CMAKE_CURRENT_LIST_DIR}/sdk_imgdiff.c)
+target_link_libraries(sl-imgdiff PRIVATE shadelab_core)
+
+# Installs into a temporary prefix and builds sdk/example against it (needs the whole build).
+add_test(NAME sdk_install
+         COMMAND ${CMAKE_CURRENT_LIST_DIR}/sdk_install.sh ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}
+                 $<TARGET_FILE:sl-imgdiff> ${CMAKE_COMMAND})
+set_tests_properties(sdk_install PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 600 LABELS sdk)

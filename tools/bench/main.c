@@ -1,0 +1,210 @@
+/* shadelab-bench: error versus time for a plugin's quality knobs (docs/benchmarks.md). */
+#include "bench.h"
+#include "log.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *usage =
+    "usage: shadelab-bench --plugin NAME [options]\n"
+    "Sweeps NAME's quality knobs (\"core\" for the core's) on a scene, times each setting over\n"
+    "the frames and measures its error against NAME's declared reference; writes CSV, JSON and\n"
+    "an error-versus-milliseconds chart (PNG, gnuplot) with the Pareto front marked.\n"
+    "  --scene FILE              JSON scene (default: the built-in scene)\n"
+    "  --plugin NAME             plugin whose knobs are swept and whose reference is the truth\n"
+    "  --load NAME               load another plugin too (repeatable)\n"
+    "  --settings \"A=1 B=2\"      a setting to measure (repeatable); default: the knobs' values\n"
+    "  --vary ID=V1,V2,...       the values to sweep for one knob (repeatable)\n"
+    "  --grid | --one-at-a-time  all combinations of the knobs / one knob at a time\n"
+    "                            (default: all combinations when there are at most 64)\n"
+    "  --set ID=VALUE            applied to every render, the reference too (repeatable)\n"
+    "  --size WxH                image size (default 320x180)\n"
+    "  --backend osmesa|egl      headless backend (default osmesa: llvmpipe, glFinish timing)\n"
+    "  --frames N                timed frames per setting (default 30)\n"
+    "  --warmup N                frames rendered before timing (default 5)\n"
+    "  --rounds R                time every setting R times, frames/R each, in turn (default 1;\n"
+    "                            evens out bursts of load on a shared machine)\n"
+    "  --reference-settings S    override the declared reference settings\n"
+    "  --reference-accumulate N  override the declared reference accumulation (CI: small)\n"
+    "  --reference-scale K       render the reference at K times the size, box-filtered down\n"
+    "                            (K^2 more samples per pixel; resolution-independent methods)\n"
+    "  --cache DIR               reference cache (default $SHADELAB_CACHE, $XDG_CACHE_HOME/shadelab\n"
+    "                            or ~/.cache/shadelab); runs are also saved to DIR/fronts for\n"
+    "                            shadelab --auto-quality\n"
+    "  --no-cache                always render the reference; store nothing\n"
+    "  --out PREFIX              PREFIX.csv, PREFIX.json, PREFIX.png (default bench-PLUGIN-SCENE)\n"
+    "  --metric M                rmse | relmse | dssim | psnr: the chart's and the front's metric\n"
+    "                            (repeatable: the first is primary, each other gets PREFIX-M.png)\n"
+    "  --images                  also write PREFIX-<setting>.png and PREFIX-reference.png\n"
+    "  --no-chart                no PNG chart\n"
+    "  --list                    print the settings that would be measured, then exit\n"
+    "  --data DIR                asset directory (also SHADELAB_DATA)\n"
+    "  --float                   RGBA32F colour targets\n"
+    "  -q, --quiet | -v, --verbose | --help\n";
+
+static int die(const char *msg) {
+    fprintf(stderr, "shadelab-bench: %s\n", msg);
+    return 1;
+}
+
+#define MAXN 256
+
+int main(int argc, char **argv) {
+    sl_bench_options o = {.warmup = 5, .frames = 30, .progress = true, .backend = SL_BACKEND_OSMESA};
+    const char *plugins[64], *base[128], *settings[MAXN], *vary[64];
+    int np = 0, nb = 0, ns = 0, nv = 0;
+    const char *out = NULL;
+    sl_metric metrics[SL_METRIC_COUNT];
+    int nm = 0;
+    bool chart = true, list = false, images = false;
+    char err[8192];
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+#define NEXT() (i + 1 < argc ? argv[++i] : (snprintf(err, sizeof err, "%s needs a value", a), (char *)NULL))
+#define NEED(v) do { if (!(v)) return die(err); } while (0)
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); return 0; }
+        else if (!strcmp(a, "--scene")) NEED(o.scene_path = NEXT());
+        else if (!strcmp(a, "--plugin")) NEED(o.plugin = NEXT());
+        else if (!strcmp(a, "--load")) { if (np == 64) return die("too many --load"); NEED(plugins[np++] = NEXT()); }
+        else if (!strcmp(a, "--settings")) { if (ns == MAXN) return die("too many --settings"); NEED(settings[ns++] = NEXT()); }
+        else if (!strcmp(a, "--vary")) { if (nv == 64) return die("too many --vary"); NEED(vary[nv++] = NEXT()); }
+        else if (!strcmp(a, "--grid")) o.sweep = SL_SWEEP_GRID;
+        else if (!strcmp(a, "--one-at-a-time")) o.sweep = SL_SWEEP_ONE_AT_A_TIME;
+        else if (!strcmp(a, "--set")) { if (nb == 128) return die("too many --set"); NEED(base[nb++] = NEXT()); }
+        else if (!strcmp(a, "--size")) {
+            const char *v = NEXT();
+            NEED(v);
+            if (sscanf(v, "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384) {
+                snprintf(err, sizeof err, "--size %s: expected WxH, 1..16384 each", v);
+                return die(err);
+            }
+        } else if (!strcmp(a, "--backend")) {
+            const char *v = NEXT();
+            NEED(v);
+            if (!strcmp(v, "osmesa")) o.backend = SL_BACKEND_OSMESA;
+            else if (!strcmp(v, "egl")) o.backend = SL_BACKEND_EGL;
+            else { snprintf(err, sizeof err, "--backend %s: expected osmesa or egl (headless)", v); return die(err); }
+        } else if (!strcmp(a, "--frames") || !strcmp(a, "--warmup") || !strcmp(a, "--reference-accumulate") ||
+                   !strcmp(a, "--reference-scale") || !strcmp(a, "--rounds")) {
+            const char *v = NEXT();
+            NEED(v);
+            char *end;
+            long x = strtol(v, &end, 10);
+            bool frames = !strcmp(a, "--frames"), warm = !strcmp(a, "--warmup");
+            if (*end || x < (warm ? 0 : 1) || x > 1000000) {
+                snprintf(err, sizeof err, "%s %s: expected a whole number >= %d", a, v, warm ? 0 : 1);
+                return die(err);
+            }
+            if (frames) o.frames = (int)x;
+            else if (warm) o.warmup = (int)x;
+            else if (!strcmp(a, "--reference-scale")) o.reference_scale = (int)x;
+            else if (!strcmp(a, "--rounds")) o.rounds = (int)x;
+            else o.reference_accumulate = (int)x;
+        } else if (!strcmp(a, "--reference-settings")) NEED(o.reference_settings = NEXT());
+        else if (!strcmp(a, "--cache")) NEED(o.cache_dir = NEXT());
+        else if (!strcmp(a, "--no-cache")) o.no_cache = true;
+        else if (!strcmp(a, "--out")) NEED(out = NEXT());
+        else if (!strcmp(a, "--metric")) {
+            const char *v = NEXT();
+            NEED(v);
+            if (nm == SL_METRIC_COUNT || !sl_metric_parse(v, &metrics[nm])) {
+                snprintf(err, sizeof err, "--metric %s: expected rmse, relmse, dssim or psnr (each once)", v);
+                return die(err);
+            }
+            nm++;
+        } else if (!strcmp(a, "--images")) images = true;
+        else if (!strcmp(a, "--no-chart")) chart = false;
+        else if (!strcmp(a, "--list")) list = true;
+        else if (!strcmp(a, "--data")) NEED(o.data_dir = NEXT());
+        else if (!strcmp(a, "--float")) o.float32 = true;
+        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) { o.progress = false; sl_log_threshold = SL_LOG_WARN; }
+        else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) sl_log_threshold = SL_LOG_DEBUG;
+        else { snprintf(err, sizeof err, "unknown option %s (see --help)", a); return die(err); }
+#undef NEXT
+#undef NEED
+    }
+    if (!o.plugin) return die("--plugin NAME is required (\"core\" for the core's own knobs); see --help");
+    o.plugins = plugins; o.plugin_count = np;
+    o.base_settings = base; o.base_setting_count = nb;
+    o.settings = settings; o.setting_count = ns;
+    o.vary = vary; o.vary_count = nv;
+    if (!nm) metrics[nm++] = SL_METRIC_RMSE;
+    if (o.frames < 30)
+        fprintf(stderr, "shadelab-bench: note: %d timed frames (fewer than 30): the medians are indicative only\n", o.frames);
+
+    if (list) {
+        char **s = NULL;
+        int count = 0;
+        if (!sl_bench_enumerate(&o, &s, &count, err, sizeof err)) return die(err);
+        for (int i = 0; i < count; i++) { printf("%s\n", s[i]); free(s[i]); }
+        free(s);
+        return 0;
+    }
+    char prefix[4096];
+    if (out) snprintf(prefix, sizeof prefix, "%s", out);
+    else {
+        const char *stem = o.scene_path ? strrchr(o.scene_path, '/') : NULL;
+        stem = o.scene_path ? (stem ? stem + 1 : o.scene_path) : "default";
+        snprintf(prefix, sizeof prefix, "bench-%s-%.*s", o.plugin, (int)strcspn(stem, "."), stem);
+    }
+    /* the output folder must exist before minutes of rendering, not after */
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", prefix);
+    char *slash = strrchr(dir, '/');
+    if (slash && slash != dir) {
+        *slash = 0;
+        if (!sl_bench_mkdirs(dir, err, sizeof err)) return die(err);
+    }
+    if (images) o.image_prefix = prefix;
+
+    sl_bench_result res;
+    if (!sl_bench_run(&o, &res, err, sizeof err)) {
+        sl_bench_result_free(&res);
+        return die(err);
+    }
+    int rc = 0;
+    char path[4200];
+    snprintf(path, sizeof path, "%s.csv", prefix);
+    if (!sl_bench_write_csv(&res, path, metrics[0], err, sizeof err)) rc = die(err);
+    else fprintf(stderr, "wrote %s\n", path);
+    snprintf(path, sizeof path, "%s.json", prefix);
+    if (!sl_bench_write_json(&res, path, metrics[0], err, sizeof err)) rc = die(err);
+    else fprintf(stderr, "wrote %s\n", path);
+    if (!o.no_cache) { /* a copy for shadelab --auto-quality */
+        char cache[4000], fronts[4100], copy[4400];
+        snprintf(fronts, sizeof fronts, "%s/fronts", o.cache_dir ? o.cache_dir : sl_bench_default_cache_dir(cache, sizeof cache));
+        const char *stem = o.scene_path ? strrchr(o.scene_path, '/') : NULL;
+        stem = o.scene_path ? (stem ? stem + 1 : o.scene_path) : "default";
+        snprintf(copy, sizeof copy, "%s/%s--%.*s--%dx%d.json", fronts, o.plugin, (int)strcspn(stem, "."), stem, res.width, res.height);
+        if (!sl_bench_mkdirs(fronts, err, sizeof err) || !sl_bench_write_json(&res, copy, metrics[0], err, sizeof err))
+            fprintf(stderr, "shadelab-bench: warning: %s\n", err);
+        else fprintf(stderr, "saved %s (for shadelab --auto-quality)\n", copy);
+    }
+    for (int m = 0; chart && m < nm; m++) {
+        if (m == 0) snprintf(path, sizeof path, "%s.png", prefix);
+        else snprintf(path, sizeof path, "%s-%s.png", prefix, sl_metric_name(metrics[m]));
+        int w = sl_bench_write_chart(&res, path, metrics[m], err, sizeof err);
+        if (w == 1) fprintf(stderr, "wrote %s\n", path);
+        else if (w == 0) { fprintf(stderr, "shadelab-bench: %s\n", err); break; }
+        else rc = die(err);
+    }
+    /* the table, for the terminal */
+    printf("%s on %s, %dx%d, %s (%s), %s timing, median of %d frames (%d round%s, %d warm-up frames each)\n", res.plugin,
+           res.scene, res.width, res.height, res.backend, res.renderer, res.timing_mode ? res.timing_mode : "?", res.frames,
+           res.rounds, res.rounds > 1 ? "s" : "", res.warmup);
+    printf("reference: %s (%d frame%s, %dx size box-filtered)%s\n", res.reference.settings, res.reference.accumulate,
+           res.reference.accumulate > 1 ? "s accumulated" : "", res.reference.scale,
+           res.reference.from_cache ? ", from the cache" : "");
+    printf("  %-28s %10s %10s %10s %8s %8s %s\n", "setting", "frame ms", "rmse", "relmse", "psnr", "ssim", "front");
+    int failed = 0;
+    for (int i = 0; i < res.row_count; i++) {
+        sl_bench_row *r = &res.rows[i];
+        if (!r->ok) { printf("  %-28s FAILED: %s\n", r->label, r->failure ? r->failure : ""); failed++; continue; }
+        printf("  %-28s %10.3f %10.4g %10.4g %8.2f %8.5f %s\n", r->label, r->frame_ms_median, r->error.rmse, r->error.relmse,
+               r->error.psnr, r->error.ssim, r->front[metrics[0]] ? "*" : "");
+    }
+    printf("total %.1f s\n", res.total_s);
+    sl_bench_result_free(&res);
+    if (failed) rc = 1;
+    return rc;
+}
