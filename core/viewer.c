@@ -268,7 +268,7 @@ static void grab_window(viewer *v, const char *path) {
 
 /* ------------------------------------------------------------------ script hook --------- */
 
-typedef struct script { char *text; char *cursor; int wait; char grab[1024]; } script;
+typedef struct script { char *text; char *cursor; int wait; char grab[1024]; double waiting_since; } script;
 
 /* Runs the script's commands for this frame (until a wait). */
 static void script_step(viewer *v, script *s) {
@@ -283,7 +283,7 @@ static void script_step(viewer *v, script *s) {
         for (char *e = cmd + strlen(cmd); e > cmd && isspace((unsigned char)e[-1]);) *--e = 0;
         if (!*cmd) continue;
         char err[2048];
-        fprintf(stderr, "script: %s\n", cmd);
+        if (strncmp(cmd, "waitfile ", 9) || !s->waiting_since) fprintf(stderr, "script: %s\n", cmd);
         if (!strncmp(cmd, "set ", 4)) {
             sl_panel_apply(v->app, cmd + 4, err, sizeof err);
         } else if (!strncmp(cmd, "view ", 5)) {
@@ -299,6 +299,20 @@ static void script_step(viewer *v, script *s) {
         } else if (!strncmp(cmd, "wait ", 5)) {
             s->wait = atoi(cmd + 5) - 1;
             return;
+        } else if (!strncmp(cmd, "waitfile ", 9)) {
+            /* render frames until the file exists (a test edits shaders meanwhile) */
+            struct stat st;
+            if (stat(cmd + 9, &st) != 0) {
+                if (end) *end = ';';
+                s->cursor = cmd;
+                if (!s->waiting_since) s->waiting_since = glfwGetTime();
+                if (glfwGetTime() - s->waiting_since > 120) {
+                    fprintf(stderr, "script: gave up waiting for %s\n", cmd + 9);
+                    v->quit = true;
+                }
+                return;
+            }
+            s->waiting_since = 0;
         } else if (!strncmp(cmd, "grab ", 5)) {
             snprintf(s->grab, sizeof s->grab, "%s", cmd + 5);
             return; /* grabbed after this frame is drawn */
@@ -306,7 +320,7 @@ static void script_step(viewer *v, script *s) {
             v->quit = true;
             return;
         } else {
-            fprintf(stderr, "script: unknown command \"%s\" (set, view, key, wait, grab, quit)\n", cmd);
+            fprintf(stderr, "script: unknown command \"%s\" (set, view, key, wait, waitfile, grab, quit)\n", cmd);
         }
     }
 }

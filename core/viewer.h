@@ -17,6 +17,7 @@
  *   view NAME      debug view, as the panel's selector ("final" for none)
  *   key NAME       a key press: "P", "F5", "1", "Shift+2"
  *   wait N         render N frames
+ *   waitfile PATH  render frames until PATH exists (gives up after 120 s)
  *   grab FILE      write the window's framebuffer, panel included, to FILE (PNG)
  *   quit           close the window
  * SHADELAB_NO_GUI=1 runs the window without the panel. */

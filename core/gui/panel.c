@@ -21,7 +21,7 @@ struct sl_panel {
     int binding_count;
     text_field *fields; int field_count;  /* edit buffers of texture fields */
     pass_avg avg[64]; int avg_count;      /* smoothed per-pass times */
-    double fps_avg;
+    double interval_avg;                  /* smoothed seconds per frame */
 };
 
 /* ------------------------------------------------------------------ applying changes ---- */
@@ -318,8 +318,9 @@ static void section_view(sl_panel *p, sl_panel_actions *act) {
 static void section_timing(sl_panel *p, double dt) {
     sl_app *app = p->app;
     const sl_frame_stats *st = sl_renderer_stats(app);
-    if (dt > 0) p->fps_avg = p->fps_avg > 0 ? 0.9 * p->fps_avg + 0.1 * (1.0 / dt) : 1.0 / dt;
-    sl_ui_text("%s  %dx%d  %.1f fps", app->backend.name, app->backend.width, app->backend.height, p->fps_avg);
+    if (dt > 1e-4) p->interval_avg = p->interval_avg > 0 ? 0.9 * p->interval_avg + 0.1 * dt : dt;
+    sl_ui_text("%s  %dx%d  %.1f fps", app->backend.name, app->backend.width, app->backend.height,
+               p->interval_avg > 0 ? 1.0 / p->interval_avg : 0.0);
     if (!st) return;
     sl_ui_text("frame %.2f ms (CPU), %d draw calls, %d programs", st->frame_ms, st->draw_calls, st->program_count);
     sl_ui_text_disabled("pass times: %s%s", st->timing_mode ? st->timing_mode : "?",
@@ -421,7 +422,8 @@ void sl_panel_draw(sl_panel *p, double dt, sl_panel_actions *act) {
     memset(act, 0, sizeof *act);
     act->trigger_binding = -1;
     if (p->visible) {
-        if (sl_ui_begin("shadelab  (F1 hides)", 8, 8, 380, (float)(p->app->backend.height - 16 > 200 ? p->app->backend.height - 16 : 200), 0.85f)) {
+        float w = (float)p->app->backend.width, h = (float)p->app->backend.height;
+        if (sl_ui_begin("shadelab  (F1 hides)", 8, 8, w * 0.6f < 380 ? w * 0.6f : 380, h - 16 > 200 ? h - 16 : 200, 0.85f)) {
             if (p->apply_error[0]) sl_ui_text_colored(1, 0.45f, 0.35f, "%s", p->apply_error);
             if (sl_ui_header("Timing", true)) section_timing(p, dt);
             if (sl_ui_header("View", true)) section_view(p, act);

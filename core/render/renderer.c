@@ -151,14 +151,9 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data) {
         GLenum fmt = srgb_storage ? GL_SRGB8_ALPHA8
                    : img.source_bits == 8 ? GL_RGBA8 : img.source_bits == 16 ? GL_RGBA16F : GL_RGBA32F;
         glTextureStorage2D(tex, levels, fmt, img.width, img.height);
-        /* rows: the image is top-first; GL's t=0 is the first row uploaded. UV (0,0) is the
-         * bottom-left of the image in glTF/OBJ convention v-up, so upload bottom row first. */
-        size_t row = (size_t)img.width * 4;
-        float *flipped = malloc(row * img.height * sizeof(float));
-        for (int y = 0; y < img.height; y++)
-            memcpy(flipped + row * y, img.pixels + row * (img.height - 1 - y), row * sizeof(float));
-        glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, flipped);
-        free(flipped);
+        /* UV convention (scenes/README.md): v = 0 is the TOP row of the image, as in glTF. GL's
+         * t = 0 is the first row uploaded, so rows go up top first, as the image stores them. */
+        glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.pixels);
         glGenerateTextureMipmap(tex);
         glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -346,6 +341,8 @@ static void draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 glm_mat4_inv(model, inv);
                 glm_mat4_transpose(inv);
                 glm_mat4_pick3(inv, nrm);
+                /* a mirroring transform (negative determinant) reverses the winding */
+                glFrontFace(glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
                 glUniformMatrix4fv(glGetUniformLocation(prog, "sl_model"), 1, GL_FALSE, (float *)model);
                 glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
                 glBindVertexArray(r->meshes[mi].vao);
@@ -355,6 +352,7 @@ static void draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
         }
     }
     glBindVertexArray(0);
+    glFrontFace(GL_CCW);
 }
 
 void sl_renderer_draw_scene(sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_desc *in) {

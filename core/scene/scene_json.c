@@ -713,7 +713,7 @@ static const char *const plane_keys[] = {"primitive", "size", "subdivisions"};
 static const char *const cube_keys[] = {"primitive", "size"};
 static const char *const torus_keys[] = {"primitive", "major_radius", "minor_radius", "segments", "sides"};
 static const char *const teapot_keys[] = {"primitive", "size", "tessellation"};
-static const char *const file_keys[] = {"file", "model"};
+static const char *const file_keys[] = {"file", "model", "flip_v"};
 
 static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const char *kind,
                            sl_mesh_data *out) {
@@ -813,7 +813,12 @@ static bool load_mesh(loader *L, const cJSON *mesh, int node, int material, cons
     if (!get_string(L, file, ctx, &rel)) return false;
     const cJSON *v;
     if ((v = cJSON_GetObjectItemCaseSensitive(mesh, "model")) && !get_string(L, v, ctx, &model)) return false;
-    if (!check_keys(L, mesh, ctx, file_keys, 2, false)) return false;
+    bool flip_v = false;
+    if ((v = cJSON_GetObjectItemCaseSensitive(mesh, "flip_v"))) {
+        if (!cJSON_IsBool(v)) return failf(L, v, "%s: \"flip_v\" must be true or false", ctx);
+        flip_v = cJSON_IsTrue(v);
+    }
+    if (!check_keys(L, mesh, ctx, file_keys, 3, false)) return false;
     char why[2048];
     char *path = sl_scene_resolve_path(L->scene, L->data_dir, rel, why, sizeof why);
     if (!path) return failf(L, file, "%s: mesh file %s", ctx, why);
@@ -822,8 +827,17 @@ static bool load_mesh(loader *L, const cJSON *mesh, int node, int material, cons
     bool ok = sl_scene_import_file(L->scene, path, node, why, sizeof why);
     free(path);
     if (!ok) return failf(L, file, "%s: %s", ctx, why);
-    for (int i = first_mesh; i < L->scene->mesh_count; i++)
+    for (int i = first_mesh; i < L->scene->mesh_count; i++) {
         if (material >= 0) L->scene->meshes[i].material = material;
+        /* Assets authored for flipped textures (v = 0 at the image bottom, e.g. models whose
+         * textures three.js loads with flipY): v becomes 1 − v and the tangent frames are
+         * regenerated, since flipping v mirrors the handedness. */
+        sl_mesh_data *d = &L->scene->meshes[i].data;
+        if (flip_v && d->uvs) {
+            for (int k = 0; k < d->vertex_count; k++) d->uvs[2 * k + 1] = 1.0f - d->uvs[2 * k + 1];
+            sl_mesh_generate_tangents(d);
+        }
+    }
     if (model)
         for (int i = first_material; i < L->scene->material_count; i++) {
             char *m = strdup(model);

@@ -1,0 +1,210 @@
+/* shadelab-bench's numbers on inputs whose answers are known by hand: RMSE/PSNR/relMSE of
+ * constant offsets, SSIM = 1 for identical images, the closed forms of SSIM for constant
+ * images and for checkerboards, SSIM against a direct (non-separable) evaluation of Wang et
+ * al.'s formula, the Pareto front of a hand-made point set, and the --auto-quality choice. */
+#include "autoquality.h"
+#include "check.h"
+#include "metrics.h"
+#include "pareto.h"
+#include <math.h>
+#include <stdlib.h>
+
+static float *image(int w, int h, float r, float g, float b) {
+    float *p = malloc(sizeof(float) * 4 * w * h);
+    for (int i = 0; i < w * h; i++) { p[4 * i] = r; p[4 * i + 1] = g; p[4 * i + 2] = b; p[4 * i + 3] = 1; }
+    return p;
+}
+
+static unsigned rng = 12345;
+static float rnd(void) { rng = rng * 1664525u + 1013904223u; return (rng >> 8) / 16777216.0f; }
+
+/* Wang et al. 2004 eq. (13)-(17) evaluated directly: a 2D 11x11 Gaussian window at every
+ * valid position, means/variances/covariance by their definitions (x - mu), no separability. */
+static double ssim_direct(const float *x, const float *y, int w, int h) {
+    double win[11][11], sum = 0;
+    for (int j = 0; j < 11; j++)
+        for (int i = 0; i < 11; i++) sum += win[j][i] = exp(-((i - 5) * (i - 5) + (j - 5) * (j - 5)) / (2 * 1.5 * 1.5));
+    double C1 = 0.01 * 0.01, C2 = 0.03 * 0.03, total = 0;
+    int count = 0;
+    for (int oy = 0; oy + 11 <= h; oy++)
+        for (int ox = 0; ox + 11 <= w; ox++) {
+            double mx = 0, my = 0;
+            for (int j = 0; j < 11; j++)
+                for (int i = 0; i < 11; i++) {
+                    mx += win[j][i] / sum * x[(oy + j) * w + ox + i];
+                    my += win[j][i] / sum * y[(oy + j) * w + ox + i];
+                }
+            double vx = 0, vy = 0, cxy = 0;
+            for (int j = 0; j < 11; j++)
+                for (int i = 0; i < 11; i++) {
+                    double a = x[(oy + j) * w + ox + i] - mx, b = y[(oy + j) * w + ox + i] - my;
+                    vx += win[j][i] / sum * a * a;
+                    vy += win[j][i] / sum * b * b;
+                    cxy += win[j][i] / sum * a * b;
+                }
+            total += (2 * mx * my + C1) * (2 * cxy + C2) / ((mx * mx + my * my + C1) * (vx + vy + C2));
+            count++;
+        }
+    return total / count;
+}
+
+static void test_rmse_psnr_relmse(void) {
+    const int w = 16, h = 12;
+    float *ref = image(w, h, 0.5f, 0.5f, 0.5f), *a = image(w, h, 0.6f, 0.6f, 0.6f);
+    sl_bench_error e;
+    sl_metric_all(a, ref, w, h, &e);
+    /* constant offset d = 0.1 on every channel: RMSE = d, PSNR = 20 log10(1/d) = 20 dB,
+     * relMSE = d^2 / (b^2 + eps) = 0.01 / 0.26 */
+    CHECK_NEAR(e.rmse, 0.1, 1e-6);
+    CHECK_NEAR(e.psnr, 20.0, 1e-4);
+    CHECK_NEAR(e.relmse, 0.01 / 0.26, 1e-6);
+    CHECK_NEAR(e.max_abs, 0.1, 1e-6);
+    CHECK(e.nonfinite == 0);
+    /* offset 0.3 in red only: RMSE = sqrt(0.09 / 3) = 0.173205, PSNR = 15.2288 dB */
+    float *r = image(w, h, 0.8f, 0.5f, 0.5f);
+    sl_metric_all(r, ref, w, h, &e);
+    CHECK_NEAR(e.rmse, 0.1732051, 1e-6);
+    CHECK_NEAR(e.psnr, 15.2287875, 1e-4);
+    CHECK_NEAR(e.relmse, 0.09 / 0.26 / 3, 1e-6);
+    /* identical: zero error, PSNR = inf, SSIM = 1 */
+    sl_metric_all(ref, ref, w, h, &e);
+    CHECK(e.rmse == 0 && e.relmse == 0 && isinf(e.psnr) && e.psnr > 0);
+    CHECK_NEAR(e.ssim, 1.0, 1e-12);
+    /* black reference: eps keeps relMSE finite, 0.1^2 / (0 + 0.01) = 1 */
+    float *black = image(w, h, 0, 0, 0), *dim = image(w, h, 0.1f, 0.1f, 0.1f);
+    CHECK_NEAR(sl_metric_relmse(dim, black, w, h, SL_RELMSE_EPSILON), 1.0, 1e-5);
+    /* a NaN pixel is counted and left out, not averaged in */
+    a[4 * 5 + 1] = NAN;
+    sl_metric_all(a, ref, w, h, &e);
+    CHECK(e.nonfinite == 1);
+    CHECK_NEAR(e.rmse, 0.1, 1e-6);
+    CHECK(isfinite(e.relmse) && isfinite(e.ssim));
+    free(ref); free(a); free(r); free(black); free(dim);
+}
+
+static void test_ssim(void) {
+    const int w = 24, h = 20;
+    float *x = malloc(sizeof(float) * w * h), *y = malloc(sizeof(float) * w * h);
+    /* two constant images: variances are zero, so SSIM = (2 mx my + C1) / (mx^2 + my^2 + C1) */
+    for (int i = 0; i < w * h; i++) { x[i] = 0.5f; y[i] = 0.6f; }
+    CHECK_NEAR(sl_metric_ssim(x, y, w, h), (2 * 0.5 * 0.6 + 1e-4) / (0.25 + 0.36 + 1e-4), 1e-6);
+    CHECK_NEAR(sl_metric_ssim(x, y, w, h), 0.98360924, 1e-6); /* the same, by hand */
+    /* checkerboards m ± A and m ± B in phase: the window's mean is m (the alternating sum of
+     * the Gaussian weights is ~1e-9), variances A^2 and B^2, covariance AB, so
+     * SSIM = (2AB + C2) / (A^2 + B^2 + C2) = 0.0409 / 0.0509 for A = 0.2, B = 0.1 */
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            float s = (i + j) % 2 ? 1.0f : -1.0f;
+            x[j * w + i] = 0.5f + 0.2f * s;
+            y[j * w + i] = 0.5f + 0.1f * s;
+        }
+    CHECK_NEAR(sl_metric_ssim(x, y, w, h), 0.0409 / 0.0509, 1e-5);
+    /* in opposite phase the structure term is negative: (-2AB + C2) / (A^2 + B^2 + C2) */
+    for (int i = 0; i < w * h; i++) y[i] = 1.0f - y[i];
+    CHECK_NEAR(sl_metric_ssim(x, y, w, h), (-0.04 + 0.0009) / 0.0509, 1e-5);
+    /* random images: the separable implementation equals the direct formula */
+    for (int i = 0; i < w * h; i++) { x[i] = rnd(); y[i] = 0.7f * x[i] + 0.3f * rnd(); }
+    double s = sl_metric_ssim(x, y, w, h), d = ssim_direct(x, y, w, h);
+    CHECK_NEAR(s, d, 1e-9);
+    CHECK(s > 0.2 && s < 0.99);
+    /* more noise, lower SSIM */
+    for (int i = 0; i < w * h; i++) y[i] = 0.4f * x[i] + 0.6f * rnd();
+    CHECK(sl_metric_ssim(x, y, w, h) < s);
+    /* identical: exactly 1 */
+    CHECK_NEAR(sl_metric_ssim(x, x, w, h), 1.0, 1e-12);
+    /* too small for an 11x11 window: NaN, not garbage */
+    CHECK(isnan(sl_metric_ssim(x, y, 10, 30)));
+    free(x);
+    free(y);
+}
+
+static void test_display_luma(void) {
+    /* linear 0.214 grey encodes to ~0.5; luma of grey is the encoded value; pure red is 0.2126 */
+    float px[3 * 4] = {0.214f, 0.214f, 0.214f, 1, 1, 0, 0, 1, NAN, 5.0f, -1.0f, 1};
+    float l[3];
+    sl_metric_display_luma(px, 3, 1, l);
+    CHECK_NEAR(l[0], 0.49994, 2e-4);
+    CHECK_NEAR(l[1], 0.2126, 1e-6);
+    CHECK_NEAR(l[2], 0.7152, 1e-6); /* NaN -> 0, 5 -> 1 (clamped), -1 -> 0 */
+}
+
+static void test_pareto(void) {
+    /*            A     B    C    D    E    F    G    H */
+    double c[] = {1,    2,   3,   4,   2,   5,   NAN, 0.5};
+    double e[] = {10,   5,   6,   1,   5,   1,   0,   20};
+    bool f[8];
+    CHECK(sl_pareto_front(c, e, 8, f) == 5);
+    /* C is dominated by B, F by D (same error, dearer), G has no cost; E duplicates B */
+    bool expect[8] = {true, true, false, true, true, false, false, true};
+    for (int i = 0; i < 8; i++) CHECK_MSG(f[i] == expect[i], "point %d", i);
+    CHECK(sl_pareto_cheapest_within(c, e, 8, 5) == 1);   /* B (E ties; the lower index) */
+    CHECK(sl_pareto_cheapest_within(c, e, 8, 100) == 7); /* H */
+    CHECK(sl_pareto_cheapest_within(c, e, 8, 1) == 3);   /* D, not the dearer F */
+    CHECK(sl_pareto_cheapest_within(c, e, 8, 0.5) == -1);
+    CHECK(sl_pareto_most_accurate(c, e, 8) == 3);
+    /* one point is its own front; an empty set has none */
+    CHECK(sl_pareto_front(c, e, 1, f) == 1 && f[0]);
+    CHECK(sl_pareto_front(c, e, 0, f) == 0);
+    /* random sets: the cheapest point within any budget is on the front, and every point off
+     * the front is dominated by one on it */
+    for (int t = 0; t < 200; t++) {
+        double rc[12], re[12];
+        bool rf[12];
+        for (int i = 0; i < 12; i++) { rc[i] = (int)(rnd() * 6); re[i] = (int)(rnd() * 6); }
+        sl_pareto_front(rc, re, 12, rf);
+        int k = sl_pareto_cheapest_within(rc, re, 12, rnd() * 6);
+        CHECK(k < 0 || rf[k]);
+        for (int i = 0; i < 12; i++) {
+            if (rf[i]) continue;
+            bool dominated = false;
+            for (int j = 0; j < 12; j++)
+                dominated |= rf[j] && rc[j] <= rc[i] && re[j] <= re[i] && (rc[j] < rc[i] || re[j] < re[i]);
+            CHECK(dominated);
+        }
+    }
+}
+
+static const char *front_json =
+    "{\"format\": \"shadelab-bench/1\", \"plugin\": \"core\", \"primary_metric\": \"rmse\", \"scene\": \"s.json\","
+    " \"width\": 64, \"height\": 32, \"backend\": \"osmesa\", \"renderer\": \"llvmpipe\", \"settings\": ["
+    " {\"settings\": \"core.ssaa=1\", \"ok\": true, \"frame_ms\": {\"median\": 1.0},"
+    "  \"passes\": [{\"name\": \"forward\", \"median_ms\": 0.8}], \"error\": {\"rmse\": 0.02, \"ssim\": 0.98, \"psnr\": 34}},"
+    " {\"settings\": \"core.ssaa=2\", \"ok\": true, \"frame_ms\": {\"median\": 3.0},"
+    "  \"error\": {\"rmse\": 0.007, \"ssim\": 0.997, \"psnr\": 43}},"
+    " {\"settings\": \"core.ssaa=3\", \"ok\": false, \"failure\": \"x\"},"
+    " {\"settings\": \"core.ssaa=4\", \"ok\": true, \"frame_ms\": {\"median\": 9.0},"
+    "  \"error\": {\"rmse\": 0.003, \"ssim\": 0.9995, \"psnr\": 50}},"
+    " {\"settings\": \"core.ssaa=5\", \"ok\": true, \"frame_ms\": {\"median\": 12.0},"
+    "  \"error\": {\"rmse\": 0.004, \"ssim\": 0.999, \"psnr\": 48}}]}";
+
+static void test_choose(void) {
+    sl_aq_choice c;
+    char err[512];
+    CHECK(sl_autoquality_choose(front_json, NULL, 0.01, &c, err, sizeof err));
+    CHECK(!strcmp(c.settings, "core.ssaa=2") && c.within_budget && c.frame_ms == 3.0 && !strcmp(c.metric, "rmse"));
+    CHECK(sl_autoquality_choose(front_json, NULL, 0.05, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=1"));
+    CHECK_CONTAINS(c.passes, "forward 0.800 ms");
+    CHECK(sl_autoquality_choose(front_json, NULL, 0.0035, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=4"));
+    /* nothing meets the budget: the most accurate, flagged */
+    CHECK(sl_autoquality_choose(front_json, NULL, 0.001, &c, err, sizeof err));
+    CHECK(!strcmp(c.settings, "core.ssaa=4") && !c.within_budget);
+    /* psnr: the budget is a floor in dB; dssim = 1 - ssim */
+    CHECK(sl_autoquality_choose(front_json, "psnr", 40, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=2"));
+    CHECK(c.error == 43);
+    CHECK(sl_autoquality_choose(front_json, "dssim", 0.002, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=4"));
+    CHECK(!sl_autoquality_choose("{\"format\": \"other\"}", NULL, 1, &c, err, sizeof err));
+    CHECK_CONTAINS(err, "not a shadelab-bench result");
+    CHECK(!sl_autoquality_choose("{ nope", NULL, 1, &c, err, sizeof err));
+    CHECK_CONTAINS(err, "malformed JSON");
+    CHECK(!sl_autoquality_choose(front_json, "flip", 1, &c, err, sizeof err));
+    CHECK_CONTAINS(err, "unknown metric");
+}
+
+int main(void) {
+    test_rmse_psnr_relmse();
+    test_ssim();
+    test_display_luma();
+    test_pareto();
+    test_choose();
+    return check_result();
+}
