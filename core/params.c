@@ -23,13 +23,14 @@ static void free_desc(sl_param_desc *d) {
     }
 }
 
+void sl_param_free_item(sl_param *q) {
+    free(q->full_id);
+    free(q->owner);
+    free_desc(&q->desc);
+}
+
 void sl_params_free(sl_params *p) {
-    for (int i = 0; i < p->count; i++) {
-        free(p->items[i].full_id);
-        free(p->items[i].owner);
-        if (p->items[i].value.s != p->items[i].desc.default_value.s) free((char *)p->items[i].value.s);
-        free_desc(&p->items[i].desc);
-    }
+    for (int i = 0; i < p->count; i++) sl_param_free_item(&p->items[i]);
     free(p->items);
     memset(p, 0, sizeof *p);
 }

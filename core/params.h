@@ -25,6 +25,8 @@ typedef struct sl_params {
 
 void sl_params_init(sl_params *p);
 void sl_params_free(sl_params *p);
+/* Frees one entry's strings (the array slot itself stays). */
+void sl_param_free_item(sl_param *q);
 /* Registers a schema entry (copied). Duplicate global ids are SL_ERR_DUPLICATE; a material or
  * light key may be declared by several plugins when the type agrees (shared vocabulary). */
 sl_status sl_params_add(sl_params *p, const char *owner, const sl_param_desc *desc, char *err, size_t n);

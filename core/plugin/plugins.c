@@ -49,7 +49,7 @@ static sl_status host_add_chunk(const sl_host *h, const sl_shader_chunk_desc *in
     sl_shader_chunk_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
     const char *id = HOST_REC(h)->id;
-    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_LIBRARY) {
+    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_SHADOW) {
         SL_ERROR("%s: shader chunk %s: unknown hook %d", id, d.file ? d.file : "?", (int)d.hook);
         return SL_ERR_INVALID;
     }
@@ -245,6 +245,11 @@ static void host_draw_scene(const sl_host *h, sl_pass_ctx *c, const sl_draw_scen
 }
 static void host_draw_fullscreen(const sl_host *h, sl_pass_ctx *c) { sl_renderer_draw_fullscreen(HOST_APP(h), c); }
 
+static const char *host_environment(const sl_host *h, float o[5]) {
+    const sl_environment *e = &HOST_APP(h)->scene.environment;
+    memcpy(o, e->color, 3 * sizeof(float)), o[3] = e->intensity, o[4] = e->yaw_deg;
+    return e->map;
+}
 void sl_plugins_set_gl_app(sl_app *app) { g_gl_app = app; }
 
 static sl_host_impl *make_host(sl_app *app, int index) {
@@ -280,6 +285,7 @@ static sl_host_impl *make_host(sl_app *app, int index) {
     h->bind_outputs = host_bind_outputs;
     h->draw_scene = host_draw_scene;
     h->draw_fullscreen = host_draw_fullscreen;
+    h->environment = host_environment;
     return impl;
 }
 
@@ -493,26 +499,47 @@ bool sl_plugins_add_builtin(sl_app *app, const sl_plugin_desc *desc) {
     return true;
 }
 
+static void free_chunk(sl_chunk_reg *c) {
+    free((char *)c->d.file); free((char *)c->d.function); free((char *)c->d.name);
+    free((char *)c->d.when_material_has); free((char *)c->d.description);
+}
+
+static void free_pass(sl_pass_reg *r) {
+    free((char *)r->d.name);
+    for (const char **s = r->inputs; s && *s; s++) free((char *)*s);
+    free(r->inputs);
+    for (int k = 0; k < r->d.output_count; k++) free((char *)r->outputs[k].name);
+    free(r->outputs);
+}
+
+static void free_key(sl_key_reg *k) {
+    free((char *)k->d.key); free((char *)k->d.description); free((char *)k->d.param);
+}
+
+/* Rolls back everything a plugin registered (its create() failed or was refused). */
 static void remove_registrations(sl_app *app, int owner) {
     sl_plugins *P = &app->plugins;
     int w = 0;
     for (int i = 0; i < P->chunk_count; i++)
         if (P->chunks[i].owner != owner) P->chunks[w++] = P->chunks[i];
+        else free_chunk(&P->chunks[i]);
     P->chunk_count = w;
     w = 0;
     for (int i = 0; i < P->pass_count; i++)
         if (P->passes[i].owner != owner) P->passes[w++] = P->passes[i];
+        else free_pass(&P->passes[i]);
     P->pass_count = w;
     w = 0;
     for (int i = 0; i < P->key_count; i++)
         if (P->keys[i].owner != owner) P->keys[w++] = P->keys[i];
+        else free_key(&P->keys[i]);
     P->key_count = w;
-    /* parameters owned by the plugin */
     sl_params *pp = &app->params;
     const char *id = P->items[owner]->id;
     w = 0;
     for (int i = 0; i < pp->count; i++)
         if (strcmp(pp->items[i].owner, id)) pp->items[w++] = pp->items[i];
+        else sl_param_free_item(&pp->items[i]);
     pp->count = w;
 }
 
@@ -560,6 +587,7 @@ static void create_one(sl_app *app, int i, int depth) {
     r->creating = false;
     r->user = user ? user : (void *)r; /* non-NULL marks "created" */
     if (st != SL_OK) {
+        if (user && r->desc.destroy) r->desc.destroy(user); /* documented in plugin.h */
         remove_registrations(app, i);
         disable(r, "create() failed with status %d (see the messages above)", (int)st);
     } else if (sl_log_count(SL_LOG_ERROR) > before_errors && i != 0) {
@@ -611,22 +639,9 @@ void sl_plugins_shutdown(sl_app *app) {
         free(r->reference_settings); free(r->reference_description);
         free(r);
     }
-    for (int i = 0; i < P->chunk_count; i++) {
-        sl_shader_chunk_desc *d = &P->chunks[i].d;
-        free((char *)d->file); free((char *)d->function); free((char *)d->name);
-        free((char *)d->when_material_has); free((char *)d->description);
-    }
-    for (int i = 0; i < P->pass_count; i++) {
-        sl_pass_reg *r = &P->passes[i];
-        free((char *)r->d.name);
-        for (const char **s = r->inputs; s && *s; s++) free((char *)*s);
-        free(r->inputs);
-        for (int k = 0; k < r->d.output_count; k++) free((char *)r->outputs[k].name);
-        free(r->outputs);
-    }
-    for (int i = 0; i < P->key_count; i++) {
-        free((char *)P->keys[i].d.key); free((char *)P->keys[i].d.description); free((char *)P->keys[i].d.param);
-    }
+    for (int i = 0; i < P->chunk_count; i++) free_chunk(&P->chunks[i]);
+    for (int i = 0; i < P->pass_count; i++) free_pass(&P->passes[i]);
+    for (int i = 0; i < P->key_count; i++) free_key(&P->keys[i]);
     free(P->items); free(P->chunks); free(P->passes); free(P->keys);
     memset(P, 0, sizeof *P);
 }

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 typedef struct gpu_mesh { unsigned vao, vbo[4], ibo; int index_count; } gpu_mesh;
@@ -91,14 +92,18 @@ static void upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
             fallback = calloc((size_t)m->vertex_count * comps[a] + 1, sizeof(float));
             if (a == 2) for (int v = 0; v < m->vertex_count; v++) fallback[v * 4 + 3] = 1;
         }
-        glNamedBufferData(g->vbo[a], bytes ? bytes : 4, arrays[a] ? (const void *)arrays[a] : fallback, GL_STATIC_DRAW);
+        static const float none[4];
+        glNamedBufferData(g->vbo[a], bytes ? bytes : sizeof none,
+                          !bytes ? (const void *)none : arrays[a] ? (const void *)arrays[a] : fallback, GL_STATIC_DRAW);
         free(fallback);
         glVertexArrayVertexBuffer(g->vao, a, g->vbo[a], 0, comps[a] * sizeof(float));
         glVertexArrayAttribFormat(g->vao, a, comps[a], GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(g->vao, a, a);
         glEnableVertexArrayAttrib(g->vao, a);
     }
-    glNamedBufferData(g->ibo, (size_t)m->index_count * 4 + 4, m->indices, GL_STATIC_DRAW);
+    static const uint32_t no_indices[1];
+    glNamedBufferData(g->ibo, m->index_count ? (size_t)m->index_count * 4 : 4, m->index_count ? m->indices : no_indices,
+                      GL_STATIC_DRAW);
     glVertexArrayElementBuffer(g->vao, g->ibo);
     g->index_count = m->index_count;
 }
@@ -412,6 +417,18 @@ int sl_renderer_reload_shaders(sl_app *app) {
     for (int i = 0; i < r->cache_count; i++) r->cache[i]->hash ^= 0x5a5a5a5a5a5a5a5aull; /* force rebuild */
     compose_all(app);
     failures += sl_log_count(SL_LOG_ERROR) - before;
+    /* Stamp the files' current mtimes on every source, including programs whose rebuild failed
+     * and cache entries no longer in use: otherwise their stale mtimes make the poll reload (and
+     * re-print the error) every time, forever. A later edit changes the mtime again. */
+    for (int i = 0; i < r->program_count + r->cache_count; i++) {
+        sl_program *p = i < r->program_count ? r->programs[i] : r->cache[i - r->program_count];
+        sl_source *src[2] = {&p->vs, &p->fs};
+        for (int k = 0; k < 2; k++)
+            for (int f = 1; f < src[k]->file_count; f++) {
+                struct stat st;
+                if (stat(src[k]->files[f], &st) == 0) src[k]->mtimes[f] = st.st_mtime;
+            }
+    }
     return failures;
 }
 

@@ -32,7 +32,8 @@ typedef struct sl_plugin_desc {
     const char *const *requires;  /* NULL-terminated plugin ids that must load first, or NULL */
     const char *const *conflicts; /* NULL-terminated plugin ids that must not be loaded */
 
-    /* Returns SL_OK and sets *user, or an error (logged; the plugin becomes disabled). */
+    /* Returns SL_OK and sets *user, or an error (logged; the plugin becomes disabled). When it
+     * fails after setting *user, the host calls destroy(*user); registrations are rolled back. */
     sl_status (*create)(const sl_host *host, void **user);
     sl_status (*activate)(void *user);
     void (*begin_frame)(void *user, const sl_frame *frame);
