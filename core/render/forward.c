@@ -104,6 +104,11 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_var
     int ntypes = sl_forward_light_types(app, types, 32);
     const sl_chunk_reg *light_chunks[32] = {0};
     for (int t = 0; t < ntypes; t++) light_chunks[t] = find_named(app, SL_HOOK_LIGHT, types[t]);
+    /* SHADOW hook (shader.h): only when an enabled light casts shadows; the first provider */
+    const sl_chunk_reg *shadow = NULL;
+    for (int i = 0; i < app->scene.light_count && !shadow; i++)
+        for (int c = 0; c < P->chunk_count && !shadow && app->scene.lights[i].enabled && app->scene.lights[i].cast_shadows; c++)
+            if (P->chunks[c].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(app, P->chunks[c].owner)) shadow = &P->chunks[c];
 
     /* hooks gated on material keys */
     const sl_chunk_reg *vertex_hooks[64], *surface_hooks[64], *ambient_hooks[64];
@@ -124,6 +129,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_var
 #define ADD(c) do { if ((c) && count < 256) { list[count++] = (c); owners |= 1ull << ((c)->owner & 63); } } while (0)
     if (kind == SL_VARIANT_FORWARD) {
         for (int i = 0; i < ns; i++) ADD(surface_hooks[i]);
+        ADD(shadow);
         for (int t = 0; t < ntypes; t++) ADD(light_chunks[t]);
         ADD(model_chunk);
         ADD(model_ambient);
@@ -136,6 +142,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_var
     /* ---- common prelude: defines and uniforms for the owners involved ---- */
     sl_strbuf pre = {0};
     sl_sb_append(&pre, "#version 450 core\n");
+    char model_id[128]; /* SL_MODEL_<NAME>: lets a chunk shared by several models specialise */
+    sl_glsl_ident(model, model_id, sizeof model_id, true), sl_sb_printf(&pre, "#define SL_MODEL_%s 1\n", model_id);
     if (view) {
         char id[128];
         sl_glsl_ident(view->d.name, id, sizeof id, true);
@@ -242,12 +250,14 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_var
             if (!light_chunks[t]) continue; /* warned at load: no plugin provides this light type */
             char id[128];
             sl_glsl_ident(types[t], id, sizeof id, false);
+            char vis[256] = "E";
+            if (shadow) snprintf(vis, sizeof vis, "E * %s(i, sl_lights[i], s, l)", shadow->d.function);
             sl_sb_printf(&gen,
                          "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) {\n"
                          "        vec3 l, E;\n"
-                         "        if (%s(sl_lights[i], s, l, E)) Lo += %s(s, l, E);\n"
+                         "        if (%s(sl_lights[i], s, l, E)) Lo += %s(s, l, %s);\n"
                          "    }\n",
-                         id, id, light_chunks[t]->d.function, per_light);
+                         id, id, light_chunks[t]->d.function, per_light, vis);
         }
         sl_sb_append(&gen, "    return Lo;\n}\n");
         sl_sb_append(&gen, "vec3 sl_shade_surface(SlSurface s) {\n");

@@ -105,6 +105,9 @@ struct sl_host {
     sl_status (*bind_outputs)(const sl_host *host, sl_pass_ctx *ctx, int layer);
     void (*draw_scene)(const sl_host *host, sl_pass_ctx *ctx, const sl_draw_scene_desc *desc);
     void (*draw_fullscreen)(const sl_host *host, sl_pass_ctx *ctx); /* bound program, 1 tri */
+    /* ABI 1.1. The scene's "environment" (any time after create()): returns its map (resolved path
+     * or procedural spec; NULL = none) and fills o = {r, g, b, intensity, yaw in degrees}. */
+    const char *(*environment)(const sl_host *host, float o[5]);
 };
 
 #ifdef __cplusplus

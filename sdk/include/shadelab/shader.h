@@ -15,6 +15,8 @@
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size.
  *
+ * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX).
+ *
  * Hook signatures (FN is sl_shader_chunk_desc.function):
  *   VERTEX           void FN(inout SlVertex v)                   object space, before skinning
  *                                                                to world; sl_time available
@@ -40,6 +42,13 @@
  *                                                                the lights (e.g. "GGX D")
  *   LIBRARY          (no function)                               helper code included whenever
  *                                                                the plugin is enabled
+ *   SHADOW           float FN(int i, SlLight L, SlSurface s, vec3 l)
+ *                                                                visibility in [0,1] of light
+ *                                                                sl_lights[i] (any type) at s;
+ *                                                                the light loop multiplies E by
+ *                                                                it. Compiled in only when an
+ *                                                                enabled light casts shadows;
+ *                                                                one provider (the first enabled)
  */
 #ifndef SHADELAB_SHADER_H
 #define SHADELAB_SHADER_H
@@ -57,7 +66,8 @@ typedef enum sl_hook {
     SL_HOOK_AMBIENT,
     SL_HOOK_DEBUG_VIEW,
     SL_HOOK_DEBUG_VIEW_LIGHT,
-    SL_HOOK_LIBRARY
+    SL_HOOK_LIBRARY,
+    SL_HOOK_SHADOW          /* ABI 1.1 (shadow maps); an older host refuses the chunk */
 } sl_hook;
 
 typedef struct sl_shader_chunk_desc {
