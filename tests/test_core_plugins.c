@@ -4,6 +4,7 @@
 #include "check.h"
 #include "app.h"
 #include "log.h"
+#include "render/renderer.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -169,6 +170,32 @@ int main(void) {
         CHECK(sl_harness_render(h, px));
         CHECK_NEAR(px[c + 0], 1.0, 4e-3);
         sl_harness_destroy(h);
+    }
+    /* SL_DRAW_MATERIALS: the marked material drawn with the plugin's model (no 1/π) in a prepass,
+     * the unmarked one skipped; the forward pass still uses the material's own model (Lambert) */
+    {
+        const char *two =
+            "{\"materials\": [{\"name\": \"marked\", \"base_color\": [0.5, 0.5, 0.5], \"tp_mark\": true},\n"
+            "                 {\"name\": \"plain\", \"base_color\": [0.5, 0.5, 0.5]}],\n"
+            " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3], \"target\": [0, 0, 0]}],\n"
+            " \"nodes\": [{\"name\": \"l\", \"translate\": [-1, 0, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 2}, \"rotate\": [90, 0, 0], \"material\": \"marked\"},\n"
+            "           {\"name\": \"r\", \"translate\": [1, 0, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 2}, \"rotate\": [90, 0, 0], \"material\": \"plain\"}],\n"
+            " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 1}]}\n";
+        sl_app_options o = {.scene_text = two, .backend = SL_BACKEND_OSMESA, .width = 32, .height = 16};
+        o.plugins[o.plugin_count++] = "tp-good";
+        o.settings[o.setting_count++] = "tp-good.override_pass=true";
+        o.settings[o.setting_count++] = "tp-good.tint=1,1,1";
+        sl_app a;
+        CHECK(sl_app_init(&a, &o, err, sizeof err) && sl_app_start_gl(&a, err, sizeof err) && sl_app_render_frame(&a));
+        static float ov[32 * 16 * 4], col[32 * 16 * 4];
+        CHECK(sl_renderer_read(&a, "tp.override", ov));
+        CHECK(sl_app_read_color(&a, col));
+        int left = (8 * 32 + 8) * 4, right = (8 * 32 + 24) * 4;
+        CHECK_NEAR(ov[left], 0.5, 2e-3);               /* tp_model: base·E·cos */
+        CHECK_NEAR(col[left], 0.5 / M_PI, 2e-3);       /* forward: Lambert */
+        CHECK_NEAR(ov[right], 0.0, 1e-6);              /* unmarked: not drawn */
+        CHECK_NEAR(col[right], 0.5 / M_PI, 2e-3);
+        sl_app_shutdown(&a);
     }
     return check_result();
 }

@@ -76,8 +76,8 @@ static const char *glsl_type(sl_param_type t) {
     return "float";
 }
 
-bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_variant *out, sl_program ***cache,
-                        int *cache_count, char *err, size_t n) {
+bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *model_override, sl_forward_variant *out,
+                        sl_program ***cache, int *cache_count, char *err, size_t n) {
     sl_plugins *P = &app->plugins;
     const sl_material *mat = &app->scene.materials[m];
     uint64_t owners = 1; /* the core */
@@ -86,7 +86,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_var
     sl_strbuf explain = {0};
 
     /* shading model */
-    const char *model = mat->model ? mat->model : "lambert";
+    const char *model = model_override ? model_override : mat->model ? mat->model : "lambert";
     const sl_chunk_reg *model_chunk = find_named(app, SL_HOOK_SHADING_MODEL, model);
     if (!model_chunk) {
         model_chunk = find_named(app, SL_HOOK_SHADING_MODEL, "lambert");
@@ -95,7 +95,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, sl_forward_var
     const sl_chunk_reg *model_ambient = find_named(app, SL_HOOK_MODEL_AMBIENT, model);
     /* debug view */
     const sl_chunk_reg *view = NULL;
-    if (app->debug_view) {
+    if (app->debug_view && !model_override) {
         view = find_named(app, SL_HOOK_DEBUG_VIEW, app->debug_view);
         if (!view) view = find_named(app, SL_HOOK_DEBUG_VIEW_LIGHT, app->debug_view);
     }

@@ -19,8 +19,11 @@ typedef struct sl_forward_variant {
 typedef enum sl_variant_kind { SL_VARIANT_FORWARD, SL_VARIANT_DEPTH } sl_variant_kind;
 
 /* Builds the program source for material m and compiles it unless a program with the same
- * hash exists in `cache`. Returns false with a message (the variant keeps its last program). */
-bool sl_forward_compose(struct sl_app *app, int material, sl_variant_kind kind, sl_forward_variant *out,
+ * hash exists in `cache`. model_override (NULL = the material's own) replaces the shading model
+ * (host draw_scene SL_DRAW_MATERIALS). Returns false with a message (the variant keeps its last
+ * program). */
+bool sl_forward_compose(struct sl_app *app, int material, sl_variant_kind kind, const char *model_override,
+                        sl_forward_variant *out,
                         sl_program ***cache, int *cache_count, char *err, size_t n);
 /* Light types present among the scene's enabled lights, in packing order. */
 int sl_forward_light_types(struct sl_app *app, const char **types, int max);

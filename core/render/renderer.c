@@ -16,10 +16,13 @@
 typedef struct gpu_mesh { unsigned vao, vbo[4], ibo; int index_count; } gpu_mesh;
 typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 
+typedef struct override_variant { char *model; sl_forward_variant v; } override_variant;
+
 typedef struct material_rt {
     sl_forward_variant forward, depth;
+    override_variant overrides[8]; /* SL_DRAW_MATERIALS variants, composed on first use */
+    int override_count;
     unsigned textures[16];
-    bool dirty;
 } material_rt;
 
 typedef struct resource {
@@ -231,8 +234,11 @@ static void compose_all(sl_app *app) {
     char err[16384];
     for (int m = 0; m < app->scene.material_count; m++) {
         material_rt *mr = &r->materials[m];
-        sl_forward_compose(app, m, SL_VARIANT_FORWARD, &mr->forward, &r->cache, &r->cache_count, err, sizeof err);
-        sl_forward_compose(app, m, SL_VARIANT_DEPTH, &mr->depth, &r->cache, &r->cache_count, err, sizeof err);
+        sl_forward_compose(app, m, SL_VARIANT_FORWARD, NULL, &mr->forward, &r->cache, &r->cache_count, err, sizeof err);
+        sl_forward_compose(app, m, SL_VARIANT_DEPTH, NULL, &mr->depth, &r->cache, &r->cache_count, err, sizeof err);
+        for (int k = 0; k < mr->override_count; k++)
+            sl_forward_compose(app, m, SL_VARIANT_FORWARD, mr->overrides[k].model, &mr->overrides[k].v, &r->cache,
+                               &r->cache_count, err, sizeof err);
         for (int t = 0; t < mr->forward.texture_count; t++) {
             const sl_param *q = &app->params.items[mr->forward.texture_params[t]];
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
@@ -311,7 +317,22 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
 
 /* ------------------------------------------------------------------ drawing --------- */
 
+/* The material's program with its shading model replaced (SL_DRAW_MATERIALS). */
+static const sl_forward_variant *override_variant_of(sl_app *app, int m, const char *model) {
+    material_rt *mr = &R(app)->materials[m];
+    for (int k = 0; k < mr->override_count; k++)
+        if (!strcmp(mr->overrides[k].model, model)) return &mr->overrides[k].v;
+    if (mr->override_count == 8) return NULL;
+    override_variant *o = &mr->overrides[mr->override_count++];
+    memset(o, 0, sizeof *o);
+    o->model = strdup(model);
+    char err[16384];
+    sl_forward_compose(app, m, SL_VARIANT_FORWARD, model, &o->v, &R(app)->cache, &R(app)->cache_count, err, sizeof err);
+    return &o->v;
+}
+
 static void draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom) {
+    const char *model_override = d->mode == SL_DRAW_MATERIALS ? d->model_override : NULL;
     sl_renderer *r = R(app);
     sl_scene *s = &app->scene;
     glEnable(GL_DEPTH_TEST);
@@ -326,6 +347,10 @@ static void draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
     }
     for (int m = 0; m < s->material_count; m++) {
         if (d->shadow_casters_only && !s->materials[m].cast_shadows) continue;
+        if (d->only_materials_with) {
+            sl_mat_value *v = sl_app_material_value(app, m, d->only_materials_with);
+            if (!v || !v->present) continue;
+        }
         unsigned prog = custom ? custom->id : 0;
         bool bound = custom != NULL;
         for (int ni = 0; ni < s->node_count; ni++) {
@@ -334,8 +359,10 @@ static void draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 int mi = node->meshes[k];
                 if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
                 if (!bound) {
-                    const sl_forward_variant *var = depth_only ? &r->materials[m].depth : &r->materials[m].forward;
-                    prog = bind_material(app, m, var, d->view, d->proj);
+                    const sl_forward_variant *var = depth_only       ? &r->materials[m].depth
+                                                    : model_override ? override_variant_of(app, m, model_override)
+                                                                     : &r->materials[m].forward;
+                    prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
                     glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
                     bound = true;
                 }
@@ -366,6 +393,10 @@ void sl_renderer_draw_scene(sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_d
     if (in->struct_size < offsetof(sl_draw_scene_desc, cull) + sizeof(int)) d.cull = 1;
     if (d.mode == SL_DRAW_PROGRAM && !d.program) {
         SL_ERROR("draw_scene: SL_DRAW_PROGRAM without a program");
+        return;
+    }
+    if (d.mode == SL_DRAW_MATERIALS && !d.model_override) {
+        SL_ERROR("draw_scene: SL_DRAW_MATERIALS without model_override");
         return;
     }
     draw_meshes(app, &d, d.mode == SL_DRAW_DEPTH_ONLY, d.mode == SL_DRAW_PROGRAM ? d.program : NULL);
@@ -1001,6 +1032,10 @@ void sl_renderer_destroy(sl_app *app) {
     for (int m = 0; r->materials && m < app->scene.material_count; m++) {
         free(r->materials[m].forward.chunks);
         free(r->materials[m].depth.chunks);
+        for (int k = 0; k < r->materials[m].override_count; k++) {
+            free(r->materials[m].overrides[k].model);
+            free(r->materials[m].overrides[k].v.chunks);
+        }
     }
     free(r->materials);
     for (int i = 0; i < r->cache_count; i++) sl_program_free(r->cache[i]);

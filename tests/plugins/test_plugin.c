@@ -4,6 +4,7 @@
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include <stdlib.h>
+#include <string.h>
 
 #ifdef TP_DUP_MODEL
 #undef TP_MODEL
@@ -44,6 +45,31 @@ static void gain_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     h->draw_fullscreen(h, ctx);
 }
 
+/* A prepass drawing the materials that carry tp_mark with this plugin's model instead of their
+ * own (SL_DRAW_MATERIALS), into "tp.override". */
+static const sl_target_desc override_outputs[] = {{.name = "tp.override", .format = SL_FORMAT_RGBA32F},
+                                                  {.name = "tp.override_depth", .format = SL_FORMAT_DEPTH32F}};
+
+static bool override_active(void *user, const sl_frame *f) {
+    tp *t = user;
+    return t->host->get_param(t->host, TP_ID ".override_pass").b;
+}
+
+static void override_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
+    tp *t = user;
+    const sl_host *h = t->host;
+    if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
+    glClearColor(0, 0, 0, 0);
+    glClearDepth(1);
+    glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    sl_draw_scene_desc d = {.struct_size = sizeof d, .mode = SL_DRAW_MATERIALS, .model_override = TP_MODEL,
+                            .only_materials_with = "tp_mark", .cull = 1};
+    memcpy(d.view, f->view, sizeof d.view);
+    memcpy(d.proj, f->proj, sizeof d.proj);
+    h->draw_scene(h, ctx, &d);
+}
+
 static sl_status tp_create(const sl_host *host, void **user) {
 #ifdef TP_FAIL_CREATE
     host->log(host, SL_LOG_ERROR, "refusing to start (test)");
@@ -65,6 +91,8 @@ static sl_status tp_create(const sl_host *host, void **user) {
          .min = 0, .max = 16, .description = "Post pass: multiplies the HDR colour (inactive at 1)."},
         {.struct_size = sizeof(sl_param_desc), .id = "tp_mark", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
          .description = "Materials with this key get the tint surface hook."},
+        {.struct_size = sizeof(sl_param_desc), .id = "override_pass", .type = SL_PARAM_BOOL,
+         .description = "Runs the SL_DRAW_MATERIALS prepass."},
         {.struct_size = sizeof(sl_param_desc), .id = "level", .type = SL_PARAM_INT, .default_value = {.i = 2},
          .min = 1, .max = 4, .flags = SL_PARAM_QUALITY_KNOB, .description = "A quality knob for schema tests."},
     };
@@ -84,6 +112,10 @@ static sl_status tp_create(const sl_host *host, void **user) {
                                .inputs = gain_inputs, .outputs = gain_outputs, .output_count = 1,
                                .execute = gain_execute, .is_active = gain_active, .user = t};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
+    const sl_pass_desc prepass = {.struct_size = sizeof prepass, .name = TP_ID "-override", .stage = SL_STAGE_PREPASS,
+                                  .outputs = override_outputs, .output_count = 2, .execute = override_execute,
+                                  .is_active = override_active, .user = t};
+    if (host->add_pass(host, &prepass) != SL_OK) return SL_ERR_FAILED;
     const sl_key_desc key = {.struct_size = sizeof key, .key = "T", .param = "tp_mark", .description = "test key"};
     (void)key;
     return SL_OK;

@@ -81,10 +81,15 @@ typedef struct sl_pass_desc {
 /* host->draw_scene: draw every visible mesh of the scene with a view. */
 typedef enum sl_draw_mode {
     SL_DRAW_DEPTH_ONLY = 1, /* core depth program (vertex hooks applied); for shadow maps */
-    SL_DRAW_PROGRAM         /* the given program; the core sets per-object uniforms
+    SL_DRAW_PROGRAM,        /* the given program; the core sets per-object uniforms
                                sl_model (mat4), sl_normal_matrix (mat3) and the camera uniforms,
                                and binds attributes 0 position, 1 normal, 2 tangent (xyz+w),
                                3 uv */
+    SL_DRAW_MATERIALS       /* ABI 1.2: every material's own composed program (its surface
+                               hooks, the scene's lights, its uniforms) with the shading model
+                               replaced by model_override — e.g. a model returning irradiance
+                               for texture-space lighting or only the diffuse part for a
+                               screen-space blur. Writes location 0. */
 } sl_draw_mode;
 
 typedef struct sl_draw_scene_desc {
@@ -96,6 +101,10 @@ typedef struct sl_draw_scene_desc {
     bool uv_space;                   /* rasterise at uv*2-1 instead of projecting (texture-space
                                         passes); world position still reaches the program */
     int cull;                        /* 0 none, 1 back (default), 2 front */
+    /* ABI 1.2, SL_DRAW_MATERIALS: the shading model name to use instead of each material's. */
+    const char *model_override;
+    /* ABI 1.2, any mode: draw only materials carrying this material key (NULL = all). */
+    const char *only_materials_with;
 } sl_draw_scene_desc;
 
 #ifdef __cplusplus
