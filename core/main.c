@@ -1,5 +1,6 @@
 /* shadelab command line: headless renders, the window viewer, plugin/parameter listings. */
 #include "app.h"
+#include "autoquality.h" /* tools/bench: --auto-quality */
 #include "log.h"
 #include "render/renderer.h"
 #include "viewer.h"
@@ -29,6 +30,7 @@ static const char *usage =
     "  --debug-view NAME      replace the output with a debug view (--list-debug-views)\n"
     "  --accumulate N         average N frames per output (Monte Carlo references)\n"
     "  --reference PLUGIN     render PLUGIN's declared ground truth (its settings and accumulation)\n"
+    "  --auto-quality SPEC    [METRIC=]BUDGET[@FRONT.json,...]: per plugin the cheapest benchmarked setting within BUDGET\n"
     "  --float                RGBA32F colour target instead of RGBA16F\n"
     "  --data DIR             data directory for assets (also SHADELAB_DATA)\n"
     "  --time T               scene time in seconds for the first frame (default 0)\n"
@@ -42,7 +44,7 @@ static const char *usage =
 
 typedef struct cli {
     sl_app_options opt;
-    const char *output, *stats, *reference;
+    const char *output, *stats, *reference, *auto_quality;
     int frames;
     bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys;
     double start_time;
@@ -99,6 +101,7 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
             c->opt.accumulate = atoi(v);
             if (c->opt.accumulate < 1 || c->opt.accumulate > 1000000) { snprintf(err, n, "--accumulate %s: expected >= 1", v); return 1; }
         } else if (!strcmp(a, "--reference")) { if (!(c->reference = NEXT())) return 1; }
+        else if (!strcmp(a, "--auto-quality")) { if (!(c->auto_quality = NEXT())) return 1; }
         else if (!strcmp(a, "--float")) c->opt.float32 = true;
         else if (!strcmp(a, "--data")) { if (!(c->opt.data_dir = NEXT())) return 1; }
         else if (!strcmp(a, "--time")) { const char *v = NEXT(); if (!v) return 1; c->start_time = atof(v); }
@@ -279,6 +282,7 @@ int main(int argc, char **argv) {
         }
         fprintf(stderr, "reference for %s: %s\n", c.reference, r->reference.description ? r->reference.description : "");
     }
+    if (c.auto_quality && !sl_autoquality_apply(&app, c.auto_quality, err, sizeof err)) { sl_app_shutdown(&app); free(ref_copy); return die(err); }
     if (c.list_plugins || c.dump_params || c.list_views || c.help_keys) {
         if (c.list_plugins) sl_plugins_print(&app, stdout);
         if (c.dump_params) sl_params_dump_json(&app.params, stdout);

@@ -3,11 +3,13 @@
  * images and for checkerboards, SSIM against a direct (non-separable) evaluation of Wang et
  * al.'s formula, the Pareto front of a hand-made point set, and the --auto-quality choice. */
 #include "autoquality.h"
+#include "bench.h"
 #include "check.h"
 #include "metrics.h"
 #include "pareto.h"
 #include <math.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 static float *image(int w, int h, float r, float g, float b) {
     float *p = malloc(sizeof(float) * 4 * w * h);
@@ -200,11 +202,76 @@ static void test_choose(void) {
     CHECK_CONTAINS(err, "unknown metric");
 }
 
+/* The writers on a synthetic result: one dominated setting, one identical to the reference. */
+static void test_outputs(void) {
+    sl_bench_result r = {0};
+    r.scene = strdup("synthetic");
+    r.plugin = strdup("core");
+    r.backend = strdup("none");
+    r.renderer = strdup("test");
+    r.timing_mode = strdup("glfinish");
+    r.width = 64;
+    r.height = 32;
+    r.frames = 30;
+    r.warmup = 5;
+    r.rounds = 1;
+    r.reference.settings = strdup("core.ssaa=8");
+    r.reference.accumulate = 1;
+    strcpy(r.created, "2024-01-01T00:00:00Z");
+    const double ms[] = {1, 4, 3, 9}, rmse[] = {0.02, 0.004, 0.006, 0}, psnr[] = {34, 48, 44, INFINITY};
+    r.row_count = 4;
+    r.rows = calloc(4, sizeof *r.rows);
+    for (int i = 0; i < 4; i++) {
+        char s[32];
+        snprintf(s, sizeof s, "core.ssaa=%d", i + 1);
+        r.rows[i] = (sl_bench_row){.settings = strdup(s), .label = sl_bench_label(s, "core"), .ok = true, .frames = 30,
+                                   .frame_ms_median = ms[i], .error = {.rmse = rmse[i], .psnr = psnr[i], .ssim = 1 - rmse[i]}};
+    }
+    sl_bench_mark_fronts(&r);
+    /* (3 ms, 0.006) lies between (1 ms, 0.02) and (4 ms, 0.004): on the front. At 5 ms it is
+     * dearer and worse than (4 ms, 0.004): dominated. */
+    CHECK(r.rows[2].front[SL_METRIC_RMSE] && r.rows[0].front[SL_METRIC_RMSE] && r.rows[1].front[SL_METRIC_RMSE] && r.rows[3].front[SL_METRIC_RMSE]);
+    r.rows[2].frame_ms_median = 5;
+    sl_bench_mark_fronts(&r);
+    CHECK(!r.rows[2].front[SL_METRIC_RMSE] && r.rows[1].front[SL_METRIC_RMSE]);
+    CHECK(!strcmp(r.rows[2].label, "ssaa=3"));
+    char dir[512], path[600], err[1024];
+    snprintf(dir, sizeof dir, "%s/bench-metrics-test", SL_TEST_BUILD_DIR);
+    CHECK(sl_bench_mkdirs(dir, err, sizeof err));
+    snprintf(path, sizeof path, "%s/synthetic.json", dir);
+    CHECK(sl_bench_write_json(&r, path, SL_METRIC_RMSE, err, sizeof err));
+    FILE *f = fopen(path, "rb");
+    char text[20000] = "";
+    if (f) { text[fread(text, 1, sizeof text - 1, f)] = 0; fclose(f); }
+    CHECK_CONTAINS(text, "\"front\":\t[\"core.ssaa=1\", \"core.ssaa=2\", \"core.ssaa=4\"]");
+    CHECK_CONTAINS(text, "\"psnr\":\t\"inf\"");
+    sl_aq_choice c;
+    CHECK(sl_autoquality_choose(text, NULL, 0.005, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=2"));
+    CHECK(sl_autoquality_choose(text, "psnr", 100, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=4"));
+    snprintf(path, sizeof path, "%s/synthetic.csv", dir);
+    CHECK(sl_bench_write_csv(&r, path, SL_METRIC_RMSE, err, sizeof err));
+    for (int m = 0; m < 2; m++) {
+        snprintf(path, sizeof path, "%s/synthetic-%s.png", dir, m ? "psnr" : "rmse");
+        int w = sl_bench_write_chart(&r, path, m ? SL_METRIC_PSNR : SL_METRIC_RMSE, err, sizeof err);
+        CHECK_MSG(w == 1 || (w == 0 && strstr(err, "gnuplot not found")), "%d: %s", w, err);
+    }
+    /* no gnuplot: the chart is skipped with a message that says how to get it */
+    setenv("SHADELAB_GNUPLOT", "/nonexistent/gnuplot", 1);
+    snprintf(path, sizeof path, "%s/skipped.png", dir);
+    CHECK(sl_bench_write_chart(&r, path, SL_METRIC_RMSE, err, sizeof err) == 0);
+    CHECK_CONTAINS(err, "gnuplot not found");
+    CHECK_CONTAINS(err, "gnuplot-nox");
+    CHECK(access(path, F_OK) != 0);
+    unsetenv("SHADELAB_GNUPLOT");
+    sl_bench_result_free(&r);
+}
+
 int main(void) {
     test_rmse_psnr_relmse();
     test_ssim();
     test_display_luma();
     test_pareto();
     test_choose();
+    test_outputs();
     return check_result();
 }

@@ -12,7 +12,6 @@
 #include "render/composer.h"
 #include "render/renderer.h"
 #include <shadelab/gl.h>
-#include <cjson/cJSON.h>
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
@@ -20,7 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -105,7 +103,11 @@ static uint64_t hash_dir(const char *dir, uint64_t h, int depth) {
     char **names = NULL;
     int count = 0;
     for (struct dirent *e; (e = readdir(d));) {
-        if (e->d_name[0] == '.') continue;
+        size_t len = strlen(e->d_name);
+        /* a plugin's build directory also holds CMake's files: not part of what it renders */
+        if (e->d_name[0] == '.' || !strcmp(e->d_name, "CMakeFiles") || !strcmp(e->d_name, "Makefile") ||
+            (len > 6 && !strcmp(e->d_name + len - 6, ".cmake")))
+            continue;
         names = realloc(names, sizeof *names * (count + 1));
         names[count++] = strdup(e->d_name);
     }
@@ -508,6 +510,16 @@ static uint64_t reference_key(const sl_bench_options *o, sl_app *app, const char
                               char *desc, size_t dn) {
     uint64_t h = sl_hash64(CACHE_FORMAT, sizeof CACHE_FORMAT, 0);
     h = sl_hash64(SL_VERSION, sizeof SL_VERSION, h);
+    /* the running executable: the core is linked in statically, so any change to its C code
+     * (texture upload, camera, passes) changes the reference even when SL_VERSION does not */
+    static uint64_t exe_hash;
+    if (!exe_hash) {
+        size_t len = 0;
+        char *exe = read_text("/proc/self/exe", &len);
+        exe_hash = exe ? sl_hash64(exe, len, 0) : 1;
+        free(exe);
+    }
+    h = sl_hash64(&exe_hash, sizeof exe_hash, h);
     uint64_t scene = sl_bench_scene_hash(o->scene_path);
     h = sl_hash64(&scene, sizeof scene, h);
     const char *renderer = (const char *)glGetString(GL_RENDERER);
@@ -525,7 +537,7 @@ static uint64_t reference_key(const sl_bench_options *o, sl_app *app, const char
         if (u < dn) u += snprintf(desc + u, dn - u, " %s", app->opt.settings[i]);
     }
     (void)settings;
-    if (u < dn) u += snprintf(desc + u, dn - u, "\nplugins:");
+    if (u < dn) u += snprintf(desc + u, dn - u, "\nexecutable: %016llx\nplugins:", (unsigned long long)exe_hash);
     for (int i = 0; i < app->plugins.count; i++) {
         sl_plugin_rec *r = app->plugins.items[i];
         if (!r->ok) continue;
@@ -789,318 +801,3 @@ void sl_bench_result_free(sl_bench_result *res) {
     memset(res, 0, sizeof *res);
 }
 
-/* ---------------------------------------------------------------------- output -------- */
-
-static void csv_string(FILE *f, const char *s) {
-    fputc('"', f);
-    for (; s && *s; s++) {
-        if (*s == '"') fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
-static void csv_number(FILE *f, double v) {
-    if (isnan(v)) fputs(",", f);
-    else if (isinf(v)) fprintf(f, ",%s", v > 0 ? "inf" : "-inf");
-    else fprintf(f, ",%.6g", v);
-}
-
-static int union_passes(const sl_bench_result *res, const char **names, int max) {
-    int count = 0;
-    for (int i = 0; i < res->row_count; i++)
-        for (int k = 0; k < res->rows[i].pass_count; k++) {
-            bool seen = false;
-            for (int j = 0; j < count; j++) seen |= !strcmp(names[j], res->rows[i].passes[k].name);
-            if (!seen && count < max) names[count++] = res->rows[i].passes[k].name;
-        }
-    return count;
-}
-
-static double pass_median(const sl_bench_row *r, const char *name) {
-    for (int k = 0; k < r->pass_count; k++)
-        if (!strcmp(r->passes[k].name, name)) return r->passes[k].median_ms;
-    return NAN;
-}
-
-bool sl_bench_write_csv(const sl_bench_result *res, const char *path, sl_metric primary, char *err, size_t n) {
-    FILE *f = fopen(path, "w");
-    if (!f) { snprintf(err, n, "cannot write %s: %s", path, strerror(errno)); return false; }
-    const char *passes[64];
-    int np = union_passes(res, passes, 64);
-    fprintf(f, "settings,label,ok,frame_ms_median,frame_ms_mean,frame_ms_min,passes_ms,rmse,relmse,psnr,ssim,dssim,max_abs,"
-               "nonfinite_pixels,pareto_%s", sl_metric_name(primary));
-    for (int k = 0; k < np; k++) fprintf(f, ",ms_%s", passes[k]);
-    fputc('\n', f);
-    for (int i = 0; i < res->row_count; i++) {
-        const sl_bench_row *r = &res->rows[i];
-        csv_string(f, r->settings);
-        fputc(',', f);
-        csv_string(f, r->label);
-        fprintf(f, ",%d", r->ok);
-        csv_number(f, r->frame_ms_median);
-        csv_number(f, r->frame_ms_mean);
-        csv_number(f, r->frame_ms_min);
-        csv_number(f, r->passes_ms);
-        csv_number(f, r->ok ? r->error.rmse : NAN);
-        csv_number(f, r->ok ? r->error.relmse : NAN);
-        csv_number(f, r->ok ? r->error.psnr : NAN);
-        csv_number(f, r->ok ? r->error.ssim : NAN);
-        csv_number(f, r->ok ? 1 - r->error.ssim : NAN);
-        csv_number(f, r->ok ? r->error.max_abs : NAN);
-        fprintf(f, ",%ld,%d", r->error.nonfinite, r->front[primary]);
-        for (int k = 0; k < np; k++) csv_number(f, pass_median(r, passes[k]));
-        fputc('\n', f);
-    }
-    bool ok = !ferror(f);
-    ok = (fclose(f) == 0) && ok;
-    if (!ok) snprintf(err, n, "cannot write %s", path);
-    return ok;
-}
-
-static cJSON *num(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
-
-bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric primary, char *err, size_t n) {
-    cJSON *root = cJSON_CreateObject();
-    cJSON_AddStringToObject(root, "format", "shadelab-bench/1");
-    cJSON_AddStringToObject(root, "created", res->created);
-    cJSON_AddStringToObject(root, "shadelab_version", SL_VERSION);
-    cJSON_AddStringToObject(root, "scene", res->scene);
-    cJSON_AddStringToObject(root, "scene_hash", res->scene_hash);
-    cJSON_AddStringToObject(root, "plugin", res->plugin);
-    cJSON_AddStringToObject(root, "plugins_loaded", res->plugins_loaded ? res->plugins_loaded : "");
-    cJSON_AddNumberToObject(root, "width", res->width);
-    cJSON_AddNumberToObject(root, "height", res->height);
-    cJSON_AddStringToObject(root, "backend", res->backend ? res->backend : "");
-    cJSON_AddStringToObject(root, "renderer", res->renderer ? res->renderer : "");
-    cJSON_AddBoolToObject(root, "gpu", res->gpu);
-    cJSON_AddStringToObject(root, "timing", res->timing_mode ? res->timing_mode : "");
-    cJSON_AddNumberToObject(root, "frames", res->frames);
-    cJSON_AddNumberToObject(root, "warmup_frames", res->warmup);
-    cJSON_AddNumberToObject(root, "rounds", res->rounds);
-    cJSON_AddStringToObject(root, "cost", "frame_ms_median: median CPU wall time of a whole frame over the timed frames");
-    cJSON_AddStringToObject(root, "primary_metric", sl_metric_name(primary));
-    cJSON *md = cJSON_AddObjectToObject(root, "metrics");
-    cJSON_AddStringToObject(md, "rmse", "sqrt(mean((a-b)^2)) over RGB, linear radiance");
-    cJSON_AddStringToObject(md, "relmse", "mean((a-b)^2/(b^2+eps)) over RGB, linear radiance, b = reference");
-    cJSON_AddNumberToObject(md, "relmse_epsilon", SL_RELMSE_EPSILON);
-    cJSON_AddStringToObject(md, "psnr", "20 log10(1/rmse) dB, peak 1, linear radiance");
-    cJSON_AddStringToObject(md, "ssim", "mean SSIM (Wang et al. 2004), 11x11 Gaussian sigma 1.5, K1 0.01, K2 0.03, L 1, valid "
-                                        "windows only, on Y' = 0.2126R'+0.7152G'+0.0722B' of the sRGB-encoded image clamped to [0,1]");
-    cJSON_AddStringToObject(md, "dssim", "1 - ssim");
-    cJSON *ref = cJSON_AddObjectToObject(root, "reference");
-    cJSON_AddStringToObject(ref, "settings", res->reference.settings ? res->reference.settings : "");
-    cJSON_AddNumberToObject(ref, "accumulate", res->reference.accumulate);
-    cJSON_AddNumberToObject(ref, "scale", res->reference.scale);
-    cJSON_AddStringToObject(ref, "description", res->reference.description ? res->reference.description : "");
-    cJSON_AddStringToObject(ref, "cache_key", res->reference.key);
-    cJSON_AddBoolToObject(ref, "from_cache", res->reference.from_cache);
-    cJSON_AddItemToObject(ref, "render_s", num(res->reference.render_s));
-    cJSON *rows = cJSON_AddArrayToObject(root, "settings");
-    cJSON *front = cJSON_CreateArray();
-    for (int i = 0; i < res->row_count; i++) {
-        const sl_bench_row *r = &res->rows[i];
-        cJSON *o = cJSON_CreateObject();
-        cJSON_AddStringToObject(o, "settings", r->settings);
-        cJSON_AddStringToObject(o, "label", r->label);
-        cJSON_AddBoolToObject(o, "ok", r->ok);
-        if (!r->ok) cJSON_AddStringToObject(o, "failure", r->failure ? r->failure : "");
-        if (r->ok) {
-            cJSON *fm = cJSON_AddObjectToObject(o, "frame_ms");
-            cJSON_AddItemToObject(fm, "median", num(r->frame_ms_median));
-            cJSON_AddItemToObject(fm, "mean", num(r->frame_ms_mean));
-            cJSON_AddItemToObject(fm, "min", num(r->frame_ms_min));
-            cJSON_AddItemToObject(o, "passes_ms", num(r->passes_ms));
-            cJSON *ps = cJSON_AddArrayToObject(o, "passes");
-            for (int k = 0; k < r->pass_count; k++) {
-                cJSON *p = cJSON_CreateObject();
-                cJSON_AddStringToObject(p, "name", r->passes[k].name);
-                cJSON_AddStringToObject(p, "plugin", r->passes[k].owner);
-                cJSON_AddItemToObject(p, "median_ms", num(r->passes[k].median_ms));
-                cJSON_AddItemToObject(p, "mean_ms", num(r->passes[k].mean_ms));
-                cJSON_AddItemToObject(p, "min_ms", num(r->passes[k].min_ms));
-                cJSON_AddNumberToObject(p, "runs", r->passes[k].runs);
-                cJSON_AddItemToArray(ps, p);
-            }
-            cJSON *e = cJSON_AddObjectToObject(o, "error");
-            cJSON_AddItemToObject(e, "rmse", num(r->error.rmse));
-            cJSON_AddItemToObject(e, "relmse", num(r->error.relmse));
-            cJSON_AddItemToObject(e, "psnr", isinf(r->error.psnr) && r->error.psnr > 0 ? cJSON_CreateString("inf") : num(r->error.psnr));
-            cJSON_AddItemToObject(e, "ssim", num(r->error.ssim));
-            cJSON_AddItemToObject(e, "dssim", num(1 - r->error.ssim));
-            cJSON_AddItemToObject(e, "max_abs", num(r->error.max_abs));
-            cJSON_AddNumberToObject(e, "nonfinite_pixels", r->error.nonfinite);
-            cJSON *pf = cJSON_AddObjectToObject(o, "pareto");
-            for (int m = 0; m < SL_METRIC_COUNT; m++) cJSON_AddBoolToObject(pf, sl_metric_name((sl_metric)m), r->front[m]);
-        }
-        cJSON_AddItemToArray(rows, o);
-        if (r->front[primary]) cJSON_AddItemToArray(front, cJSON_CreateString(r->settings));
-    }
-    cJSON_AddItemToObject(root, "front", front);
-    char *text = cJSON_Print(root);
-    cJSON_Delete(root);
-    FILE *f = fopen(path, "w");
-    bool ok = f && text;
-    if (f) {
-        ok = fputs(text, f) >= 0 && fputc('\n', f) != EOF && ok;
-        ok = (fclose(f) == 0) && ok;
-    }
-    if (!ok) snprintf(err, n, "cannot write %s: %s", path, strerror(errno));
-    free(text);
-    return ok;
-}
-
-/* gnuplot on PATH (or $SHADELAB_GNUPLOT)? */
-static const char *find_gnuplot(char *buf, size_t n) {
-    const char *env = getenv("SHADELAB_GNUPLOT");
-    if (env && *env) return access(env, X_OK) ? NULL : env;
-    const char *path = getenv("PATH");
-    if (!path) path = "/usr/bin:/bin";
-    char *copy = strdup(path), *save = NULL;
-    const char *found = NULL;
-    for (char *d = strtok_r(copy, ":", &save); d && !found; d = strtok_r(NULL, ":", &save)) {
-        snprintf(buf, n, "%s/gnuplot", *d ? d : ".");
-        if (!access(buf, X_OK)) found = buf;
-    }
-    free(copy);
-    return found;
-}
-
-/* gnuplot double-quoted string: backslash, quote and newline escaped. */
-static void gp_string(FILE *f, const char *s) {
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '\n') { fputs("\\n", f); continue; }
-        if (*s == '"' || *s == '\\') fputc('\\', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
-static int cmp_cost(const void *a, const void *b) {
-    const double *x = a, *y = b;
-    return x[0] < y[0] ? -1 : x[0] > y[0] ? 1 : (x[1] > y[1]) - (x[1] < y[1]);
-}
-
-int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric metric, char *err, size_t n) {
-    char gpbuf[4096];
-    const char *gp = find_gnuplot(gpbuf, sizeof gpbuf);
-    if (!gp) {
-        snprintf(err, n, "gnuplot not found on PATH: chart %s skipped (install gnuplot-nox, e.g. tools/install-deps.sh; "
-                 "the CSV and JSON are written)", png);
-        return 0;
-    }
-    bool psnr = metric == SL_METRIC_PSNR;
-    /* Zero errors cannot sit on a log axis and PSNR = inf on no axis: such settings (identical
-     * to the reference) are drawn at the bottom (top for PSNR) with their own marker. */
-    double minpos = INFINITY, peak = -INFINITY;
-    for (int i = 0; i < res->row_count; i++) {
-        const sl_bench_row *r = &res->rows[i];
-        if (!r->ok) continue;
-        double y = psnr ? r->error.psnr : sl_metric_value(&r->error, metric);
-        if (!psnr && y > 0 && y < minpos) minpos = y;
-        if (psnr && isfinite(y) && y > peak) peak = y;
-    }
-    double special_y = psnr ? (isfinite(peak) ? peak + 6 : 60) : (isfinite(minpos) ? minpos / 4 : 1e-6);
-    char dir[] = "/tmp/shadelab-chart-XXXXXX";
-    if (!mkdtemp(dir)) { snprintf(err, n, "mkdtemp: %s", strerror(errno)); return -1; }
-    char pts[4200], frt[4200], zero[4200], script[4200];
-    snprintf(pts, sizeof pts, "%s/points.dat", dir);
-    snprintf(frt, sizeof frt, "%s/front.dat", dir);
-    snprintf(zero, sizeof zero, "%s/zero.dat", dir);
-    snprintf(script, sizeof script, "%s/chart.gp", dir);
-    FILE *fp = fopen(pts, "w"), *ff = fopen(frt, "w"), *fz = fopen(zero, "w");
-    double (*front)[2] = calloc(res->row_count + 1, sizeof *front);
-    int nf = 0, nz = 0, npts = 0;
-    for (int i = 0; i < res->row_count && fp && ff && fz; i++) {
-        const sl_bench_row *r = &res->rows[i];
-        if (!r->ok) continue;
-        double y = psnr ? r->error.psnr : sl_metric_value(&r->error, metric);
-        if (isnan(y)) continue;
-        if (psnr ? isinf(y) : y <= 0) {
-            y = special_y;
-            fprintf(fz, "%.6g %.6g \"%s\"\n", r->frame_ms_median, y, r->label);
-            nz++;
-        } else {
-            fprintf(fp, "%.6g %.6g \"%s\"\n", r->frame_ms_median, y, r->label);
-            npts++;
-        }
-        if (r->front[metric]) { front[nf][0] = r->frame_ms_median; front[nf][1] = y; nf++; }
-    }
-    qsort(front, nf, sizeof *front, cmp_cost);
-    for (int i = 0; ff && i < nf; i++) fprintf(ff, "%.6g %.6g\n", front[i][0], front[i][1]);
-    free(front);
-    if (fp) fclose(fp);
-    if (ff) fclose(ff);
-    if (fz) fclose(fz);
-    FILE *g = fopen(script, "w");
-    if (!g) { snprintf(err, n, "cannot write %s", script); return -1; }
-    const char *metric_title = metric == SL_METRIC_RMSE     ? "RMSE vs reference (linear radiance, log scale)"
-                               : metric == SL_METRIC_RELMSE ? "relative MSE vs reference (eps 0.01, log scale)"
-                               : metric == SL_METRIC_DSSIM  ? "1 - SSIM vs reference (display luma, log scale)"
-                                                            : "PSNR vs reference (dB, peak 1, linear radiance; higher is better)";
-    char title[2048];
-    snprintf(title, sizeof title, "%s quality knobs on %s, %dx%d\n%s (%s), %s timing; reference: %s%s",
-             res->plugin, res->scene, res->width, res->height, res->backend, res->renderer ? res->renderer : "?",
-             res->timing_mode ? res->timing_mode : "?", res->reference.settings,
-             res->reference.accumulate > 1 ? " (accumulated)" : "");
-    if (res->reference.scale > 1) {
-        size_t u = strlen(title);
-        snprintf(title + u, sizeof title - u, " at %dx the size, box-filtered", res->reference.scale);
-    }
-    fprintf(g, "set terminal pngcairo size 960,640 font 'DejaVu Sans,10' noenhanced\n");
-    fprintf(g, "set output ");
-    gp_string(g, png);
-    fprintf(g, "\nset title ");
-    gp_string(g, title);
-    fprintf(g, "\nset xlabel ");
-    char xl[256];
-    if (res->rounds > 1)
-        snprintf(xl, sizeof xl, "median frame time (ms, %d frames in %d rounds, %d warm-up each)", res->frames, res->rounds, res->warmup);
-    else
-        snprintf(xl, sizeof xl, "median frame time (ms, %d frames after %d warm-up)", res->frames, res->warmup);
-    gp_string(g, xl);
-    fprintf(g, "\nset ylabel ");
-    gp_string(g, metric_title);
-    fprintf(g, "\nset grid\nset key top right box opaque\nset offsets graph 0.05, graph 0.12, 0, 0\n");
-    if (!psnr) fprintf(g, "set logscale y\nset format y '%%g'\n");
-    fprintf(g, "plot ");
-    bool first = true;
-    if (npts) {
-        fprintf(g, "'%s' using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'setting', \\\n", pts);
-        fprintf(g, "     '%s' using 1:2:3 with labels offset char 0.8,0.7 left tc rgb '#333333' notitle", pts);
-        first = false;
-    }
-    if (nz) {
-        fprintf(g, "%s'%s' using 1:2 with points pt 6 ps 1.8 lc rgb '#2ca02c' title '%s', \\\n", first ? "" : ", \\\n     ",
-                zero, psnr ? "identical to the reference (PSNR = inf), drawn at the top"
-                           : "error 0 (identical to the reference), drawn at the axis floor");
-        fprintf(g, "     '%s' using 1:2:3 with labels offset char 0.8,-0.7 left tc rgb '#333333' notitle", zero);
-        first = false;
-    }
-    if (nf) fprintf(g, "%s'%s' using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#d62728' title 'Pareto front'",
-                    first ? "" : ", \\\n     ", frt);
-    fprintf(g, "\n");
-    fclose(g);
-    char cmd[9000];
-    snprintf(cmd, sizeof cmd, "'%s' '%s' 2>'%s/gnuplot.err'", gp, script, dir);
-    int rc = system(cmd);
-    int result = 1;
-    if (rc != 0) {
-        char ep[4300];
-        snprintf(ep, sizeof ep, "%s/gnuplot.err", dir);
-        char *msg = read_text(ep, NULL);
-        snprintf(err, n, "gnuplot failed on %s: %s", png, msg && *msg ? msg : "(no message)");
-        free(msg);
-        result = -1;
-    }
-    /* clean the temporary directory */
-    const char *files[] = {"points.dat", "front.dat", "zero.dat", "chart.gp", "gnuplot.err"};
-    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-        char p[4300];
-        snprintf(p, sizeof p, "%s/%s", dir, files[i]);
-        unlink(p);
-    }
-    rmdir(dir);
-    return result;
-}

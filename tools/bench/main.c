@@ -129,6 +129,7 @@ int main(int argc, char **argv) {
     o.settings = settings; o.setting_count = ns;
     o.vary = vary; o.vary_count = nv;
     if (!nm) metrics[nm++] = SL_METRIC_RMSE;
+    if (ns && nv) return die("--vary chooses values for enumerated knobs; it cannot be combined with --settings");
     if (o.frames < 30)
         fprintf(stderr, "shadelab-bench: note: %d timed frames (fewer than 30): the medians are indicative only\n", o.frames);
 

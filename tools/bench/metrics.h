@@ -5,8 +5,8 @@
  *
  *   RMSE    sqrt(mean over pixels and RGB of (a - b)^2), linear radiance (sl_image_compare).
  *   relMSE  mean over pixels and RGB of (a - b)^2 / (b^2 + eps), b = the reference,
- *           eps = SL_RELMSE_EPSILON (0.01): the usual relative MSE of rendering papers
- *           (e.g. Rousselle et al. 2011); eps keeps black reference pixels from dominating.
+ *           eps = SL_RELMSE_EPSILON (0.01): the relative MSE common in Monte Carlo rendering
+ *           and denoising papers; eps keeps dark reference pixels from dominating.
  *   PSNR    20 log10(1 / RMSE) dB, peak 1 on linear radiance (sl_image_compare's definition;
  *           +inf for identical images).
  *   SSIM    mean SSIM of Wang, Bovik, Sheikh, Simoncelli, "Image Quality Assessment: From Error
