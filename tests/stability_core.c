@@ -11,7 +11,8 @@
  *   zero_area_triangles      an OBJ with zero-area triangles sharing the lit quad's vertices,
  *                            zero normals and all-equal UVs (degenerate tangent frames)
  *   nonfinite_hdr            radiance overflowing to +Inf, and Inf·0 = NaN, in the HDR buffer:
- *                            the display pass shows black; huge finite radiance shows white
+ *                            the display pass shows NaN black and +Inf white (clamped like
+ *                            any bright value); huge finite radiance shows white
  *   tiny_and_huge_scenes     a 1 mm and a 10 km sphere with no camera: the default camera
  *                            frames the bounds and the sphere is lit at the Lambert value */
 #include <shadelab/harness.h>
@@ -305,7 +306,7 @@ static void nonfinite_hdr(void) {
     char json[1024];
     struct { const char *albedo, *dir, *E, *what; int want; float display; } cases[] = {
         /* k_d = 1e38 lit by E = 1e6: overflows float to +Inf */
-        {"1e38, 1e38, 1e38", "-1", "1e6", "+Inf radiance", 1, 0.0f},
+        {"1e38, 1e38, 1e38", "-1", "1e6", "+Inf radiance", 1, 1.0f},
         /* the same lit from behind: (k_d/π·E) = Inf times max(0, n·l) = 0 gives NaN */
         {"1e38, 1e38, 1e38", "1", "1e6", "NaN radiance", 1, 0.0f},
         /* huge but finite (1e4, inside half float): the display clamps to white */
