@@ -1,0 +1,232 @@
+// spotlight-shadow: the SHADOW hook (sdk shader.h): visibility of light sl_lights[i] at a surface,
+// from the shadow maps the "shadow-maps" pass rendered (spotlight_shadow.c). The light loop
+// multiplies E by it. Filters are permutations of spotlight-shadow.filter.
+//
+// Table (RGBA32F, texelFetch): row i < spotlight_shadow_view_base is light sl_lights[i]:
+//   texel 0 (first view, view count: 0 none / 1 / 6 cube faces, -, -), texel 1 (position, -)
+// row spotlight_shadow_view_base + v is view v:
+//   texels 0..3 world → clip matrix columns, 4 (layer, near, far, texel size at depth 1 or
+//   absolute), 5 (eye position, 1 = orthographic), 6 (view axis, light size: radius in m or
+//   tan of the angular radius).
+// Biases, all in texels of the map at the receiver (world size tw): the lookup point moves
+// normal_offset·tw along the normal and (bias_constant + bias_slope·tanθ)·tw towards the
+// light; with receiver_plane every tap compares against the receiver's tangent plane at that
+// tap (computed from the geometric normal, exact for both projections) instead of one depth.
+
+uniform sampler2DArrayShadow spotlight_shadow_cmp_map; // hardware comparison, bilinear
+uniform sampler2DArray spotlight_shadow_depth_map;     // raw depths, nearest
+uniform sampler2D spotlight_shadow_table;
+uniform int spotlight_shadow_view_base;
+uniform float spotlight_shadow_texels;                 // map size in texels
+
+// Progressive Poisson disk (Mitchell's best candidate): every prefix is well spread.
+const vec2 spotlight_shadow_disk[64] = vec2[64](
+    vec2(-0.35233, -0.69830),
+    vec2(0.63856, 0.72797),
+    vec2(-0.85855, 0.48178),
+    vec2(0.84015, -0.48597),
+    vec2(-0.15986, 0.16525),
+    vec2(-0.17930, 0.89595),
+    vec2(-0.87597, -0.22423),
+    vec2(0.96043, 0.12731),
+    vec2(0.31306, -0.89989),
+    vec2(0.37904, -0.11014),
+    vec2(0.27959, 0.38242),
+    vec2(-0.03407, -0.32522),
+    vec2(-0.58788, 0.10969),
+    vec2(0.27315, 0.93690),
+    vec2(-0.46696, 0.58224),
+    vec2(-0.48487, -0.28948),
+    vec2(0.43499, -0.51252),
+    vec2(-0.77742, -0.60007),
+    vec2(-0.08535, -0.97346),
+    vec2(0.64223, 0.32728),
+    vec2(-0.95422, 0.13443),
+    vec2(-0.09899, 0.53971),
+    vec2(0.74879, -0.13599),
+    vec2(0.65515, -0.74998),
+    vec2(0.09207, -0.63864),
+    vec2(0.12500, 0.08432),
+    vec2(0.17821, 0.66415),
+    vec2(-0.50846, 0.85992),
+    vec2(0.82599, 0.53684),
+    vec2(-0.22910, -0.10814),
+    vec2(-0.42432, 0.31445),
+    vec2(0.51765, 0.09896),
+    vec2(0.23673, -0.33545),
+    vec2(-0.70129, 0.68934),
+    vec2(-0.59948, -0.79074),
+    vec2(-0.14353, -0.55319),
+    vec2(0.42232, 0.58651),
+    vec2(-0.53189, -0.53136),
+    vec2(0.03955, 0.32976),
+    vec2(0.95812, -0.26764),
+    vec2(0.59451, -0.32122),
+    vec2(-0.64013, -0.12095),
+    vec2(-0.63898, 0.43976),
+    vec2(0.04394, 0.99013),
+    vec2(-0.25427, -0.34506),
+    vec2(-0.70809, -0.37232),
+    vec2(-0.30553, -0.92105),
+    vec2(0.90902, 0.33683),
+    vec2(0.09691, -0.14444),
+    vec2(-0.36358, 0.08065),
+    vec2(-0.77974, 0.26811),
+    vec2(-0.28078, 0.70445),
+    vec2(0.08599, -0.85149),
+    vec2(0.73428, 0.09728),
+    vec2(-0.15518, -0.77845),
+    vec2(0.43607, -0.71934),
+    vec2(-0.00984, 0.76343),
+    vec2(-0.21633, 0.36849),
+    vec2(0.31626, 0.17432),
+    vec2(0.46320, 0.83862),
+    vec2(-0.80321, -0.00651),
+    vec2(0.64379, -0.52083),
+    vec2(0.95788, -0.06834),
+    vec2(-0.89303, -0.44619)
+);
+
+struct SpotlightShadowView {
+    mat4 vp;
+    float layer, near, far, texel;
+    vec3 pos;
+    float ortho;
+    vec3 axis;
+    float size;
+};
+
+SpotlightShadowView spotlight_shadow_view(int v) {
+    int r = spotlight_shadow_view_base + v;
+    SpotlightShadowView V;
+    V.vp = mat4(texelFetch(spotlight_shadow_table, ivec2(0, r), 0), texelFetch(spotlight_shadow_table, ivec2(1, r), 0),
+                texelFetch(spotlight_shadow_table, ivec2(2, r), 0), texelFetch(spotlight_shadow_table, ivec2(3, r), 0));
+    vec4 a = texelFetch(spotlight_shadow_table, ivec2(4, r), 0);
+    vec4 b = texelFetch(spotlight_shadow_table, ivec2(5, r), 0);
+    vec4 c = texelFetch(spotlight_shadow_table, ivec2(6, r), 0);
+    V.layer = a.x; V.near = a.y; V.far = a.z; V.texel = a.w;
+    V.pos = b.xyz; V.ortho = b.w;
+    V.axis = c.xyz; V.size = c.w;
+    return V;
+}
+
+// Map coordinates (u, v, window depth) of a world point; w <= 0 behind a perspective light.
+vec4 spotlight_shadow_project(SpotlightShadowView V, vec3 p) {
+    vec4 c = V.vp * vec4(p, 1.0);
+    float w = c.w;
+    return vec4(c.xyz / (abs(w) > 1e-20 ? w : 1e-20) * 0.5 + 0.5, w);
+}
+
+// Window depth → metres along the view axis (sdk ext/shadow_maps.h).
+float spotlight_shadow_linear_depth(SpotlightShadowView V, float d) {
+    if (V.ortho > 0.5) return V.near + d * (V.far - V.near);
+    return 2.0 * V.near * V.far / (V.far + V.near - (2.0 * d - 1.0) * (V.far - V.near));
+}
+
+// The receiver plane extrapolated past the end of the geometry can pass the far plane: a
+// reference of 1 still compares lit against the cleared depth (32F references are not clamped).
+float spotlight_shadow_compare(float layer, vec3 sc, vec2 o, vec2 g) {
+    return texture(spotlight_shadow_cmp_map, vec4(sc.xy + o / spotlight_shadow_texels, layer, min(sc.z + dot(g, o), 1.0)));
+}
+
+mat2 spotlight_shadow_rotation() {
+    float a = 0.0;
+    if (spotlight_shadow_poisson_rotate) // interleaved gradient noise (Jimenez 2014)
+        a = 6.28318531 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    float c = cos(a), s = sin(a);
+    return mat2(c, s, -s, c);
+}
+
+float spotlight_shadow_poisson(float layer, vec3 sc, vec2 g, float radius, int taps) {
+    mat2 R = spotlight_shadow_rotation();
+    float sum = 0.0;
+    for (int k = 0; k < taps; ++k) sum += spotlight_shadow_compare(layer, sc, R * spotlight_shadow_disk[k] * radius, g);
+    return sum / float(taps);
+}
+
+float spotlight_shadow_visibility(int i, SlLight L, SlSurface s, vec3 l) {
+#if !SPOTLIGHT_SHADOW_SHADOWS
+    return 1.0;
+#else
+    vec4 info = texelFetch(spotlight_shadow_table, ivec2(0, i), 0);
+    int count = int(info.y + 0.5);
+    if (count <= 0) return 1.0;
+    int v = int(info.x + 0.5);
+    if (count == 6) { // point light: the cube face of the major axis
+        vec3 d = s.position - texelFetch(spotlight_shadow_table, ivec2(1, i), 0).xyz;
+        vec3 a = abs(d);
+        v += a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5);
+    }
+    SpotlightShadowView V = spotlight_shadow_view(v);
+    vec3 n = s.geometric_normal;
+    if (dot(n, l) < 0.0) n = -n; // offsets go to the lit side
+    float cos_t = clamp(dot(n, l), 0.0, 1.0);
+    float sin_t = sqrt(max(0.0, 1.0 - cos_t * cos_t));
+    float tan_t = min(sin_t / max(cos_t, 1e-4), 1000.0); // 89.94°: beyond, the light is edge-on
+    float z_r = dot(s.position - V.pos, V.axis);
+    float tw = V.texel * (V.ortho > 0.5 ? 1.0 : max(z_r, 1e-4));
+    vec3 pb = s.position + n * (spotlight_shadow_normal_offset * tw) +
+              l * (tw * (spotlight_shadow_bias_constant + spotlight_shadow_bias_slope * tan_t));
+    vec4 c = spotlight_shadow_project(V, pb);
+    vec3 sc = c.xyz;
+    // behind the light, outside the map or in front of its near plane: nothing can shadow it
+    if (c.w <= 0.0 || any(lessThan(sc, vec3(0.0))) || any(greaterThan(sc, vec3(1.0)))) return 1.0;
+    float S = spotlight_shadow_texels;
+    vec2 g = vec2(0.0); // receiver plane: window depth change per texel of offset
+    if (spotlight_shadow_receiver_plane) {
+        vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
+        vec3 t2 = cross(n, t1);
+        vec3 a = spotlight_shadow_project(V, pb + t1 * tw).xyz - sc;
+        vec3 b = spotlight_shadow_project(V, pb + t2 * tw).xyz - sc;
+        a.xy *= S;
+        b.xy *= S;
+        float det = a.x * b.y - a.y * b.x;
+        if (abs(det) > 1e-3) g = vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
+        // no steeper than tanθ = 1000 (89.94°), as the slope bias (at a silhouette the plane is
+        // edge-on and the taps would extrapolate it without bound)
+        float dl = sc.z - spotlight_shadow_project(V, pb + l * tw).z;
+        float gmax = 1000.0 * abs(dl), glen = length(g);
+        if (glen > gmax) g *= gmax / glen;
+    }
+    float layer = V.layer;
+#if SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_HARD
+    vec2 texel = clamp(floor(sc.xy * S), vec2(0.0), vec2(S - 1.0));
+    float stored = texelFetch(spotlight_shadow_depth_map, ivec3(texel, int(layer + 0.5)), 0).r;
+    return min(sc.z + dot(g, texel + 0.5 - sc.xy * S), 1.0) <= stored ? 1.0 : 0.0;
+#elif SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_PCF
+    const int K = SPOTLIGHT_SHADOW_PCF_SIZE;
+    float h = 0.5 * float(K - 1), sum = 0.0;
+    for (int y = 0; y < K; ++y)
+        for (int x = 0; x < K; ++x) sum += spotlight_shadow_compare(layer, sc, (vec2(x, y) - h) * spotlight_shadow_pcf_step, g);
+    return sum / float(K * K);
+#elif SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_POISSON
+    return spotlight_shadow_poisson(layer, sc, g, spotlight_shadow_poisson_radius, SPOTLIGHT_SHADOW_POISSON_TAPS);
+#elif SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_PCSS
+    // 1. blocker search over the cone from the receiver to the light, cut at the near plane
+    bool ortho = V.ortho > 0.5;
+    float reach = V.size * max(z_r - V.near, 0.0);
+    float search = ortho ? reach / V.texel : reach / max(z_r, 1e-4) / (V.texel * V.near);
+    search = clamp(search, 1.0, spotlight_shadow_pcss_max_radius);
+    mat2 R = spotlight_shadow_rotation();
+    float zb = 0.0;
+    int nb = 0;
+    for (int k = 0; k < SPOTLIGHT_SHADOW_PCSS_BLOCKER_TAPS; ++k) {
+        vec2 o = R * spotlight_shadow_disk[k] * search;
+        float d = texture(spotlight_shadow_depth_map, vec3(sc.xy + o / S, layer)).r;
+        if (d < min(sc.z + dot(g, o), 1.0)) {
+            zb += spotlight_shadow_linear_depth(V, d);
+            nb++;
+        }
+    }
+    if (nb == 0) return 1.0;
+    zb /= float(nb);
+    // 2. penumbra width from similar triangles, 3. filter over it
+    float w = ortho ? V.size * max(z_r - zb, 0.0) : V.size * max(z_r - zb, 0.0) / max(zb, 1e-4);
+    float r = clamp(w / tw, 0.5, spotlight_shadow_pcss_max_radius);
+    return spotlight_shadow_poisson(layer, sc, g, r, SPOTLIGHT_SHADOW_PCSS_FILTER_TAPS);
+#else // reference: one bilinear comparison of a high-resolution map rendered from a point
+      // sampled on the light (the frames are averaged by the core)
+    return spotlight_shadow_compare(layer, sc, vec2(0.0), g);
+#endif
+#endif
+}
