@@ -814,7 +814,12 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     memcpy(f->scene_min, app->scene.bounds_min, 12);
     memcpy(f->scene_max, app->scene.bounds_max, 12);
     f->camera_version = app->camera.version;
-    f->geometry_version = 1;
+    /* geometry changes every frame when a vertex hook (displacement, animation over sl_time)
+     * is active; otherwise only when the scene is reloaded */
+    bool animated = false;
+    for (int i = 0; i < app->plugins.chunk_count && !animated; i++)
+        animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(app, app->plugins.chunks[i].owner);
+    f->geometry_version = animated ? app->frame_index + 1 : 0;
     f->lights_version = app->lights_version;
     f->params_version = app->params.version + app->materials_version;
     f->accumulate_index = acc_index;
