@@ -1,0 +1,79 @@
+// phong: the shading models "phong" and "blinn-gloss", their ambient terms, the property-map
+// SURFACE hook (gloss → s.alpha, AO → s.ao, with Toksvig specular antialiasing) and the
+// "effective-gloss" debug view. Uniforms from the composer:
+//   phong_color, phong_gloss_map, phong_ao (bool: keys 1, 3, 4), PHONG_SPECULAR_AA (define),
+//   sl_mat_gloss, sl_mat_shininess (float), sl_mat_specular_color (vec3),
+//   sl_mat_property_map (sampler2D, R gloss, B AO; only when the material carries one).
+// The plugin's own: phong_toksvig (sampler2D on a reserved unit, bound by phong.c per material):
+//   RG, explicit mips: R = gloss with the level's normal variance baked in, G = |N̄|.
+#include "phong_brdf.glsl"
+
+#if defined(SL_MAT_HAS_PROPERTY_MAP) && PHONG_SPECULAR_AA && defined(SL_MAT_HAS_NORMAL_MAP)
+#define PHONG_TOKSVIG 1
+uniform sampler2D phong_toksvig;
+#endif
+
+// How much the current texel's lobe was widened by Toksvig (1 − ft), set by phong_surface and
+// read by the blinn-gloss model in the same invocation; 0 without specular antialiasing.
+float phong_filter_w = 0.0;
+
+// Key 1: the colour map, or grey albedo 0.5 to judge the lighting alone.
+vec3 phong_albedo(SlSurface s) { return phong_color ? s.base_color : vec3(0.5); }
+
+// The blinn-gloss specular power: from s.alpha, which phong_surface fills when the material
+// has a property map, else from the material's gloss (0.5 → 64).
+float phong_power(SlSurface s) {
+#if defined(SL_MAT_HAS_PROPERTY_MAP)
+    return phong_power_from_alpha(s.alpha);
+#else
+    return phong_power_from_gloss(sl_mat_gloss);
+#endif
+}
+
+vec3 phong_model_classic(SlSurface s, vec3 l, vec3 E) {
+    return phong_classic(s.normal, s.view, l, phong_albedo(s), sl_mat_specular_color * s.specular, sl_mat_shininess, E);
+}
+vec3 phong_model_classic_ambient(SlSurface s, vec3 Ea) { return phong_classic_ambient(phong_albedo(s), s.ao, Ea); }
+
+vec3 phong_model_blinn_gloss(SlSurface s, vec3 l, vec3 E) {
+#if defined(PHONG_TOKSVIG)
+    return phong_blinn_gloss_filtered(s.normal, s.view, l, phong_albedo(s), phong_power(s), s.specular, E, phong_filter_w);
+#else
+    return phong_blinn_gloss(s.normal, s.view, l, phong_albedo(s), phong_power(s), s.specular, E);
+#endif
+}
+vec3 phong_model_blinn_gloss_ambient(SlSurface s, vec3 Ea) {
+    return phong_blinn_gloss_ambient(s.normal, s.view, phong_albedo(s), s.ao, Ea);
+}
+
+#if defined(SL_MAT_HAS_PROPERTY_MAP)
+// Property map: R = gloss, B = ambient occlusion (G unused). Key 3 off: the material's gloss;
+// key 4 off: no AO. With specular antialiasing and a normal map, gloss comes from the
+// Toksvig texture instead (same UVs, same size as the normal map, so the same mip level).
+void phong_surface(inout SlSurface s) {
+#if defined(SL_MAT_HAS_NORMAL_MAP)
+    float bias = normal_map_lod_bias; // gloss follows the normal map's mip level
+#else
+    float bias = 0.0;
+#endif
+    vec4 prop = texture(sl_mat_property_map, s.uv, bias);
+#if defined(PHONG_TOKSVIG)
+    vec2 t = texture(phong_toksvig, s.uv, bias).rg;
+    float p0 = phong_power_from_gloss(phong_gloss_map ? prop.r : sl_mat_gloss);
+    float p = phong_gloss_map ? phong_power_from_gloss(t.r) : phong_toksvig_power(p0, t.g);
+    phong_filter_w = clamp(1.0 - p / p0, 0.0, 1.0);
+    // Never taken (sl_frame_index ≥ 0), but keeps both material samplers active wherever the
+    // Toksvig texture is (e.g. the effective-gloss view, which uses neither map otherwise):
+    // phong.c finds the core's textures through these uniforms to build the Toksvig texture.
+    if (sl_frame_index < 0) p += texture(sl_mat_normal_map, s.uv).r + prop.g;
+#else
+    float p = phong_power_from_gloss(phong_gloss_map ? prop.r : sl_mat_gloss);
+#endif
+    if (phong_ao) s.ao *= prop.b;
+    s.alpha = phong_alpha_from_power(p);
+}
+#endif
+
+// "effective-gloss": log2(SpecPower)/12 written as linear grey: the gloss blinn-gloss uses,
+// after the gloss-map toggle and Toksvig (far, bumpy regions turn darker with antialiasing).
+vec3 phong_debug_gloss(SlSurface s) { return vec3(phong_gloss_from_power(phong_power(s))); }

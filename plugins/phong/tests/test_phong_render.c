@@ -1,0 +1,329 @@
+/* phong render tests: closed-form renders of both models on a plane (radiance per pixel in C
+ * from the camera ray), the property map and the key toggles (colour/grey, gloss map, AO),
+ * "unused costs nothing" (program hashes), stability renders (normal-mapped normals facing
+ * away, gloss 0 and 1, light grazing and behind), the specular antialiasing test against a
+ * supersampled reference, and the plugin's scenes. */
+#include "nm_test_util.h"
+
+#define W 96
+#define H 72
+static float img[W * H * 4];
+static const char *const PLUGINS[] = {"normal-map", "phong", NULL};
+static char json[8192];
+
+static const char *plane_scene(const char *model, const char *keys, const char *light_dir, double env) {
+    snprintf(json, sizeof json,
+             "{\"cameras\": [{\"name\": \"c\", \"position\": [0,5,5], \"target\": [0,0,0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}],"
+             " \"materials\": [{\"name\": \"m\", \"model\": \"%s\", \"base_color\": [0.7, 0.5, 0.3] %s}],"
+             " \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}],"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [%s], \"intensity\": 2}],"
+             " \"environment\": {\"color\": [1, 1, 1], \"intensity\": %g}}",
+             model, keys, light_dir, env);
+    return json;
+}
+
+static const double KD[3] = {0.7, 0.5, 0.3};
+
+static double schlick(double c) {
+    double m = 1 - (c < 0 ? 0 : c > 1 ? 1 : c);
+    return 0.04 + 0.96 * m * m * m * m * m;
+}
+
+typedef struct expect_desc {
+    bool classic;
+    double power;          /* blinn-gloss SpecPower, or classic shininess */
+    double albedo_scale;   /* < 0: grey 0.5 */
+    double ao, env, ks;
+    double l[3];           /* towards the light */
+} expect_desc;
+
+/* Expected radiance of channel c at plane point p with unit normal n (world). */
+static double expected(const expect_desc *e, const double n[3], const float p[3], int c) {
+    float vf[3];
+    nt_view_dir(p, vf);
+    double v[3] = {vf[0], vf[1], vf[2]}, kd = e->albedo_scale < 0 ? 0.5 : KD[c];
+    double ndl = nt_dot(n, e->l), ndv = nt_dot(n, v), E = 2;
+    if (e->classic) {
+        double direct = 0;
+        if (ndl > 0) {
+            double r[3];
+            for (int i = 0; i < 3; i++) r[i] = 2 * ndl * n[i] - e->l[i];
+            double rv = nt_dot(r, v);
+            direct = E / M_PI * (kd * ndl + 0.5 * e->ks * (rv > 0 ? pow(rv, e->power) : 0));
+        }
+        return direct + kd * e->ao * e->env;
+    }
+    double F = schlick(ndv), direct = 0;
+    if (ndl > 0) {
+        double hv[3] = {e->l[0] + v[0], e->l[1] + v[1], e->l[2] + v[2]};
+        nt_normalize(hv);
+        double ndh = nt_dot(n, hv);
+        direct = E / M_PI * ndl * ((1 - F) * kd + F * e->ks * (ndh > 0 ? (e->power + 1) / 2 * pow(ndh, e->power) : 0));
+    }
+    return direct + (1 - F) * kd * e->ao * e->env;
+}
+
+/* Worst |render − expected| / (tolerance) over plane pixels, tolerance relative 1e-3 + 3e-7·p
+ * (float n·h amplified by the power) with a floor of 1e-4 absolute. */
+static double compare_plane(const float *im, const expect_desc *e, const double n[3], int *count, double *peak) {
+    double worst = 0;
+    *count = 0;
+    *peak = 0;
+    for (int y = 0; y < H; y += 2)
+        for (int x = 0; x < W; x += 2) {
+            float p[3];
+            if (!nt_plane_hit(x, y, W, H, 9.5f, p)) continue;
+            for (int c = 0; c < 3; c++) {
+                double ex = expected(e, n, p, c), got = im[(y * W + x) * 4 + c];
+                double tol = fmax(1e-4, (1e-3 + 3e-7 * e->power) * ex);
+                worst = fmax(worst, fabs(got - ex) / tol);
+                *peak = fmax(*peak, got);
+            }
+            (*count)++;
+        }
+    return worst;
+}
+
+static const double UP[3] = {0, 1, 0};
+/* light mirrored about the plane from the camera's view of the centre: the highlight is in view */
+static const char *MIRROR_DIR = "0, -0.70710678, 0.70710678";
+
+static void test_closed_form(void) {
+    expect_desc e = {.power = 64, .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, 0.70710678, -0.70710678}};
+    int count;
+    double peak;
+    /* blinn-gloss without a property map: gloss 0.5 → SpecPower 64 */
+    CHECK(nt_render(plane_scene("blinn-gloss", "", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+    double worst = compare_plane(img, &e, UP, &count, &peak);
+    CHECK_MSG(worst <= 1 && count > 200, "blinn-gloss plane: worst error %.3g x tolerance over %d px", worst, count);
+    /* diffuse alone peaks at 2/π·0.707·(1−F)·0.7 ≈ 0.30; the highlight lifts it to ≈ 1.1 */
+    CHECK_MSG(peak > 0.9, "no highlight in view (peak %g)", peak);
+    printf("blinn-gloss plane, SpecPower 64: worst error %.3f x tolerance over %d px, peak radiance %.2f\n", worst, count, peak);
+    /* material gloss 0.9 → 2^10.8 */
+    CHECK(nt_render(plane_scene("blinn-gloss", ", \"gloss\": 0.9", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+    e.power = pow(2, 12 * 0.9);
+    worst = compare_plane(img, &e, UP, &count, &peak);
+    CHECK_MSG(worst <= 1, "blinn-gloss gloss 0.9: worst error %.3g x tolerance", worst);
+    /* classic Phong, shininess 40, k_s 0.5 (default specular_color) */
+    CHECK(nt_render(plane_scene("phong", ", \"shininess\": 40", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+    expect_desc ec = {.classic = true, .power = 40, .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, 0.70710678, -0.70710678}};
+    worst = compare_plane(img, &ec, UP, &count, &peak);
+    CHECK_MSG(worst <= 1, "classic phong plane: worst error %.3g x tolerance", worst);
+    printf("classic Phong plane, shininess 40: worst error %.3f x tolerance, peak %.2f\n", worst, peak);
+}
+
+static void test_property_map_and_keys(void) {
+    /* property map constant: gloss 0.75 → SpecPower 512; AO 0.5 */
+    const char *keys = ", \"property_map\": \"constant:0.75,0,0.5\"";
+    sl_harness *h = nt_harness(plane_scene("blinn-gloss", keys, MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL);
+    CHECK(h != NULL);
+    if (!h) return;
+    expect_desc e = {.power = 512, .albedo_scale = 1, .ao = 0.5, .env = 0.25, .ks = 1, .l = {0, 0.70710678, -0.70710678}};
+    int count;
+    double peak, worst;
+    char err[512];
+    struct { const char *set; double power, albedo, ao; } steps[] = {
+        {NULL, 512, 1, 0.5},
+        {"phong.gloss_map=false", 64, 1, 0.5},   /* key 3: the material's gloss 0.5 */
+        {"phong.ao=false", 64, 1, 1},            /* key 4 */
+        {"phong.color=false", 64, -1, 1},        /* key 1: grey 0.5 */
+        {"phong.gloss_map=true", 512, -1, 1},
+    };
+    for (size_t i = 0; i < sizeof steps / sizeof *steps; i++) {
+        if (steps[i].set) CHECK(sl_harness_set(h, steps[i].set, err, sizeof err));
+        CHECK(sl_harness_render(h, img));
+        e.power = steps[i].power, e.albedo_scale = steps[i].albedo, e.ao = steps[i].ao;
+        worst = compare_plane(img, &e, UP, &count, &peak);
+        CHECK_MSG(worst <= 1, "after %s: worst error %.3g x tolerance", steps[i].set ? steps[i].set : "(start)", worst);
+        printf("property map, %-22s SpecPower %4.0f albedo %s AO %.1f: worst error %.3f x tolerance\n",
+               steps[i].set ? steps[i].set : "(all on)", e.power, e.albedo_scale < 0 ? "grey" : "map ", e.ao, worst);
+    }
+    sl_harness_destroy(h);
+}
+
+/* ---- unused costs nothing ---------------------------------------------------------------- */
+
+static const char *mats_scene(const char *nm) {
+    snprintf(json, sizeof json,
+             "{\"materials\": [{\"name\": \"plain\", \"base_color\": [0.5, 0.5, 0.5]},"
+             "   {\"name\": \"gloss\", \"model\": \"blinn-gloss\", \"base_color\": [0.5, 0.5, 0.5]},"
+             "   {\"name\": \"aa\", \"model\": \"blinn-gloss\", \"normal_map\": \"%s\", \"property_map\": \"constant:0.8,0,1\"}],"
+             " \"nodes\": [{\"name\": \"a\", \"mesh\": {\"primitive\": \"sphere\"}, \"material\": \"plain\"},"
+             "   {\"name\": \"b\", \"translate\": [2, 0, 0], \"mesh\": {\"primitive\": \"sphere\"}, \"material\": \"gloss\"},"
+             "   {\"name\": \"c\", \"translate\": [-2, 0, 0], \"mesh\": {\"primitive\": \"sphere\"}, \"material\": \"aa\"}],"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -1, -1]}]}", nm);
+    return json;
+}
+
+static bool structure(const char *scene, const char *const *plugins, const char *const *settings, sl_harness_structure *st) {
+    sl_harness *h = nt_harness(scene, 32, 32, plugins, settings, NULL);
+    if (!h) return false;
+    bool ok = sl_harness_render(h, NULL);
+    sl_harness_structure_of(h, st);
+    sl_harness_destroy(h);
+    return ok;
+}
+
+static void test_zero_cost(const char *normal_map) {
+    const char *scene = mats_scene(normal_map);
+    sl_harness_structure nm_only, both, no_aa, disabled;
+    CHECK(structure(scene, (const char *[]){"normal-map", NULL}, NULL, &nm_only));
+    CHECK(structure(scene, PLUGINS, NULL, &both));
+    CHECK(structure(scene, PLUGINS, (const char *[]){"phong.specular_aa=false", NULL}, &no_aa));
+    CHECK(structure(scene, PLUGINS, (const char *[]){"phong.enabled=false", NULL}, &disabled));
+    CHECK(both.program_count == 3);
+    CHECK_MSG(both.program_hashes[0] == nm_only.program_hashes[0], "a lambert material got phong code");
+    /* (specular_aa is a #define of every phong program, so toggling it recompiles them all; only
+     * materials with both maps get code from it) */
+    CHECK_MSG(both.program_hashes[2] != no_aa.program_hashes[2], "specular AA did not change the mapped material");
+    for (int i = 0; i < 3; i++)
+        CHECK_MSG(disabled.program_hashes[i] == nm_only.program_hashes[i], "disabled phong still changed material %d", i);
+    CHECK(both.pass_count == nm_only.pass_count && both.draw_calls == nm_only.draw_calls);
+}
+
+/* ---- stability ------------------------------------------------------------------------------ */
+
+static void test_stability(const char *dir) {
+    int count;
+    double peak, worst;
+    /* gloss 1 (SpecPower 4096) and gloss 0 (1) from the property map */
+    for (int k = 0; k < 2; k++) {
+        char keys[200];
+        snprintf(keys, sizeof keys, ", \"property_map\": \"constant:%d,0,1\"", k);
+        CHECK(nt_render(plane_scene("blinn-gloss", keys, MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+        CHECK(sl_harness_count_nonfinite(img, W, H) == 0 && sl_harness_count_negative(img, W, H) == 0);
+        expect_desc e = {.power = k ? 4096 : 1, .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, 0.70710678, -0.70710678}};
+        worst = compare_plane(img, &e, UP, &count, &peak);
+        CHECK_MSG(worst <= 1, "gloss %d: worst error %.3g x tolerance", k, worst);
+        printf("stability, gloss %d (SpecPower %4.0f): finite, worst error %.3f x tolerance, peak %.2f\n", k, e.power, worst, peak);
+    }
+    /* light grazing (n·l = 0) and behind (n·l < 0): exactly the ambient (1−F)·k_d·AO·L_env */
+    const char *dirs[2] = {"0, 0, -1", "0, 0.3, -0.953939"};
+    for (int k = 0; k < 2; k++) {
+        CHECK(nt_render(plane_scene("blinn-gloss", "", dirs[k], 0.25), W, H, PLUGINS, NULL, NULL, img));
+        CHECK(sl_harness_count_nonfinite(img, W, H) == 0 && sl_harness_count_negative(img, W, H) == 0);
+        expect_desc e = {.power = 64, .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, k ? -0.3 : 0, k ? 0.953939 : 1}};
+        worst = compare_plane(img, &e, UP, &count, &peak);
+        CHECK_MSG(worst <= 1, "%s light: worst error %.3g x tolerance", k ? "behind" : "grazing", worst);
+        int c = (H / 2 * W + W / 2) * 4;
+        double F = schlick(0.70710678);
+        CHECK_NEAR(img[c], (1 - F) * KD[0] * 0.25, 2e-3 * KD[0] * 0.25);
+        printf("stability, %s light: centre radiance %.5f = ambient (1-F) k_d L_env\n", k ? "behind-the-surface" : "grazing", img[c]);
+    }
+    /* normal-mapped normals facing away from the viewer (n_t = (0, 0.99, 0.141): n·v ≈ −0.6 at
+     * the centre before the guard) under a light from the far side, gloss 0.9: the guard bends
+     * n to n·v = ε; stated value per pixel from C with the bent normal. */
+    double nt[3] = {0, 0.99, sqrt(1 - 0.99 * 0.99)};
+    char keys[300];
+    snprintf(keys, sizeof keys, ", \"normal_map\": \"constant:0.5,%.9g,%.9g\", \"gloss\": 0.9", nt[1] * 0.5 + 0.5, nt[2] * 0.5 + 0.5);
+    CHECK(nt_render(plane_scene("blinn-gloss", keys, "0, -0.287348, 0.957826", 0.25), W, H, PLUGINS, NULL, NULL, img));
+    CHECK(sl_harness_count_nonfinite(img, W, H) == 0 && sl_harness_count_negative(img, W, H) == 0);
+    expect_desc e = {.power = pow(2, 10.8), .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, 0.287348, -0.957826}};
+    worst = 0;
+    count = 0;
+    for (int y = 0; y < H; y += 2)
+        for (int x = 0; x < W; x += 2) {
+            float p[3], v[3];
+            if (!nt_plane_hit(x, y, W, H, 9.5f, p)) continue;
+            nt_view_dir(p, v);
+            double n[3];
+            nt_plane_tangent_to_world(nt, n);
+            nt_face_viewer(n, v);
+            for (int c = 0; c < 3; c++) {
+                double ex = expected(&e, n, p, c), got = img[(y * W + x) * 4 + c];
+                worst = fmax(worst, fabs(got - ex) / fmax(1e-4, (1e-3 + 3e-7 * e.power) * ex));
+            }
+            count++;
+        }
+    CHECK_MSG(worst <= 1 && count > 200, "facing away: worst error %.3g x tolerance", worst);
+    /* stated: at the centre the bent normal has n·v = ε, so F ≈ 0.91 and the diffuse and ambient
+     * terms keep (1 − F) ≈ 0.09 of themselves: ≈ 0.064 (the C value above), not 0 */
+    int c = (H / 2 * W + W / 2) * 4;
+    CHECK_MSG(img[c] > 0.04, "facing away: centre radiance %g (black hole)", img[c]);
+    printf("stability, mapped normals facing away (guarded): worst error %.3f x tolerance, centre radiance %.4f\n", worst, img[c]);
+    (void)dir;
+}
+
+/* ---- specular antialiasing ------------------------------------------------------------------ */
+
+#define AW 128
+#define AH 72
+static float aa_on[AW * AH * 4], aa_off[AW * AH * 4], aa_ref[AW * AH * 4];
+
+static bool render_scene_file(const char *path, const char *const *settings, int w, int h, float *out) {
+    char err[4096];
+    sl_harness *hs = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = w, .height = h,
+                                                           .scene_file = path, .settings = settings, .float32 = true,
+                                                           .strict = true},
+                                       err, sizeof err);
+    if (!hs) { fprintf(stderr, "%s: %s\n", path, err); return false; }
+    bool ok = sl_harness_render(hs, out);
+    sl_harness_destroy(hs);
+    return ok;
+}
+
+static void region_stats(const float *a, const float *ref, int y0, int y1, double *mean_a, double *mean_ref, double *rmse) {
+    double sa = 0, sr = 0, se = 0;
+    long n = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = 0; x < AW; x++)
+            for (int c = 0; c < 3; c++) {
+                double va = a[(y * AW + x) * 4 + c], vr = ref[(y * AW + x) * 4 + c];
+                sa += va, sr += vr, se += (va - vr) * (va - vr), n++;
+            }
+    *mean_a = sa / n, *mean_ref = sr / n, *rmse = sqrt(se / n);
+}
+
+static void test_specular_aa(void) {
+    char path[1200];
+    snprintf(path, sizeof path, "%s/specular_aa_plane.json", SL_SCENES_DIR);
+    CHECK(render_scene_file(path, (const char *[]){"phong.specular_aa=true", NULL}, AW, AH, aa_on));
+    CHECK(render_scene_file(path, (const char *[]){"phong.specular_aa=false", NULL}, AW, AH, aa_off));
+    /* reference: 8x8 supersampling without prefiltering (the plugin's declared reference) */
+    CHECK(render_scene_file(path, (const char *[]){"phong.specular_aa=false", "core.ssaa=8", NULL}, AW, AH, aa_ref));
+    CHECK(sl_harness_count_nonfinite(aa_on, AW, AH) == 0 && sl_harness_count_negative(aa_on, AW, AH) == 0);
+    /* the far field: from just below the horizon (row ~0.36 H) to 3/4 of the image height */
+    double m_on, m_off, m_ref, r_on, r_off;
+    int y0 = AH * 3 / 8, y1 = AH * 3 / 4;
+    region_stats(aa_on, aa_ref, y0, y1, &m_on, &m_ref, &r_on);
+    region_stats(aa_off, aa_ref, y0, y1, &m_off, &m_ref, &r_off);
+    printf("specular AA, far field (rows %d-%d of %d): mean radiance AA on %.4f, off %.4f, reference (ssaa 8x8) %.4f; "
+           "|mean error| on %.4f vs off %.4f; RMSE on %.4f vs off %.4f\n",
+           y0, y1, AH, m_on, m_off, m_ref, fabs(m_on - m_ref), fabs(m_off - m_ref), r_on, r_off);
+    CHECK_MSG(fabs(m_on - m_ref) < fabs(m_off - m_ref), "antialiased far-field mean is not closer to the reference");
+    CHECK_MSG(r_on < r_off, "antialiased far field has a larger RMSE against the reference");
+    CHECK_MSG(fabs(m_off - m_ref) > 0.01 * m_ref, "no aliasing to fix: the test cannot fail");
+}
+
+static void test_scenes(void) {
+    const char *scenes[] = {"gloss_ao.json", "specular_aa_plane.json", "spheres_normalmap.json", "normalmap_fullscreen.json"};
+    for (int i = 0; i < 4; i++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/%s", SL_SCENES_DIR, scenes[i]);
+        CHECK(render_scene_file(path, NULL, AW, AH, aa_on));
+        CHECK(sl_harness_count_nonfinite(aa_on, AW, AH) == 0);
+        CHECK(sl_harness_count_negative(aa_on, AW, AH) == 0);
+        double mean = 0;
+        for (int p = 0; p < AW * AH; p++) mean += aa_on[p * 4 + 1];
+        mean /= AW * AH;
+        CHECK_MSG(mean > 0.02, "%s: mean green radiance %g (black?)", scenes[i], mean);
+        printf("scene %s: renders, mean green radiance %.4f\n", scenes[i], mean);
+    }
+}
+
+int main(void) {
+    const char *dir = nt_scratch("phong");
+    char nm[1200];
+    snprintf(nm, sizeof nm, "%s/bumps.png", dir);
+    sl_image m;
+    char err[256];
+    CHECK(nm_generate_tangent_map(&m, "bumps:16:0.8", 128, err, sizeof err) && nt_write(nm, &m));
+    sl_image_free(&m);
+    test_closed_form();
+    test_property_map_and_keys();
+    test_zero_cost(nm);
+    test_stability(dir);
+    test_specular_aa();
+    test_scenes();
+    return check_result();
+}
