@@ -14,6 +14,7 @@ typedef struct sl_param {
     sl_param_desc desc;     /* strings owned by the store (copied) */
     sl_value value;         /* globals only */
     sl_param_source source;
+    uint64_t declared_by;   /* bit i: plugin i declared this key (shared material/light keys) */
 } sl_param;
 
 typedef struct sl_params {

@@ -197,5 +197,31 @@ int main(void) {
         CHECK_NEAR(col[right], 0.5 / M_PI, 2e-3);
         sl_app_shutdown(&a);
     }
+    /* a material key declared by two plugins is one key, declared in any program either is in:
+     * tp-other's model reads tp_scale, first declared by tp-good */
+    {
+        const char *shared =
+            "{\"materials\": [{\"name\": \"m\", \"model\": \"tp-other-model\", \"base_color\": [0.5, 0.5, 0.5], \"tp_scale\": 2},\n"
+            "                 {\"name\": \"t\", \"base_color_map\": \"checker:2:1,1,1:0,0,0\"}],\n"
+            " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3], \"target\": [0, 0, 0]}],\n"
+            " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"plane\", \"size\": 10}, \"rotate\": [90, 0, 0], \"material\": \"m\"},\n"
+            "           {\"name\": \"u\", \"translate\": [0, 0, -20], \"mesh\": {\"primitive\": \"cube\"}, \"material\": \"t\"}],\n"
+            " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 1}]}\n";
+        sl_app_options o = {.scene_text = shared, .backend = SL_BACKEND_OSMESA, .width = 16, .height = 16};
+        o.plugins[o.plugin_count++] = "tp-good";
+        o.plugins[o.plugin_count++] = "tp-other";
+        sl_app a;
+        bool ok = sl_app_init(&a, &o, err, sizeof err) && sl_app_start_gl(&a, err, sizeof err) && sl_app_render_frame(&a);
+        CHECK_MSG(ok, "%s", err);
+        static float col[16 * 16 * 4];
+        if (ok) {
+            CHECK(sl_app_read_color(&a, col));
+            CHECK_NEAR(col[(8 * 16 + 8) * 4], 1.0, 4e-3); /* 0.5 · E · cos · tp_scale 2 */
+            /* the core's texture for a material key, through the host call plugins use */
+            CHECK(sl_renderer_material_texture(&a, 1, "base_color_map") != 0);
+            CHECK(sl_renderer_material_texture(&a, 0, "base_color_map") == 0);
+        }
+        sl_app_shutdown(&a);
+    }
     return check_result();
 }

@@ -38,7 +38,14 @@ static sl_status host_add_param(const sl_host *h, const sl_param_desc *d) {
     if (!in_create(h, "add_param")) return SL_ERR_INVALID;
     char err[512];
     sl_status st = sl_params_add(&HOST_APP(h)->params, HOST_REC(h)->id, d, err, sizeof err);
-    if (st != SL_OK) SL_ERROR("%s: %s", HOST_REC(h)->id, err);
+    if (st != SL_OK) {
+        SL_ERROR("%s: %s", HOST_REC(h)->id, err);
+        return st;
+    }
+    /* remember every declarer of a shared key: its uniform is declared for any of them */
+    sl_params *pp = &HOST_APP(h)->params;
+    sl_param *q = d->scope == SL_SCOPE_GLOBAL ? NULL : sl_params_find_key(pp, d->scope, d->id, d->light_type);
+    if (q) q->declared_by |= 1ull << (HOST_IDX(h) & 63);
     return st;
 }
 
@@ -244,6 +251,9 @@ static void host_draw_scene(const sl_host *h, sl_pass_ctx *c, const sl_draw_scen
     sl_renderer_draw_scene(HOST_APP(h), c, d);
 }
 static void host_draw_fullscreen(const sl_host *h, sl_pass_ctx *c) { sl_renderer_draw_fullscreen(HOST_APP(h), c); }
+static unsigned host_material_texture(const sl_host *h, int m, const char *key) {
+    return sl_renderer_material_texture(HOST_APP(h), m, key);
+}
 
 static const char *host_environment(const sl_host *h, float o[5]) {
     const sl_environment *e = &HOST_APP(h)->scene.environment;
@@ -285,6 +295,7 @@ static sl_host_impl *make_host(sl_app *app, int index) {
     h->bind_outputs = host_bind_outputs;
     h->draw_scene = host_draw_scene;
     h->draw_fullscreen = host_draw_fullscreen;
+    h->material_texture = host_material_texture;
     h->environment = host_environment;
     return impl;
 }

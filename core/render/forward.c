@@ -154,7 +154,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     for (int i = 0; i < app->params.count; i++) {
         const sl_param *q = &app->params.items[i];
         int owner = sl_plugins_find(P, q->owner);
-        if (owner < 0 || !(owners & (1ull << (owner & 63)))) continue;
+        uint64_t declarers = q->declared_by | (owner >= 0 ? 1ull << (owner & 63) : 0);
+        if (!(owners & declarers)) continue;
         char id[160], up[160];
         if (q->desc.scope == SL_SCOPE_MATERIAL) {
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);

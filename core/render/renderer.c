@@ -124,10 +124,10 @@ bool sl_texture_is_procedural(const char *spec) {
 
 /* Loads a material texture: colour textures decode sRGB in the sampler (8-bit) or on the CPU
  * (16-bit); data textures stay linear. */
-static unsigned load_texture(sl_app *app, const char *spec, bool linear_data) {
+static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bool clamp) {
     sl_renderer *r = R(app);
     char key[2100];
-    snprintf(key, sizeof key, "%s|%d", spec, linear_data);
+    snprintf(key, sizeof key, "%s|%d|%d", spec, linear_data, clamp);
     for (int i = 0; i < r->texture_count; i++)
         if (!strcmp(r->textures[i].key, key)) return r->textures[i].id;
     sl_image img = {0};
@@ -165,14 +165,23 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data) {
         glGenerateTextureMipmap(tex);
         glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
         glTextureParameterf(tex, GL_TEXTURE_MAX_ANISOTROPY, 8.0f);
     }
     sl_image_free(&img);
     r->textures = realloc(r->textures, (r->texture_count + 1) * sizeof *r->textures);
     r->textures[r->texture_count++] = (gpu_texture){strdup(key), tex};
     return tex;
+}
+
+unsigned sl_renderer_material_texture(sl_app *app, int m, const char *key) {
+    sl_renderer *r = R(app);
+    if (!r || m < 0 || m >= app->scene.material_count) return 0;
+    const material_rt *mr = &r->materials[m];
+    for (int t = 0; t < mr->forward.texture_count; t++)
+        if (!strcmp(app->params.items[mr->forward.texture_params[t]].full_id, key)) return mr->textures[t];
+    return 0;
 }
 
 /* ------------------------------------------------------------------ lights ---------- */
@@ -242,7 +251,9 @@ static void compose_all(sl_app *app) {
         for (int t = 0; t < mr->forward.texture_count; t++) {
             const sl_param *q = &app->params.items[mr->forward.texture_params[t]];
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
-            mr->textures[t] = v && v->str ? load_texture(app, v->str, q->desc.flags & SL_PARAM_LINEAR_DATA) : 0;
+            mr->textures[t] = v && v->str ? load_texture(app, v->str, q->desc.flags & SL_PARAM_LINEAR_DATA,
+                                                         q->desc.flags & SL_PARAM_CLAMP_TO_EDGE)
+                                          : 0;
         }
     }
 }

@@ -48,4 +48,5 @@ sl_status sl_renderer_bind_outputs(struct sl_app *app, sl_pass_ctx *ctx, int lay
 void sl_renderer_draw_scene(struct sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_desc *d);
 void sl_renderer_draw_fullscreen(struct sl_app *app, sl_pass_ctx *ctx);
 const sl_light_info *sl_renderer_lights(struct sl_app *app, int *count);
+unsigned sl_renderer_material_texture(struct sl_app *app, int material, const char *key);
 #endif

@@ -91,6 +91,8 @@ static sl_status tp_create(const sl_host *host, void **user) {
          .min = 0, .max = 16, .description = "Post pass: multiplies the HDR colour (inactive at 1)."},
         {.struct_size = sizeof(sl_param_desc), .id = "tp_mark", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
          .description = "Materials with this key get the tint surface hook."},
+        {.struct_size = sizeof(sl_param_desc), .id = "tp_scale", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
+         .default_value = {.f = {1}}, .description = "Scales the test model (a key shared by every variant)."},
         {.struct_size = sizeof(sl_param_desc), .id = "override_pass", .type = SL_PARAM_BOOL,
          .description = "Runs the SL_DRAW_MATERIALS prepass."},
         {.struct_size = sizeof(sl_param_desc), .id = "level", .type = SL_PARAM_INT, .default_value = {.i = 2},

@@ -1,4 +1,8 @@
 // Test plugin GLSL: a surface hook, a shading model and a debug view.
+#ifdef SL_MAT_HAS_TP_MARK // the hook is only called for such materials; tp-good's tint uniform
 void tp_surface(inout SlSurface s) { s.base_color *= tp_good_tint; }
-vec3 tp_model(SlSurface s, vec3 l, vec3 E) { return s.base_color * E * max(0.0, dot(s.normal, l)); }
+#endif
+// tp_scale is a material key every variant declares (shared vocabulary): whichever plugin's
+// model is used, its uniform must be declared.
+vec3 tp_model(SlSurface s, vec3 l, vec3 E) { return s.base_color * E * max(0.0, dot(s.normal, l)) * sl_mat_tp_scale; }
 vec3 tp_view(SlSurface s) { return vec3(0.25, 0.5, 0.75); }

@@ -108,6 +108,10 @@ struct sl_host {
     /* ABI 1.1. The scene's "environment" (any time after create()): returns its map (resolved path
      * or procedural spec; NULL = none) and fills o = {r, g, b, intensity, yaw in degrees}. */
     const char *(*environment)(const sl_host *host, float o[5]);
+    /* ABI 1.3. GL context current, after the scene is uploaded: the GL texture the core loaded
+     * for material `material`'s texture key `key` (bound to the program as sl_mat_<key>), or 0
+     * when the material does not carry it. Read it, don't delete it. */
+    unsigned (*material_texture)(const sl_host *host, int material, const char *key);
 };
 
 #ifdef __cplusplus

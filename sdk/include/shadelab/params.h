@@ -41,7 +41,10 @@ enum sl_param_flags {
     /* Textures only: data texture (normals, roughness, masks): no sRGB decoding. */
     SL_PARAM_LINEAR_DATA = 1u << 2,
     /* Not shown in the GUI (still settable and dumped). */
-    SL_PARAM_HIDDEN = 1u << 3
+    SL_PARAM_HIDDEN = 1u << 3,
+    /* ABI 1.3, textures only: sample with clamp-to-edge instead of repeat (object-space maps,
+     * lookup tables). */
+    SL_PARAM_CLAMP_TO_EDGE = 1u << 4
 };
 
 /* A parameter value. Which member is meaningful follows the type. */

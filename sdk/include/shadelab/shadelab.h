@@ -19,7 +19,7 @@
 #define SL_ABI_MAJOR 1
 #endif
 #ifndef SL_ABI_MINOR
-#define SL_ABI_MINOR 2
+#define SL_ABI_MINOR 3
 #endif
 
 #ifdef __cplusplus
