@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The envmap speed/accuracy sweep (plugins/envmap/README.md, "Speed and accuracy"): split-sum
+# error against the Monte Carlo reference versus milliseconds, per roughness, on
+# scenes/ibl_bench.json (a copper sphere under a high-contrast checker environment).
+# Usage: plugins/envmap/bench/run.sh [BUILD_DIR] [OUT_DIR]     (about 15 minutes on 2 cores)
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../../.." && pwd)
+build=${1:-$root/build}
+out=${2:-$here}
+bench=$build/shadelab-bench
+settings=(
+  "envmap.samples=512"                       # the defaults: cube 256, 512 samples, 9 levels, LUT 64
+  "envmap.samples=16" "envmap.samples=64" "envmap.samples=128" "envmap.samples=1024"
+  "envmap.cube_size=32" "envmap.cube_size=64" "envmap.cube_size=128"
+  "envmap.mip_count=4" "envmap.mip_count=6"
+  "envmap.lut_size=16"
+  "envmap.mode=reference envmap.reference_samples=1"
+  "envmap.mode=reference envmap.reference_samples=4"
+  "envmap.mode=reference envmap.reference_samples=16"
+)
+args=()
+for s in "${settings[@]}"; do args+=(--settings "$s"); done
+for r in 0.1 0.3 0.6 0.9; do
+  "$bench" --plugin envmap --scene "$root/scenes/ibl_bench.json" --set "material.ball.roughness=$r" \
+    --set envmap.cache=false --size 320x180 --frames 20 --warmup 3 --reference-accumulate 128 \
+    --metric rmse --metric relmse "${args[@]}" --out "$out/ibl-r$r" -q
+done

@@ -1,0 +1,369 @@
+/* envmap core, CPU side: direction conventions, cube layouts, input sanitising, RGBE,
+ * spherical harmonics, the procedural sky and hashing. See envmap_core.h. */
+#include "envmap_core.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+void em_image_free(em_image *img) {
+    if (!img) return;
+    free(img->px);
+    memset(img, 0, sizeof *img);
+}
+
+/* ---------------------------------------------------------------- directions */
+
+void em_latlong_dir(double u, double v, double d[3]) {
+    double phi = 2 * M_PI * u, theta = M_PI * v;
+    d[0] = sin(theta) * sin(phi);
+    d[1] = cos(theta);
+    d[2] = sin(theta) * cos(phi);
+}
+
+void em_dir_latlong(const double d[3], double *u, double *v) {
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double y = len > 0 ? d[1] / len : 1;
+    double phi = (fabs(d[0]) + fabs(d[2]) > 0) ? atan2(d[0], d[2]) : 0; /* atan2(0, 0) at the poles */
+    double uu = phi / (2 * M_PI);
+    uu -= floor(uu);
+    if (uu >= 1) uu = 0;
+    *u = uu;
+    *v = acos(y < -1 ? -1 : y > 1 ? 1 : y) / M_PI;
+}
+
+/* GL 4.5 table 8.19, inverted: a = 2s − 1, b = 2t − 1. */
+void em_cube_dir(int face, double s, double t, double d[3]) {
+    double a = 2 * s - 1, b = 2 * t - 1;
+    switch (face) {
+    case 0: d[0] = 1; d[1] = -b; d[2] = -a; break;
+    case 1: d[0] = -1; d[1] = -b; d[2] = a; break;
+    case 2: d[0] = a; d[1] = 1; d[2] = b; break;
+    case 3: d[0] = a; d[1] = -1; d[2] = -b; break;
+    case 4: d[0] = a; d[1] = -b; d[2] = 1; break;
+    default: d[0] = -a; d[1] = -b; d[2] = -1; break;
+    }
+    double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int i = 0; i < 3; i++) d[i] /= l;
+}
+
+int em_dir_cube(const double d[3], double *s, double *t) {
+    double ax = fabs(d[0]), ay = fabs(d[1]), az = fabs(d[2]);
+    int face;
+    double sc, tc, ma;
+    if (ax >= ay && ax >= az) {
+        face = d[0] > 0 ? 0 : 1;
+        ma = ax;
+        sc = d[0] > 0 ? -d[2] : d[2];
+        tc = -d[1];
+    } else if (ay >= az) {
+        face = d[1] > 0 ? 2 : 3;
+        ma = ay;
+        sc = d[0];
+        tc = d[1] > 0 ? d[2] : -d[2];
+    } else {
+        face = d[2] > 0 ? 4 : 5;
+        ma = az;
+        sc = d[2] > 0 ? d[0] : -d[0];
+        tc = -d[1];
+    }
+    *s = 0.5 * (sc / ma + 1);
+    *t = 0.5 * (tc / ma + 1);
+    return face;
+}
+
+static double area_element(double x, double y) { return atan2(x * y, sqrt(x * x + y * y + 1)); }
+
+double em_texel_solid_angle(int size, int x, int y) {
+    double x0 = 2.0 * x / size - 1, x1 = 2.0 * (x + 1) / size - 1;
+    double y0 = 2.0 * y / size - 1, y1 = 2.0 * (y + 1) / size - 1;
+    return area_element(x0, y0) - area_element(x0, y1) - area_element(x1, y0) + area_element(x1, y1);
+}
+
+void em_rotate_y(const double d[3], double degrees, double out[3]) {
+    double a = degrees * M_PI / 180, c = cos(a), s = sin(a);
+    double x = d[0], z = d[2];
+    out[0] = c * x + s * z;
+    out[1] = d[1];
+    out[2] = -s * x + c * z;
+}
+
+/* ---------------------------------------------------------------- sanitising */
+
+long em_sanitize(float *rgba, size_t pixels, em_sanitize_stats *st) {
+    em_sanitize_stats s = {0};
+    for (size_t i = 0; i < pixels; i++) {
+        float *p = rgba + i * 4;
+        for (int c = 0; c < 3; c++) {
+            float v = p[c];
+            if (isnan(v)) { s.nan++; p[c] = 0; }
+            else if (isinf(v)) { s.inf++; p[c] = v > 0 ? EM_HALF_MAX : 0; }
+            else if (v < 0) { s.negative++; p[c] = 0; }
+            else {
+                if (v > s.max_value) s.max_value = v;
+                if (v > EM_HALF_MAX) { s.clamped++; p[c] = EM_HALF_MAX; }
+            }
+        }
+        p[3] = 1;
+    }
+    if (st) *st = s;
+    return s.nan + s.inf + s.negative;
+}
+
+/* ---------------------------------------------------------------- RGBE */
+
+void em_rgbe_encode(const float rgb[3], unsigned char out[4]) {
+    float v = rgb[0];
+    if (rgb[1] > v) v = rgb[1];
+    if (rgb[2] > v) v = rgb[2];
+    if (!(v >= 1e-32f)) { /* also NaN */
+        out[0] = out[1] = out[2] = out[3] = 0;
+        return;
+    }
+    int e;
+    double m = frexp(v, &e); /* v = m · 2^e, m in [0.5, 1) */
+    double scale = m * 256.0 / v;
+    for (int c = 0; c < 3; c++) {
+        double x = rgb[c] > 0 ? rgb[c] * scale : 0;
+        out[c] = (unsigned char)(x > 255 ? 255 : x);
+    }
+    out[3] = (unsigned char)(e + 128);
+}
+
+void em_rgbe_decode(const unsigned char in[4], float rgb[3]) {
+    if (!in[3]) {
+        rgb[0] = rgb[1] = rgb[2] = 0;
+        return;
+    }
+    double f = ldexp(1.0, (int)in[3] - (128 + 8));
+    for (int c = 0; c < 3; c++) rgb[c] = in[c] ? (float)((in[c] + 0.5) * f) : 0.0f;
+}
+
+void em_rgbe_encode_image(const float *rgba, size_t pixels, unsigned char *out) {
+    for (size_t i = 0; i < pixels; i++) em_rgbe_encode(rgba + i * 4, out + i * 4);
+}
+
+/* ---------------------------------------------------------------- layouts */
+
+em_layout em_detect_layout(int w, int h) {
+    if (w <= 0 || h <= 0) return EM_LAYOUT_UNKNOWN;
+    if (w == 2 * h) return EM_LAYOUT_LATLONG;
+    if (w * 3 == h * 4 && w % 4 == 0) return EM_LAYOUT_HCROSS;
+    if (w * 4 == h * 3 && w % 3 == 0) return EM_LAYOUT_VCROSS;
+    if (w == 6 * h) return EM_LAYOUT_HSTRIP;
+    if (h == 6 * w) return EM_LAYOUT_VSTRIP;
+    return EM_LAYOUT_UNKNOWN;
+}
+
+const char *em_layout_name(em_layout l) {
+    switch (l) {
+    case EM_LAYOUT_LATLONG: return "lat-long (2:1)";
+    case EM_LAYOUT_HCROSS: return "horizontal cross (4:3)";
+    case EM_LAYOUT_VCROSS: return "vertical cross (3:4)";
+    case EM_LAYOUT_HSTRIP: return "horizontal strip (6:1)";
+    case EM_LAYOUT_VSTRIP: return "vertical strip (1:6)";
+    default: return "unknown";
+    }
+}
+
+/* Where face f sits in a layout, in face-sized cells, and whether it is turned 180°. */
+static void face_cell(em_layout l, int f, int *cx, int *cy, bool *rot180) {
+    static const int hx[6] = {2, 0, 1, 1, 1, 3}, hy[6] = {1, 1, 0, 2, 1, 1};
+    static const int vx[6] = {2, 0, 1, 1, 1, 1}, vy[6] = {1, 1, 0, 2, 1, 3};
+    *rot180 = false;
+    switch (l) {
+    case EM_LAYOUT_HCROSS: *cx = hx[f]; *cy = hy[f]; break;
+    case EM_LAYOUT_VCROSS: *cx = vx[f]; *cy = vy[f]; *rot180 = f == 5; break;
+    case EM_LAYOUT_HSTRIP: *cx = f; *cy = 0; break;
+    default: *cx = 0; *cy = f; break;
+    }
+}
+
+bool em_extract_faces(const em_image *img, em_layout l, float *faces[6], int *size) {
+    int n;
+    switch (l) {
+    case EM_LAYOUT_HCROSS: n = img->w / 4; break;
+    case EM_LAYOUT_VCROSS: n = img->w / 3; break;
+    case EM_LAYOUT_HSTRIP: n = img->h; break;
+    case EM_LAYOUT_VSTRIP: n = img->w; break;
+    default: return false;
+    }
+    *size = n;
+    for (int f = 0; f < 6; f++) {
+        int cx, cy;
+        bool r;
+        face_cell(l, f, &cx, &cy, &r);
+        faces[f] = malloc((size_t)n * n * 4 * sizeof(float));
+        for (int y = 0; y < n; y++)
+            for (int x = 0; x < n; x++) {
+                int sx = r ? n - 1 - x : x, sy = r ? n - 1 - y : y;
+                const float *src = img->px + ((size_t)(cy * n + sy) * img->w + cx * n + sx) * 4;
+                memcpy(faces[f] + ((size_t)y * n + x) * 4, src, 4 * sizeof(float));
+            }
+    }
+    return true;
+}
+
+void em_faces_to_hcross(float *const faces[6], int n, em_image *out) {
+    out->w = 4 * n;
+    out->h = 3 * n;
+    out->px = calloc((size_t)out->w * out->h * 4, sizeof(float));
+    for (int f = 0; f < 6; f++) {
+        int cx, cy;
+        bool r;
+        face_cell(EM_LAYOUT_HCROSS, f, &cx, &cy, &r);
+        for (int y = 0; y < n; y++)
+            memcpy(out->px + ((size_t)(cy * n + y) * out->w + cx * n) * 4, faces[f] + (size_t)y * n * 4,
+                   (size_t)n * 4 * sizeof(float));
+    }
+}
+
+/* ---------------------------------------------------------------- spherical harmonics */
+
+static void sh9_basis(const double d[3], double y[9]) {
+    double x = d[0], yy = d[1], z = d[2];
+    y[0] = 0.282094791773878;
+    y[1] = 0.488602511902920 * yy;
+    y[2] = 0.488602511902920 * z;
+    y[3] = 0.488602511902920 * x;
+    y[4] = 1.092548430592079 * x * yy;
+    y[5] = 1.092548430592079 * yy * z;
+    y[6] = 0.315391565252520 * (3 * z * z - 1);
+    y[7] = 1.092548430592079 * x * z;
+    y[8] = 0.546274215296040 * (x * x - yy * yy);
+}
+
+void em_sh9_project(const float *faces, int n, double sh[9][3]) {
+    memset(sh, 0, 9 * 3 * sizeof(double));
+    double *w = malloc((size_t)n * n * sizeof(double));
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++) w[y * n + x] = em_texel_solid_angle(n, x, y);
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < n; y++)
+            for (int x = 0; x < n; x++) {
+                double d[3], b[9];
+                em_cube_dir(f, (x + 0.5) / n, (y + 0.5) / n, d);
+                sh9_basis(d, b);
+                const float *p = faces + (((size_t)f * n + y) * n + x) * 4;
+                double dw = w[y * n + x];
+                for (int k = 0; k < 9; k++)
+                    for (int c = 0; c < 3; c++) sh[k][c] += p[c] * b[k] * dw;
+            }
+    free(w);
+}
+
+static const double band_factor[9] = {1.0, 2.0 / 3, 2.0 / 3, 2.0 / 3, 0.25, 0.25, 0.25, 0.25, 0.25}; /* Â_l/π */
+
+void em_sh9_diffuse(const double sh[9][3], const double n[3], double out[3]) {
+    double b[9];
+    sh9_basis(n, b);
+    for (int c = 0; c < 3; c++) {
+        out[c] = 0;
+        for (int k = 0; k < 9; k++) out[c] += band_factor[k] * sh[k][c] * b[k];
+    }
+}
+
+void em_sh9_diffuse_coefficients(const double sh[9][3], float out[9][3]) {
+    static const double norm[9] = {0.282094791773878, 0.488602511902920, 0.488602511902920, 0.488602511902920,
+                                   1.092548430592079, 1.092548430592079, 0.315391565252520, 1.092548430592079,
+                                   0.546274215296040};
+    for (int k = 0; k < 9; k++)
+        for (int c = 0; c < 3; c++) out[k][c] = (float)(band_factor[k] * sh[k][c] * norm[k]);
+}
+
+/* ---------------------------------------------------------------- procedural sky */
+
+void em_sky_default(em_sky *s) {
+    s->sun_elevation_deg = 35;
+    s->sun_azimuth_deg = 60;
+    s->sun_irradiance = 3;
+    s->sun_radius_deg = 1.5f;
+}
+
+static void sun_dir(const em_sky *s, double d[3]) {
+    double e = s->sun_elevation_deg * M_PI / 180, a = s->sun_azimuth_deg * M_PI / 180;
+    d[0] = cos(e) * sin(a);
+    d[1] = sin(e);
+    d[2] = cos(e) * cos(a);
+}
+
+/* A simple analytic clear sky: zenith-to-horizon gradient, a brighter halo around the sun, a
+ * dim ground below the horizon and the sun as a disk of uniform radiance E/Ω. */
+void em_sky_radiance(const em_sky *s, const double d[3], double out[3]) {
+    static const double zenith[3] = {0.16, 0.30, 0.72}, horizon[3] = {0.70, 0.78, 0.92}, ground[3] = {0.10, 0.09, 0.08};
+    double sd[3];
+    sun_dir(s, sd);
+    double y = d[1];
+    double cos_sun = d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2];
+    double angle = acos(cos_sun < -1 ? -1 : cos_sun > 1 ? 1 : cos_sun);
+    for (int c = 0; c < 3; c++) {
+        double sky;
+        if (y >= 0) {
+            double t = pow(1 - y, 4);
+            sky = zenith[c] * (1 - t) + horizon[c] * t;
+        } else {
+            double t = exp(y * 25); /* a soft horizon line */
+            sky = ground[c] * (1 - t) + horizon[c] * 0.6 * t;
+        }
+        double halo = (y > -0.05 ? 1.0 : 0.0) * (0.6 * exp(-angle * 8) + 0.15 * exp(-angle * 1.5));
+        static const double halo_col[3] = {1.0, 0.9, 0.75};
+        out[c] = sky + halo * halo_col[c];
+    }
+    double r = s->sun_radius_deg * M_PI / 180;
+    if (angle < r && s->sun_irradiance > 0) {
+        double omega = 2 * M_PI * (1 - cos(r));
+        static const double sun_col[3] = {1.0, 0.95, 0.88};
+        for (int c = 0; c < 3; c++) out[c] += s->sun_irradiance / omega * sun_col[c];
+    }
+}
+
+void em_sky_latlong(const em_sky *s, int w, int h, em_image *out) {
+    out->w = w;
+    out->h = h;
+    out->px = malloc((size_t)w * h * 4 * sizeof(float));
+    double sd[3];
+    sun_dir(s, sd);
+    double r = s->sun_radius_deg * M_PI / 180, texel = M_PI / h;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double d[3], c[3] = {0, 0, 0};
+            em_latlong_dir((x + 0.5) / w, (y + 0.5) / h, d);
+            double cs = d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2];
+            double angle = acos(cs < -1 ? -1 : cs > 1 ? 1 : cs);
+            /* near the sun disk: 8×8 sub-samples so the disk's energy does not depend on
+             * where it falls on the texel grid */
+            int k = angle < r + 3 * texel / fmax(sin((y + 0.5) / h * M_PI), 0.05) ? 8 : 1;
+            for (int j = 0; j < k; j++)
+                for (int i = 0; i < k; i++) {
+                    double e[3], v[3];
+                    em_latlong_dir((x + (i + 0.5) / k) / w, (y + (j + 0.5) / k) / h, e);
+                    em_sky_radiance(s, e, v);
+                    for (int q = 0; q < 3; q++) c[q] += v[q] / (k * k);
+                }
+            float *p = out->px + ((size_t)y * w + x) * 4;
+            for (int q = 0; q < 3; q++) p[q] = (float)fmin(c[q], EM_HALF_MAX);
+            p[3] = 1;
+        }
+}
+
+/* ---------------------------------------------------------------- hashing */
+
+uint64_t em_hash(const void *data, size_t bytes, uint64_t h) {
+    const unsigned char *p = data;
+    h ^= 0x9E3779B97F4A7C15ull + bytes;
+    size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+        uint64_t w;
+        memcpy(&w, p + i, 8);
+        w *= 0xff51afd7ed558ccdull;
+        w ^= w >> 33;
+        h = (h ^ w) * 0xc4ceb9fe1a85ec53ull;
+        h ^= h >> 29;
+    }
+    for (; i < bytes; i++) h = (h ^ p[i]) * 0x100000001b3ull;
+    h ^= h >> 32;
+    return h;
+}

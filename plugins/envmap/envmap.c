@@ -1,0 +1,655 @@
+/* envmap: environment lighting end to end. The scene's "environment" (a lat-long, a cube map as
+ * a cross, strip or six faces, RGBE8 PNG, a shadelab-cube prefiltered chain, a constant colour,
+ * or the procedural sky when nothing is given) is drawn as the background and lights every
+ * material: "mirror" and "environment" look it up, ggx materials get split-sum image-based
+ * lighting, everything else diffuse irradiance. envmap.mode = reference swaps the split sum for
+ * Monte Carlo integration with the exact BRDF. See README.md; the shared implementation (also
+ * used by tools/cube) is envmap_core.h. */
+#include <shadelab/shadelab.h>
+#define SL_GL_IMPLEMENTATION
+#include <shadelab/gl.h>
+#include "envmap_core.h"
+#include "envmap_io.h"
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define LUT_SAMPLES 1024
+#define SKY_WIDTH 1024
+#define CONSTANT_CUBE 8 /* a constant environment prefilters to itself: no need for a big cube */
+
+static const char *const modes[] = {"split-sum", "reference", NULL};
+static const char *const irradiance_methods[] = {"sh", "convolved", NULL};
+
+#define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
+static const sl_param_desc params[] = {
+    P(.id = "yaw", .type = SL_PARAM_FLOAT, .min = -360, .max = 360, .step = 1, .unit = "deg", .group = "environment",
+      .description = "Turns the environment about +Y (+Z towards +X), added to the scene environment's yaw."),
+    P(.id = "background", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "environment",
+      .description = "Draw the environment behind the geometry (off: the core's constant clear colour)."),
+    P(.id = "mode", .type = SL_PARAM_ENUM, .enum_values = modes, .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "lighting",
+      .description = "split-sum: prefiltered image-based lighting; reference: Monte Carlo integration of the source "
+                     "with the exact BRDF (accumulate frames)."),
+    P(.id = "irradiance", .type = SL_PARAM_ENUM, .enum_values = irradiance_methods,
+      .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
+      .description = "Diffuse irradiance: order-2 spherical harmonics (9 coefficients) or a convolved cube."),
+    P(.id = "cube_size", .type = SL_PARAM_INT, .default_value = {.i = 256}, .min = 8, .max = 2048, .step = 8, .unit = "px",
+      .group = "prefilter", .flags = SL_PARAM_QUALITY_KNOB,
+      .description = "Face size of the base and prefiltered specular cubes."),
+    P(.id = "samples", .type = SL_PARAM_INT, .default_value = {.i = 512}, .min = 1, .max = 65536, .group = "prefilter",
+      .flags = SL_PARAM_QUALITY_KNOB, .description = "GGX importance samples per texel of the specular prefilter."),
+    P(.id = "mip_count", .type = SL_PARAM_INT, .default_value = {.i = 9}, .min = 2, .max = 12, .group = "prefilter",
+      .flags = SL_PARAM_QUALITY_KNOB,
+      .description = "Roughness levels of the specular chain (level m: roughness m/(count-1)); at most log2(cube_size)+1."),
+    P(.id = "lut_size", .type = SL_PARAM_INT, .default_value = {.i = 64}, .min = 8, .max = 512, .group = "prefilter",
+      .flags = SL_PARAM_QUALITY_KNOB, .unit = "px", .description = "Size of the RG16F environment-BRDF table."),
+    P(.id = "lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = -2, .max = 4, .step = 0.25f,
+      .group = "prefilter", .description = "Bias added to the PDF-chosen source mip level of each prefilter sample."),
+    P(.id = "multiscatter", .type = SL_PARAM_BOOL, .group = "lighting",
+      .description = "Multiple-scattering compensation of the split-sum specular (Fdez-Aguera 2019)."),
+    P(.id = "reference_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 4096,
+      .group = "reference", .description = "Samples per pixel and frame of the Monte Carlo reference."),
+    P(.id = "cache", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "prefilter",
+      .description = "Keep prefiltered cubes on disk ($SHADELAB_CACHE, else ~/.cache/shadelab), keyed by input and parameters."),
+    P(.id = "seamless", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "prefilter",
+      .description = "GL_TEXTURE_CUBE_MAP_SEAMLESS: filter across cube face edges (off shows the seams)."),
+    P(.id = "sun_elevation", .type = SL_PARAM_FLOAT, .default_value = {.f = {35}}, .min = -90, .max = 90, .unit = "deg",
+      .group = "sky", .description = "Procedural sky (used when the scene gives no environment): sun elevation."),
+    P(.id = "sun_azimuth", .type = SL_PARAM_FLOAT, .default_value = {.f = {60}}, .min = -360, .max = 360, .unit = "deg",
+      .group = "sky", .description = "Procedural sky: sun azimuth, 0 towards +Z, 90 towards +X."),
+    P(.id = "sun_irradiance", .type = SL_PARAM_FLOAT, .default_value = {.f = {3}}, .min = 0, .max = 1000, .unit = "W/m2",
+      .group = "sky", .description = "Procedural sky: irradiance of the sun disk (1.5 deg radius) at normal incidence; 0 = no sun."),
+};
+
+#define C(...) {.struct_size = sizeof(sl_shader_chunk_desc), __VA_ARGS__}
+static const sl_shader_chunk_desc chunks[] = {
+    C(.hook = SL_HOOK_SHADING_MODEL, .file = "envmap_shading.glsl", .function = "envmap_model_none", .name = "mirror"),
+    C(.hook = SL_HOOK_SHADING_MODEL, .file = "envmap_shading.glsl", .function = "envmap_model_none", .name = "environment"),
+    C(.hook = SL_HOOK_AMBIENT, .file = "envmap_shading.glsl", .function = "envmap_ambient"),
+};
+
+typedef struct envmap {
+    const sl_host *host;
+    int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut; /* unit_cube = unit_2d + 1 (em_gpu) */
+    em_gpu gpu;
+    sl_program *progs[5], *bg_prog;
+    char glsl_dir[2048];
+    uint64_t glsl_hash;
+    /* the source */
+    char *src_key;
+    bool have_src, constant;
+    bool bg_is_clear; /* the environment is the scene's constant colour: the core's clear shows it */
+    em_env_kind kind;
+    unsigned src_tex, dummy_2d, dummy_cube;
+    int src_w, src_h;
+    uint64_t src_hash;
+    float clear[3], scale, scene_yaw;
+    /* derived, each with the key it was built for */
+    unsigned base, spec, irr, lut;
+    int base_size, spec_levels, lut_size;
+    uint64_t base_key, spec_key, irr_key;
+    bool spec_from_chain;
+    float sh[9][3];
+    bool sh_valid;
+    double progress_start, progress_last;
+} envmap;
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static sl_value param(envmap *e, const char *id) {
+    char full[64];
+    snprintf(full, sizeof full, "envmap.%s", id);
+    return e->host->get_param(e->host, full);
+}
+
+/* ---------------------------------------------------------------- GL state */
+
+typedef struct gl_state {
+    int draw_fbo, read_fbo, program, vao, viewport[4];
+    bool depth, cull, blend, scissor;
+} gl_state;
+
+static void save_state(gl_state *s) {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_fbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fbo);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
+    glGetIntegerv(GL_VIEWPORT, s->viewport);
+    s->depth = glIsEnabled(GL_DEPTH_TEST);
+    s->cull = glIsEnabled(GL_CULL_FACE);
+    s->blend = glIsEnabled(GL_BLEND);
+    s->scissor = glIsEnabled(GL_SCISSOR_TEST);
+}
+
+static void restore_state(const gl_state *s) {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->draw_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, s->read_fbo);
+    glUseProgram(s->program);
+    glBindVertexArray(s->vao);
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    (s->depth ? glEnable : glDisable)(GL_DEPTH_TEST);
+    (s->cull ? glEnable : glDisable)(GL_CULL_FACE);
+    (s->blend ? glEnable : glDisable)(GL_BLEND);
+    (s->scissor ? glEnable : glDisable)(GL_SCISSOR_TEST);
+}
+
+static void delete_tex(unsigned *t) {
+    if (*t) glDeleteTextures(1, t);
+    *t = 0;
+}
+
+/* The host may rebuild programs (hot reload): refresh the ids before every use. */
+static void refresh_programs(envmap *e) {
+    unsigned *ids[5] = {&e->gpu.prog_to_cube, &e->gpu.prog_ggx, &e->gpu.prog_irradiance, &e->gpu.prog_lut,
+                        &e->gpu.prog_downsample};
+    for (int i = 0; i < 5; i++) *ids[i] = e->host->program_id(e->host, e->progs[i]);
+}
+
+static void progress(void *user, double fraction, const char *what) {
+    envmap *e = user;
+    double t = now_s();
+    if (t - e->progress_start < 1.0 || t - e->progress_last < 0.5) return;
+    e->progress_last = t;
+    e->host->log(e->host, SL_LOG_INFO, "%s: %3.0f%% (%.1f s)", what, 100 * fraction, t - e->progress_start);
+}
+
+/* ---------------------------------------------------------------- disk cache */
+
+static bool cache_dir(envmap *e, char *out, size_t n) {
+    if (!param(e, "cache").b) return false;
+    const char *c = getenv("SHADELAB_CACHE"), *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    if (c && *c) snprintf(out, n, "%s/envmap", c);
+    else if (x && *x) snprintf(out, n, "%s/shadelab/envmap", x);
+    else if (home && *home) snprintf(out, n, "%s/.cache/shadelab/envmap", home);
+    else return false;
+    /* mkdir -p */
+    char tmp[2048];
+    snprintf(tmp, sizeof tmp, "%s", out);
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') { *p = 0; mkdir(tmp, 0755); *p = '/'; }
+    return mkdir(tmp, 0755) == 0 || errno == EEXIST;
+}
+
+typedef struct cache_header { char magic[8]; uint64_t key; int32_t size, levels; } cache_header;
+
+static unsigned cache_load(envmap *e, uint64_t key, int size, int levels, char *path, size_t n) {
+    char dir[2048];
+    if (!cache_dir(e, dir, sizeof dir)) return 0;
+    snprintf(path, n, "%s/spec-%016llx.bin", dir, (unsigned long long)key);
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    cache_header h;
+    unsigned tex = 0;
+    if (fread(&h, sizeof h, 1, f) == 1 && !memcmp(h.magic, "SLENVC1", 8) && h.key == key && h.size == size &&
+        h.levels == levels) {
+        glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &tex);
+        glTextureStorage2D(tex, levels, GL_RGBA16F, size, size);
+        bool ok = true;
+        for (int l = 0; l < levels && ok; l++) {
+            int s = size >> l > 0 ? size >> l : 1;
+            size_t bytes = (size_t)6 * s * s * 4 * 2;
+            uint16_t *buf = malloc(bytes);
+            ok = fread(buf, 1, bytes, f) == bytes;
+            if (ok) glTextureSubImage3D(tex, l, 0, 0, 0, s, s, 6, GL_RGBA, GL_HALF_FLOAT, buf);
+            free(buf);
+        }
+        if (!ok) delete_tex(&tex);
+        else {
+            glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+            glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, levels - 1);
+        }
+    }
+    fclose(f);
+    return tex;
+}
+
+static void cache_store(envmap *e, uint64_t key, unsigned tex, int size, int levels) {
+    char dir[2048], path[2300], tmp[2400];
+    if (!cache_dir(e, dir, sizeof dir)) return;
+    snprintf(path, sizeof path, "%s/spec-%016llx.bin", dir, (unsigned long long)key);
+    snprintf(tmp, sizeof tmp, "%s.%d.tmp", path, (int)getpid());
+    FILE *f = fopen(tmp, "wb");
+    if (!f) return;
+    cache_header h = {"SLENVC1", key, size, levels};
+    bool ok = fwrite(&h, sizeof h, 1, f) == 1;
+    for (int l = 0; l < levels && ok; l++) {
+        int s = size >> l > 0 ? size >> l : 1;
+        size_t bytes = (size_t)6 * s * s * 4 * 2;
+        uint16_t *buf = malloc(bytes);
+        glGetTextureImage(tex, l, GL_RGBA, GL_HALF_FLOAT, (int)bytes, buf);
+        ok = fwrite(buf, 1, bytes, f) == bytes;
+        free(buf);
+    }
+    ok = fclose(f) == 0 && ok;
+    if (ok && rename(tmp, path) == 0) return;
+    unlink(tmp);
+    e->host->log(e->host, SL_LOG_WARN, "could not write the prefilter cache %s", path);
+}
+
+/* ---------------------------------------------------------------- the source */
+
+static void free_derived(envmap *e) {
+    delete_tex(&e->base);
+    delete_tex(&e->spec); /* ours, also when it came from a precomputed chain */
+    e->spec_from_chain = false;
+    delete_tex(&e->irr);
+    e->base_key = e->spec_key = e->irr_key = 0;
+    e->sh_valid = false;
+}
+
+static void upload_source(envmap *e, em_env *env, const char *name) {
+    e->kind = env->kind;
+    if (env->kind == EM_ENV_LATLONG) {
+        e->src_tex = em_upload_latlong(&env->latlong);
+        e->src_w = env->latlong.w, e->src_h = env->latlong.h;
+        e->src_hash = em_hash(env->latlong.px, (size_t)e->src_w * e->src_h * 4 * sizeof(float), 1);
+    } else {
+        e->src_tex = em_upload_cube(env->faces, env->size, em_max_levels(env->size));
+        e->src_w = e->src_h = env->size;
+        e->src_hash = 2;
+        for (int f = 0; f < 6; f++) e->src_hash = em_hash(env->faces[f], (size_t)env->size * env->size * 16, e->src_hash);
+        if (env->chain_levels) {
+            e->spec = em_upload_cube_levels(env->chain, env->size, env->chain_levels);
+            e->spec_levels = env->chain_levels;
+            e->spec_from_chain = true;
+            e->host->log(e->host, SL_LOG_INFO, "%s: using its %d precomputed specular levels (the prefilter parameters "
+                         "do not apply)", name, env->chain_levels);
+        }
+    }
+}
+
+static void load_source(envmap *e, const char *map, const float env[5]) {
+    free_derived(e);
+    delete_tex(&e->src_tex);
+    e->have_src = false;
+    e->constant = e->bg_is_clear = false;
+    e->scale = env[3];
+    e->scene_yaw = env[4];
+    for (int c = 0; c < 3; c++) e->clear[c] = env[c] * env[3];
+    char err[4096] = "";
+    em_env loaded = {0};
+    bool ok = false;
+    const char *name = map ? map : "procedural sky";
+    if (map && em_is_procedural(map)) {
+        loaded.kind = EM_ENV_LATLONG;
+        ok = em_procedural(map, &loaded.latlong, &e->constant, err, sizeof err);
+        if (ok) em_sanitize(loaded.latlong.px, (size_t)loaded.latlong.w * loaded.latlong.h, &loaded.stats);
+    } else if (map) {
+        ok = em_env_load(map, &loaded, err, sizeof err);
+        if (ok) e->host->log(e->host, SL_LOG_INFO, "%s: %s", map, loaded.how);
+    }
+    if (map && !ok) e->host->log(e->host, SL_LOG_ERROR, "%s; using the procedural sky instead", err);
+    if (!ok && !map && (env[0] > 0 || env[1] > 0 || env[2] > 0)) {
+        /* no map, a constant colour: that is the environment (intensity applies as scale) */
+        char spec[128];
+        snprintf(spec, sizeof spec, "constant:%g,%g,%g", env[0], env[1], env[2]);
+        loaded.kind = EM_ENV_LATLONG;
+        ok = em_procedural(spec, &loaded.latlong, &e->constant, err, sizeof err);
+        e->bg_is_clear = ok;
+        name = "constant environment";
+    }
+    if (!ok) {
+        em_env_free(&loaded);
+        em_sky sky;
+        em_sky_default(&sky);
+        sky.sun_elevation_deg = param(e, "sun_elevation").f[0];
+        sky.sun_azimuth_deg = param(e, "sun_azimuth").f[0];
+        sky.sun_irradiance = param(e, "sun_irradiance").f[0];
+        loaded.kind = EM_ENV_LATLONG;
+        em_sky_latlong(&sky, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
+        name = "procedural sky";
+    }
+    const em_sanitize_stats *s = &loaded.stats;
+    if (s->nan + s->inf + s->negative)
+        e->host->log(e->host, SL_LOG_WARN,
+                     "%s: replaced %ld invalid values (%ld NaN, %ld infinite, %ld negative): NaN, -Inf and negatives "
+                     "became 0, +Inf became 65504", name, s->nan + s->inf + s->negative, s->nan, s->inf, s->negative);
+    if (s->clamped)
+        e->host->log(e->host, SL_LOG_INFO, "%s: %ld values above 65504 (largest %g) clamped to the half-float limit",
+                     name, s->clamped, s->max_value);
+    upload_source(e, &loaded, name);
+    em_env_free(&loaded);
+    e->have_src = true;
+}
+
+/* ---------------------------------------------------------------- derived products */
+
+static int eff_cube_size(envmap *e) {
+    if (e->constant) return CONSTANT_CUBE;
+    int n = param(e, "cube_size").i, p = 8;
+    while (p * 2 <= n) p *= 2; /* power of two: the mip chain halves exactly */
+    return p;
+}
+
+static void ensure_base(envmap *e) {
+    int size = eff_cube_size(e);
+    uint64_t key = em_hash(&size, sizeof size, e->src_hash);
+    if (e->base && e->base_key == key) return;
+    delete_tex(&e->base);
+    refresh_programs(e);
+    e->base = em_make_base_cube(&e->gpu, e->src_tex, e->kind == EM_ENV_CUBE, e->src_w, e->src_h, size);
+    e->base_size = size;
+    e->base_key = key;
+}
+
+static void ensure_spec(envmap *e) {
+    if (e->spec_from_chain) return;
+    int size = eff_cube_size(e);
+    int samples = e->constant ? 64 : param(e, "samples").i;
+    int levels = param(e, "mip_count").i;
+    if (levels > em_max_levels(size)) levels = em_max_levels(size);
+    float bias = param(e, "lod_bias").f[0];
+    uint64_t key = e->src_hash ^ e->glsl_hash;
+    int ints[3] = {size, samples, levels};
+    key = em_hash(ints, sizeof ints, key);
+    key = em_hash(&bias, sizeof bias, key);
+    if (e->spec && e->spec_key == key) return;
+    delete_tex(&e->spec);
+    char path[2400] = "";
+    e->spec = cache_load(e, key, size, levels, path, sizeof path);
+    if (e->spec) {
+        e->host->log(e->host, SL_LOG_DEBUG, "prefilter cache hit: %s", path);
+    } else {
+        e->host->log(e->host, SL_LOG_DEBUG, "prefiltering the specular chain: %d² cube, %d levels, %d samples", size,
+                     levels, samples);
+        ensure_base(e);
+        refresh_programs(e);
+        e->progress_start = e->progress_last = now_s();
+        e->spec = em_prefilter_ggx(&e->gpu, e->base, size, levels, samples, bias);
+        glFinish();
+        double t = now_s() - e->progress_start;
+        if (t > 1.0)
+            e->host->log(e->host, SL_LOG_INFO, "prefiltered a %d² cube (%d levels, %d samples) in %.1f s", size, levels,
+                         samples, t);
+        cache_store(e, key, e->spec, size, levels);
+    }
+    e->spec_levels = levels;
+    e->spec_key = key;
+}
+
+static bool convolved(envmap *e) { return param(e, "irradiance").i == 1; }
+
+static void ensure_irradiance(envmap *e) {
+    bool conv = convolved(e);
+    ensure_base(e);
+    uint64_t key = em_hash(&conv, sizeof conv, e->base_key);
+    if ((conv ? e->irr != 0 : e->sh_valid) && e->irr_key == key) return;
+    if (conv) {
+        delete_tex(&e->irr);
+        refresh_programs(e);
+        int out = e->base_size < 32 ? e->base_size : 32;
+        e->irr = em_convolve_irradiance(&e->gpu, e->base, e->base_size, 16, out);
+    } else {
+        /* project a small mip (≤ 32²): the box-filtered mips keep the low frequencies SH keeps */
+        int level = 0;
+        while ((e->base_size >> level) > 32) level++;
+        int s = e->base_size >> level;
+        float *faces = em_read_cube(e->base, level, s);
+        double sh[9][3];
+        em_sh9_project(faces, s, sh);
+        em_sh9_diffuse_coefficients(sh, e->sh);
+        free(faces);
+        e->sh_valid = true;
+    }
+    e->irr_key = key;
+}
+
+static void ensure_lut(envmap *e) {
+    int size = param(e, "lut_size").i;
+    if (e->lut && e->lut_size == size) return;
+    delete_tex(&e->lut);
+    refresh_programs(e);
+    e->lut = em_brdf_lut(&e->gpu, size, LUT_SAMPLES);
+    e->lut_size = size;
+}
+
+/* ---------------------------------------------------------------- per frame */
+
+static void envmap_begin_frame(void *user, const sl_frame *f) {
+    envmap *e = user;
+    float env[5];
+    const char *map = e->host->environment(e->host, env);
+    char key[4400];
+    bool sky = !map && !(env[0] > 0 || env[1] > 0 || env[2] > 0);
+    snprintf(key, sizeof key, "%s|%g %g %g|%g %g %g", map ? map : "", env[0], env[1], env[2],
+             sky ? param(e, "sun_elevation").f[0] : 0.0f, sky ? param(e, "sun_azimuth").f[0] : 0.0f,
+             sky ? param(e, "sun_irradiance").f[0] : 0.0f);
+    if (!e->src_key || strcmp(key, e->src_key)) {
+        free(e->src_key);
+        e->src_key = strdup(key);
+        gl_state st;
+        save_state(&st);
+        load_source(e, map, env);
+        restore_state(&st);
+    }
+    e->scale = env[3];
+    e->scene_yaw = env[4];
+    for (int c = 0; c < 3; c++) e->clear[c] = env[c] * env[3];
+    (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+}
+
+static void rotation(envmap *e, float m[9]) { /* world → map: R_y(−yaw), column-major */
+    double a = -(e->scene_yaw + param(e, "yaw").f[0]) * M_PI / 180, c = cos(a), s = sin(a);
+    float r[9] = {(float)c, 0, (float)-s, 0, 1, 0, (float)s, 0, (float)c};
+    memcpy(m, r, sizeof r);
+}
+
+static void bind_source(envmap *e, unsigned prog) {
+    glBindTextureUnit(e->unit_2d, e->kind == EM_ENV_LATLONG ? e->src_tex : e->dummy_2d);
+    glBindTextureUnit(e->unit_cube, e->kind == EM_ENV_CUBE ? e->src_tex : e->dummy_cube);
+    glUniform1i(glGetUniformLocation(prog, "envmap_src2d"), e->unit_2d);
+    glUniform1i(glGetUniformLocation(prog, "envmap_srccube"), e->unit_cube);
+    glUniform1i(glGetUniformLocation(prog, "envmap_is_cube"), e->kind == EM_ENV_CUBE);
+    glUniform2f(glGetUniformLocation(prog, "envmap_src_size"), (float)e->src_w, (float)e->src_h);
+    float m[9];
+    rotation(e, m);
+    glUniformMatrix3fv(glGetUniformLocation(prog, "envmap_rot"), 1, GL_FALSE, m);
+    glUniform1f(glGetUniformLocation(prog, "envmap_scale"), e->scale);
+}
+
+static void envmap_bind(void *user, unsigned prog, int material, const sl_frame *f) {
+    envmap *e = user;
+    if (!e->have_src) return;
+    int l_spec = glGetUniformLocation(prog, "envmap_spec"), l_irr = glGetUniformLocation(prog, "envmap_irr");
+    int l_sh = glGetUniformLocation(prog, "envmap_sh"), l_lut = glGetUniformLocation(prog, "envmap_lut");
+    /* compute what this program reads, the first time it is needed (a mirror-only scene never
+     * prefilters); the forward pass is mid-flight, so GL state is saved and restored */
+    bool need_spec = l_spec >= 0 && !e->spec_from_chain, need_irr = l_irr >= 0 || l_sh >= 0, need_lut = l_lut >= 0;
+    if (need_spec || need_irr || need_lut) {
+        gl_state st;
+        save_state(&st);
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); /* the prefilter always filters across edges */
+        if (need_spec) ensure_spec(e);
+        if (need_irr) ensure_irradiance(e);
+        if (need_lut) ensure_lut(e);
+        (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        restore_state(&st);
+    }
+    bind_source(e, prog);
+    glBindTextureUnit(e->unit_spec, e->spec ? e->spec : e->dummy_cube);
+    glBindTextureUnit(e->unit_irr, e->irr ? e->irr : e->dummy_cube);
+    glBindTextureUnit(e->unit_lut, e->lut ? e->lut : e->dummy_2d);
+    if (l_spec >= 0) glUniform1i(l_spec, e->unit_spec);
+    if (l_irr >= 0) glUniform1i(l_irr, e->unit_irr);
+    if (l_lut >= 0) glUniform1i(l_lut, e->unit_lut);
+    if (l_sh >= 0) glUniform3fv(l_sh, 9, &e->sh[0][0]);
+    glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
+}
+
+/* ---------------------------------------------------------------- background pass */
+
+static bool invert4(const float m[16], float out[16]) {
+    double a[4][8];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 8; c++) a[r][c] = c < 4 ? m[c * 4 + r] : (c - 4 == r);
+    for (int c = 0; c < 4; c++) {
+        int p = c;
+        for (int r = c + 1; r < 4; r++)
+            if (fabs(a[r][c]) > fabs(a[p][c])) p = r;
+        if (fabs(a[p][c]) < 1e-30) return false;
+        for (int k = 0; k < 8; k++) { double t = a[c][k]; a[c][k] = a[p][k]; a[p][k] = t; }
+        double d = a[c][c];
+        for (int k = 0; k < 8; k++) a[c][k] /= d;
+        for (int r = 0; r < 4; r++)
+            if (r != c) {
+                double q = a[r][c];
+                for (int k = 0; k < 8; k++) a[r][k] -= q * a[c][k];
+            }
+    }
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) out[c * 4 + r] = (float)a[r][c + 4];
+    return true;
+}
+
+static bool background_active(void *user, const sl_frame *f) {
+    envmap *e = user;
+    return e->have_src && !e->bg_is_clear && param(e, "background").b;
+}
+
+static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
+    envmap *e = user;
+    const sl_host *h = e->host;
+    unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth");
+    if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
+    unsigned prog = h->program_id(h, e->bg_prog);
+    if (!prog) return;
+    glUseProgram(prog);
+    /* the lighting units are free during this pass (bind() sets them again per material) */
+    glBindTextureUnit(e->unit_spec, color);
+    glBindTextureUnit(e->unit_lut, depth);
+    glUniform1i(glGetUniformLocation(prog, "envmap_color"), e->unit_spec);
+    glUniform1i(glGetUniformLocation(prog, "envmap_depth"), e->unit_lut);
+    bind_source(e, prog);
+    float inv[16];
+    if (!invert4(f->view_proj, inv)) return;
+    glUniformMatrix4fv(glGetUniformLocation(prog, "envmap_inv_view_proj"), 1, GL_FALSE, inv);
+    glUniform2f(glGetUniformLocation(prog, "envmap_viewport"), (float)f->width, (float)f->height);
+    glUniform1f(glGetUniformLocation(prog, "envmap_pixel_angle"), 2.0f / (f->proj[5] * (float)f->height));
+    glUniform3fv(glGetUniformLocation(prog, "envmap_clear"), 1, e->clear);
+    h->draw_fullscreen(h, ctx);
+}
+
+/* ---------------------------------------------------------------- lifecycle */
+
+static const char *const bg_inputs[] = {"color", "depth", NULL};
+static const sl_target_desc bg_outputs[] = {{.name = "color", .format = SL_FORMAT_RGBA16F}};
+
+static sl_status envmap_create(const sl_host *host, void **user) {
+    if (host->struct_size < offsetof(sl_host, environment) + sizeof host->environment || !host->environment) {
+        host->log(host, SL_LOG_ERROR, "this host has no environment query (needs the SDK ABI 1.1)");
+        return SL_ERR_UNSUPPORTED;
+    }
+    envmap *e = calloc(1, sizeof *e);
+    e->host = host;
+    *user = e;
+    for (size_t i = 0; i < sizeof params / sizeof *params; i++)
+        if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
+    for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
+        if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
+    const sl_pass_desc bg = {.struct_size = sizeof bg, .name = "envmap-background", .stage = SL_STAGE_OPAQUE,
+                             .inputs = bg_inputs, .outputs = bg_outputs, .output_count = 1,
+                             .execute = background_execute, .is_active = background_active, .user = e};
+    if (host->add_pass(host, &bg) != SL_OK) return SL_ERR_FAILED;
+    static const sl_reference_desc ref = {
+        .struct_size = sizeof ref, .settings = "envmap.mode=reference envmap.reference_samples=64",
+        .accumulate_frames = 64,
+        .description = "Monte Carlo integration of the source environment at full resolution with the exact BRDF "
+                       "(GGX visible-normal sampling for the specular lobe, cosine sampling for the diffuse), "
+                       "64 frames x 64 samples per pixel."};
+    host->set_reference(host, &ref);
+    host->set_bind_callback(host, envmap_bind, e);
+    int units[5];
+    for (int i = 0; i < 5; i++)
+        if ((units[i] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
+    e->unit_2d = units[0], e->unit_cube = units[1], e->unit_spec = units[2], e->unit_irr = units[3], e->unit_lut = units[4];
+    if (e->unit_cube != e->unit_2d + 1) return SL_ERR_FAILED;
+    snprintf(e->glsl_dir, sizeof e->glsl_dir, "%s", host->resource_dir(host));
+    return SL_OK;
+}
+
+static unsigned load_for_gpu(void *user, const char *fragment, const char *defines) {
+    envmap *e = user;
+    sl_program *p = e->host->load_program(
+        e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc), .vertex = "sl:fullscreen.vert",
+                                    .fragment = fragment, .defines = defines});
+    for (int i = 0; i < 5; i++)
+        if (!e->progs[i]) { e->progs[i] = p; break; }
+    return e->host->program_id(e->host, p);
+}
+
+static sl_status envmap_activate(void *user) {
+    envmap *e = user;
+    const char *missing = NULL;
+    if (!sl_gl_load(e->host->gl_get_proc_address, &missing)) {
+        e->host->log(e->host, SL_LOG_ERROR, "OpenGL entry point %s is missing", missing);
+        return SL_ERR_GL;
+    }
+    e->gpu = (em_gpu){.load = load_for_gpu, .load_user = e, .progress = progress, .progress_user = e, .unit = e->unit_2d};
+    char err[512];
+    if (!em_gpu_init(&e->gpu, err, sizeof err)) {
+        e->host->log(e->host, SL_LOG_ERROR, "%s", err);
+        return SL_ERR_GL;
+    }
+    e->bg_prog = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                    .vertex = "sl:fullscreen.vert",
+                                                                    .fragment = "envmap_background.frag"});
+    if (!e->host->program_id(e->host, e->bg_prog)) return SL_ERR_GL;
+    e->glsl_hash = em_glsl_hash(e->glsl_dir);
+    /* 1×1 stand-ins so every sampler always has a texture of its own type on its own unit */
+    static const float black[4] = {0, 0, 0, 1};
+    glCreateTextures(GL_TEXTURE_2D, 1, &e->dummy_2d);
+    glTextureStorage2D(e->dummy_2d, 1, GL_RGBA16F, 1, 1);
+    glTextureSubImage2D(e->dummy_2d, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, black);
+    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &e->dummy_cube);
+    glTextureStorage2D(e->dummy_cube, 1, GL_RGBA16F, 1, 1);
+    for (int f = 0; f < 6; f++) glTextureSubImage3D(e->dummy_cube, 0, 0, 0, f, 1, 1, 1, GL_RGBA, GL_FLOAT, black);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    return SL_OK;
+}
+
+static void envmap_deactivate(void *user) {
+    envmap *e = user;
+    free_derived(e);
+    delete_tex(&e->src_tex);
+    delete_tex(&e->lut);
+    delete_tex(&e->dummy_2d);
+    delete_tex(&e->dummy_cube);
+    em_gpu_free(&e->gpu);
+    free(e->src_key);
+    e->src_key = NULL;
+    e->have_src = false;
+}
+
+static void envmap_destroy(void *user) {
+    envmap *e = user;
+    if (e) free(e->src_key);
+    free(e);
+}
+
+static const char *const requires_[] = {"ggx", NULL};
+
+static const sl_plugin_desc envmap_desc = {
+    SL_PLUGIN_HEADER,
+    .id = "envmap",
+    .version = "1.0",
+    .description = "Environment maps: background, mirror/environment materials, split-sum IBL for ggx "
+                   "(prefiltered GGX cube, SH or convolved irradiance, BRDF LUT) and a Monte Carlo reference.",
+    .requires = requires_,
+    .create = envmap_create,
+    .activate = envmap_activate,
+    .begin_frame = envmap_begin_frame,
+    .deactivate = envmap_deactivate,
+    .destroy = envmap_destroy,
+};
+
+SL_DEFINE_PLUGIN(envmap_desc)

@@ -1,0 +1,45 @@
+// The environment as background: after the forward pass, pixels the geometry did not cover
+// (depth still at the cleared 1.0) show the source map along the view ray. With SSAA the depth
+// is k× larger than "color": a pixel whose k×k samples are partly background had the core's
+// constant clear colour resolved into it, which is swapped for the sky in proportion.
+#include "envmap_common.glsl"
+uniform sampler2D envmap_color;
+uniform sampler2D envmap_depth;
+uniform sampler2D envmap_src2d;
+uniform samplerCube envmap_srccube;
+uniform bool envmap_is_cube;
+uniform vec2 envmap_src_size;
+uniform mat3 envmap_rot;
+uniform float envmap_scale;
+uniform vec3 envmap_clear;        // what the core cleared "color" to
+uniform mat4 envmap_inv_view_proj;
+uniform vec2 envmap_viewport;
+uniform float envmap_pixel_angle; // radians per pixel at the centre of the view
+layout(location = 0) out vec4 o_color;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 c = texelFetch(envmap_color, p, 0);
+    int k = max(textureSize(envmap_depth, 0).x / max(textureSize(envmap_color, 0).x, 1), 1);
+    int background = 0;
+    for (int j = 0; j < k; j++)
+        for (int i = 0; i < k; i++) background += texelFetch(envmap_depth, p * k + ivec2(i, j), 0).r >= 1.0 ? 1 : 0;
+    if (background == 0) {
+        o_color = c;
+        return;
+    }
+    vec2 ndc = gl_FragCoord.xy / envmap_viewport * 2.0 - 1.0;
+    vec4 a = envmap_inv_view_proj * vec4(ndc, -1.0, 1.0), b = envmap_inv_view_proj * vec4(ndc, 1.0, 1.0);
+    vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
+    vec3 sky;
+    if (envmap_is_cube) {
+        float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)));
+        sky = textureLod(envmap_srccube, d, lod).rgb;
+    } else {
+        float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)));
+        sky = textureLod(envmap_src2d, envmap_dir_latlong(d), lod).rgb;
+    }
+    sky *= envmap_scale;
+    float f = float(background) / float(k * k);
+    o_color = vec4(f >= 1.0 ? sky : c.rgb + f * (sky - envmap_clear), c.a);
+}

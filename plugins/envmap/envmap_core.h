@@ -1,0 +1,165 @@
+/* envmap core: everything the envmap plugin, the cube tool (tools/cube) and the tests share.
+ * One implementation: the plugin links it into envmap.so, shadelab-cube and the tests link it
+ * as a static library (envmap_core). Plain C over <shadelab/gl.h>; it never defines the GL
+ * function pointers (the module that links it does: the plugin in envmap.c, the tool and the
+ * tests through the core library).
+ *
+ * Conventions (sdk conventions, scenes/README.md):
+ *   lat-long   d = (sinθ sinφ, cosθ, sinθ cosφ), θ from +Y, φ = atan2(d.x, d.z);
+ *              u = φ/2π wrapped to [0,1), v = θ/π; row 0 of an image (v = 0) is the top (+Y).
+ *   cube maps  OpenGL's face order (+X, −X, +Y, −Y, +Z, −Z) and face orientation (GL 4.5
+ *              §8.13, table 8.19); a face image's row 0 is t = 0, so uploading it as is gives
+ *              the GL cube map. Cross layouts: see em_layout.
+ *   yaw        the environment turns by yaw degrees about +Y, +Z towards +X: the map's u = 0
+ *              content appears at (sin yaw, 0, cos yaw). Lookups use d_map = R_y(−yaw) d.
+ */
+#ifndef ENVMAP_CORE_H
+#define ENVMAP_CORE_H
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define EM_HALF_MAX 65504.0f /* largest finite half float: the storage limit of every texture */
+
+/* ---------------------------------------------------------------- images and directions */
+
+typedef struct em_image {
+    int w, h;
+    float *px; /* RGBA, w*h*4, row 0 = top */
+} em_image;
+void em_image_free(em_image *img);
+
+void em_latlong_dir(double u, double v, double d[3]);
+void em_dir_latlong(const double d[3], double *u, double *v); /* poles give u = 0 */
+/* Face f (GL order), face coordinates s, t in [0,1] → unit direction, and back. */
+void em_cube_dir(int face, double s, double t, double d[3]);
+int em_dir_cube(const double d[3], double *s, double *t);
+/* Exact solid angle of texel (x, y) of a size×size face. */
+double em_texel_solid_angle(int size, int x, int y);
+/* R_y(angle) applied to d (right-handed: +Z towards +X for angle > 0). */
+void em_rotate_y(const double d[3], double degrees, double out[3]);
+
+/* ---------------------------------------------------------------- input sanitising */
+
+typedef struct em_sanitize_stats {
+    long nan, inf, negative; /* replaced: NaN → 0, −Inf and negatives → 0, +Inf → 65504 */
+    long clamped;            /* finite values above 65504 clamped to 65504 (the half limit) */
+    float max_value;         /* largest finite value seen (before clamping) */
+} em_sanitize_stats;
+/* Sanitises the RGB channels of `pixels` RGBA pixels (alpha becomes 1). Returns the number
+ * of values replaced (nan + inf + negative). */
+long em_sanitize(float *rgba, size_t pixels, em_sanitize_stats *st);
+
+/* ---------------------------------------------------------------- RGBE (Ward 1991) */
+
+void em_rgbe_encode(const float rgb[3], unsigned char out[4]);
+void em_rgbe_decode(const unsigned char in[4], float rgb[3]);
+/* A float RGBA image as RGBE bytes in an RGBA8 image (exponent in alpha). */
+void em_rgbe_encode_image(const float *rgba, size_t pixels, unsigned char *out);
+
+/* ---------------------------------------------------------------- layouts */
+
+typedef enum em_layout {
+    EM_LAYOUT_UNKNOWN = 0,
+    EM_LAYOUT_LATLONG, /* 2:1 */
+    EM_LAYOUT_HCROSS,  /* 4:3:   row 0: +Y over column 1; row 1: −X +Z +X −Z; row 2: −Y */
+    EM_LAYOUT_VCROSS,  /* 3:4:   column 1: +Y, +Z, −Y, −Z (−Z turned 180°); −X, +X left/right of +Z */
+    EM_LAYOUT_HSTRIP,  /* 6:1:   +X −X +Y −Y +Z −Z left to right */
+    EM_LAYOUT_VSTRIP   /* 1:6:   the same top to bottom */
+} em_layout;
+em_layout em_detect_layout(int w, int h);
+const char *em_layout_name(em_layout l);
+/* Cuts the six faces (GL order) out of a cross or strip; faces[f] gets size*size*4 floats
+ * (malloc'd). Returns false when the layout is not a cube layout. */
+bool em_extract_faces(const em_image *img, em_layout layout, float *faces[6], int *size);
+/* Six faces → horizontal cross (4:3), unused area black with alpha 0. */
+void em_faces_to_hcross(float *const faces[6], int size, em_image *out);
+
+/* ---------------------------------------------------------------- spherical harmonics */
+
+/* Projects a cube (6 faces of size², RGBA, GL order) onto the 9 real SH basis functions of
+ * bands 0–2, with exact texel solid angles. */
+void em_sh9_project(const float *faces, int size, double sh[9][3]);
+/* Irradiance E(n)/π (the outgoing radiance of a white Lambert surface) from the projection,
+ * with Ramamoorthi & Hanrahan's convolution (Â0 = π, Â1 = 2π/3, Â2 = π/4). Not clamped. */
+void em_sh9_diffuse(const double sh[9][3], const double n[3], double out[3]);
+/* The nine coefficients premultiplied by Â_l/π: what the shader evaluates. */
+void em_sh9_diffuse_coefficients(const double sh[9][3], float out[9][3]);
+
+/* ---------------------------------------------------------------- procedural sky */
+
+typedef struct em_sky {
+    float sun_elevation_deg, sun_azimuth_deg; /* azimuth as φ: 0 = +Z, 90 = +X */
+    float sun_irradiance;                     /* E of the sun disk at normal incidence */
+    float sun_radius_deg;
+} em_sky;
+void em_sky_default(em_sky *s);
+void em_sky_radiance(const em_sky *s, const double d[3], double out[3]);
+/* Renders the sky as a lat-long image (the sun disk supersampled). */
+void em_sky_latlong(const em_sky *s, int w, int h, em_image *out);
+
+/* ---------------------------------------------------------------- hashing */
+
+uint64_t em_hash(const void *data, size_t bytes, uint64_t seed);
+
+/* ---------------------------------------------------------------- GPU (prefilter.c) */
+
+/* Compiles "sl:fullscreen.vert" + `fragment` (a file of the envmap GLSL directory) with
+ * `defines` ("NAME VALUE" lines); returns the GL program or 0 (the loader logs why). */
+typedef unsigned (*em_program_loader)(void *user, const char *fragment, const char *defines);
+typedef void (*em_progress_fn)(void *user, double fraction, const char *what);
+
+typedef struct em_gpu {
+    em_program_loader load;
+    void *load_user;
+    em_progress_fn progress; /* may be NULL; called between draws (after glFinish) */
+    void *progress_user;
+    int unit;                /* texture unit the passes may use for their input */
+    unsigned vao, fbo;
+    unsigned prog_to_cube, prog_ggx, prog_irradiance, prog_lut, prog_downsample;
+} em_gpu;
+
+bool em_gpu_init(em_gpu *g, char *err, size_t n);
+void em_gpu_free(em_gpu *g);
+
+/* Uploads a lat-long image as RGBA16F with a full mip chain (values already sanitised). */
+unsigned em_upload_latlong(const em_image *img);
+/* Uploads six faces (GL order, size², RGBA) as an RGBA16F cube with `levels` levels
+ * (level 0 uploaded, the rest box-filtered by glGenerateMipmap). */
+unsigned em_upload_cube(float *const faces[6], int size, int levels);
+int em_max_levels(int size); /* floor(log2 size) + 1 */
+/* A size² RGBA16F cube with its full mip chain from a lat-long (src_is_cube false) or cube
+ * source, each texel the average of 4×4 sub-samples read at the mip level matching their
+ * footprint, so the mean radiance is kept and small bright features are not missed. The mips
+ * are solid-angle-weighted 2×2 means (see envmap_downsample.frag), so every level keeps the
+ * source's mean radiance. */
+unsigned em_make_base_cube(em_gpu *g, unsigned src, bool src_is_cube, int src_w, int src_h, int size);
+/* The split-sum specular chain: an RGBA16F cube of `levels` levels, level m prefiltered for
+ * perceptual roughness m/(levels−1) (α = r²) by GGX importance sampling with `samples` samples
+ * per texel (n = v = r), each sample read from the base cube at the mip level given by its PDF
+ * (Křivánek & Colbert 2008) plus lod_bias. Level 0 is the base cube itself. */
+unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias);
+/* Diffuse irradiance cube (out_size², one level): E(n)/π by summing every texel of the base
+ * cube's mip of face size src_size (exact cosine-weighted Riemann sum, no noise). */
+unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src_size, int out_size);
+/* Environment-BRDF LUT (RG16F, size²): x = n·v, y = perceptual roughness r (α = r²), at
+ * texel centres x_i = i/(size−1): (A, B) with ∫ f_s cos = F0·A + B (Schlick), VNDF sampled
+ * with `samples` samples and the ggx plugin's separable Smith G. */
+unsigned em_brdf_lut(em_gpu *g, int size, int samples);
+/* Reads a cube level (6 faces of size², GL order) or a 2D texture (RGBA floats, GL row order:
+ * row 0 = t = 0). Returns malloc'd memory. */
+float *em_read_cube(unsigned tex, int level, int size);
+float *em_read_2d(unsigned tex, int w, int h);
+/* Uploads stored levels as a cube with exactly those levels (cache, precomputed chains). */
+unsigned em_upload_cube_levels(float *const *levels_faces, int size, int levels);
+/* The source file of a stored prefilter output and the GLSL the results depend on. */
+uint64_t em_glsl_hash(const char *glsl_dir);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,310 @@
+/* envmap core, GPU side: cube conversion, the GGX specular prefilter, the irradiance
+ * convolution and the BRDF LUT (see envmap_core.h). Every pass draws one full-screen triangle
+ * per face and level into a framebuffer of its own; callers in the middle of a frame save and
+ * restore GL state around these calls (envmap.c does). */
+#include "envmap_core.h"
+#include <shadelab/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+int em_max_levels(int size) {
+    int l = 1;
+    while (size > 1) size >>= 1, l++;
+    return l;
+}
+
+bool em_gpu_init(em_gpu *g, char *err, size_t n) {
+    static const char *files[5] = {"envmap_to_cube.frag", "envmap_ggx.frag", "envmap_irradiance.frag", "envmap_lut.frag",
+                                   "envmap_downsample.frag"};
+    unsigned *progs[5] = {&g->prog_to_cube, &g->prog_ggx, &g->prog_irradiance, &g->prog_lut, &g->prog_downsample};
+    for (int i = 0; i < 5; i++) {
+        *progs[i] = g->load(g->load_user, files[i], NULL);
+        if (!*progs[i]) {
+            snprintf(err, n, "envmap: %s failed to compile (see the log)", files[i]);
+            return false;
+        }
+    }
+    glCreateVertexArrays(1, &g->vao);
+    glCreateFramebuffers(1, &g->fbo);
+    return true;
+}
+
+void em_gpu_free(em_gpu *g) {
+    if (g->vao) glDeleteVertexArrays(1, &g->vao);
+    if (g->fbo) glDeleteFramebuffers(1, &g->fbo);
+    g->vao = g->fbo = 0;
+}
+
+static void set_filtering(unsigned t, bool mips) {
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, mips ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+}
+
+static unsigned new_cube(int size, int levels) {
+    unsigned t;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &t);
+    glTextureStorage2D(t, levels, GL_RGBA16F, size, size);
+    set_filtering(t, levels > 1);
+    glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    return t;
+}
+
+unsigned em_upload_latlong(const em_image *img) {
+    unsigned t;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    int levels = em_max_levels(img->w > img->h ? img->w : img->h);
+    glTextureStorage2D(t, levels, GL_RGBA16F, img->w, img->h);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(t, 0, 0, 0, img->w, img->h, GL_RGBA, GL_FLOAT, img->px);
+    glGenerateTextureMipmap(t);
+    set_filtering(t, true);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT); /* u wraps around the sphere */
+    return t;
+}
+
+unsigned em_upload_cube(float *const faces[6], int size, int levels) {
+    unsigned t = new_cube(size, levels);
+    for (int f = 0; f < 6; f++) glTextureSubImage3D(t, 0, 0, 0, f, size, size, 1, GL_RGBA, GL_FLOAT, faces[f]);
+    if (levels > 1) glGenerateTextureMipmap(t);
+    return t;
+}
+
+unsigned em_upload_cube_levels(float *const *level_faces, int size, int levels) {
+    unsigned t = new_cube(size, levels);
+    for (int l = 0; l < levels; l++) {
+        int s = size >> l;
+        if (s < 1) s = 1;
+        glTextureSubImage3D(t, l, 0, 0, 0, s, s, 6, GL_RGBA, GL_FLOAT, level_faces[l]);
+    }
+    return t;
+}
+
+/* Binds the pass input on g->unit (2D) or g->unit + 1 (cube): a program declares both sampler
+ * types, which must never share a unit. */
+static void bind_input(em_gpu *g, unsigned prog, unsigned tex, bool is_cube) {
+    glBindTextureUnit(g->unit, is_cube ? 0 : tex);
+    glBindTextureUnit(g->unit + 1, is_cube ? tex : 0);
+    int l2 = glGetUniformLocation(prog, "envmap_in2d"), lc = glGetUniformLocation(prog, "envmap_incube");
+    if (l2 >= 0) glProgramUniform1i(prog, l2, g->unit);
+    if (lc >= 0) glProgramUniform1i(prog, lc, g->unit + 1);
+}
+
+static void draw_into(em_gpu *g, unsigned tex, int level, int layer, int w, int h) {
+    if (layer >= 0) glNamedFramebufferTextureLayer(g->fbo, GL_COLOR_ATTACHMENT0, tex, level, layer);
+    else glNamedFramebufferTexture(g->fbo, GL_COLOR_ATTACHMENT0, tex, level);
+    glNamedFramebufferDrawBuffer(g->fbo, GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+    glViewport(0, 0, w, h);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glBindVertexArray(g->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+}
+
+static void report(em_gpu *g, double fraction, const char *what) {
+    if (!g->progress) return;
+    glFinish();
+    g->progress(g->progress_user, fraction, what);
+}
+
+#define U1I(p, name, v) glProgramUniform1i(p, glGetUniformLocation(p, name), v)
+#define U1F(p, name, v) glProgramUniform1f(p, glGetUniformLocation(p, name), v)
+
+/* Levels 1.. from level 0, each from the one above (sampling restricted to it: no feedback). */
+static void downsample_cube(em_gpu *g, unsigned t, int size, int levels) {
+    unsigned p = g->prog_downsample;
+    glUseProgram(p);
+    bind_input(g, p, t, true);
+    for (int l = 1; l < levels; l++) {
+        int s = size >> l;
+        glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, l - 1);
+        glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, l - 1);
+        U1F(p, "envmap_src_level", (float)(l - 1));
+        U1F(p, "envmap_size", (float)s);
+        for (int f = 0; f < 6; f++) {
+            U1I(p, "envmap_face", f);
+            draw_into(g, t, l, f, s, s);
+        }
+    }
+    glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, 0);
+    glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, levels - 1);
+}
+
+unsigned em_make_base_cube(em_gpu *g, unsigned src, bool src_is_cube, int src_w, int src_h, int size) {
+    int levels = em_max_levels(size);
+    unsigned t = new_cube(size, levels);
+    unsigned p = g->prog_to_cube;
+    glUseProgram(p);
+    bind_input(g, p, src, src_is_cube);
+    U1I(p, "envmap_in_is_cube", src_is_cube);
+    glProgramUniform2f(p, glGetUniformLocation(p, "envmap_in_size"), (float)src_w, (float)src_h);
+    U1F(p, "envmap_size", (float)size);
+    /* same-size cube copies read texel centres exactly; everything else gets 4×4 sub-samples */
+    U1I(p, "envmap_subsamples", src_is_cube && src_w == size ? 1 : 4);
+    for (int f = 0; f < 6; f++) {
+        U1I(p, "envmap_face", f);
+        draw_into(g, t, 0, f, size, size);
+    }
+    downsample_cube(g, t, size, levels);
+    return t;
+}
+
+/* The GGX sample table of one level (envmap_ggx.frag): Hammersley points → half-vectors
+ * distributed as D(h)(n·h) → l = reflect(−n, h), kept when n·l > 0, with the source mip level
+ * from the sample's PDF. The same formulas as envmap_common.glsl's, in double. */
+static int ggx_table(float *out, int samples, double alpha, int base_size, float bias, int max_lod) {
+    double a2 = alpha * alpha, omega_p = 4 * M_PI / (6.0 * base_size * base_size);
+    int k = 0;
+    for (int i = 0; i < samples; i++) {
+        uint32_t b = (uint32_t)i;
+        b = (b << 16) | (b >> 16);
+        b = ((b & 0x55555555u) << 1) | ((b & 0xAAAAAAAAu) >> 1);
+        b = ((b & 0x33333333u) << 2) | ((b & 0xCCCCCCCCu) >> 2);
+        b = ((b & 0x0F0F0F0Fu) << 4) | ((b & 0xF0F0F0F0u) >> 4);
+        b = ((b & 0x00FF00FFu) << 8) | ((b & 0xFF00FF00u) >> 8);
+        double x = (i + 0.5) / samples, y = b * 2.3283064365386963e-10;
+        double c2 = (1 - y) / (1 + (a2 - 1) * y), c = sqrt(c2), s = sqrt(fmax(0, 1 - c2)), phi = 2 * M_PI * x;
+        double h[3] = {s * cos(phi), s * sin(phi), c};
+        double l[3] = {2 * c * h[0], 2 * c * h[1], 2 * c * h[2] - 1};
+        if (l[2] <= 0) continue;
+        double d = c2 * (a2 - 1) + 1, D = a2 / (M_PI * d * d), pdf = D * 0.25; /* v = n: D(n·h)(n·h)/(4 v·h) */
+        double lod = 0.5 * log2(1.0 / (samples * pdf * omega_p)) + bias;
+        lod = lod < 0 ? 0 : lod > max_lod ? max_lod : lod;
+        out[k * 4 + 0] = (float)l[0], out[k * 4 + 1] = (float)l[1], out[k * 4 + 2] = (float)l[2], out[k * 4 + 3] = (float)lod;
+        k++;
+    }
+    return k;
+}
+
+unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias) {
+    int max_levels = em_max_levels(size);
+    if (levels > max_levels) levels = max_levels;
+    if (levels < 1) levels = 1;
+    unsigned t = new_cube(size, levels);
+    /* level 0 (roughness 0): the base cube itself */
+    unsigned p = g->prog_to_cube;
+    glUseProgram(p);
+    bind_input(g, p, base, true);
+    U1I(p, "envmap_in_is_cube", 1);
+    glProgramUniform2f(p, glGetUniformLocation(p, "envmap_in_size"), (float)size, (float)size);
+    U1F(p, "envmap_size", (float)size);
+    U1I(p, "envmap_subsamples", 1);
+    for (int f = 0; f < 6; f++) {
+        U1I(p, "envmap_face", f);
+        draw_into(g, t, 0, f, size, size);
+    }
+    /* work per level ∝ texels × samples: progress in those units */
+    double total = 0, done = 0;
+    for (int l = 1; l < levels; l++) total += 6.0 * (size >> l) * (size >> l);
+    p = g->prog_ggx;
+    glUseProgram(p);
+    bind_input(g, p, base, true);
+    int rows = (samples + 1023) / 1024;
+    float *table = calloc((size_t)rows * 1024 * 4, sizeof(float));
+    unsigned tex;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RGBA32F, 1024, rows);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTextureUnit(g->unit, tex);
+    char what[128];
+    for (int l = 1; l < levels; l++) {
+        int s = size >> l;
+        if (s < 1) s = 1;
+        double r = (double)l / (levels - 1);
+        int count = ggx_table(table, samples, r * r < 2e-3 ? 2e-3 : r * r, size, lod_bias, max_levels - 1);
+        glTextureSubImage2D(tex, 0, 0, 0, 1024, rows, GL_RGBA, GL_FLOAT, table);
+        U1I(p, "envmap_count", count);
+        U1F(p, "envmap_size", (float)s);
+        for (int f = 0; f < 6; f++) {
+            U1I(p, "envmap_face", f);
+            glUseProgram(p);
+            draw_into(g, t, l, f, s, s);
+            done += (double)s * s;
+            snprintf(what, sizeof what, "GGX prefilter %d² cube, %d samples: level %d/%d face %d/6", size, samples, l,
+                     levels - 1, f + 1);
+            report(g, total > 0 ? done / total : 1, what);
+        }
+    }
+    glBindTextureUnit(g->unit, 0);
+    glDeleteTextures(1, &tex);
+    free(table);
+    return t;
+}
+
+unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src_size, int out_size) {
+    if (src_size > base_size) src_size = base_size;
+    int level = 0;
+    while ((base_size >> level) > src_size) level++;
+    src_size = base_size >> level;
+    unsigned t = new_cube(out_size, 1);
+    unsigned p = g->prog_irradiance;
+    glUseProgram(p);
+    bind_input(g, p, base, true);
+    U1F(p, "envmap_src_level", (float)level);
+    U1I(p, "envmap_src_size", src_size);
+    U1F(p, "envmap_size", (float)out_size);
+    for (int f = 0; f < 6; f++) {
+        U1I(p, "envmap_face", f);
+        draw_into(g, t, 0, f, out_size, out_size);
+    }
+    return t;
+}
+
+unsigned em_brdf_lut(em_gpu *g, int size, int samples) {
+    unsigned t;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, GL_RG16F, size, size);
+    set_filtering(t, false);
+    unsigned p = g->prog_lut;
+    glUseProgram(p);
+    U1F(p, "envmap_size", (float)size);
+    U1I(p, "envmap_samples", samples);
+    draw_into(g, t, 0, -1, size, size);
+    return t;
+}
+
+float *em_read_cube(unsigned tex, int level, int size) {
+    size_t bytes = (size_t)6 * size * size * 4 * sizeof(float);
+    float *out = malloc(bytes);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(tex, level, GL_RGBA, GL_FLOAT, (int)bytes, out);
+    return out;
+}
+
+float *em_read_2d(unsigned tex, int w, int h) {
+    size_t bytes = (size_t)w * h * 4 * sizeof(float);
+    float *out = malloc(bytes);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, (int)bytes, out);
+    return out;
+}
+
+uint64_t em_glsl_hash(const char *dir) {
+    static const char *files[] = {"envmap_common.glsl", "envmap_to_cube.frag", "envmap_ggx.frag", "envmap_irradiance.frag",
+                                  "envmap_lut.frag", "envmap_downsample.frag", "../ggx/ggx_brdf.glsl"};
+    uint64_t h = 0x5eed;
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+        FILE *f = fopen(path, "rb");
+        if (!f) { h = em_hash(files[i], strlen(files[i]), h); continue; }
+        char buf[8192];
+        size_t got;
+        while ((got = fread(buf, 1, sizeof buf, f)) > 0) h = em_hash(buf, got, h);
+        fclose(f);
+    }
+    return h;
+}

@@ -1,0 +1,80 @@
+/* Closed forms and numerical integrals in C (double precision) for the envmap tests: the GGX
+ * terms exactly as plugins/ggx/ggx_brdf.glsl defines them, the split-sum BRDF integrals
+ * (A, B) and the prefilter kernel. Independent of the GLSL they check. */
+#ifndef ENVMAP_TEST_GGX_REF_H
+#define ENVMAP_TEST_GGX_REF_H
+#include <math.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static inline double ref_ggx_D(double nh, double a) {
+    if (nh <= 0) return 0;
+    double a2 = a * a, d = nh * nh * (a2 - 1) + 1;
+    return a2 / (M_PI * d * d);
+}
+
+/* Smith G1 measured from the normal, 0 when (x·h)/(x·n) ≤ 0 (ggx_G1). */
+static inline double ref_ggx_G1(double xn, double xh, double a) {
+    if (xn == 0 || xh / xn <= 0) return 0;
+    double c = fabs(xn);
+    if (c < 1e-6) c = 1e-6;
+    if (c > 1) c = 1;
+    double t2 = (1 - c * c) / (c * c);
+    return 2 / (1 + sqrt(1 + a * a * t2));
+}
+
+/* ∫ f_s cos dl = F0·A + B for the separable-Smith GGX BRDF with Schlick's Fresnel, n·v = mu.
+ * Integrated over the half-vector with u = CDF of D(h)(n·h), so narrow lobes are resolved:
+ * D(h)(n·h) dω_h = du dφ/2π, and ∫ f cos dl = ∫ D G F (v·h)/(mu) dω_h. Midpoint rule. */
+static inline void ref_brdf_ab(double mu, double a, int nu, int nphi, double *A, double *B) {
+    double v[3] = {sqrt(1 - mu * mu), 0, mu};
+    double sa = 0, sb = 0;
+    for (int i = 0; i < nu; i++) {
+        double u = (i + 0.5) / nu;
+        double c2 = (1 - u) / (1 + (a * a - 1) * u), ch = sqrt(c2), sh = sqrt(fmax(0, 1 - c2));
+        for (int j = 0; j < nphi; j++) {
+            double phi = 2 * M_PI * (j + 0.5) / nphi;
+            double h[3] = {sh * cos(phi), sh * sin(phi), ch};
+            double vh = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
+            if (vh <= 0) continue;
+            double l[3] = {2 * vh * h[0] - v[0], 2 * vh * h[1] - v[1], 2 * vh * h[2] - v[2]};
+            if (l[2] <= 0) continue;
+            double lh = vh;
+            double G = ref_ggx_G1(mu, vh, a) * ref_ggx_G1(l[2], lh, a);
+            /* D(h) dω_h = du dφ/(2π ch): integrand D G F vh / mu → G F vh/(mu ch) du dφ/2π */
+            double w = G * vh / (mu * ch);
+            double fc = pow(1 - vh, 5);
+            sa += w * (1 - fc);
+            sb += w * fc;
+        }
+    }
+    *A = sa / ((double)nu * nphi);
+    *B = sb / ((double)nu * nphi);
+}
+
+/* Directional albedo E(mu, α) with F = 1. */
+static inline double ref_albedo(double mu, double a) {
+    double A, B;
+    ref_brdf_ab(mu, a, 1200, 96, &A, &B);
+    return A + B;
+}
+
+/* The split-sum prefilter kernel with n = v: k(θ) = (n·l) D(n·h)/4, θ the angle between n and l
+ * (n·h = cos θ/2); the prefiltered value is ∫ L k / ∫ k over n·l > 0. */
+static inline double ref_prefilter_kernel(double cos_theta, double a) {
+    if (cos_theta <= 0) return 0;
+    double nh = sqrt(0.5 * (1 + cos_theta));
+    return cos_theta * ref_ggx_D(nh, a) * 0.25;
+}
+static inline double ref_prefilter_norm(double a) {
+    int n = 20000;
+    double s = 0;
+    for (int i = 0; i < n; i++) {
+        double t = (i + 0.5) / n * (M_PI / 2);
+        s += ref_prefilter_kernel(cos(t), a) * sin(t);
+    }
+    return s * 2 * M_PI * (M_PI / 2) / n;
+}
+#endif

@@ -1,0 +1,551 @@
+/* envmap core: the shared implementation (envmap_core.h) tested directly, on OSMesa.
+ *   - conventions: C lat-long / cube mapping, and the GLSL twins against them;
+ *   - BRDF LUT against numerical integration in C;
+ *   - SH irradiance of L = 1 + ω_y against 1 + ⅔ n_y; the convolved cube likewise;
+ *   - a small bright disk: every prefiltered level against the GGX lobe convolution of the
+ *     disk computed in C, each level's mean radiance against the source's, and a do-nothing
+ *     prefilter shown to fail the same check;
+ *   - seams: the step across every face edge at every level against the steps inside faces;
+ *     the poles of a lat-long source finite and smooth. */
+#include "check.h"
+#include "envmap_core.h"
+#include "envmap_io.h"
+#include "ggx_ref.h"
+#include "render/composer.h"
+#include <shadelab/gl.h>
+#include <shadelab/harness.h>
+#include <stdlib.h>
+#include <string.h>
+
+static sl_program *programs[8];
+static int program_count;
+static unsigned loader(void *user, const char *frag, const char *defines) {
+    char err[16384] = "";
+    sl_program *p = sl_program_from_files(ENVMAP_GLSL_DIR, "sl:fullscreen.vert", frag, defines, err, sizeof err);
+    if (!p->id) fprintf(stderr, "%s\n", err);
+    if (program_count < 8) programs[program_count++] = p;
+    return p->id;
+}
+
+static void normalize3(double v[3]) {
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int i = 0; i < 3; i++) v[i] /= l;
+}
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* ---------------------------------------------------------------- 1. conventions in C */
+
+static void test_conventions(void) {
+    double d[3], u, v;
+    em_latlong_dir(0, 0.5, d);
+    CHECK(fabs(d[2] - 1) < 1e-12); /* u = 0 faces +Z */
+    em_latlong_dir(0.25, 0.5, d);
+    CHECK(fabs(d[0] - 1) < 1e-12); /* u = 0.25 faces +X */
+    em_latlong_dir(0.7, 0, d);
+    CHECK(fabs(d[1] - 1) < 1e-12); /* v = 0 is straight up */
+    double worst = 0;
+    for (int i = 0; i < 1000; i++) {
+        double uu = (i * 0.618034) - floor(i * 0.618034), vv = 0.001 + 0.998 * ((i * 0.7548) - floor(i * 0.7548));
+        em_latlong_dir(uu, vv, d);
+        em_dir_latlong(d, &u, &v);
+        double du = fabs(u - uu);
+        if (du > 0.5) du = 1 - du;
+        worst = fmax(worst, fmax(du, fabs(v - vv)));
+    }
+    CHECK_MSG(worst < 1e-9, "lat-long round trip %g", worst);
+    double pole[3] = {0, 1, 0};
+    em_dir_latlong(pole, &u, &v);
+    CHECK(u == 0 && v == 0);
+    /* cube: round trip and the GL table's face centres */
+    static const double centre[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    worst = 0;
+    for (int f = 0; f < 6; f++) {
+        em_cube_dir(f, 0.5, 0.5, d);
+        CHECK(dot3(d, centre[f]) > 1 - 1e-12);
+        for (int k = 0; k < 50; k++) {
+            double s = (k * 0.618) - floor(k * 0.618), t = (k * 0.414) - floor(k * 0.414), s2, t2;
+            em_cube_dir(f, s, t, d);
+            int g = em_dir_cube(d, &s2, &t2);
+            CHECK(g == f || fabs(s - 0.5) > 0.49 || fabs(t - 0.5) > 0.49);
+            if (g == f) worst = fmax(worst, fmax(fabs(s - s2), fabs(t - t2)));
+        }
+    }
+    CHECK_MSG(worst < 1e-9, "cube round trip %g", worst);
+    /* +X face, s grows towards −Z and t towards −Y (GL table 8.19) */
+    em_cube_dir(0, 0.9, 0.5, d);
+    CHECK(d[2] < 0);
+    em_cube_dir(0, 0.5, 0.9, d);
+    CHECK(d[1] < 0);
+    double total = 0;
+    for (int y = 0; y < 16; y++)
+        for (int x = 0; x < 16; x++) total += 6 * em_texel_solid_angle(16, x, y);
+    CHECK_NEAR(total, 4 * M_PI, 1e-9);
+    /* yaw: +Z turns towards +X */
+    double z[3] = {0, 0, 1}, r[3];
+    em_rotate_y(z, 90, r);
+    CHECK(fabs(r[0] - 1) < 1e-12);
+}
+
+/* ---------------------------------------------------------------- 2. GLSL twins */
+
+static void test_glsl(sl_harness *h) {
+    enum { N = 32 };
+    float in[N * N * 4], out[N * N * 4];
+    for (int i = 0; i < N * N; i++) { /* directions over the sphere, the poles and the u seam included */
+        double d[3];
+        em_latlong_dir((i % N) / (double)N, (i / N) / (double)(N - 1), d);
+        if (i % 7 == 3) d[0] = 0, d[2] = 1e-9; /* on the seam */
+        in[i * 4 + 0] = (float)d[0], in[i * 4 + 1] = (float)d[1], in[i * 4 + 2] = (float)d[2], in[i * 4 + 3] = 0;
+    }
+    char err[8192];
+    const char *files[] = {ENVMAP_GLSL_DIR "/envmap_common.glsl", NULL};
+    sl_glsl_eval_desc e = {.struct_size = sizeof e, .files = files, .expression = "vec4(envmap_dir_latlong(in0.xyz), 0.0, 0.0)",
+                           .width = N, .height = N, .in0 = in};
+    CHECK_MSG(sl_harness_eval_glsl(h, &e, out, err, sizeof err), "%s", err);
+    double worst = 0;
+    long nonfinite = 0;
+    for (int i = 0; i < N * N; i++) {
+        double d[3] = {in[i * 4], in[i * 4 + 1], in[i * 4 + 2]}, u, v;
+        em_dir_latlong(d, &u, &v);
+        double du = fabs(out[i * 4] - u);
+        if (du > 0.5) du = 1 - du; /* 0 and 1 are the same meridian */
+        if (d[0] == 0 && d[2] == 0) du = 0; /* the pole: any u */
+        worst = fmax(worst, fmax(du, fabs(out[i * 4 + 1] - v)));
+        nonfinite += !isfinite(out[i * 4]) || !isfinite(out[i * 4 + 1]);
+    }
+    CHECK_MSG(worst < 2e-4, "GLSL lat-long mapping differs from C by %g", worst);
+    CHECK(nonfinite == 0);
+    /* and back */
+    for (int i = 0; i < N * N; i++) in[i * 4] = (i % N + 0.5f) / N, in[i * 4 + 1] = (i / N + 0.5f) / N;
+    e.expression = "vec4(envmap_latlong_dir(in0.xy), 0.0)";
+    CHECK_MSG(sl_harness_eval_glsl(h, &e, out, err, sizeof err), "%s", err);
+    worst = 0;
+    for (int i = 0; i < N * N; i++) {
+        double d[3];
+        em_latlong_dir(in[i * 4], in[i * 4 + 1], d);
+        for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(out[i * 4 + c] - d[c]));
+    }
+    CHECK_MSG(worst < 1e-5, "GLSL lat-long direction differs from C by %g", worst);
+    /* cube faces: face in z, (s, t) in xy */
+    for (int i = 0; i < N * N; i++) in[i * 4] = (i % N + 0.5f) / N, in[i * 4 + 1] = ((i / N) % 5 + 0.5f) / 5, in[i * 4 + 2] = (float)((i / N) % 6);
+    e.expression = "vec4(normalize(envmap_cube_dir(int(in0.z), in0.xy)), 0.0)";
+    CHECK_MSG(sl_harness_eval_glsl(h, &e, out, err, sizeof err), "%s", err);
+    worst = 0;
+    for (int i = 0; i < N * N; i++) {
+        double d[3];
+        em_cube_dir((int)in[i * 4 + 2], in[i * 4], in[i * 4 + 1], d);
+        for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(out[i * 4 + c] - d[c]));
+    }
+    CHECK_MSG(worst < 1e-5, "GLSL cube directions differ from C by %g", worst);
+}
+
+/* ---------------------------------------------------------------- 3. LUT */
+
+static void test_lut(em_gpu *g) {
+    enum { S = 32 };
+    unsigned t = em_brdf_lut(g, S, 1024);
+    float *px = em_read_2d(t, S, S);
+    double worst = 0, mean = 0;
+    int n = 0;
+    for (int j = 0; j < S; j += 3)
+        for (int i = 1; i < S; i += 3) {
+            double mu = i / (S - 1.0), r = j / (S - 1.0), a = fmax(r * r, 2e-3), A, B;
+            ref_brdf_ab(fmax(mu, 1e-3), a, 1500, 128, &A, &B);
+            const float *p = px + (j * S + i) * 4;
+            double e = fmax(fabs(p[0] - A), fabs(p[1] - B));
+            worst = fmax(worst, e);
+            mean += e;
+            n++;
+        }
+    printf("BRDF LUT (%d², 1024 VNDF samples) vs C integration at %d (n·v, α): max |Δ| %.4f, mean %.5f\n", S, n, worst,
+           mean / n);
+    CHECK_MSG(worst < 0.01, "LUT differs from the integral by %.4f", worst);
+    /* a LUT that ignored the Fresnel split (A = E, B = 0) is far off */
+    double A, B;
+    ref_brdf_ab(0.1, 0.25, 1500, 128, &A, &B);
+    CHECK(B > 0.05);
+    free(px);
+    glDeleteTextures(1, &t);
+}
+
+/* ---------------------------------------------------------------- environments */
+
+/* Lat-long w×h of f(d), each texel the mean of k×k sub-samples. */
+typedef void (*env_fn)(const double d[3], double out[3], void *user);
+static void make_latlong(em_image *img, int w, int h, int k, env_fn f, void *user) {
+    img->w = w, img->h = h;
+    img->px = malloc((size_t)w * h * 16);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double c[3] = {0, 0, 0}, d[3], v[3];
+            for (int j = 0; j < k; j++)
+                for (int i = 0; i < k; i++) {
+                    em_latlong_dir((x + (i + 0.5) / k) / w, (y + (j + 0.5) / k) / h, d);
+                    f(d, v, user);
+                    double wgt = sin(((y + (j + 0.5) / k) / h) * M_PI); /* solid-angle weight of the sub-sample */
+                    for (int q = 0; q < 3; q++) c[q] += v[q] * wgt;
+                }
+            double wsum = 0;
+            for (int j = 0; j < k; j++) wsum += k * sin(((y + (j + 0.5) / k) / h) * M_PI);
+            float *p = img->px + ((size_t)y * w + x) * 4;
+            for (int q = 0; q < 3; q++) p[q] = (float)(c[q] / wsum);
+            p[3] = 1;
+        }
+}
+
+typedef struct disk { double dir[3], cos_r, L, bg; } disk;
+static void disk_fn(const double d[3], double out[3], void *user) {
+    disk *k = user;
+    double v = dot3(d, k->dir) >= k->cos_r ? k->L : k->bg;
+    out[0] = out[1] = out[2] = v;
+}
+static void linear_fn(const double d[3], double out[3], void *user) { out[0] = out[1] = out[2] = 1 + d[1]; }
+
+/* Solid-angle-weighted mean of a cube level (channel 0). */
+static double cube_mean(const float *faces, int n) {
+    double s = 0, w = 0;
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < n; y++)
+            for (int x = 0; x < n; x++) {
+                double o = em_texel_solid_angle(n, x, y);
+                s += faces[(((size_t)f * n + y) * n + x) * 4] * o;
+                w += o;
+            }
+    return s / w;
+}
+
+/* The GGX-lobe convolution of the disk seen from n (prefilter kernel, n = v = r). */
+static double disk_convolution(const disk *k, const double n[3], double a, double norm) {
+    /* ∫_disk k(n·l) dl on a polar grid around the disk centre */
+    double t[3], b[3], up[3] = {fabs(k->dir[1]) < 0.9 ? 0 : 1, fabs(k->dir[1]) < 0.9 ? 1 : 0, 0};
+    t[0] = up[1] * k->dir[2] - up[2] * k->dir[1], t[1] = up[2] * k->dir[0] - up[0] * k->dir[2], t[2] = up[0] * k->dir[1] - up[1] * k->dir[0];
+    normalize3(t);
+    b[0] = k->dir[1] * t[2] - k->dir[2] * t[1], b[1] = k->dir[2] * t[0] - k->dir[0] * t[2], b[2] = k->dir[0] * t[1] - k->dir[1] * t[0];
+    double rmax = acos(k->cos_r), s = 0;
+    int nr = 60, np = 120;
+    for (int i = 0; i < nr; i++) {
+        double th = (i + 0.5) / nr * rmax;
+        for (int j = 0; j < np; j++) {
+            double ph = 2 * M_PI * (j + 0.5) / np, l[3];
+            for (int q = 0; q < 3; q++) l[q] = cos(th) * k->dir[q] + sin(th) * (cos(ph) * t[q] + sin(ph) * b[q]);
+            s += ref_prefilter_kernel(dot3(n, l), a) * sin(th);
+        }
+    }
+    s *= (rmax / nr) * (2 * M_PI / np);
+    return k->bg + (k->L - k->bg) * s / norm;
+}
+
+static void test_disk(em_gpu *g) {
+    disk k = {{0.8, 0.55, 0.25}, cos(14 * M_PI / 180), 20, 0.25};
+    normalize3(k.dir);
+    em_image img;
+    make_latlong(&img, 512, 256, 4, disk_fn, &k);
+    double omega = 2 * M_PI * (1 - k.cos_r), source_mean = k.bg + (k.L - k.bg) * omega / (4 * M_PI);
+    unsigned src = em_upload_latlong(&img);
+    const int size = 32, levels = 4, samples = 512;
+    unsigned base = em_make_base_cube(g, src, false, img.w, img.h, size);
+    unsigned chain = em_prefilter_ggx(g, base, size, levels, samples, 1.0f);
+    float *level0 = em_read_cube(chain, 0, size);
+    printf("disk: radius 14°, L = %g on %g; source mean %.5f\n", k.L, k.bg, source_mean);
+    for (int l = 0; l < levels; l++) {
+        int n = size >> l;
+        float *px = em_read_cube(chain, l, n);
+        double mean = cube_mean(px, n);
+        double rel = fabs(mean / source_mean - 1);
+        CHECK_MSG(rel < 0.01, "level %d mean %.5f vs source %.5f (%.2f%%)", l, mean, source_mean, 100 * rel);
+        if (l > 0) {
+            double r = (double)l / (levels - 1), a = r * r, norm = ref_prefilter_norm(a);
+            double worst = 0, sq = 0, worst_nothing = 0, peak = 0, want_mean = 0, wsum = 0;
+            int count = 0;
+            for (int f = 0; f < 6; f++)
+                for (int y = 0; y < n; y++)
+                    for (int x = 0; x < n; x++) {
+                        double d[3];
+                        em_cube_dir(f, (x + 0.5) / n, (y + 0.5) / n, d);
+                        double want = disk_convolution(&k, d, a, norm);
+                        double got = px[(((size_t)f * n + y) * n + x) * 4];
+                        /* a do-nothing prefilter: the unfiltered base at the same direction */
+                        double s, t;
+                        int f0 = em_dir_cube(d, &s, &t);
+                        int x0 = (int)fmin(s * size, size - 1), y0 = (int)fmin(t * size, size - 1);
+                        double nothing = level0[(((size_t)f0 * size + y0) * size + x0) * 4];
+                        worst = fmax(worst, fabs(got - want));
+                        worst_nothing = fmax(worst_nothing, fabs(nothing - want));
+                        peak = fmax(peak, want);
+                        double o = em_texel_solid_angle(n, x, y);
+                        want_mean += want * o, wsum += o;
+                        sq += (got - want) * (got - want);
+                        count++;
+                    }
+            double rms = sqrt(sq / count);
+            printf("  level %d (%2d², alpha %.3f): mean %.5f (%+.2f%%), vs C lobe convolution: max |err| %.3f = %.1f%% of "
+                   "the disk, rms %.4f; do-nothing max |err| %.2f\n",
+                   l, n, a, mean, 100 * (mean / source_mean - 1), worst, 100 * worst / k.L, rms, worst_nothing);
+            /* stated tolerance: max error 1% of the disk radiance, rms 0.25% */
+            CHECK_MSG(worst < 0.01 * k.L, "level %d: max error %.3f", l, worst);
+            CHECK_MSG(rms < 0.0025 * k.L, "level %d: rms error %.4f", l, rms);
+            CHECK_MSG(worst_nothing > 10 * 0.01 * k.L, "level %d: the test cannot tell a do-nothing prefilter (%.3f)", l,
+                      worst_nothing);
+            (void)peak;
+            printf("  C reference at the same texels: mean %.5f (%+.2f%%)\n", want_mean / wsum, 100 * (want_mean / wsum / source_mean - 1));
+        }
+        free(px);
+    }
+    free(level0);
+    glDeleteTextures(1, &chain);
+    glDeleteTextures(1, &base);
+    glDeleteTextures(1, &src);
+    em_image_free(&img);
+}
+
+/* ---------------------------------------------------------------- seams and poles */
+
+/* Max step between texels adjacent across face edges, and inside faces. */
+static void steps(const float *faces, int n, double *seam, double *inside) {
+    *seam = *inside = 0;
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < n; y++)
+            for (int x = 0; x < n; x++) {
+                const float *p = faces + (((size_t)f * n + y) * n + x) * 4;
+                for (int dir = 0; dir < 4; dir++) {
+                    int xx = x + (dir == 0) - (dir == 1), yy = y + (dir == 2) - (dir == 3);
+                    if (xx >= 0 && xx < n && yy >= 0 && yy < n) {
+                        const float *q = faces + (((size_t)f * n + yy) * n + xx) * 4;
+                        for (int c = 0; c < 3; c++) *inside = fmax(*inside, fabs(p[c] - q[c]));
+                        continue;
+                    }
+                    /* one texel beyond the edge lands in the neighbouring face */
+                    double d[3], s, t;
+                    em_cube_dir(f, (xx + 0.5) / n, (yy + 0.5) / n, d);
+                    int g = em_dir_cube(d, &s, &t);
+                    if (g == f) continue;
+                    int gx = (int)fmin(s * n, n - 1), gy = (int)fmin(t * n, n - 1);
+                    const float *q = faces + (((size_t)g * n + gy) * n + gx) * 4;
+                    for (int c = 0; c < 3; c++) *seam = fmax(*seam, fabs(p[c] - q[c]));
+                }
+            }
+}
+
+static void smooth_fn(const double d[3], double out[3], void *user) {
+    out[0] = 1 + d[1] + 0.5 * d[0];
+    out[1] = 1 + 0.8 * d[2] * d[0];
+    out[2] = 1.5 + d[0] * d[1];
+}
+
+static void test_seams(em_gpu *g) {
+    /* a smooth environment and the disk straddling the +X/+Y edge */
+    disk k = {{1, 1, 0.2}, cos(10 * M_PI / 180), 8, 0.5};
+    normalize3(k.dir);
+    for (int which = 0; which < 2; which++) {
+        em_image img;
+        if (which == 0) make_latlong(&img, 256, 128, 2, smooth_fn, NULL);
+        else make_latlong(&img, 512, 256, 4, disk_fn, &k);
+        unsigned src = em_upload_latlong(&img);
+        const int size = 32, levels = 5;
+        unsigned base = em_make_base_cube(g, src, false, img.w, img.h, size);
+        unsigned chain = em_prefilter_ggx(g, base, size, levels, 256, 1.0f);
+        for (int l = 0; l < levels; l++) {
+            int n = size >> l;
+            float *px = em_read_cube(chain, l, n);
+            double seam, inside;
+            steps(px, n, &seam, &inside);
+            long bad = 0;
+            for (size_t i = 0; i < (size_t)6 * n * n * 4; i++) bad += !isfinite(px[i]);
+            CHECK(bad == 0);
+            /* stated bound: a step across an edge is at most 1.5× the largest step inside a face
+             * (plus 1e-3 for half-float rounding) */
+            printf("seams (%s) level %d (%2d²): max step across edges %.4f, inside faces %.4f\n",
+                   which ? "disk on the +X/+Y edge" : "smooth", l, n, seam, inside);
+            CHECK_MSG(seam <= 1.5 * inside + 1e-3, "%s level %d: seam step %.4f > 1.5 × %.4f",
+                      which ? "disk" : "smooth", l, seam, inside);
+            /* poles (±Y faces of the lat-long source): finite and no steeper than elsewhere */
+            if (which == 0) {
+                double pole_step = 0;
+                for (int f = 2; f <= 3; f++)
+                    for (int y = 0; y + 1 < n; y++)
+                        for (int x = 0; x + 1 < n; x++)
+                            for (int c = 0; c < 3; c++) {
+                                const float *p = px + (((size_t)f * n + y) * n + x) * 4;
+                                pole_step = fmax(pole_step, fmax(fabs(p[c] - p[4 + c]), fabs(p[c] - p[n * 4 + c])));
+                            }
+                CHECK_MSG(pole_step <= 1.5 * inside + 1e-3, "level %d: step %.4f at the poles", l, pole_step);
+            }
+            if (which == 0 && l == 0) { /* the bound catches a face turned the wrong way */
+                float *face = px; /* +X, mirrored left to right */
+                for (int y = 0; y < n; y++)
+                    for (int x = 0; x < n / 2; x++)
+                        for (int c = 0; c < 4; c++) {
+                            float t = face[(y * n + x) * 4 + c];
+                            face[(y * n + x) * 4 + c] = face[(y * n + n - 1 - x) * 4 + c];
+                            face[(y * n + n - 1 - x) * 4 + c] = t;
+                        }
+                steps(px, n, &seam, &inside);
+                CHECK_MSG(seam > 1.5 * inside + 1e-3, "a mirrored face passes the seam bound (%.4f vs %.4f)", seam, inside);
+            }
+            free(px);
+        }
+        glDeleteTextures(1, &chain);
+        glDeleteTextures(1, &base);
+        glDeleteTextures(1, &src);
+        em_image_free(&img);
+    }
+}
+
+/* ---------------------------------------------------------------- seamless filtering */
+
+/* A bilinear lookup exactly on the +X/+Z edge of a cube whose +X face is 1 and the rest 0:
+ * GL_TEXTURE_CUBE_MAP_SEAMLESS blends the two faces (0.5); without it the lookup clamps to one
+ * face. The prefilter relies on the former (em_* callers enable it). */
+static void test_seamless(sl_harness *h) {
+    float *faces[6];
+    for (int f = 0; f < 6; f++) {
+        faces[f] = malloc(4 * 4 * 16);
+        for (int i = 0; i < 16 * 4; i++) faces[f][i] = f == 0 ? 1.0f : 0.0f;
+    }
+    unsigned cube = em_upload_cube(faces, 4, 1);
+    for (int f = 0; f < 6; f++) free(faces[f]);
+    glBindTextureUnit(22, cube);
+    float out[4] = {0}, in[4] = {0};
+    char err[4096];
+    const char *probe[] = {ENVMAP_GLSL_DIR "/envmap_common.glsl", NULL};
+    double v[2];
+    for (int on = 0; on < 2; on++) {
+        (on ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        sl_glsl_eval_desc e = {.struct_size = sizeof e, .files = probe, .width = 1, .height = 1, .in0 = in,
+                               .defines = "ENVMAP_PROBE_UNIT 22",
+                               .expression = "textureLod(envmap_probe, normalize(vec3(1.0, 0.1, 1.0)), 0.0)"};
+        CHECK_MSG(sl_harness_eval_glsl(h, &e, out, err, sizeof err), "%s", err);
+        v[on] = out[0];
+    }
+    printf("seamless filtering: lookup on the +X/+Z edge reads %.3f with GL_TEXTURE_CUBE_MAP_SEAMLESS, %.3f without\n", v[1], v[0]);
+    CHECK_NEAR(v[1], 0.5, 0.05);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    glDeleteTextures(1, &cube);
+}
+
+/* ---------------------------------------------------------------- irradiance */
+
+static void test_irradiance(em_gpu *g) {
+    /* SH in C on the exact linear environment */
+    enum { S = 32 };
+    float *faces = malloc((size_t)6 * S * S * 16);
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < S; y++)
+            for (int x = 0; x < S; x++) {
+                double d[3];
+                em_cube_dir(f, (x + 0.5) / S, (y + 0.5) / S, d);
+                float *p = faces + (((size_t)f * S + y) * S + x) * 4;
+                p[0] = p[1] = p[2] = (float)(1 + d[1]), p[3] = 1;
+            }
+    double sh[9][3], worst = 0;
+    em_sh9_project(faces, S, sh);
+    for (int i = 0; i < 200; i++) {
+        double d[3], o[3];
+        em_latlong_dir(i * 0.618 - floor(i * 0.618), (i + 0.5) / 200, d);
+        em_sh9_diffuse(sh, d, o);
+        worst = fmax(worst, fabs(o[1] - (1 + 2.0 / 3 * d[1])));
+    }
+    printf("SH irradiance of L = 1 + y: max |E/pi - (1 + 2/3 n_y)| = %.2e\n", worst);
+    CHECK(worst < 2e-3);
+    free(faces);
+    /* the convolved cube on the GPU, from a lat-long */
+    em_image img;
+    make_latlong(&img, 128, 64, 2, linear_fn, NULL);
+    unsigned src = em_upload_latlong(&img);
+    unsigned base = em_make_base_cube(g, src, false, img.w, img.h, 32);
+    unsigned irr = em_convolve_irradiance(g, base, 32, 16, 16);
+    float *px = em_read_cube(irr, 0, 16);
+    worst = 0;
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < 16; y++)
+            for (int x = 0; x < 16; x++) {
+                double d[3];
+                em_cube_dir(f, (x + 0.5) / 16, (y + 0.5) / 16, d);
+                worst = fmax(worst, fabs(px[(((size_t)f * 16 + y) * 16 + x) * 4] / (1 + 2.0 / 3 * d[1]) - 1));
+            }
+    printf("convolved irradiance cube of L = 1 + y: max relative error %.4f\n", worst);
+    CHECK_MSG(worst < 0.01, "convolved irradiance off by %.4f", worst);
+    free(px);
+    glDeleteTextures(1, &irr);
+    glDeleteTextures(1, &base);
+    glDeleteTextures(1, &src);
+    em_image_free(&img);
+}
+
+/* ---------------------------------------------------------------- RGBE, layouts, sanitising */
+
+static void test_files(void) {
+    double worst = 0;
+    for (int i = 0; i < 2000; i++) {
+        float rgb[3] = {(float)pow(10, (i % 40) / 5.0 - 4), (float)pow(10, (i % 13) / 3.0 - 2), (float)(i % 7) * 300}, o[3];
+        unsigned char b[4];
+        em_rgbe_encode(rgb, b);
+        em_rgbe_decode(b, o);
+        float m = fmaxf(rgb[0], fmaxf(rgb[1], rgb[2]));
+        for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(o[c] - rgb[c]) / m);
+    }
+    printf("RGBE round trip: max error %.4f of the largest channel\n", worst);
+    CHECK(worst < 1.0 / 128); /* the format's bound: a channel below 1/256 of the largest reads 0 */
+    float bad[4 * 4] = {NAN, 1, 2, 0, INFINITY, -INFINITY, -3, 0, 70000, 5, 6, 0, 1, 2, 3, 0};
+    em_sanitize_stats st;
+    CHECK(em_sanitize(bad, 4, &st) == 4);
+    CHECK(st.nan == 1 && st.inf == 2 && st.negative == 1 && st.clamped == 1);
+    CHECK(bad[0] == 0 && bad[4] == EM_HALF_MAX && bad[5] == 0 && bad[6] == 0 && bad[8] == EM_HALF_MAX && bad[9] == 5);
+    CHECK(em_detect_layout(200, 100) == EM_LAYOUT_LATLONG && em_detect_layout(64, 48) == EM_LAYOUT_HCROSS &&
+          em_detect_layout(48, 64) == EM_LAYOUT_VCROSS && em_detect_layout(96, 16) == EM_LAYOUT_HSTRIP &&
+          em_detect_layout(16, 96) == EM_LAYOUT_VSTRIP && em_detect_layout(100, 70) == EM_LAYOUT_UNKNOWN);
+    /* faces → cross → faces, and the vertical cross's −Z turned 180° */
+    float *faces[6], *back[6];
+    int n = 4, size;
+    for (int f = 0; f < 6; f++) {
+        faces[f] = malloc(n * n * 16);
+        for (int i = 0; i < n * n * 4; i++) faces[f][i] = (float)(f * 100 + i);
+    }
+    em_image cross;
+    em_faces_to_hcross(faces, n, &cross);
+    CHECK(em_extract_faces(&cross, EM_LAYOUT_HCROSS, back, &size) && size == n);
+    for (int f = 0; f < 6; f++) {
+        CHECK(!memcmp(faces[f], back[f], n * n * 16));
+        free(back[f]);
+    }
+    em_image_free(&cross);
+    /* vertical cross by hand: column 1 holds +Y, +Z, −Y and −Z upside down */
+    em_image v = {3 * n, 4 * n, calloc(12 * n * n * 4, sizeof(float))};
+    int vx[6] = {2, 0, 1, 1, 1, 1}, vy[6] = {1, 1, 0, 2, 1, 3};
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < n; y++)
+            for (int x = 0; x < n; x++) {
+                int sx = f == 5 ? n - 1 - x : x, sy = f == 5 ? n - 1 - y : y;
+                memcpy(v.px + ((size_t)(vy[f] * n + sy) * v.w + vx[f] * n + sx) * 4, faces[f] + (y * n + x) * 4, 16);
+            }
+    CHECK(em_extract_faces(&v, EM_LAYOUT_VCROSS, back, &size));
+    for (int f = 0; f < 6; f++) {
+        CHECK(!memcmp(faces[f], back[f], n * n * 16));
+        free(back[f]);
+        free(faces[f]);
+    }
+    em_image_free(&v);
+}
+
+int main(void) {
+    test_conventions();
+    test_files();
+    char err[4096];
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 16, .height = 16,
+                                                          .scene_json = "{}"}, err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    if (!h) return check_result();
+    test_glsl(h);
+    test_seamless(h);
+    em_gpu g = {.load = loader, .unit = 20};
+    CHECK_MSG(em_gpu_init(&g, err, sizeof err), "%s", err);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    test_lut(&g);
+    test_irradiance(&g);
+    test_disk(&g);
+    test_seams(&g);
+    em_gpu_free(&g);
+    for (int i = 0; i < program_count; i++) sl_program_free(programs[i]);
+    sl_harness_destroy(h);
+    return check_result();
+}
