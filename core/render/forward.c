@@ -238,8 +238,9 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
             char path[2048];
             snprintf(path, sizeof path, "%s/%s", P->items[list[i]->owner]->resource_dir, list[i]->d.file);
             ok = sl_source_include(&p->fs, path, err, n);
-            sl_sb_printf(&explain, "%s%s:%s", explain.len ? ", " : "", P->items[list[i]->owner]->id,
-                         list[i]->d.name ? list[i]->d.name : list[i]->d.function);
+            sl_sb_printf(&explain, "%s%s:%s%s", explain.len ? ", " : "", P->items[list[i]->owner]->id,
+                         list[i]->d.name ? list[i]->d.name : list[i]->d.function,
+                         list[i]->d.hook == SL_HOOK_MODEL_AMBIENT ? " (ambient)" : "");
         }
         sl_sb_append(&gen, "void sl_run_surface_hooks(inout SlSurface s) {\n");
         for (int i = 0; i < ns; i++) sl_sb_printf(&gen, "    %s(s);\n", surface_hooks[i]->d.function);

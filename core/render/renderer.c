@@ -40,6 +40,7 @@ typedef struct graph_pass {
     bool core_forward, core_display, core_resolve;
     unsigned fbo;
     uint64_t last_signature; bool has_run;
+    double last_ms;       /* time of the last run (for --explain when skipped since) */
     bool broken;          /* disabled at plan time (message given) */
 } graph_pass;
 
@@ -781,6 +782,7 @@ static void run_range(sl_app *app, int begin, int end) {
             ms = ns * 1e-6;
         }
         g->has_run = true;
+        g->last_ms = ms;
         if (st) { st->ms += ms; st->ran = true; }
     }
 }
@@ -954,8 +956,10 @@ void sl_renderer_explain(sl_app *app, FILE *f) {
         const sl_pass_stat *st = NULL;
         for (int k = 0; k < r->stats.pass_count; k++)
             if (!strcmp(r->stats.passes[k].name, g->d->name)) st = &r->stats.passes[k];
-        fprintf(f, "  %-24s %-18s %s%8.3f ms\n", g->d->name, g->owner >= 0 ? app->plugins.items[g->owner]->id : "core",
-                g->broken ? "BROKEN " : st && st->ran ? "ran    " : "skipped", st ? st->ms : 0.0);
+        bool ran = st && st->ran;
+        fprintf(f, "  %-24s %-18s %s %8.3f ms%s\n", g->d->name, g->owner >= 0 ? app->plugins.items[g->owner]->id : "core",
+                g->broken ? "BROKEN " : ran ? "ran    " : "skipped", ran ? st->ms : g->last_ms,
+                ran || g->broken ? "" : g->has_run ? " (when it last ran; unchanged since)" : " (inactive: never ran)");
     }
     fprintf(f, "materials (program hash: chunks):\n");
     for (int m = 0; m < app->scene.material_count; m++) {
