@@ -122,7 +122,7 @@ void sl_viewer_print_keys(sl_app *app, FILE *f) {
         if (b[i].unbound) snprintf(key, sizeof key, "(panel only)");
         else snprintf(key, sizeof key, "%s%s", b[i].shift ? "Shift+" : "", b[i].key);
         fprintf(f, "  %-13s %s [%s]", key, k->d.description ? k->d.description : "", app->plugins.items[k->owner]->id);
-        if (b[i].clash[0]) fprintf(f, "  (%s was taken by %s)", k->d.key, b[i].clash);
+        if (b[i].clash[0]) fprintf(f, "  (%s was taken by %s)", b[i].key, b[i].clash);
         fprintf(f, "\n");
     }
     free(b);
@@ -130,7 +130,8 @@ void sl_viewer_print_keys(sl_app *app, FILE *f) {
 
 void sl_viewer_trigger_binding(sl_app *app, const sl_key_binding *b) {
     const sl_key_reg *k = &app->plugins.keys[b->reg];
-    if (!sl_plugin_enabled(app, k->owner)) return;
+    /* a disabled plugin's keys do nothing, except one bound to its own "enabled" (turn it back on) */
+    if (!sl_plugin_enabled(app, k->owner) && !(k->d.param && !strcmp(k->d.param, "enabled"))) return;
     if (k->d.on_press) { k->d.on_press(k->d.user); return; }
     if (!k->d.param) return;
     char id[300], err[1024];
@@ -163,13 +164,44 @@ typedef struct viewer {
     int binding_count;
     int next_shot;
     char capture[65536];     /* log text of the last compile attempt */
+    char errors[8192];       /* condensed for the screen */
 } viewer;
 
-/* Runs `what` (render or reload) with the log captured; returns the error text logged, or "". */
+/* The errors in the captured log, condensed for the screen: a failing chunk breaks every
+ * material's program with the same message, so identical messages are shown once, followed by
+ * the programs they broke. Returns v->errors ("" when none). */
 static const char *errors_from_capture(viewer *v) {
-    const char *e = strstr(v->capture, "error: ");
-    if (e == v->capture || (e && e[-1] == '\n')) return e + 7;
-    return "";
+    typedef struct { const char *body; size_t len; char who[600]; } group;
+    group g[16];
+    int ng = 0;
+    size_t used = 0;
+    v->errors[0] = 0;
+    const char *p = v->capture;
+    while ((p = strstr(p, "error: "))) {
+        if (p != v->capture && p[-1] != '\n') { p++; continue; }
+        const char *head = p + 7, *nl = strchr(head, '\n');
+        const char *next = nl ? nl : head + strlen(head);
+        while ((next = strstr(next, "\n")) && strncmp(next + 1, "error: ", 7) && strncmp(next + 1, "warning: ", 9) && next[1])
+            next++;
+        const char *end = next ? next : head + strlen(head);
+        /* "LABEL: shader compile failed:\nBODY" or a one-line message */
+        const char *colon = nl && nl < end ? strstr(head, ": shader compile failed") : NULL;
+        const char *body = colon && colon < nl ? nl + 1 : head;
+        size_t blen = (size_t)(end - body);
+        while (blen && (body[blen - 1] == '\n' || body[blen - 1] == ' ')) blen--;
+        int k = 0;
+        while (k < ng && !(g[k].len == blen && !strncmp(g[k].body, body, blen))) k++;
+        if (k == ng && ng < 16) { g[ng] = (group){.body = body, .len = blen}; ng++; }
+        if (k < ng && body != head) {
+            size_t l = strlen(g[k].who);
+            snprintf(g[k].who + l, sizeof g[k].who - l, "%s%.*s", l ? ", " : "", (int)(colon - head), head);
+        }
+        p = end;
+    }
+    for (int k = 0; k < ng && used + 1 < sizeof v->errors; k++)
+        used += snprintf(v->errors + used, sizeof v->errors - used, "%s%.*s%s%s%s", k ? "\n" : "", (int)g[k].len, g[k].body,
+                         g[k].who[0] ? "\n  (breaks " : "", g[k].who, g[k].who[0] ? "; they keep their last good program)" : "");
+    return v->errors;
 }
 
 static void do_reload(viewer *v, bool from_key) {
@@ -270,7 +302,7 @@ static void grab_window(viewer *v, const char *path) {
 
 typedef struct script { char *text; char *cursor; int wait; char grab[1024]; double waiting_since; } script;
 
-/* Runs the script's commands for this frame (until a wait). */
+/* Runs the script's next command (one per frame, before the frame is rendered). */
 static void script_step(viewer *v, script *s) {
     if (!s->text) return;
     if (s->wait > 0) { s->wait--; return; }
@@ -322,6 +354,7 @@ static void script_step(viewer *v, script *s) {
         } else {
             fprintf(stderr, "script: unknown command \"%s\" (set, view, key, wait, waitfile, grab, quit)\n", cmd);
         }
+        return; /* one command per frame */
     }
 }
 

@@ -11,7 +11,7 @@
  *   4. when Shift+key is taken too (or the key name is not one of 0-9, A-Z, F1-F12) it stays
  *      unbound: still listed in the panel, where clicking it triggers it.
  *
- * Test hook: SHADELAB_VIEWER_SCRIPT runs commands separated by ';' one per frame, before that
+ * Test hook: SHADELAB_VIEWER_SCRIPT runs commands separated by ';', one per frame, before that
  * frame is rendered, through the same functions the panel widgets and the keyboard use:
  *   set ID=VALUE   as a panel widget change (sl_panel_apply: the --set path, source GUI)
  *   view NAME      debug view, as the panel's selector ("final" for none)

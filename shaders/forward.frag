@@ -6,6 +6,7 @@ in vec4 v_tangent;
 in vec2 v_uv;
 
 layout(location = 0) out vec4 o_color;
+uniform int sl_uv_space; // texture-space passes: facing follows the UV layout, not the surface
 
 SlSurface sl_surface_from_varyings() {
     SlSurface s;
@@ -18,7 +19,7 @@ SlSurface sl_surface_from_varyings() {
     // Degenerate interpolated normals (zero-area triangles, bad meshes) fall back to the
     // geometric normal, then to the view direction, so shading never sees NaN.
     n = nlen > 1e-12 ? n / nlen : (glen > 1e-20 ? g / glen : s.view);
-    if (!gl_FrontFacing) n = -n;
+    if (!gl_FrontFacing && sl_uv_space == 0) n = -n;
     s.normal = n;
     s.geometric_normal = glen > 1e-20 ? g / glen : n;
     if (dot(s.geometric_normal, n) < 0.0) s.geometric_normal = -s.geometric_normal;

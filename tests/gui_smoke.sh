@@ -9,11 +9,13 @@
 #   2. hot reload: a shader broken while the viewer runs keeps the last good image, the error
 #      (file:line) is on stderr and on screen; fixing it takes effect.
 #   3. keys: two plugins wanting the same key: reported, resolved (Shift+key), both usable.
+#   4. real key presses (XTEST): X server → GLFW → Dear ImGui's chained callbacks → the viewer:
+#      P saves a screenshot, the example plugin's V toggles its vignette, F1 hides the panel.
 # Tolerances: display-encoded PNG max |diff| <= 1/255 (one 8-bit code value); EXR (half)
 # max |diff| <= 1e-3. Measured on Mesa llvmpipe: 0 for both (GLX and OSMesa give equal pixels).
-#   usage: gui_smoke.sh SHADELAB IMGDIFF EXAMPLE_DIR KEYS_A.so KEYS_B.so
+#   usage: gui_smoke.sh SHADELAB IMGDIFF EXAMPLE_DIR KEYS_A.so KEYS_B.so SL-XKEY
 set -uo pipefail
-SHADELAB=$1 IMGDIFF=$2 EXDIR=$3 KEYSA=$4 KEYSB=$5
+SHADELAB=$1 IMGDIFF=$2 EXDIR=$3 KEYSA=$4 KEYSB=$5 XKEY=${6:-}
 if ! command -v xvfb-run >/dev/null; then
   echo "SKIP: xvfb-run not found: install xvfb and xauth (tools/install-deps.sh) to run the GUI smoke test"
   exit 77
@@ -25,7 +27,7 @@ FAILED=0
 fail() { echo "FAIL: $*"; FAILED=1; }
 W=480 H=270 SIZE=480x270
 PANEL_RIGHT=$((8 + W * 6 / 10 + 4))   # the panel is at most 60% of the width, from x = 8
-mkdir -p "$T/example" "$T/run1" "$T/run2"
+mkdir -p "$T/example" "$T/run1" "$T/run2" "$T/run3"
 cp -L "$EXDIR/example.so" "$EXDIR/tint.glsl" "$EXDIR/vignette.frag" "$T/example/"
 PLUGIN=$T/example/example.so
 export SHADELAB_PLUGIN_PATH=
@@ -92,6 +94,38 @@ differ shadelab-002.png shadelab-000.png        # the fix took effect (green tin
 # the error overlay sits at the bottom of the window while the error stands, and goes away
 differ window-error.png shadelab-001.png --region $PANEL_RIGHT $((H - 24)) $W $H
 same_png window-fixed.png shadelab-002.png --region $PANEL_RIGHT 0 $W $H
+
+echo "== 4. real key presses through the X server (XTEST)"
+if [ -n "$XKEY" ]; then
+  cp -L "$EXDIR/tint.glsl" "$T/example/"   # undo part 2's edit
+  cd "$T/run3"
+  cat >"$T/run3.sh" <<EOS
+"$SHADELAB" --backend glfw --size $SIZE --plugin "$PLUGIN" 2>"$T/run3.err" &
+pid=\$!
+w() { for i in \$(seq 1 600); do [ -e "\$1" ] && return 0; sleep 0.2; done; return 1; }
+w "$T/run3/ready.png" || exit 3
+"$XKEY" move:$((W - 20)),$((H - 20)) key:p || exit 4        # pointer off the panel, then P
+w "$T/run3/shadelab-000.png" || exit 5
+"$XKEY" key:v key:p key:F1 || exit 6                        # V (example's key), P again, F1
+touch "$T/keysent"
+wait \$pid
+EOS
+  SHADELAB_VIEWER_SCRIPT="wait 3; grab $T/run3/ready.png; waitfile $T/keysent; waitfile $T/run3/shadelab-001.exr; \
+wait 3; grab $T/run3/nopanel.png; quit" \
+    timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" bash "$T/run3.sh"
+  rc=$?
+  if [ $rc -eq 77 ]; then
+    echo "SKIP part 4: libX11/libXtst not available"
+  else
+    [ $rc -eq 0 ] || { cat "$T/run3.err"; fail "part 4 exited with $rc"; }
+    headless "$T/h3.png" --set example.vignette=false
+    same_png shadelab-000.png "$T/h0.png"         # P from the keyboard: the default image
+    same_png shadelab-001.png "$T/h3.png"         # V from the keyboard toggled the vignette
+    grep -q "^example.vignette=false" "$T/run3.err" || fail "V did not report example.vignette=false"
+    differ ready.png shadelab-000.png --region 8 8 $((PANEL_RIGHT - 8)) $((H - 8))   # panel shown at first
+    same_png nopanel.png shadelab-001.png           # F1 hid the panel: the window is the image
+  fi
+fi
 
 [ $FAILED -eq 0 ] || { echo "--- run1 stderr"; cat "$T/run1.err"; echo "--- run2 stderr"; cat "$T/run2.err"; exit 1; }
 echo "PASS: GUI smoke test"

@@ -22,10 +22,28 @@ done
 VIEWER=$PFX/bin/shadelab
 "$VIEWER" --list-plugins | grep -q "$PFX/bin/../lib.*/shadelab/plugins" || fail "installed viewer does not search its plugin dir"
 
+step "installed built-in plugins load by name"
+for d in "$PFX"/lib*/shadelab/plugins/*/; do
+  [ -d "$d" ] || continue
+  name=$(basename "$d")
+  "$VIEWER" --plugin "$name" --list-plugins 2>/dev/null | grep -E "^$name +(enabled|off) +$PFX" >/dev/null \
+    || { "$VIEWER" --plugin "$name" --list-plugins; fail "installed plugin $name does not load by name"; }
+  echo "  $name: loads from $d"
+done
+
 step "installed viewer renders like the build tree's"
 "$VIEWER" --headless --size 160x90 --output "$T/installed.png" 2>/dev/null
 "$BUILD/shadelab" --headless --size 160x90 --output "$T/build.png" 2>/dev/null
 "$IMGDIFF" "$T/installed.png" "$T/build.png" --same 0
+# ... and it really uses the installed shaders (not the source tree's): change the installed
+# display transform, expect a different image, then restore it
+DISPLAY_FRAG=$PFX/share/shadelab/shaders/display.frag
+cp "$DISPLAY_FRAG" "$T/display.frag.orig"
+sed -i 's/o_color = vec4(sl_srgb_encode(c), 1.0);/o_color = vec4(1.0 - sl_srgb_encode(c), 1.0);/' "$DISPLAY_FRAG"
+grep -q "1.0 - sl_srgb_encode" "$DISPLAY_FRAG" || fail "could not patch the installed display.frag (changed?)"
+"$VIEWER" --headless --size 160x90 --output "$T/patched.png" 2>/dev/null
+"$IMGDIFF" "$T/patched.png" "$T/build.png" --differ 0.2
+cp "$T/display.frag.orig" "$DISPLAY_FRAG"
 
 step "pkg-config: compile the example with \$(pkg-config --cflags shadelab) only"
 export PKG_CONFIG_PATH=$(dirname "$(compgen -G "$PFX/lib*/pkgconfig/shadelab.pc")")

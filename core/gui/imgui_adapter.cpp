@@ -58,7 +58,9 @@ bool sl_ui_begin(const char *title, float x, float y, float w, float h, float al
     ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(w, h), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(alpha);
-    return ImGui::Begin(title);
+    bool open = ImGui::Begin(title);
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f); // room for the labels on the right
+    return open;
 }
 
 bool sl_ui_begin_overlay(const char *id, float r, float g, float b, float alpha) {
@@ -72,10 +74,14 @@ bool sl_ui_begin_overlay(const char *id, float r, float g, float b, float alpha)
                                  ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                  ImGuiWindowFlags_NoNav);
     ImGui::PopStyleColor();
+    ImGui::PushItemWidth(-1.0f);
     return open;
 }
 
-void sl_ui_end(void) { ImGui::End(); }
+void sl_ui_end(void) {
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
 bool sl_ui_header(const char *label, bool open) {
     return ImGui::CollapsingHeader(label, open ? ImGuiTreeNodeFlags_DefaultOpen : 0);
 }

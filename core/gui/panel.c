@@ -387,7 +387,7 @@ static void section_keys(sl_panel *p, sl_panel_actions *act) {
         if (sl_ui_selectable(label, false)) act->trigger_binding = i;
         if (b->clash[0]) {
             char tip[400];
-            snprintf(tip, sizeof tip, "%s%s was taken by %s", k->d.key, b->unbound ? " (and Shift+key)" : "", b->clash);
+            snprintf(tip, sizeof tip, "%s%s was taken by %s", b->key, b->unbound ? " (and Shift+key)" : "", b->clash);
             sl_ui_tooltip(tip);
         }
     }
@@ -437,10 +437,17 @@ void sl_panel_draw(sl_panel *p, double dt, sl_panel_actions *act) {
     }
     /* a failed shader stays on screen whether or not the panel is visible */
     if (p->shader_error) {
+        bool dismiss = false;
         if (sl_ui_begin_overlay("##shader-error", 0.35f, 0.02f, 0.02f, 0.92f)) {
-            sl_ui_text_colored(1, 0.8f, 0.3f, "Shader error: the last good program is still in use. Fix the file; it reloads on save (or F5).");
+            if (strstr(p->shader_error, "keep their last good program"))
+                sl_ui_text_colored(1, 0.8f, 0.3f, "Shader error: the last good program is still in use. "
+                                                  "Fix the file; it reloads on save (or F5).");
+            else
+                sl_ui_text_colored(1, 0.8f, 0.3f, "Error (stderr has the full log):");
             sl_ui_text_wrapped(p->shader_error);
+            dismiss = sl_ui_small_button("dismiss");
         }
         sl_ui_end();
+        if (dismiss) sl_panel_set_shader_error(p, NULL);
     }
 }

@@ -52,14 +52,17 @@ const char *sl_shader_dir(void) {
     if (dir[0]) return dir;
     const char *env = getenv("SHADELAB_SHADER_DIR");
     struct stat st;
+    /* an installed executable uses the shaders installed beside it, even when the source tree
+     * it was built from still exists; a build-tree executable has none there */
+    char exe[1024], installed[1200], probe[1300];
+    ssize_t l = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    exe[l > 0 ? l : 0] = 0;
+    snprintf(installed, sizeof installed, "%s/../%s/shadelab/shaders", dirname(exe), SL_INSTALL_DATADIR);
+    snprintf(probe, sizeof probe, "%s/common.glsl", installed);
     if (env && *env) snprintf(dir, sizeof dir, "%s", env);
+    else if (stat(probe, &st) == 0) snprintf(dir, sizeof dir, "%s", installed);
     else if (stat(SL_SOURCE_SHADER_DIR "/common.glsl", &st) == 0) snprintf(dir, sizeof dir, "%s", SL_SOURCE_SHADER_DIR);
-    else {
-        char exe[1024];
-        ssize_t l = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        exe[l > 0 ? l : 0] = 0;
-        snprintf(dir, sizeof dir, "%s/../%s/shadelab/shaders", dirname(exe), SL_INSTALL_DATADIR);
-    }
+    else snprintf(dir, sizeof dir, "%s", installed);
     return dir;
 }
 

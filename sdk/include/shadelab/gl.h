@@ -7,7 +7,7 @@
  *
  *     #define SL_GL_IMPLEMENTATION   // in exactly one .c file of the module
  *     #include <shadelab/gl.h>
- *     ... if (!sl_gl_load(host->gl_get_proc_address)) return SL_ERR_GL;
+ *     ... if (!sl_gl_load(host->gl_get_proc_address, NULL)) return SL_ERR_GL;
  *
  * The list covers what shadelab and its bundled plugins use; a plugin needing another entry
  * point fetches it with gl_get_proc_address itself.
