@@ -1,4 +1,4 @@
-/* The GUI toolkit seen from C: a thin adapter over Dear ImGui (imgui_adapter.cpp, the only C++
+/* The GUI toolkit seen from C: a thin adapter over Dear ImGui (gui_imgui.cpp, the only C++
  * here) so that the panel itself (panel.c) is plain C and never sees an ImGui type.
  *
  * Debian's Dear ImGui 1.86 OpenGL 3 backend loads libGL by itself (its own gl3w loader), so the

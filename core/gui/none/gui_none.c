@@ -1,4 +1,4 @@
-/* Built instead of imgui_adapter.cpp when Dear ImGui (libimgui-dev) is not installed: the
+/* Built instead of gui_imgui.cpp when Dear ImGui (libimgui-dev) is not installed: the
  * viewer then runs its window without a panel and says why. */
 #include "gui/gui.h"
 #include <stdio.h>
