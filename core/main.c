@@ -272,6 +272,9 @@ int main(int argc, char **argv) {
         char *save = NULL;
         for (char *t = strtok_r(ref_copy, " ", &save); t && nref < 64; t = strtok_r(NULL, " ", &save)) ref_settings[nref++] = t;
         int acc = r->reference.accumulate_frames;
+        /* r belongs to the app shut down here: keep what is printed below */
+        char ref_description[512];
+        snprintf(ref_description, sizeof ref_description, "%s", r->reference.description ? r->reference.description : "");
         sl_app_shutdown(&app);
         for (int i = 0; i < nref && c.opt.setting_count < 128; i++) c.opt.settings[c.opt.setting_count++] = ref_settings[i];
         if (acc > 1 && c.opt.accumulate <= 1) c.opt.accumulate = acc;
@@ -280,7 +283,7 @@ int main(int argc, char **argv) {
             free(ref_copy);
             return die(err);
         }
-        fprintf(stderr, "reference for %s: %s\n", c.reference, r->reference.description ? r->reference.description : "");
+        fprintf(stderr, "reference for %s: %s\n", c.reference, ref_description);
     }
     if (c.auto_quality && !sl_autoquality_apply(&app, c.auto_quality, err, sizeof err)) { sl_app_shutdown(&app); free(ref_copy); return die(err); }
     if (c.list_plugins || c.dump_params || c.list_views || c.help_keys) {

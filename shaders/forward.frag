@@ -6,7 +6,6 @@ in vec4 v_tangent;
 in vec2 v_uv;
 
 layout(location = 0) out vec4 o_color;
-uniform int sl_uv_space; // texture-space passes: facing follows the UV layout, not the surface
 
 SlSurface sl_surface_from_varyings() {
     SlSurface s;

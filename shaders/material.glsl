@@ -1,3 +1,6 @@
+// 1 in texture-space passes (draw_scene uv_space): the mesh is rasterised at uv*2-1, so facing
+// follows the UV layout (unmirrored UVs are front-facing there), not the surface or the view.
+uniform int sl_uv_space;
 // The core's material inputs: base_color (linear RGB) and base_color_map (sRGB texture).
 // A map without an explicit base_color is used as is (factor 1, as in glTF).
 vec3 sl_base_color(vec2 uv) {

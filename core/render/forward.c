@@ -269,13 +269,15 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
             sl_sb_append(&gen, "    return sl_direct_lighting(s);\n}\n");
         } else {
             sl_sb_append(&gen, "    vec3 Lo = sl_direct_lighting(s);\n");
-            if (na) {
-                for (int i = 0; i < na; i++) sl_sb_printf(&gen, "    Lo += %s(s);\n", ambient_hooks[i]->d.function);
-            } else if (model_ambient) {
-                sl_sb_printf(&gen, "    Lo += %s(s, sl_ambient_irradiance);\n", model_ambient->d.function);
-            } else {
+            /* An override model (SL_DRAW_MATERIALS) owns its whole output: no AMBIENT hooks. A
+             * MODEL_AMBIENT always runs (it may carry more than ambient light, e.g. sss), with
+             * vec3(0) where AMBIENT hooks supply the ambient light instead. */
+            bool hooks = na && !model_override;
+            for (int i = 0; hooks && i < na; i++) sl_sb_printf(&gen, "    Lo += %s(s);\n", ambient_hooks[i]->d.function);
+            if (model_ambient)
+                sl_sb_printf(&gen, "    Lo += %s(s, %s);\n", model_ambient->d.function, hooks ? "vec3(0.0)" : "sl_ambient_irradiance");
+            else if (!hooks)
                 sl_sb_append(&gen, "    Lo += s.base_color * SL_INV_PI * sl_ambient_irradiance * s.ao;\n");
-            }
             sl_sb_append(&gen, "    return Lo;\n}\n");
         }
         sl_source_generated(&p->fs, gen.s);

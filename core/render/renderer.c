@@ -385,8 +385,9 @@ static void draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 glm_mat4_inv(model, inv);
                 glm_mat4_transpose(inv);
                 glm_mat4_pick3(inv, nrm);
-                /* a mirroring transform (negative determinant) reverses the winding */
-                glFrontFace(glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
+                /* a mirroring transform (negative determinant) reverses the winding; in UV space
+                 * (v = 0 at the top) unmirrored UV layouts wind clockwise: make them front faces */
+                glFrontFace(d->uv_space || glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
                 glUniformMatrix4fv(glGetUniformLocation(prog, "sl_model"), 1, GL_FALSE, (float *)model);
                 glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
                 glBindVertexArray(r->meshes[mi].vao);

@@ -29,13 +29,17 @@
  *                                                                the model applies max(0, n·l)
  *   MODEL_AMBIENT    vec3 FN(SlSurface s, vec3 ambient_irradiance)
  *                                                                optional per-model term
- *                                                                outside the light loop
+ *                                                                outside the light loop, once
+ *                                                                per pixel; gets vec3(0) when
+ *                                                                AMBIENT hooks supply the
+ *                                                                ambient light
  *   LIGHT            bool FN(SlLight L, SlSurface s, out vec3 l, out vec3 E)
  *                                                                evaluates one light of type
  *                                                                `name`; false = no light here
  *   AMBIENT          vec3 FN(SlSurface s)                        added irradiance-like term
  *                                                                (environment lighting);
- *                                                                summed over plugins
+ *                                                                summed over plugins; not in
+ *                                                                SL_DRAW_MATERIALS overrides
  *   DEBUG_VIEW       vec3 FN(SlSurface s)                        replaces the output when the
  *                                                                view `name` is selected
  *   DEBUG_VIEW_LIGHT vec3 FN(SlSurface s, vec3 l, vec3 E)       like DEBUG_VIEW, summed over
