@@ -20,6 +20,10 @@ vec2 nm_object_uv(vec2 uv) {
 }
 
 // The mapped world-space normal of s, before the view guard.
+// In texture-space passes (draw_scene uv_space) facing follows the UV layout, and the core does not
+// flip the normal there: every fragment counts as front-facing.
+bool nm_front_facing() { return gl_FrontFacing || sl_uv_space != 0; }
+
 vec3 nm_mapped_normal(SlSurface s) {
 #if SL_MAT_NORMAL_SPACE == SL_MAT_NORMAL_SPACE_OBJECT
     vec3 texel = texture(sl_mat_normal_map, nm_object_uv(s.uv), normal_map_lod_bias).rgb;
@@ -28,14 +32,14 @@ vec3 nm_mapped_normal(SlSurface s) {
 #endif
     float k = normal_map_strength * sl_mat_normal_strength;
 #if SL_MAT_NORMAL_SPACE == SL_MAT_NORMAL_SPACE_OBJECT
-    return nm_from_object_space(nm_decode(texel), sl_normal_matrix, gl_FrontFacing, s.normal, k);
+    return nm_from_object_space(nm_decode(texel), sl_normal_matrix, nm_front_facing(), s.normal, k);
 #else
     vec3 nt = nm_decode(texel);
     if (normal_map_green != 0) nt.y = -nt.y;
     nt = nm_tangent_scaled(nt, k);
     // On a back face the core flips N (and with it the bitangent); flipping T as well makes the
     // result exactly −(front-face normal): a bump seen from behind is a dent.
-    vec3 T = gl_FrontFacing ? s.tangent : -s.tangent;
+    vec3 T = nm_front_facing() ? s.tangent : -s.tangent;
     return nm_from_tangent_space(nt, T, NM_IMAGE_UP_SIGN * s.bitangent, s.normal);
 #endif
 }
@@ -43,7 +47,8 @@ vec3 nm_mapped_normal(SlSurface s) {
 
 void nm_surface(inout SlSurface s) {
 #if defined(SL_MAT_HAS_NORMAL_MAP)
-    vec3 n = nm_face_viewer(nm_mapped_normal(s), s.view);
+    // texture-space passes (sss irradiance) have no viewer: keep the mapped normal as is
+    vec3 n = sl_uv_space != 0 ? nm_mapped_normal(s) : nm_face_viewer(nm_mapped_normal(s), s.view);
     // Keep the frame orthonormal around the new normal (anisotropic models read it), with the
     // same handedness.
     float w = dot(cross(s.normal, s.tangent), s.bitangent) < 0.0 ? -1.0 : 1.0;
