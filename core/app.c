@@ -157,12 +157,10 @@ bool sl_app_set(sl_app *app, const char *assignment, sl_param_source src, char *
         }
         char full[600];
         snprintf(full, sizeof full, "material.%s.%s", name, key);
-        sl_param tmp = app->params.items[v->param];
         char *saved = app->params.items[v->param].full_id;
         app->params.items[v->param].full_id = full; /* messages name the full address */
         bool ok = set_material_value(app, m, v, value, err, n);
         app->params.items[v->param].full_id = saved;
-        (void)tmp;
         return ok;
     }
     return sl_params_set(&app->params, id, value, src, err, n);

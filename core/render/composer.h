@@ -40,6 +40,7 @@ struct sl_program {
     char *vs_path, *fs_path, *defines; /* for stand-alone programs: rebuilt on reload */
     int owner;
     bool composed;          /* forward material program (rebuilt by the material code) */
+    bool stale;             /* its files changed (hot reload): not reused from the cache */
 };
 
 /* Compiles and links; on failure keeps any previous id and stores the mapped error. */

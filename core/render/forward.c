@@ -301,7 +301,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     }
     p->hash = sl_hash64(p->vs.text.s, p->vs.text.len, sl_hash64(p->fs.text.s, p->fs.text.len, 0));
     for (int i = 0; i < *cache_count; i++) {
-        if ((*cache)[i]->hash == p->hash && (*cache)[i]->id) {
+        if ((*cache)[i]->hash == p->hash && (*cache)[i]->id && !(*cache)[i]->stale) {
             sl_program_free(p);
             out->program = (*cache)[i];
             return true;

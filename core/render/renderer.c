@@ -458,7 +458,7 @@ int sl_renderer_reload_shaders(sl_app *app) {
     }
     /* composed programs: recompose everything; failures keep the previous variant program */
     int before = sl_log_count(SL_LOG_ERROR);
-    for (int i = 0; i < r->cache_count; i++) r->cache[i]->hash ^= 0x5a5a5a5a5a5a5a5aull; /* force rebuild */
+    for (int i = 0; i < r->cache_count; i++) r->cache[i]->stale = true; /* compiled from old files */
     compose_all(app);
     failures += sl_log_count(SL_LOG_ERROR) - before;
     /* Stamp the files' current mtimes on every source, including programs whose rebuild failed
@@ -848,19 +848,16 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     r->stats.pass_count = 0;
     r->stats.draw_calls = 0;
     r->stats.timing_mode = r->finish_timing ? "glfinish" : "timer-query";
-    for (int i = 0; i < app->plugins.count; i++) {
+    fill_frame(app, 0, 1);
+    for (int i = 1; i < app->plugins.count; i++) {
         sl_plugin_rec *pr = app->plugins.items[i];
-        if (i > 0 && pr->active && pr->desc.begin_frame && sl_plugin_enabled(app, i)) {
-            fill_frame(app, 0, 1);
-            pr->desc.begin_frame(pr->user, &r->frame);
-        }
+        if (pr->active && pr->desc.begin_frame && sl_plugin_enabled(app, i)) pr->desc.begin_frame(pr->user, &r->frame);
     }
     int post_begin = r->pass_count;
     for (int i = 0; i < r->pass_count; i++)
         if (r->passes[i].d->stage >= SL_STAGE_POST) { post_begin = i; break; }
     int count = app->opt.accumulate > 1 ? app->opt.accumulate : 1;
     if (count == 1) {
-        fill_frame(app, 0, 1);
         run_range(app, 0, r->pass_count);
     } else {
         /* average the linear HDR colour of `count` sub-frames before any post pass */
