@@ -46,6 +46,59 @@ static void normalize3(double v[3]) {
     for (int i = 0; i < 3; i++) v[i] /= l;
 }
 
+/* Specular AA on a 40 m bumpy GGX plane (α = 0.05, the bumps32 normal map) seen from (0, cam_y, 19):
+ * renders AA on, AA off and the 8×8 supersampled reference (no AA, normal map at level 0) at
+ * 160×90 and returns the far-field means m = {on, off, ref} of the green channel and the RMSEs
+ * against the reference. Far field: hit points farther than min_dist from the camera, or, with
+ * min_dist = 0, the rows 0.37–0.6 H (between the horizon and mid-screen in the first view). */
+static bool aa_case(float cam_y, const float sun_dir[3], float min_dist, double m[3], double *e_on, double *e_off) {
+    enum { AW = 160, AH = 90 };
+    static float on[AW * AH * 4], off[AW * AH * 4], ref[AW * AH * 4];
+    char json[2048], err[4096];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"ggx\", \"normal-map\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, %g, 19], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
+             " \"materials\": [{\"name\": \"bumpy\", \"model\": \"ggx\", \"alpha\": 0.05, \"base_color\": [0.18, 0.2, 0.24],\n"
+             "   \"normal_map\": \"%s/../plugins/phong/assets/bumps32_tangent.png\"}],\n"
+             " \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\", \"size\": 40}, \"material\": \"bumpy\"}],\n"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [%g, %g, %g], \"intensity\": 4}]}",
+             cam_y, SL_SCENES_DIR, sun_dir[0], sun_dir[1], sun_dir[2]);
+    const char *const *sets[3] = {(const char *[]){"ggx.specular_aa=true", NULL},
+                                  (const char *[]){"ggx.specular_aa=false", NULL},
+                                  (const char *[]){"ggx.specular_aa=false", "core.ssaa=8", "normal-map.lod_bias=-16", NULL}};
+    float *outs[3] = {on, off, ref};
+    for (int k = 0; k < 3; k++) {
+        sl_harness *hh = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = AW,
+                                                               .height = AH, .scene_json = json, .settings = sets[k],
+                                                               .float32 = true, .strict = true}, err, sizeof err);
+        if (!hh) { fprintf(stderr, "harness: %s\n", err); return false; }
+        bool ok = sl_harness_render(hh, outs[k]) && sl_harness_count_nonfinite(outs[k], AW, AH) == 0;
+        sl_harness_destroy(hh);
+        if (!ok) { fprintf(stderr, "specular AA render %d failed or not finite\n", k); return false; }
+    }
+    const test_camera c = {{0, cam_y, 19}, {0, 0, 0}, 40, AW, AH};
+    double s[3] = {0, 0, 0}, eon = 0, eoff = 0;
+    int cnt = 0;
+    for (int y = 0; y < AH; y++)
+        for (int x = 0; x < AW; x++) {
+            if (min_dist > 0) {
+                float p[3];
+                if (!test_camera_hit_ground(&c, x, y, 20, p)) continue;
+                float dx = p[0], dy = p[1] - cam_y, dz = p[2] - 19;
+                if (sqrtf(dx * dx + dy * dy + dz * dz) <= min_dist) continue;
+            } else if (y < (int)(0.37 * AH) || y >= (int)(0.6 * AH)) continue;
+            int i = (y * AW + x) * 4 + 1;
+            for (int k = 0; k < 3; k++) s[k] += outs[k][i];
+            eon += (on[i] - ref[i]) * (on[i] - ref[i]);
+            eoff += (off[i] - ref[i]) * (off[i] - ref[i]);
+            cnt++;
+        }
+    if (cnt == 0) return false;
+    for (int k = 0; k < 3; k++) m[k] = s[k] / cnt;
+    *e_on = sqrt(eon / cnt), *e_off = sqrt(eoff / cnt);
+    return true;
+}
+
 int main(void) {
     /* 1. per-pixel closed form: L = (k_d/π + k_s F D G/(4 n·l n·v)) E n·l */
     char json[4096];
@@ -169,50 +222,33 @@ int main(void) {
     /* 6. specular antialiasing: a bumpy GGX plane at grazing angles against an 8×8 supersampled
      * render without AA (normal map at level 0) */
     {
-        enum { AW = 160, AH = 90 };
-        static float on[AW * AH * 4], off[AW * AH * 4], ref[AW * AH * 4];
-        char aa_scene[2048];
-        snprintf(aa_scene, sizeof aa_scene,
-                 "{\"plugins\": [\"ggx\", \"normal-map\"],\n"
-                 " \"cameras\": [{\"name\": \"c\", \"position\": [0, 1.2, 19], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
-                 " \"materials\": [{\"name\": \"bumpy\", \"model\": \"ggx\", \"alpha\": 0.05, \"base_color\": [0.18, 0.2, 0.24],\n"
-                 "   \"normal_map\": \"%s/../plugins/phong/assets/bumps32_tangent.png\"}],\n"
-                 " \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\", \"size\": 40}, \"material\": \"bumpy\"}],\n"
-                 " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -0.25, 0.968], \"intensity\": 4}]}",
-                 SL_SCENES_DIR);
-        const char *const *sets[3] = {(const char *[]){"ggx.specular_aa=true", NULL},
-                                      (const char *[]){"ggx.specular_aa=false", NULL},
-                                      (const char *[]){"ggx.specular_aa=false", "core.ssaa=8", "normal-map.lod_bias=-16", NULL}};
-        float *outs[3] = {on, off, ref};
-        for (int k = 0; k < 3; k++) {
-            sl_harness *hh = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = AW,
-                                                                   .height = AH, .scene_json = aa_scene, .settings = sets[k],
-                                                                   .float32 = true, .strict = true}, err, sizeof err);
-            CHECK_MSG(hh != NULL, "%s", err);
-            if (!hh) return check_result();
-            CHECK(sl_harness_render(hh, outs[k]));
-            CHECK(sl_harness_count_nonfinite(outs[k], AW, AH) == 0);
-            sl_harness_destroy(hh);
-        }
-        /* far field: rows between the horizon (about 0.36 H) and 0.6 H, where pixels cover many bumps */
-        double m[3] = {0, 0, 0}, e_on = 0, e_off = 0;
-        int cnt = 0;
-        for (int y = (int)(0.37 * AH); y < (int)(0.6 * AH); y++)
-            for (int x = 0; x < AW; x++) {
-                int i = (y * AW + x) * 4;
-                for (int k = 0; k < 3; k++) m[k] += outs[k][i + 1];
-                e_on += (on[i + 1] - ref[i + 1]) * (on[i + 1] - ref[i + 1]);
-                e_off += (off[i + 1] - ref[i + 1]) * (off[i + 1] - ref[i + 1]);
-                cnt++;
-            }
-        for (int k = 0; k < 3; k++) m[k] /= cnt;
+        double m[3], e_on, e_off;
+        CHECK(aa_case(1.2f, (const float[3]){0, -0.25f, 0.968f}, 0, m, &e_on, &e_off));
         printf("ggx specular AA, far field: mean AA on %.4f, off %.4f, reference %.4f; RMSE on %.4f, off %.4f\n", m[0], m[1],
-               m[2], sqrt(e_on / cnt), sqrt(e_off / cnt));
+               m[2], e_on, e_off);
         /* Toksvig removes most of the aliasing (RMSE against the supersampled render 2.4× lower);
-         * the far-field MEAN is darker than the reference (README: widened α also widens Smith
-         * masking, which a normal-mapped reference does not have), so the mean is not asserted. */
-        CHECK_MSG(e_on < 0.6 * e_off, "AA does not reduce the far-field error enough (%.3f vs %.3f)", sqrt(e_on / cnt),
-                  sqrt(e_off / cnt));
+         * the far-field MEAN is darker than the reference (README: in this forward glint the
+         * normal-mapped reference is dominated by normals nearly perpendicular to the view, and by
+         * the normal map's n·v guard), so the mean is not asserted here. */
+        CHECK_MSG(e_on < 0.6 * e_off, "AA does not reduce the far-field error enough (%.3f vs %.3f)", e_on, e_off);
+    }
+    /* 7. the same plane over a grid of grazing views and suns (far field: hit points more than
+     * 25 m from the camera): a measurement for the README's table; only finiteness is asserted */
+    {
+        static const float heights[3] = {1.2f, 3.0f, 6.0f};
+        static const float suns[3][3] = {{0, -0.25f, 0.968f}, {0, -0.6f, 0.8f}, {0.5f, -0.5f, 0.7071f}};
+        int better = 0;
+        printf("ggx specular AA grid (alpha 0.05): camera height, sun direction: far-field mean reference / off / on\n");
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                double m[3], e_on, e_off;
+                CHECK(aa_case(heights[i], suns[j], 25, m, &e_on, &e_off));
+                bool ok = fabs(m[0] - m[2]) < fabs(m[1] - m[2]);
+                better += ok;
+                printf("  %.1f m, (%.2f, %.2f, %.2f): %.3f / %.3f / %.3f  |on - ref| %s |off - ref|; RMSE on %.3f, off %.3f\n",
+                       heights[i], suns[j][0], suns[j][1], suns[j][2], m[2], m[1], m[0], ok ? "<" : ">=", e_on, e_off);
+            }
+        printf("ggx specular AA grid: the AA mean is closer to the reference in %d of 9 configurations\n", better);
     }
     return check_result();
 }
