@@ -77,6 +77,12 @@ static sl_status ggx_create(const sl_host *host, void **user) {
         if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
         if (host->add_key(host, &keys[i]) != SL_OK) return SL_ERR_FAILED;
+    /* ground truth for the specular_aa knob (shadelab-bench --plugin ggx, --reference ggx) */
+    static const sl_reference_desc reference = {
+        .struct_size = sizeof reference, .settings = "core.ssaa=8 ggx.specular_aa=false",
+        .description = "8x8 supersampling without specular antialiasing: every sample shades the normal map at its "
+                       "own, finer mip level."};
+    host->set_reference(host, &reference);
     *user = NULL;
     return SL_OK;
 }
