@@ -9,6 +9,11 @@ static sl_status core_create(const sl_host *host, void **user) {
          .min = 1, .max = 8, .step = 1, .unit = "x", .group = "quality", .flags = SL_PARAM_QUALITY_KNOB,
          .description = "Supersampling: the forward pass renders at ssaa x the viewport per axis and is box-filtered "
                         "down in linear HDR."},
+        {.struct_size = sizeof(sl_param_desc), .id = "anisotropy", .type = SL_PARAM_INT, .default_value = {.i = 8},
+         .min = 1, .max = 16, .step = 1, .unit = "x", .group = "quality",
+         .description = "Maximum anisotropic filtering of material textures. References set 1: anisotropic taps "
+                        "average a normal map along the view direction, a prefilter a ground truth must not have. "
+                        "(Not a swept quality knob: a reference setting.)"},
         /* material keys */
         {.struct_size = sizeof(sl_param_desc), .id = "base_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material",

@@ -20,7 +20,8 @@ for f in bin/shadelab include/shadelab/shadelab.h include/shadelab/harness.h lib
   compgen -G "$PFX/$f" >/dev/null || fail "not installed: $f"
 done
 VIEWER=$PFX/bin/shadelab
-"$VIEWER" --list-plugins | grep -q "$PFX/bin/../lib.*/shadelab/plugins" || fail "installed viewer does not search its plugin dir"
+# (output captured first: with pipefail, grep -q quitting early would SIGPIPE the writer)
+grep -q "$PFX/bin/../lib.*/shadelab/plugins" <<<"$("$VIEWER" --list-plugins)" || fail "installed viewer does not search its plugin dir"
 
 step "installed built-in plugins load by name"
 for d in "$PFX"/lib*/shadelab/plugins/*/; do
@@ -52,7 +53,7 @@ echo "pkg-config --cflags shadelab: $PCFLAGS   abi $(pkg-config --variable=abi_m
 mkdir -p "$T/pc/example"
 cc -std=c11 -shared -fPIC -fvisibility=hidden $PCFLAGS "$SRC/sdk/example/example.c" -o "$T/pc/example/example.so"
 cp "$SRC/sdk/example/tint.glsl" "$SRC/sdk/example/vignette.frag" "$T/pc/example/"
-nm -D --defined-only "$T/pc/example/example.so" | grep -q " T shadelab_plugin_entry" || fail "entry symbol not exported"
+grep -q " T shadelab_plugin_entry" <<<"$(nm -D --defined-only "$T/pc/example/example.so")" || fail "entry symbol not exported"
 "$VIEWER" --headless --size 160x90 --strict --plugin "$T/pc/example/example.so" --output "$T/pc.png" 2>/dev/null
 
 step "find_package(shadelab): configure, build and test sdk/example out of tree"
@@ -80,8 +81,8 @@ r "$T/all.png"
 "$IMGDIFF" "$T/param.png" "$T/hook.png" --differ 0.01         # the parameter (tint strength)
 "$IMGDIFF" "$T/all.png" "$T/hook.png" --differ 0.02
 "$IMGDIFF" "$T/all.png" "$T/pass.png" --differ 0.02
-"$VIEWER" --plugin "$PLUGIN" --dump-params | grep -q '"example.tint_strength"' || fail "--dump-params lacks example.tint_strength"
-"$VIEWER" --plugin "$PLUGIN" --help-keys | grep -q "toggle the vignette" || fail "--help-keys lacks the example's keys"
+grep -q '"example.tint_strength"' <<<"$("$VIEWER" --plugin "$PLUGIN" --dump-params)" || fail "--dump-params lacks example.tint_strength"
+grep -q "toggle the vignette" <<<"$("$VIEWER" --plugin "$PLUGIN" --help-keys)" || fail "--help-keys lacks the example's keys"
 
 step "install the example into the prefix: the viewer finds it by name"
 "$CMAKE" --install "$T/ex" --prefix "$PFX" >/dev/null

@@ -55,6 +55,7 @@ typedef struct sl_renderer {
     int *program_owner;
     sl_program *display_prog, *accum_prog, *resolve_prog;
     int ssaa;
+    int anisotropy;                               /* core.anisotropy applied to the material textures */
     unsigned empty_vao, light_buffer;
     sl_light_info *lights; int light_count;
     int type_range[32][2]; const char *types[32]; int ntypes;
@@ -125,6 +126,17 @@ bool sl_texture_is_procedural(const char *spec) {
 
 /* Loads a material texture: colour textures decode sRGB in the sampler (8-bit) or on the CPU
  * (16-bit); data textures stay linear. */
+/* core.anisotropy onto every material texture (a parameter change reaches the loaded ones too). */
+static void apply_anisotropy(sl_app *app) {
+    sl_renderer *r = R(app);
+    const sl_param *p = sl_params_find(&app->params, "core.anisotropy");
+    int a = p ? p->value.i : 8;
+    a = a < 1 ? 1 : a > 16 ? 16 : a;
+    if (a == r->anisotropy) return;
+    r->anisotropy = a;
+    for (int i = 0; i < r->texture_count; i++) glTextureParameterf(r->textures[i].id, GL_TEXTURE_MAX_ANISOTROPY, (float)a);
+}
+
 static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bool clamp) {
     sl_renderer *r = R(app);
     char key[2100];
@@ -168,7 +180,8 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(tex, GL_TEXTURE_WRAP_S, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
         glTextureParameteri(tex, GL_TEXTURE_WRAP_T, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
-        glTextureParameterf(tex, GL_TEXTURE_MAX_ANISOTROPY, 8.0f);
+        if (!r->anisotropy) apply_anisotropy(app);
+        glTextureParameterf(tex, GL_TEXTURE_MAX_ANISOTROPY, (float)r->anisotropy);
     }
     sl_image_free(&img);
     r->textures = realloc(r->textures, (r->texture_count + 1) * sizeof *r->textures);
@@ -809,6 +822,7 @@ static void refresh(sl_app *app) {
         /* enabling/disabling a plugin changes the pass list */
         r->plan_dirty = true;
         r->seen_param_version = app->params.version;
+        apply_anisotropy(app);
     }
     if (r->plan_dirty) plan(app);
 }

@@ -79,7 +79,7 @@ static sl_status ggx_create(const sl_host *host, void **user) {
         if (host->add_key(host, &keys[i]) != SL_OK) return SL_ERR_FAILED;
     /* ground truth for the specular_aa knob (shadelab-bench --plugin ggx, --reference ggx) */
     static const sl_reference_desc reference = {
-        .struct_size = sizeof reference, .settings = "core.ssaa=8 ggx.specular_aa=false",
+        .struct_size = sizeof reference, .settings = "core.ssaa=8 core.anisotropy=1 ggx.specular_aa=false",
         .description = "8x8 supersampling without specular antialiasing: every sample shades the normal map at its "
                        "own, finer mip level."};
     host->set_reference(host, &reference);

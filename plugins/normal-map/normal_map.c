@@ -56,7 +56,7 @@ static sl_status nm_create(const sl_host *host, void **user) {
     /* Ground truth for the lookup's filtering (the lod_bias knob): the un-prefiltered map, level 0
      * everywhere, averaged over 8x8 samples per pixel. */
     static const sl_reference_desc reference = {
-        .struct_size = sizeof reference, .settings = "core.ssaa=8 normal-map.lod_bias=-16",
+        .struct_size = sizeof reference, .settings = "core.ssaa=8 core.anisotropy=1 normal-map.lod_bias=-16",
         .description = "8x8 supersampling of the un-prefiltered normal map (mip level 0 everywhere)."};
     host->set_reference(host, &reference);
     /* Key 2 of the gloss-map assignment (phong has 1, 3, 4): normal mapping on/off. */

@@ -237,7 +237,7 @@ static sl_status phong_create(const sl_host *host, void **user) {
     };
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++) host->add_key(host, &keys[i]);
     static const sl_reference_desc reference = {
-        .struct_size = sizeof reference, .settings = "core.ssaa=8 phong.specular_aa=false",
+        .struct_size = sizeof reference, .settings = "core.ssaa=8 core.anisotropy=1 phong.specular_aa=false",
         .description = "8x8 supersampling without prefiltering: every sample shades the normal and gloss maps at "
                        "its own, finer mip level."};
     host->set_reference(host, &reference);

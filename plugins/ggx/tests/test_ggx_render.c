@@ -47,7 +47,8 @@ static void normalize3(double v[3]) {
 }
 
 /* Specular AA on a 40 m bumpy GGX plane (α = 0.05, the bumps32 normal map) seen from (0, cam_y, 19):
- * renders AA on, AA off and the 8×8 supersampled reference (no AA, normal map at level 0) at
+ * renders AA on, AA off and the 8×8 supersampled reference (no AA, normal map at level 0, no
+ * anisotropic taps) at
  * 160×90 and returns the far-field means m = {on, off, ref} of the green channel and the RMSEs
  * against the reference. Far field: hit points farther than min_dist from the camera, or, with
  * min_dist = 0, the rows 0.37–0.6 H (between the horizon and mid-screen in the first view). */
@@ -65,7 +66,7 @@ static bool aa_case(float cam_y, const float sun_dir[3], float min_dist, double 
              cam_y, SL_SCENES_DIR, sun_dir[0], sun_dir[1], sun_dir[2]);
     const char *const *sets[3] = {(const char *[]){"ggx.specular_aa=true", NULL},
                                   (const char *[]){"ggx.specular_aa=false", NULL},
-                                  (const char *[]){"ggx.specular_aa=false", "core.ssaa=8", "normal-map.lod_bias=-16", NULL}};
+                                  (const char *[]){"ggx.specular_aa=false", "core.ssaa=8", "core.anisotropy=1", "normal-map.lod_bias=-16", NULL}};
     float *outs[3] = {on, off, ref};
     for (int k = 0; k < 3; k++) {
         sl_harness *hh = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = AW,
@@ -226,14 +227,16 @@ int main(void) {
         CHECK(aa_case(1.2f, (const float[3]){0, -0.25f, 0.968f}, 0, m, &e_on, &e_off));
         printf("ggx specular AA, far field: mean AA on %.4f, off %.4f, reference %.4f; RMSE on %.4f, off %.4f\n", m[0], m[1],
                m[2], e_on, e_off);
-        /* Toksvig removes most of the aliasing (RMSE against the supersampled render 2.4× lower);
+        /* Toksvig removes most of the aliasing (RMSE against the supersampled render 3× lower);
          * the far-field MEAN is darker than the reference (README: in this forward glint the
-         * normal-mapped reference is dominated by normals nearly perpendicular to the view, and by
-         * the normal map's n·v guard), so the mean is not asserted here. */
+         * normal-mapped reference is dominated by normals nearly perpendicular to the view, and
+         * depends on the normal map's n·v guard), so the mean is not asserted here. */
         CHECK_MSG(e_on < 0.6 * e_off, "AA does not reduce the far-field error enough (%.3f vs %.3f)", e_on, e_off);
     }
     /* 7. the same plane over a grid of grazing views and suns (far field: hit points more than
-     * 25 m from the camera): a measurement for the README's table; only finiteness is asserted */
+     * 25 m from the camera), for the README's table: antialiasing must lower the RMSE against the
+     * reference in every configuration; whether the mean gets closer is counted and printed (6 of
+     * 9 at this writing: not in the forward glints at 1.2 and 3 m, see the README) */
     {
         static const float heights[3] = {1.2f, 3.0f, 6.0f};
         static const float suns[3][3] = {{0, -0.25f, 0.968f}, {0, -0.6f, 0.8f}, {0.5f, -0.5f, 0.7071f}};
@@ -245,6 +248,7 @@ int main(void) {
                 CHECK(aa_case(heights[i], suns[j], 25, m, &e_on, &e_off));
                 bool ok = fabs(m[0] - m[2]) < fabs(m[1] - m[2]);
                 better += ok;
+                CHECK_MSG(e_on < e_off, "camera %.1f m, sun %d: AA raises the RMSE (%.3f vs %.3f)", heights[i], j, e_on, e_off);
                 printf("  %.1f m, (%.2f, %.2f, %.2f): %.3f / %.3f / %.3f  |on - ref| %s |off - ref|; RMSE on %.3f, off %.3f\n",
                        heights[i], suns[j][0], suns[j][1], suns[j][2], m[2], m[1], m[0], ok ? "<" : ">=", e_on, e_off);
             }
