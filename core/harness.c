@@ -71,6 +71,15 @@ void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out) {
     memcpy(out->program_hashes, st->program_hashes, sizeof out->program_hashes);
 }
 
+bool sl_harness_structure_equal(const sl_harness_structure *a, const sl_harness_structure *b) {
+    if (a->draw_calls != b->draw_calls || a->pass_count != b->pass_count || a->program_count != b->program_count) return false;
+    for (int i = 0; i < a->pass_count; i++)
+        if (strcmp(a->passes[i], b->passes[i])) return false;
+    for (int i = 0; i < a->program_count; i++)
+        if (a->program_hashes[i] != b->program_hashes[i]) return false;
+    return true;
+}
+
 void sl_harness_compare(const float *a, const float *b, int w, int h, double threshold, sl_compare *out) {
     sl_image_diff d;
     sl_image_compare(a, b, w, h, 4, threshold, &d);

@@ -5,6 +5,7 @@
 #include "autoquality.h"
 #include "bench.h"
 #include "check.h"
+#include "fileio.h"
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdlib.h>
@@ -12,17 +13,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static char *slurp(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc(n + 1);
-    s[fread(s, 1, n, f)] = 0;
-    fclose(f);
-    return s;
-}
 
 static long file_size(const char *path) {
     struct stat st;
@@ -82,7 +72,7 @@ int main(void) {
     /* outputs */
     snprintf(path, sizeof path, "%s/out.csv", dir);
     CHECK(sl_bench_write_csv(&r, path, SL_METRIC_RMSE, err, sizeof err));
-    char *csv = slurp(path);
+    char *csv = sl_read_file(path, NULL, NULL, 0);
     CHECK_CONTAINS(csv, "settings,label,ok,frame_ms_median");
     CHECK_CONTAINS(csv, "\"core.ssaa=4\",\"ssaa=4\",1,");
     free(csv);
@@ -96,7 +86,7 @@ int main(void) {
     if (chart == 0) printf("note: %s\n", err);
 
     /* --auto-quality from that JSON: a budget only ssaa=4 meets picks it */
-    char *text = slurp(json_path);
+    char *text = sl_read_file(json_path, NULL, NULL, 0);
     sl_aq_choice c;
     double mid = sqrt(lo->rmse * hi->rmse);
     CHECK(sl_autoquality_choose(text, NULL, mid, &c, err, sizeof err));

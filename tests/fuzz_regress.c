@@ -3,23 +3,12 @@
  * names the source, and the scene is always safe to free. Run instrumented by the `sanitize`
  * test, this is where a fixed fuzzer crash stays fixed. */
 #include "check.h"
+#include "fileio.h"
 #include "log.h"
 #include "scene/scene.h"
 #include <dirent.h>
 #include <stdlib.h>
 
-static char *read_all(const char *path, size_t *n) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc(len + 1);
-    *n = fread(s, 1, len, f);
-    s[*n] = 0;
-    fclose(f);
-    return s;
-}
 
 int main(void) {
     const char *dir = SL_TEST_DATA_DIR "/fuzz";
@@ -34,7 +23,7 @@ int main(void) {
         char path[2048];
         snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
         size_t n;
-        char *text = read_all(path, &n);
+        char *text = sl_read_file(path, &n, NULL, 0);
         if (!text) continue;
         files++;
         /* the parser sees text up to the first NUL, as with a file */

@@ -8,6 +8,7 @@
  * Uses a copy of the SDK example plugin (built in tree for this test) in a temporary directory. */
 #include "check.h"
 #include "app.h"
+#include "fileio.h"
 #include "log.h"
 #include "render/renderer.h"
 #include <stdlib.h>
@@ -40,17 +41,6 @@ static void write_file(const char *dir, const char *name, const char *text) {
     utimes(path, tv);
 }
 
-static char *read_all(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = calloc(n + 1, 1);
-    if (fread(s, 1, n, f) != (size_t)n) n = 0;
-    fclose(f);
-    return s;
-}
 
 #define W 48
 #define H 32
@@ -131,7 +121,7 @@ int main(void) {
     /* 3. a core shader (F5 path: sl_renderer_reload_shaders) */
     char lambert[600];
     snprintf(lambert, sizeof lambert, "%s/lambert.glsl", shaderdir);
-    char *orig = read_all(lambert);
+    char *orig = sl_read_file(lambert, NULL, NULL, 0);
     CHECK(orig != NULL);
     int lines = 0;
     for (const char *c = orig; c && *c; c++) lines += *c == '\n';
@@ -161,7 +151,7 @@ int main(void) {
     CHECK(max_diff(vig, green) > 0.01);
     char path[600];
     snprintf(path, sizeof path, "%s/vignette.frag", plugdir);
-    char *vorig = read_all(path);
+    char *vorig = sl_read_file(path, NULL, NULL, 0);
     write_file(plugdir, "vignette.frag", "void main() { this is broken }\n");
     sl_log_capture(logbuf, sizeof logbuf);
     failed = sl_renderer_reload_shaders(&app);

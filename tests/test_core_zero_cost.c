@@ -24,15 +24,6 @@ static bool structure(const char *const *plugins, const char *const *settings, s
     return ok;
 }
 
-static bool same(const sl_harness_structure *a, const sl_harness_structure *b) {
-    if (a->draw_calls != b->draw_calls || a->pass_count != b->pass_count || a->program_count != b->program_count) return false;
-    for (int i = 0; i < a->pass_count; i++)
-        if (strcmp(a->passes[i], b->passes[i])) return false;
-    for (int i = 0; i < a->program_count; i++)
-        if (a->program_hashes[i] != b->program_hashes[i]) return false;
-    return true;
-}
-
 int main(void) {
     setenv("SHADELAB_PLUGIN_PATH", SL_TEST_PLUGIN_DIR, 1);
     sl_harness_structure none, disabled, enabled, active_pass;
@@ -42,14 +33,14 @@ int main(void) {
     CHECK(structure((const char *[]){"tp-good", NULL}, (const char *[]){"tp-good.gain=3", NULL}, &active_pass));
     CHECK(none.program_count == 2);
     /* loaded but disabled: identical to not loading it */
-    CHECK_MSG(same(&none, &disabled), "disabled plugin changed programs, passes or draw calls");
+    CHECK_MSG(sl_harness_structure_equal(&none, &disabled), "disabled plugin changed programs, passes or draw calls");
     /* enabled: the marked material's program changes, the plain one's does not */
     CHECK(enabled.program_hashes[0] == none.program_hashes[0]);
     CHECK(enabled.program_hashes[1] != none.program_hashes[1]);
     /* an inactive pass (gain 1) does not run; an active one does — the check can fail */
     CHECK(enabled.pass_count == none.pass_count);
     CHECK(active_pass.pass_count == none.pass_count + 1);
-    CHECK(!same(&none, &active_pass));
+    CHECK(!sl_harness_structure_equal(&none, &active_pass));
     printf("passes without plugin: %d, draw calls %d\n", none.pass_count, none.draw_calls);
     return check_result();
 }

@@ -1,4 +1,5 @@
 #include "render/composer.h"
+#include "fileio.h"
 #include "log.h"
 #include <shadelab/gl.h>
 #include <errno.h>
@@ -81,19 +82,6 @@ void sl_source_free(sl_source *s) {
     memset(s, 0, sizeof *s);
 }
 
-static char *read_file(const char *path, char *err, size_t n) {
-    FILE *f = fopen(path, "rb");
-    if (!f) { snprintf(err, n, "%s: cannot open (%s)", path, strerror(errno)); return NULL; }
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *buf = malloc(len + 1);
-    size_t got = fread(buf, 1, len, f);
-    buf[got] = 0;
-    fclose(f);
-    return buf;
-}
-
 static int file_index(sl_source *s, const char *abs, bool *added) {
     for (int i = 0; i < s->file_count; i++)
         if (!strcmp(s->files[i], abs)) { *added = false; return i; }
@@ -126,8 +114,12 @@ static bool include_file(sl_source *s, const char *path, int depth, char *err, s
     if (idx < 0) { snprintf(err, n, "%s: too many included files", abs); free(abs); return false; }
     if (!added) { free(abs); return true; } /* each file once */
     if (depth > 16) { snprintf(err, n, "%s: #include nested too deeply", abs); free(abs); return false; }
-    char *text = read_file(abs, err, n);
-    if (!text) { free(abs); return false; }
+    char *text = sl_read_file(abs, NULL, NULL, 0);
+    if (!text) {
+        snprintf(err, n, "%s: cannot open (%s)", abs, strerror(errno));
+        free(abs);
+        return false;
+    }
     char dir[2048];
     snprintf(dir, sizeof dir, "%s", abs);
     char *d = dirname(dir);

@@ -8,6 +8,7 @@
  * unknown keys in structural objects are warnings that name the nearest valid key. Nothing
  * here may crash on hostile input: every value is type- and range-checked before use, nesting
  * is bounded, and allocation failures are errors. */
+#include "fileio.h"
 #include "log.h"
 #include "scene/scene.h"
 
@@ -1228,28 +1229,9 @@ bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_o
                      (long long)st.st_size, MAX_SCENE_FILE_BYTES >> 20);
         return false;
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (err && err_size) snprintf(err, err_size, "%s: %s", path, strerror(errno));
-        return false;
-    }
-    size_t cap = (size_t)st.st_size + 1, len = 0;
-    char *text = malloc(cap);
-    if (!text) {
-        fclose(f);
-        if (err && err_size) snprintf(err, err_size, "%s: out of memory", path);
-        return false;
-    }
-    size_t got;
-    while (len < cap - 1 && (got = fread(text + len, 1, cap - 1 - len, f)) > 0) len += got;
-    bool read_error = ferror(f);
-    fclose(f);
-    if (read_error) {
-        free(text);
-        if (err && err_size) snprintf(err, err_size, "%s: read error", path);
-        return false;
-    }
-    text[len] = 0;
+    size_t len;
+    char *text = sl_read_file(path, &len, err, err_size);
+    if (!text) return false;
     /* relative assets resolve against the scene file's directory (made absolute) */
     char *copy = strdup(path);
     char *slash = copy ? strrchr(copy, '/') : NULL;

@@ -2,6 +2,7 @@
 #include "autoquality.h"
 #include "bench.h"
 #include "pareto.h"
+#include "fileio.h"
 #include "log.h"
 #include "render/composer.h"
 #include <cjson/cJSON.h>
@@ -105,21 +106,9 @@ bool sl_autoquality_choose(const char *text, const char *metric, double budget, 
 typedef struct front_file { char *path; cJSON *root; } front_file;
 typedef struct front_list { front_file *items; int count; } front_list;
 
-static char *slurp(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *buf = len >= 0 ? malloc(len + 1) : NULL;
-    if (buf && fread(buf, 1, len, f) != (size_t)len) { free(buf); buf = NULL; }
-    if (buf) buf[len] = 0;
-    fclose(f);
-    return buf;
-}
 
 static bool add_file(front_list *l, const char *path, bool from_dir, char *err, size_t n) {
-    char *text = slurp(path);
+    char *text = sl_read_file(path, NULL, NULL, 0);
     if (!text) { snprintf(err, n, "--auto-quality: cannot read %s", path); return false; }
     cJSON *root = cJSON_Parse(text);
     free(text);

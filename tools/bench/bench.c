@@ -8,6 +8,7 @@
 #include "bench.h"
 #include "pareto.h"
 #include "image/image.h"
+#include "fileio.h"
 #include "log.h"
 #include "render/composer.h"
 #include "render/renderer.h"
@@ -61,32 +62,11 @@ const char *sl_bench_default_cache_dir(char *buf, size_t n) {
     return buf;
 }
 
-static char *read_text(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    char *buf = NULL;
-    size_t cap = 0, n = 0;
-    for (;;) {
-        if (n + 65536 + 1 > cap) {
-            cap = cap ? cap * 2 : 65536 * 2;
-            char *b = realloc(buf, cap);
-            if (!b) { free(buf); fclose(f); return NULL; }
-            buf = b;
-        }
-        size_t r = fread(buf + n, 1, 65536, f);
-        n += r;
-        if (r < 65536) break;
-    }
-    fclose(f);
-    buf[n] = 0;
-    if (len) *len = n;
-    return buf;
-}
 
 uint64_t sl_bench_scene_hash(const char *scene_path) {
     if (!scene_path) return sl_hash64(sl_default_scene_json, strlen(sl_default_scene_json), 0);
     size_t len;
-    char *text = read_text(scene_path, &len);
+    char *text = sl_read_file(scene_path, &len, NULL, 0);
     if (!text) return 0;
     uint64_t h = sl_hash64(text, len, 0);
     free(text);
@@ -123,7 +103,7 @@ static uint64_t hash_dir(const char *dir, uint64_t h, int depth) {
                 h = hash_dir(path, h, depth + 1);
             } else if (S_ISREG(st.st_mode) && st.st_size < (64 << 20)) {
                 size_t len;
-                char *text = read_text(path, &len);
+                char *text = sl_read_file(path, &len, NULL, 0);
                 h = sl_hash64(names[i], strlen(names[i]) + 1, h);
                 if (text) h = sl_hash64(text, len, h);
                 free(text);
@@ -515,7 +495,7 @@ static uint64_t reference_key(const sl_bench_options *o, sl_app *app, const char
     static uint64_t exe_hash;
     if (!exe_hash) {
         size_t len = 0;
-        char *exe = read_text("/proc/self/exe", &len);
+        char *exe = sl_read_file("/proc/self/exe", &len, NULL, 0);
         exe_hash = exe ? sl_hash64(exe, len, 0) : 1;
         free(exe);
     }

@@ -1,5 +1,6 @@
 /* shadelab-bench outputs: CSV, JSON (also the input of --auto-quality) and the gnuplot chart. */
 #include "bench.h"
+#include "fileio.h"
 #include "log.h"
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -9,17 +10,6 @@
 #include <string.h>
 #include <unistd.h>
 
-static char *read_text(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = n >= 0 ? malloc(n + 1) : NULL;
-    if (s) s[fread(s, 1, n, f)] = 0;
-    fclose(f);
-    return s;
-}
 
 /* ---------------------------------------------------------------------- output -------- */
 
@@ -324,7 +314,7 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     if (rc != 0) {
         char ep[4300];
         snprintf(ep, sizeof ep, "%s/gnuplot.err", dir);
-        char *msg = read_text(ep);
+        char *msg = sl_read_file(ep, NULL, NULL, 0);
         snprintf(err, n, "gnuplot failed on %s: %s", png, msg && *msg ? msg : "(no message)");
         free(msg);
         result = -1;

@@ -208,15 +208,6 @@ static bool structure(bool skin, const char *const *plugins, const char *const *
     return ok;
 }
 
-static bool same(const sl_harness_structure *a, const sl_harness_structure *b) {
-    if (a->draw_calls != b->draw_calls || a->pass_count != b->pass_count || a->program_count != b->program_count) return false;
-    for (int i = 0; i < a->pass_count; i++)
-        if (strcmp(a->passes[i], b->passes[i])) return false;
-    for (int i = 0; i < a->program_count; i++)
-        if (a->program_hashes[i] != b->program_hashes[i]) return false;
-    return true;
-}
-
 static void test_zero_cost(void) {
     sl_harness_structure none, loaded, disabled, skin_none, skin[6];
     const char *const ggx[] = {"ggx", NULL}, *const sss[] = {"sss", NULL};
@@ -224,8 +215,8 @@ static void test_zero_cost(void) {
     CHECK(structure(false, sss, (const char *[]){"sss.method=texture-space", NULL}, &loaded));
     CHECK(structure(false, sss, (const char *[]){"sss.enabled=false", NULL}, &disabled));
     /* no material uses it: the same programs, passes and draw calls as without the plugin */
-    CHECK_MSG(same(&none, &loaded), "sss loaded but unused changed programs, passes or draw calls");
-    CHECK_MSG(same(&none, &disabled), "sss disabled changed programs, passes or draw calls");
+    CHECK_MSG(sl_harness_structure_equal(&none, &loaded), "sss loaded but unused changed programs, passes or draw calls");
+    CHECK_MSG(sl_harness_structure_equal(&none, &disabled), "sss disabled changed programs, passes or draw calls");
     CHECK(structure(true, sss, (const char *[]){"sss.method=none", NULL}, &skin_none));
     const int extra_passes[6] = {0, 0, 0, 2, 2, 0}; /* second frame: the stretch map is reused */
     for (int m = 0; m < 6; m++) {

@@ -53,6 +53,8 @@ typedef struct sl_harness_structure {
     uint64_t program_hashes[256];    /* one per material, in material order */
 } sl_harness_structure;
 void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out);
+/* Same draw calls, passes (names, in order) and program hashes. */
+bool sl_harness_structure_equal(const sl_harness_structure *a, const sl_harness_structure *b);
 
 /* Image comparison on linear floats (RGB channels). */
 typedef struct sl_compare {
