@@ -144,6 +144,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     sl_sb_append(&pre, "#version 450 core\n");
     char model_id[128]; /* SL_MODEL_<NAME>: lets a chunk shared by several models specialise */
     sl_glsl_ident(model, model_id, sizeof model_id, true), sl_sb_printf(&pre, "#define SL_MODEL_%s 1\n", model_id);
+    if (model_chunk->d.flags & SL_CHUNK_MASKS_FACING_AWAY) sl_sb_append(&pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");
     if (view) {
         char id[128];
         sl_glsl_ident(view->d.name, id, sizeof id, true);

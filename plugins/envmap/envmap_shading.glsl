@@ -108,7 +108,10 @@ vec3 envmap_ggx_split_sum(SlSurface s) {
     if (envmap_multiscatter) // Fdez-Agüera 2019: the energy single scattering loses, F0-tinted
         spec *= 1.0 + f0 * (1.0 / max(ab.x + ab.y, 1e-3) - 1.0);
     vec3 r = reflect(-v, n);
-    return kd * envmap_diffuse(n) * s.ao + ks * envmap_zero_specular() * spec * envmap_specular(r, alpha);
+    // a (normal-mapped) normal facing away from the viewer is masked, G1(v) = 0: no specular,
+    // as in the reference below and in ggx's direct term (ggx leaves such normals unbent)
+    float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
+    return kd * envmap_diffuse(n) * s.ao + ks * envmap_zero_specular() * visible * spec * envmap_specular(r, alpha);
 }
 
 // Monte Carlo with the exact BRDF: specular by GGX visible-normal sampling (f·cos/pdf =

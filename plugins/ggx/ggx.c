@@ -46,7 +46,10 @@ static const sl_param_desc params[] = {
 
 #define C(...) {.struct_size = sizeof(sl_shader_chunk_desc), __VA_ARGS__}
 static const sl_shader_chunk_desc chunks[] = {
-    C(.hook = SL_HOOK_SHADING_MODEL, .file = "ggx_model.glsl", .function = "ggx_model", .name = "ggx"),
+    /* Smith masking gives normals facing away from the viewer no specular (G1(v) = 0), so
+     * normal maps leave them unbent for this model (README, "Numerical guards") */
+    C(.hook = SL_HOOK_SHADING_MODEL, .file = "ggx_model.glsl", .function = "ggx_model", .name = "ggx",
+      .flags = SL_CHUNK_MASKS_FACING_AWAY),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_alpha", .when_material_has = "alpha"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_roughness",
       .when_material_has = "roughness", .order = 1),

@@ -47,8 +47,15 @@ vec3 nm_mapped_normal(SlSurface s) {
 
 void nm_surface(inout SlSurface s) {
 #if defined(SL_MAT_HAS_NORMAL_MAP)
-    // texture-space passes (sss irradiance) have no viewer: keep the mapped normal as is
+    // Normals facing away from the viewer are bent toward it (nm_face_viewer), except where
+    // there is no viewer (texture-space passes: sss irradiance) and for models that mask them
+    // themselves (SL_MODEL_MASKS_FACING_AWAY, e.g. ggx: Smith G1(v) = 0 gives them no
+    // specular; bending them would light them at n·v = ε, where G1(v)/(n·v) is largest).
+#if defined(SL_MODEL_MASKS_FACING_AWAY)
+    vec3 n = nm_mapped_normal(s);
+#else
     vec3 n = sl_uv_space != 0 ? nm_mapped_normal(s) : nm_face_viewer(nm_mapped_normal(s), s.view);
+#endif
     // Keep the frame orthonormal around the new normal (anisotropic models read it), with the
     // same handedness.
     float w = dot(cross(s.normal, s.tangent), s.bitangent) < 0.0 ? -1.0 : 1.0;

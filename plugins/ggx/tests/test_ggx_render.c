@@ -227,16 +227,23 @@ int main(void) {
         CHECK(aa_case(1.2f, (const float[3]){0, -0.25f, 0.968f}, 0, m, &e_on, &e_off));
         printf("ggx specular AA, far field: mean AA on %.4f, off %.4f, reference %.4f; RMSE on %.4f, off %.4f\n", m[0], m[1],
                m[2], e_on, e_off);
-        /* Toksvig removes most of the aliasing (RMSE against the supersampled render 3× lower);
-         * the far-field MEAN is darker than the reference (README: in this forward glint the
-         * normal-mapped reference is dominated by normals nearly perpendicular to the view, and
-         * depends on the normal map's n·v guard), so the mean is not asserted here. */
+        /* the issue's criterion: the far-field mean is closer to the reference with AA; and
+         * Toksvig removes most of the aliasing (RMSE against the supersampled render 3× lower).
+         * The mean holds because ggx masks mapped normals facing away from the viewer instead of
+         * letting normal-map bend them to n·v = ε (README, "Numerical guards"): with the bend,
+         * this forward glint's reference is carried by those bent normals (0.83, AA on 0.42,
+         * off 1.05) and the mean fails. */
+        CHECK_MSG(fabs(m[0] - m[2]) < fabs(m[1] - m[2]), "far-field mean: AA on %.4f is not closer to the reference %.4f than off %.4f",
+                  m[0], m[2], m[1]);
         CHECK_MSG(e_on < 0.6 * e_off, "AA does not reduce the far-field error enough (%.3f vs %.3f)", e_on, e_off);
     }
     /* 7. the same plane over a grid of grazing views and suns (far field: hit points more than
      * 25 m from the camera), for the README's table: antialiasing must lower the RMSE against the
-     * reference in every configuration; whether the mean gets closer is counted and printed (6 of
-     * 9 at this writing: not in the forward glints at 1.2 and 3 m, see the README) */
+     * reference in every configuration, and bring the mean closer in every configuration but
+     * one, the known failure of a one-variance lobe on this map (README): with the side sun at
+     * 6 m the reference needs the map's actual slopes, which come in two rings (tan θ 0.30–0.40
+     * and 0.60–0.70), where Toksvig's Gaussian puts light on flatter normals the map does not
+     * have; there the mean is printed, not asserted. */
     {
         static const float heights[3] = {1.2f, 3.0f, 6.0f};
         static const float suns[3][3] = {{0, -0.25f, 0.968f}, {0, -0.6f, 0.8f}, {0.5f, -0.5f, 0.7071f}};
@@ -248,11 +255,55 @@ int main(void) {
                 CHECK(aa_case(heights[i], suns[j], 25, m, &e_on, &e_off));
                 bool ok = fabs(m[0] - m[2]) < fabs(m[1] - m[2]);
                 better += ok;
+                bool known_failure = i == 2 && j == 2;
+                CHECK_MSG(ok || known_failure, "camera %.1f m, sun %d: AA mean %.3f is not closer to the reference %.3f than off %.3f",
+                          heights[i], j, m[0], m[2], m[1]);
                 CHECK_MSG(e_on < e_off, "camera %.1f m, sun %d: AA raises the RMSE (%.3f vs %.3f)", heights[i], j, e_on, e_off);
                 printf("  %.1f m, (%.2f, %.2f, %.2f): %.3f / %.3f / %.3f  |on - ref| %s |off - ref|; RMSE on %.3f, off %.3f\n",
                        heights[i], suns[j][0], suns[j][1], suns[j][2], m[2], m[1], m[0], ok ? "<" : ">=", e_on, e_off);
             }
         printf("ggx specular AA grid: the AA mean is closer to the reference in %d of 9 configurations\n", better);
+    }
+    /* 8. a mapped normal facing away from the viewer is masked, not bent: the constant tangent
+     * normal n_t = (0, 0.99, 0.141) leans the plane's normal to n = (0, 0.141, −0.99) (T = +X,
+     * image up = −Z on the plane primitive; normal-map's orientation test checks this), away
+     * from the camera at +Z (n·v < 0 at every pixel); a light from −Z above sees it (n·l ≈ 0.99).
+     * ggx declares SL_CHUNK_MASKS_FACING_AWAY, so normal-map leaves n as it is and Smith's
+     * G1(v) = 0 removes the specular: the exact value is the Lambert term k_d/π·E·(n·l) of the
+     * unbent normal. Bending n to n·v = ε would change n·l and add a rim highlight. */
+    {
+        const double nt[3] = {0, 0.99, sqrt(1 - 0.99 * 0.99)}, n[3] = {nt[0], nt[2], -nt[1]};
+        double l[3] = {0, 0.287348, -0.957826};
+        normalize3(l);
+        char keys[512];
+        snprintf(keys, sizeof keys, "\"model\": \"ggx\", \"alpha\": 0.3, \"specular\": 1, \"normal_map\": \"constant:%.9g,%.9g,%.9g\"",
+                 nt[0] * 0.5 + 0.5, nt[1] * 0.5 + 0.5, nt[2] * 0.5 + 0.5);
+        snprintf(json, sizeof json, SCENE("%s", "{\"name\": \"back\", \"type\": \"directional\", \"direction\": [0, -0.287348, 0.957826], \"intensity\": 2}"), keys);
+        char *p = strstr(json, "[\"ggx\"]");
+        char with_nm[4096];
+        snprintf(with_nm, sizeof with_nm, "%.*s[\"ggx\", \"normal-map\"]%s", (int)(p - json), json, p + 7);
+        h = make(with_nm, NULL);
+        CHECK(h && sl_harness_render(h, img));
+        const double kd[3] = {0.4, 0.3, 0.2}, nl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        double worst_rel = 0;
+        int count = 0, facing = 0;
+        for (int y = 0; y < H; y += 3)
+            for (int x = 0; x < W; x += 3) {
+                float pt[3], o[3], d[3];
+                if (!test_camera_hit_ground(&cam, x, y, 9.5f, pt)) continue;
+                test_camera_ray(&cam, x, y, o, d);
+                facing += -(n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) >= 0; /* n·v, v = −d */
+                for (int c = 0; c < 3; c++) {
+                    double expect = kd[c] / M_PI * 2 * nl, rel = fabs(img[(y * W + x) * 4 + c] - expect) / expect;
+                    if (rel > worst_rel) worst_rel = rel;
+                }
+                count++;
+            }
+        printf("mapped normal facing away (n.l = %.3f): Lambert of the unbent normal, worst relative error %.2g over %d px\n", nl,
+               worst_rel, count);
+        CHECK_MSG(facing == 0, "%d pixels where the mapped normal faces the viewer", facing);
+        CHECK_MSG(count > 100 && worst_rel < 1e-3, "facing-away mapped normal: worst relative error %g against k_d/pi E n.l", worst_rel);
+        sl_harness_destroy(h);
     }
     return check_result();
 }

@@ -15,7 +15,12 @@
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size.
  *
- * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX).
+ * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX),
+ * and "#define SL_MODEL_MASKS_FACING_AWAY 1" when that model's chunk carries
+ * SL_CHUNK_MASKS_FACING_AWAY (ABI 1.4): SURFACE hooks that perturb the normal (normal maps) then
+ * leave a normal facing away from the viewer (n·v ≤ 0) as it is, because the model gives it no
+ * specular itself (Smith masking), instead of bending it toward the viewer as they do for
+ * models without masking.
  *
  * Hook signatures (FN is sl_shader_chunk_desc.function):
  *   VERTEX           void FN(inout SlVertex v)                   object space, before skinning
@@ -87,7 +92,15 @@ typedef struct sl_shader_chunk_desc {
     const char *when_material_has;
     int order;             /* SURFACE/VERTEX hooks run in ascending order, then by plugin */
     const char *description; /* DEBUG_VIEW: shown in the GUI and --list-debug-views */
+    uint32_t flags;        /* ABI 1.4: sl_chunk_flags */
 } sl_shader_chunk_desc;
+
+typedef enum sl_chunk_flags {
+    /* SHADING_MODEL: the model handles shading normals facing away from the viewer itself
+     * (e.g. Smith masking G1(v) = 0 for n·v <= 0), so normal perturbation must not bend them
+     * toward the viewer; defines SL_MODEL_MASKS_FACING_AWAY in its programs (see above). */
+    SL_CHUNK_MASKS_FACING_AWAY = 1u << 0
+} sl_chunk_flags;
 
 /* A stand-alone program (for passes: shadow maps, blurs, post effects). Files are relative to
  * the plugin's resource directory; "sl:" prefixes name the core's shader library
