@@ -6,10 +6,13 @@ python3-pil (Debian packages). For the nine configurations of test_ggx_render's 
 1.2/3/6 m above the 40 m plane at z = 19, three suns, far field = hit points beyond 25 m) it
 prints the far-field mean of the green channel of
   ref    the footprint average of normal-mapped Cook-Torrance over the map's own normals
-         (bilinear, 4x upsampled, with normal-map's n.v guard), i.e. what 8x8 supersampling
+         (bilinear, 4x upsampled), normals facing away from the viewer masked (Smith G1(v) = 0,
+         what ggx does: it declares SL_CHUNK_MASKS_FACING_AWAY), i.e. what 8x8 supersampling
          converges to;
-  gauss  the same average over normals drawn from a Gaussian slope distribution whose per-axis
-         variance is Toksvig's (1 - |N|)/|N| for the whole map (40000 samples);
+  bent   the same with normal-map's guard for models without masking (normals facing away
+         bent to n.v = 0.02), what ggx did before it masked them;
+  gauss  the masked average over normals drawn from a Gaussian slope distribution whose
+         per-axis variance is Toksvig's (1 - |N|)/|N| for the whole map (40000 samples);
   toks   this plugin's Toksvig lobe at the mean normal (alpha'^2 = alpha^2 + variance in D and G);
   off    the unfiltered shading at the flat mean normal.
 The BRDF, guard and constants repeat plugins/ggx/ggx_brdf.glsl and normal-map's nm_lib.glsl.
@@ -121,16 +124,17 @@ def main():
     flat = np.array([0, 1.0, 0])
     a_t = np.sqrt(ALPHA * ALPHA + var)
     print(f"alpha {ALPHA}, Toksvig variance of the whole map {var:.4f}")
-    print("camera  sun                      ref    gauss  toks   off")
+    print("camera  sun                      ref    bent   gauss  toks   off")
     for cam_y in (1.2, 3.0, 6.0):
         for sun in ((0, -0.25, 0.968), (0, -0.6, 0.8), (0.5, -0.5, 0.707)):
             l = -np.array(sun, float)
             l /= np.linalg.norm(l)
-            acc = np.zeros(4)
+            acc = np.zeros(5)
             views = far_field_views(cam_y)
             for v in views:
-                acc += [shade(face_viewer(normals, v), l, v, ALPHA, ALPHA).mean(),
-                        shade(face_viewer(gauss, v), l, v, ALPHA, ALPHA).mean(),
+                acc += [shade(normals, l, v, ALPHA, ALPHA).mean(),
+                        shade(face_viewer(normals, v), l, v, ALPHA, ALPHA).mean(),
+                        shade(gauss, l, v, ALPHA, ALPHA).mean(),
                         shade(flat, l, v, a_t, a_t)[0], shade(flat, l, v, ALPHA, ALPHA)[0]]
             r = acc / len(views)
             print(f"{cam_y:4.1f} m  {str(sun):22s} " + " ".join(f"{x:6.3f}" for x in r), flush=True)
