@@ -118,6 +118,18 @@ static inline bool nt_render(const char *json, int w, int h, const char *const *
     return ok;
 }
 
+/* One 32×32 frame of `scene`: its structure (passes, draw calls, program hashes per material),
+ * for the "a material pays only for what it uses" checks. */
+static inline bool nt_structure(const char *scene, const char *const *plugins, const char *const *settings,
+                                sl_harness_structure *st) {
+    sl_harness *h = nt_harness(scene, 32, 32, plugins, settings, NULL);
+    if (!h) return false;
+    bool ok = sl_harness_render(h, NULL);
+    sl_harness_structure_of(h, st);
+    sl_harness_destroy(h);
+    return ok;
+}
+
 static inline double nt_srgb_encode(double x) {
     x = x < 0 ? 0 : x > 1 ? 1 : x;
     return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1 / 2.4) - 0.055;

@@ -355,21 +355,12 @@ static const char *two_materials =
     "           {\"name\": \"b\", \"translate\": [2, 0, 0], \"mesh\": {\"primitive\": \"sphere\"}, \"material\": \"mapped\"}],"
     " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -1, -1]}]}";
 
-static bool structure(const char *scene, const char *const *plugins, const char *const *settings, sl_harness_structure *st) {
-    sl_harness *h = nt_harness(scene, 32, 32, plugins, settings, NULL);
-    if (!h) return false;
-    bool ok = sl_harness_render(h, NULL);
-    sl_harness_structure_of(h, st);
-    sl_harness_destroy(h);
-    return ok;
-}
-
 static void test_zero_cost(void) {
     /* the "mapped" material's key is unknown without the plugin (a warning): compare per material */
     sl_harness_structure none, loaded, disabled;
-    CHECK(structure(two_materials, (const char *[]){NULL}, NULL, &none));
-    CHECK(structure(two_materials, NM, NULL, &loaded));
-    CHECK(structure(two_materials, NM, (const char *[]){"normal-map.enabled=false", NULL}, &disabled));
+    CHECK(nt_structure(two_materials, (const char *[]){NULL}, NULL, &none));
+    CHECK(nt_structure(two_materials, NM, NULL, &loaded));
+    CHECK(nt_structure(two_materials, NM, (const char *[]){"normal-map.enabled=false", NULL}, &disabled));
     CHECK(none.program_count == 2 && loaded.program_count == 2);
     CHECK_MSG(loaded.program_hashes[0] == none.program_hashes[0], "a material without a normal map got normal-map code");
     CHECK_MSG(loaded.program_hashes[1] != none.program_hashes[1], "the mapped material's program did not change");

@@ -155,22 +155,13 @@ static const char *mats_scene(const char *nm) {
     return json;
 }
 
-static bool structure(const char *scene, const char *const *plugins, const char *const *settings, sl_harness_structure *st) {
-    sl_harness *h = nt_harness(scene, 32, 32, plugins, settings, NULL);
-    if (!h) return false;
-    bool ok = sl_harness_render(h, NULL);
-    sl_harness_structure_of(h, st);
-    sl_harness_destroy(h);
-    return ok;
-}
-
 static void test_zero_cost(const char *normal_map) {
     const char *scene = mats_scene(normal_map);
     sl_harness_structure nm_only, both, no_aa, disabled;
-    CHECK(structure(scene, (const char *[]){"normal-map", NULL}, NULL, &nm_only));
-    CHECK(structure(scene, PLUGINS, NULL, &both));
-    CHECK(structure(scene, PLUGINS, (const char *[]){"phong.specular_aa=false", NULL}, &no_aa));
-    CHECK(structure(scene, PLUGINS, (const char *[]){"phong.enabled=false", NULL}, &disabled));
+    CHECK(nt_structure(scene, (const char *[]){"normal-map", NULL}, NULL, &nm_only));
+    CHECK(nt_structure(scene, PLUGINS, NULL, &both));
+    CHECK(nt_structure(scene, PLUGINS, (const char *[]){"phong.specular_aa=false", NULL}, &no_aa));
+    CHECK(nt_structure(scene, PLUGINS, (const char *[]){"phong.enabled=false", NULL}, &disabled));
     CHECK(both.program_count == 3);
     CHECK_MSG(both.program_hashes[0] == nm_only.program_hashes[0], "a lambert material got phong code");
     /* (specular_aa is a #define of every phong program, so toggling it recompiles them all; only
