@@ -57,6 +57,52 @@ bool sl_harness_render(sl_harness *h, float *rgba) {
     return sl_app_render_frame(&h->app) && (!rgba || sl_app_read_color(&h->app, rgba));
 }
 
+void sl_harness_set_frame(sl_harness *h, uint64_t frame_index) { h->app.frame_index = frame_index; }
+
+int sl_harness_plugins(sl_harness *h, const char **ids, int max) {
+    int n = 0;
+    for (int i = 1; i < h->app.plugins.count; i++) {
+        if (!h->app.plugins.items[i]->ok) continue;
+        if (n < max) ids[n] = h->app.plugins.items[i]->id;
+        n++;
+    }
+    return n;
+}
+
+int sl_harness_plugin_params(sl_harness *h, const char *plugin, const sl_param_desc **out, int max) {
+    int n = 0;
+    for (int i = 0; i < h->app.params.count; i++) {
+        const sl_param *q = &h->app.params.items[i];
+        if (q->desc.scope != SL_SCOPE_GLOBAL || strcmp(q->owner, plugin) || !strcmp(q->desc.id, "enabled")) continue;
+        if (n < max) out[n] = &q->desc;
+        n++;
+    }
+    return n;
+}
+
+int sl_harness_plugin_keys(sl_harness *h, const char *plugin, const sl_key_desc **out, int max) {
+    const sl_plugins *P = &h->app.plugins;
+    int owner = sl_plugins_find((sl_plugins *)P, plugin), n = 0;
+    for (int i = 0; i < P->key_count; i++) {
+        if (P->keys[i].owner != owner) continue;
+        if (n < max) out[n] = &P->keys[i].d;
+        n++;
+    }
+    return n;
+}
+
+int sl_harness_plugin_debug_views(sl_harness *h, const char *plugin, const char **names, int max) {
+    const sl_plugins *P = &h->app.plugins;
+    int owner = sl_plugins_find((sl_plugins *)P, plugin), n = 0;
+    for (int i = 0; i < P->chunk_count; i++) {
+        const sl_chunk_reg *c = &P->chunks[i];
+        if (c->owner != owner || (c->d.hook != SL_HOOK_DEBUG_VIEW && c->d.hook != SL_HOOK_DEBUG_VIEW_LIGHT)) continue;
+        if (n < max) names[n] = c->d.name;
+        n++;
+    }
+    return n;
+}
+
 bool sl_harness_read_display(sl_harness *h, float *rgba) { return sl_app_read_display(&h->app, rgba); }
 bool sl_harness_save(sl_harness *h, const char *path, char *err, size_t n) { return sl_app_save(&h->app, path, err, n); }
 

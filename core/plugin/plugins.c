@@ -308,15 +308,25 @@ int sl_plugins_find(sl_plugins *p, const char *id) {
     return -1;
 }
 
-bool sl_plugin_enabled(sl_app *app, int index) {
+/* A plugin runs when it loaded, its own "<id>.enabled" is on and every plugin it requires runs:
+ * switching a plugin off switches off what declared that it needs it, so no chunk or pass ever
+ * refers to code of a plugin that is off. */
+static bool enabled_at(sl_app *app, int index, int depth) {
     sl_plugin_rec *r = app->plugins.items[index];
     if (!r->ok) return false;
     if (index == 0) return true; /* the core */
     char id[300];
     snprintf(id, sizeof id, "%s.enabled", r->id);
     sl_param *q = sl_params_find(&app->params, id);
-    return !q || q->value.b;
+    if (q && !q->value.b) return false;
+    for (const char *const *req = r->desc.requires; req && *req && depth < 16; req++) {
+        int j = sl_plugins_find(&app->plugins, *req);
+        if (j < 0 || !enabled_at(app, j, depth + 1)) return false;
+    }
+    return true;
 }
+
+bool sl_plugin_enabled(sl_app *app, int index) { return enabled_at(app, index, 0); }
 
 static sl_plugin_rec *new_record(sl_app *app, const char *id, const char *requested_by) {
     sl_plugins *P = &app->plugins;
@@ -585,8 +595,10 @@ static void create_one(sl_app *app, int i, int depth) {
     if (r->user) return;
     /* the automatic on/off parameter */
     if (i != 0) {
+        /* NEEDS_RECOMPILE: switching a plugin recomposes every program, so a live toggle gives
+         * the frame a fresh start with the same value gives (the toggle matrix test holds it) */
         sl_param_desc en = {.struct_size = sizeof en, .id = "enabled", .type = SL_PARAM_BOOL,
-                            .default_value = {.b = true},
+                            .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
                             .description = "Turns the plugin on or off; off costs nothing per frame."};
         char err[256];
         sl_params_add(&app->params, r->id, &en, err, sizeof err);

@@ -34,9 +34,17 @@ static const sl_chunk_reg *find_named(sl_app *app, sl_hook hook, const char *nam
     return NULL;
 }
 
+/* A material "has" a key when it carries a value and a plugin that declares the key is on: a
+ * chunk gated on normal_map (ggx's specular AA) drops out with the normal-map plugin. */
 static bool material_has(sl_app *app, int m, const char *key) {
     sl_mat_value *v = sl_app_material_value(app, m, key);
-    return v && v->present;
+    if (!v || !v->present) return false;
+    const sl_param *q = &app->params.items[v->param];
+    int owner = sl_plugins_find(&app->plugins, q->owner);
+    uint64_t declarers = q->declared_by | (owner >= 0 ? 1ull << (owner & 63) : 0);
+    for (int i = 0; i < app->plugins.count && i < 64; i++)
+        if ((declarers & (1ull << i)) && sl_plugin_enabled(app, i)) return true;
+    return false;
 }
 
 static int cmp_chunk_order(const void *a, const void *b) {

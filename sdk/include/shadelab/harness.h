@@ -38,6 +38,17 @@ void sl_harness_destroy(sl_harness *h);
 /* Applies "id=value" between renders (same addressing as --set). */
 bool sl_harness_set(sl_harness *h, const char *assignment, char *err, size_t err_size);
 bool sl_harness_set_debug_view(sl_harness *h, const char *view, char *err, size_t err_size);
+/* Pins the frame index of the next render (sl_time = index × the fixed frame time; a render
+ * advances it by one), so that a frame after live changes compares with a fresh start. */
+void sl_harness_set_frame(sl_harness *h, uint64_t frame_index);
+/* Ids of the plugins that loaded (not the core), in load order; returns how many there are. */
+int sl_harness_plugins(sl_harness *h, const char **ids, int max);
+/* A plugin's global parameters (not "enabled"), as declared; returns how many there are. */
+int sl_harness_plugin_params(sl_harness *h, const char *plugin, const sl_param_desc **out, int max);
+/* A plugin's key bindings; returns how many there are. */
+int sl_harness_plugin_keys(sl_harness *h, const char *plugin, const sl_key_desc **out, int max);
+/* The debug views a plugin offers (names); returns how many there are. */
+int sl_harness_plugin_debug_views(sl_harness *h, const char *plugin, const char **names, int max);
 /* Renders one frame; writes linear HDR RGBA (width*height*4 floats, top row first). */
 bool sl_harness_render(sl_harness *h, float *rgba);
 /* The display-encoded image of the last render (sRGB, [0,1]). */
