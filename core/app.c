@@ -54,13 +54,31 @@ static bool set_material_value(sl_app *app, int m, sl_mat_value *v, const char *
 }
 
 
+/* Why a light key is refused: it belongs to other light types, or no loaded plugin declares it
+ * (with the nearest key that this light's type does have; never the refused key itself). */
+static void light_key_error(sl_app *app, const sl_light *L, const char *key, char *err, size_t n) {
+    char types[256] = "";
+    size_t u = 0;
+    for (int i = 0; i < app->params.count; i++) {
+        const sl_param *q = &app->params.items[i];
+        if (q->desc.scope == SL_SCOPE_LIGHT && q->desc.light_type && !strcmp(q->desc.id, key) && u < sizeof types)
+            u += snprintf(types + u, sizeof types - u, "%s%s", u ? ", " : "", q->desc.light_type);
+    }
+    if (u) {
+        snprintf(err, n, "light \"%s\" (type %s): key \"%s\" applies to lights of type %s only", L->name, L->type, key,
+                 types);
+        return;
+    }
+    const char *near = sl_params_nearest_light_key(&app->params, key, L->type);
+    snprintf(err, n, "light \"%s\" (type %s): no loaded plugin declares key \"%s\"%s%s%s", L->name, L->type, key,
+             near ? "; did you mean \"" : "", near ? near : "", near ? "\"?" : "");
+}
+
 static bool set_light_value(sl_app *app, int li, const char *key, const char *text, char *err, size_t n) {
     sl_light *L = &app->scene.lights[li];
     sl_param *q = sl_params_find_key(&app->params, SL_SCOPE_LIGHT, key, L->type);
     if (!q) {
-        const char *near = sl_params_nearest(&app->params, SL_SCOPE_LIGHT, key);
-        snprintf(err, n, "light \"%s\" (type %s): unknown key \"%s\"%s%s%s", L->name, L->type, key,
-                 near ? "; did you mean \"" : "", near ? near : "", near ? "\"?" : "");
+        light_key_error(app, L, key, err, n);
         return false;
     }
     sl_value v;
@@ -74,6 +92,9 @@ static bool set_light_value(sl_app *app, int li, const char *key, const char *te
     else if (!strcmp(key, "intensity")) L->intensity = v.f[0];
     else if (!strcmp(key, "color")) memcpy(L->color, v.f, 12);
     else if (!strcmp(key, "position")) memcpy(L->position, v.f, 12);
+    else if (!strcmp(key, "animate")) L->animate = (sl_light_animation)v.i;
+    else if (!strcmp(key, "animate_speed")) L->animate_speed = v.f[0];
+    else if (!strcmp(key, "animate_amount")) L->animate_amount = v.f[0];
     else if (!strcmp(key, "direction")) {
         float len = sqrtf(v.f[0] * v.f[0] + v.f[1] * v.f[1] + v.f[2] * v.f[2]);
         if (!(len > 0)) { snprintf(err, n, "%s: direction must not be zero", what); return false; }
@@ -230,9 +251,8 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
             char text[1024], why[1024];
             prop_text(p, text, sizeof text);
             if (!sl_params_find_key(&app->params, SL_SCOPE_LIGHT, p->key, L->type)) {
-                const char *near = sl_params_nearest(&app->params, SL_SCOPE_LIGHT, p->key);
-                SL_WARN("%s:%d: light \"%s\" (type %s): unknown key \"%s\"%s%s%s (ignored)", s->path, p->line, L->name,
-                        L->type, p->key, near ? "; did you mean \"" : "", near ? near : "", near ? "\"?" : "");
+                light_key_error(app, L, p->key, why, sizeof why);
+                SL_WARN("%s:%d: %s (ignored)", s->path, p->line, why);
                 continue;
             }
             if (!set_light_value(app, li, p->key, text, why, sizeof why)) {

@@ -3,6 +3,8 @@
  * of the API. Its GLSL lives in shaders/. */
 #include "core_plugin.h"
 
+static const char *const animations[] = {"none", "orbit", "wobble", NULL};
+
 static sl_status core_create(const sl_host *host, void **user) {
     static const sl_param_desc params[] = {
         {.struct_size = sizeof(sl_param_desc), .id = "ssaa", .type = SL_PARAM_INT, .default_value = {.i = 1},
@@ -35,6 +37,16 @@ static sl_status core_create(const sl_host *host, void **user) {
          .description = "Direction light travels (directional and spot lights); normalised."},
         {.struct_size = sizeof(sl_param_desc), .id = "cast_shadows", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
          .group = "light", .description = "Whether a shadow plugin renders a shadow map for this light."},
+        {.struct_size = sizeof(sl_param_desc), .id = "animate", .type = SL_PARAM_ENUM, .scope = SL_SCOPE_LIGHT,
+         .enum_values = animations, .group = "light",
+         .description = "orbit: position and direction circle the world Y axis (a directional light rotates); "
+                        "wobble: the direction swings about the horizontal axis across it."},
+        {.struct_size = sizeof(sl_param_desc), .id = "animate_speed", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT,
+         .default_value = {.f = {0.5f}}, .min = -100, .max = 100, .unit = "rad/s", .group = "light",
+         .description = "Angular speed of the animation."},
+        {.struct_size = sizeof(sl_param_desc), .id = "animate_amount", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT,
+         .default_value = {.f = {15}}, .min = 0, .max = 90, .unit = "deg", .group = "light",
+         .description = "Wobble amplitude."},
     };
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;

@@ -241,6 +241,19 @@ const char *sl_params_nearest(sl_params *p, sl_param_scope scope, const char *id
     return best;
 }
 
+const char *sl_params_nearest_light_key(sl_params *p, const char *key, const char *light_type) {
+    const char *best = NULL;
+    int best_d = 1 << 30;
+    for (int i = 0; i < p->count; i++) {
+        const sl_param *q = &p->items[i];
+        if (q->desc.scope != SL_SCOPE_LIGHT || !strcmp(q->desc.id, key)) continue;
+        if (q->desc.light_type && light_type && strcmp(q->desc.light_type, light_type)) continue;
+        int d = sl_levenshtein(key, q->desc.id);
+        if (d < best_d) { best_d = d; best = q->desc.id; }
+    }
+    return best;
+}
+
 bool sl_params_set(sl_params *p, const char *full_id, const char *text, sl_param_source src, char *err, size_t n) {
     sl_param *q = sl_params_find(p, full_id);
     if (!q) {

@@ -43,6 +43,8 @@ bool sl_params_set(sl_params *p, const char *full_id, const char *text, sl_param
 bool sl_params_set_value(sl_params *p, sl_param *param, sl_value v, sl_param_source src);
 /* Nearest id among the store's globals (or keys of a scope), for "did you mean". */
 const char *sl_params_nearest(sl_params *p, sl_param_scope scope, const char *id);
+/* The nearest light key (other than key itself) that lights of light_type have. */
+const char *sl_params_nearest_light_key(sl_params *p, const char *key, const char *light_type);
 /* Value as text ("0.5", "true", "ggx", "0.1,0.2,0.3"). */
 void sl_param_format(const sl_param *param, const sl_value *v, char *buf, size_t n);
 /* --dump-params: every schema entry as JSON. */

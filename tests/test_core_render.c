@@ -200,7 +200,74 @@ static void test_anisotropy(void) {
     sl_harness_destroy(h);
 }
 
+/* Animated lights (core keys animate*): an orbiting point light and a rotating directional light
+ * at t = 1/60 s render as static lights placed where the rotation about +Y puts them (computed
+ * here: x' = c·x + s·z, z' = −s·x + c·z; a wobbling sun tilted about dir × up), and a live --set
+ * animate gives the fresh start's frame. */
+static void test_light_animation(void) {
+    const double a = 6.0 / 60.0, c = cos(a), s = sin(a);
+    char json[2048], err[1024];
+    sl_compare cmp;
+    /* wobble of the directional light: axis = dir × up = +Z, angle 15°·sin(6·t) */
+    const double w = 15 * M_PI / 180 * sin(a), cw = cos(w), sw = sin(w);
+    char expect[3][512];
+    snprintf(expect[0], sizeof expect[0], "{\"name\": \"l\", \"type\": \"point\", \"position\": [%.9g, 2, %.9g], \"intensity\": 20}",
+             c * 2 + s * 0.5, -s * 2 + c * 0.5);
+    snprintf(expect[1], sizeof expect[1], "{\"name\": \"l\", \"type\": \"directional\", \"direction\": [%.9g, -0.8, %.9g], \"intensity\": 2}",
+             c * 0.6, -s * 0.6);
+    snprintf(expect[2], sizeof expect[2], "{\"name\": \"l\", \"type\": \"directional\", \"direction\": [%.9g, %.9g, 0], \"intensity\": 2}",
+             0.6 * cw + 0.8 * sw, 0.6 * sw - 0.8 * cw);
+    const char *animated[3] = {
+        "{\"name\": \"l\", \"type\": \"point\", \"position\": [2, 2, 0.5], \"intensity\": 20, \"animate\": \"orbit\", \"animate_speed\": 6}",
+        "{\"name\": \"l\", \"type\": \"directional\", \"direction\": [0.6, -0.8, 0], \"intensity\": 2, \"animate\": \"orbit\", \"animate_speed\": 6}",
+        "{\"name\": \"l\", \"type\": \"directional\", \"direction\": [0.6, -0.8, 0], \"intensity\": 2, \"animate\": \"wobble\", \"animate_speed\": 6}",
+    };
+    const char *modes[3] = {"orbit", "orbit", "wobble"};
+    for (int i = 0; i < 3; i++) {
+        snprintf(json, sizeof json, PLANE_SCENE("%s", ""), animated[i]);
+        sl_harness *h = make(json, NULL);
+        CHECK(h != NULL);
+        if (!h) return;
+        sl_harness_set_frame(h, 1);
+        CHECK(sl_harness_render(h, img));
+        sl_harness_set_frame(h, 0);
+        CHECK(sl_harness_render(h, img2));
+        sl_harness_compare(img, img2, W, H, 1e-4, &cmp);
+        /* a sun turning about the plane's normal lights the plane the same: only the others move it */
+        if (i != 1) CHECK_MSG(cmp.pixels_over > 100, "case %d: the animated light does not move (%ld pixels)", i, cmp.pixels_over);
+        sl_harness_destroy(h);
+        snprintf(json, sizeof json, PLANE_SCENE("%s", ""), expect[i]);
+        h = make(json, NULL);
+        CHECK(h && sl_harness_render(h, img2));
+        sl_harness_compare(img, img2, W, H, 1e-3, &cmp);
+        CHECK_MSG(cmp.pixels_over <= 2, "case %d: animated light at t = 1/60 differs from the static light there (%ld px, max %g)",
+                  i, cmp.pixels_over, cmp.max_abs);
+        char light[512];
+        /* live: the static light set to orbit equals the fresh animated start at the same frame */
+        snprintf(light, sizeof light, "light.l.animate=%s", modes[i]);
+        CHECK(sl_harness_set(h, light, err, sizeof err));
+        CHECK(sl_harness_set(h, "light.l.animate_speed=6", err, sizeof err));
+        snprintf(light, sizeof light, "light.l.%s=%s", i ? "direction" : "position", i ? "0.6,-0.8,0" : "2,2,0.5");
+        CHECK(sl_harness_set(h, light, err, sizeof err));
+        sl_harness_set_frame(h, 1);
+        CHECK(sl_harness_render(h, img2));
+        sl_harness_compare(img, img2, W, H, 1e-6, &cmp);
+        CHECK_MSG(cmp.max_abs <= 1e-6, "case %d: live animate differs from the fresh start by %g", i, cmp.max_abs);
+        sl_harness_destroy(h);
+    }
+    /* a refused light key never suggests itself */
+    sl_harness *h = make(PLANE_SCENE("{\"name\": \"l\", \"type\": \"point\", \"position\": [0, 2, 0]}", ""), NULL);
+    CHECK(h != NULL);
+    if (!h) return;
+    CHECK(!sl_harness_set(h, "light.l.animat=orbit", err, sizeof err));
+    CHECK_CONTAINS(err, "did you mean \"animate\"");
+    CHECK(!sl_harness_set(h, "light.l.cone_angle=30", err, sizeof err)); /* spot key, spotlight-shadow not loaded */
+    CHECK_MSG(!strstr(err, "did you mean \"cone_angle\""), "suggests the refused key: %s", err);
+    sl_harness_destroy(h);
+}
+
 int main(void) {
+    test_light_animation();
     test_directional();
     test_point_light();
     test_furnace();

@@ -64,6 +64,8 @@ typedef struct sl_renderer {
     bool plan_dirty;
     int width, height;
     uint64_t seen_recompile, seen_materials, seen_lights_version, seen_param_version;
+    double seen_light_time;
+    uint64_t lights_packed;   /* bumps each time the lights are packed */   /* app->time of the packed lights (animated lights repack) */
     char *seen_debug_view;
     bool finish_timing;
     unsigned queries[64];
@@ -200,8 +202,18 @@ unsigned sl_renderer_material_texture(sl_app *app, int m, const char *key) {
 
 /* ------------------------------------------------------------------ lights ---------- */
 
+static bool lights_animated(sl_app *app) {
+    for (int i = 0; i < app->scene.light_count; i++) {
+        const sl_light *L = &app->scene.lights[i];
+        if (L->enabled && L->animate != SL_ANIMATE_NONE && L->animate_speed != 0) return true;
+    }
+    return false;
+}
+
+/* The light buffer and the lights plugins see (sl_host.lights), at app->time. */
 static void pack_lights(sl_app *app) {
     sl_renderer *r = R(app);
+    r->lights_packed++;
     sl_scene *s = &app->scene;
     free(r->lights);
     r->lights = calloc(s->light_count + 1, sizeof *r->lights);
@@ -218,8 +230,7 @@ static void pack_lights(sl_app *app) {
             sl_light_info *info = &r->lights[i];
             info->index = k;
             gpu_light *g = &buf[k++];
-            memcpy(g->position, L->position, 12);
-            memcpy(g->direction, L->direction, 12);
+            sl_light_at_time(L, app->time, g->position, g->direction);
             for (int c = 0; c < 3; c++) g->color[c] = L->color[c] * L->intensity;
             memcpy(g->params, app->light_params[i], sizeof g->params);
         }
@@ -231,8 +242,7 @@ static void pack_lights(sl_app *app) {
         info->struct_size = sizeof *info;
         info->name = L->name;
         info->type = L->type;
-        memcpy(info->position, L->position, 12);
-        memcpy(info->direction, L->direction, 12);
+        sl_light_at_time(L, app->time, info->position, info->direction); /* where the animation puts it */
         for (int c = 0; c < 3; c++) info->color[c] = L->color[c] * L->intensity;
         memcpy(info->params, app->light_params[i], sizeof info->params);
         info->enabled = L->enabled;
@@ -808,7 +818,8 @@ static void refresh(sl_app *app) {
     bool view_changed = (r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
                         (app->debug_view && strcmp(app->debug_view, r->seen_debug_view));
     bool lights_changed = r->seen_lights_version != app->lights_version;
-    if (lights_changed) pack_lights(app);
+    if (lights_changed || (lights_animated(app) && r->seen_light_time != app->time)) pack_lights(app);
+    r->seen_light_time = app->time;
     if (view_changed || lights_changed || r->seen_recompile != app->params.recompile_version ||
         r->seen_materials != app->materials_version) {
         compose_all(app);
@@ -848,7 +859,7 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     for (int i = 0; i < app->plugins.chunk_count && !animated; i++)
         animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(app, app->plugins.chunks[i].owner);
     f->geometry_version = animated ? app->frame_index + 1 : 0;
-    f->lights_version = app->lights_version;
+    f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
     f->params_version = app->params.version + app->materials_version;
     f->accumulate_index = acc_index;
     f->accumulate_count = acc_count;

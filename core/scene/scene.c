@@ -232,7 +232,35 @@ int sl_scene_add_light(sl_scene *scene, const char *name, const char *type) {
     l->color[0] = l->color[1] = l->color[2] = 1.0f;
     l->intensity = 1.0f;
     l->enabled = true;
+    l->animate_speed = 0.5f;
+    l->animate_amount = 15.0f;
     return scene->light_count++;
+}
+
+/* v rotated by angle a about the unit axis k (Rodrigues' formula). */
+static void rotate_about(float v[3], const float k[3], float a) {
+    float c = cosf(a), s = sinf(a), d = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    float x[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+    for (int i = 0; i < 3; i++) v[i] = v[i] * c + x[i] * s + k[i] * d * (1 - c);
+}
+
+void sl_light_at_time(const sl_light *L, double t, float pos[3], float dir[3]) {
+    memcpy(pos, L->position, 3 * sizeof *pos);
+    memcpy(dir, L->direction, 3 * sizeof *dir);
+    const float up[3] = {0, 1, 0};
+    if (L->animate == SL_ANIMATE_ORBIT) {
+        float a = (float)(L->animate_speed * t);
+        rotate_about(pos, up, a);
+        rotate_about(dir, up, a);
+    } else if (L->animate == SL_ANIMATE_WOBBLE) {
+        float axis[3] = {-dir[2], 0, dir[0]}; /* dir × up */
+        float len = sqrtf(axis[0] * axis[0] + axis[2] * axis[2]);
+        if (len > 1e-4f) axis[0] /= len, axis[2] /= len;
+        else axis[0] = 1, axis[2] = 0;
+        rotate_about(dir, axis, (float)(L->animate_amount * M_PI / 180 * sin(L->animate_speed * t)));
+        float n = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        for (int i = 0; i < 3; i++) dir[i] /= n;
+    }
 }
 
 int sl_scene_add_camera(sl_scene *scene, const char *name) {

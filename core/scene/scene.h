@@ -59,6 +59,8 @@ typedef struct sl_node {
     int mesh_count;
 } sl_node;
 
+typedef enum sl_light_animation { SL_ANIMATE_NONE, SL_ANIMATE_ORBIT, SL_ANIMATE_WOBBLE } sl_light_animation;
+
 typedef struct sl_light {
     char *name;
     char *type;             /* "directional", "point", or a plugin type ("spot") */
@@ -68,6 +70,12 @@ typedef struct sl_light {
     float intensity;        /* directional: irradiance E; point/spot: intensity I (E = I/d²) */
     bool enabled;           /* default true */
     bool cast_shadows;      /* default false */
+    /* Animation (core light keys animate / animate_speed / animate_amount), for every type:
+     * orbit turns position and direction about the world Y axis at speed rad/s; wobble swings
+     * the direction by ±amount° about the horizontal axis across it, angle amount·sin(speed·t). */
+    sl_light_animation animate;
+    float animate_speed;    /* rad/s, default 0.5 */
+    float animate_amount;   /* degrees, default 15 */
     sl_prop_list props;     /* type-specific keys (cone_angle, falloff, radius, …) */
     int line;
 } sl_light;
@@ -190,6 +198,8 @@ int sl_scene_add_node(sl_scene *scene, const char *name, int parent);
 int sl_scene_add_mesh(sl_scene *scene, const char *name, sl_mesh_data *data, int material);
 bool sl_scene_node_add_mesh(sl_scene *scene, int node, int mesh);
 int sl_scene_add_light(sl_scene *scene, const char *name, const char *type);
+/* Where an animated light is at time t (seconds): its position and unit direction. */
+void sl_light_at_time(const sl_light *light, double t, float position[3], float direction[3]);
 int sl_scene_add_camera(sl_scene *scene, const char *name);
 
 /* Set (add or replace) a property; returns it, or NULL when out of memory. */

@@ -46,7 +46,6 @@ typedef struct ss {
 
 static const char *const filters[] = {"hard", "pcf", "poisson", "pcss", "reference", NULL};
 static const char *const falloffs[] = {"linear", "gltf", NULL};
-static const char *const animations[] = {"none", "orbit", "wobble", NULL};
 static const char *const culls[] = {"none", "back", "front", NULL};
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
@@ -105,14 +104,6 @@ static const sl_param_desc params[] = {
     P(.id = "radius", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT, .light_type = "spot", .light_slot = 3,
       .default_value = {.f = {0.05f}}, .min = 0, .max = 100, .unit = "m", .group = "spot",
       .description = "Radius of the light's disk (facing along its axis): PCSS penumbrae and the reference."),
-    P(.id = "animate", .type = SL_PARAM_ENUM, .scope = SL_SCOPE_LIGHT, .light_type = "spot", .light_slot = 4,
-      .enum_values = animations, .group = "spot",
-      .description = "orbit: circles the world Y axis; wobble: the axis swings about the horizontal."),
-    P(.id = "animate_speed", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT, .light_type = "spot", .light_slot = 5,
-      .default_value = {.f = {0.5f}}, .min = -100, .max = 100, .unit = "rad/s", .group = "spot",
-      .description = "Angular speed of the animation."),
-    P(.id = "animate_amount", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT, .light_type = "spot", .light_slot = 6,
-      .default_value = {.f = {15}}, .min = 0, .max = 90, .unit = "deg", .group = "spot", .description = "Wobble amplitude."),
     /* light keys: the core's types, for soft shadows */
     P(.id = "angular_radius", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT, .light_type = "directional", .light_slot = 0,
       .default_value = {.f = {0.5f}}, .min = 0, .max = 45, .unit = "deg", .group = "shadows",
@@ -147,39 +138,6 @@ static int light_kind(const sl_light_info *L) {
     if (!strcmp(L->type, "directional")) return KIND_DIRECTIONAL;
     if (!strcmp(L->type, "point")) return KIND_POINT;
     return KIND_NONE;
-}
-
-static void rotate(vec3 v, const vec3 axis, float t) {
-    vec3 a;
-    glm_vec3_copy((float *)axis, a);
-    glm_vec3_rotate(v, t, a);
-}
-
-/* The same animation as spotlight_shadow_animate() in spot_falloff.glsl. */
-static void animate(const sl_light_info *L, double time, vec3 pos, vec3 dir) {
-    glm_vec3_copy((float *)L->position, pos);
-    glm_vec3_copy((float *)L->direction, dir);
-    if (strcmp(L->type, "spot")) return;
-    float mode = L->params[4], speed = L->params[5], amount = L->params[6];
-    float t = (float)time;
-    if (mode > 0.5f && mode < 1.5f) {
-        rotate(pos, (vec3){0, 1, 0}, speed * t);
-        rotate(dir, (vec3){0, 1, 0}, speed * t);
-    } else if (mode > 1.5f) {
-        vec3 axis;
-        glm_vec3_cross(dir, (vec3){0, 1, 0}, axis);
-        float len = glm_vec3_norm(axis);
-        if (len > 1e-4f) glm_vec3_scale(axis, 1 / len, axis);
-        else glm_vec3_copy((vec3){1, 0, 0}, axis);
-        rotate(dir, axis, glm_rad(amount) * sinf(speed * t));
-        glm_vec3_normalize(dir);
-    }
-}
-
-static bool any_animated(const sl_light_info *lights, int n) {
-    for (int i = 0; i < n; i++)
-        if (light_kind(&lights[i]) == KIND_SPOT && lights[i].params[4] > 0.5f && lights[i].params[5] != 0) return true;
-    return false;
 }
 
 static void basis(const vec3 axis, vec3 t1, vec3 t2) {
@@ -286,8 +244,9 @@ static void build_views(ss *s, const sl_frame *f, int size, bool reference) {
         const sl_light_info *L = &lights[i];
         int kind = light_kind(L);
         if (kind == KIND_NONE) continue;
-        vec3 pos, dir, t1, t2;
-        animate(L, f->time, pos, dir);
+        vec3 pos, dir, t1, t2; /* the core has animated them already (light keys animate*) */
+        glm_vec3_copy((float *)L->position, pos);
+        glm_vec3_copy((float *)L->direction, dir);
         basis(dir, t1, t2);
         float jx, jy;
         disk_point(k, count, &jx, &jy);
@@ -422,7 +381,7 @@ static uint64_t fnv(const void *data, size_t len, uint64_t h) {
 }
 
 /* Changes only when the maps would: shadowed lights, scene bounds and geometry, map settings,
- * the time when a shadowed spot is animated, the light sample in reference mode. */
+ * (animated lights move, so their positions change), the light sample in reference mode. */
 static uint64_t pass_signature(void *user, const sl_frame *f) {
     ss *s = user;
     uint64_t h = 1469598103934665603ull;
@@ -444,7 +403,6 @@ static uint64_t pass_signature(void *user, const sl_frame *f) {
     int settings[4] = {param(s, "map_size").i, param(s, "reference_map_size").i, param(s, "cull").i,
                        param(s, "filter").i == FILTER_REFERENCE};
     h = fnv(settings, sizeof settings, h);
-    if (any_animated(lights, n)) h = fnv(&f->time, sizeof f->time, h);
     if (settings[3]) {
         h = fnv(&f->accumulate_index, sizeof f->accumulate_index, h);
         h = fnv(&f->accumulate_count, sizeof f->accumulate_count, h);
