@@ -50,3 +50,8 @@ endforeach()
 add_test(NAME cli_scenes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli_scenes.sh $<TARGET_FILE:shadelab>
          ${PROJECT_SOURCE_DIR}/scenes ${PROJECT_BINARY_DIR}/tests/cli)
 set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300)
+
+# Pass order by stage value, not load order; dependencies switch off with what they need.
+sl_add_test(pass_order SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_pass_order.c)
+target_compile_definitions(test_pass_order PRIVATE SL_TEST_PLUGIN_DIR="${SL_TP_DIR}")
+add_dependencies(test_pass_order ${SL_TEST_PLUGINS})

@@ -8,3 +8,8 @@ add_test(NAME sdk_install
          COMMAND ${CMAKE_CURRENT_LIST_DIR}/sdk_install.sh ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}
                  $<TARGET_FILE:sl-imgdiff> ${CMAKE_COMMAND})
 set_tests_properties(sdk_install PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 600 LABELS sdk)
+
+# The public headers compile as C++20 (`requires` is a keyword there): a build-time check.
+add_executable(sdk_cxx20 ${CMAKE_CURRENT_LIST_DIR}/sdk_cxx20.cpp)
+target_include_directories(sdk_cxx20 PRIVATE ${PROJECT_SOURCE_DIR}/sdk/include)
+set_target_properties(sdk_cxx20 PROPERTIES CXX_STANDARD 20 CXX_STANDARD_REQUIRED ON CXX_EXTENSIONS OFF)

@@ -95,6 +95,7 @@ static sl_status host_add_chunk(const sl_host *h, const sl_shader_chunk_desc *in
     r->d.function = dup0(d.function);
     r->d.name = dup0(d.name);
     r->d.when_material_has = dup0(d.when_material_has);
+    r->d.when_model = dup0(d.when_model);
     r->d.description = dup0(d.description);
     return SL_OK;
 }
@@ -319,7 +320,7 @@ static bool enabled_at(sl_app *app, int index, int depth) {
     snprintf(id, sizeof id, "%s.enabled", r->id);
     sl_param *q = sl_params_find(&app->params, id);
     if (q && !q->value.b) return false;
-    for (const char *const *req = r->desc.requires; req && *req && depth < 16; req++) {
+    for (const char *const *req = r->desc.dependencies; req && *req && depth < 16; req++) {
         int j = sl_plugins_find(&app->plugins, *req);
         if (j < 0 || !enabled_at(app, j, depth + 1)) return false;
     }
@@ -522,7 +523,7 @@ bool sl_plugins_add_builtin(sl_app *app, const sl_plugin_desc *desc) {
 
 static void free_chunk(sl_chunk_reg *c) {
     free((char *)c->d.file); free((char *)c->d.function); free((char *)c->d.name);
-    free((char *)c->d.when_material_has); free((char *)c->d.description);
+    free((char *)c->d.when_material_has); free((char *)c->d.description); free((char *)c->d.when_model);
 }
 
 static void free_pass(sl_pass_reg *r) {
@@ -577,7 +578,7 @@ static void create_one(sl_app *app, int i, int depth) {
         }
     }
     /* requirements first */
-    for (const char *const *q = r->desc.requires; q && *q; q++) {
+    for (const char *const *q = r->desc.dependencies; q && *q; q++) {
         int j = sl_plugins_find(P, *q);
         if (j < 0) {
             char by[300];

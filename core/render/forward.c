@@ -126,6 +126,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         if (!sl_plugin_enabled(app, c->owner)) continue;
         if (c->d.hook != SL_HOOK_VERTEX && c->d.hook != SL_HOOK_SURFACE && c->d.hook != SL_HOOK_AMBIENT) continue;
         if (c->d.when_material_has && !material_has(app, m, c->d.when_material_has)) continue;
+        /* the material's own model, also in override programs (its surface stays the same) */
+        if (c->d.when_model && strcmp(c->d.when_model, mat->model ? mat->model : "lambert")) continue;
         if (c->d.hook == SL_HOOK_VERTEX && nv < 64) vertex_hooks[nv++] = c;
         if (c->d.hook == SL_HOOK_SURFACE && ns < 64) surface_hooks[ns++] = c;
         if (c->d.hook == SL_HOOK_AMBIENT && na < 64) ambient_hooks[na++] = c;

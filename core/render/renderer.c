@@ -521,7 +521,7 @@ static sl_pass_desc resolve_pass = {.struct_size = sizeof(sl_pass_desc), .name =
 static const char *display_inputs[] = {"color", NULL};
 static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
                                     .outputs = forward_outputs, .output_count = 2};
-static sl_pass_desc display_pass = {.struct_size = sizeof(sl_pass_desc), .name = "display", .stage = 1000,
+static sl_pass_desc display_pass = {.struct_size = sizeof(sl_pass_desc), .name = "display", .stage = SL_STAGE_DISPLAY,
                                     .inputs = display_inputs, .outputs = &core_display, .output_count = 1};
 
 static GLenum gl_format(sl_format f) {

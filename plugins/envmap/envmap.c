@@ -644,7 +644,7 @@ static const sl_plugin_desc envmap_desc = {
     .version = "1.0",
     .description = "Environment maps: background, mirror/environment materials, split-sum IBL for ggx "
                    "(prefiltered GGX cube, SH or convolved irradiance, BRDF LUT) and a Monte Carlo reference.",
-    .requires = requires_,
+    .dependencies = requires_,
     .create = envmap_create,
     .activate = envmap_activate,
     .begin_frame = envmap_begin_frame,

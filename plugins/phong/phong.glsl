@@ -20,15 +20,14 @@ float phong_filter_w = 0.0;
 // Key 1: the colour map, or grey albedo 0.5 to judge the lighting alone.
 vec3 phong_albedo(SlSurface s) { return phong_color ? s.base_color : vec3(0.5); }
 
-// The blinn-gloss specular power: from s.alpha, which phong_surface fills when the material
-// has a property map, else from the material's gloss (0.5 → 64).
-float phong_power(SlSurface s) {
-#if defined(SL_MAT_HAS_PROPERTY_MAP)
-    return phong_power_from_alpha(s.alpha);
-#else
-    return phong_power_from_gloss(sl_mat_gloss);
-#endif
-}
+// The blinn-gloss specular power, always from s.alpha (Walter 2007: SpecPower = 2/α² − 2), so
+// that whoever sets the surface's gloss is honoured: phong_surface_gloss (the material's gloss,
+// first), the property map, or another plugin's surface hook (procedural tiles, ggx's alpha key).
+float phong_power(SlSurface s) { return phong_power_from_alpha(s.alpha); }
+
+// The material's gloss as s.alpha for blinn-gloss materials only (when_model; 0.5 → SpecPower
+// 64); runs before every other surface hook (order -100), so any of them may override it.
+void phong_surface_gloss(inout SlSurface s) { s.alpha = phong_alpha_from_power(phong_power_from_gloss(sl_mat_gloss)); }
 
 vec3 phong_model_classic(SlSurface s, vec3 l, vec3 E) {
     return phong_classic(s.normal, s.view, l, phong_albedo(s), sl_mat_specular_color * s.specular, sl_mat_shininess, E);

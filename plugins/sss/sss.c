@@ -609,7 +609,7 @@ static const sl_plugin_desc sss_desc = {
     .version = "1.0",
     .description = "Subsurface scattering for skin: wrap, translucency, texture-space diffusion, screen-space "
                    "separable SSS, pre-integrated skin; GGX specular.",
-    .requires = sss_requires,
+    .dependencies = sss_requires,
     .create = sss_create,
     .activate = sss_activate,
     .begin_frame = begin_frame,

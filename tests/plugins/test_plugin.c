@@ -146,7 +146,7 @@ static const sl_plugin_desc tp_desc = {
     .version = "1.0",
     .description = "shadelab test plugin",
 #ifdef TP_REQUIRES
-    .requires = tp_requires,
+    .dependencies = tp_requires,
 #endif
 #ifdef TP_CONFLICTS
     .conflicts = tp_conflicts,

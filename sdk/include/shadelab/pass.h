@@ -18,11 +18,18 @@
 extern "C" {
 #endif
 
+/* A pass's place in the frame. `stage` is an order value: passes run in ascending stage, equal
+ * values in plugin load order (and registration order within a plugin), so a pass that must run
+ * before or after another plugin's gives itself a value between the landmarks below; any int is
+ * valid. The bundled plugins' values are listed in sdk/docs/plugin-guide.md ("Pass order"). */
 typedef enum sl_stage {
-    SL_STAGE_SHADOW = 100,   /* light-space passes (shadow maps) */
-    SL_STAGE_PREPASS = 200,  /* anything the forward pass samples (texture-space lighting) */
-    SL_STAGE_OPAQUE = 300,   /* the core's forward pass; plugins may add passes after it */
-    SL_STAGE_POST = 400      /* full-screen passes on "color" (blurs, tone mapping) */
+    SL_STAGE_SHADOW = 100,   /* light-space passes (shadow maps): spotlight-shadow */
+    SL_STAGE_PREPASS = 200,  /* anything the forward pass samples (texture-space lighting): sss */
+    SL_STAGE_OPAQUE = 300,   /* the core's forward pass; plugins may add passes after it (envmap's background) */
+    SL_STAGE_POST = 400,     /* full-screen passes on linear HDR "color" (bloom, blurs) */
+    SL_STAGE_TONEMAP = 450,  /* ABI 1.5 name: HDR → display-referred colour (tonemap's pass) */
+    SL_STAGE_DISPLAY_REFERRED = 460, /* ABI 1.5 name: passes on tone-mapped colour (vignette, grain) */
+    SL_STAGE_DISPLAY = 1000  /* ABI 1.5 name: the core's display encoding (sRGB); always last */
 } sl_stage;
 
 typedef enum sl_format {
@@ -63,7 +70,7 @@ typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() *
 typedef struct sl_pass_desc {
     uint32_t struct_size;           /* sizeof(sl_pass_desc) */
     const char *name;               /* unique pass name; shown in timings ("shadow-maps") */
-    sl_stage stage;                 /* coarse order; registration order within a stage */
+    sl_stage stage;                 /* order value (see sl_stage); load order among equals */
     const char *const *inputs;      /* NULL-terminated resource names read, or NULL */
     const sl_target_desc *outputs;  /* targets written (allocated by the core) */
     int output_count;

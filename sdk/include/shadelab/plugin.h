@@ -29,7 +29,10 @@ typedef struct sl_plugin_desc {
     const char *id;             /* [a-z0-9-]; prefix of the plugin's parameters */
     const char *version;
     const char *description;
-    const char *const *requires;  /* NULL-terminated plugin ids that must load first, or NULL */
+    /* NULL-terminated plugin ids that must load first, or NULL. While one of them is switched off
+     * (its "enabled"), this plugin is off too. (Named `requires` before ABI 1.5; renamed because
+     * `requires` is a C++20 keyword; same position, so the ABI is unchanged.) */
+    const char *const *dependencies;
     const char *const *conflicts; /* NULL-terminated plugin ids that must not be loaded */
 
     /* Returns SL_OK and sets *user, or an error (logged; the plugin becomes disabled). When it

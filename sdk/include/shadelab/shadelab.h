@@ -19,7 +19,7 @@
 #define SL_ABI_MAJOR 1
 #endif
 #ifndef SL_ABI_MINOR
-#define SL_ABI_MINOR 4
+#define SL_ABI_MINOR 5
 #endif
 
 #ifdef __cplusplus

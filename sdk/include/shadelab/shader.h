@@ -93,6 +93,9 @@ typedef struct sl_shader_chunk_desc {
     int order;             /* SURFACE/VERTEX hooks run in ascending order, then by plugin */
     const char *description; /* DEBUG_VIEW: shown in the GUI and --list-debug-views */
     uint32_t flags;        /* ABI 1.4: sl_chunk_flags */
+    /* ABI 1.5, VERTEX/SURFACE/AMBIENT: include the chunk only for materials whose shading model
+     * is this one ("blinn-gloss"); NULL = every model. Combines with when_material_has. */
+    const char *when_model;
 } sl_shader_chunk_desc;
 
 typedef enum sl_chunk_flags {
