@@ -1,5 +1,5 @@
 /* shadelab-bake-normals: tangent-space → object-space normal maps for a mesh, procedural maps,
- * and a green-convention check. Run without arguments for usage. */
+ * and a green-convention check. --help (or -h) prints the usage. */
 #include "nm_tools.h"
 
 #include <stdio.h>
@@ -8,6 +8,8 @@
 
 static const char usage[] =
     "usage:\n"
+    "  shadelab-bake-normals --help | -h\n"
+    "      This text.\n"
     "  shadelab-bake-normals --scene S.json --material NAME --out OUT.(png|exr)\n"
     "        [--map TANGENT_MAP] [--data DIR] [--size WxH] [--green opengl|directx] [--strength K] [--dilate PX]\n"
     "      Bakes the material's tangent-space normal_map (or --map) into an object-space map for every mesh\n"
@@ -38,6 +40,7 @@ int main(int argc, char **argv) {
     nm_bake_opts o = {.green_sign = 1, .strength = 1, .dilate = 8};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); return 0; }
 #define ARG(name, dst) if (!strcmp(a, name)) { if (!v) { fprintf(stderr, "%s needs a value\n", name); return 2; } dst = v; i++; continue; }
         ARG("--scene", scene_path) ARG("--material", material) ARG("--out", out) ARG("--map", map)
         ARG("--data", data) ARG("--generate", gen) ARG("--generate-property", gen_prop) ARG("--detect-green", detect)
