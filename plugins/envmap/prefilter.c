@@ -233,8 +233,9 @@ unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int sa
             glUseProgram(p);
             draw_into(g, t, l, f, s, s);
             done += (double)s * s;
-            snprintf(what, sizeof what, "GGX prefilter %d² cube, %d samples: level %d/%d face %d/6", size, samples, l,
-                     levels - 1, f + 1);
+            /* levels counted as the files of a chain are (1..N, level 1 the unfiltered copy above) */
+            snprintf(what, sizeof what, "GGX prefilter %d² cube, %d samples: level %d/%d face %d/6", size, samples, l + 1,
+                     levels, f + 1);
             report(g, total > 0 ? done / total : 1, what);
         }
     }
