@@ -165,6 +165,8 @@ typedef struct viewer {
     int next_shot;
     char capture[65536];     /* log text of the last compile attempt */
     char errors[8192];       /* condensed for the screen */
+    int frames_rendered;     /* frames rendered so far (a status line needs a previous image) */
+    int status_frames;       /* frames shown with the "compiling" status before recompiling */
 } viewer;
 
 /* The errors in the captured log, condensed for the screen: a failing chunk breaks every
@@ -419,16 +421,30 @@ int sl_viewer_run(sl_app *app, double start_time) {
         if (act.reload_shaders) do_reload(v, true);
         if (act.screenshot) v->screenshot = true;
 
-        app->time = start_time + (t - t0);
-        int before = sl_log_count(SL_LOG_ERROR);
-        sl_log_capture(v->capture, sizeof v->capture);
-        sl_app_render_frame(app);
-        sl_log_capture(NULL, 0);
-        /* a parameter that recompiles (or a reload) can fail here too: keep it on screen */
-        if (v->panel && sl_log_count(SL_LOG_ERROR) > before) sl_panel_set_shader_error(v->panel, errors_from_capture(v));
-        if (v->screenshot) {
-            save_screenshot(v);
-            v->screenshot = false;
+        /* A change that recompiles takes a moment on a CPU rasteriser: first show the previous
+         * image with a status line for three frames (ImGui sizes a new overlay in its first frame and
+         * shows it in the next),
+         * then compile and render. */
+        bool hold = v->panel && v->frames_rendered && sl_renderer_compose_pending(app) && v->status_frames < 3;
+        if (hold) {
+            sl_panel_set_status(v->panel, "compiling shaders ...");
+            v->status_frames++;
+            sl_renderer_present(app); /* the previous image stays */
+        } else {
+            v->status_frames = 0;
+            app->time = start_time + (t - t0);
+            int before = sl_log_count(SL_LOG_ERROR);
+            sl_log_capture(v->capture, sizeof v->capture);
+            sl_app_render_frame(app);
+            v->frames_rendered++;
+            if (v->panel) sl_panel_set_status(v->panel, NULL);
+            sl_log_capture(NULL, 0);
+            /* a parameter that recompiles (or a reload) can fail here too: keep it on screen */
+            if (v->panel && sl_log_count(SL_LOG_ERROR) > before) sl_panel_set_shader_error(v->panel, errors_from_capture(v));
+            if (v->screenshot) {
+                save_screenshot(v);
+                v->screenshot = false;
+            }
         }
         if (v->gui) sl_gui_render();
         if (sc.grab[0]) {

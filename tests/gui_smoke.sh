@@ -4,7 +4,9 @@
 # (sl_panel_apply = the --set path, source GUI) and presses keys through the key handler.
 #   1. panel toggle: after `set light.sun.enabled=false` the P screenshot (PNG and EXR) equals
 #      a headless render with --set light.sun.enabled=false and differs from the screenshot
-#      before the toggle; a plugin key (V) does the same for example.vignette. The window itself
+#      before the toggle; a plugin key (V) does the same for example.vignette, and switching the
+#      example plugin off (it contributes a surface hook) equals a fresh start with it off, with
+#      a "compiling" status line over the previous image meanwhile. The window itself
 #      (grabbed, panel included) shows the panel and otherwise the same image.
 #   2. hot reload: a shader broken while the viewer runs keeps the last good image, the error
 #      (file:line) is on stderr and on screen; fixing it takes effect.
@@ -41,12 +43,14 @@ wait_for() { for _ in $(seq 1 600); do [ -e "$1" ] && return 0; kill -0 $VPID 2>
 echo "== 1. a change through the panel's code path = the same --set headless"
 cd "$T/run1"
 SHADELAB_VIEWER_SCRIPT="wait 3; key P; set light.sun.enabled=false; wait 3; key P; grab $T/run1/window1.png; \
-key V; wait 3; key P; key 1; key Shift+1; key 2; key Shift+P; wait 2; quit" \
+key V; wait 3; key P; set example.enabled=false; wait 1; grab $T/run1/status.png; wait 3; key P; grab $T/run1/after.png; \
+key 1; key Shift+1; key 2; key Shift+P; wait 2; quit" \
   timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --size $SIZE --plugin "$PLUGIN" \
     --plugin "$KEYSA" --plugin "$KEYSB" >"$T/run1.out" 2>"$T/run1.err"
 rc=$?
 [ $rc -eq 0 ] || { cat "$T/run1.err"; fail "viewer exited with $rc"; }
-for f in shadelab-000.png shadelab-000.exr shadelab-001.png shadelab-001.exr shadelab-002.png window1.png; do
+for f in shadelab-000.png shadelab-000.exr shadelab-001.png shadelab-001.exr shadelab-002.png shadelab-003.png \
+         window1.png status.png after.png; do
   [ -f "$f" ] || fail "missing $f"
 done
 headless "$T/h0.png"
@@ -59,6 +63,15 @@ same_exr shadelab-001.exr "$T/h1.exr"
 differ shadelab-001.png shadelab-000.png
 same_png shadelab-002.png "$T/h2.png"           # key V = example.vignette toggled
 differ shadelab-002.png shadelab-001.png
+# a plugin that contributes shader code (the example's tint), switched off through the panel's
+# code path: the screenshot equals a fresh start with it off, and differs from before
+headless "$T/h3.png" --set light.sun.enabled=false --set example.vignette=false --set example.enabled=false
+same_png shadelab-003.png "$T/h3.png"
+differ shadelab-003.png shadelab-002.png
+# while it recompiles, the previous image stays (right of the panel, above the status line) and
+# a status line shows at the bottom right
+same_png status.png shadelab-002.png --region $PANEL_RIGHT 0 $W $((H - 40))
+differ status.png shadelab-002.png --region $PANEL_RIGHT $((H - 30)) $W $H
 # the window shows the panel (left) over the same image (right of the panel)
 differ window1.png shadelab-001.png --region 8 8 $((PANEL_RIGHT - 8)) $((H - 8))
 same_png window1.png shadelab-001.png --region $PANEL_RIGHT 0 $W $H
@@ -69,7 +82,7 @@ grep -q "^keys-a.flag=true" "$T/run1.err" || fail "key 1 did not toggle keys-a.f
 grep -q "^keys-b.flag=true" "$T/run1.err" || fail "Shift+1 did not toggle keys-b.flag"
 grep -q "^keys-a.mode=two" "$T/run1.err" || fail "key 2 did not cycle keys-a.mode"
 grep -q "^keys-a.flag=false" "$T/run1.err" || fail "Shift+P (keys-a's moved binding) did not toggle keys-a.flag"
-[ $(grep -c "^saved shadelab-.*png" "$T/run1.err") -eq 3 ] || fail "P must stay the screenshot key"
+[ $(grep -c "^saved shadelab-.*png" "$T/run1.err") -eq 4 ] || fail "P must stay the screenshot key"
 
 echo "== 2. hot reload: error keeps the last good program and is shown; the fix takes effect"
 cd "$T/run2"

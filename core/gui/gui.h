@@ -34,8 +34,10 @@ bool sl_gui_wants_keyboard(void);
 /* A window at (x, y) of size (w, h) on its first use (the user may move/resize it later).
  * Returns false when collapsed: still call sl_ui_end(). */
 bool sl_ui_begin(const char *title, float x, float y, float w, float h, float alpha);
-/* A borderless, non-interactive window anchored at the bottom of the display (overlays). */
+/* A borderless, non-interactive window anchored at the bottom of the display (overlays); with
+ * right = true at the bottom right, beside the panel rather than under it (status lines). */
 bool sl_ui_begin_overlay(const char *id, float r, float g, float b, float alpha);
+bool sl_ui_begin_overlay_right(const char *id, float r, float g, float b, float alpha);
 void sl_ui_end(void);
 bool sl_ui_header(const char *label, bool default_open);   /* collapsing header */
 bool sl_ui_tree_push(const char *label, bool default_open); /* true: open, call sl_ui_tree_pop */

@@ -63,9 +63,10 @@ bool sl_ui_begin(const char *title, float x, float y, float w, float h, float al
     return open;
 }
 
-bool sl_ui_begin_overlay(const char *id, float r, float g, float b, float alpha) {
+static bool begin_overlay(const char *id, float r, float g, float b, float alpha, bool right) {
     const ImGuiViewport *vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + 8, vp->WorkPos.y + vp->WorkSize.y - 8), ImGuiCond_Always, ImVec2(0, 1));
+    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + (right ? vp->WorkSize.x - 8 : 8), vp->WorkPos.y + vp->WorkSize.y - 8),
+                            ImGuiCond_Always, ImVec2(right ? 1.0f : 0.0f, 1));
     ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(vp->WorkSize.x - 16, vp->WorkSize.y * 0.5f));
     ImGui::SetNextWindowBgAlpha(alpha);
     ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(r, g, b, alpha));
@@ -76,6 +77,12 @@ bool sl_ui_begin_overlay(const char *id, float r, float g, float b, float alpha)
     ImGui::PopStyleColor();
     ImGui::PushItemWidth(-1.0f);
     return open;
+}
+bool sl_ui_begin_overlay(const char *id, float r, float g, float b, float alpha) {
+    return begin_overlay(id, r, g, b, alpha, false);
+}
+bool sl_ui_begin_overlay_right(const char *id, float r, float g, float b, float alpha) {
+    return begin_overlay(id, r, g, b, alpha, true);
 }
 
 void sl_ui_end(void) {

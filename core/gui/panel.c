@@ -16,6 +16,7 @@ struct sl_panel {
     sl_app *app;
     bool visible;
     char *shader_error;
+    const char *status;        /* "compiling shaders …" while a change recompiles; NULL otherwise */
     char apply_error[1024];
     const sl_key_binding *bindings;
     int binding_count;
@@ -418,6 +419,8 @@ void sl_panel_set_shader_error(sl_panel *p, const char *text) {
     p->shader_error = text && *text ? strdup(text) : NULL;
 }
 
+void sl_panel_set_status(sl_panel *p, const char *text) { p->status = text; }
+
 void sl_panel_draw(sl_panel *p, double dt, sl_panel_actions *act) {
     memset(act, 0, sizeof *act);
     act->trigger_binding = -1;
@@ -433,6 +436,11 @@ void sl_panel_draw(sl_panel *p, double dt, sl_panel_actions *act) {
             if (sl_ui_header("Plugins", false)) section_plugins(p);
             if (sl_ui_header("Keys", false)) section_keys(p, act);
         }
+        sl_ui_end();
+    }
+    /* the status line shows whether or not the panel is visible */
+    if (p->status) {
+        if (sl_ui_begin_overlay_right("##status", 0.1f, 0.1f, 0.1f, 0.85f)) sl_ui_text_colored(1, 0.9f, 0.4f, "%s", p->status);
         sl_ui_end();
     }
     /* a failed shader stays on screen whether or not the panel is visible */

@@ -24,6 +24,8 @@ void sl_panel_destroy(sl_panel *p);
  * since the previous frame (for the fps readout). */
 void sl_panel_draw(sl_panel *p, double frame_dt, sl_panel_actions *actions);
 void sl_panel_toggle(sl_panel *p);
+/* A status line over the image ("compiling shaders …"; a static string); NULL clears it. */
+void sl_panel_set_status(sl_panel *p, const char *text);
 /* The shader compile error shown on screen (file:line …); NULL clears it. */
 void sl_panel_set_shader_error(sl_panel *p, const char *text);
 

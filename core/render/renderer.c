@@ -930,15 +930,28 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     }
     r->stats.frame_ms = now_ms() - t0;
     app->frame_index++;
-    if (app->backend.has_window) {
-        resource *disp = find_res(r, "display");
-        unsigned src;
-        glCreateFramebuffers(1, &src);
-        glNamedFramebufferTexture(src, GL_COLOR_ATTACHMENT0, disp->tex[disp->current], 0);
-        glBlitNamedFramebuffer(src, 0, 0, 0, disp->w, disp->h, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        glDeleteFramebuffers(1, &src);
-    }
+    sl_renderer_present(app);
     return true;
+}
+
+void sl_renderer_present(sl_app *app) {
+    sl_renderer *r = R(app);
+    resource *disp = r ? find_res(r, "display") : NULL;
+    if (!app->backend.has_window || !disp) return;
+    unsigned src;
+    glCreateFramebuffers(1, &src);
+    glNamedFramebufferTexture(src, GL_COLOR_ATTACHMENT0, disp->tex[disp->current], 0);
+    glBlitNamedFramebuffer(src, 0, 0, 0, disp->w, disp->h, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glDeleteFramebuffers(1, &src);
+}
+
+bool sl_renderer_compose_pending(sl_app *app) {
+    sl_renderer *r = R(app);
+    if (!r) return false;
+    bool view_changed = (r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
+                        (app->debug_view && strcmp(app->debug_view, r->seen_debug_view));
+    return view_changed || r->seen_lights_version != app->lights_version ||
+           r->seen_recompile != app->params.recompile_version || r->seen_materials != app->materials_version;
 }
 
 const sl_frame_stats *sl_renderer_stats(sl_app *app) { return R(app) ? &R(app)->stats : NULL; }

@@ -20,6 +20,12 @@ void sl_renderer_resize(struct sl_app *app, int w, int h);
 /* Re-reads every shader file and rebuilds programs; keeps the last good program on error. */
 int sl_renderer_reload_shaders(struct sl_app *app);
 
+/* Whether the next frame recomposes programs (a recompile parameter, a material, a light or the
+ * debug view changed): the viewer shows a status line over the previous image meanwhile. */
+bool sl_renderer_compose_pending(struct sl_app *app);
+/* Shows the last frame's display image in the window again (no rendering). */
+void sl_renderer_present(struct sl_app *app);
+
 /* Read-back of the last frame (rows top to bottom). */
 bool sl_renderer_read(struct sl_app *app, const char *resource, float *rgba);
 

@@ -14,6 +14,7 @@ bool sl_gui_wants_mouse(void) { return false; }
 bool sl_gui_wants_keyboard(void) { return false; }
 bool sl_ui_begin(const char *t, float x, float y, float w, float h, float a) { return false; }
 bool sl_ui_begin_overlay(const char *id, float r, float g, float b, float a) { return false; }
+bool sl_ui_begin_overlay_right(const char *id, float r, float g, float b, float a) { return false; }
 void sl_ui_end(void) {}
 bool sl_ui_header(const char *l, bool o) { return false; }
 bool sl_ui_tree_push(const char *l, bool o) { return false; }
