@@ -55,3 +55,7 @@ set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 
 sl_add_test(pass_order SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_pass_order.c)
 target_compile_definitions(test_pass_order PRIVATE SL_TEST_PLUGIN_DIR="${SL_TP_DIR}")
 add_dependencies(test_pass_order ${SL_TEST_PLUGINS})
+
+# --explain lists vertex hooks with the fragment chunks of each material's program.
+add_test(NAME explain_vertex_hooks COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/explain_vertex_hooks.sh $<TARGET_FILE:shadelab>)
+set_tests_properties(explain_vertex_hooks PROPERTIES ENVIRONMENT "${SL_TEST_ENV};SHADELAB_PLUGIN_PATH=${SL_TP_DIR}" TIMEOUT 120)

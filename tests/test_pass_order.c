@@ -2,7 +2,9 @@
  * - a post pass a third party writes at SL_STAGE_POST (tp-good's gain, standing in for a bloom)
  *   runs before tonemap's pass (SL_STAGE_TONEMAP) whichever plugin loads first;
  * - a plugin is off while a plugin it requires (`dependencies`) is switched off, live or at start,
- *   and back on with it. */
+ *   and back on with it;
+ * - a plugin's vertex hook (tp-good's tp_vertex, gated on the material key tp_lift) moves the
+ *   geometry, and switching the plugin off live gives the fresh start's programs and pixels. */
 #include "check.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
@@ -61,5 +63,38 @@ int main(void) {
     sl_harness_structure_of(h, &s);
     CHECK(index_of(&s, "tp-requires-good-gain") >= 0);
     sl_harness_destroy(h);
+
+    /* vertex hook: a sphere lifted by 0.5 renders differently; off live == off from the start */
+    const char *scene = "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 4], \"target\": [0, 0, 0]}],"
+                        " \"materials\": [{\"name\": \"m\", \"tp_lift\": 0.5}],"
+                        " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 0.5}, \"material\": \"m\"}],"
+                        " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3}]}";
+    static float on[32 * 32 * 4], live[32 * 32 * 4], fresh[32 * 32 * 4];
+    sl_harness_structure s_live, s_fresh;
+    const char *const tp[] = {"tp-good", NULL};
+    h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 32, .height = 32,
+                                             .scene_json = scene, .plugins = tp, .strict = true},
+                          err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    if (!h) return check_result();
+    CHECK(sl_harness_render(h, on));
+    CHECK(sl_harness_set(h, "tp-good.enabled=false", err, sizeof err));
+    sl_harness_set_frame(h, 0);
+    CHECK(sl_harness_render(h, live));
+    sl_harness_structure_of(h, &s_live);
+    sl_harness_destroy(h);
+    h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 32, .height = 32,
+                                             .scene_json = scene, .plugins = tp, .strict = true,
+                                             .settings = (const char *[]){"tp-good.enabled=false", NULL}},
+                          err, sizeof err);
+    CHECK(h && sl_harness_render(h, fresh));
+    if (h) sl_harness_structure_of(h, &s_fresh);
+    sl_harness_destroy(h);
+    sl_compare c;
+    sl_harness_compare(on, live, 32, 32, 1e-3, &c);
+    CHECK_MSG(c.pixels_over > 20, "the vertex hook moved nothing (%ld pixels differ)", c.pixels_over);
+    sl_harness_compare(live, fresh, 32, 32, 1e-6, &c);
+    CHECK_MSG(c.max_abs <= 1e-6 && sl_harness_structure_equal(&s_live, &s_fresh),
+              "vertex hook off live differs from the fresh start (max %g)", c.max_abs);
     return check_result();
 }

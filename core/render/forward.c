@@ -146,7 +146,11 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         for (int i = 0; i < na; i++) ADD(ambient_hooks[i]);
         ADD(view);
     }
-    for (int i = 0; i < nv; i++) owners |= 1ull << (vertex_hooks[i]->owner & 63);
+    for (int i = 0; i < nv; i++) {
+        owners |= 1ull << (vertex_hooks[i]->owner & 63);
+        sl_sb_printf(&explain, "%s%s:%s (vertex)", explain.len ? ", " : "", P->items[vertex_hooks[i]->owner]->id,
+                     vertex_hooks[i]->d.function);
+    }
 #undef ADD
 
     /* ---- common prelude: defines and uniforms for the owners involved ---- */

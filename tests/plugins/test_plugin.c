@@ -93,6 +93,8 @@ static sl_status tp_create(const sl_host *host, void **user) {
          .description = "Materials with this key get the tint surface hook."},
         {.struct_size = sizeof(sl_param_desc), .id = "tp_scale", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {1}}, .description = "Scales the test model (a key shared by every variant)."},
+        {.struct_size = sizeof(sl_param_desc), .id = "tp_lift", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
+         .description = "Materials with this key get the vertex hook: object-space y raised by it."},
         {.struct_size = sizeof(sl_param_desc), .id = "override_pass", .type = SL_PARAM_BOOL,
          .description = "Runs the SL_DRAW_MATERIALS prepass."},
         {.struct_size = sizeof(sl_param_desc), .id = "level", .type = SL_PARAM_INT, .default_value = {.i = 2},
@@ -105,6 +107,8 @@ static sl_status tp_create(const sl_host *host, void **user) {
          .function = "tp_surface", .when_material_has = "tp_mark"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SHADING_MODEL, .file = TP_GLSL,
          .function = "tp_model", .name = TP_MODEL},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_VERTEX, .file = TP_GLSL,
+         .function = "tp_vertex", .when_material_has = "tp_lift"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = TP_GLSL,
          .function = "tp_view", .name = TP_ID "-view", .description = "constant test colour"},
     };

@@ -1,4 +1,7 @@
-// Test plugin GLSL: a surface hook, a shading model and a debug view.
+// Test plugin GLSL: a surface hook, a vertex hook, a shading model and a debug view.
+#ifdef SL_MAT_HAS_TP_LIFT
+void tp_vertex(inout SlVertex v) { v.position.y += sl_mat_tp_lift; }
+#endif
 #ifdef SL_MAT_HAS_TP_MARK // the hook is only called for such materials; tp-good's tint uniform
 void tp_surface(inout SlSurface s) { s.base_color *= tp_good_tint; }
 #endif
