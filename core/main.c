@@ -283,7 +283,7 @@ int main(int argc, char **argv) {
             free(ref_copy);
             return die(err);
         }
-        fprintf(stderr, "reference for %s: %s\n", c.reference, ref_description);
+        SL_INFO("reference for %s: %s", c.reference, ref_description);
     }
     if (c.auto_quality && !sl_autoquality_apply(&app, c.auto_quality, err, sizeof err)) { sl_app_shutdown(&app); free(ref_copy); return die(err); }
     if (c.list_plugins || c.dump_params || c.list_views || c.help_keys) {
@@ -318,14 +318,14 @@ int main(int argc, char **argv) {
             record(&rec, sl_renderer_stats(&app));
             if (app.backend.has_window) { glfwPollEvents(); sl_backend_swap(&app.backend); }
             if (frames > 1 && now_ms() - last_report > 2000) {
-                fprintf(stderr, "frame %d of %d\n", f + 1, frames);
+                SL_INFO("frame %d of %d", f + 1, frames);
                 last_report = now_ms();
             }
         }
         if (c.output) {
             if (!sl_app_save(&app, c.output, err, sizeof err)) rc = die(err);
-            else fprintf(stderr, "wrote %s (%dx%d, %s%s)\n", c.output, app.backend.width, app.backend.height,
-                         app.backend.name, app.backend.has_window ? "" : ", headless");
+            else SL_INFO("wrote %s (%dx%d, %s%s)", c.output, app.backend.width, app.backend.height, app.backend.name,
+                         app.backend.has_window ? "" : ", headless");
         }
         if (c.stats && !write_stats(c.stats, &app, &rec, first_frame_ms, warmup)) rc = 1;
         if (c.bench) {

@@ -26,6 +26,16 @@ done
 check "$exe" --headless --size 64x48 --frames 3 --stats "$out/stats.json" --output "$out/s.exr"
 check grep -q '"forward"' "$out/stats.json"
 check test -s "$out/s.exr"
+# -q: nothing on stdout or stderr (no "wrote", no frame progress), the file still written;
+# without it the "wrote" line is there
+rm -f "$out/quiet.png"
+msg=$("$exe" --headless -q --frames 2 --size 32x32 --output "$out/quiet.png" 2>&1)
+check test $? -eq 0
+check test -z "$msg"
+[ -z "$msg" ] || echo "-q printed: $msg"
+check test -s "$out/quiet.png"
+msg=$("$exe" --headless --frames 2 --size 32x32 --output "$out/quiet.png" 2>&1)
+check grep -qF "wrote $out/quiet.png" <<<"$msg"
 check "$exe" --dump-params
 check "$exe" --list-plugins
 
