@@ -57,6 +57,16 @@ bool sl_harness_render(sl_harness *h, float *rgba) {
     return sl_app_render_frame(&h->app) && (!rgba || sl_app_read_color(&h->app, rgba));
 }
 
+bool sl_harness_get(sl_harness *h, const char *id, char *text, size_t n) {
+    const sl_param *q = sl_params_find(&h->app.params, id);
+    if (!q) return false;
+    const float *f = q->value.f; /* floats in full (sl_param_format rounds for display) */
+    if (q->desc.type == SL_PARAM_FLOAT) snprintf(text, n, "%.9g", f[0]);
+    else if (q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3) snprintf(text, n, "%.9g,%.9g,%.9g", f[0], f[1], f[2]);
+    else sl_param_format(q, &q->value, text, n);
+    return true;
+}
+
 void sl_harness_set_frame(sl_harness *h, uint64_t frame_index) { h->app.frame_index = frame_index; }
 
 int sl_harness_plugins(sl_harness *h, const char **ids, int max) {

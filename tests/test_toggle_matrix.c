@@ -12,7 +12,8 @@
  * Scenes that load three or more plugins also switch every pair off together. Then every plugin's
  * key bindings and debug views must change the image on at least one scene and give finite pixels
  * on every scene that loads the plugin; every other global parameter is switched too, and each
- * change must give finite pixels (parameters that change nothing on any bundled scene are listed).
+ * change must give finite pixels (parameters that change nothing on any bundled scene are listed)
+ * and, on the first scene that loads its plugin, the same frame as a fresh start given it.
  *
  * A failing cell names the scene, the plugin(s) and what differs (the pass list, the program of a
  * material, or the pixels). Small images keep the whole matrix inside the CI budget. */
@@ -116,6 +117,7 @@ typedef struct feature {
     char plugin[64], what[160]; /* "key Z (zero_specular)", "debug view ggx-d", "param exposure" */
     bool must_change;           /* keys and debug views: must change the image somewhere */
     bool changed, tried;
+    bool fresh_checked;         /* params: live set compared with a fresh start once */
 } feature;
 static feature features[512];
 static int feature_count;
@@ -169,9 +171,14 @@ static bool other_value(const sl_param_desc *d, char *text, size_t n) {
     return false;
 }
 
+/* A parameter set live, to compare with a fresh start that is given the same setting. */
+typedef struct pending { char set[256]; frame *live; } pending;
+static pending pendings[256];
+static int pending_count;
+
 /* --------------------------------------------------------------------------- the matrix */
 
-static int cells, failed_cells;
+static int cells, failed_cells, params_checked;
 
 static void toggle_cell(const char *scene, const char *path, const char **ids, int nids, const char *off_a,
                         const char *off_b, sl_harness **live, const frame *first) {
@@ -246,6 +253,9 @@ static void cover_plugin(const char *scene, sl_harness *h, const char *plugin, c
         for (int j = 0; j < nk && j < 32; j++) keyed |= keys[j]->param && !strcmp(keys[j]->param, d->id);
         snprintf(what, sizeof what, "%s %s", keyed ? "key-bound param" : "param", d->id);
         feature *ft = feature_get(plugin, what, keyed);
+        char before[128], full[160];
+        snprintf(full, sizeof full, "%s.%s", plugin, d->id);
+        if (!sl_harness_get(h, full, before, sizeof before)) continue;
         snprintf(set, sizeof set, "%s.%s=%s", plugin, d->id, text);
         if (!sl_harness_set(h, set, err, sizeof err)) {
             CHECK_MSG(0, "%s: --set %s: %s", scene, set, err);
@@ -254,14 +264,15 @@ static void cover_plugin(const char *scene, sl_harness *h, const char *plugin, c
         capture(h, f);
         CHECK_MSG(f->ok && nonfinite(f) == 0, "%s: %s gives finite pixels", scene, set);
         if (ft) ft->tried = true, ft->changed |= differs(f, first);
-        /* back to the default */
-        char def[128] = "";
-        if (d->type == SL_PARAM_BOOL) snprintf(def, sizeof def, "%s", d->default_value.b ? "true" : "false");
-        else if (d->type == SL_PARAM_ENUM) snprintf(def, sizeof def, "%s", d->enum_values[d->default_value.i]);
-        else if (d->type == SL_PARAM_INT) snprintf(def, sizeof def, "%d", d->default_value.i);
-        else if (d->type == SL_PARAM_FLOAT) snprintf(def, sizeof def, "%.9g", d->default_value.f[0]);
-        else snprintf(def, sizeof def, "%.9g,%.9g,%.9g", d->default_value.f[0], d->default_value.f[1], d->default_value.f[2]);
-        snprintf(set, sizeof set, "%s.%s=%s", plugin, d->id, def);
+        if (ft && !ft->fresh_checked && pending_count < 256) {
+            ft->fresh_checked = true;
+            pending *p = &pendings[pending_count++];
+            snprintf(p->set, sizeof p->set, "%s", set);
+            p->live = malloc(sizeof *p->live);
+            *p->live = *f;
+        }
+        /* back to the value it had */
+        snprintf(set, sizeof set, "%s.%s=%s", plugin, d->id, before);
         sl_harness_set(h, set, err, sizeof err);
     }
     for (int i = 0; i < nv && i < 32; i++) {
@@ -337,14 +348,39 @@ int main(int argc, char **argv) {
         if (!h) h = open_scene(path, settings, err, sizeof err);
         for (int i = 0; h && i < nids; i++) cover_plugin(names[s], h, ids[i], first);
         sl_harness_destroy(h);
+        /* each parameter changed live (on the first scene that loads its plugin) equals a fresh
+         * start given the same setting */
+        for (int i = 0; i < pending_count; i++) {
+            pending *p = &pendings[i];
+            const char *with[10];
+            int k = base_settings(ids, nids, with);
+            with[k++] = p->set;
+            with[k] = NULL;
+            frame *f = calloc(1, sizeof *f);
+            char why[512];
+            h = open_scene(path, with, err, sizeof err);
+            CHECK_MSG(h != NULL, "%s: a fresh start with %s opens: %s", names[s], p->set, err);
+            if (h) {
+                capture(h, f);
+                sl_harness_destroy(h);
+                bool same = same_frame(p->live, f, why, sizeof why);
+                if (!same) printf("FAIL %s: %s live differs from a fresh start: %s\n", names[s], p->set, why);
+                CHECK_MSG(same, "%s: %s live == fresh", names[s], p->set);
+                params_checked++;
+            }
+            free(f);
+            free(p->live);
+        }
+        pending_count = 0;
         free(first);
     }
 
-    printf("\n%d toggle cells, %d failed\n", cells, failed_cells);
+    printf("\n%d toggle cells, %d failed; %d parameters set live compared with a fresh start\n", cells, failed_cells,
+           params_checked);
     for (int i = 0; i < feature_count; i++) {
         feature *f = &features[i];
         if (!f->tried) continue;
-        if (f->must_change) CHECK_MSG(f->changed, "%s %s changes the image on at least one bundled scene", f->plugin, f->what);
+        if (f->must_change && !only) CHECK_MSG(f->changed, "%s %s changes the image on at least one bundled scene", f->plugin, f->what);
         else if (!f->changed) printf("note: %s %s changes nothing on any bundled scene at %dx%d\n", f->plugin, f->what, W, H);
     }
     for (int i = 0; i < count; i++) free(names[i]);
