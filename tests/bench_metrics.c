@@ -5,6 +5,7 @@
 #include "autoquality.h"
 #include "bench.h"
 #include "check.h"
+#include "image/image.h"
 #include "metrics.h"
 #include "pareto.h"
 #include <math.h>
@@ -266,6 +267,64 @@ static void test_outputs(void) {
     sl_bench_result_free(&r);
 }
 
+/* The chart keeps everything inside the picture: a long title (reference settings) wraps, and
+ * long labels of the slowest settings are written left of their points. Nothing may be drawn in
+ * the 8 px next to the left and right edges (the plot's border is 25 px from the right edge). */
+static void test_chart_edges(void) {
+    sl_bench_result r = {0};
+    r.scene = strdup("scenes/a-scene-with-a-rather-long-name.json");
+    r.plugin = strdup("core");
+    r.backend = strdup("osmesa");
+    r.renderer = strdup("llvmpipe (LLVM 15.0.6, 256 bits)");
+    r.timing_mode = strdup("glfinish");
+    r.width = 320;
+    r.height = 180;
+    r.frames = 30;
+    r.warmup = 5;
+    r.rounds = 1;
+    char ref[600] = "";
+    for (int i = 0; i < 12; i++) snprintf(ref + strlen(ref), sizeof ref - strlen(ref), "%score.setting_number_%d=%d", i ? " " : "", i, i);
+    r.reference.settings = strdup(ref);
+    r.reference.accumulate = 1;
+    r.reference.scale = 2;
+    strcpy(r.created, "2024-01-01T00:00:00Z");
+    const double ms[] = {1, 6, 9.5, 10}, rmse[] = {0.02, 0.006, 0.004, 0};
+    r.row_count = 4;
+    r.rows = calloc(4, sizeof *r.rows);
+    for (int i = 0; i < 4; i++) {
+        char s[200];
+        snprintf(s, sizeof s, "core.ssaa=%d core.anisotropy=%d core.a_long_knob_name=a-long-value-%d", i + 1, 1 << i, i);
+        r.rows[i] = (sl_bench_row){.settings = strdup(s), .label = sl_bench_label(s, "core"), .ok = true, .frames = 30,
+                                   .frame_ms_median = ms[i], .error = {.rmse = rmse[i], .psnr = 30 + i, .ssim = 1 - rmse[i]}};
+    }
+    sl_bench_mark_fronts(&r);
+    char dir[] = "/tmp/shadelab-chart-edges-XXXXXX", path[600], err[1024];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/edges.png", dir);
+    int w = sl_bench_write_chart(&r, path, SL_METRIC_RMSE, err, sizeof err);
+    CHECK_MSG(w == 1 || (w == 0 && strstr(err, "gnuplot not found")), "%d: %s", w, err);
+    sl_image img = {0};
+    if (w == 1 && sl_image_load(&img, path, err, sizeof err)) {
+        int ink_left = 0, ink_right = 0;
+        for (int y = 0; y < img.height; y++)
+            for (int x = 0; x < 8; x++)
+                for (int c = 0; c < 3; c++) {
+                    ink_left += img.pixels[((size_t)y * img.width + x) * 4 + c] < 0.9f;
+                    ink_right += img.pixels[((size_t)y * img.width + img.width - 1 - x) * 4 + c] < 0.9f;
+                }
+        CHECK_MSG(ink_left == 0 && ink_right == 0, "%s: %d / %d dark samples within 8 px of the left / right edge", path,
+                  ink_left, ink_right);
+        sl_image_free(&img);
+    } else if (w == 1) {
+        CHECK_MSG(false, "%s", err);
+    } else {
+        printf("test_chart_edges: %s (skipped)\n", err);
+    }
+    unlink(path);
+    rmdir(dir);
+    sl_bench_result_free(&r);
+}
+
 int main(void) {
     test_rmse_psnr_relmse();
     test_ssim();
@@ -273,5 +332,6 @@ int main(void) {
     test_pareto();
     test_choose();
     test_outputs();
+    test_chart_edges();
     return check_result();
 }

@@ -199,6 +199,59 @@ static void gp_string(FILE *f, const char *s) {
     fputc('"', f);
 }
 
+/* The chart's geometry, fixed so that where a label ends can be computed: 960×640 px, DejaVu Sans
+ * 10 (labels measure ≈ 7 px a character, 7.5 assumed so estimates err towards "does not fit";
+ * gnuplot's `char` unit is 8.3 px), the plot from 9.5 % to 97.4 % of the width, the x axis from
+ * 0 to 12 % past the slowest setting (room for the key and the labels). */
+enum { CHART_W = 960, CHART_H = 640 };
+static const double chart_char_px = 7.5, chart_char_unit_px = 8.3;
+static const double chart_plot_left = 0.095, chart_plot_right = 0.974, chart_x_room = 1.12;
+#define CHART_TITLE_CHARS 118 /* a title line: the chart's width less a margin, in characters */
+
+/* Copies s into out with line breaks (at spaces, else mid-word) so no line exceeds width
+ * characters (UTF-8 sequences count as one); existing '\n' are kept. */
+static void wrap_text(const char *s, char *out, size_t n, int width) {
+    size_t o = 0, line_start = 0, last_space = (size_t)-1;
+    int col = 0;
+    for (; *s && o + 1 < n; s++) {
+        out[o] = *s;
+        if (*s == '\n') { col = 0, line_start = o + 1, last_space = (size_t)-1; o++; continue; }
+        if ((*s & 0xc0) != 0x80) col++; /* not a UTF-8 continuation byte */
+        if (*s == ' ') last_space = o;
+        o++;
+        if (col > width) {
+            if (last_space != (size_t)-1 && last_space > line_start) {
+                out[last_space] = '\n';
+                line_start = last_space + 1;
+            } else if (o + 1 < n) { /* one word longer than a line: break it before this character */
+                memmove(out + o, out + o - 1, 1);
+                out[o - 1] = '\n';
+                line_start = o;
+                o++;
+            }
+            last_space = (size_t)-1;
+            col = 0;
+            for (size_t k = line_start; k < o; k++) col += (out[k] & 0xc0) != 0x80;
+        }
+    }
+    out[o] = 0;
+}
+
+/* Characters of a label (UTF-8 sequences count as one). */
+static int text_chars(const char *s) {
+    int c = 0;
+    for (; *s; s++) c += (*s & 0xc0) != 0x80;
+    return c;
+}
+
+/* 1 when a label written to the right of its point (offset 0.8 char) would pass the chart's right
+ * edge: it is then written to the left of the point. x_end is where the x axis ends. */
+static int label_goes_left(double x, double x_end, const char *label) {
+    double left = chart_plot_left * CHART_W, width = (chart_plot_right - chart_plot_left) * CHART_W;
+    double x_px = left + (x_end > 0 ? x / x_end : 0) * width;
+    return x_px + 0.8 * chart_char_unit_px + text_chars(label) * chart_char_px > CHART_W - 4;
+}
+
 static int cmp_cost(const void *a, const void *b) {
     const double *x = a, *y = b;
     return x[0] < y[0] ? -1 : x[0] > y[0] ? 1 : (x[1] > y[1]) - (x[1] < y[1]);
@@ -215,14 +268,16 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     bool psnr = metric == SL_METRIC_PSNR;
     /* Zero errors cannot sit on a log axis and PSNR = inf on no axis: such settings (identical
      * to the reference) are drawn at the bottom (top for PSNR) with their own marker. */
-    double minpos = INFINITY, peak = -INFINITY;
+    double minpos = INFINITY, peak = -INFINITY, xmax = 0;
     for (int i = 0; i < res->row_count; i++) {
         const sl_bench_row *r = &res->rows[i];
         if (!r->ok) continue;
         double y = psnr ? r->error.psnr : sl_metric_value(&r->error, metric);
+        if (!isnan(y) && r->frame_ms_median > xmax) xmax = r->frame_ms_median;
         if (!psnr && y > 0 && y < minpos) minpos = y;
         if (psnr && isfinite(y) && y > peak) peak = y;
     }
+    double x_end = xmax > 0 && isfinite(xmax) ? xmax * chart_x_room : 0; /* 0: gnuplot's autoscale */
     double special_y = psnr ? (isfinite(peak) ? peak + 6 : 60) : (isfinite(minpos) ? minpos / 4 : 1e-6);
     char dir[] = "/tmp/shadelab-chart-XXXXXX";
     if (!mkdtemp(dir)) { snprintf(err, n, "mkdtemp: %s", strerror(errno)); return -1; }
@@ -233,7 +288,7 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     snprintf(script, sizeof script, "%s/chart.gp", dir);
     FILE *fp = fopen(pts, "w"), *ff = fopen(frt, "w"), *fz = fopen(zero, "w");
     double (*front)[2] = calloc(res->row_count + 1, sizeof *front);
-    int nf = 0, nz = 0, npts = 0, ndom = 0;
+    int nf = 0, nz = 0, npts = 0, ndom = 0, left[2] = {0, 0}; /* labels left of their point: [points, zero] */
     for (int i = 0; i < res->row_count && fp && ff && fz; i++) {
         const sl_bench_row *r = &res->rows[i];
         if (!r->ok) continue;
@@ -241,11 +296,15 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
         if (isnan(y)) continue;
         if (psnr ? isinf(y) : y <= 0) {
             y = special_y;
-            fprintf(fz, "%.6g %.6g \"%s\"\n", r->frame_ms_median, y, r->label);
+            int l = label_goes_left(r->frame_ms_median, x_end, r->label);
+            fprintf(fz, "%.6g %.6g \"%s\" %d\n", r->frame_ms_median, y, r->label, l);
             nz++;
+            left[1] += l;
         } else {
-            fprintf(fp, "%.6g %.6g \"%s\" %d\n", r->frame_ms_median, y, r->label, r->front[metric] ? 1 : 0);
+            int l = label_goes_left(r->frame_ms_median, x_end, r->label);
+            fprintf(fp, "%.6g %.6g \"%s\" %d %d\n", r->frame_ms_median, y, r->label, r->front[metric] ? 1 : 0, l);
             npts++;
+            left[0] += l;
             ndom += !r->front[metric];
         }
         if (r->front[metric]) { front[nf][0] = r->frame_ms_median; front[nf][1] = y; nf++; }
@@ -262,8 +321,8 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
                                : metric == SL_METRIC_RELMSE ? "relative MSE vs reference (eps 0.01, log scale)"
                                : metric == SL_METRIC_DSSIM  ? "1 - SSIM vs reference (display luma, log scale)"
                                                             : "PSNR vs reference (dB, peak 1, linear radiance; higher is better)";
-    char title[2048];
-    snprintf(title, sizeof title, "%s quality knobs on %s, %dx%d\n%s (%s), %s timing; reference: %s%s",
+    char title[2048], wrapped[2100];
+    snprintf(title, sizeof title, "%s quality knobs on %s, %dx%d\n%s (%s), %s timing\nreference: %s%s",
              res->plugin, res->scene, res->width, res->height, res->backend, res->renderer ? res->renderer : "?",
              res->timing_mode ? res->timing_mode : "?", res->reference.settings,
              res->reference.accumulate > 1 ? " (accumulated)" : "");
@@ -271,11 +330,13 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
         size_t u = strlen(title);
         snprintf(title + u, sizeof title - u, " at %dx the size, box-filtered", res->reference.scale);
     }
-    fprintf(g, "set terminal pngcairo size 960,640 font 'DejaVu Sans,10' noenhanced\n");
+    /* long titles (reference settings, file names) wrap instead of running off both edges */
+    wrap_text(title, wrapped, sizeof wrapped, CHART_TITLE_CHARS);
+    fprintf(g, "set terminal pngcairo size %d,%d font 'DejaVu Sans,10' noenhanced\n", CHART_W, CHART_H);
     fprintf(g, "set output ");
     gp_string(g, png);
-    fprintf(g, "\nset title ");
-    gp_string(g, title);
+    fprintf(g, "\nset lmargin at screen %g\nset rmargin at screen %g\nset title ", chart_plot_left, chart_plot_right);
+    gp_string(g, wrapped);
     fprintf(g, "\nset xlabel ");
     char xl[256];
     if (res->rounds > 1)
@@ -285,7 +346,9 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     gp_string(g, xl);
     fprintf(g, "\nset ylabel ");
     gp_string(g, metric_title);
-    fprintf(g, "\nset grid\nset key top right box opaque\nset xrange [0:*]\nset offsets 0, graph 0.12, 0, 0\n");
+    fprintf(g, "\nset grid\nset key top right box opaque\n");
+    if (x_end > 0) fprintf(g, "set xrange [0:%.9g]\n", x_end);
+    else fprintf(g, "set xrange [0:*]\nset offsets 0, graph %g, 0, 0\n", chart_x_room - 1);
     if (!psnr) fprintf(g, "set logscale y\nset format y '%%g'\n");
     fprintf(g, "plot ");
     bool first = true;
@@ -293,14 +356,25 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
         if (ndom) /* settings off the front: another setting is both cheaper and more accurate */
             fprintf(g, "'%s' using 1:($4 == 0 ? $2 : 1/0) with points pt 7 ps 1.3 lc rgb '#1f77b4' "
                        "title 'dominated setting', \\\n     ", pts);
-        fprintf(g, "'%s' using 1:2:3 with labels offset char 0.8,0.7 left tc rgb '#333333' notitle", pts);
+        /* labels right of their point, or left of it where they would pass the right edge (a
+         * plot whose points are all undefined is left out: gnuplot 5.4 crashes on it) */
+        if (left[0] < npts)
+            fprintf(g, "'%s' using 1:($5 == 0 ? $2 : 1/0):3 with labels offset char 0.8,0.7 left tc rgb '#333333' notitle%s",
+                    pts, left[0] ? ", \\\n     " : "");
+        if (left[0])
+            fprintf(g, "'%s' using 1:($5 != 0 ? $2 : 1/0):3 with labels offset char -0.8,0.7 right tc rgb '#333333' notitle", pts);
         first = false;
     }
     if (nz) {
-        fprintf(g, "%s'%s' using 1:2 with points pt 6 ps 1.8 lc rgb '#2ca02c' title '%s', \\\n", first ? "" : ", \\\n     ",
+        fprintf(g, "%s'%s' using 1:2 with points pt 6 ps 1.8 lc rgb '#2ca02c' title '%s'", first ? "" : ", \\\n     ",
                 zero, psnr ? "identical to the reference (PSNR = inf), drawn at the top"
                            : "error 0 (identical to the reference), drawn at the axis floor");
-        fprintf(g, "     '%s' using 1:2:3 with labels offset char 0.8,-0.7 left tc rgb '#333333' notitle", zero);
+        if (left[1] < nz)
+            fprintf(g, ", \\\n     '%s' using 1:($4 == 0 ? $2 : 1/0):3 with labels offset char 0.8,-0.7 left tc rgb '#333333' notitle",
+                    zero);
+        if (left[1])
+            fprintf(g, ", \\\n     '%s' using 1:($4 != 0 ? $2 : 1/0):3 with labels offset char -0.8,-0.7 right tc rgb '#333333' notitle",
+                    zero);
         first = false;
     }
     if (nf) fprintf(g, "%s'%s' using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#d62728' title 'Pareto front (settings no other beats on both time and error)'",
