@@ -8,6 +8,7 @@
 #include "image/image.h"
 #include "metrics.h"
 #include "pareto.h"
+#include "test_tmp.h"
 #include <math.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -237,7 +238,7 @@ static void test_outputs(void) {
     CHECK(!r.rows[2].front[SL_METRIC_RMSE] && r.rows[1].front[SL_METRIC_RMSE]);
     CHECK(!strcmp(r.rows[2].label, "ssaa=3"));
     char dir[512], path[600], err[1024];
-    snprintf(dir, sizeof dir, "%s/bench-metrics-test", SL_TEST_BUILD_DIR);
+    snprintf(dir, sizeof dir, "%s/bench-metrics", sl_test_dir());
     CHECK(sl_bench_mkdirs(dir, err, sizeof err));
     snprintf(path, sizeof path, "%s/synthetic.json", dir);
     CHECK(sl_bench_write_json(&r, path, SL_METRIC_RMSE, err, sizeof err));

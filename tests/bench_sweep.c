@@ -6,6 +6,7 @@
 #include "bench.h"
 #include "check.h"
 #include "fileio.h"
+#include "test_tmp.h"
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdlib.h>
@@ -21,7 +22,7 @@ static long file_size(const char *path) {
 
 int main(void) {
     char dir[512], cache[600], path[700], err[4096];
-    snprintf(dir, sizeof dir, "%s/bench-sweep-test-%d", SL_TEST_BUILD_DIR, (int)getpid());
+    snprintf(dir, sizeof dir, "%s/bench-sweep", sl_test_dir());
     snprintf(cache, sizeof cache, "%s/cache", dir);
     CHECK(sl_bench_mkdirs(dir, err, sizeof err));
     const char *settings[] = {"core.ssaa=1", "core.ssaa=4"};

@@ -17,6 +17,7 @@
  *                            frames the bounds and the sphere is lit at the Lambert value */
 #include <shadelab/harness.h>
 #include "check.h"
+#include "test_tmp.h"
 #include "scene/scene.h"
 #include <math.h>
 #include <stdio.h>
@@ -226,7 +227,7 @@ static void zero_area_triangles(void) {
      * vertices (collinear, repeated vertex) and carry zero normals; flat.obj: a quad whose
      * UVs are all equal, so no tangent can be derived from them. */
     char dir[512], quad[600], flat[600];
-    snprintf(dir, sizeof dir, "%s/stability-core-%d", SL_TEST_BUILD_DIR, (int)getpid());
+    snprintf(dir, sizeof dir, "%s/zero-area", sl_test_dir());
     char cmd[700];
     snprintf(cmd, sizeof cmd, "mkdir -p '%s'", dir);
     CHECK(system(cmd) == 0);

@@ -5,6 +5,7 @@
 #include "app.h"
 #include "log.h"
 #include "render/renderer.h"
+#include "test_tmp.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -83,11 +84,14 @@ int main(void) {
     expect_disabled("/tmp/definitely/not/here.so", "does not exist", NULL);
     expect_disabled(TP("tp-requires"), "requires plugin tp-nonexistent", "not found");
     {
-        FILE *f = fopen("not_a_library.so", "w");
-        fputs("this is text", f);
-        fclose(f);
-        char cwd[1024], path[1100];
-        snprintf(path, sizeof path, "%s/not_a_library.so", getcwd(cwd, sizeof cwd));
+        char path[1100];
+        snprintf(path, sizeof path, "%s/not_a_library.so", sl_test_dir());
+        FILE *f = fopen(path, "w");
+        CHECK(f != NULL);
+        if (f) {
+            fputs("this is text", f);
+            fclose(f);
+        }
         expect_disabled(path, "not a shared library", NULL);
     }
 

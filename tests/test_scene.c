@@ -4,6 +4,7 @@
 #include "check.h"
 #include "log.h"
 #include "scene/scene.h"
+#include "test_tmp.h"
 
 #include <float.h>
 #include <stdint.h>
@@ -293,7 +294,7 @@ static void test_inline_errors(void) {
     CHECK(!sl_scene_load_text(&s, NULL, "x", NULL, NULL, err, sizeof err));
     /* a NUL byte inside a file */
     char path[1024];
-    snprintf(path, sizeof path, "%s/scene_test_nul.json", SL_TEST_BUILD_DIR);
+    snprintf(path, sizeof path, "%s/scene_test_nul.json", sl_test_dir());
     FILE *f = fopen(path, "wb");
     CHECK(f != NULL);
     if (f) {

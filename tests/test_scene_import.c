@@ -5,6 +5,7 @@
 #include "check.h"
 #include "log.h"
 #include "scene/scene.h"
+#include "test_tmp.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -194,7 +195,7 @@ static void test_through_json(void) {
 static void test_bad_files(void) {
     /* a corrupt file gets assimp's reason, named with the path */
     char path[1024];
-    snprintf(path, sizeof path, "%s/scene_test_corrupt.glb", SL_TEST_BUILD_DIR);
+    snprintf(path, sizeof path, "%s/scene_test_corrupt.glb", sl_test_dir());
     FILE *f = fopen(path, "wb");
     CHECK(f != NULL);
     if (f) {
@@ -219,10 +220,12 @@ static void test_bad_files(void) {
 
     /* a missing file: every place looked in, with the reason */
     CHECK(!sl_scene_load_text(&s, "{ \"nodes\": [ { \"mesh\": { \"file\": \"nowhere/x.glb\" } } ] }",
-                              "missing.json", SL_TEST_DATA_DIR, &(sl_scene_load_opts){.data_dir = SL_TEST_BUILD_DIR},
+                              "missing.json", SL_TEST_DATA_DIR, &(sl_scene_load_opts){.data_dir = sl_test_dir()},
                               err, sizeof err));
     CHECK_CONTAINS(err, "'nowhere/x.glb' not found; looked in: scene directory " SL_TEST_DATA_DIR "/nowhere/x.glb (No such file or directory)");
-    CHECK_CONTAINS(err, "data directory " SL_TEST_BUILD_DIR "/nowhere/x.glb (No such file or directory)");
+    char expect[1200];
+    snprintf(expect, sizeof expect, "data directory %s/nowhere/x.glb (No such file or directory)", sl_test_dir());
+    CHECK_CONTAINS(err, expect);
 
     /* a directory is not a mesh */
     CHECK(!sl_scene_load_text(&s, "{ \"nodes\": [ { \"mesh\": { \"file\": \"scenes\" } } ] }",

@@ -20,6 +20,7 @@
 #include "envmap_io.h"
 #include "ggx_ref.h"
 #include "log.h"
+#include "test_tmp.h"
 #include <shadelab/harness.h>
 #include <dirent.h>
 #include <stdlib.h>
@@ -617,8 +618,7 @@ static void test_poles(void) {
 }
 
 int main(void) {
-    snprintf(dir, sizeof dir, "/tmp/envmap-test-XXXXXX");
-    if (!mkdtemp(dir)) { perror("mkdtemp"); return 1; }
+    snprintf(dir, sizeof dir, "%s", sl_test_dir()); /* removed at exit when every check passed */
     test_furnace();
     test_facing_away();
     test_linear();
@@ -630,9 +630,5 @@ int main(void) {
     test_chain_and_cache();
     test_cost();
     test_poles();
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    if (!check_failures_) run(cmd);
-    else fprintf(stderr, "files kept in %s\n", dir);
     return check_result();
 }

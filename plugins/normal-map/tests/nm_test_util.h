@@ -6,6 +6,7 @@
 
 #include "check.h"
 #include "nm_tools.h"
+#include "test_tmp.h"
 #include <cglm/cglm.h>
 #include <errno.h>
 #include <shadelab/harness.h>
@@ -68,10 +69,10 @@ static inline void nt_face_viewer(double n[3], const float vf[3]) {
     nt_normalize(n);
 }
 
-/* Scratch directory for generated files: <build>/tests/<name>/ (created). */
+/* Scratch directory for generated files: <test directory>/<name>/ (created; tests/test_tmp.h). */
 static inline const char *nt_scratch(const char *name) {
     static char dir[1024];
-    snprintf(dir, sizeof dir, "%s/tests/%s", SL_TEST_BUILD_DIR, name);
+    snprintf(dir, sizeof dir, "%s/%s", sl_test_dir(), name);
     mkdir(dir, 0777);
     return dir;
 }

@@ -9,6 +9,7 @@
  * Scenes are in millimetres (sss_radius = 1) unless stated. */
 #include "sss_test.h"
 #include "image/image.h"
+#include "test_tmp.h"
 
 static const char *const PLUGINS[] = {"sss", NULL};
 static const char *const METHODS[] = {"none", "wrap", "translucency", "texture-space", "screen-space", "pre-integrated"};
@@ -70,7 +71,7 @@ static bool stripe_profile(sl_harness *h, const char *label, double tol_abs, dou
 static void test_stripe(void) {
     /* the albedo map: 512×4, white for 8 texels (1 mm) around the middle */
     char tex[1024];
-    snprintf(tex, sizeof tex, "%s/tests/sss_stripe.exr", SL_TEST_BUILD_DIR);
+    snprintf(tex, sizeof tex, "%s/sss_stripe.exr", sl_test_dir());
     enum { TW = 512, TH = 4 };
     static float map[TW * TH * 4];
     for (int y = 0; y < TH; y++)
