@@ -6,7 +6,7 @@
  * a material without, say, a normal map compiles no normal-map code. Errors in a chunk are
  * reported with the plugin file and line (#line mapping).
  *
- * GLSL types available to every chunk (shaders/surface.glsl):
+ * GLSL types available to every chunk (shaders/common.glsl):
  *   struct SlVertex  { vec3 position; vec3 normal; vec4 tangent; vec2 uv; };      object space
  *   struct SlSurface { vec3 position; vec3 normal; vec3 geometric_normal;
  *                      vec3 tangent; vec3 bitangent; vec2 uv; vec3 view;        world space
@@ -23,8 +23,16 @@
  * models without masking.
  *
  * Hook signatures (FN is sl_shader_chunk_desc.function):
- *   VERTEX           void FN(inout SlVertex v)                   object space, before skinning
- *                                                                to world; sl_time available
+ *   VERTEX           void FN(inout SlVertex v)                   the mesh's object-space vertex,
+ *                                                                before the model transform
+ *                                                                (sl_model; normal by
+ *                                                                sl_normal_matrix); once per
+ *                                                                vertex in every program of the
+ *                                                                material: forward, depth-only
+ *                                                                (shadow maps) and
+ *                                                                SL_DRAW_MATERIALS, not in
+ *                                                                SL_DRAW_PROGRAM; sl_time and
+ *                                                                the parameter uniforms available
  *   SURFACE          void FN(inout SlSurface s)                  edits the surface record
  *                                                                (normal maps, gloss/AO maps)
  *   SHADING_MODEL    vec3 FN(SlSurface s, vec3 l, vec3 E)        outgoing radiance towards
