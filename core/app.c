@@ -172,7 +172,7 @@ bool sl_app_set(sl_app *app, const char *assignment, sl_param_source src, char *
         sl_mat_value *v = sl_app_material_value(app, m, key);
         if (!v) {
             const char *near = sl_params_nearest(&app->params, SL_SCOPE_MATERIAL, key);
-            snprintf(err, n, "material \"%s\": unknown key \"%s\"%s%s%s (keys come from the loaded plugins; see --dump-params)",
+            snprintf(err, n, "material \"%s\": no loaded plugin declares key \"%s\"%s%s%s (see --dump-params)",
                      name, key, near ? "; did you mean \"" : "", near ? near : "", near ? "\"?" : "");
             return false;
         }
@@ -210,7 +210,7 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
             sl_mat_value *v = sl_app_material_value(app, m, p->key);
             if (!v) {
                 const char *near = sl_params_nearest(&app->params, SL_SCOPE_MATERIAL, p->key);
-                SL_WARN("%s:%d: material \"%s\": unknown key \"%s\"%s%s%s (ignored; keys come from the loaded plugins)",
+                SL_WARN("%s:%d: material \"%s\": no loaded plugin declares key \"%s\"%s%s%s (ignored; see --dump-params)",
                         s->path, p->line, mat->name, p->key, near ? "; did you mean \"" : "", near ? near : "",
                         near ? "\"?" : "");
                 continue;

@@ -48,6 +48,7 @@ int main(void) {
     CHECK(init_text(&app, typo, NULL));
     CHECK_CONTAINS(logbuf, "base_colour");
     CHECK_CONTAINS(logbuf, "did you mean \"base_color\"");
+    CHECK_CONTAINS(logbuf, "no loaded plugin declares key \"base_colour\"");
     CHECK_CONTAINS(logbuf, ":3");
     sl_app_shutdown(&app);
 

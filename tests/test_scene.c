@@ -187,12 +187,13 @@ static void test_unknown_keys_warn(void) {
     int before = sl_log_count(SL_LOG_WARN);
     bool ok = load_fixture(&s, FIXTURE("unknown_keys.json"));
     CHECK_MSG(ok, "%s", err);
-    CHECK(sl_log_count(SL_LOG_WARN) - before == 5);
+    /* 4: the material key typo (line 5, "base_colour") is not the loader's to judge: only the loaded
+     * plugins' schema knows material keys, so the application reports it (test_core_bad_input) */
+    CHECK(sl_log_count(SL_LOG_WARN) - before == 4);
     CHECK_CONTAINS(logbuf, "unknown_keys.json:3:3: top level: unknown key \"camera\" ignored (did you mean 'cameras'?)");
     CHECK_CONTAINS(logbuf, "unknown_keys.json:4:");
     CHECK_CONTAINS(logbuf, "unknown key \"postion\" ignored (did you mean 'position'?)");
-    CHECK_CONTAINS(logbuf, "unknown_keys.json:5:");
-    CHECK_CONTAINS(logbuf, "\"base_colour\" is kept as a plugin property; did you mean 'base_color'?");
+    CHECK_MSG(!strstr(logbuf, "base_colour"), "the scene loader judged a material key: %s", logbuf);
     CHECK_CONTAINS(logbuf, "unknown_keys.json:7:");
     CHECK_CONTAINS(logbuf, "did you mean 'translate'?");
     CHECK_CONTAINS(logbuf, "unknown_keys.json:8:");

@@ -402,6 +402,10 @@ static bool get_prop(loader *L, const cJSON *v, const char *ctx, sl_prop_list *l
 
 /* ---- key checks ------------------------------------------------------------------------- */
 
+/* A table and its length, counted by the compiler: a key added to a table is never both read and
+ * reported as unknown because a hand-written count was not bumped. */
+#define KEYS(table) (table), (int)(sizeof(table) / sizeof *(table))
+
 static bool in_list(const char *key, const char *const *list, int count) {
     for (int i = 0; i < count; i++)
         if (strcmp(key, list[i]) == 0) return true;
@@ -522,11 +526,9 @@ static bool load_params(loader *L, const cJSON *obj) {
     return true;
 }
 
+/* The loader's own material keys; every other key is a property whose meaning (and whose near
+ * misses) only the loaded plugins' schema knows: the application checks it (sl_app). */
 static const char *const material_keys[] = {"name", "model", "cast_shadows"};
-/* Well-known property keys: near misses of these are reported as likely typos. */
-static const char *const material_known[] = {"name", "model", "cast_shadows", "base_color",
-                                             "base_color_map", "normal_map", "roughness",
-                                             "metallic", "alpha"};
 
 static bool load_materials(loader *L, const cJSON *arr) {
     char buf[96];
@@ -554,9 +556,9 @@ static bool load_materials(loader *L, const cJSON *arr) {
         bool cast = true;
         if ((v = cJSON_GetObjectItemCaseSensitive(o, "cast_shadows")) && !get_bool(L, v, ctx, &cast)) return false;
         L->scene->materials[mi].cast_shadows = cast;
-        if (!check_keys(L, o, ctx, material_known, 9, true)) return false;
+        if (!check_keys(L, o, ctx, KEYS(material_keys), true)) return false;
         for (const cJSON *e = o->child; e; e = e->next) {
-            if (in_list(e->string, material_keys, 3) || strcmp(e->string, "comment") == 0) continue;
+            if (in_list(e->string, KEYS(material_keys)) || strcmp(e->string, "comment") == 0) continue;
             if (!get_prop(L, e, ctx, &L->scene->materials[mi].props)) return false;
         }
     }
@@ -581,7 +583,7 @@ static bool load_cameras(loader *L, const cJSON *arr) {
         if (prev >= 0)
             return failf(L, o, "duplicate camera name '%s' (%s); names must be unique", name,
                          first_defined(prev < L->camera_lines_n ? L->camera_lines[prev] : 0, buf, sizeof buf));
-        if (!check_keys(L, o, ctx, camera_keys, 7, false)) return false;
+        if (!check_keys(L, o, ctx, KEYS(camera_keys), false)) return false;
         int ci = sl_scene_add_camera(L->scene, name);
         if (ci < 0 || !remember_line(&L->camera_lines, &L->camera_lines_n, ci, line_of(L, o)))
             return failf(L, o, "out of memory");
@@ -630,7 +632,7 @@ static bool load_lights(loader *L, const cJSON *arr) {
         const char *type = NULL;
         if (!v) return failf(L, o, "%s has no \"type\" (\"directional\", \"point\" or a plugin's light type such as \"spot\")", ctx);
         if (!get_string(L, v, ctx, &type)) return false;
-        if (!check_keys(L, o, ctx, light_keys, 8, true)) return false;
+        if (!check_keys(L, o, ctx, KEYS(light_keys), true)) return false;
         int li = sl_scene_add_light(L->scene, name, type);
         if (li < 0) return failf(L, o, "out of memory");
         sl_light *l = &L->scene->lights[li];
@@ -646,7 +648,7 @@ static bool load_lights(loader *L, const cJSON *arr) {
         if (strcmp(type, "point") == 0 && cJSON_GetObjectItemCaseSensitive(o, "direction"))
             warnf(L, cJSON_GetObjectItemCaseSensitive(o, "direction"), "%s: a point light has no direction (ignored)", ctx);
         for (const cJSON *e = o->child; e; e = e->next) {
-            if (in_list(e->string, light_keys, 8) || strcmp(e->string, "comment") == 0) continue;
+            if (in_list(e->string, KEYS(light_keys)) || strcmp(e->string, "comment") == 0) continue;
             if (!get_prop(L, e, ctx, &L->scene->lights[li].props)) return false;
         }
     }
@@ -669,7 +671,7 @@ static bool load_environment(loader *L, const cJSON *o) {
     char buf[96];
     const char *ctx = "environment";
     if (!cJSON_IsObject(o)) return failf(L, o, "\"environment\" must be an object, found %s", describe(o, buf, sizeof buf));
-    if (!check_keys(L, o, ctx, environment_keys, 4, true)) return false;
+    if (!check_keys(L, o, ctx, KEYS(environment_keys), true)) return false;
     sl_environment *env = &L->scene->environment;
     const cJSON *v;
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "map"))) {
@@ -688,7 +690,7 @@ static bool load_environment(loader *L, const cJSON *o) {
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "intensity")) && !get_number(L, v, ctx, &env->intensity, 0.0, false, FLT_MAX)) return false;
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "yaw")) && !get_number(L, v, ctx, &env->yaw_deg, -FLT_MAX, false, FLT_MAX)) return false;
     for (const cJSON *e = o->child; e; e = e->next) {
-        if (in_list(e->string, environment_keys, 4) || strcmp(e->string, "comment") == 0) continue;
+        if (in_list(e->string, KEYS(environment_keys)) || strcmp(e->string, "comment") == 0) continue;
         if (!get_prop(L, e, ctx, &env->props)) return false;
     }
     return true;
@@ -727,7 +729,7 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
     if (strcmp(kind, "sphere") == 0) {
         float radius = 1.0f;
         int segments = 64, rings = 32;
-        if (!check_keys(L, mesh, ctx, sphere_keys, 4, false)) return false;
+        if (!check_keys(L, mesh, ctx, KEYS(sphere_keys), false)) return false;
         OPT_NUM("radius", &radius, 0.0, true, FLT_MAX);
         OPT_INT("segments", &segments, 3, 2048);
         OPT_INT("rings", &rings, 2, 1024);
@@ -735,7 +737,7 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
     } else if (strcmp(kind, "plane") == 0) {
         float size[2] = {10.0f, 10.0f};
         int subdivisions = 1;
-        if (!check_keys(L, mesh, ctx, plane_keys, 3, false)) return false;
+        if (!check_keys(L, mesh, ctx, KEYS(plane_keys), false)) return false;
         if ((v = cJSON_GetObjectItemCaseSensitive(mesh, "size"))) {
             if (cJSON_IsArray(v)) {
                 if (!get_vec(L, v, ctx, 2, size, false)) return false;
@@ -750,13 +752,13 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
         ok = sl_mesh_plane(out, size[0], size[1], subdivisions);
     } else if (strcmp(kind, "cube") == 0) {
         float size = 1.0f;
-        if (!check_keys(L, mesh, ctx, cube_keys, 2, false)) return false;
+        if (!check_keys(L, mesh, ctx, KEYS(cube_keys), false)) return false;
         OPT_NUM("size", &size, 0.0, true, FLT_MAX);
         ok = sl_mesh_cube(out, size);
     } else if (strcmp(kind, "torus") == 0) {
         float major = 1.0f, minor = 0.25f;
         int segments = 64, sides = 32;
-        if (!check_keys(L, mesh, ctx, torus_keys, 5, false)) return false;
+        if (!check_keys(L, mesh, ctx, KEYS(torus_keys), false)) return false;
         OPT_NUM("major_radius", &major, 0.0, true, FLT_MAX);
         OPT_NUM("minor_radius", &minor, 0.0, true, FLT_MAX);
         OPT_INT("segments", &segments, 3, 2048);
@@ -768,7 +770,7 @@ static bool load_primitive(loader *L, const cJSON *mesh, const char *ctx, const 
     } else {
         float size = 1.0f;
         int tessellation = 16;
-        if (!check_keys(L, mesh, ctx, teapot_keys, 3, false)) return false;
+        if (!check_keys(L, mesh, ctx, KEYS(teapot_keys), false)) return false;
         OPT_NUM("size", &size, 0.0, true, FLT_MAX);
         OPT_INT("tessellation", &tessellation, 1, 128);
         ok = sl_mesh_teapot(out, size, tessellation);
@@ -791,16 +793,16 @@ static bool load_mesh(loader *L, const cJSON *mesh, int node, int material, cons
     if (!prim && !file) {
         const char *const both[] = {"primitive", "file"};
         char hint[600] = "";
-        if (mesh->child) key_hint(hint, sizeof hint, mesh->child->string, both, 2, "keys");
+        if (mesh->child) key_hint(hint, sizeof hint, mesh->child->string, KEYS(both), "keys");
         return failf(L, mesh, "%s: needs \"primitive\" (sphere, plane, cube, torus, teapot) or \"file\"%s",
                      ctx, hint);
     }
     if (prim) {
         const char *kind;
         if (!get_string(L, prim, ctx, &kind)) return false;
-        if (!in_list(kind, primitive_names, 5)) {
+        if (!in_list(kind, KEYS(primitive_names))) {
             char hint[600];
-            key_hint(hint, sizeof hint, kind, primitive_names, 5, "primitives");
+            key_hint(hint, sizeof hint, kind, KEYS(primitive_names), "primitives");
             return failf(L, prim, "%s: unknown primitive '%s'%s", ctx, kind, hint);
         }
         sl_mesh_data data;
@@ -819,7 +821,7 @@ static bool load_mesh(loader *L, const cJSON *mesh, int node, int material, cons
         if (!cJSON_IsBool(v)) return failf(L, v, "%s: \"flip_v\" must be true or false", ctx);
         flip_v = cJSON_IsTrue(v);
     }
-    if (!check_keys(L, mesh, ctx, file_keys, 3, false)) return false;
+    if (!check_keys(L, mesh, ctx, KEYS(file_keys), false)) return false;
     char why[2048];
     char *path = sl_scene_resolve_path(L->scene, L->data_dir, rel, why, sizeof why);
     if (!path) return failf(L, file, "%s: mesh file %s", ctx, why);
@@ -867,7 +869,7 @@ static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *cou
         return failf(L, cJSON_GetObjectItemCaseSensitive(o, "name"), "duplicate node name '%s' "
                      "(%s); names must be unique", name,
                      first_defined(prev < L->node_lines_n ? L->node_lines[prev] : 0, buf, sizeof buf));
-    if (!check_keys(L, o, ctx, node_keys, 9, false)) return false;
+    if (!check_keys(L, o, ctx, KEYS(node_keys), false)) return false;
     const cJSON *v;
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "parent"))) {
         const char *pname;
@@ -1155,7 +1157,7 @@ static bool load(loader *L, const char *dir) {
         goto done;
     }
     s->environment.intensity = 1.0f;
-    if (!check_keys(L, root, "top level", top_keys, 7, false)) {
+    if (!check_keys(L, root, "top level", KEYS(top_keys), false)) {
         ok = false;
         goto done;
     }
