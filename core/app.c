@@ -1,5 +1,6 @@
 #include "app.h"
 #include "core_plugin.h"
+#include "host/host.h"
 #include "image/image.h"
 #include "log.h"
 #include "render/composer.h"
@@ -11,7 +12,6 @@
 #include <string.h>
 #include <strings.h>
 
-void sl_plugins_set_gl_app(sl_app *app);
 
 /* ------------------------------------------------------------ material and light values */
 
@@ -303,7 +303,7 @@ bool sl_app_set_debug_view(sl_app *app, const char *name, char *err, size_t n) {
     for (int i = 0; i < app->plugins.chunk_count; i++) {
         const sl_chunk_reg *c = &app->plugins.chunks[i];
         if (c->d.hook != SL_HOOK_DEBUG_VIEW && c->d.hook != SL_HOOK_DEBUG_VIEW_LIGHT) continue;
-        if (!sl_plugin_enabled(app, c->owner)) continue;
+        if (!sl_plugin_enabled(&app->plugins, c->owner)) continue;
         if (!strcmp(c->d.name, name)) {
             free(app->debug_view);
             app->debug_view = strdup(name);
@@ -316,6 +316,8 @@ bool sl_app_set_debug_view(sl_app *app, const char *name, char *err, size_t n) {
              best ? best : "", best ? "\"?" : "");
     return false;
 }
+
+static sl_host *make_host(void *app, int index) { return sl_host_make(app, index); }
 
 bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     memset(app, 0, sizeof *app);
@@ -337,12 +339,15 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     sl_scene_update_transforms(&app->scene);
 
     /* plugins: the core first, then the command line, then the scene's names */
-    sl_plugins_add_builtin(app, &sl_core_plugin);
+    app->plugins.params = &app->params;
+    app->plugins.make_host = make_host;
+    app->plugins.host_ctx = app;
+    sl_plugins_add_builtin(&app->plugins, &sl_core_plugin);
     free(app->plugins.items[0]->resource_dir);
     app->plugins.items[0]->resource_dir = strdup(sl_shader_dir());
-    for (int i = 0; i < opt->plugin_count; i++) sl_plugins_load(app, opt->plugins[i], "command line", true);
-    for (int i = 0; i < app->scene.plugin_count; i++) sl_plugins_load(app, app->scene.plugins[i], "scene", false);
-    sl_plugins_create_all(app);
+    for (int i = 0; i < opt->plugin_count; i++) sl_plugins_load(&app->plugins, opt->plugins[i], "command line", true);
+    for (int i = 0; i < app->scene.plugin_count; i++) sl_plugins_load(&app->plugins, app->scene.plugins[i], "scene", false);
+    sl_plugins_create_all(&app->plugins);
     if (!app->plugins.items[0]->ok) {
         snprintf(err, n, "the core failed to register its shaders (see above)");
         return false;
@@ -410,7 +415,7 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
     const char *renderer = (const char *)glGetString(GL_RENDERER);
     if (is_cpu_renderer(renderer)) app->backend.is_gpu = false;
     SL_DEBUG("backend %s: %s, OpenGL %s", app->backend.name, renderer, glGetString(GL_VERSION));
-    sl_plugins_set_gl_app(app);
+    sl_host_set_gl_app(app);
     if (!sl_renderer_create(app, err, n)) return false;
     for (int i = 1; i < app->plugins.count; i++) {
         sl_plugin_rec *r = app->plugins.items[i];
@@ -470,9 +475,9 @@ void sl_app_shutdown(sl_app *app) {
         }
         sl_renderer_destroy(app);
     }
-    sl_plugins_shutdown(app);
+    sl_plugins_shutdown(&app->plugins);
     if (app->gl_ready) sl_backend_destroy(&app->backend);
-    sl_plugins_set_gl_app(NULL);
+    sl_host_set_gl_app(NULL);
     if (app->materials) {
         for (int m = 0; m < app->scene.material_count; m++) {
             for (int i = 0; i < app->materials[m].count; i++) free(app->materials[m].values[i].str);

@@ -287,7 +287,7 @@ int main(int argc, char **argv) {
     }
     if (c.auto_quality && !sl_autoquality_apply(&app, c.auto_quality, err, sizeof err)) { sl_app_shutdown(&app); free(ref_copy); return die(err); }
     if (c.list_plugins || c.dump_params || c.list_views || c.help_keys) {
-        if (c.list_plugins) sl_plugins_print(&app, stdout);
+        if (c.list_plugins) sl_plugins_print(&app.plugins, stdout);
         if (c.dump_params) sl_params_dump_json(&app.params, stdout);
         if (c.list_views) list_views(&app);
         if (c.help_keys) sl_viewer_print_keys(&app, stdout);

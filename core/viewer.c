@@ -131,7 +131,7 @@ void sl_viewer_print_keys(sl_app *app, FILE *f) {
 void sl_viewer_trigger_binding(sl_app *app, const sl_key_binding *b) {
     const sl_key_reg *k = &app->plugins.keys[b->reg];
     /* a disabled plugin's keys do nothing, except one bound to its own "enabled" (turn it back on) */
-    if (!sl_plugin_enabled(app, k->owner) && !(k->d.param && !strcmp(k->d.param, "enabled"))) return;
+    if (!sl_plugin_enabled(&app->plugins, k->owner) && !(k->d.param && !strcmp(k->d.param, "enabled"))) return;
     if (k->d.on_press) { k->d.on_press(k->d.user); return; }
     if (!k->d.param) return;
     char id[300], err[1024];

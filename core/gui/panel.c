@@ -192,7 +192,7 @@ static void section_parameters(sl_panel *p) {
     for (int i = 0; i < app->plugins.count; i++) {
         sl_plugin_rec *r = app->plugins.items[i];
         char label[300];
-        const char *state = !r->ok ? "  [disabled]" : sl_plugin_enabled(app, i) ? "" : "  [off]";
+        const char *state = !r->ok ? "  [disabled]" : sl_plugin_enabled(&app->plugins, i) ? "" : "  [off]";
         snprintf(label, sizeof label, "%s%s##plugin-%s", r->id, state, r->id);
         sl_ui_push_id(r->id);
         if (sl_ui_tree_push(label, i == 0 || r->ok)) {
@@ -300,7 +300,7 @@ static void section_view(sl_panel *p, sl_panel_actions *act) {
     for (int i = 0; i < app->plugins.chunk_count && count < 128; i++) {
         const sl_chunk_reg *c = &app->plugins.chunks[i];
         if (c->d.hook != SL_HOOK_DEBUG_VIEW && c->d.hook != SL_HOOK_DEBUG_VIEW_LIGHT) continue;
-        if (!sl_plugin_enabled(app, c->owner)) continue;
+        if (!sl_plugin_enabled(&app->plugins, c->owner)) continue;
         if (app->debug_view && !strcmp(app->debug_view, c->d.name)) current = count;
         descs[count] = c->d.description;
         names[count++] = c->d.name;
@@ -364,7 +364,7 @@ static void section_plugins(sl_panel *p) {
             sl_ui_unindent();
             continue;
         }
-        bool on = sl_plugin_enabled(app, i);
+        bool on = sl_plugin_enabled(&app->plugins, i);
         if (on) sl_ui_text("%s  %s", r->id, r->desc.version ? r->desc.version : "");
         else sl_ui_text_disabled("%s  %s (off: costs nothing)", r->id, r->desc.version ? r->desc.version : "");
         char tip[2048];

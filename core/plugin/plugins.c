@@ -1,7 +1,5 @@
 #include "plugin/plugins.h"
-#include "app.h"
 #include "log.h"
-#include "render/renderer.h"
 #include <dlfcn.h>
 #include <errno.h>
 #include <libgen.h>
@@ -11,51 +9,39 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define HOST_APP(h) (((const sl_host_impl *)(h))->app)
-#define HOST_IDX(h) (((const sl_host_impl *)(h))->plugin)
-#define HOST_REC(h) (HOST_APP(h)->plugins.items[HOST_IDX(h)])
+/* ---------------------------------------------------------------- registrations --------- */
+/* Called by the host module (core/host) on behalf of plugin `owner` during its create(). */
 
-/* ---------------------------------------------------------------- host interface -------- */
-
-static void host_log(const sl_host *h, sl_log_level level, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    sl_logv(level, HOST_REC(h)->id, fmt, ap);
-    va_end(ap);
-}
-
-static const char *host_resource_dir(const sl_host *h) { return HOST_REC(h)->resource_dir; }
-
-static bool in_create(const sl_host *h, const char *what) {
-    if (!HOST_REC(h)->creating) {
-        SL_ERROR("%s: %s may only be called from create()", HOST_REC(h)->id, what);
+static bool in_create(sl_plugins *P, int owner, const char *what) {
+    if (!P->items[owner]->creating) {
+        SL_ERROR("%s: %s may only be called from create()", P->items[owner]->id, what);
         return false;
     }
     return true;
 }
 
-static sl_status host_add_param(const sl_host *h, const sl_param_desc *d) {
-    if (!in_create(h, "add_param")) return SL_ERR_INVALID;
+sl_status sl_plugins_add_param(sl_plugins *P, int owner, const sl_param_desc *d) {
+    if (!in_create(P, owner, "add_param")) return SL_ERR_INVALID;
     char err[512];
-    sl_status st = sl_params_add(&HOST_APP(h)->params, HOST_REC(h)->id, d, err, sizeof err);
+    sl_status st = sl_params_add(P->params, P->items[owner]->id, d, err, sizeof err);
     if (st != SL_OK) {
-        SL_ERROR("%s: %s", HOST_REC(h)->id, err);
+        SL_ERROR("%s: %s", P->items[owner]->id, err);
         return st;
     }
     /* remember every declarer of a shared key: its uniform is declared for any of them */
-    sl_params *pp = &HOST_APP(h)->params;
+    sl_params *pp = P->params;
     sl_param *q = d->scope == SL_SCOPE_GLOBAL ? NULL : sl_params_find_key(pp, d->scope, d->id, d->light_type);
-    if (q) q->declared_by |= 1ull << (HOST_IDX(h) & 63);
+    if (q) q->declared_by |= 1ull << (owner & 63);
     return st;
 }
 
 static char *dup0(const char *s) { return s ? strdup(s) : NULL; }
 
-static sl_status host_add_chunk(const sl_host *h, const sl_shader_chunk_desc *in) {
-    if (!in_create(h, "add_shader_chunk")) return SL_ERR_INVALID;
+sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_desc *in) {
+    if (!in_create(P, owner, "add_shader_chunk")) return SL_ERR_INVALID;
     sl_shader_chunk_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
-    const char *id = HOST_REC(h)->id;
+    const char *id = P->items[owner]->id;
     if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_SHADOW) {
         SL_ERROR("%s: shader chunk %s: unknown hook %d", id, d.file ? d.file : "?", (int)d.hook);
         return SL_ERR_INVALID;
@@ -70,7 +56,6 @@ static sl_status host_add_chunk(const sl_host *h, const sl_shader_chunk_desc *in
         SL_ERROR("%s: shader chunk %s: this hook needs a name", id, d.file);
         return SL_ERR_INVALID;
     }
-    sl_plugins *P = &HOST_APP(h)->plugins;
     if (named) {
         for (int i = 0; i < P->chunk_count; i++) {
             sl_chunk_reg *c = &P->chunks[i];
@@ -88,7 +73,7 @@ static sl_status host_add_chunk(const sl_host *h, const sl_shader_chunk_desc *in
     }
     P->chunks = realloc(P->chunks, (P->chunk_count + 1) * sizeof *P->chunks);
     sl_chunk_reg *r = &P->chunks[P->chunk_count++];
-    r->owner = HOST_IDX(h);
+    r->owner = owner;
     r->d = d;
     r->d.struct_size = sizeof d;
     r->d.file = dup0(d.file);
@@ -100,16 +85,15 @@ static sl_status host_add_chunk(const sl_host *h, const sl_shader_chunk_desc *in
     return SL_OK;
 }
 
-static sl_status host_add_pass(const sl_host *h, const sl_pass_desc *in) {
-    if (!in_create(h, "add_pass")) return SL_ERR_INVALID;
+sl_status sl_plugins_add_pass(sl_plugins *P, int owner, const sl_pass_desc *in) {
+    if (!in_create(P, owner, "add_pass")) return SL_ERR_INVALID;
     sl_pass_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
-    const char *id = HOST_REC(h)->id;
+    const char *id = P->items[owner]->id;
     if (!d.name || !d.execute || d.output_count < 0 || (d.output_count && !d.outputs)) {
         SL_ERROR("%s: pass needs a name, an execute callback and its outputs", id);
         return SL_ERR_INVALID;
     }
-    sl_plugins *P = &HOST_APP(h)->plugins;
     for (int i = 0; i < P->pass_count; i++)
         if (!strcmp(P->passes[i].d.name, d.name)) {
             SL_ERROR("%s: pass \"%s\" already registered by %s", id, d.name, P->items[P->passes[i].owner]->id);
@@ -118,7 +102,7 @@ static sl_status host_add_pass(const sl_host *h, const sl_pass_desc *in) {
     P->passes = realloc(P->passes, (P->pass_count + 1) * sizeof *P->passes);
     sl_pass_reg *r = &P->passes[P->pass_count++];
     memset(r, 0, sizeof *r);
-    r->owner = HOST_IDX(h);
+    r->owner = owner;
     r->d = d;
     r->d.struct_size = sizeof d;
     r->d.name = strdup(d.name);
@@ -136,18 +120,17 @@ static sl_status host_add_pass(const sl_host *h, const sl_pass_desc *in) {
     return SL_OK;
 }
 
-static sl_status host_add_key(const sl_host *h, const sl_key_desc *in) {
-    if (!in_create(h, "add_key")) return SL_ERR_INVALID;
+sl_status sl_plugins_add_key(sl_plugins *P, int owner, const sl_key_desc *in) {
+    if (!in_create(P, owner, "add_key")) return SL_ERR_INVALID;
     sl_key_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
     if (!d.key || (!d.param && !d.on_press)) {
-        SL_ERROR("%s: key binding needs a key and a param or callback", HOST_REC(h)->id);
+        SL_ERROR("%s: key binding needs a key and a param or callback", P->items[owner]->id);
         return SL_ERR_INVALID;
     }
-    sl_plugins *P = &HOST_APP(h)->plugins;
     P->keys = realloc(P->keys, (P->key_count + 1) * sizeof *P->keys);
     sl_key_reg *r = &P->keys[P->key_count++];
-    r->owner = HOST_IDX(h);
+    r->owner = owner;
     r->d = d;
     r->d.key = strdup(d.key);
     r->d.description = dup0(d.description);
@@ -155,9 +138,9 @@ static sl_status host_add_key(const sl_host *h, const sl_key_desc *in) {
     return SL_OK;
 }
 
-static sl_status host_set_reference(const sl_host *h, const sl_reference_desc *in) {
-    if (!in_create(h, "set_reference")) return SL_ERR_INVALID;
-    sl_plugin_rec *rec = HOST_REC(h);
+sl_status sl_plugins_set_reference(sl_plugins *P, int owner, const sl_reference_desc *in) {
+    if (!in_create(P, owner, "set_reference")) return SL_ERR_INVALID;
+    sl_plugin_rec *rec = P->items[owner];
     memset(&rec->reference, 0, sizeof rec->reference);
     memcpy(&rec->reference, in, in->struct_size < sizeof rec->reference ? in->struct_size : sizeof rec->reference);
     rec->reference_settings = dup0(rec->reference.settings);
@@ -168,137 +151,22 @@ static sl_status host_set_reference(const sl_host *h, const sl_reference_desc *i
     return SL_OK;
 }
 
-static sl_status host_set_bind(const sl_host *h, void (*bind)(void *, unsigned, int, const sl_frame *), void *user) {
-    HOST_REC(h)->bind = bind;
-    HOST_REC(h)->bind_user = user;
-    return SL_OK;
-}
-
-/* Texture units: 0..15 belong to material textures, plugins get 16.. upwards. */
-static int host_reserve_unit(const sl_host *h) {
-    sl_plugins *P = &HOST_APP(h)->plugins;
+int sl_plugins_reserve_unit(sl_plugins *P, int owner) {
     if (P->texture_units_used >= 16) {
-        SL_ERROR("%s: out of plugin texture units", HOST_REC(h)->id);
+        SL_ERROR("%s: out of plugin texture units", P->items[owner]->id);
         return -1;
     }
     return 16 + P->texture_units_used++;
 }
 
-static sl_value host_get_param(const sl_host *h, const char *id) {
-    sl_param *q = sl_params_find(&HOST_APP(h)->params, id);
-    if (!q) {
-        SL_WARN("%s: get_param(\"%s\"): no such parameter", HOST_REC(h)->id, id);
-        return (sl_value){0};
-    }
-    return q->value;
-}
-
-static bool host_plugin_enabled(const sl_host *h, const char *id) {
-    int i = sl_plugins_find(&HOST_APP(h)->plugins, id);
-    return i >= 0 && sl_plugin_enabled(HOST_APP(h), i);
-}
-
-static const void *host_get_extension(const sl_host *h, const char *id) {
-    sl_app *app = HOST_APP(h);
-    for (int i = 0; i < app->plugins.count; i++) {
-        sl_plugin_rec *r = app->plugins.items[i];
-        if (!sl_plugin_enabled(app, i) || !r->desc.get_extension) continue;
+const void *sl_plugins_extension(const sl_plugins *P, const char *id) {
+    for (int i = 0; i < P->count; i++) {
+        sl_plugin_rec *r = P->items[i];
+        if (!sl_plugin_enabled(P, i) || !r->desc.get_extension) continue;
         const void *e = r->desc.get_extension(r->user, id);
         if (e) return e;
     }
     return NULL;
-}
-
-static const sl_light_info *host_lights(const sl_host *h, int *count) { return sl_renderer_lights(HOST_APP(h), count); }
-
-static int host_material_count(const sl_host *h) { return HOST_APP(h)->scene.material_count; }
-
-static const char *host_material_name(const sl_host *h, int m) {
-    sl_app *app = HOST_APP(h);
-    return m >= 0 && m < app->scene.material_count ? app->scene.materials[m].name : NULL;
-}
-
-static bool host_material_value(const sl_host *h, int m, const char *key, sl_value *out, char *path, size_t n) {
-    sl_app *app = HOST_APP(h);
-    sl_mat_value *v = sl_app_material_value(app, m, key);
-    if (path && n) path[0] = 0;
-    if (!v || !v->present) return false;
-    if (out) *out = v->v;
-    if (path && n && v->str && app->params.items[v->param].desc.type == SL_PARAM_TEXTURE && !sl_texture_is_procedural(v->str)) {
-        char err[1024];
-        char *resolved = sl_scene_resolve_path(&app->scene, app->opt.data_dir, v->str, err, sizeof err);
-        if (resolved) snprintf(path, n, "%s", resolved);
-        free(resolved);
-    }
-    return true;
-}
-static void *host_gl_proc(const char *name);
-static sl_app *g_gl_app; /* the app whose context is current (one per process) */
-static void *host_gl_proc(const char *name) {
-    return g_gl_app && g_gl_app->backend.get_proc_address ? g_gl_app->backend.get_proc_address(name) : NULL;
-}
-static bool host_is_gpu(const sl_host *h) { return HOST_APP(h)->backend.is_gpu; }
-static sl_program *host_load_program(const sl_host *h, const sl_program_desc *d) {
-    return sl_renderer_load_program(HOST_APP(h), HOST_IDX(h), d);
-}
-static unsigned host_program_id(const sl_host *h, sl_program *p) { return sl_renderer_program_id(p); }
-static unsigned host_pass_texture(const sl_host *h, sl_pass_ctx *c, const char *name) {
-    return sl_renderer_pass_texture(HOST_APP(h), c, name);
-}
-static sl_status host_bind_outputs(const sl_host *h, sl_pass_ctx *c, int layer) {
-    return sl_renderer_bind_outputs(HOST_APP(h), c, layer);
-}
-static void host_draw_scene(const sl_host *h, sl_pass_ctx *c, const sl_draw_scene_desc *d) {
-    sl_renderer_draw_scene(HOST_APP(h), c, d);
-}
-static void host_draw_fullscreen(const sl_host *h, sl_pass_ctx *c) { sl_renderer_draw_fullscreen(HOST_APP(h), c); }
-static unsigned host_material_texture(const sl_host *h, int m, const char *key) {
-    return sl_renderer_material_texture(HOST_APP(h), m, key);
-}
-
-static const char *host_environment(const sl_host *h, float o[5]) {
-    const sl_environment *e = &HOST_APP(h)->scene.environment;
-    memcpy(o, e->color, 3 * sizeof(float)), o[3] = e->intensity, o[4] = e->yaw_deg;
-    return e->map;
-}
-void sl_plugins_set_gl_app(sl_app *app) { g_gl_app = app; }
-
-static sl_host_impl *make_host(sl_app *app, int index) {
-    sl_host_impl *impl = calloc(1, sizeof *impl);
-    impl->app = app;
-    impl->plugin = index;
-    sl_host *h = &impl->host;
-    h->struct_size = sizeof *h;
-    h->abi_major = SL_ABI_MAJOR;
-    h->abi_minor = SL_ABI_MINOR;
-    h->host_version = SL_VERSION;
-    h->log = host_log;
-    h->resource_dir = host_resource_dir;
-    h->add_param = host_add_param;
-    h->add_shader_chunk = host_add_chunk;
-    h->add_pass = host_add_pass;
-    h->add_key = host_add_key;
-    h->set_reference = host_set_reference;
-    h->set_bind_callback = host_set_bind;
-    h->reserve_texture_unit = host_reserve_unit;
-    h->get_param = host_get_param;
-    h->plugin_enabled = host_plugin_enabled;
-    h->get_extension = host_get_extension;
-    h->lights = host_lights;
-    h->material_count = host_material_count;
-    h->material_name = host_material_name;
-    h->material_value = host_material_value;
-    h->gl_get_proc_address = host_gl_proc;
-    h->is_gpu = host_is_gpu;
-    h->load_program = host_load_program;
-    h->program_id = host_program_id;
-    h->pass_texture = host_pass_texture;
-    h->bind_outputs = host_bind_outputs;
-    h->draw_scene = host_draw_scene;
-    h->draw_fullscreen = host_draw_fullscreen;
-    h->material_texture = host_material_texture;
-    h->environment = host_environment;
-    return impl;
 }
 
 /* ---------------------------------------------------------------- loading --------------- */
@@ -312,31 +180,30 @@ int sl_plugins_find(sl_plugins *p, const char *id) {
 /* A plugin runs when it loaded, its own "<id>.enabled" is on and every plugin it requires runs:
  * switching a plugin off switches off what declared that it needs it, so no chunk or pass ever
  * refers to code of a plugin that is off. */
-static bool enabled_at(sl_app *app, int index, int depth) {
-    sl_plugin_rec *r = app->plugins.items[index];
+static bool enabled_at(const sl_plugins *P, int index, int depth) {
+    sl_plugin_rec *r = P->items[index];
     if (!r->ok) return false;
     if (index == 0) return true; /* the core */
     char id[300];
     snprintf(id, sizeof id, "%s.enabled", r->id);
-    sl_param *q = sl_params_find(&app->params, id);
+    sl_param *q = sl_params_find(P->params, id);
     if (q && !q->value.b) return false;
     for (const char *const *req = r->desc.dependencies; req && *req && depth < 16; req++) {
-        int j = sl_plugins_find(&app->plugins, *req);
-        if (j < 0 || !enabled_at(app, j, depth + 1)) return false;
+        int j = sl_plugins_find((sl_plugins *)P, *req);
+        if (j < 0 || !enabled_at(P, j, depth + 1)) return false;
     }
     return true;
 }
 
-bool sl_plugin_enabled(sl_app *app, int index) { return enabled_at(app, index, 0); }
+bool sl_plugin_enabled(const sl_plugins *P, int index) { return enabled_at(P, index, 0); }
 
-static sl_plugin_rec *new_record(sl_app *app, const char *id, const char *requested_by) {
-    sl_plugins *P = &app->plugins;
+static sl_plugin_rec *new_record(sl_plugins *P, const char *id, const char *requested_by) {
     P->items = realloc(P->items, (P->count + 1) * sizeof *P->items);
     sl_plugin_rec *r = calloc(1, sizeof *r);
     P->items[P->count] = r;
     r->id = strdup(id);
     r->requested_by = strdup(requested_by);
-    r->host = make_host(app, P->count);
+    r->host = P->make_host(P->host_ctx, P->count);
     P->count++;
     return r;
 }
@@ -422,14 +289,13 @@ static void describe_dlerror(const char *path, const char *msg, char *out, size_
     }
 }
 
-int sl_plugins_load(sl_app *app, const char *name, const char *requested_by, bool allow_path) {
-    sl_plugins *P = &app->plugins;
+int sl_plugins_load(sl_plugins *P, const char *name, const char *requested_by, bool allow_path) {
     bool is_path = strchr(name, '/') || (strlen(name) > 3 && !strcmp(name + strlen(name) - 3, ".so"));
     if (!is_path) {
         int existing = sl_plugins_find(P, name);
         if (existing >= 0) return existing;
     }
-    sl_plugin_rec *r = new_record(app, name, requested_by);
+    sl_plugin_rec *r = new_record(P, name, requested_by);
     int index = P->count - 1;
     char path[2048] = "";
     if (is_path) {
@@ -512,8 +378,8 @@ int sl_plugins_load(sl_app *app, const char *name, const char *requested_by, boo
     return index;
 }
 
-bool sl_plugins_add_builtin(sl_app *app, const sl_plugin_desc *desc) {
-    sl_plugin_rec *r = new_record(app, desc->id, "built-in");
+bool sl_plugins_add_builtin(sl_plugins *P, const sl_plugin_desc *desc) {
+    sl_plugin_rec *r = new_record(P, desc->id, "built-in");
     r->path = strdup("(built-in)");
     r->resource_dir = strdup("");
     r->desc = *desc;
@@ -539,8 +405,7 @@ static void free_key(sl_key_reg *k) {
 }
 
 /* Rolls back everything a plugin registered (its create() failed or was refused). */
-static void remove_registrations(sl_app *app, int owner) {
-    sl_plugins *P = &app->plugins;
+static void remove_registrations(sl_plugins *P, int owner) {
     int w = 0;
     for (int i = 0; i < P->chunk_count; i++)
         if (P->chunks[i].owner != owner) P->chunks[w++] = P->chunks[i];
@@ -556,7 +421,7 @@ static void remove_registrations(sl_app *app, int owner) {
         if (P->keys[i].owner != owner) P->keys[w++] = P->keys[i];
         else free_key(&P->keys[i]);
     P->key_count = w;
-    sl_params *pp = &app->params;
+    sl_params *pp = P->params;
     const char *id = P->items[owner]->id;
     w = 0;
     for (int i = 0; i < pp->count; i++)
@@ -565,8 +430,7 @@ static void remove_registrations(sl_app *app, int owner) {
     pp->count = w;
 }
 
-static void create_one(sl_app *app, int i, int depth) {
-    sl_plugins *P = &app->plugins;
+static void create_one(sl_plugins *P, int i, int depth) {
     sl_plugin_rec *r = P->items[i];
     if (!r->ok || r->user || depth > 32) return;
     /* conflicts */
@@ -583,10 +447,10 @@ static void create_one(sl_app *app, int i, int depth) {
         if (j < 0) {
             char by[300];
             snprintf(by, sizeof by, "required by %s", r->id);
-            j = sl_plugins_load(app, *q, by, false);
+            j = sl_plugins_load(P, *q, by, false);
             r = P->items[i];
         }
-        create_one(app, j, depth + 1);
+        create_one(P, j, depth + 1);
         if (!P->items[j]->ok) {
             disable(r, "requires plugin %s, which is unavailable: %s", *q,
                     P->items[j]->disabled_reason ? P->items[j]->disabled_reason : "not loaded");
@@ -602,37 +466,36 @@ static void create_one(sl_app *app, int i, int depth) {
                             .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
                             .description = "Turns the plugin on or off; off costs nothing per frame."};
         char err[256];
-        sl_params_add(&app->params, r->id, &en, err, sizeof err);
+        sl_params_add(P->params, r->id, &en, err, sizeof err);
     }
     int before_errors = sl_log_count(SL_LOG_ERROR);
     void *user = NULL;
     r->creating = true;
-    sl_status st = r->desc.create(&r->host->host, &user);
+    sl_status st = r->desc.create(r->host, &user);
     r->creating = false;
     r->user = user ? user : (void *)r; /* non-NULL marks "created" */
     if (st != SL_OK) {
         if (user && r->desc.destroy) r->desc.destroy(user); /* documented in plugin.h */
-        remove_registrations(app, i);
+        remove_registrations(P, i);
         disable(r, "create() failed with status %d (see the messages above)", (int)st);
     } else if (sl_log_count(SL_LOG_ERROR) > before_errors && i != 0) {
         /* a registration was refused (e.g. duplicate shading model): the plugin is unusable */
         if (r->desc.destroy) r->desc.destroy(user);
-        remove_registrations(app, i);
+        remove_registrations(P, i);
         disable(r, "a registration was refused during create() (see the messages above)");
     } else {
         r->ok = true;
     }
 }
 
-void sl_plugins_create_all(sl_app *app) {
-    for (int i = 0; i < app->plugins.count; i++) create_one(app, i, 0);
+void sl_plugins_create_all(sl_plugins *P) {
+    for (int i = 0; i < P->count; i++) create_one(P, i, 0);
 }
 
-void sl_plugins_print(sl_app *app, FILE *f) {
-    sl_plugins *P = &app->plugins;
+void sl_plugins_print(const sl_plugins *P, FILE *f) {
     for (int i = 0; i < P->count; i++) {
         sl_plugin_rec *r = P->items[i];
-        const char *state = !r->ok ? "DISABLED" : sl_plugin_enabled(app, i) ? "enabled" : "off";
+        const char *state = !r->ok ? "DISABLED" : sl_plugin_enabled(P, i) ? "enabled" : "off";
         fprintf(f, "%-20s %-8s %s%s%s\n", r->id, state, r->path ? r->path : "-",
                 r->desc.version ? "  v" : "", r->desc.version ? r->desc.version : "");
         if (r->desc.description && r->ok) fprintf(f, "    %s\n", r->desc.description);
@@ -646,8 +509,7 @@ void sl_plugins_print(sl_app *app, FILE *f) {
     fprintf(f, "\n");
 }
 
-void sl_plugins_shutdown(sl_app *app) {
-    sl_plugins *P = &app->plugins;
+void sl_plugins_shutdown(sl_plugins *P) {
     for (int i = P->count - 1; i >= 0; i--) {
         sl_plugin_rec *r = P->items[i];
         if (r->active && r->desc.deactivate) r->desc.deactivate(r->user);

@@ -11,17 +11,9 @@
 #include <shadelab/shadelab.h>
 #include "params.h"
 
-struct sl_app;
-
 typedef struct sl_chunk_reg { int owner; sl_shader_chunk_desc d; } sl_chunk_reg;
 typedef struct sl_pass_reg { int owner; sl_pass_desc d; sl_target_desc *outputs; const char **inputs; } sl_pass_reg;
 typedef struct sl_key_reg { int owner; sl_key_desc d; } sl_key_reg;
-
-typedef struct sl_host_impl {
-    sl_host host;          /* first member: plugins get &impl->host */
-    struct sl_app *app;
-    int plugin;            /* index into sl_plugins.items */
-} sl_host_impl;
 
 typedef struct sl_plugin_rec {
     char *id;              /* descriptor id (or the requested name when loading failed) */
@@ -35,7 +27,7 @@ typedef struct sl_plugin_rec {
     bool creating;         /* inside create(): registrations allowed */
     char *disabled_reason; /* why it is not ok */
     void *user;
-    sl_host_impl *host;
+    sl_host *host;         /* made by sl_plugins.make_host (core/host), freed with the record */
     void (*bind)(void *user, unsigned program, int material, const sl_frame *frame);
     void *bind_user;
     sl_reference_desc reference; bool has_reference;
@@ -49,19 +41,36 @@ typedef struct sl_plugins {
     sl_pass_reg *passes; int pass_count;
     sl_key_reg *keys; int key_count;
     int texture_units_used; /* plugin units are handed out from the top of the range down */
+    /* Set by the owner before loading: the parameter store plugins register into, and the maker
+     * of each plugin's host table (core/host), so the registry calls nothing above it. */
+    sl_params *params;
+    sl_host *(*make_host)(void *ctx, int index);
+    void *host_ctx;
 } sl_plugins;
 
 /* Registers the built-in "core" plugin (index 0) from a static descriptor. */
-bool sl_plugins_add_builtin(struct sl_app *app, const sl_plugin_desc *desc);
+bool sl_plugins_add_builtin(sl_plugins *P, const sl_plugin_desc *desc);
 /* Loads NAME or PATH; returns the record index (also for a disabled record). */
-int sl_plugins_load(struct sl_app *app, const char *name_or_path, const char *requested_by, bool allow_path);
+int sl_plugins_load(sl_plugins *P, const char *name_or_path, const char *requested_by, bool allow_path);
 /* Resolves requires/conflicts, creates every loaded plugin in dependency order, rolls back the
  * registrations of plugins whose create() fails or whose shading models clash. */
-void sl_plugins_create_all(struct sl_app *app);
+void sl_plugins_create_all(sl_plugins *P);
 int sl_plugins_find(sl_plugins *p, const char *id);
-bool sl_plugin_enabled(struct sl_app *app, int index); /* ok && "<id>.enabled" */
-void sl_plugins_print(struct sl_app *app, FILE *f);  /* --list-plugins */
-void sl_plugins_shutdown(struct sl_app *app);        /* deactivate (GL current) + destroy + dlclose */
+/* ok, "<id>.enabled" on, and every dependency enabled */
+bool sl_plugin_enabled(const sl_plugins *P, int index);
+void sl_plugins_print(const sl_plugins *P, FILE *f); /* --list-plugins */
+void sl_plugins_shutdown(sl_plugins *P);             /* deactivate (GL current) + destroy + dlclose */
+
+/* Registrations of plugin `owner` (only inside its create(); the host module forwards the
+ * sl_host calls here). Each logs its refusal and returns a status. */
+sl_status sl_plugins_add_param(sl_plugins *P, int owner, const sl_param_desc *d);
+sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_desc *d);
+sl_status sl_plugins_add_pass(sl_plugins *P, int owner, const sl_pass_desc *d);
+sl_status sl_plugins_add_key(sl_plugins *P, int owner, const sl_key_desc *d);
+sl_status sl_plugins_set_reference(sl_plugins *P, int owner, const sl_reference_desc *d);
+int sl_plugins_reserve_unit(sl_plugins *P, int owner);
+/* The first enabled plugin offering extension `id` ("shadelab.shadow-maps/1"), or NULL. */
+const void *sl_plugins_extension(const sl_plugins *P, const char *id);
 /* The directories searched for NAME (for messages and --list-plugins). */
 int sl_plugin_search_dirs(char dirs[][1024], int max);
 #endif

@@ -29,7 +29,7 @@ int sl_forward_light_types(sl_app *app, const char **types, int max) {
 static const sl_chunk_reg *find_named(sl_app *app, sl_hook hook, const char *name) {
     for (int i = 0; i < app->plugins.chunk_count; i++) {
         const sl_chunk_reg *c = &app->plugins.chunks[i];
-        if (c->d.hook == hook && c->d.name && !strcmp(c->d.name, name) && sl_plugin_enabled(app, c->owner)) return c;
+        if (c->d.hook == hook && c->d.name && !strcmp(c->d.name, name) && sl_plugin_enabled(&app->plugins, c->owner)) return c;
     }
     return NULL;
 }
@@ -43,7 +43,7 @@ static bool material_has(sl_app *app, int m, const char *key) {
     int owner = sl_plugins_find(&app->plugins, q->owner);
     uint64_t declarers = q->declared_by | (owner >= 0 ? 1ull << (owner & 63) : 0);
     for (int i = 0; i < app->plugins.count && i < 64; i++)
-        if ((declarers & (1ull << i)) && sl_plugin_enabled(app, i)) return true;
+        if ((declarers & (1ull << i)) && sl_plugin_enabled(&app->plugins, i)) return true;
     return false;
 }
 
@@ -116,14 +116,14 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     const sl_chunk_reg *shadow = NULL;
     for (int i = 0; i < app->scene.light_count && !shadow; i++)
         for (int c = 0; c < P->chunk_count && !shadow && app->scene.lights[i].enabled && app->scene.lights[i].cast_shadows; c++)
-            if (P->chunks[c].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(app, P->chunks[c].owner)) shadow = &P->chunks[c];
+            if (P->chunks[c].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(&app->plugins, P->chunks[c].owner)) shadow = &P->chunks[c];
 
     /* hooks gated on material keys */
     const sl_chunk_reg *vertex_hooks[64], *surface_hooks[64], *ambient_hooks[64];
     int nv = 0, ns = 0, na = 0;
     for (int i = 0; i < P->chunk_count; i++) {
         const sl_chunk_reg *c = &P->chunks[i];
-        if (!sl_plugin_enabled(app, c->owner)) continue;
+        if (!sl_plugin_enabled(&app->plugins, c->owner)) continue;
         if (c->d.hook != SL_HOOK_VERTEX && c->d.hook != SL_HOOK_SURFACE && c->d.hook != SL_HOOK_AMBIENT) continue;
         if (c->d.when_material_has && !material_has(app, m, c->d.when_material_has)) continue;
         /* the material's own model, also in override programs (its surface stays the same) */
@@ -244,7 +244,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         /* chunks, each file once; LIBRARY chunks of every owner involved come first */
         for (int i = 0; i < P->chunk_count && ok; i++) {
             const sl_chunk_reg *c = &P->chunks[i];
-            if (c->d.hook != SL_HOOK_LIBRARY || !(owners & (1ull << (c->owner & 63))) || !sl_plugin_enabled(app, c->owner)) continue;
+            if (c->d.hook != SL_HOOK_LIBRARY || !(owners & (1ull << (c->owner & 63))) || !sl_plugin_enabled(&app->plugins, c->owner)) continue;
             char path[2048];
             snprintf(path, sizeof path, "%s/%s", P->items[c->owner]->resource_dir, c->d.file);
             ok = sl_source_include(&p->fs, path, err, n);

@@ -345,7 +345,7 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
     }
     for (int i = 0; i < app->plugins.count; i++) {
         sl_plugin_rec *pr = app->plugins.items[i];
-        if ((var->owners & (1ull << (i & 63))) && pr->bind && sl_plugin_enabled(app, i)) pr->bind(pr->bind_user, prog, m, &r->frame);
+        if ((var->owners & (1ull << (i & 63))) && pr->bind && sl_plugin_enabled(&app->plugins, i)) pr->bind(pr->bind_user, prog, m, &r->frame);
     }
     return prog;
 }
@@ -629,7 +629,7 @@ static void plan(sl_app *app) {
     if (r->ssaa > 1) r->passes[r->pass_count++] = (graph_pass){.d = &resolve_pass, .owner = -1, .core_resolve = true};
     for (int i = 0; i < app->plugins.pass_count; i++) {
         sl_pass_reg *reg = &app->plugins.passes[i];
-        if (!sl_plugin_enabled(app, reg->owner)) continue; /* disabled plugins cost nothing */
+        if (!sl_plugin_enabled(&app->plugins, reg->owner)) continue; /* disabled plugins cost nothing */
         r->passes[r->pass_count++] = (graph_pass){.d = &reg->d, .owner = reg->owner};
     }
     r->passes[r->pass_count++] = (graph_pass){.d = &display_pass, .owner = -1, .core_display = true};
@@ -857,7 +857,7 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
      * is active; otherwise only when the scene is reloaded */
     bool animated = false;
     for (int i = 0; i < app->plugins.chunk_count && !animated; i++)
-        animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(app, app->plugins.chunks[i].owner);
+        animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(&app->plugins, app->plugins.chunks[i].owner);
     f->geometry_version = animated ? app->frame_index + 1 : 0;
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
     f->params_version = app->params.version + app->materials_version;
@@ -876,7 +876,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     fill_frame(app, 0, 1);
     for (int i = 1; i < app->plugins.count; i++) {
         sl_plugin_rec *pr = app->plugins.items[i];
-        if (pr->active && pr->desc.begin_frame && sl_plugin_enabled(app, i)) pr->desc.begin_frame(pr->user, &r->frame);
+        if (pr->active && pr->desc.begin_frame && sl_plugin_enabled(&app->plugins, i)) pr->desc.begin_frame(pr->user, &r->frame);
     }
     int post_begin = r->pass_count;
     for (int i = 0; i < r->pass_count; i++)
@@ -1010,7 +1010,7 @@ void sl_renderer_explain(sl_app *app, FILE *f) {
     fprintf(f, "plugins:\n");
     for (int i = 0; i < app->plugins.count; i++)
         fprintf(f, "  %-20s %s\n", app->plugins.items[i]->id,
-                !app->plugins.items[i]->ok ? "disabled (error)" : sl_plugin_enabled(app, i) ? "enabled" : "off (costs nothing)");
+                !app->plugins.items[i]->ok ? "disabled (error)" : sl_plugin_enabled(&app->plugins, i) ? "enabled" : "off (costs nothing)");
 }
 
 /* ------------------------------------------------------------------ lifecycle ------- */
