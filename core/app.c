@@ -15,13 +15,6 @@
 
 /* ------------------------------------------------------------ material and light values */
 
-sl_mat_value *sl_app_material_value(sl_app *app, int m, const char *key) {
-    if (m < 0 || m >= app->scene.material_count || !app->materials) return NULL;
-    sl_mat_state *ms = &app->materials[m];
-    for (int i = 0; i < ms->count; i++)
-        if (!strcmp(app->params.items[ms->values[i].param].full_id, key)) return &ms->values[i];
-    return NULL;
-}
 
 /* A scene prop as text, so one parser (sl_param_parse) validates scene, CLI and GUI input. */
 static void prop_text(const sl_prop *p, char *buf, size_t n) {

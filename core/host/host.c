@@ -2,7 +2,7 @@
  * knows both the plugin registry (registrations go to core/plugin) and the renderer (programs,
  * passes, drawing go to core/render). The registry and the renderer know nothing of it. */
 #include "host/host.h"
-#include "app.h"
+#include "state.h"
 #include "log.h"
 #include "render/renderer.h"
 #include <stdarg.h>

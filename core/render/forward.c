@@ -1,5 +1,5 @@
 #include "render/forward.h"
-#include "app.h"
+#include "state.h"
 #include "log.h"
 #include <ctype.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /* GPU scene, render graph and timing. See renderer.h. */
 #include "render/renderer.h"
-#include "app.h"
+#include "state.h"
 #include "image/image.h"
 #include "log.h"
 #include "render/composer.h"
