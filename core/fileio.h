@@ -1,13 +1,22 @@
-/* Reading whole files: one implementation for the core (scene files, shader sources), the bench
- * tool and the tests. */
+/* Reading input files: one implementation for the core (scene files, shader sources), the bench
+ * tool and the tests, and the one check every reader of an untrusted path uses. */
 #ifndef SL_FILEIO_H
 #define SL_FILEIO_H
 #include <stddef.h>
 
+/* The most sl_read_file reads (scene JSON, shader sources, tables): 256 MiB. */
+#define SL_READ_FILE_MAX_BYTES (256u << 20)
+
+/* Why `path` cannot be read as an input file — missing, a directory, not a regular file (FIFO,
+ * device, socket), unreadable — written into buf and returned; NULL when it is a readable regular
+ * file. Never opens the path, so a FIFO cannot block it. Call it before handing a path to a
+ * library (OpenImageIO, assimp) that would open it. */
+const char *sl_input_file_problem(const char *path, char *buf, size_t buf_size);
+
 /* The whole file as a malloc'd, NUL-terminated buffer; *len (when given) gets the number of
- * bytes read. Reads in chunks, so pipes and /proc files work too. On failure returns NULL and,
- * when err is given, writes "PATH: cause" (the system's message, "out of memory" or "read error");
- * errno still holds fopen's error when the file could not be opened. */
+ * bytes read. Only regular files are read (a FIFO or device is refused without blocking), at most
+ * SL_READ_FILE_MAX_BYTES. On failure returns NULL and, when err is given, writes "PATH: cause";
+ * errno holds open()'s error when the file could not be opened. */
 char *sl_read_file(const char *path, size_t *len, char *err, size_t err_size);
 
 #endif

@@ -197,11 +197,12 @@ bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) 
     } else if (info.width <= 0 || info.height <= 0 || info.depth > 1 || info.channels < 1) {
         set_err(err, err_size, "%s: invalid image dimensions %dx%dx%d with %d channels", path,
                 info.width, info.height, info.depth, info.channels);
-    } else if (info.width > SL_IMAGE_MAX_DIM || info.height > SL_IMAGE_MAX_DIM) {
+    } else if (info.width > SL_IMAGE_MAX_DIM || info.height > SL_IMAGE_MAX_DIM ||
+               (long)info.width * info.height > SL_IMAGE_MAX_PIXELS) {
         set_err(err, err_size,
-                "%s: image is %dx%d, larger than the %dx%d limit (would need %.1f GiB as float "
-                "RGBA); refusing to load",
-                path, info.width, info.height, SL_IMAGE_MAX_DIM, SL_IMAGE_MAX_DIM,
+                "%s: image is %dx%d (from its header), over the limit of %d per side and %ld Mpixel in all "
+                "(would need %.1f GiB as float RGBA); refusing to decode it (resize it first, e.g. oiiotool --resize)",
+                path, info.width, info.height, SL_IMAGE_MAX_DIM, SL_IMAGE_MAX_PIXELS >> 20,
                 (double)info.width * info.height * 16.0 / (1024.0 * 1024.0 * 1024.0));
     } else {
         ok = true;

@@ -1,5 +1,6 @@
 /* Scene graph bookkeeping: building blocks, freeing, transforms, bounds, asset paths. */
 #include "scene/scene.h"
+#include "fileio.h"
 
 #include <cglm/cglm.h>
 #include <errno.h>
@@ -384,15 +385,11 @@ void sl_scene_update_transforms(sl_scene *scene) {
 
 /* ---- asset paths -------------------------------------------------------------------------- */
 
-/* Why `path` cannot be used as a file: NULL when it is a readable regular file. */
+/* Why `path` cannot be used as a file: NULL when it is a readable regular file (never opened:
+ * a FIFO named by a scene must not block the check). */
 static const char *file_problem(const char *path) {
-    struct stat st;
-    if (stat(path, &st) != 0) return strerror(errno);
-    if (S_ISDIR(st.st_mode)) return "is a directory";
-    FILE *f = fopen(path, "rb");
-    if (!f) return strerror(errno);
-    fclose(f);
-    return NULL;
+    static _Thread_local char why[128];
+    return sl_input_file_problem(path, why, sizeof why);
 }
 
 static char *join_path(const char *dir, const char *rel) {
@@ -423,6 +420,7 @@ char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const c
     const char *labels[2] = {"scene directory", "data directory"};
     char tried[2048];
     size_t used = 0;
+    bool unusable = false; /* a candidate exists but cannot be read (FIFO, device, directory, permission) */
     tried[0] = 0;
     for (int i = 0; i < 2; i++) {
         if (!dirs[i]) continue;
@@ -430,6 +428,8 @@ char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const c
         if (!full) break;
         const char *why = file_problem(full);
         if (!why) return full;
+        struct stat st;
+        unusable |= stat(full, &st) == 0;
         if (used < sizeof tried) {
             int w = snprintf(tried + used, sizeof tried - used, "%s%s %s (%s)", used ? "; " : "",
                              labels[i], full, why);
@@ -442,8 +442,8 @@ char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const c
             snprintf(err, err_size, "'%s' not found: no scene directory and no data directory "
                      "(--data DIR or SHADELAB_DATA) to look in", rel);
         else
-            snprintf(err, err_size, "'%s' not found; looked in: %s%s", rel, tried,
-                     dirs[1] ? "" : " (no data directory set: --data DIR or SHADELAB_DATA)");
+            snprintf(err, err_size, "'%s' %s; looked in: %s%s", rel, unusable ? "cannot be read" : "not found", tried,
+                     dirs[1] || unusable ? "" : " (no data directory set: --data DIR or SHADELAB_DATA)");
     }
     return NULL;
 }

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Hostile input (issue 14): every case ends in bounded time (timeout 30 s; 124 = a hang) with a
+# clear message naming the input, and a failed run leaves an existing output file untouched.
+# Families: special files as the scene (/dev/zero, /dev/urandom, a FIFO), a FIFO as texture, mesh
+# and environment map, a decompression bomb as a texture (a PNG header declaring 16384², refused from the
+# header before decoding).      usage: hostile_input.sh SHADELAB
+set -uo pipefail
+SL=$(realpath "$1")
+T=$(mktemp -d "${TMPDIR:-/tmp}/shadelab-hostile.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+cd "$T"
+FAILED=0
+fail() { echo "FAIL: $*"; FAILED=1; }
+mkfifo fifo
+printf 'previous output' > keep.png
+# 16384x16384 RGB PNG: signature, IHDR, an IDAT of no pixels, IEND (CRCs per the PNG spec's CRC-32)
+printf '\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00\x40\x00\x00\x00\x40\x00\x08\x02\x00\x00\x00\x26\xaa\x87\xd3\x00\x00\x00\x08IDAT\x78\x9c\x03\x00\x00\x00\x00\x01\x48\x06\x89\xd2\x00\x00\x00\x00IEND\xae\x42\x60\x82' > bomb.png
+sphere='"nodes": [{"name": "a", "mesh": {"primitive": "sphere"}, "material": "m"}], "lights": [{"name": "sun", "type": "directional"}]'
+echo "{\"materials\": [{\"name\": \"m\", \"base_color_map\": \"fifo\"}], $sphere}" > tex_fifo.json
+echo "{\"materials\": [{\"name\": \"m\", \"base_color_map\": \"bomb.png\"}], $sphere}" > tex_bomb.json
+echo "{\"materials\": [{\"name\": \"m\"}], \"nodes\": [{\"name\": \"a\", \"mesh\": {\"file\": \"fifo\"}}]}" > mesh_fifo.json
+echo "{\"plugins\": [\"envmap\"], \"environment\": {\"map\": \"fifo\"}, \"materials\": [{\"name\": \"m\"}], $sphere}" > env_fifo.json
+echo "{\"plugins\": [\"envmap\"], \"environment\": {\"map\": \"bomb.png\"}, \"materials\": [{\"name\": \"m\"}], $sphere}" > env_bomb.json
+
+# case: expected exit ("fail" = non-zero, "any"), text the message must contain
+run() {
+  local name=$1 expect=$2 needle=$3; shift 3
+  local t0=$SECONDS
+  timeout 30 "$SL" --headless --size 32x32 "$@" > "$name.log" 2>&1
+  local rc=$?
+  printf '%-14s rc=%-3d %2ds  %s\n' "$name" $rc $((SECONDS - t0)) "$(grep -m1 -F -- "$needle" "$name.log" | cut -c1-150)"
+  [ $rc -eq 124 ] && { fail "$name: still running after 30 s"; return; }
+  [ $rc -ge 126 ] && { fail "$name: crashed or did not start (rc $rc)"; return; }
+  [ "$expect" = fail ] && [ $rc -eq 0 ] && fail "$name: exit 0 on bad input"
+  grep -qF -- "$needle" "$name.log" || { cat "$name.log"; fail "$name: no message containing '$needle'"; }
+}
+run scene_zero    fail "/dev/zero: is not a regular file (a device)" --scene /dev/zero --output keep.png
+run scene_random  fail "/dev/urandom: is not a regular file (a device)" --scene /dev/urandom --output keep.png
+run scene_fifo    fail "fifo: is not a regular file (a FIFO)" --scene fifo --output keep.png
+run texture_fifo  any  "'fifo' cannot be read" --scene tex_fifo.json --output tex.png
+run texture_bomb  any  "image is 16384x16384 (from its header)" --scene tex_bomb.json --output tex.png
+run mesh_fifo     fail "mesh file 'fifo' cannot be read" --scene mesh_fifo.json --output keep.png
+run env_fifo      fail "'fifo' cannot be read" --scene env_fifo.json --output keep.png
+[ "$(cat keep.png)" = "previous output" ] || fail "a failed run overwrote the existing output file"
+exit $FAILED
