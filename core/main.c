@@ -1,6 +1,6 @@
 /* shadelab command line: headless renders, the window viewer, plugin/parameter listings. */
 #include "app.h"
-#include "autoquality.h" /* tools/bench: --auto-quality */
+#include "quality/autoquality.h" /* --auto-quality (shadelab_quality) */
 #include "log.h"
 #include "render/renderer.h"
 #include "viewer.h"

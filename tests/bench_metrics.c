@@ -7,7 +7,6 @@
 #include "check.h"
 #include "image/image.h"
 #include "metrics.h"
-#include "pareto.h"
 #include "test_tmp.h"
 #include <math.h>
 #include <stdlib.h>

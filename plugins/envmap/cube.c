@@ -1,6 +1,6 @@
 /* envmap core, CPU side: direction conventions, cube layouts, input sanitising, RGBE,
  * spherical harmonics, the procedural sky and hashing. See envmap_core.h. */
-#include "envmap_core.h"
+#include "envmap/prefilter.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

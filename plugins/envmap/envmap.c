@@ -8,8 +8,8 @@
 #include <shadelab/shadelab.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
-#include "envmap_core.h"
-#include "envmap_io.h"
+#include "envmap/io.h"
+#include "envmap/prefilter.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>

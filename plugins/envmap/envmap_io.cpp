@@ -1,7 +1,7 @@
 // envmap's image I/O: a thin C adapter over OpenImageIO (plugins cannot use the core's image
 // module). Reads any format OIIO reads as float RGBA; writes half-float EXR and 8-bit PNG with
 // a description tag (the RGBE8 marker). Every exception becomes an error message.
-#include "envmap_io.h"
+#include "envmap/io.h"
 
 #include <OpenImageIO/imageio.h>
 

@@ -1,6 +1,6 @@
 /* Environment files: format and layout detection, RGBE8 and sRGB decoding, precomputed chains,
  * sanitising. Shared by the plugin and shadelab-cube (envmap_io.h). */
-#include "envmap_io.h"
+#include "envmap/io.h"
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>

@@ -2,7 +2,7 @@
  * convolution and the BRDF LUT (see envmap_core.h). Every pass draws one full-screen triangle
  * per face and level into a framebuffer of its own; callers in the middle of a frame save and
  * restore GL state around these calls (envmap.c does). */
-#include "envmap_core.h"
+#include "envmap/prefilter.h"
 #include <shadelab/gl.h>
 #include <math.h>
 #include <stdio.h>

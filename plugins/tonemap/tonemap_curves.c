@@ -1,7 +1,7 @@
 /* shadelab-tonemap-curves: draws every tone-mapping operator's curve to a PNG (and CSV) by
  * evaluating the plugin's own GLSL (tonemap_ops.glsl) on the GPU or llvmpipe through the test
  * harness, so the picture shows exactly what the post pass does. Chart by gnuplot. */
-#include "image/image.h"
+#include "toolkit.h" /* sl_srgb_encode: the core's display encoding */
 #include <shadelab/harness.h>
 #include <math.h>
 #include <stdio.h>

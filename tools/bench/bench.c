@@ -6,12 +6,6 @@
  * passes that skip unchanged work skip here too; the image that is compared with the reference
  * is rendered afterwards at time 0, as the reference is. */
 #include "bench.h"
-#include "pareto.h"
-#include "image/image.h"
-#include "fileio.h"
-#include "log.h"
-#include "render/composer.h"
-#include "render/renderer.h"
 #include <shadelab/gl.h>
 #include <dirent.h>
 #include <errno.h>
@@ -53,25 +47,8 @@ bool sl_bench_mkdirs(const char *dir, char *err, size_t n) {
     return true;
 }
 
-const char *sl_bench_default_cache_dir(char *buf, size_t n) {
-    const char *e = getenv("SHADELAB_CACHE");
-    if (e && *e) snprintf(buf, n, "%s", e);
-    else if ((e = getenv("XDG_CACHE_HOME")) && *e) snprintf(buf, n, "%s/shadelab", e);
-    else if ((e = getenv("HOME")) && *e) snprintf(buf, n, "%s/.cache/shadelab", e);
-    else snprintf(buf, n, "shadelab-cache");
-    return buf;
-}
-
-
-uint64_t sl_bench_scene_hash(const char *scene_path) {
-    if (!scene_path) return sl_hash64(sl_default_scene_json, strlen(sl_default_scene_json), 0);
-    size_t len;
-    char *text = sl_read_file(scene_path, &len, NULL, 0);
-    if (!text) return 0;
-    uint64_t h = sl_hash64(text, len, 0);
-    free(text);
-    return h;
-}
+/* sl_bench_default_cache_dir and sl_bench_scene_hash: core/quality (autoquality.h), which the
+ * viewer's --auto-quality shares. */
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
@@ -79,7 +56,7 @@ static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *
  * plugin's .so and GLSL, the core's shader library. A changed shader changes the key. */
 static uint64_t hash_dir(const char *dir, uint64_t h, int depth) {
     DIR *d = opendir(dir);
-    if (!d) return sl_hash64(dir, strlen(dir), h);
+    if (!d) return sl_tool_hash64(dir, strlen(dir), h);
     char **names = NULL;
     int count = 0;
     for (struct dirent *e; (e = readdir(d));) {
@@ -99,13 +76,13 @@ static uint64_t hash_dir(const char *dir, uint64_t h, int depth) {
         struct stat st;
         if (!stat(path, &st)) {
             if (S_ISDIR(st.st_mode) && depth < 3) {
-                h = sl_hash64(names[i], strlen(names[i]), h);
+                h = sl_tool_hash64(names[i], strlen(names[i]), h);
                 h = hash_dir(path, h, depth + 1);
             } else if (S_ISREG(st.st_mode) && st.st_size < (64 << 20)) {
                 size_t len;
                 char *text = sl_read_file(path, &len, NULL, 0);
-                h = sl_hash64(names[i], strlen(names[i]) + 1, h);
-                if (text) h = sl_hash64(text, len, h);
+                h = sl_tool_hash64(names[i], strlen(names[i]) + 1, h);
+                if (text) h = sl_tool_hash64(text, len, h);
                 free(text);
             }
         }
@@ -411,7 +388,8 @@ static bool time_setting(sl_app *app, int warmup, int frames, samples *sm, float
         app->time = f * app->opt.fixed_dt;
         ok = sl_app_render_frame(app);
         if (!ok || f < warmup) continue;
-        const sl_frame_stats *st = sl_renderer_stats(app);
+        sl_tool_frame_times times, *st = &times;
+        sl_tool_frame_times_of(app, st);
         sm->frame[sm->nframe++] = st->frame_ms;
         for (int i = 0; i < st->pass_count; i++) {
             if (!st->passes[i].ran) continue;
@@ -488,32 +466,32 @@ static bool cache_store(const char *dir, const char *path, uint64_t key, int w, 
 /* The key: everything that changes the reference's pixels. */
 static uint64_t reference_key(const sl_bench_options *o, sl_app *app, const char *settings, int accumulate,
                               char *desc, size_t dn) {
-    uint64_t h = sl_hash64(CACHE_FORMAT, sizeof CACHE_FORMAT, 0);
-    h = sl_hash64(SL_VERSION, sizeof SL_VERSION, h);
+    uint64_t h = sl_tool_hash64(CACHE_FORMAT, sizeof CACHE_FORMAT, 0);
+    h = sl_tool_hash64(SL_VERSION, sizeof SL_VERSION, h);
     /* the running executable: the core is linked in statically, so any change to its C code
      * (texture upload, camera, passes) changes the reference even when SL_VERSION does not */
     static uint64_t exe_hash;
     if (!exe_hash) {
         size_t len = 0;
         char *exe = sl_read_file("/proc/self/exe", &len, NULL, 0);
-        exe_hash = exe ? sl_hash64(exe, len, 0) : 1;
+        exe_hash = exe ? sl_tool_hash64(exe, len, 0) : 1;
         free(exe);
     }
-    h = sl_hash64(&exe_hash, sizeof exe_hash, h);
+    h = sl_tool_hash64(&exe_hash, sizeof exe_hash, h);
     uint64_t scene = sl_bench_scene_hash(o->scene_path);
-    h = sl_hash64(&scene, sizeof scene, h);
+    h = sl_tool_hash64(&scene, sizeof scene, h);
     const char *renderer = (const char *)glGetString(GL_RENDERER);
     size_t u = snprintf(desc, dn, "%s\nscene: %s (%016llx)\nrenderer: %s (%s)\nsize: %dx%d%s\naccumulate: %d\nsettings:",
                         CACHE_FORMAT, o->scene_path ? o->scene_path : "<built-in default scene>",
                         (unsigned long long)scene, renderer ? renderer : "?", app->backend.name, app->backend.width,
                         app->backend.height, app->opt.float32 ? " RGBA32F" : "", accumulate);
-    h = sl_hash64(renderer ? renderer : "", renderer ? strlen(renderer) + 1 : 1, h);
-    h = sl_hash64(app->backend.name, strlen(app->backend.name) + 1, h);
+    h = sl_tool_hash64(renderer ? renderer : "", renderer ? strlen(renderer) + 1 : 1, h);
+    h = sl_tool_hash64(app->backend.name, strlen(app->backend.name) + 1, h);
     int dims[3] = {app->backend.width, app->backend.height, accumulate};
-    h = sl_hash64(dims, sizeof dims, h);
-    h = sl_hash64(&app->opt.float32, sizeof app->opt.float32, h);
+    h = sl_tool_hash64(dims, sizeof dims, h);
+    h = sl_tool_hash64(&app->opt.float32, sizeof app->opt.float32, h);
     for (int i = 0; i < app->opt.setting_count; i++) {
-        h = sl_hash64(app->opt.settings[i], strlen(app->opt.settings[i]) + 1, h);
+        h = sl_tool_hash64(app->opt.settings[i], strlen(app->opt.settings[i]) + 1, h);
         if (u < dn) u += snprintf(desc + u, dn - u, " %s", app->opt.settings[i]);
     }
     (void)settings;
@@ -521,8 +499,8 @@ static uint64_t reference_key(const sl_bench_options *o, sl_app *app, const char
     for (int i = 0; i < app->plugins.count; i++) {
         sl_plugin_rec *r = app->plugins.items[i];
         if (!r->ok) continue;
-        h = sl_hash64(r->id, strlen(r->id) + 1, h);
-        if (r->desc.version) h = sl_hash64(r->desc.version, strlen(r->desc.version) + 1, h);
+        h = sl_tool_hash64(r->id, strlen(r->id) + 1, h);
+        if (r->desc.version) h = sl_tool_hash64(r->desc.version, strlen(r->desc.version) + 1, h);
         if (r->resource_dir) h = hash_dir(r->resource_dir, h, 0);
         if (u < dn) u += snprintf(desc + u, dn - u, " %s %s", r->id, r->desc.version ? r->desc.version : "");
     }
@@ -715,7 +693,11 @@ bool sl_bench_run(const sl_bench_options *o, sl_bench_result *res, char *err, si
                 if (!image) image = malloc(sizeof(float) * 4 * w * h);
                 ok = time_setting(&b.app, res->warmup, per_round, &sm[i], round == 0 ? image : NULL);
                 if (ok && round == 0) {
-                    if (!res->timing_mode) res->timing_mode = strdup(sl_renderer_stats(&b.app)->timing_mode);
+                    if (!res->timing_mode) {
+                        sl_tool_frame_times t;
+                        sl_tool_frame_times_of(&b.app, &t);
+                        res->timing_mode = strdup(t.timing_mode ? t.timing_mode : "");
+                    }
                     sl_metric_all(image, res->reference.pixels, w, h, &row->error);
                     if (o->image_prefix) save_image(o, row->label, image, w, h);
                 }

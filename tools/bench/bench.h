@@ -5,7 +5,7 @@
  * it directly. Documentation: docs/benchmarks.md. */
 #ifndef SL_BENCH_H
 #define SL_BENCH_H
-#include "app.h"
+#include "toolkit.h"
 #include "metrics.h"
 #include <stdint.h>
 
@@ -105,10 +105,7 @@ bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric
  * Returns 1 when written, 0 when gnuplot is missing (err says so), -1 on failure. */
 int sl_bench_write_chart(const sl_bench_result *res, const char *png_path, sl_metric metric, char *err, size_t n);
 
-/* $SHADELAB_CACHE, else $XDG_CACHE_HOME/shadelab, else $HOME/.cache/shadelab. */
-const char *sl_bench_default_cache_dir(char *buf, size_t n);
-/* FNV-1a 64 of the scene's text (file contents, or the built-in scene); 0 when unreadable. */
-uint64_t sl_bench_scene_hash(const char *scene_path);
+/* sl_bench_default_cache_dir() and sl_bench_scene_hash(): autoquality.h (metrics.h includes it). */
 /* "a=1 b=2" → the label without "<plugin>." prefixes. Caller frees. */
 char *sl_bench_label(const char *settings, const char *plugin);
 /* mkdir -p. */

@@ -1,6 +1,5 @@
 /* shadelab-bench: error versus time for a plugin's quality knobs (docs/benchmarks.md). */
 #include "bench.h"
-#include "log.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

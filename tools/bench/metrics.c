@@ -1,7 +1,7 @@
 /* Error metrics (see metrics.h for the exact definitions). RMSE and PSNR come from the core's
  * image comparison; relMSE and SSIM are here. */
 #include "metrics.h"
-#include "image/image.h"
+#include "toolkit.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -109,13 +109,7 @@ void sl_metric_all(const float *a, const float *ref, int w, int h, sl_bench_erro
     free(la);
 }
 
-static const char *const metric_names[SL_METRIC_COUNT] = {"rmse", "relmse", "dssim", "psnr"};
-const char *sl_metric_name(sl_metric m) { return m >= 0 && m < SL_METRIC_COUNT ? metric_names[m] : "?"; }
-bool sl_metric_parse(const char *name, sl_metric *out) {
-    for (int i = 0; i < SL_METRIC_COUNT; i++)
-        if (!strcmp(name, metric_names[i])) { *out = (sl_metric)i; return true; }
-    return false;
-}
+/* sl_metric_name, sl_metric_parse: core/quality/results.c (autoquality.h). */
 double sl_metric_value(const sl_bench_error *e, sl_metric m) {
     switch (m) {
     case SL_METRIC_RMSE: return e->rmse;

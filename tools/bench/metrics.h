@@ -23,6 +23,7 @@
  * (sl_bench_error.nonfinite): a setting that produces NaN is reported, never averaged in. */
 #ifndef SL_BENCH_METRICS_H
 #define SL_BENCH_METRICS_H
+#include "autoquality.h"
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -51,12 +52,8 @@ double sl_metric_ssim(const float *x, const float *y, int width, int height);
 /* Every metric above at once: a = the image under test, ref = the reference. */
 void sl_metric_all(const float *a, const float *ref, int width, int height, sl_bench_error *out);
 
-/* Lower-is-better metrics by name, for charts, Pareto fronts and budgets. */
-typedef enum sl_metric { SL_METRIC_RMSE, SL_METRIC_RELMSE, SL_METRIC_DSSIM, SL_METRIC_PSNR, SL_METRIC_COUNT } sl_metric;
-/* "rmse", "relmse", "dssim" (1 - SSIM), "psnr" (higher is better: its value is negated in
- * sl_metric_value so that every metric is lower-is-better). */
-const char *sl_metric_name(sl_metric m);
-bool sl_metric_parse(const char *name, sl_metric *out);
+/* sl_metric (the metrics by name: sl_metric_name, sl_metric_parse) is in autoquality.h, the
+ * header of the library the viewer's --auto-quality shares with the bench. */
 /* The error value of e under metric m, lower is better (PSNR: -psnr). */
 double sl_metric_value(const sl_bench_error *e, sl_metric m);
 

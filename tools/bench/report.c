@@ -1,7 +1,5 @@
 /* shadelab-bench outputs: CSV, JSON (also the input of --auto-quality) and the gnuplot chart. */
 #include "bench.h"
-#include "fileio.h"
-#include "log.h"
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>

@@ -1,9 +1,8 @@
 /* shadelab-cube: prefilters environment maps for image-based lighting on the GPU (or llvmpipe)
- * with exactly the code the envmap plugin runs at load (plugins/envmap/envmap_core.h). */
-#include "envmap_core.h"
-#include "envmap_io.h"
-#include "backend/backend.h"
-#include "render/composer.h"
+ * with exactly the code the envmap plugin runs at load (its tool API, <envmap/prefilter.h>). */
+#include "envmap/io.h"
+#include "envmap/prefilter.h"
+#include "toolkit.h"
 #include <shadelab/gl.h>
 #include <libgen.h>
 #include <math.h>
@@ -78,10 +77,11 @@ static int program_count;
 
 static unsigned load_program(void *user, const char *fragment, const char *defines) {
     char err[16384] = "";
-    sl_program *p = sl_program_from_files(glsl_dir(), "sl:fullscreen.vert", fragment, defines, err, sizeof err);
-    if (!p->id) fprintf(stderr, "shadelab-cube: %s\n", err);
+    sl_program *p = sl_tool_program_from_files(glsl_dir(), "sl:fullscreen.vert", fragment, defines, err, sizeof err);
+    unsigned id = sl_tool_program_id(p);
+    if (!id) fprintf(stderr, "shadelab-cube: %s\n", err);
     if (program_count < 8) programs[program_count++] = p;
-    return p->id;
+    return id;
 }
 
 static int fail(const char *fmt, const char *a) {
@@ -222,7 +222,7 @@ int main(int argc, char **argv) {
             }
         }
     }
-    for (int i = 0; i < program_count; i++) sl_program_free(programs[i]);
+    for (int i = 0; i < program_count; i++) sl_tool_program_free(programs[i]);
     em_gpu_free(&g);
     em_env_free(&env);
     sl_backend_destroy(&b);

@@ -8,8 +8,8 @@
  *   - seams: the step across every face edge at every level against the steps inside faces;
  *     the poles of a lat-long source finite and smooth. */
 #include "check.h"
-#include "envmap_core.h"
-#include "envmap_io.h"
+#include "envmap/io.h"
+#include "envmap/prefilter.h"
 #include "ggx_ref.h"
 #include "render/composer.h"
 #include <shadelab/gl.h>

@@ -16,8 +16,8 @@
  *   poles        looking straight up and down at a lat-long: finite and smooth */
 #include "check.h"
 #include "camera_rays.h"
-#include "envmap_core.h"
-#include "envmap_io.h"
+#include "envmap/io.h"
+#include "envmap/prefilter.h"
 #include "ggx_ref.h"
 #include "log.h"
 #include "test_tmp.h"

@@ -12,8 +12,7 @@
 #ifndef NM_TOOLS_H
 #define NM_TOOLS_H
 
-#include "image/image.h"
-#include "scene/scene.h"
+#include "toolkit.h" /* the core for tools: sl_image, sl_mesh_data, scene files */
 #include <stdbool.h>
 #include <stddef.h>
 

@@ -1,7 +1,6 @@
 /* --auto-quality (see autoquality.h). */
 #include "autoquality.h"
-#include "bench.h"
-#include "pareto.h"
+#include "app.h"
 #include "fileio.h"
 #include "log.h"
 #include "render/composer.h"

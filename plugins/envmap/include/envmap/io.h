@@ -1,8 +1,9 @@
-/* envmap image files (envmap_io.cpp, over OpenImageIO) and the environment loader policy
- * shared by the plugin and the cube tool (envmap_load.c). */
+/* envmap's public tool API, part 2 (library `envmap_prefilter`, plugins/envmap/README.md):
+ * environment image files (envmap_io.cpp, over OpenImageIO) and the environment loader policy
+ * shared by the plugin and the cube tool (envmap_load.c). Part 1 is <envmap/prefilter.h>. */
 #ifndef ENVMAP_IO_H
 #define ENVMAP_IO_H
-#include "envmap_core.h"
+#include "prefilter.h"
 
 #ifdef __cplusplus
 extern "C" {

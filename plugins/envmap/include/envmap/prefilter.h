@@ -1,8 +1,10 @@
-/* envmap core: everything the envmap plugin, the cube tool (tools/cube) and the tests share.
- * One implementation: the plugin links it into envmap.so, shadelab-cube and the tests link it
- * as a static library (envmap_core). Plain C over <shadelab/gl.h>; it never defines the GL
- * function pointers (the module that links it does: the plugin in envmap.c, the tool and the
- * tests through the core library).
+/* envmap's public tool API (library `envmap_prefilter`, documented in plugins/envmap/README.md):
+ * everything the envmap plugin, the cube tool (tools/cube) and the tests share. This header and
+ * <envmap/io.h> (files, environments) are the only envmap headers another module may include;
+ * the rest of plugins/envmap is the plugin's own. One implementation: the plugin links it into
+ * envmap.so, shadelab-cube and the tests link it as a static library (envmap_prefilter). Plain C
+ * over <shadelab/gl.h>; it never defines the GL function pointers (the module that links it
+ * does: the plugin in envmap.c, the tool and the tests through the core library).
  *
  * Conventions (sdk conventions, scenes/README.md):
  *   lat-long   d = (sinθ sinφ, cosθ, sinθ cosφ), θ from +Y, φ = atan2(d.x, d.z);
@@ -13,8 +15,8 @@
  *   yaw        the environment turns by yaw degrees about +Y, +Z towards +X: the map's u = 0
  *              content appears at (sin yaw, 0, cos yaw). Lookups use d_map = R_y(−yaw) d.
  */
-#ifndef ENVMAP_CORE_H
-#define ENVMAP_CORE_H
+#ifndef ENVMAP_PREFILTER_H
+#define ENVMAP_PREFILTER_H
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>

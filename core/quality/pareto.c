@@ -1,6 +1,6 @@
-/* Pareto front (see pareto.h). n is a handful of settings, so the O(n^2) definition is used as
+/* Pareto front (see autoquality.h). n is a handful of settings, so the O(n^2) definition is used as
  * written rather than a sort-and-sweep: it is obviously right and handles ties and NaN. */
-#include "pareto.h"
+#include "autoquality.h"
 #include <math.h>
 
 static bool valid(double c, double e) { return !isnan(c) && !isnan(e); }
