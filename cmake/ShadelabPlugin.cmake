@@ -5,6 +5,16 @@
 # symbol but the entry point, and installs both into <prefix>/lib/shadelab/plugins/NAME/ where
 # the viewer finds it by name (--plugin NAME, scene "plugins": ["NAME"]).
 # GLSL files are symlinked into the build tree, so editing them hot-reloads a running viewer.
+#
+# One function for every plugin: installed with the SDK (find_package(shadelab) includes it) and
+# included by shadelab's own CMakeLists.txt for the bundled plugins. It links the SDK target
+# shadelab::sdk, which is the imported target of the installed package and, in shadelab's own
+# tree, an alias of shadelab_sdk. Two variables, read when it is called, adapt the layout; a
+# third-party build leaves them unset:
+#   SHADELAB_PLUGIN_OUTPUT_DIR     where NAME/NAME.so goes (default ${CMAKE_CURRENT_BINARY_DIR}/plugins;
+#                                  shadelab's tree: build/plugins, where the viewer finds them)
+#   SHADELAB_PLUGIN_TARGET_PREFIX  prefix of the target's name (default none: the target is NAME;
+#                                  shadelab's tree: plugin_, e.g. plugin_ggx)
 include_guard(GLOBAL)
 include(GNUInstallDirs)
 
@@ -13,12 +23,20 @@ function(shadelab_add_plugin name)
   if(NOT P_SOURCES)
     message(FATAL_ERROR "shadelab_add_plugin(${name}): SOURCES is required")
   endif()
-  set(dir "${CMAKE_CURRENT_BINARY_DIR}/plugins/${name}")
-  add_library(${name} MODULE ${P_SOURCES})
-  set_target_properties(${name} PROPERTIES PREFIX "" OUTPUT_NAME ${name}
+  if(DEFINED SHADELAB_PLUGIN_OUTPUT_DIR)
+    set(dir "${SHADELAB_PLUGIN_OUTPUT_DIR}/${name}")
+  else()
+    set(dir "${CMAKE_CURRENT_BINARY_DIR}/plugins/${name}")
+  endif()
+  set(target "${SHADELAB_PLUGIN_TARGET_PREFIX}${name}")
+  add_library(${target} MODULE ${P_SOURCES})
+  set_target_properties(${target} PROPERTIES PREFIX "" OUTPUT_NAME ${name}
     LIBRARY_OUTPUT_DIRECTORY "${dir}"
     C_VISIBILITY_PRESET hidden CXX_VISIBILITY_PRESET hidden)
-  target_link_libraries(${name} PRIVATE shadelab::sdk)
+  target_link_libraries(${target} PRIVATE shadelab::sdk)
+  if(UNIX AND NOT APPLE)
+    target_link_libraries(${target} PRIVATE m)   # libm: C plugins use it; the viewer links it too
+  endif()
   file(MAKE_DIRECTORY "${dir}")
   foreach(f ${P_GLSL})
     get_filename_component(abs "${f}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
@@ -26,5 +44,5 @@ function(shadelab_add_plugin name)
     file(CREATE_LINK "${abs}" "${dir}/${fn}" SYMBOLIC COPY_ON_ERROR)
     install(FILES "${abs}" DESTINATION "${CMAKE_INSTALL_LIBDIR}/shadelab/plugins/${name}")
   endforeach()
-  install(TARGETS ${name} LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/shadelab/plugins/${name}")
+  install(TARGETS ${target} LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/shadelab/plugins/${name}")
 endfunction()
