@@ -239,6 +239,16 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
                     : (q->desc.type == SL_PARAM_INT || q->desc.type == SL_PARAM_ENUM) ? q->desc.default_value.i
                     : q->desc.default_value.f[c];
         }
+        /* the scene's intensity and colour obey the same ranges as --set light.NAME.KEY */
+        char value[128], problem[1024];
+        snprintf(value, sizeof value, "%.9g", L->intensity);
+        bool valid = set_light_value(app, li, "intensity", value, problem, sizeof problem);
+        snprintf(value, sizeof value, "%.9g,%.9g,%.9g", L->color[0], L->color[1], L->color[2]);
+        valid = valid && set_light_value(app, li, "color", value, problem, sizeof problem);
+        if (!valid) {
+            snprintf(err, n, "%s:%d: %s", s->path, L->line, problem);
+            return false;
+        }
         for (int k = 0; k < L->props.count; k++) {
             const sl_prop *p = &L->props.items[k];
             char text[1024], why[1024];

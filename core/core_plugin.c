@@ -26,7 +26,7 @@ static sl_status core_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_param_desc), .id = "enabled", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
          .default_value = {.b = true}, .group = "light", .description = "Per-light on/off."},
         {.struct_size = sizeof(sl_param_desc), .id = "intensity", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT,
-         .default_value = {.f = {1}}, .min = 0, .max = 1e6f, .group = "light",
+         .default_value = {.f = {1}}, .min = 0, .max = 1e10f, .group = "light",
          .description = "Directional: irradiance E at normal incidence (W/m²); point/spot: intensity I (E = I/d²)."},
         {.struct_size = sizeof(sl_param_desc), .id = "color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_LIGHT,
          .default_value = {.f = {1, 1, 1}}, .group = "light", .description = "Linear RGB tint, multiplied by intensity."},

@@ -209,6 +209,11 @@ bool sl_param_parse(const sl_param *param, const char *text, sl_value *out, char
             snprintf(err, n, "%s: colour components must be >= 0 (linear RGB)", param->full_id);
             return false;
         }
+        /* a colour beyond what a pixel can hold (RGBA16F: 65504) means nothing and overflows shading */
+        if (d->type == SL_PARAM_COLOR && (v.f[0] > 65504 || v.f[1] > 65504 || v.f[2] > 65504)) {
+            snprintf(err, n, "%s: colour components must be <= 65504 (the largest value a pixel holds)", param->full_id);
+            return false;
+        }
         break;
     case SL_PARAM_TEXTURE:
         v.s = text; /* caller copies */

@@ -42,5 +42,9 @@ SlSurface sl_surface_from_varyings() {
 void main() {
     SlSurface s = sl_surface_from_varyings();
     sl_run_surface_hooks(s);
-    o_color = vec4(sl_shade_surface(s), 1.0);
+    // Radiance beyond what the colour target holds (65504 in RGBA16F) would become Inf there:
+    // clamp to it (SL_MAX_RADIANCE, scene.h). An explicit comparison, not min(): NaN compares
+    // false and stays NaN, so a shading bug is not painted white (the stability tests look for it).
+    vec3 c = sl_shade_surface(s);
+    o_color = vec4(mix(c, vec3(SL_MAX_RADIANCE), greaterThan(c, vec3(SL_MAX_RADIANCE))), 1.0);
 }

@@ -261,7 +261,9 @@ bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) 
     if (info.is_float) { /* HDR files with NaN/Inf are legal but poison shading: say so */
         long bad = 0;
         for (size_t i = 0; i < npix * 4; i++) bad += !isfinite(buf[i]);
-        if (bad) SL_WARN("%s: %ld sample%s NaN or Inf (kept as is)", path, bad, bad == 1 ? " is" : "s are");
+        /* info, not a warning: the loader is faithful (image comparisons need the values); each
+         * consumer that shades with them applies its policy and warns (textures, environments) */
+        if (bad) SL_INFO("%s: %ld sample%s NaN or Inf", path, bad, bad == 1 ? " is" : "s are");
     }
 
     img->width = info.width;
@@ -627,4 +629,19 @@ void sl_image_compare(const float *a, const float *b, int width, int height, int
     out->mean_abs = sum1 / count;
     out->max_abs = maxd;
     out->psnr = out->rmse > 0.0 ? -20.0 * log10(out->rmse) : INFINITY;
+}
+
+long sl_image_sanitize(sl_image *img, float max, long *nonfinite, long *negative, long *over) {
+    long nf = 0, neg = 0, big = 0;
+    size_t n = (size_t)img->width * img->height * 4;
+    for (size_t i = 0; i < n; i++) {
+        float v = img->pixels[i];
+        if (!isfinite(v)) img->pixels[i] = v > 0 ? max : 0, nf++; /* +Inf → max; NaN, −Inf → 0 */
+        else if (v < 0) img->pixels[i] = 0, neg++;
+        else if (v > max) img->pixels[i] = max, big++;
+    }
+    if (nonfinite) *nonfinite = nf;
+    if (negative) *negative = neg;
+    if (over) *over = big;
+    return nf + neg + big;
 }

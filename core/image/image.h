@@ -48,6 +48,11 @@ bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size);
 /* sRGB-encoded → linear in place (RGB only, alpha untouched), per IEC 61966-2-1 (see
  * sl_srgb_decode: inputs are clamped to [0,1] and NaN becomes 0). Call it exactly once, for
  * colour textures whose img->source_srgb is true. */
+/* Makes every sample finite and in [0, max]: NaN, −Inf and negative values become 0, +Inf and
+ * values above max become max. Returns how many samples changed; the optional out-parameters
+ * count NaN/±Inf, finite negatives and finite values over max. Inputs that feed shading use it
+ * with one warning naming the file. */
+long sl_image_sanitize(sl_image *img, float max, long *nonfinite, long *negative, long *over);
 void sl_image_srgb_to_linear(sl_image *img);
 /* Writes float RGBA (width*height*4, row 0 = top). Format from the extension
  * (case-insensitive):

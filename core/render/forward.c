@@ -156,6 +156,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     /* ---- common prelude: defines and uniforms for the owners involved ---- */
     sl_strbuf pre = {0};
     sl_sb_append(&pre, "#version 450 core\n");
+    /* what the colour target holds: the forward pass clamps its output to it (scene.h) */
+    sl_sb_printf(&pre, "#define SL_MAX_RADIANCE %.9g\n", app->opt.float32 ? 3.0e38 : SL_MAX_RADIANCE);
     char model_id[128]; /* SL_MODEL_<NAME>: lets a chunk shared by several models specialise */
     sl_glsl_ident(model, model_id, sizeof model_id, true), sl_sb_printf(&pre, "#define SL_MODEL_%s 1\n", model_id);
     if (model_chunk->d.flags & SL_CHUNK_MASKS_FACING_AWAY) sl_sb_append(&pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");

@@ -160,6 +160,12 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
             if (img.source_bits == 8) srgb_storage = true;
             else sl_image_srgb_to_linear(&img);
         }
+        /* policy for texture files: finite, >= 0 and at most SL_MAX_RADIANCE, with one warning */
+        long nonfinite = 0, negative = 0, over = 0;
+        if (ok && img.source_float && sl_image_sanitize(&img, (float)SL_MAX_RADIANCE, &nonfinite, &negative, &over))
+            SL_WARN("texture %s: replaced %ld NaN/Inf, %ld negative and %ld over-%g samples (NaN, -Inf and "
+                    "negatives by 0; +Inf and large values by %g)", spec, nonfinite, negative, over, SL_MAX_RADIANCE,
+                    SL_MAX_RADIANCE);
     }
     unsigned tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
@@ -210,6 +216,13 @@ static bool lights_animated(sl_app *app) {
     return false;
 }
 
+/* colour × intensity: finite by the schema's ranges (colour <= 65504, intensity <= 1e10, the same
+ * from a scene as from --set), with room for any BRDF value before float overflow; the forward
+ * pass clamps what it writes to SL_MAX_RADIANCE. */
+static void light_radiant(const sl_light *L, float out[3]) {
+    for (int c = 0; c < 3; c++) out[c] = L->color[c] * L->intensity;
+}
+
 /* The light buffer and the lights plugins see (sl_host.lights), at app->time. */
 static void pack_lights(sl_app *app) {
     sl_renderer *r = R(app);
@@ -231,7 +244,7 @@ static void pack_lights(sl_app *app) {
             info->index = k;
             gpu_light *g = &buf[k++];
             sl_light_at_time(L, app->time, g->position, g->direction);
-            for (int c = 0; c < 3; c++) g->color[c] = L->color[c] * L->intensity;
+            light_radiant(L, g->color);
             memcpy(g->params, app->light_params[i], sizeof g->params);
         }
         r->type_range[t][1] = k;
@@ -243,7 +256,7 @@ static void pack_lights(sl_app *app) {
         info->name = L->name;
         info->type = L->type;
         sl_light_at_time(L, app->time, info->position, info->direction); /* where the animation puts it */
-        for (int c = 0; c < 3; c++) info->color[c] = L->color[c] * L->intensity;
+        light_radiant(L, info->color);
         memcpy(info->params, app->light_params[i], sizeof info->params);
         info->enabled = L->enabled;
         info->cast_shadows = L->cast_shadows;

@@ -59,6 +59,11 @@ typedef struct sl_node {
     int mesh_count;
 } sl_node;
 
+/* The most radiance a pixel can hold: the largest finite half float (the colour target is
+ * RGBA16F). The forward pass clamps its output to it; inputs whose radiance alone exceeds it (an
+ * environment colour) are refused. */
+#define SL_MAX_RADIANCE 65504.0
+
 typedef enum sl_light_animation { SL_ANIMATE_NONE, SL_ANIMATE_ORBIT, SL_ANIMATE_WOBBLE } sl_light_animation;
 
 typedef struct sl_light {

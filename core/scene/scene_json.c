@@ -689,6 +689,11 @@ static bool load_environment(loader *L, const cJSON *o) {
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "color")) && !get_vec(L, v, ctx, 3, env->color, true)) return false;
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "intensity")) && !get_number(L, v, ctx, &env->intensity, 0.0, false, FLT_MAX)) return false;
     if ((v = cJSON_GetObjectItemCaseSensitive(o, "yaw")) && !get_number(L, v, ctx, &env->yaw_deg, -FLT_MAX, false, FLT_MAX)) return false;
+    /* the constant radiance is what reaches the colour target: it must fit (RGBA16F: 65504) */
+    for (int c = 0; c < 3; c++)
+        if ((double)env->color[c] * env->intensity > SL_MAX_RADIANCE)
+            return failf(L, o, "%s: color x intensity = %g is more radiance than the colour target holds (at most %g)",
+                         ctx, (double)env->color[c] * env->intensity, SL_MAX_RADIANCE);
     for (const cJSON *e = o->child; e; e = e->next) {
         if (in_list(e->string, KEYS(environment_keys)) || strcmp(e->string, "comment") == 0) continue;
         if (!get_prop(L, e, ctx, &env->props)) return false;
