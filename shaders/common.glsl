@@ -27,6 +27,8 @@ struct SlSurface {
     float specular;        // specular scale k_s (1 by default)
     float ao;              // ambient occlusion (1 by default)
     float opacity;         // 1 by default
+    float lod_bias;        // mip bias of lookups that follow the normal map's level (normal-map sets
+                           // it; 0 by default): a model's gloss map filtered at the normal's level
 };
 
 // One light as packed by the core (std430, 80 bytes).

@@ -36,6 +36,7 @@ SlSurface sl_surface_from_varyings() {
     s.specular = 1.0;
     s.ao = 1.0;
     s.opacity = 1.0;
+    s.lod_bias = 0.0;
     return s;
 }
 

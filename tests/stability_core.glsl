@@ -21,6 +21,7 @@ vec4 stability_point_light(vec4 p, vec4 lp) {
     s.specular = 1.0;
     s.ao = 1.0;
     s.opacity = 1.0;
+    s.lod_bias = 0.0;
     vec3 l, E;
     sl_light_point(L, s, l, E);
     float c = E.x * max(0.0, dot(s.normal, l));

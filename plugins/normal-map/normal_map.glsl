@@ -47,6 +47,7 @@ vec3 nm_mapped_normal(SlSurface s) {
 
 void nm_surface(inout SlSurface s) {
 #if defined(SL_MAT_HAS_NORMAL_MAP)
+    s.lod_bias = normal_map_lod_bias; // the SDK contract other plugins' lookups follow (phong's gloss)
     // Normals facing away from the viewer are bent toward it (nm_face_viewer), except where
     // there is no viewer (texture-space passes: sss irradiance) and for models that mask them
     // themselves (SL_MODEL_MASKS_FACING_AWAY, e.g. ggx: Smith G1(v) = 0 gives them no

@@ -50,11 +50,7 @@ vec3 phong_model_blinn_gloss_ambient(SlSurface s, vec3 Ea) {
 // key 4 off: no AO. With specular antialiasing and a normal map, gloss comes from the
 // Toksvig texture instead (same UVs, same size as the normal map, so the same mip level).
 void phong_surface(inout SlSurface s) {
-#if defined(SL_MAT_HAS_NORMAL_MAP)
-    float bias = normal_map_lod_bias; // gloss follows the normal map's mip level
-#else
-    float bias = 0.0;
-#endif
+    float bias = s.lod_bias; // gloss follows the normal map's mip level (set by normal-map; SDK contract)
     vec4 prop = texture(sl_mat_property_map, s.uv, bias);
 #if defined(PHONG_TOKSVIG)
     vec2 t = texture(phong_toksvig, s.uv, bias).rg;

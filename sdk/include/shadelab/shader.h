@@ -10,7 +10,9 @@
  *   struct SlVertex  { vec3 position; vec3 normal; vec4 tangent; vec2 uv; };      object space
  *   struct SlSurface { vec3 position; vec3 normal; vec3 geometric_normal;
  *                      vec3 tangent; vec3 bitangent; vec2 uv; vec3 view;        world space
- *                      vec3 base_color; float alpha; float specular; float ao; float opacity; };
+ *                      vec3 base_color; float alpha; float specular; float ao; float opacity;
+ *                      float lod_bias; };   lod_bias (ABI 1.5): mip bias of lookups that follow
+ *                      the normal map's level; normal-map sets it, phong's gloss map reads it
  *   struct SlLight   { vec4 position; vec4 direction; vec4 color; vec4 params[2]; };
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size.
