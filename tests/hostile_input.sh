@@ -3,7 +3,8 @@
 # clear message naming the input, and a failed run leaves an existing output file untouched.
 # Families: special files as the scene (/dev/zero, /dev/urandom, a FIFO), a FIFO as texture, mesh
 # and environment map, a decompression bomb as a texture (a PNG header declaring 16384², refused from the
-# header before decoding).      usage: hostile_input.sh SHADELAB
+# header before decoding); plugin names and paths that are not plugins (GGX, /dev/zero, a
+# directory) and an over-long SHADELAB_PLUGIN_PATH.      usage: hostile_input.sh SHADELAB
 set -uo pipefail
 SL=$(realpath "$1")
 T=$(mktemp -d "${TMPDIR:-/tmp}/shadelab-hostile.XXXXXX")
@@ -41,5 +42,10 @@ run texture_fifo  any  "'fifo' cannot be read" --scene tex_fifo.json --output te
 run texture_bomb  any  "image is 16384x16384 (from its header)" --scene tex_bomb.json --output tex.png
 run mesh_fifo     fail "mesh file 'fifo' cannot be read" --scene mesh_fifo.json --output keep.png
 run env_fifo      fail "'fifo' cannot be read" --scene env_fifo.json --output keep.png
+run plugin_upper any  'did you mean "ggx"?' --plugin GGX --output p.png
+run plugin_device any  "/dev/zero is not a regular file" --plugin /dev/zero --output p.png
+run plugin_dir    any  "is a directory, not a plugin file" --plugin "$T/" --output p.png
+SHADELAB_PLUGIN_PATH=$(printf '/nonexistent%d:' $(seq 1 20)) run plugin_path any "entries beyond the first" --plugin ggx --output p.png
+grep -q "wrote p.png" plugin_path.log || fail "plugin_path: the built-in plugin directory was dropped (ggx not found)"
 [ "$(cat keep.png)" = "previous output" ] || fail "a failed run overwrote the existing output file"
 exit $FAILED

@@ -1,5 +1,6 @@
 #include "plugin/plugins.h"
 #include "log.h"
+#include <ctype.h>
 #include <dlfcn.h>
 #include <errno.h>
 #include <libgen.h>
@@ -234,9 +235,15 @@ int sl_plugin_search_dirs(char dirs[][1024], int max) {
     int n = 0;
     const char *env = getenv("SHADELAB_PLUGIN_PATH");
     if (env && *env) {
+        /* the built-in directories (3) always keep their places: extra entries are dropped, loudly */
         char *copy = strdup(env), *save = NULL;
-        for (char *tok = strtok_r(copy, ":", &save); tok && n < max; tok = strtok_r(NULL, ":", &save))
-            if (*tok) snprintf(dirs[n++], 1024, "%s", tok);
+        int dropped = 0;
+        for (char *tok = strtok_r(copy, ":", &save); tok; tok = strtok_r(NULL, ":", &save))
+            if (*tok) {
+                if (n < max - 3) snprintf(dirs[n++], 1024, "%s", tok);
+                else dropped++;
+            }
+        if (dropped) SL_WARN("SHADELAB_PLUGIN_PATH: %d entries beyond the first %d ignored", dropped, max - 3);
         free(copy);
     }
     char exe[1024];
@@ -305,13 +312,24 @@ int sl_plugins_load(sl_plugins *P, const char *name, const char *requested_by, b
         }
         snprintf(path, sizeof path, "%s", name);
         if (!file_exists(path)) {
-            disable(r, "plugin file %s does not exist", path);
+            struct stat st;
+            if (stat(path, &st) != 0) disable(r, "plugin file %s does not exist", path);
+            else if (S_ISDIR(st.st_mode)) disable(r, "%s is a directory, not a plugin file (name the .so inside it)", path);
+            else disable(r, "%s is not a regular file (a device, FIFO or socket), not a plugin", path);
             return index;
         }
     } else {
         for (const char *c = name; *c; c++)
             if (!((*c >= 'a' && *c <= 'z') || (*c >= '0' && *c <= '9') || *c == '-' || *c == '_')) {
-                disable(r, "invalid plugin name \"%s\" (letters, digits, '-' only)", name);
+                char lower[256];
+                size_t k = 0;
+                for (; name[k] && k + 1 < sizeof lower; k++) lower[k] = (char)tolower((unsigned char)name[k]);
+                lower[k] = 0;
+                bool valid = true;
+                for (const char *l = lower; *l; l++)
+                    valid &= (*l >= 'a' && *l <= 'z') || (*l >= '0' && *l <= '9') || *l == '-' || *l == '_';
+                disable(r, "invalid plugin name \"%s\" (lower-case letters, digits, '-' only)%s%s%s", name,
+                        valid ? "; did you mean \"" : "", valid ? lower : "", valid ? "\"?" : "");
                 return index;
             }
         char dirs[16][1024], looked[4096] = "";
