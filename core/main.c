@@ -7,6 +7,7 @@
 #include <cjson/cJSON.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,8 +56,35 @@ static int die(const char *msg) {
     return 1;
 }
 
+/* One strict reader for every number on the command line: the whole text is a number within
+ * [lo, hi] (no trailing characters, no overflow wrapping, no NaN). */
+static bool parse_long(const char *s, long lo, long hi, long *out) {
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || errno == ERANGE || v < lo || v > hi) return false;
+    *out = v;
+    return true;
+}
+
+static bool parse_double(const char *s, double lo, double hi, double *out) {
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end || errno == ERANGE || !isfinite(v) || v < lo || v > hi) return false;
+    *out = v;
+    return true;
+}
+
 static bool parse_size(const char *s, int *w, int *h) {
-    return sscanf(s, "%dx%d", w, h) == 2 && *w > 0 && *h > 0 && *w <= 16384 && *h <= 16384;
+    const char *x = strchr(s, 'x');
+    char left[32];
+    long lw, lh;
+    if (!x || x - s >= (long)sizeof left) return false;
+    snprintf(left, sizeof left, "%.*s", (int)(x - s), s);
+    if (!parse_long(left, 1, 16384, &lw) || !parse_long(x + 1, 1, 16384, &lh)) return false;
+    *w = (int)lw, *h = (int)lh;
+    return true;
 }
 
 static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
@@ -80,9 +108,8 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
         } else if (!strcmp(a, "--frames")) {
             const char *v = NEXT();
             if (!v) return 1;
-            char *end;
-            long f = strtol(v, &end, 10);
-            if (*end || f < 1 || f > 1000000) { snprintf(err, n, "--frames %s: expected a count >= 1", v); return 1; }
+            long f;
+            if (!parse_long(v, 1, 1000000, &f)) { snprintf(err, n, "--frames %s: expected a whole number 1..1000000", v); return 1; }
             c->frames = (int)f;
         } else if (!strcmp(a, "--output")) { if (!(c->output = NEXT())) return 1; }
         else if (!strcmp(a, "--stats")) { if (!(c->stats = NEXT())) return 1; }
@@ -98,13 +125,18 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
         else if (!strcmp(a, "--accumulate")) {
             const char *v = NEXT();
             if (!v) return 1;
-            c->opt.accumulate = atoi(v);
-            if (c->opt.accumulate < 1 || c->opt.accumulate > 1000000) { snprintf(err, n, "--accumulate %s: expected >= 1", v); return 1; }
+            long k;
+            if (!parse_long(v, 1, 1000000, &k)) { snprintf(err, n, "--accumulate %s: expected a whole number 1..1000000", v); return 1; }
+            c->opt.accumulate = (int)k;
         } else if (!strcmp(a, "--reference")) { if (!(c->reference = NEXT())) return 1; }
         else if (!strcmp(a, "--auto-quality")) { if (!(c->auto_quality = NEXT())) return 1; }
         else if (!strcmp(a, "--float")) c->opt.float32 = true;
         else if (!strcmp(a, "--data")) { if (!(c->opt.data_dir = NEXT())) return 1; }
-        else if (!strcmp(a, "--time")) { const char *v = NEXT(); if (!v) return 1; c->start_time = atof(v); }
+        else if (!strcmp(a, "--time")) {
+            const char *v = NEXT();
+            if (!v) return 1;
+            if (!parse_double(v, -1e9, 1e9, &c->start_time)) { snprintf(err, n, "--time %s: expected seconds, a finite number within +-1e9", v); return 1; }
+        }
         else if (!strcmp(a, "--strict")) c->opt.strict = true;
         else if (!strcmp(a, "--list-plugins")) c->list_plugins = true;
         else if (!strcmp(a, "--list-debug-views")) c->list_views = true;
@@ -199,7 +231,7 @@ static bool write_stats(const char *path, sl_app *app, recorder *rec, double fir
     FILE *f = fopen(path, "w");
     bool ok = f != NULL;
     if (f) { fprintf(f, "%s\n", text); fclose(f); }
-    else fprintf(stderr, "shadelab: cannot write %s\n", path);
+    else fprintf(stderr, "shadelab: cannot write %s: %s\n", path, strerror(errno));
     free(text);
     cJSON_Delete(root);
     return ok;

@@ -4,7 +4,9 @@
 # Families: special files as the scene (/dev/zero, /dev/urandom, a FIFO), a FIFO as texture, mesh
 # and environment map, a decompression bomb as a texture (a PNG header declaring 16384², refused from the
 # header before decoding); plugin names and paths that are not plugins (GGX, /dev/zero, a
-# directory) and an over-long SHADELAB_PLUGIN_PATH.      usage: hostile_input.sh SHADELAB
+# directory) and an over-long SHADELAB_PLUGIN_PATH; command-line numbers (--size overflowing int,
+# --time nan/abc, --accumulate 2abc / 1e9) and --stats to an unwritable path (errno named).
+#      usage: hostile_input.sh SHADELAB
 set -uo pipefail
 SL=$(realpath "$1")
 T=$(mktemp -d "${TMPDIR:-/tmp}/shadelab-hostile.XXXXXX")
@@ -47,5 +49,11 @@ run plugin_device any  "/dev/zero is not a regular file" --plugin /dev/zero --ou
 run plugin_dir    any  "is a directory, not a plugin file" --plugin "$T/" --output p.png
 SHADELAB_PLUGIN_PATH=$(printf '/nonexistent%d:' $(seq 1 20)) run plugin_path any "entries beyond the first" --plugin ggx --output p.png
 grep -q "wrote p.png" plugin_path.log || fail "plugin_path: the built-in plugin directory was dropped (ggx not found)"
+run cli_size      fail "--size 4294967297x4294967297: expected WxH" --size 4294967297x4294967297 --output keep.png
+run cli_time_nan  fail "--time nan: expected seconds" --time nan --output keep.png
+run cli_time_abc  fail "--time abc: expected seconds" --time abc --output keep.png
+run cli_acc_tail  fail "--accumulate 2abc: expected a whole number 1..1000000" --accumulate 2abc --output keep.png
+run cli_acc_huge  fail "--accumulate 1000000000: expected a whole number 1..1000000" --accumulate 1000000000 --output keep.png
+run cli_stats     any  "cannot write /proc/x.json: No such file or directory" --stats /proc/x.json --output p.png
 [ "$(cat keep.png)" = "previous output" ] || fail "a failed run overwrote the existing output file"
 exit $FAILED
