@@ -443,6 +443,11 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
 
 bool sl_app_render_frame(sl_app *app) {
     bool ok = sl_renderer_frame(app, 0, app->opt.accumulate);
+    /* after the first frame every plugin has had its chance to read the environment */
+    const sl_environment *env = &app->scene.environment;
+    if (app->frame_index == 1 && env->map && !app->environment_read)
+        SL_WARN("%s: environment map '%s' is not used: no loaded plugin reads the environment (the file is never "
+                "opened)", app->scene.path, env->map);
     return ok;
 }
 

@@ -55,6 +55,7 @@ typedef struct sl_app {
     char *debug_view;            /* NULL = final render */
     double time;
     uint64_t frame_index;
+    bool environment_read;       /* a plugin asked for the scene's environment (sl_host.environment) */
 } sl_app;
 
 /* A material's value for a key, or NULL when the key is not in the schema. */

@@ -55,5 +55,7 @@ run cli_time_abc  fail "--time abc: expected seconds" --time abc --output keep.p
 run cli_acc_tail  fail "--accumulate 2abc: expected a whole number 1..1000000" --accumulate 2abc --output keep.png
 run cli_acc_huge  fail "--accumulate 1000000000: expected a whole number 1..1000000" --accumulate 1000000000 --output keep.png
 run cli_stats     any  "cannot write /proc/x.json: No such file or directory" --stats /proc/x.json --output p.png
+echo "{\"environment\": {\"map\": \"bomb.png\"}, \"materials\": [{\"name\": \"m\"}], $sphere}" > env_unused.json
+run env_unused    any  "environment map '$T/bomb.png' is not used" --scene env_unused.json --output p.png
 [ "$(cat keep.png)" = "previous output" ] || fail "a failed run overwrote the existing output file"
 exit $FAILED

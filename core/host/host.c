@@ -130,6 +130,7 @@ static unsigned host_material_texture(const sl_host *h, int m, const char *key) 
 
 static const char *host_environment(const sl_host *h, float o[5]) {
     const sl_environment *e = &HOST_APP(h)->scene.environment;
+    HOST_APP(h)->environment_read = true;
     memcpy(o, e->color, 3 * sizeof(float)), o[3] = e->intensity, o[4] = e->yaw_deg;
     return e->map;
 }
