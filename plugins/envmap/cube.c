@@ -1,5 +1,5 @@
 /* envmap core, CPU side: direction conventions, cube layouts, input sanitising, RGBE,
- * spherical harmonics, the procedural sky and hashing. See envmap_core.h. */
+ * spherical harmonics, the procedural sky and hashing. See include/envmap/prefilter.h. */
 #include "envmap/prefilter.h"
 #include <math.h>
 #include <stdlib.h>

@@ -4,7 +4,7 @@
  * material: "mirror" and "environment" look it up, ggx materials get split-sum image-based
  * lighting, everything else diffuse irradiance. envmap.mode = reference swaps the split sum for
  * Monte Carlo integration with the exact BRDF. See README.md; the shared implementation (also
- * used by tools/cube) is envmap_core.h. */
+ * used by tools/cube) is the library envmap_prefilter, include/envmap/prefilter.h and io.h. */
 #include <shadelab/shadelab.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>

@@ -1,5 +1,5 @@
 /* Environment files: format and layout detection, RGBE8 and sRGB decoding, precomputed chains,
- * sanitising. Shared by the plugin and shadelab-cube (envmap_io.h). */
+ * sanitising. Shared by the plugin and shadelab-cube (include/envmap/io.h). */
 #include "envmap/io.h"
 #include <ctype.h>
 #include <math.h>

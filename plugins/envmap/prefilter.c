@@ -1,5 +1,5 @@
 /* envmap core, GPU side: cube conversion, the GGX specular prefilter, the irradiance
- * convolution and the BRDF LUT (see envmap_core.h). Every pass draws one full-screen triangle
+ * convolution and the BRDF LUT (see <envmap/prefilter.h>). Every pass draws one full-screen triangle
  * per face and level into a framebuffer of its own; callers in the middle of a frame save and
  * restore GL state around these calls (envmap.c does). */
 #include "envmap/prefilter.h"

@@ -1,4 +1,4 @@
-/* envmap core: the shared implementation (envmap_core.h) tested directly, on OSMesa.
+/* envmap core: the shared implementation (<envmap/prefilter.h>) tested directly, on OSMesa.
  *   - conventions: C lat-long / cube mapping, and the GLSL twins against them;
  *   - BRDF LUT against numerical integration in C;
  *   - SH irradiance of L = 1 + ω_y against 1 + ⅔ n_y; the convolved cube likewise;
