@@ -336,6 +336,21 @@ static void stretch_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     draw_materials(s, ctx, f, "sss-stretch", true);
 }
 
+/* Texture space 2 and 3 change only when the irradiance in UV space can: geometry, lights (their
+ * packing changes with every edit and every animated frame, and with them the shadow maps),
+ * parameters and material values, or re-made textures. Not with the camera: UV-space lighting has
+ * no viewer (normal maps do not bend toward one there). A still head then costs the two passes
+ * once instead of every frame. */
+static uint64_t irradiance_signature(void *user, const sl_frame *f) {
+    sss *s = user;
+    ensure_ts(s);
+    uint64_t h = 1469598103934665603ull;
+    uint64_t v[5] = {f->geometry_version, f->params_version, f->lights_version, (uint64_t)param(s, "ts_size").i,
+                     (uint64_t)s->ts_generation};
+    for (int i = 0; i < 5; i++) h = (h ^ v[i]) * 1099511628211ull;
+    return h;
+}
+
 /* Texture space 2: irradiance in UV space, each material with its own surface hooks and the
  * scene's lights and shadows. */
 static void irradiance_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
@@ -542,9 +557,9 @@ static sl_status sss_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-stretch", .stage = SL_STAGE_PREPASS, .execute = stretch_execute,
          .is_active = ts_active, .signature = stretch_signature, .user = s},
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-irradiance", .stage = SL_STAGE_PREPASS,
-         .execute = irradiance_execute, .is_active = ts_active, .user = s},
+         .execute = irradiance_execute, .is_active = ts_active, .signature = irradiance_signature, .user = s},
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-ts-blur", .stage = SL_STAGE_PREPASS, .execute = ts_blur_execute,
-         .is_active = ts_active, .user = s},
+         .is_active = ts_active, .signature = irradiance_signature, .user = s},
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-ss-diffuse", .stage = SL_STAGE_PREPASS,
          .execute = ss_diffuse_execute, .is_active = ss_active, .user = s},
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-ss-blur", .stage = SL_STAGE_PREPASS, .execute = ss_blur_execute,
