@@ -5,7 +5,6 @@
 #include "log.h"
 #include "render/composer.h"
 #include "render/renderer.h"
-#define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include <math.h>
 #include <stdlib.h>

@@ -24,6 +24,7 @@
 #ifndef SL_VIEWER_H
 #define SL_VIEWER_H
 #include "app.h"
+#include "gui/panel.h" /* sl_key_binding */
 #include <stdio.h>
 
 /* Runs until the window closes; returns the exit code. */
@@ -31,15 +32,6 @@ int sl_viewer_run(sl_app *app, double start_time);
 /* --help-keys: the viewer's keys and every plugin's key bindings after conflict resolution. */
 void sl_viewer_print_keys(sl_app *app, FILE *f);
 
-/* A plugin key binding after conflict resolution. */
-typedef struct sl_key_binding {
-    int reg;                 /* index into app->plugins.keys */
-    char key[16];            /* normalised name: "A", "7", "F3" ("" when invalid) */
-    int code;                /* GLFW key code; -1 when the name is not a valid key */
-    bool shift;              /* moved to Shift+key: the plain key was taken */
-    bool unbound;            /* no key at all: trigger it from the panel */
-    char clash[200];         /* who took the plain key ("viewer (fly)", "plugin ggx"); "" = none */
-} sl_key_binding;
 
 /* Resolves every plugin key as documented above; writes one warning per clash to `warn`
  * (may be NULL). Returns the number of bindings (= app->plugins.key_count, at most max). */

@@ -7,9 +7,19 @@
 #ifndef SL_PANEL_H
 #define SL_PANEL_H
 #include "app.h"
-#include "viewer.h"
 
 typedef struct sl_panel sl_panel;
+
+/* A plugin key binding after the viewer's conflict resolution (sl_viewer_resolve_keys); the panel
+ * lists them and triggers unbound ones. */
+typedef struct sl_key_binding {
+    int reg;                 /* index into app->plugins.keys */
+    char key[16];            /* normalised name: "A", "7", "F3" ("" when invalid) */
+    int code;                /* GLFW key code; -1 when the name is not a valid key */
+    bool shift;              /* moved to Shift+key: the plain key was taken */
+    bool unbound;            /* no key at all: trigger it from the panel */
+    char clash[200];         /* who took the plain key ("viewer (fly)", "plugin ggx"); "" = none */
+} sl_key_binding;
 
 /* What the user asked for through the panel this frame (the viewer performs it). */
 typedef struct sl_panel_actions {
