@@ -2,7 +2,7 @@
 # Hostile input (issue 14): every case ends in bounded time (timeout 30 s; 124 = a hang) with a
 # clear message naming the input, and a failed run leaves an existing output file untouched.
 # Families: special files as the scene (/dev/zero, /dev/urandom, a FIFO), a FIFO as texture, mesh
-# and environment map, a decompression bomb as a texture (a PNG header declaring 16384², refused from the
+# and environment map, a decompression bomb as a texture and as an environment (a PNG header declaring 16384², refused from the
 # header before decoding); plugin names and paths that are not plugins (GGX, /dev/zero, a
 # directory) and an over-long SHADELAB_PLUGIN_PATH; command-line numbers (--size overflowing int,
 # --time nan/abc, --accumulate 2abc / 1e9) and --stats to an unwritable path (errno named).
@@ -42,6 +42,7 @@ run scene_random  fail "/dev/urandom: is not a regular file (a device)" --scene 
 run scene_fifo    fail "fifo: is not a regular file (a FIFO)" --scene fifo --output keep.png
 run texture_fifo  any  "'fifo' cannot be read" --scene tex_fifo.json --output tex.png
 run texture_bomb  any  "image is 16384x16384 (from its header)" --scene tex_bomb.json --output tex.png
+run env_bomb      any  "16384x16384 with 3 channels (from its header)" --scene env_bomb.json --output env.png
 run mesh_fifo     fail "mesh file 'fifo' cannot be read" --scene mesh_fifo.json --output keep.png
 run env_fifo      fail "'fifo' cannot be read" --scene env_fifo.json --output keep.png
 run plugin_upper any  'did you mean "ggx"?' --plugin GGX --output p.png

@@ -12,16 +12,15 @@
 #ifndef SL_IMAGE_H
 #define SL_IMAGE_H
 
+#include <shadelab/shadelab.h>
 #include <stdbool.h>
 #include <stddef.h>
 
 /* Largest width or height sl_image_load and sl_image_procedural accept (a 16384² RGBA float
  * image is 4 GiB already); larger files are refused before any pixel memory is allocated. */
 #define SL_IMAGE_MAX_DIM 16384
-/* Largest pixel count sl_image_load decodes: 64 Mpixel (8192², 1 GiB as RGBA float). Checked from
- * the file's header before any pixel is decoded, so a small file that decompresses to a huge
- * image (a "decompression bomb") is refused at once; resize such images first (oiiotool --resize). */
-#define SL_IMAGE_MAX_PIXELS (8192L * 8192L)
+/* Largest pixel count sl_image_load decodes: SL_IMAGE_MAX_PIXELS (the SDK's shadelab.h, 64 Mpixel),
+ * checked from the header; resize such images first (oiiotool --resize). */
 
 typedef struct sl_image {
     int width, height;

@@ -2,6 +2,7 @@
 // module). Reads any format OIIO reads as float RGBA; writes half-float EXR and 8-bit PNG with
 // a description tag (the RGBE8 marker). Every exception becomes an error message.
 #include "envmap/io.h"
+#include <shadelab/shadelab.h> /* SL_IMAGE_MAX_PIXELS */
 
 #include <OpenImageIO/imageio.h>
 
@@ -35,9 +36,11 @@ extern "C" bool em_io_load(const char *path, em_image *out, em_io_info *info, ch
         }
         const ImageSpec &spec = in->spec();
         if (spec.width < 1 || spec.height < 1 || spec.width > EM_IO_MAX_DIM || spec.height > EM_IO_MAX_DIM ||
-            spec.nchannels < 1 || spec.depth > 1 || spec.deep) {
-            std::snprintf(err, n, "%s: %dx%d with %d channels is not an image envmap can use (at most %d per side)", path,
-                          spec.width, spec.height, spec.nchannels, EM_IO_MAX_DIM);
+            (long)spec.width * spec.height > SL_IMAGE_MAX_PIXELS || spec.nchannels < 1 || spec.depth > 1 || spec.deep) {
+            std::snprintf(err, n,
+                          "%s: %dx%d with %d channels (from its header) is not an image envmap can use (at most %d per "
+                          "side and %ld Mpixel; refused before decoding)",
+                          path, spec.width, spec.height, spec.nchannels, EM_IO_MAX_DIM, SL_IMAGE_MAX_PIXELS >> 20);
             return false;
         }
         info->bits = (int)spec.format.size() * 8;

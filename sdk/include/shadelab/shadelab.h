@@ -22,6 +22,11 @@
 #define SL_ABI_MINOR 5
 #endif
 
+/* The one limit on decoded image size, for the core's loader and every plugin's or tool's own:
+ * 64 Mpixel (8192², 1 GiB as RGBA float), checked from the file's header before any pixel is
+ * decoded, so a small file that decompresses to gigabytes is refused at once. */
+#define SL_IMAGE_MAX_PIXELS (8192L * 8192L)
+
 #ifdef __cplusplus
 extern "C" {
 #endif
