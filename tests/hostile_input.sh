@@ -58,5 +58,10 @@ run cli_acc_huge  fail "--accumulate 1000000000: expected a whole number 1..1000
 run cli_stats     any  "cannot write /proc/x.json: No such file or directory" --stats /proc/x.json --output p.png
 echo "{\"environment\": {\"map\": \"bomb.png\"}, \"materials\": [{\"name\": \"m\"}], $sphere}" > env_unused.json
 run env_unused    any  "environment map '$T/bomb.png' is not used" --scene env_unused.json --output p.png
+cam() { echo "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 2, 5], \"target\": [0, 0, 0], \"near\": $1, \"far\": 100}], \"materials\": [{\"name\": \"m\"}], $sphere}"; }
+cam 1e-7 > near_tiny.json
+cam 1e-4 > near_small.json
+run near_tiny     fail "far/near = 1e+09 is beyond the depth buffer's precision" --scene near_tiny.json --output keep.png
+run near_small    any  "far/near = 1e+06 loses depth precision" --scene near_small.json --output p.png
 [ "$(cat keep.png)" = "previous output" ] || fail "a failed run overwrote the existing output file"
 exit $FAILED

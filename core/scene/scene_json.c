@@ -598,6 +598,15 @@ static bool load_cameras(loader *L, const cJSON *arr) {
         if ((v = cJSON_GetObjectItemCaseSensitive(o, "far")) && !get_number(L, v, ctx, &c->zfar, 0.0, true, FLT_MAX)) return false;
         if (!(c->zfar > c->znear))
             return failf(L, o, "%s: \"far\" (%g) must be greater than \"near\" (%g)", ctx, c->zfar, c->znear);
+        /* depth precision: measured on the 32-bit float depth buffer, far/near = 1e7 already
+         * z-fights where a sphere meets a plane, 1e9 renders black; refuse past 1e7, warn past 1e5 */
+        double ratio = (double)c->zfar / c->znear;
+        if (ratio > 1e7)
+            return failf(L, o, "%s: far/near = %g is beyond the depth buffer's precision (at most 1e7; raise \"near\")",
+                         ctx, ratio);
+        if (ratio > 1e5)
+            warnf(L, o, "%s: far/near = %g loses depth precision (surfaces close together may z-fight); raise \"near\"",
+                  ctx, ratio);
         float d[3] = {c->target[0] - c->position[0], c->target[1] - c->position[1], c->target[2] - c->position[2]};
         float dl = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (!(dl > 0.0f)) return failf(L, o, "%s: \"position\" and \"target\" are the same point", ctx);
