@@ -63,5 +63,9 @@ cam 1e-7 > near_tiny.json
 cam 1e-4 > near_small.json
 run near_tiny     fail "far/near = 1e+09 is beyond the depth buffer's precision" --scene near_tiny.json --output keep.png
 run near_small    any  "far/near = 1e+06 loses depth precision" --scene near_small.json --output p.png
+# a truncated JPEG (the first 3000 bytes of one shadelab writes): loaded as recovered, with a warning
+"$SL" --headless -q --size 256x256 --output full.jpg && head -c 3000 full.jpg > trunc.jpg
+echo "{\"materials\": [{\"name\": \"m\", \"base_color_map\": \"trunc.jpg\"}], $sphere}" > tex_trunc.json
+run jpeg_truncated any "trunc.jpg: damaged image data" --scene tex_trunc.json --output p.png
 [ "$(cat keep.png)" = "previous output" ] || fail "a failed run overwrote the existing output file"
 exit $FAILED

@@ -238,6 +238,8 @@ bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) 
         sl_oiio_close(in);
         return false;
     }
+    /* read, but the reader recovered from damage (a truncated JPEG is filled with grey): say so */
+    if (msg[0]) SL_WARN("%s: damaged image data, loaded as the reader recovered it (%s)", path, msg);
     sl_oiio_close(in);
 
     for (size_t i = npix; i-- > 0;) {

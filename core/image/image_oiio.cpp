@@ -73,7 +73,12 @@ extern "C" sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, cha
 extern "C" bool sl_oiio_read(sl_oiio_input *h, int chbegin, int chend, float *out, char *err,
                              size_t err_size) {
     try {
-        if (h->in->read_image(0, 0, chbegin, chend, TypeDesc::FLOAT, out)) return true;
+        if (h->in->read_image(0, 0, chbegin, chend, TypeDesc::FLOAT, out)) {
+            /* a reader that recovered (libjpeg fills a truncated file with grey) still reports why */
+            if (err && err_size) err[0] = 0;
+            if (h->in->has_error()) set_err(err, err_size, h->in->geterror());
+            return true;
+        }
         set_err(err, err_size, h->in->geterror());
     } catch (const std::exception &e) {
         set_err(err, err_size, std::string("OpenImageIO exception: ") + e.what());
