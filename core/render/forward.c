@@ -34,14 +34,19 @@ static const sl_chunk_reg *find_named(sl_app *app, sl_hook hook, const char *nam
     return NULL;
 }
 
+/* The plugins that declared a parameter (its owner and, for shared material/light keys, every
+ * other declarer), as a bit mask over plugin indices. */
+static uint64_t declarers_of(sl_plugins *P, const sl_param *q) {
+    int owner = sl_plugins_find(P, q->owner);
+    return q->declared_by | (owner >= 0 ? 1ull << (owner & 63) : 0);
+}
+
 /* A material "has" a key when it carries a value and a plugin that declares the key is on: a
  * chunk gated on normal_map (ggx's specular AA) drops out with the normal-map plugin. */
 static bool material_has(sl_app *app, int m, const char *key) {
     sl_mat_value *v = sl_app_material_value(app, m, key);
     if (!v || !v->present) return false;
-    const sl_param *q = &app->params.items[v->param];
-    int owner = sl_plugins_find(&app->plugins, q->owner);
-    uint64_t declarers = q->declared_by | (owner >= 0 ? 1ull << (owner & 63) : 0);
+    uint64_t declarers = declarers_of(&app->plugins, &app->params.items[v->param]);
     for (int i = 0; i < app->plugins.count && i < 64; i++)
         if ((declarers & (1ull << i)) && sl_plugin_enabled(&app->plugins, i)) return true;
     return false;
@@ -170,9 +175,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     out->texture_count = 0;
     for (int i = 0; i < app->params.count; i++) {
         const sl_param *q = &app->params.items[i];
-        int owner = sl_plugins_find(P, q->owner);
-        uint64_t declarers = q->declared_by | (owner >= 0 ? 1ull << (owner & 63) : 0);
-        if (!(owners & declarers)) continue;
+        if (!(owners & declarers_of(P, q))) continue;
         char id[160], up[160];
         if (q->desc.scope == SL_SCOPE_MATERIAL) {
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);

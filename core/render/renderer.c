@@ -828,13 +828,11 @@ static void run_range(sl_app *app, int begin, int end) {
 
 static void refresh(sl_app *app) {
     sl_renderer *r = R(app);
-    bool view_changed = (r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
-                        (app->debug_view && strcmp(app->debug_view, r->seen_debug_view));
+    bool recompose = sl_renderer_compose_pending(app); /* before the lights' version is marked seen */
     bool lights_changed = r->seen_lights_version != app->lights_version;
     if (lights_changed || (lights_animated(app) && r->seen_light_time != app->time)) pack_lights(app);
     r->seen_light_time = app->time;
-    if (view_changed || lights_changed || r->seen_recompile != app->params.recompile_version ||
-        r->seen_materials != app->materials_version) {
+    if (recompose) {
         compose_all(app);
         free(r->seen_debug_view);
         r->seen_debug_view = app->debug_view ? strdup(app->debug_view) : NULL;
