@@ -14,18 +14,8 @@ step() { echo; echo "== $*"; }
 export SHADELAB_PLUGIN_PATH= SHADELAB_SHADER_DIR=
 
 step "cmake --install into $PFX"
-# `cmake --install` runs BUILD/cmake_install.cmake, which also writes install_manifest.txt into
-# the build tree; a read-only build tree cannot take that, so the same script runs from a copy
-# whose manifest goes to $T (the build tree's own install when the script's form is unknown)
-INSTALL_SCRIPT=$(<"$BUILD/cmake_install.cmake")
-MOVED=${INSTALL_SCRIPT//"file(WRITE \"$BUILD/"/"file(WRITE \"$T/"}
-if [ "$MOVED" != "$INSTALL_SCRIPT" ]; then
-  printf '%s\n' "$MOVED" >"$T/cmake_install.cmake"
-  "$CMAKE" -DCMAKE_INSTALL_PREFIX="$PFX" -P "$T/cmake_install.cmake" >"$T/install.log" 2>&1 \
-    || { cat "$T/install.log"; fail "install"; }
-else
-  "$CMAKE" --install "$BUILD" --prefix "$PFX" >"$T/install.log" || { cat "$T/install.log"; fail "install"; }
-fi
+. "$(dirname "$0")/sdk_prefix.sh"
+sl_install_prefix "$BUILD" "$PFX" "$T" "$CMAKE" || fail "install"
 for f in bin/shadelab include/shadelab/shadelab.h include/shadelab/harness.h lib*/cmake/shadelab/shadelabConfig.cmake \
          lib*/cmake/shadelab/ShadelabPlugin.cmake lib*/pkgconfig/shadelab.pc share/shadelab/shaders/common.glsl; do
   compgen -G "$PFX/$f" >/dev/null || fail "not installed: $f"
