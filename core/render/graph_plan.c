@@ -1,0 +1,83 @@
+/* The render graph's plan: the core's passes and the enabled plugins' passes ordered by stage,
+ * inputs checked against earlier outputs, targets allocated. See renderer_internal.h. */
+#include "render/renderer_internal.h"
+#include "log.h"
+#include <shadelab/gl.h>
+#include <stdlib.h>
+#include <string.h>
+
+
+static const sl_target_desc core_color = {.name = "color", .format = SL_FORMAT_RGBA16F};
+static const sl_target_desc core_color32 = {.name = "color", .format = SL_FORMAT_RGBA32F};
+static const sl_target_desc core_depth = {.name = "depth", .format = SL_FORMAT_DEPTH32F};
+static const sl_target_desc core_display = {.name = "display", .format = SL_FORMAT_RGBA8};
+static sl_target_desc forward_outputs[2];
+static const char *resolve_inputs[] = {"forward.ssaa", NULL};
+static sl_target_desc resolve_outputs[1];
+static sl_pass_desc resolve_pass = {.struct_size = sizeof(sl_pass_desc), .name = "ssaa-resolve", .stage = SL_STAGE_OPAQUE,
+                                    .inputs = resolve_inputs, .outputs = resolve_outputs, .output_count = 1};
+static const char *display_inputs[] = {"color", NULL};
+static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
+                                    .outputs = forward_outputs, .output_count = 2};
+static sl_pass_desc display_pass = {.struct_size = sizeof(sl_pass_desc), .name = "display", .stage = SL_STAGE_DISPLAY,
+                                    .inputs = display_inputs, .outputs = &core_display, .output_count = 1};
+
+static int cmp_stage(const void *a, const void *b) {
+    const graph_pass *x = a, *y = b;
+    if (x->d->stage != y->d->stage) return x->d->stage < y->d->stage ? -1 : 1;
+    return 0;
+}
+
+/* Orders passes, checks inputs, allocates targets. */
+void sl_graph_plan(sl_app *app) {
+    sl_renderer *r = R(app);
+    sl_graph_free(r);
+    /* core.ssaa > 1: the forward pass renders "forward.ssaa" at k× the viewport and the resolve
+     * pass box-filters it into the viewport-sized "color" everything downstream sees. */
+    sl_param *ssaa = sl_params_find(&app->params, "core.ssaa");
+    r->ssaa = ssaa && ssaa->value.i > 1 ? ssaa->value.i : 1;
+    forward_outputs[0] = app->opt.float32 ? core_color32 : core_color;
+    forward_outputs[1] = core_depth;
+    resolve_outputs[0] = forward_outputs[0];
+    if (r->ssaa > 1) {
+        forward_outputs[0].name = "forward.ssaa";
+        forward_outputs[0].scale = forward_outputs[1].scale = (float)r->ssaa;
+    }
+    int total = app->plugins.pass_count + 3;
+    r->passes = calloc(total, sizeof *r->passes);
+    r->passes[r->pass_count++] = (graph_pass){.d = &forward_pass, .owner = -1, .core_forward = true};
+    if (r->ssaa > 1) r->passes[r->pass_count++] = (graph_pass){.d = &resolve_pass, .owner = -1, .core_resolve = true};
+    for (int i = 0; i < app->plugins.pass_count; i++) {
+        sl_pass_reg *reg = &app->plugins.passes[i];
+        if (!sl_plugin_enabled(&app->plugins, reg->owner)) continue; /* disabled plugins cost nothing */
+        r->passes[r->pass_count++] = (graph_pass){.d = &reg->d, .owner = reg->owner};
+    }
+    r->passes[r->pass_count++] = (graph_pass){.d = &display_pass, .owner = -1, .core_display = true};
+    /* stable sort by stage (insertion sort keeps registration order) */
+    for (int i = 1; i < r->pass_count; i++)
+        for (int j = i; j > 0 && cmp_stage(&r->passes[j - 1], &r->passes[j]) > 0; j--) {
+            graph_pass t = r->passes[j]; r->passes[j] = r->passes[j - 1]; r->passes[j - 1] = t;
+        }
+    /* validate inputs against what earlier passes produce, then allocate */
+    for (int i = 0; i < r->pass_count; i++) {
+        graph_pass *g = &r->passes[i];
+        for (const char *const *in = g->d->inputs; in && *in; in++) {
+            bool produced = false;
+            for (int j = 0; j < i && !produced; j++)
+                for (int k = 0; k < r->passes[j].d->output_count; k++)
+                    produced |= !strcmp(r->passes[j].d->outputs[k].name, *in) && !r->passes[j].broken;
+            if (!produced) {
+                SL_ERROR("render graph: pass \"%s\" (%s) reads \"%s\", which no earlier pass writes; pass skipped",
+                         g->d->name, g->owner >= 0 ? app->plugins.items[g->owner]->id : "core", *in);
+                g->broken = true;
+            }
+        }
+        if (g->broken) continue;
+        for (int k = 0; k < g->d->output_count; k++) {
+            const sl_target_desc *o = &g->d->outputs[k];
+            sl_graph_add_target(r, o, sl_graph_lists(g->d->inputs, o->name));
+        }
+    }
+    r->plan_dirty = false;
+}
+

@@ -1,0 +1,129 @@
+/* Render targets of the graph and their binding for a pass. See renderer_internal.h. */
+#include "render/renderer_internal.h"
+#include "log.h"
+#include <shadelab/gl.h>
+#include <stdlib.h>
+#include <string.h>
+
+static GLenum gl_format(sl_format f) {
+    switch (f) {
+    case SL_FORMAT_RGBA8: return GL_RGBA8;
+    case SL_FORMAT_RGBA16F: return GL_RGBA16F;
+    case SL_FORMAT_RGBA32F: return GL_RGBA32F;
+    case SL_FORMAT_RG16F: return GL_RG16F;
+    case SL_FORMAT_R32F: return GL_R32F;
+    case SL_FORMAT_DEPTH32F: return GL_DEPTH_COMPONENT32F;
+    }
+    return GL_RGBA8;
+}
+
+resource *sl_graph_find(sl_renderer *r, const char *name) {
+    for (int i = 0; i < r->res_count; i++)
+        if (!strcmp(r->res[i].name, name)) return &r->res[i];
+    return NULL;
+}
+
+static unsigned make_target(const sl_target_desc *d, int w, int h) {
+    unsigned t;
+    int layers = d->layers > 1 ? d->layers : 1;
+    glCreateTextures(layers > 1 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D, 1, &t);
+    if (layers > 1) glTextureStorage3D(t, 1, gl_format(d->format), w, h, layers);
+    else glTextureStorage2D(t, 1, gl_format(d->format), w, h);
+    bool depth = d->format == SL_FORMAT_DEPTH32F;
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, depth && !d->compare ? GL_NEAREST : GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, depth && !d->compare ? GL_NEAREST : GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (depth && d->compare) {
+        glTextureParameteri(t, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(t, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+    return t;
+}
+
+void sl_graph_free(sl_renderer *r) {
+    for (int i = 0; i < r->res_count; i++) {
+        glDeleteTextures(r->res[i].tex[1] ? 2 : 1, r->res[i].tex);
+        free(r->res[i].name);
+    }
+    free(r->res);
+    r->res = NULL;
+    r->res_count = 0;
+    for (int i = 0; i < r->pass_count; i++)
+        if (r->passes[i].fbo) glDeleteFramebuffers(1, &r->passes[i].fbo);
+    free(r->passes);
+    r->passes = NULL;
+    r->pass_count = 0;
+}
+
+void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, bool pingpong) {
+    resource *e = sl_graph_find(r, d->name);
+    if (e) {
+        if (pingpong && !e->tex[1]) e->tex[1] = make_target(&e->desc, e->w, e->h);
+        return;
+    }
+    r->res = realloc(r->res, (r->res_count + 1) * sizeof *r->res);
+    e = &r->res[r->res_count++];
+    memset(e, 0, sizeof *e);
+    e->name = strdup(d->name);
+    e->desc = *d;
+    e->desc.name = e->name;
+    float scale = d->scale > 0 ? d->scale : 1;
+    e->w = d->width > 0 ? d->width : (int)(r->width * scale + 0.5f);
+    e->h = d->height > 0 ? d->height : (int)(r->height * scale + 0.5f);
+    if (e->w < 1) e->w = 1;
+    if (e->h < 1) e->h = 1;
+    e->tex[0] = make_target(d, e->w, e->h);
+    if (pingpong) e->tex[1] = make_target(d, e->w, e->h);
+}
+
+bool sl_graph_lists(const char *const *list, const char *name) {
+    for (; list && *list; list++)
+        if (!strcmp(*list, name)) return true;
+    return false;
+}
+
+/* For a resource a pass both reads and writes ("color" in a post pass), pass_texture gives the
+ * input (current contents) and bind_outputs attaches the other half of the ping-pong pair. */
+unsigned sl_renderer_pass_texture(sl_app *app, sl_pass_ctx *ctx, const char *name) {
+    sl_renderer *r = R(app);
+    resource *e = sl_graph_find(r, name);
+    if (!e || !ctx) return 0;
+    return e->tex[e->current];
+}
+
+static unsigned output_texture(sl_pass_ctx *ctx, resource *e) {
+    if (e->tex[1] && sl_graph_lists(ctx->pass->d->inputs, e->name)) return e->tex[1 - e->current];
+    return e->tex[e->current];
+}
+
+sl_status sl_renderer_bind_outputs(sl_app *app, sl_pass_ctx *ctx, int layer) {
+    sl_renderer *r = R(app);
+    graph_pass *g = ctx->pass;
+    if (!g->fbo) glCreateFramebuffers(1, &g->fbo);
+    GLenum bufs[8];
+    int nc = 0, w = 0, h = 0;
+    for (int k = 0; k < g->d->output_count && k < 8; k++) {
+        const sl_target_desc *o = &g->d->outputs[k];
+        resource *e = sl_graph_find(r, o->name);
+        unsigned tex = output_texture(ctx, e);
+        bool depth = o->format == SL_FORMAT_DEPTH32F;
+        GLenum att = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0 + nc;
+        if (o->layers > 1) glNamedFramebufferTextureLayer(g->fbo, att, tex, 0, layer);
+        else glNamedFramebufferTexture(g->fbo, att, tex, 0);
+        if (!depth) bufs[nc] = att, nc++;
+        w = e->w;
+        h = e->h;
+    }
+    if (nc) glNamedFramebufferDrawBuffers(g->fbo, nc, bufs);
+    else glNamedFramebufferDrawBuffer(g->fbo, GL_NONE);
+    GLenum status = glCheckNamedFramebufferStatus(g->fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        SL_ERROR("pass %s: framebuffer incomplete (0x%x)", g->d->name, status);
+        return SL_ERR_GL;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+    glViewport(0, 0, w, h);
+    return SL_OK;
+}
+

@@ -1,0 +1,98 @@
+/* The renderer's private ground, shared by its files (nothing outside core/render includes it):
+ *   renderer.c     frame loop, change tracking, programs, statistics, lifecycle
+ *   scene_gpu.c    the scene on the GPU: meshes, textures, the light buffer, material programs, draws
+ *   graph_plan.c   the render graph's plan: pass order by stage, input checks, target allocation
+ *   graph_targets.c render targets and their binding (ping-pong pairs, framebuffers)
+ *   graph_run.c    executing passes: change signatures, timing, the core's own passes */
+#ifndef SL_RENDERER_INTERNAL_H
+#define SL_RENDERER_INTERNAL_H
+#include "render/renderer.h"
+#include "state.h"
+#include "render/forward.h"
+
+typedef struct gpu_mesh { unsigned vao, vbo[4], ibo; int index_count; } gpu_mesh;
+typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
+
+typedef struct override_variant { char *model; sl_forward_variant v; } override_variant;
+
+typedef struct material_rt {
+    sl_forward_variant forward, depth;
+    override_variant overrides[8]; /* SL_DRAW_MATERIALS variants, composed on first use */
+    int override_count;
+    unsigned textures[16];
+} material_rt;
+
+typedef struct resource {
+    char *name;
+    sl_target_desc desc;
+    unsigned tex[2];      /* [1] only for ping-ponged "color" */
+    int current;          /* which of tex[] holds the latest contents */
+    int w, h;
+    uint64_t version;     /* bumps each time a pass writes it */
+} resource;
+
+typedef struct graph_pass {
+    const sl_pass_desc *d;
+    int owner;            /* plugin index; -1 = core pass */
+    bool core_forward, core_display, core_resolve;
+    unsigned fbo;
+    uint64_t last_signature; bool has_run;
+    double last_ms;       /* time of the last run (for --explain when skipped since) */
+    bool broken;          /* disabled at plan time (message given) */
+} graph_pass;
+
+struct sl_pass_ctx { graph_pass *pass; int out_slot[8]; int in_slot[16]; };
+
+typedef struct sl_renderer {
+    gpu_mesh *meshes;
+    gpu_texture *textures; int texture_count;
+    material_rt *materials;
+    sl_program **cache; int cache_count;          /* composed forward/depth programs */
+    sl_program **programs; int program_count;     /* stand-alone programs (plugins, core) */
+    int *program_owner;
+    sl_program *display_prog, *accum_prog, *resolve_prog;
+    int ssaa;
+    int anisotropy;                               /* core.anisotropy applied to the material textures */
+    unsigned empty_vao, light_buffer;
+    sl_light_info *lights; int light_count;
+    int type_range[32][2]; const char *types[32]; int ntypes;
+    resource *res; int res_count;
+    graph_pass *passes; int pass_count;
+    bool plan_dirty;
+    int width, height;
+    uint64_t seen_recompile, seen_materials, seen_lights_version, seen_param_version;
+    double seen_light_time;   /* app->time of the packed lights (animated lights repack) */
+    uint64_t lights_packed;   /* bumps each time the lights are packed */
+    char *seen_debug_view;
+    bool finish_timing;
+    unsigned queries[64];
+    sl_frame frame;
+    sl_frame_stats stats;
+    unsigned display_fbo;
+    /* the pass being executed, for draw_scene */
+    sl_pass_ctx *current;
+} sl_renderer;
+
+#define R(app) ((sl_renderer *)(app)->renderer)
+
+/* scene_gpu.c */
+void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m);
+void sl_gpu_apply_anisotropy(sl_app *app);   /* core.anisotropy onto every material texture */
+bool sl_gpu_lights_animated(sl_app *app);
+void sl_gpu_pack_lights(sl_app *app);        /* the light buffer and sl_host.lights, at app->time */
+void sl_gpu_compose_all(sl_app *app);        /* every material's programs and textures */
+void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom);
+
+/* graph_targets.c */
+resource *sl_graph_find(sl_renderer *r, const char *name);
+void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, bool pingpong);
+void sl_graph_free(sl_renderer *r);          /* targets, passes and their framebuffers */
+bool sl_graph_lists(const char *const *list, const char *name);
+
+/* graph_plan.c: orders passes, checks inputs, allocates targets */
+void sl_graph_plan(sl_app *app);
+
+/* graph_run.c: runs passes [begin, end), timing each */
+void sl_graph_run_range(sl_app *app, int begin, int end);
+double sl_now_ms(void);
+#endif

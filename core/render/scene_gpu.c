@@ -1,0 +1,389 @@
+/* The scene on the GPU: meshes, material textures, the light buffer, material programs and the
+ * draws that use them. See renderer_internal.h. */
+#include "render/renderer_internal.h"
+#include "log.h"
+#include <shadelab/gl.h>
+#include <stdlib.h>
+#include <string.h>
+#include "image/image.h"
+#include "render/composer.h"
+#include <cglm/cglm.h>
+#include <math.h>
+
+/* ------------------------------------------------------------------ meshes ---------- */
+
+void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
+    glCreateVertexArrays(1, &g->vao);
+    glCreateBuffers(4, g->vbo);
+    glCreateBuffers(1, &g->ibo);
+    const float *arrays[4] = {m->positions, m->normals, m->tangents, m->uvs};
+    const int comps[4] = {3, 3, 4, 2};
+    for (int a = 0; a < 4; a++) {
+        size_t bytes = (size_t)m->vertex_count * comps[a] * sizeof(float);
+        float *fallback = NULL;
+        if (!arrays[a]) { /* missing attribute: zeros (tangent w = 1) */
+            fallback = calloc((size_t)m->vertex_count * comps[a] + 1, sizeof(float));
+            if (a == 2) for (int v = 0; v < m->vertex_count; v++) fallback[v * 4 + 3] = 1;
+        }
+        static const float none[4];
+        glNamedBufferData(g->vbo[a], bytes ? bytes : sizeof none,
+                          !bytes ? (const void *)none : arrays[a] ? (const void *)arrays[a] : fallback, GL_STATIC_DRAW);
+        free(fallback);
+        glVertexArrayVertexBuffer(g->vao, a, g->vbo[a], 0, comps[a] * sizeof(float));
+        glVertexArrayAttribFormat(g->vao, a, comps[a], GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(g->vao, a, a);
+        glEnableVertexArrayAttrib(g->vao, a);
+    }
+    static const uint32_t no_indices[1];
+    glNamedBufferData(g->ibo, m->index_count ? (size_t)m->index_count * 4 : 4, m->index_count ? m->indices : no_indices,
+                      GL_STATIC_DRAW);
+    glVertexArrayElementBuffer(g->vao, g->ibo);
+    g->index_count = m->index_count;
+}
+
+/* ------------------------------------------------------------------ textures -------- */
+
+bool sl_texture_is_procedural(const char *spec) {
+    static const char *prefixes[] = {"checker:", "grid:", "constant:", "gradient", "uv"};
+    for (size_t i = 0; i < sizeof prefixes / sizeof *prefixes; i++) {
+        size_t l = strlen(prefixes[i]);
+        if (!strncmp(spec, prefixes[i], l) && (prefixes[i][l - 1] == ':' || spec[l] == 0 || spec[l] == ':')) return true;
+    }
+    return false;
+}
+
+/* Loads a material texture: colour textures decode sRGB in the sampler (8-bit) or on the CPU
+ * (16-bit); data textures stay linear. */
+/* core.anisotropy onto every material texture (a parameter change reaches the loaded ones too). */
+void sl_gpu_apply_anisotropy(sl_app *app) {
+    sl_renderer *r = R(app);
+    const sl_param *p = sl_params_find(&app->params, "core.anisotropy");
+    int a = p ? p->value.i : 8;
+    a = a < 1 ? 1 : a > 16 ? 16 : a;
+    if (a == r->anisotropy) return;
+    r->anisotropy = a;
+    for (int i = 0; i < r->texture_count; i++) glTextureParameterf(r->textures[i].id, GL_TEXTURE_MAX_ANISOTROPY, (float)a);
+}
+
+static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bool clamp) {
+    sl_renderer *r = R(app);
+    char key[2100];
+    snprintf(key, sizeof key, "%s|%d|%d", spec, linear_data, clamp);
+    for (int i = 0; i < r->texture_count; i++)
+        if (!strcmp(r->textures[i].key, key)) return r->textures[i].id;
+    sl_image img = {0};
+    char err[1024] = "";
+    bool ok;
+    bool srgb_storage = false;
+    if (sl_texture_is_procedural(spec)) {
+        ok = sl_image_procedural(&img, spec, 256, err, sizeof err);
+        /* procedural colours are linear already */
+    } else {
+        char *path = sl_scene_resolve_path(&app->scene, app->opt.data_dir, spec, err, sizeof err);
+        ok = path && sl_image_load(&img, path, err, sizeof err);
+        free(path);
+        if (ok && !linear_data && img.source_srgb) {
+            if (img.source_bits == 8) srgb_storage = true;
+            else sl_image_srgb_to_linear(&img);
+        }
+        /* policy for texture files: finite, >= 0 and at most SL_MAX_RADIANCE, with one warning */
+        long nonfinite = 0, negative = 0, over = 0;
+        if (ok && img.source_float && sl_image_sanitize(&img, (float)SL_MAX_RADIANCE, &nonfinite, &negative, &over))
+            SL_WARN("texture %s: replaced %ld NaN/Inf, %ld negative and %ld over-%g samples (NaN, -Inf and "
+                    "negatives by 0; +Inf and large values by %g)", spec, nonfinite, negative, over, SL_MAX_RADIANCE,
+                    SL_MAX_RADIANCE);
+    }
+    unsigned tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    if (!ok) {
+        SL_ERROR("texture %s: %s (using a magenta placeholder)", spec, err);
+        float magenta[4] = {1, 0, 1, 1};
+        glTextureStorage2D(tex, 1, GL_RGBA8, 1, 1);
+        glTextureSubImage2D(tex, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, magenta);
+    } else {
+        int levels = 1;
+        for (int s = img.width > img.height ? img.width : img.height; s > 1; s >>= 1) levels++;
+        GLenum fmt = srgb_storage ? GL_SRGB8_ALPHA8
+                   : img.source_bits == 8 ? GL_RGBA8 : img.source_bits == 16 ? GL_RGBA16F : GL_RGBA32F;
+        glTextureStorage2D(tex, levels, fmt, img.width, img.height);
+        /* UV convention (scenes/README.md): v = 0 is the TOP row of the image, as in glTF. GL's
+         * t = 0 is the first row uploaded, so rows go up top first, as the image stores them. */
+        glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.pixels);
+        glGenerateTextureMipmap(tex);
+        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
+        if (!r->anisotropy) sl_gpu_apply_anisotropy(app);
+        glTextureParameterf(tex, GL_TEXTURE_MAX_ANISOTROPY, (float)r->anisotropy);
+    }
+    sl_image_free(&img);
+    r->textures = realloc(r->textures, (r->texture_count + 1) * sizeof *r->textures);
+    r->textures[r->texture_count++] = (gpu_texture){strdup(key), tex};
+    return tex;
+}
+
+unsigned sl_renderer_material_texture(sl_app *app, int m, const char *key) {
+    sl_renderer *r = R(app);
+    if (!r || m < 0 || m >= app->scene.material_count) return 0;
+    const material_rt *mr = &r->materials[m];
+    for (int t = 0; t < mr->forward.texture_count; t++)
+        if (!strcmp(app->params.items[mr->forward.texture_params[t]].full_id, key)) return mr->textures[t];
+    return 0;
+}
+
+/* ------------------------------------------------------------------ lights ---------- */
+
+bool sl_gpu_lights_animated(sl_app *app) {
+    for (int i = 0; i < app->scene.light_count; i++) {
+        const sl_light *L = &app->scene.lights[i];
+        if (L->enabled && L->animate != SL_ANIMATE_NONE && L->animate_speed != 0) return true;
+    }
+    return false;
+}
+
+/* colour × intensity: finite by the schema's ranges (colour <= 65504, intensity <= 1e10, the same
+ * from a scene as from --set), with room for any BRDF value before float overflow; the forward
+ * pass clamps what it writes to SL_MAX_RADIANCE. */
+static void light_radiant(const sl_light *L, float out[3]) {
+    for (int c = 0; c < 3; c++) out[c] = L->color[c] * L->intensity;
+}
+
+/* The light buffer and the lights plugins see (sl_host.lights), at app->time. */
+void sl_gpu_pack_lights(sl_app *app) {
+    sl_renderer *r = R(app);
+    r->lights_packed++;
+    sl_scene *s = &app->scene;
+    free(r->lights);
+    r->lights = calloc(s->light_count + 1, sizeof *r->lights);
+    r->light_count = s->light_count;
+    r->ntypes = sl_forward_light_types(app, r->types, 32);
+    typedef struct { float position[4], direction[4], color[4], params[8]; } gpu_light;
+    gpu_light *buf = calloc(s->light_count + 1, sizeof *buf);
+    int k = 0;
+    for (int t = 0; t < r->ntypes; t++) {
+        r->type_range[t][0] = k;
+        for (int i = 0; i < s->light_count; i++) {
+            const sl_light *L = &s->lights[i];
+            if (!L->enabled || strcmp(L->type, r->types[t])) continue;
+            sl_light_info *info = &r->lights[i];
+            info->index = k;
+            gpu_light *g = &buf[k++];
+            sl_light_at_time(L, app->time, g->position, g->direction);
+            light_radiant(L, g->color);
+            memcpy(g->params, app->light_params[i], sizeof g->params);
+        }
+        r->type_range[t][1] = k;
+    }
+    for (int i = 0; i < s->light_count; i++) {
+        const sl_light *L = &s->lights[i];
+        sl_light_info *info = &r->lights[i];
+        info->struct_size = sizeof *info;
+        info->name = L->name;
+        info->type = L->type;
+        sl_light_at_time(L, app->time, info->position, info->direction); /* where the animation puts it */
+        light_radiant(L, info->color);
+        memcpy(info->params, app->light_params[i], sizeof info->params);
+        info->enabled = L->enabled;
+        info->cast_shadows = L->cast_shadows;
+        if (!L->enabled) info->index = -1;
+    }
+    if (!r->light_buffer) glCreateBuffers(1, &r->light_buffer);
+    glNamedBufferData(r->light_buffer, (k ? k : 1) * sizeof(gpu_light), buf, GL_DYNAMIC_DRAW);
+    free(buf);
+}
+
+const sl_light_info *sl_renderer_lights(sl_app *app, int *count) {
+    sl_renderer *r = R(app);
+    *count = r ? r->light_count : 0;
+    return r ? r->lights : NULL;
+}
+
+/* ------------------------------------------------------------------ materials ------- */
+
+void sl_gpu_compose_all(sl_app *app) {
+    sl_renderer *r = R(app);
+    char err[16384];
+    for (int m = 0; m < app->scene.material_count; m++) {
+        material_rt *mr = &r->materials[m];
+        sl_forward_compose(app, m, SL_VARIANT_FORWARD, NULL, &mr->forward, &r->cache, &r->cache_count, err, sizeof err);
+        sl_forward_compose(app, m, SL_VARIANT_DEPTH, NULL, &mr->depth, &r->cache, &r->cache_count, err, sizeof err);
+        for (int k = 0; k < mr->override_count; k++)
+            sl_forward_compose(app, m, SL_VARIANT_FORWARD, mr->overrides[k].model, &mr->overrides[k].v, &r->cache,
+                               &r->cache_count, err, sizeof err);
+        for (int t = 0; t < mr->forward.texture_count; t++) {
+            const sl_param *q = &app->params.items[mr->forward.texture_params[t]];
+            sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
+            mr->textures[t] = v && v->str ? load_texture(app, v->str, q->desc.flags & SL_PARAM_LINEAR_DATA,
+                                                         q->desc.flags & SL_PARAM_CLAMP_TO_EDGE)
+                                          : 0;
+        }
+    }
+}
+
+static void set_value_uniform(unsigned prog, const char *name, const sl_param *q, const sl_value *v) {
+    int loc = glGetUniformLocation(prog, name);
+    if (loc < 0) return;
+    switch (q->desc.type) {
+    case SL_PARAM_BOOL: glProgramUniform1i(prog, loc, v->b); break;
+    case SL_PARAM_INT: case SL_PARAM_ENUM: glProgramUniform1i(prog, loc, v->i); break;
+    case SL_PARAM_FLOAT: glProgramUniform1f(prog, loc, v->f[0]); break;
+    case SL_PARAM_COLOR: case SL_PARAM_VEC3: glProgramUniform3f(prog, loc, v->f[0], v->f[1], v->f[2]); break;
+    case SL_PARAM_TEXTURE: break;
+    }
+}
+
+static void set_camera_uniforms(sl_app *app, unsigned prog, const float *view, const float *proj) {
+    sl_renderer *r = R(app);
+    mat4 vp;
+    glm_mat4_mul((vec4 *)proj, (vec4 *)view, vp);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_view"), 1, GL_FALSE, view);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_proj"), 1, GL_FALSE, proj);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_view_proj"), 1, GL_FALSE, (float *)vp);
+    glUniform3fv(glGetUniformLocation(prog, "sl_camera_pos"), 1, r->frame.camera_pos);
+    glUniform1f(glGetUniformLocation(prog, "sl_time"), (float)r->frame.time);
+    glUniform1i(glGetUniformLocation(prog, "sl_frame_index"), r->frame.accumulate_index);
+    glUniform2f(glGetUniformLocation(prog, "sl_viewport_size"), (float)r->frame.width, (float)r->frame.height);
+}
+
+/* Binds a material's program and every uniform it reads except the per-object ones. */
+static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var, const float *view, const float *proj) {
+    sl_renderer *r = R(app);
+    unsigned prog = var->program ? var->program->id : 0;
+    if (!prog) return 0;
+    glUseProgram(prog);
+    set_camera_uniforms(app, prog, view, proj);
+    const sl_environment *env = &app->scene.environment;
+    glUniform3f(glGetUniformLocation(prog, "sl_ambient_irradiance"), (float)M_PI * env->color[0] * env->intensity,
+                (float)M_PI * env->color[1] * env->intensity, (float)M_PI * env->color[2] * env->intensity);
+    for (int t = 0; t < r->ntypes; t++) {
+        char name[160], id[128];
+        sl_glsl_ident(r->types[t], id, sizeof id, false);
+        snprintf(name, sizeof name, "sl_lights_%s", id);
+        glUniform2i(glGetUniformLocation(prog, name), r->type_range[t][0], r->type_range[t][1]);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r->light_buffer);
+    sl_mat_state *ms = &app->materials[m];
+    for (int i = 0; i < ms->count; i++) {
+        const sl_param *q = &app->params.items[ms->values[i].param];
+        if (q->desc.type == SL_PARAM_TEXTURE || (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE)) continue;
+        char name[200];
+        snprintf(name, sizeof name, "sl_mat_%s", q->full_id);
+        set_value_uniform(prog, name, q, &ms->values[i].v);
+    }
+    for (int t = 0; t < var->texture_count; t++) glBindTextureUnit(t, r->materials[m].textures[t]);
+    for (int i = 0; i < app->params.count; i++) {
+        const sl_param *q = &app->params.items[i];
+        if (q->desc.scope != SL_SCOPE_GLOBAL || (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE)) continue;
+        int owner = sl_plugins_find(&app->plugins, q->owner);
+        if (owner < 0 || !(var->owners & (1ull << (owner & 63)))) continue;
+        char name[300], oid[128];
+        sl_glsl_ident(q->owner, oid, sizeof oid, false);
+        snprintf(name, sizeof name, "%s_%s", oid, q->desc.id);
+        set_value_uniform(prog, name, q, &q->value);
+    }
+    for (int i = 0; i < app->plugins.count; i++) {
+        sl_plugin_rec *pr = app->plugins.items[i];
+        if ((var->owners & (1ull << (i & 63))) && pr->bind && sl_plugin_enabled(&app->plugins, i)) pr->bind(pr->bind_user, prog, m, &r->frame);
+    }
+    return prog;
+}
+
+/* ------------------------------------------------------------------ drawing --------- */
+
+/* The material's program with its shading model replaced (SL_DRAW_MATERIALS). */
+static const sl_forward_variant *override_variant_of(sl_app *app, int m, const char *model) {
+    material_rt *mr = &R(app)->materials[m];
+    for (int k = 0; k < mr->override_count; k++)
+        if (!strcmp(mr->overrides[k].model, model)) return &mr->overrides[k].v;
+    if (mr->override_count == 8) return NULL;
+    override_variant *o = &mr->overrides[mr->override_count++];
+    memset(o, 0, sizeof *o);
+    o->model = strdup(model);
+    char err[16384];
+    sl_forward_compose(app, m, SL_VARIANT_FORWARD, model, &o->v, &R(app)->cache, &R(app)->cache_count, err, sizeof err);
+    return &o->v;
+}
+
+void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom) {
+    const char *model_override = d->mode == SL_DRAW_MATERIALS ? d->model_override : NULL;
+    sl_renderer *r = R(app);
+    sl_scene *s = &app->scene;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    if (d->cull == 0) glDisable(GL_CULL_FACE);
+    else { glEnable(GL_CULL_FACE); glCullFace(d->cull == 2 ? GL_FRONT : GL_BACK); }
+    if (custom) {
+        if (!custom->id) return;
+        glUseProgram(custom->id);
+        set_camera_uniforms(app, custom->id, d->view, d->proj);
+        glUniform1i(glGetUniformLocation(custom->id, "sl_uv_space"), d->uv_space);
+    }
+    for (int m = 0; m < s->material_count; m++) {
+        if (d->shadow_casters_only && !s->materials[m].cast_shadows) continue;
+        if (d->only_materials_with) {
+            sl_mat_value *v = sl_app_material_value(app, m, d->only_materials_with);
+            if (!v || !v->present) continue;
+        }
+        unsigned prog = custom ? custom->id : 0;
+        bool bound = custom != NULL;
+        for (int ni = 0; ni < s->node_count; ni++) {
+            const sl_node *node = &s->nodes[ni];
+            for (int k = 0; k < node->mesh_count; k++) {
+                int mi = node->meshes[k];
+                if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
+                if (!bound) {
+                    const sl_forward_variant *var = depth_only       ? &r->materials[m].depth
+                                                    : model_override ? override_variant_of(app, m, model_override)
+                                                                     : &r->materials[m].forward;
+                    prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
+                    glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
+                    bound = true;
+                }
+                if (!prog) continue;
+                mat4 model, inv;
+                mat3 nrm;
+                memcpy(model, node->world, sizeof model);
+                glm_mat4_inv(model, inv);
+                glm_mat4_transpose(inv);
+                glm_mat4_pick3(inv, nrm);
+                /* a mirroring transform (negative determinant) reverses the winding; in UV space
+                 * (v = 0 at the top) unmirrored UV layouts wind clockwise: make them front faces */
+                glFrontFace(d->uv_space || glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
+                glUniformMatrix4fv(glGetUniformLocation(prog, "sl_model"), 1, GL_FALSE, (float *)model);
+                glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
+                glBindVertexArray(r->meshes[mi].vao);
+                glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+                r->stats.draw_calls++;
+            }
+        }
+    }
+    glBindVertexArray(0);
+    glFrontFace(GL_CCW);
+}
+
+void sl_renderer_draw_scene(sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_desc *in) {
+    sl_draw_scene_desc d = {0};
+    memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
+    if (in->struct_size < offsetof(sl_draw_scene_desc, cull) + sizeof(int)) d.cull = 1;
+    if (d.mode == SL_DRAW_PROGRAM && !d.program) {
+        SL_ERROR("draw_scene: SL_DRAW_PROGRAM without a program");
+        return;
+    }
+    if (d.mode == SL_DRAW_MATERIALS && !d.model_override) {
+        SL_ERROR("draw_scene: SL_DRAW_MATERIALS without model_override");
+        return;
+    }
+    sl_gpu_draw_meshes(app, &d, d.mode == SL_DRAW_DEPTH_ONLY, d.mode == SL_DRAW_PROGRAM ? d.program : NULL);
+}
+
+void sl_renderer_draw_fullscreen(sl_app *app, sl_pass_ctx *ctx) {
+    sl_renderer *r = R(app);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(r->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    r->stats.draw_calls++;
+}
+
