@@ -23,8 +23,8 @@
 #      core's objects: the core never calls up into a tool);
 #   3. a cycle between the core's modules, from #include edges and from nm edges (an object's
 #      undefined symbol -> the core object defining it), listed with the files behind it.
-# It REPORTS, without failing (yet):
-#   - GLSL #include of another plugin's file (shared GLSL should become an SDK contract).
+#   4. a GLSL #include of another plugin's file: shared GLSL is an SDK contract (the shader
+#      library, `#include "sl:NAME"`, e.g. sl:ggx_brdf.glsl).
 # Exit status: 0 when the enforced rules hold, 1 when one is broken, 2 on bad usage.
 set -euo pipefail
 if [ $# -ne 2 ]; then echo "usage: $0 SOURCE_DIR BUILD_DIR" >&2; exit 2; fi
@@ -219,7 +219,7 @@ END {
     tm = module_of(t); tk = kind_of(tm)
     if (tm == fm) continue
     if (guarded(fk) && !is_public(t)) {
-      if (is_glsl(f)) { ng++; GL[ng] = f ":" IL[i] " includes " t " (" tm ")"; continue }
+      if (is_glsl(f)) { violation(f ":" IL[i] ": GLSL includes " t " of " tm " (shared GLSL belongs in the SDK shader library, #include \"sl:NAME\")"); continue }
       violation(f ":" IL[i] ": includes " t ", a private file of " tm)
     } else if (fk == "core" && guarded(tk)) {
       violation(f ":" IL[i] ": the core includes " t " of " tk " " tm " (the core never depends on a " tk ")")
@@ -315,10 +315,6 @@ END {
   print "module rule: " SRC " (build " BUILD ")"
   print "  read " ni " #include lines, " ntd " target folders, " nobj " objects"
   if (nobj == 0) violation(BUILD ": no object files under CMakeFiles/<target>.dir/ (build the tree first)")
-  if (ng) {
-    print "\nnot enforced: GLSL shared across plugins by #include (should become an SDK contract):"
-    for (i = 1; i <= ng; i++) print "  " GL[i]
-  }
   report_cycles()
   if (core_cycles) {
     print "\nFAIL: " core_cycles " cyclic group(s) between core modules: the core's modules form layers" \

@@ -5,6 +5,7 @@
 #include "state.h"
 #include "log.h"
 #include "render/renderer.h"
+#include "render/composer.h"
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +31,7 @@ static void host_log(const sl_host *h, sl_log_level level, const char *fmt, ...)
 }
 
 static const char *host_resource_dir(const sl_host *h) { return HOST_REC(h)->resource_dir; }
+static const char *host_shader_dir(const sl_host *h) { (void)h; return sl_shader_dir(); }
 
 
 
@@ -171,6 +173,7 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->draw_fullscreen = host_draw_fullscreen;
     h->material_texture = host_material_texture;
     h->environment = host_environment;
+    h->shader_dir = host_shader_dir;
     return &impl->host;
 }
 

@@ -604,7 +604,7 @@ static sl_status envmap_activate(void *user) {
                                                                     .vertex = "sl:fullscreen.vert",
                                                                     .fragment = "envmap_background.frag"});
     if (!e->host->program_id(e->host, e->bg_prog)) return SL_ERR_GL;
-    e->glsl_hash = em_glsl_hash(e->glsl_dir);
+    e->glsl_hash = em_glsl_hash(e->glsl_dir, e->host->shader_dir(e->host));
     /* 1×1 stand-ins so every sampler always has a texture of its own type on its own unit */
     static const float black[4] = {0, 0, 0, 1};
     glCreateTextures(GL_TEXTURE_2D, 1, &e->dummy_2d);

@@ -4,7 +4,7 @@
 // G(v,l)/G1(v) (times F): the G is the ggx plugin's own (ggx_G1 · ggx_G1).
 #include "sl:common.glsl"
 #include "envmap_common.glsl"
-#include "../ggx/ggx_brdf.glsl"
+#include "sl:ggx_brdf.glsl"
 uniform float envmap_size;
 uniform int envmap_samples;
 layout(location = 0) out vec4 o_color;

@@ -8,7 +8,7 @@
 //   environment L(n), likewise
 //   any other   Lambert: base_color × E(n)/π × ao (reference: cosine-sampled)
 #include "envmap_common.glsl"
-#include "../ggx/ggx_brdf.glsl"
+#include "sl:ggx_brdf.glsl"
 
 uniform sampler2D envmap_src2d;   // the source as loaded (lat-long) …
 uniform samplerCube envmap_srccube; // … or as a cube; envmap_is_cube says which

@@ -293,13 +293,14 @@ float *em_read_2d(unsigned tex, int w, int h) {
     return out;
 }
 
-uint64_t em_glsl_hash(const char *dir) {
+uint64_t em_glsl_hash(const char *dir, const char *shader_dir) {
     static const char *files[] = {"envmap_common.glsl", "envmap_to_cube.frag", "envmap_ggx.frag", "envmap_irradiance.frag",
-                                  "envmap_lut.frag", "envmap_downsample.frag", "../ggx/ggx_brdf.glsl"};
+                                  "envmap_lut.frag", "envmap_downsample.frag", "sl:ggx_brdf.glsl"};
     uint64_t h = 0x5eed;
     for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
         char path[4096];
-        snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+        if (!strncmp(files[i], "sl:", 3)) snprintf(path, sizeof path, "%s/%s", shader_dir ? shader_dir : ".", files[i] + 3);
+        else snprintf(path, sizeof path, "%s/%s", dir, files[i]);
         FILE *f = fopen(path, "rb");
         if (!f) { h = em_hash(files[i], strlen(files[i]), h); continue; }
         char buf[8192];

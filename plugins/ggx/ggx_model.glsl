@@ -2,7 +2,7 @@
 // (the core's convention), or the glTF metallic-roughness combination when
 // fresnel = metallic-roughness: f = (1 − F)(1 − metallic) base/π + F D G/(4|n·l||n·v|),
 // F0 = mix(0.04, base, metallic).
-#include "ggx_brdf.glsl"
+#include "sl:ggx_brdf.glsl"
 
 // Vectors in the space the lighting is evaluated in (world by default; camera space as a
 // check: a rotation, so both agree up to rounding).

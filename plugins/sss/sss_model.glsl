@@ -7,7 +7,7 @@
 //     ggx term + k·(scattered − Lambert)
 // arranged so that k = 0 is bit-identical to the ggx model on the same material.
 #include "sss_lib.glsl"
-#include "../ggx/ggx_brdf.glsl"
+#include "sl:ggx_brdf.glsl"
 
 #ifndef SSS_METHOD
 #define SSS_METHOD 0

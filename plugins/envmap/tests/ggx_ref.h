@@ -1,5 +1,5 @@
 /* Closed forms and numerical integrals in C (double precision) for the envmap tests: the GGX
- * terms exactly as plugins/ggx/ggx_brdf.glsl defines them, the split-sum BRDF integrals
+ * terms exactly as shaders/ggx_brdf.glsl defines them, the split-sum BRDF integrals
  * (A, B) and the prefilter kernel. Independent of the GLSL they check. */
 #ifndef ENVMAP_TEST_GGX_REF_H
 #define ENVMAP_TEST_GGX_REF_H

@@ -1,4 +1,5 @@
-/* GLSL unit tests of the ggx plugin's own BRDF code (ggx_brdf.glsl evaluated on the GL path),
+/* GLSL unit tests of the GGX BRDF terms the ggx plugin shades with (the SDK shader library's
+ * shaders/ggx_brdf.glsl, `#include "sl:ggx_brdf.glsl"`, evaluated on the GL path),
  * against closed forms and numerical integration in C. */
 #include "check.h"
 #include <shadelab/harness.h>
@@ -10,7 +11,7 @@ static float in0[N * N * 4], in1[N * N * 4], out[N * N * 4];
 
 static bool eval(const char *expr, const char *defines) {
     char err[8192];
-    const char *files[] = {"ggx_brdf.glsl", NULL};
+    const char *files[] = {"sl:ggx_brdf.glsl", NULL};
     sl_glsl_eval_desc d = {.struct_size = sizeof d, .plugin = "ggx", .files = files, .expression = expr,
                            .defines = defines, .width = N, .height = N, .in0 = in0, .in1 = in1};
     bool ok = sl_harness_eval_glsl(h, &d, out, err, sizeof err);
@@ -201,7 +202,7 @@ int main(void) {
         in0[i * 4 + 3] = in1[i * 4 + 3] = 0.1f + 0.9f * (float)(i % 19) / 18;
     }
     /* ggx_DG_over_4 has an out parameter: evaluated through a small wrapper */
-    const char *files2[] = {"ggx_brdf.glsl", SL_TEST_DATA_DIR "/glsl/ggx_wrappers.glsl", NULL};
+    const char *files2[] = {"sl:ggx_brdf.glsl", SL_TEST_DATA_DIR "/glsl/ggx_wrappers.glsl", NULL};
     sl_glsl_eval_desc d = {.struct_size = sizeof d, .plugin = "ggx", .files = files2, .width = N, .height = N,
                            .in0 = in0, .in1 = in1, .expression = "vec4(test_ggx_dg(in0.xyz, in1.xyz, in0.w))"};
     CHECK_MSG(sl_harness_eval_glsl(h, &d, out, err, sizeof err), "%s", err);

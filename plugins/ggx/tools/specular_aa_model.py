@@ -15,7 +15,7 @@ prints the far-field mean of the green channel of
          per-axis variance is Toksvig's (1 - |N|)/|N| for the whole map (40000 samples);
   toks   this plugin's Toksvig lobe at the mean normal (alpha'^2 = alpha^2 + variance in D and G);
   off    the unfiltered shading at the flat mean normal.
-The BRDF, guard and constants repeat plugins/ggx/ggx_brdf.glsl and normal-map's nm_lib.glsl.
+The BRDF, guard and constants repeat shaders/ggx_brdf.glsl and normal-map's nm_lib.glsl.
 Usage: plugins/ggx/tools/specular_aa_model.py [alpha]   (default 0.05)
 """
 import os

@@ -112,6 +112,9 @@ struct sl_host {
      * for material `material`'s texture key `key` (bound to the program as sl_mat_<key>), or 0
      * when the material does not carry it. Read it, don't delete it. */
     unsigned (*material_texture)(const sl_host *host, int material, const char *key);
+    /* ABI 1.6. Directory of the SDK's shader library (what `#include "sl:NAME"` reads: common.glsl,
+     * ggx_brdf.glsl, ...), for plugins that hash or read those files themselves. */
+    const char *(*shader_dir)(const sl_host *host);
 };
 
 #ifdef __cplusplus

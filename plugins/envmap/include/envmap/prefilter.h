@@ -7,8 +7,10 @@
  * does: the plugin in envmap.c, the tool and the tests through the core library).
  *
  * Conventions (sdk conventions, scenes/README.md):
- *   lat-long   d = (sinθ sinφ, cosθ, sinθ cosφ), θ from +Y, φ = atan2(d.x, d.z);
+ *   lat-long   d = (−sinθ sinφ, cosθ, sinθ cosφ), θ from +Y, φ = atan2(−d.x, d.z);
  *              u = φ/2π wrapped to [0,1), v = θ/π; row 0 of an image (v = 0) is the top (+Y).
+ *              The standard equirectangular orientation: seen from inside, u grows to the
+ *              right; u = 0 faces +Z, ¼ −X, ½ −Z (the default camera's view), ¾ +X.
  *   cube maps  OpenGL's face order (+X, −X, +Y, −Y, +Z, −Z) and face orientation (GL 4.5
  *              §8.13, table 8.19); a face image's row 0 is t = 0, so uploading it as is gives
  *              the GL cube map. Cross layouts: see em_layout.
@@ -158,8 +160,9 @@ float *em_read_cube(unsigned tex, int level, int size);
 float *em_read_2d(unsigned tex, int w, int h);
 /* Uploads stored levels as a cube with exactly those levels (cache, precomputed chains). */
 unsigned em_upload_cube_levels(float *const *levels_faces, int size, int levels);
-/* The source file of a stored prefilter output and the GLSL the results depend on. */
-uint64_t em_glsl_hash(const char *glsl_dir);
+/* The source file of a stored prefilter output and the GLSL the results depend on (the plugin's
+ * files in glsl_dir and the SDK shader library's ggx_brdf.glsl in shader_dir). */
+uint64_t em_glsl_hash(const char *glsl_dir, const char *shader_dir);
 
 #ifdef __cplusplus
 }
