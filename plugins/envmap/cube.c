@@ -17,9 +17,12 @@ void em_image_free(em_image *img) {
 
 /* ---------------------------------------------------------------- directions */
 
+/* The standard equirectangular orientation (Blender, three.js, Filament): seen from inside, u grows
+ * to the right. u = 0 faces +Z, u = 1/4 faces −X, u = 1/2 faces −Z (the default camera's view),
+ * u = 3/4 faces +X. See sdk/docs/conventions.md. */
 void em_latlong_dir(double u, double v, double d[3]) {
     double phi = 2 * M_PI * u, theta = M_PI * v;
-    d[0] = sin(theta) * sin(phi);
+    d[0] = -sin(theta) * sin(phi);
     d[1] = cos(theta);
     d[2] = sin(theta) * cos(phi);
 }
@@ -27,7 +30,7 @@ void em_latlong_dir(double u, double v, double d[3]) {
 void em_dir_latlong(const double d[3], double *u, double *v) {
     double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double y = len > 0 ? d[1] / len : 1;
-    double phi = (fabs(d[0]) + fabs(d[2]) > 0) ? atan2(d[0], d[2]) : 0; /* atan2(0, 0) at the poles */
+    double phi = (fabs(d[0]) + fabs(d[2]) > 0) ? atan2(-d[0], d[2]) : 0; /* atan2(0, 0) at the poles */
     double uu = phi / (2 * M_PI);
     uu -= floor(uu);
     if (uu >= 1) uu = 0;

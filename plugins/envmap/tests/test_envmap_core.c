@@ -39,8 +39,17 @@ static void test_conventions(void) {
     double d[3], u, v;
     em_latlong_dir(0, 0.5, d);
     CHECK(fabs(d[2] - 1) < 1e-12); /* u = 0 faces +Z */
+    /* the standard equirectangular orientation: seen from inside, u grows to the right */
     em_latlong_dir(0.25, 0.5, d);
-    CHECK(fabs(d[0] - 1) < 1e-12); /* u = 0.25 faces +X */
+    CHECK(fabs(d[0] + 1) < 1e-12); /* u = 0.25 faces −X */
+    em_latlong_dir(0.5, 0.5, d);
+    CHECK(fabs(d[2] + 1) < 1e-12); /* u = 0.5 faces −Z, the default camera's view */
+    em_latlong_dir(0.75, 0.5, d);
+    CHECK(fabs(d[0] - 1) < 1e-12); /* u = 0.75 faces +X */
+    /* facing −Z (u = ½) with +Y up, the right hand is +X: a step right must raise u */
+    double right[3] = {0.1, 0, -1};
+    em_dir_latlong(right, &u, &v);
+    CHECK_MSG(u > 0.5 && u < 0.55, "u to the right of -Z: %g", u);
     em_latlong_dir(0.7, 0, d);
     CHECK(fabs(d[1] - 1) < 1e-12); /* v = 0 is straight up */
     double worst = 0;

@@ -9,6 +9,8 @@
  *   convention   a colour-coded map (colour = 0.5 + 0.5·direction) on mirror and environment
  *                spheres and the background, as lat-long, cube cross (EXR and RGBE8 PNG from
  *                shadelab-cube) and six face files; yaw turns it
+ *   probe        a marked quadrant of a lat-long at the pixels the convention puts it (on paper),
+ *                on a mirror sphere and in the background
  *   bad input    NaN/Inf/negative texels: finite output, one warning naming file and count
  *   chains       a shadelab-cube --ggx chain loads and matches the plugin's own prefilter
  *   cache        the second load reads the disk cache and renders the same image
@@ -425,6 +427,88 @@ static void test_conventions(void) {
         }
 }
 
+/* The orientation, from the convention on paper (sdk/docs/conventions.md), not from a render:
+ * an asymmetric probe, a lat-long that is dark (0.02) except one marked quadrant (1, 0.5, 0.1)
+ * at u ∈ [½, ¾), v ∈ [¼, ½). The image is made from texel indices alone (no code under test).
+ *
+ * Where the mark is. The convention states: u = ½ faces −Z, u = ¾ faces +X, u grows to the
+ * right as seen from inside; v = θ/π, θ from +Y, so v = ¼ is 45° above the horizon and v = ½
+ * the horizon. Hence the mark covers the directions d with
+ *     d.x > 0, d.z < 0 (between −Z and +X), and 0 < elevation < 45°  (elevation = asin d.y).
+ * The camera sits at (0, 0, 4) looking at the origin (down −Z), +Y up, 40° vertical field of
+ * view: its right hand is +X, so the right half of the image sees d.x > 0, the upper half
+ * d.y > 0, and every view ray has d.z < 0 and |elevation| ≤ 20° + a little (the corners).
+ *   background  → the mark fills the upper-right quadrant of the image, nothing elsewhere.
+ *   mirror sphere (unit, at the origin): a pixel's ray hits n, reflects to r = 2(n·v)n − v.
+ *     With v ≈ +Z, n = (sinβ cosγ, sinβ sinγ, cosβ) (β from the view axis, γ the angle in the
+ *     image, counter-clockwise from "right"), r ≈ (sin2β cosγ, sin2β sinγ, cos2β): r.z < 0 only
+ *     in the ring β > 45°, and there r.x has the sign of cosγ, r.y of sinγ. The mark shows in
+ *     the outer ring, upper-right quarter (cut off where r rises above 45°) — on the same side
+ *     as in the background, as a real mirror ball shows what is beside it. A mirrored map (the
+ *     old φ = atan2(x, z)) puts both on the left; no yaw turns one into the other.
+ * The test classifies every pixel with that rule (exact ray and reflection, directions within
+ * 4° of the mark's edges skipped) and requires the marked/unmarked colour. */
+static bool probe_marked(const double d[3], bool *near_edge) {
+    double hz = sqrt(d[0] * d[0] + d[2] * d[2]), elev = atan2(d[1], hz) * 180 / M_PI;
+    double az = atan2(d[0], -d[2]) * 180 / M_PI; /* 0 at −Z, 90 at +X: the mark spans 0..90 */
+    const double m = 4;
+    *near_edge = fabs(az) < m || fabs(az - 90) < m || fabs(elev) < m || fabs(elev - 45) < m;
+    return az > 0 && az < 90 && elev > 0 && elev < 45;
+}
+static void test_probe(void) {
+    enum { PW = 256, PH = 128 };
+    char path[512], err[1024];
+    snprintf(path, sizeof path, "%s/probe.exr", dir);
+    float *px = malloc((size_t)PW * PH * 16);
+    for (int y = 0; y < PH; y++)
+        for (int x = 0; x < PW; x++) {
+            bool mark = x >= PW / 2 && x < 3 * PW / 4 && y >= PH / 4 && y < PH / 2;
+            float *p = px + ((size_t)y * PW + x) * 4;
+            p[0] = mark ? 1.0f : 0.02f, p[1] = mark ? 0.5f : 0.02f, p[2] = mark ? 0.1f : 0.02f, p[3] = 1;
+        }
+    CHECK_MSG(em_io_write_exr(path, px, PW, PH, NULL, err, sizeof err), "%s", err);
+    free(px);
+    for (int model = 0; model < 2; model++) {
+        const char *const yaw[] = {"envmap.yaw=180", NULL};
+        /* model 0: mirror sphere + background; model 1: background only, turned by yaw 180°
+         * (the mark then spans −Z…+X turned half a turn: d.x < 0, d.z > 0, behind the camera,
+         * so the background must be all dark — yaw turns, it does not mirror) */
+        sl_harness *h = make(path, "\"model\": \"mirror\"", model ? yaw : NULL, 1);
+        CHECK(h && sl_harness_render(h, img));
+        int counted = 0, wrong = 0, quad[2][2] = {{0, 0}, {0, 0}}, ring_right_up = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                double n[3], v[3], d[3];
+                bool on_sphere = sphere_pixel(x, y, n, v, 0.05);
+                if (on_sphere) {
+                    double nv = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+                    for (int i = 0; i < 3; i++) d[i] = 2 * nv * n[i] - v[i];
+                } else if (!background_pixel(x, y, d)) {
+                    continue;
+                }
+                if (model) d[0] = -d[0], d[2] = -d[2]; /* world → map: R_y(−180°) */
+                bool edge, mark = probe_marked(d, &edge);
+                const float *p = img + (y * W + x) * 4;
+                bool seen = p[0] > 0.5 && p[2] < 0.3;
+                if (seen && !on_sphere) quad[y < H / 2][x >= W / 2]++;
+                if (seen && on_sphere && x >= W / 2 && y < H / 2) ring_right_up++;
+                if (edge) continue;
+                counted++;
+                if (seen != mark) wrong++;
+            }
+        printf("probe (marked quadrant u in [1/2, 3/4), v in [1/4, 1/2))%s: %d pixels classified on paper, %d wrong; "
+               "marked background pixels: upper-left %d, upper-right %d, lower-left %d, lower-right %d; "
+               "marked sphere pixels upper-right %d\n",
+               model ? ", yaw 180" : "", counted, wrong, quad[1][0], quad[1][1], quad[0][0], quad[0][1], ring_right_up);
+        CHECK(counted > 1500);
+        CHECK_MSG(wrong == 0, "%d pixels disagree with the convention", wrong);
+        CHECK(quad[1][0] == 0 && quad[0][0] == 0 && quad[0][1] == 0);
+        if (!model) CHECK(quad[1][1] > 200 && ring_right_up > 20);
+        else CHECK(quad[1][1] == 0);
+        sl_harness_destroy(h);
+    }
+}
+
 /* The core's procedural specs as environments; "uv" encodes the convention itself: an
  * environment-model sphere shows red = u, green = v of its normal. */
 static void test_procedural(void) {
@@ -625,6 +709,7 @@ int main(void) {
     test_lobe();
     test_sh_ringing();
     test_conventions();
+    test_probe();
     test_procedural();
     test_bad_input();
     test_chain_and_cache();
