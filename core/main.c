@@ -21,7 +21,8 @@ static const char *usage =
     "  --headless             render without a window (EGL on a GPU, else OSMesa)\n"
     "  --backend NAME         auto | headless | glfw | osmesa | egl\n"
     "  --size WxH             viewport size (default 1280x720)\n"
-    "  --frames N             render N frames, then write --output and exit (headless default 1)\n"
+    "  --frames N             render N frames, then write --output and exit (headless default 1, or the\n"
+    "                         frames a still needs: aa.taa_frames with TAA, all at --time)\n"
     "  --output FILE          .png (display-encoded) or .exr (linear HDR); headless default out.png\n"
     "  --stats FILE.json      per-pass and frame times (median/mean/min over the frames)\n"
     "  --bench                print median frame and per-pass times over the frames (use --frames >= 30)\n"
@@ -343,8 +344,10 @@ int main(int argc, char **argv) {
         recorder rec = {0};
         double first_frame_ms = 0;
         double last_report = now_ms();
-        for (int f = 0; f < frames; f++) {
-            app.time = c.start_time + f * app.opt.fixed_dt;
+        /* Without --frames, a still: as many frames as a plugin's still image needs (TAA's
+         * history, host set_still_frames; 1 otherwise), all at the start time. */
+        for (int f = 0; f < frames || (c.frames < 0 && f < sl_renderer_still_frames(&app)); f++) {
+            app.time = c.start_time + (c.frames < 0 ? 0 : f * app.opt.fixed_dt);
             sl_app_render_frame(&app);
             if (f == 0) first_frame_ms = now_ms() - start;
             record(&rec, sl_renderer_stats(&app));

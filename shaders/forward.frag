@@ -6,6 +6,10 @@ in vec4 v_tangent;
 in vec2 v_uv;
 
 layout(location = 0) out vec4 o_color;
+#ifdef SL_MOTION_VECTORS
+in vec4 v_clip_now, v_clip_prev;
+layout(location = 1) out vec2 o_motion; // "motion": UV now minus UV in the previous frame
+#endif
 
 SlSurface sl_surface_from_varyings() {
     SlSurface s;
@@ -48,4 +52,7 @@ void main() {
     // false and stays NaN, so a shading bug is not painted white (the stability tests look for it).
     vec3 c = sl_shade_surface(s);
     o_color = vec4(mix(c, vec3(SL_MAX_RADIANCE), greaterThan(c, vec3(SL_MAX_RADIANCE))), 1.0);
+#ifdef SL_MOTION_VECTORS
+    o_motion = 0.5 * (v_clip_now.xy / v_clip_now.w - v_clip_prev.xy / v_clip_prev.w);
+#endif
 }

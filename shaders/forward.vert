@@ -12,8 +12,21 @@ out vec2 v_uv;
 
 uniform int sl_uv_space; // texture-space passes rasterise at uv*2-1
 
+#ifdef SL_MOTION_VECTORS
+// "motion" (pass.h): this frame's and the previous frame's clip position, both unjittered; the
+// previous one with the VERTEX hooks evaluated at the previous frame's time (forward.c).
+uniform mat4 sl_unjittered_view_proj, sl_prev_view_proj, sl_prev_model;
+out vec4 v_clip_now, v_clip_prev;
+#endif
+
 void main() {
     SlVertex v = SlVertex(a_position, a_normal, a_tangent, a_uv);
+#ifdef SL_MOTION_VECTORS
+    SlVertex prev = v;
+    sl_hook_time = sl_prev_time;
+    sl_run_vertex_hooks(prev);
+    sl_hook_time = sl_motion_time_now();
+#endif
     sl_run_vertex_hooks(v);
     vec4 world = sl_model * vec4(v.position, 1.0);
     v_world_pos = world.xyz;
@@ -21,4 +34,8 @@ void main() {
     v_tangent = vec4(mat3(sl_model) * v.tangent.xyz, v.tangent.w);
     v_uv = v.uv;
     gl_Position = sl_uv_space != 0 ? vec4(v.uv * 2.0 - 1.0, 0.0, 1.0) : sl_view_proj * world;
+#ifdef SL_MOTION_VECTORS
+    v_clip_now = sl_unjittered_view_proj * world;
+    v_clip_prev = sl_prev_view_proj * (sl_prev_model * vec4(prev.position, 1.0));
+#endif
 }

@@ -129,6 +129,8 @@ static void host_draw_fullscreen(const sl_host *h, sl_pass_ctx *c) { sl_renderer
 static unsigned host_material_texture(const sl_host *h, int m, const char *key) {
     return sl_renderer_material_texture(HOST_APP(h), m, key);
 }
+static void host_set_jitter(const sl_host *h, float x, float y) { sl_renderer_set_jitter(HOST_APP(h), x, y); }
+static void host_set_still_frames(const sl_host *h, int frames) { sl_renderer_set_still_frames(HOST_APP(h), frames); }
 
 static const char *host_environment(const sl_host *h, float o[5]) {
     const sl_environment *e = &HOST_APP(h)->scene.environment;
@@ -172,6 +174,8 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->draw_scene = host_draw_scene;
     h->draw_fullscreen = host_draw_fullscreen;
     h->material_texture = host_material_texture;
+    h->set_jitter = host_set_jitter;
+    h->set_still_frames = host_set_still_frames;
     h->environment = host_environment;
     h->shader_dir = host_shader_dir;
     return &impl->host;

@@ -1,4 +1,5 @@
 #include "render/forward.h"
+#include "render/renderer_internal.h"
 #include "state.h"
 #include "log.h"
 #include <ctype.h>
@@ -166,6 +167,9 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     char model_id[128]; /* SL_MODEL_<NAME>: lets a chunk shared by several models specialise */
     sl_glsl_ident(model, model_id, sizeof model_id, true), sl_sb_printf(&pre, "#define SL_MODEL_%s 1\n", model_id);
     if (model_chunk->d.flags & SL_CHUNK_MASKS_FACING_AWAY) sl_sb_append(&pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");
+    /* "motion" (pass.h) is read by an enabled pass: the forward program writes it (location 1) */
+    bool motion = kind == SL_VARIANT_FORWARD && !model_override && app->renderer && R(app)->motion;
+    if (motion) sl_sb_append(&pre, "#define SL_MOTION_VECTORS 1\n");
     if (view) {
         char id[128];
         sl_glsl_ident(view->d.name, id, sizeof id, true);
@@ -214,6 +218,13 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     sl_sb_append(&p->vs.text, "#define SL_VERTEX_STAGE 1\n");
     ok = ok && sl_source_include(&p->vs, "sl:common.glsl", err, n);
     sl_source_generated(&p->vs, uni.s ? uni.s : "");
+    /* Motion vectors evaluate the VERTEX hooks at the previous frame's time as well: hooks read
+     * sl_time, so here it names a variable that forward.vert sets before each evaluation. */
+    if (motion)
+        sl_source_generated(&p->vs, "uniform float sl_prev_time;\n"
+                                    "float sl_motion_time_now() { return sl_time; }\n"
+                                    "float sl_hook_time;\n"
+                                    "#define sl_time sl_hook_time\n");
     sl_strbuf gen = {0};
     for (int i = 0; i < nv && ok; i++) {
         char path[2048];

@@ -11,14 +11,15 @@ static const sl_target_desc core_color = {.name = "color", .format = SL_FORMAT_R
 static const sl_target_desc core_color32 = {.name = "color", .format = SL_FORMAT_RGBA32F};
 static const sl_target_desc core_depth = {.name = "depth", .format = SL_FORMAT_DEPTH32F};
 static const sl_target_desc core_display = {.name = "display", .format = SL_FORMAT_RGBA8};
-static sl_target_desc forward_outputs[2];
+static const sl_target_desc core_motion = {.name = "motion", .format = SL_FORMAT_RG16F};
+static sl_target_desc forward_outputs[3];
 static const char *resolve_inputs[] = {"forward.ssaa", NULL};
 static sl_target_desc resolve_outputs[1];
 static sl_pass_desc resolve_pass = {.struct_size = sizeof(sl_pass_desc), .name = "ssaa-resolve", .stage = SL_STAGE_OPAQUE,
                                     .inputs = resolve_inputs, .outputs = resolve_outputs, .output_count = 1};
 static const char *display_inputs[] = {"color", NULL};
 static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
-                                    .outputs = forward_outputs, .output_count = 2};
+                                    .outputs = forward_outputs, .output_count = 2}; /* 3 with "motion" */
 static sl_pass_desc display_pass = {.struct_size = sizeof(sl_pass_desc), .name = "display", .stage = SL_STAGE_DISPLAY,
                                     .inputs = display_inputs, .outputs = &core_display, .output_count = 1};
 
@@ -38,10 +39,22 @@ void sl_graph_plan(sl_app *app) {
     r->ssaa = ssaa && ssaa->value.i > 1 ? ssaa->value.i : 1;
     forward_outputs[0] = app->opt.float32 ? core_color32 : core_color;
     forward_outputs[1] = core_depth;
+    /* "motion" (pass.h, ABI 1.6) only while an enabled plugin's pass reads it: the forward
+     * programs then compute it (SL_MOTION_VECTORS), so they are recomposed when that changes */
+    bool motion = false;
+    for (int i = 0; i < app->plugins.pass_count && !motion; i++)
+        motion = sl_plugin_enabled(&app->plugins, app->plugins.passes[i].owner) &&
+                 sl_graph_lists(app->plugins.passes[i].d.inputs, "motion");
+    forward_outputs[2] = core_motion;
+    forward_pass.output_count = motion ? 3 : 2;
+    if (motion != r->motion) {
+        r->motion = motion;
+        sl_gpu_compose_all(app);
+    }
     resolve_outputs[0] = forward_outputs[0];
     if (r->ssaa > 1) {
         forward_outputs[0].name = "forward.ssaa";
-        forward_outputs[0].scale = forward_outputs[1].scale = (float)r->ssaa;
+        forward_outputs[0].scale = forward_outputs[1].scale = forward_outputs[2].scale = (float)r->ssaa;
     }
     int total = app->plugins.pass_count + 3;
     r->passes = calloc(total, sizeof *r->passes);

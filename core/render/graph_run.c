@@ -21,6 +21,8 @@ static void run_forward(sl_app *app, sl_pass_ctx *ctx) {
     glDepthMask(GL_TRUE);
     glClearNamedFramebufferfv(ctx->pass->fbo, GL_COLOR, 0, bg);
     glClearNamedFramebufferfi(ctx->pass->fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    static const float still[4] = {0, 0, 0, 0};
+    if (r->motion) glClearNamedFramebufferfv(ctx->pass->fbo, GL_COLOR, 1, still); /* background: no motion */
     sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
     memcpy(d.view, r->frame.view, sizeof d.view);
     memcpy(d.proj, r->frame.proj, sizeof d.proj);

@@ -118,6 +118,44 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     f->params_version = app->params.version + app->materials_version;
     f->accumulate_index = acc_index;
     f->accumulate_count = acc_count;
+    /* temporal antialiasing (ABI 1.6): the previous frame's camera, the unjittered view-projection,
+     * then the jitter plugins asked for in begin_frame (apply_jitter) */
+    memcpy(f->unjittered_view_proj, f->view_proj, sizeof f->view_proj);
+    memcpy(f->prev_view_proj, r->have_prev ? r->prev_view_proj : f->view_proj, sizeof f->view_proj);
+    f->jitter[0] = f->jitter[1] = 0;
+}
+
+/* Offsets proj and view_proj by the requested jitter in pixels: NDC += 2·jitter/size, i.e. the
+ * rows x and y of the projection gain the w row times the offset (perspective or orthographic). */
+static void apply_jitter(sl_renderer *r) {
+    sl_frame *f = &r->frame;
+    float tx = 2.0f * r->jitter_req[0] / (float)(f->width ? f->width : 1);
+    float ty = 2.0f * r->jitter_req[1] / (float)(f->height ? f->height : 1);
+    if (tx == 0 && ty == 0) return;
+    for (int c = 0; c < 4; c++) {
+        f->proj[c * 4 + 0] += tx * f->proj[c * 4 + 3];
+        f->proj[c * 4 + 1] += ty * f->proj[c * 4 + 3];
+    }
+    glm_mat4_mul((vec4 *)f->proj, (vec4 *)f->view, (vec4 *)f->view_proj);
+    f->jitter[0] = r->jitter_req[0];
+    f->jitter[1] = r->jitter_req[1];
+}
+
+void sl_renderer_set_jitter(sl_app *app, float x, float y) {
+    sl_renderer *r = R(app);
+    if (!r || !(x == x) || !(y == y)) return;
+    r->jitter_req[0] = x < -0.5f ? -0.5f : x > 0.5f ? 0.5f : x;
+    r->jitter_req[1] = y < -0.5f ? -0.5f : y > 0.5f ? 0.5f : y;
+}
+
+void sl_renderer_set_still_frames(sl_app *app, int frames) {
+    sl_renderer *r = R(app);
+    if (r && frames > r->still_frames) r->still_frames = frames > 4096 ? 4096 : frames;
+}
+
+int sl_renderer_still_frames(sl_app *app) {
+    sl_renderer *r = R(app);
+    return r && r->still_frames > 1 ? r->still_frames : 1;
 }
 
 bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
@@ -128,11 +166,14 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     r->stats.pass_count = 0;
     r->stats.draw_calls = 0;
     r->stats.timing_mode = r->finish_timing ? "glfinish" : "timer-query";
+    r->jitter_req[0] = r->jitter_req[1] = 0;
+    r->still_frames = 0;
     fill_frame(app, 0, 1);
     for (int i = 1; i < app->plugins.count; i++) {
         sl_plugin_rec *pr = app->plugins.items[i];
         if (pr->active && pr->desc.begin_frame && sl_plugin_enabled(&app->plugins, i)) pr->desc.begin_frame(pr->user, &r->frame);
     }
+    apply_jitter(r);
     int post_begin = r->pass_count;
     for (int i = 0; i < r->pass_count; i++)
         if (r->passes[i].d->stage >= SL_STAGE_POST) { post_begin = i; break; }
@@ -150,6 +191,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         glCreateFramebuffers(1, &fbo);
         for (int k = 0; k < count; k++) {
             fill_frame(app, k, count);
+            apply_jitter(r);
             for (int i = 0; i < post_begin; i++) r->passes[i].has_run = false; /* sub-frames differ */
             sl_graph_run_range(app, 0, post_begin);
             glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, mean->tex[1 - mean->current], 0);
@@ -175,6 +217,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         color->version++;
         fill_frame(app, 0, 1);
+        apply_jitter(r);
         sl_graph_run_range(app, post_begin, r->pass_count);
     }
     /* programs in use, for the structural zero-cost checks */
@@ -184,6 +227,10 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         if (p) r->stats.program_hashes[r->stats.program_count++] = p->hash;
     }
     r->stats.frame_ms = sl_now_ms() - t0;
+    memcpy(r->prev_view_proj, r->frame.view_proj, sizeof r->prev_view_proj);
+    memcpy(r->prev_unjittered_vp, r->frame.unjittered_view_proj, sizeof r->prev_unjittered_vp);
+    r->prev_time = r->frame.time;
+    r->have_prev = true;
     app->frame_index++;
     sl_renderer_present(app);
     return true;

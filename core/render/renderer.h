@@ -54,5 +54,10 @@ sl_status sl_renderer_bind_outputs(struct sl_app *app, sl_pass_ctx *ctx, int lay
 void sl_renderer_draw_scene(struct sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_desc *d);
 void sl_renderer_draw_fullscreen(struct sl_app *app, sl_pass_ctx *ctx);
 const sl_light_info *sl_renderer_lights(struct sl_app *app, int *count);
+void sl_renderer_set_jitter(struct sl_app *app, float x, float y);
+void sl_renderer_set_still_frames(struct sl_app *app, int frames);
+/* The largest frame count a still image needs that a plugin asked for during the last frame
+ * (host set_still_frames; TAA's history), at least 1. */
+int sl_renderer_still_frames(struct sl_app *app);
 unsigned sl_renderer_material_texture(struct sl_app *app, int material, const char *key);
 #endif

@@ -67,6 +67,14 @@ typedef struct sl_renderer {
     bool finish_timing;
     unsigned queries[64];
     sl_frame frame;
+    /* temporal antialiasing (ABI 1.6): the jitter plugins asked for this frame, the frames a still
+     * needs, whether the forward pass writes "motion", and the previous frame's camera */
+    float jitter_req[2];
+    int still_frames;
+    bool motion;
+    bool have_prev;
+    float prev_view_proj[16], prev_unjittered_vp[16];
+    double prev_time;
     sl_frame_stats stats;
     unsigned display_fbo;
     /* the pass being executed, for draw_scene */

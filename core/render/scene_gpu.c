@@ -244,6 +244,12 @@ static void set_camera_uniforms(sl_app *app, unsigned prog, const float *view, c
     glUniform1f(glGetUniformLocation(prog, "sl_time"), (float)r->frame.time);
     glUniform1i(glGetUniformLocation(prog, "sl_frame_index"), r->frame.accumulate_index);
     glUniform2f(glGetUniformLocation(prog, "sl_viewport_size"), (float)r->frame.width, (float)r->frame.height);
+    if (r->motion) { /* SL_MOTION_VECTORS programs (forward.vert) */
+        glUniformMatrix4fv(glGetUniformLocation(prog, "sl_unjittered_view_proj"), 1, GL_FALSE, r->frame.unjittered_view_proj);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "sl_prev_view_proj"), 1, GL_FALSE,
+                           r->have_prev ? r->prev_unjittered_vp : r->frame.unjittered_view_proj);
+        glUniform1f(glGetUniformLocation(prog, "sl_prev_time"), (float)(r->have_prev ? r->prev_time : r->frame.time));
+    }
 }
 
 /* Binds a material's program and every uniform it reads except the per-object ones. */
@@ -351,6 +357,8 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                  * (v = 0 at the top) unmirrored UV layouts wind clockwise: make them front faces */
                 glFrontFace(d->uv_space || glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
                 glUniformMatrix4fv(glGetUniformLocation(prog, "sl_model"), 1, GL_FALSE, (float *)model);
+                /* nodes do not animate (scene.h): last frame's model matrix is this one */
+                if (r->motion) glUniformMatrix4fv(glGetUniformLocation(prog, "sl_prev_model"), 1, GL_FALSE, (float *)model);
                 glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
                 glBindVertexArray(r->meshes[mi].vao);
                 glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);

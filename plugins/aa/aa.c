@@ -5,6 +5,7 @@
 #include <shadelab/shadelab.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,7 +29,7 @@ static const sl_param_desc params[] = {
       .description = "FXAA: absolute contrast below which a pixel is left untouched (dark areas; Lottes 1/16..1/12)."),
     P(.id = "fxaa_subpix", .type = SL_PARAM_FLOAT, .default_value = {.f = {0.75f}}, .min = 0, .max = 1, .step = 0.05f,
       .group = "fxaa", .description = "FXAA: strength of the sub-pixel blend (single-pixel features; 0 off, 1 soft)."),
-    P(.id = "taa_frames", .type = SL_PARAM_INT, .default_value = {.i = 8}, .min = 1, .max = 64, .step = 1,
+    P(.id = "taa_frames", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 64, .step = 1,
       .group = "taa",
       .description = "TAA: length of the jitter sequence (Halton 2,3) and of the history: a still is the exact mean "
                      "of this many jittered frames, after that each frame has weight 1/taa_frames. A headless still "
@@ -44,8 +45,13 @@ static const sl_param_desc params[] = {
 typedef struct aa {
     const sl_host *host;
     sl_program *fxaa, *taa;
-    int unit0, unit1, unit2, unit3;
+    int unit[5];
     unsigned sampler_linear, sampler_nearest;
+    /* TAA: the history (rgb + frames in alpha) as a ping-pong pair, the last frame's depth */
+    unsigned history[2], prev_depth, fbo, depth_fbo[2];
+    int current, hw, hh, dw, dh;
+    uint64_t frames_begun, taa_ran_at; /* begin_frame count; its value when TAA last ran */
+    bool history_valid;
 } aa;
 
 static sl_value param(aa *a, const char *id) {
@@ -70,24 +76,156 @@ static void fxaa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     unsigned p = h->program_id(h, a->fxaa);
     if (!p) return;
     glUseProgram(p);
-    glBindTextureUnit(a->unit0, src);
-    glBindSampler(a->unit0, a->sampler_linear);
-    glUniform1i(glGetUniformLocation(p, "aa_src"), a->unit0);
+    glBindTextureUnit(a->unit[0], src);
+    glBindSampler(a->unit[0], a->sampler_linear);
+    glUniform1i(glGetUniformLocation(p, "aa_src"), a->unit[0]);
     glUniform1f(glGetUniformLocation(p, "aa_edge_threshold"), param(a, "fxaa_threshold").f[0]);
     glUniform1f(glGetUniformLocation(p, "aa_edge_threshold_min"), param(a, "fxaa_threshold_min").f[0]);
     glUniform1f(glGetUniformLocation(p, "aa_subpix"), param(a, "fxaa_subpix").f[0]);
     h->draw_fullscreen(h, ctx);
-    glBindSampler(a->unit0, 0);
+    glBindSampler(a->unit[0], 0);
+}
+
+/* ------------------------------------------------------------------ TAA ------------- */
+
+/* Radical inverse in base b (the Halton sequence, Halton 1960). */
+static float halton(unsigned i, unsigned b) {
+    float f = 1, r = 0;
+    for (; i > 0; i /= b) f /= (float)b, r += f * (float)(i % b);
+    return r;
+}
+
+static void begin_frame(void *user, const sl_frame *f) {
+    aa *a = user;
+    a->frames_begun++;
+    if (param(a, "method").i != AA_TAA) return;
+    int n = param(a, "taa_frames").i;
+    unsigned k = (unsigned)(f->index % (uint64_t)(n > 0 ? n : 1)) + 1; /* Halton from index 1: 0 is a corner */
+    a->host->set_jitter(a->host, halton(k, 2) - 0.5f, halton(k, 3) - 0.5f);
+    a->host->set_still_frames(a->host, n);
+}
+
+static bool taa_active(void *user, const sl_frame *f) {
+    (void)f;
+    return param(user, "method").i == AA_TAA;
+}
+
+/* 4x4 inverse by Gauss-Jordan elimination with partial pivoting (column-major in and out). */
+static bool invert4(const float *m, float *out) {
+    double a[4][8];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) a[r][c] = m[c * 4 + r], a[r][c + 4] = r == c;
+    for (int c = 0; c < 4; c++) {
+        int piv = c;
+        for (int r = c + 1; r < 4; r++)
+            if (fabs(a[r][c]) > fabs(a[piv][c])) piv = r;
+        if (fabs(a[piv][c]) < 1e-30) return false;
+        for (int k = 0; k < 8; k++) { double t = a[c][k]; a[c][k] = a[piv][k]; a[piv][k] = t; }
+        double d = a[c][c];
+        for (int k = 0; k < 8; k++) a[c][k] /= d;
+        for (int r = 0; r < 4; r++)
+            if (r != c) {
+                double g = a[r][c];
+                for (int k = 0; k < 8; k++) a[r][k] -= g * a[c][k];
+            }
+    }
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) out[c * 4 + r] = (float)a[r][c + 4];
+    return true;
+}
+
+static void taa_textures(aa *a, int w, int h, int dw, int dh) {
+    if (w != a->hw || h != a->hh) {
+        if (a->history[0]) glDeleteTextures(2, a->history);
+        glCreateTextures(GL_TEXTURE_2D, 2, a->history);
+        for (int i = 0; i < 2; i++) glTextureStorage2D(a->history[i], 1, GL_RGBA16F, w, h);
+        a->hw = w, a->hh = h;
+        a->history_valid = false;
+    }
+    if (dw != a->dw || dh != a->dh) {
+        if (a->prev_depth) glDeleteTextures(1, &a->prev_depth);
+        glCreateTextures(GL_TEXTURE_2D, 1, &a->prev_depth);
+        glTextureStorage2D(a->prev_depth, 1, GL_DEPTH_COMPONENT32F, dw, dh);
+        a->dw = dw, a->dh = dh;
+        a->history_valid = false;
+    }
+}
+
+static void bind_tex(aa *a, unsigned prog, int slot, const char *name, unsigned tex, unsigned sampler) {
+    glBindTextureUnit(a->unit[slot], tex);
+    glBindSampler(a->unit[slot], sampler);
+    glUniform1i(glGetUniformLocation(prog, name), a->unit[slot]);
+}
+
+static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
+    aa *a = user;
+    const sl_host *h = a->host;
+    unsigned p = h->program_id(h, a->taa);
+    unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth"),
+             motion = h->pass_texture(h, ctx, "motion");
+    if (!p || !color || !depth || !motion) return;
+    int w, hh, dw, dh;
+    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_HEIGHT, &hh);
+    glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_WIDTH, &dw);
+    glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_HEIGHT, &dh);
+    taa_textures(a, w, hh, dw, dh);
+    /* the history continues only from the frame just before (not after the method was off, a
+     * pause or a resize) */
+    bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun;
+    float inv[16], prev_inv[16];
+    if (!invert4(f->view_proj, inv) || !invert4(f->prev_view_proj, prev_inv)) valid = false, memset(inv, 0, sizeof inv),
+                                                                               memset(prev_inv, 0, sizeof prev_inv);
+    int next = 1 - a->current;
+    glUseProgram(p);
+    bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
+    bind_tex(a, p, 1, "aa_depth", depth, a->sampler_nearest);
+    bind_tex(a, p, 2, "aa_motion", motion, a->sampler_nearest);
+    bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
+    bind_tex(a, p, 4, "aa_prev_depth", a->prev_depth, a->sampler_nearest);
+    glUniformMatrix4fv(glGetUniformLocation(p, "aa_inv_view_proj"), 1, GL_FALSE, inv);
+    glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
+    glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
+    glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
+    glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b);
+    glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b);
+    glUniform1i(glGetUniformLocation(p, "aa_history_valid"), valid);
+    glUniform1i(glGetUniformLocation(p, "aa_copy"), 0);
+    /* 1: the new history into our own target */
+    glNamedFramebufferTexture(a->fbo, GL_COLOR_ATTACHMENT0, a->history[next], 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
+    glViewport(0, 0, w, hh);
+    h->draw_fullscreen(h, ctx);
+    /* 2: copied into "color" (alpha 1) */
+    if (h->bind_outputs(h, ctx, 0) == SL_OK) {
+        glUseProgram(p);
+        bind_tex(a, p, 3, "aa_history", a->history[next], a->sampler_nearest);
+        glUniform1i(glGetUniformLocation(p, "aa_copy"), 1);
+        h->draw_fullscreen(h, ctx);
+    }
+    for (int i = 0; i < 5; i++) glBindSampler(a->unit[i], 0);
+    /* this frame's depth is the next frame's previous depth */
+    glNamedFramebufferTexture(a->depth_fbo[0], GL_DEPTH_ATTACHMENT, depth, 0);
+    glNamedFramebufferTexture(a->depth_fbo[1], GL_DEPTH_ATTACHMENT, a->prev_depth, 0);
+    glBlitNamedFramebuffer(a->depth_fbo[0], a->depth_fbo[1], 0, 0, dw, dh, 0, 0, dw, dh, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    a->current = next;
+    a->history_valid = true;
+    a->taa_ran_at = a->frames_begun;
 }
 
 /* ------------------------------------------------------------------ plugin ---------- */
 
 static const char *const fxaa_inputs[] = {"color", NULL};
+static const char *const taa_inputs[] = {"color", "depth", "motion", NULL};
 static const sl_target_desc color_out[] = {{.name = "color", .format = SL_FORMAT_RGBA16F}};
 
 /* FXAA runs last before the display encoding: after tone mapping and display-referred effects,
  * on the image as it will be seen (Lottes: after everything but the UI). */
 #define AA_STAGE_FXAA (SL_STAGE_DISPLAY_REFERRED + 10)
+/* TAA runs on linear HDR radiance right after the opaque passes (the forward pass, envmap's
+ * background) and before every post effect, which then sees a stable image. */
+#define AA_STAGE_TAA (SL_STAGE_OPAQUE + 50)
 
 static sl_status create(const sl_host *host, void **user) {
     aa *a = calloc(1, sizeof *a);
@@ -99,6 +237,10 @@ static sl_status create(const sl_host *host, void **user) {
                                .inputs = fxaa_inputs, .outputs = color_out, .output_count = 1,
                                .execute = fxaa_execute, .is_active = fxaa_active, .user = a};
     if (host->add_pass(host, &fxaa) != SL_OK) return SL_ERR_FAILED;
+    const sl_pass_desc taa = {.struct_size = sizeof taa, .name = "aa-taa", .stage = AA_STAGE_TAA,
+                              .inputs = taa_inputs, .outputs = color_out, .output_count = 1,
+                              .execute = taa_execute, .is_active = taa_active, .user = a};
+    if (host->add_pass(host, &taa) != SL_OK) return SL_ERR_FAILED;
     static const sl_key_desc key = {.struct_size = sizeof(sl_key_desc), .key = "X", .param = "method",
                                     .description = "next antialiasing method (none, fxaa, taa)"};
     if (host->add_key(host, &key) != SL_OK) return SL_ERR_FAILED;
@@ -106,7 +248,8 @@ static sl_status create(const sl_host *host, void **user) {
                                    .accumulate_frames = 1,
                                    .description = "8x8 supersampling box-filtered in linear HDR (core.ssaa=8), no post AA"};
     if (host->set_reference(host, &ref) != SL_OK) return SL_ERR_FAILED;
-    if ((a->unit0 = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
+    for (int i = 0; i < 5; i++)
+        if ((a->unit[i] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     return SL_OK;
 }
 
@@ -115,18 +258,34 @@ static sl_status activate(void *user) {
     if (!sl_gl_load(a->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
     a->fxaa = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                   .vertex = "sl:fullscreen.vert", .fragment = "fxaa.frag"});
+    a->taa = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                 .vertex = "sl:fullscreen.vert", .fragment = "taa.frag"});
+    glCreateFramebuffers(1, &a->fbo);
+    glCreateFramebuffers(2, a->depth_fbo);
+    for (int i = 0; i < 2; i++) glNamedFramebufferDrawBuffer(a->depth_fbo[i], GL_NONE), glNamedFramebufferReadBuffer(a->depth_fbo[i], GL_NONE);
+    glCreateSamplers(1, &a->sampler_nearest);
+    glSamplerParameteri(a->sampler_nearest, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(a->sampler_nearest, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(a->sampler_nearest, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(a->sampler_nearest, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glCreateSamplers(1, &a->sampler_linear);
     glSamplerParameteri(a->sampler_linear, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glSamplerParameteri(a->sampler_linear, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glSamplerParameteri(a->sampler_linear, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(a->sampler_linear, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return a->host->program_id(a->host, a->fxaa) ? SL_OK : SL_ERR_GL;
+    return a->host->program_id(a->host, a->fxaa) && a->host->program_id(a->host, a->taa) ? SL_OK : SL_ERR_GL;
 }
 
 static void deactivate(void *user) {
     aa *a = user;
     glDeleteSamplers(1, &a->sampler_linear);
-    a->sampler_linear = 0;
+    glDeleteSamplers(1, &a->sampler_nearest);
+    glDeleteFramebuffers(1, &a->fbo);
+    glDeleteFramebuffers(2, a->depth_fbo);
+    if (a->history[0]) glDeleteTextures(2, a->history);
+    if (a->prev_depth) glDeleteTextures(1, &a->prev_depth);
+    a->sampler_linear = a->sampler_nearest = a->fbo = a->history[0] = a->history[1] = a->prev_depth = 0;
+    a->hw = a->hh = a->dw = a->dh = 0;
 }
 
 static void destroy(void *user) { free(user); }
@@ -139,6 +298,7 @@ static const sl_plugin_desc desc = {
                    "neighbourhood clamping, disocclusion rejection); reference: core.ssaa=8.",
     .create = create,
     .activate = activate,
+    .begin_frame = begin_frame,
     .deactivate = deactivate,
     .destroy = destroy,
 };

@@ -115,6 +115,16 @@ struct sl_host {
     /* ABI 1.6. Directory of the SDK's shader library (what `#include "sl:NAME"` reads: common.glsl,
      * ggx_brdf.glsl, ...), for plugins that hash or read those files themselves. */
     const char *(*shader_dir)(const sl_host *host);
+    /* ABI 1.6, begin_frame only: offsets this frame's projection by (x, y) pixels (x right, y up;
+     * |x|, |y| <= 0.5) for temporal antialiasing. Every pass's sl_frame (proj, view_proj, jitter)
+     * and the composed programs' sl_proj/sl_view_proj include it; "motion" excludes it. Cleared
+     * at the start of every frame. */
+    void (*set_jitter)(const sl_host *host, float x, float y);
+    /* ABI 1.6, GL context current (activate, begin_frame, passes): a still image of this plugin's
+     * output needs `frames` frames rendered at one scene time (a temporal method's history). A
+     * headless render without --frames renders the largest count asked for, all at --time; the
+     * window renders continuously anyway. Cleared at the start of every frame: ask each frame. */
+    void (*set_still_frames)(const sl_host *host, int frames);
 };
 
 #ifdef __cplusplus

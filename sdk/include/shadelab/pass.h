@@ -8,6 +8,12 @@
  *            core's forward pass (stage OPAQUE). A POST pass that lists "color" both as input and
  *            output gets two different textures (ping-pong); later passes see its output.
  *   "depth"  DEPTH32F, viewport size, from the forward pass.
+ *   "motion" RG16F (ABI 1.6), from the forward pass, only while an active pass lists it as an
+ *            input (otherwise the forward programs do not compute it): per pixel, this frame's
+ *            screen position minus the previous frame's of the surface seen there, in UV units
+ *            ([0,1] across the viewport), both without projection jitter. Covers camera motion
+ *            and VERTEX hooks (evaluated at the previous frame's sl_time too); background
+ *            pixels (nothing drawn) hold 0. Same size as "depth".
  * After the last POST pass the core's display pass clamps to [0,1] and applies the sRGB
  * encoding (a tone-mapping plugin runs before it, at stage POST).
  */
@@ -63,6 +69,14 @@ typedef struct sl_frame {
     uint64_t camera_version, geometry_version, lights_version, params_version;
     int accumulate_index;    /* 0-based frame within an accumulated render; 0 otherwise */
     int accumulate_count;    /* frames being accumulated (1 = none) */
+    /* ABI 1.6, temporal antialiasing. jitter: the sub-pixel offset in pixels (x right, y up) that
+     * a plugin asked for in begin_frame (host->set_jitter), already in proj and view_proj; 0 when
+     * none. prev_view_proj: the previous frame's view_proj as it was rendered (its jitter
+     * included); this frame's on the first frame. unjittered_view_proj: view_proj without the
+     * jitter (what "motion" is computed with). */
+    float jitter[2];
+    float prev_view_proj[16];
+    float unjittered_view_proj[16];
 } sl_frame;
 
 typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() */
