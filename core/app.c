@@ -179,6 +179,109 @@ bool sl_app_set(sl_app *app, const char *assignment, sl_param_source src, char *
     return sl_params_set(&app->params, id, value, src, err, n);
 }
 
+/* ---- standard material inputs of imported assets (SL_MATERIAL_INPUT_NAMES) ---------------- */
+
+static bool plugin_declares_input(const sl_plugin_rec *r, const char *input) {
+    if (!r->ok || !r->desc.material_inputs) return false;
+    for (int k = 0; r->desc.material_inputs[k] && k < 256; k++)
+        if (!strcmp(r->desc.material_inputs[k], input)) return true;
+    return false;
+}
+
+/* Loads the plugins the scene's imported materials need: for each standard input no loaded
+ * plugin declares, the first installed plugin whose descriptor does (before create_all). An
+ * input nobody declares is reported when the material is applied. */
+static void load_plugins_for_inputs(sl_app *app) {
+    const sl_scene *s = &app->scene;
+    char missing[32][64];
+    int nmissing = 0;
+    for (int m = 0; m < s->material_count; m++) {
+        const sl_material *mat = &s->materials[m];
+        for (int k = 0; k < mat->inputs.count; k++) {
+            const char *input = mat->inputs.items[k].key;
+            bool handled = false, known_missing = false;
+            for (int i = 0; i < app->plugins.count && !handled; i++) handled = plugin_declares_input(app->plugins.items[i], input);
+            for (int i = 0; i < nmissing && !known_missing; i++) known_missing = !strcmp(missing[i], input);
+            if (handled || known_missing) continue;
+            char id[256], why[512];
+            if (sl_plugin_for_input(input, id, sizeof id)) {
+                snprintf(why, sizeof why, "material input \"%s\" of %s", input, mat->source ? mat->source : s->path);
+                SL_INFO("loading plugin %s: it handles the %s", id, why);
+                sl_plugins_load(&app->plugins, id, why, false);
+            } else if (nmissing < 32) {
+                snprintf(missing[nmissing++], sizeof missing[0], "%s", input);
+            }
+        }
+    }
+}
+
+/* Writes material m's standard inputs into the keys that declare them (the scene's own props,
+ * applied after, win). "brdf" also selects the shading model of the plugin whose key takes it.
+ * Inputs no loaded plugin declares are named in one warning (the asset file and the material). */
+static void apply_material_inputs(sl_app *app, int m) {
+    sl_material *mat = &app->scene.materials[m];
+    char unhandled[1024] = "";
+    size_t u = 0;
+    for (int k = 0; k < mat->inputs.count; k++) {
+        const sl_prop *p = &mat->inputs.items[k];
+        const sl_param *q = NULL;
+        for (int i = 0; i < app->params.count && !q; i++) {
+            const sl_param *c = &app->params.items[i];
+            if (c->desc.scope == SL_SCOPE_MATERIAL && c->desc.material_input && !strcmp(c->desc.material_input, p->key))
+                q = c;
+        }
+        int owner = q ? sl_plugins_find(&app->plugins, q->owner) : -1;
+        if (!q || owner < 0 || !app->plugins.items[owner]->ok) {
+            if (u < sizeof unhandled) u += snprintf(unhandled + u, sizeof unhandled - u, "%s%s", u ? ", " : "", p->key);
+            continue;
+        }
+        char text[1024], why[1024];
+        prop_text(p, text, sizeof text);
+        sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
+        if (!v || !set_material_value(app, m, v, text, why, sizeof why)) {
+            SL_WARN("%s: material \"%s\": %s %s not applied: %s", mat->source ? mat->source : app->scene.path, mat->name,
+                    p->key, text, v ? why : "no value slot");
+            continue;
+        }
+        if (!strcmp(p->key, "brdf")) /* the declaring plugin's shading model renders the material */
+            for (int c = 0; c < app->plugins.chunk_count; c++) {
+                const sl_chunk_reg *ch = &app->plugins.chunks[c];
+                if (ch->d.hook == SL_HOOK_SHADING_MODEL && ch->owner == owner && ch->d.name) {
+                    char *model = strdup(ch->d.name);
+                    if (model) free(mat->model), mat->model = model;
+                    break;
+                }
+            }
+    }
+    if (u)
+        SL_WARN("%s: material \"%s\": %s not rendered: no loaded plugin declares %s (ignored)",
+                mat->source ? mat->source : app->scene.path, mat->name, unhandled,
+                strchr(unhandled, ',') ? "them" : "it");
+}
+
+/* A model file opened directly: a default environment (the envmap plugin's procedural sky, or a
+ * neutral studio light without it) and tone mapping, unless the command line names them. */
+static void model_defaults(sl_app *app) {
+    sl_scene *s = &app->scene;
+    if (!s->from_model) return;
+    if (sl_plugin_available("envmap")) {
+        sl_plugins_load(&app->plugins, "envmap", "default environment of a model file", false);
+    } else if (s->light_count == 0) {
+        /* studio: a key light from the upper front left, a dimmer fill, a grey ambient */
+        static const float dirs[2][3] = {{0.45f, -0.7f, -0.55f}, {-0.6f, -0.3f, -0.75f}};
+        static const float power[2] = {2.5f, 0.8f};
+        for (int i = 0; i < 2; i++) {
+            int li = sl_scene_add_light(s, i ? "studio-fill" : "studio-key", "directional");
+            if (li < 0) break;
+            float l = sqrtf(dirs[i][0] * dirs[i][0] + dirs[i][1] * dirs[i][1] + dirs[i][2] * dirs[i][2]);
+            for (int c = 0; c < 3; c++) s->lights[li].direction[c] = dirs[i][c] / l;
+            s->lights[li].intensity = power[i];
+        }
+        for (int c = 0; c < 3; c++) s->environment.color[c] = 0.3f;
+    }
+    if (sl_plugin_available("tonemap")) sl_plugins_load(&app->plugins, "tonemap", "default tone mapping of a model file", false);
+}
+
 /* Validates and applies material/light props from the scene against the plugins' schema. */
 static bool apply_scene_values(sl_app *app, char *err, size_t n) {
     sl_scene *s = &app->scene;
@@ -196,6 +299,7 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
             v->v = q->desc.default_value;
             v->v.s = NULL;
         }
+        apply_material_inputs(app, m);
         const sl_material *mat = &s->materials[m];
         for (int k = 0; k < mat->props.count; k++) {
             const sl_prop *p = &mat->props.items[k];
@@ -349,6 +453,8 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     app->plugins.items[0]->resource_dir = strdup(sl_shader_dir());
     for (int i = 0; i < opt->plugin_count; i++) sl_plugins_load(&app->plugins, opt->plugins[i], "command line", true);
     for (int i = 0; i < app->scene.plugin_count; i++) sl_plugins_load(&app->plugins, app->scene.plugins[i], "scene", false);
+    model_defaults(app);
+    load_plugins_for_inputs(app);
     sl_plugins_create_all(&app->plugins);
     if (!app->plugins.items[0]->ok) {
         snprintf(err, n, "the core failed to register its shaders (see above)");

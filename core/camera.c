@@ -15,6 +15,8 @@ void sl_camera_from_scene(sl_camera_state *c, const sl_camera *sc) {
     c->fov_y_deg = sc->fov_y_deg > 0 ? sc->fov_y_deg : 45.f;
     c->znear = sc->znear > 0 ? sc->znear : 0.05f;
     c->zfar = sc->zfar > c->znear ? sc->zfar : 100.f;
+    c->orthographic = sc->orthographic;
+    c->ymag = sc->ymag > 0 ? sc->ymag : 1.f;
     c->version++;
 }
 
@@ -29,8 +31,11 @@ void sl_camera_matrices(const sl_camera_state *c, float view[16], float proj[16]
     vec3 eye, target = {c->target[0], c->target[1], c->target[2]}, up = {0, 1, 0};
     sl_camera_position(c, eye);
     glm_lookat(eye, target, up, (vec4 *)view);
-    glm_perspective(glm_rad(c->fov_y_deg), c->aspect > 0 ? c->aspect : 1.f, c->znear, c->zfar,
-                    (vec4 *)proj);
+    float aspect = c->aspect > 0 ? c->aspect : 1.f;
+    if (c->orthographic) /* glTF 2.0 orthographic: x, y in [−xmag, xmag] × [−ymag, ymag] */
+        glm_ortho(-c->ymag * aspect, c->ymag * aspect, -c->ymag, c->ymag, c->znear, c->zfar, (vec4 *)proj);
+    else
+        glm_perspective(glm_rad(c->fov_y_deg), aspect, c->znear, c->zfar, (vec4 *)proj);
 }
 
 void sl_camera_orbit(sl_camera_state *c, float dyaw, float dpitch) {
@@ -49,6 +54,7 @@ void sl_camera_pan(sl_camera_state *c, float dx, float dy) {
 
 void sl_camera_zoom(sl_camera_state *c, float factor) {
     c->distance = fmaxf(1e-3f, c->distance * factor);
+    if (c->orthographic) c->ymag = fmaxf(1e-6f, c->ymag * factor); /* a parallel view zooms by its extent */
     c->version++;
 }
 
@@ -67,4 +73,5 @@ void sl_camera_print(const sl_camera_state *c, FILE *f) {
     fprintf(f, "{ \"name\": \"saved\", \"position\": [%.4f, %.4f, %.4f], \"target\": [%.4f, %.4f, %.4f], "
                "\"fov_y\": %.2f, \"near\": %g, \"far\": %g }\n",
             p[0], p[1], p[2], c->target[0], c->target[1], c->target[2], c->fov_y_deg, c->znear, c->zfar);
+    if (c->orthographic) fprintf(f, "  (orthographic: add \"type\": \"orthographic\", \"ymag\": %g)\n", c->ymag);
 }

@@ -13,6 +13,8 @@ typedef struct sl_camera_state {
     float fov_y_deg, znear, zfar;
     float aspect;
     unsigned long long version; /* bumps on every change */
+    bool orthographic;     /* parallel projection, ymag = half the view's height (zoom scales it) */
+    float ymag;
 } sl_camera_state;
 
 void sl_camera_from_scene(sl_camera_state *c, const struct sl_camera *sc);

@@ -18,10 +18,11 @@ static sl_status core_create(const sl_host *host, void **user) {
                         "(Not a swept quality knob: a reference setting.)"},
         /* material keys */
         {.struct_size = sizeof(sl_param_desc), .id = "base_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
-         .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material",
+         .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material", .material_input = "base_color",
          .description = "Diffuse albedo k_d (linear RGB); multiplies base_color_map when both are given."},
         {.struct_size = sizeof(sl_param_desc), .id = "base_color_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
-         .group = "material", .description = "Diffuse colour texture (sRGB), or a procedural spec such as checker:8:r,g,b:r,g,b."},
+         .group = "material", .material_input = "base_color_texture",
+         .description = "Diffuse colour texture (sRGB), or a procedural spec such as checker:8:r,g,b:r,g,b."},
         /* light keys every light has (they map onto the light record's own fields) */
         {.struct_size = sizeof(sl_param_desc), .id = "enabled", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
          .default_value = {.b = true}, .group = "light", .description = "Per-light on/off."},
@@ -77,10 +78,14 @@ static sl_status core_create(const sl_host *host, void **user) {
     return SL_OK;
 }
 
+/* the standard material inputs of imported assets the core's keys take (base_color, base_color_map) */
+static const char *const core_inputs[] = {"base_color", "base_color_texture", NULL};
+
 const sl_plugin_desc sl_core_plugin = {
     SL_PLUGIN_HEADER,
     .id = "core",
     .version = SL_VERSION,
     .description = "Lambert shading, directional and point lights, debug views (built in).",
     .create = core_create,
+    .material_inputs = core_inputs,
 };

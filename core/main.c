@@ -16,8 +16,10 @@
 #include <time.h>
 
 static const char *usage =
-    "usage: shadelab [options]\n"
-    "  --scene FILE           JSON scene (default: the built-in scene, no files needed)\n"
+    "usage: shadelab [options] [FILE]\n"
+    "  FILE, --scene FILE     a JSON scene, or a model (glTF .gltf/.glb, OBJ, anything assimp reads; detected by\n"
+    "                         content) shown framed with a default environment and tone mapping\n"
+    "                         (default: the built-in scene, no files needed)\n"
     "  --headless             render without a window (EGL on a GPU, else OSMesa)\n"
     "  --backend NAME         auto | headless | glfw | osmesa | egl\n"
     "  --size WxH             viewport size (default 1280x720)\n"
@@ -28,7 +30,8 @@ static const char *usage =
     "  --bench                print median frame and per-pass times over the frames (use --frames >= 30)\n"
     "  --plugin NAME|PATH     load a plugin (repeatable)\n"
     "  --set ID=VALUE         set a parameter: plugin.param, material.NAME.key, light.NAME.key (repeatable)\n"
-    "  --camera NAME          start from a scene camera\n"
+    "  --camera NAME          start from a scene camera (--list-cameras; a model's first camera by default)\n"
+    "  --list-cameras         the scene's cameras (a model file's own included) with position and field of view\n"
     "  --debug-view NAME      replace the output with a debug view (--list-debug-views)\n"
     "  --accumulate N         average N frames per output (Monte Carlo references)\n"
     "  --reference PLUGIN     render PLUGIN's declared ground truth (its settings and accumulation)\n"
@@ -48,7 +51,7 @@ typedef struct cli {
     sl_app_options opt;
     const char *output, *stats, *reference, *auto_quality;
     int frames;
-    bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys;
+    bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys, list_cameras;
     double start_time;
 } cli;
 
@@ -146,6 +149,9 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
         else if (!strcmp(a, "--help-keys")) c->help_keys = true;
         else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) sl_log_threshold = SL_LOG_DEBUG;
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) sl_log_threshold = SL_LOG_WARN;
+        else if (!strcmp(a, "--list-cameras")) c->list_cameras = true;
+        else if (a[0] != '-' && !c->opt.scene_path) c->opt.scene_path = a; /* shadelab model.glb */
+        else if (a[0] != '-') { snprintf(err, n, "%s: only one scene or model file (already %s)", a, c->opt.scene_path); return 1; }
         else { snprintf(err, n, "unknown option %s (see --help)", a); return 1; }
 #undef NEXT
     }
@@ -264,6 +270,19 @@ static void list_views(sl_app *app) {
     }
 }
 
+static void list_cameras(sl_app *app) {
+    const sl_scene *s = &app->scene;
+    if (!s->camera_count) printf("(no cameras in %s: the view frames the scene's bounds)\n", s->path);
+    for (int i = 0; i < s->camera_count; i++) {
+        const sl_camera *cam = &s->cameras[i];
+        printf("%-32s %s  position %.4g %.4g %.4g  target %.4g %.4g %.4g  ", cam->name,
+               cam->orthographic ? "orthographic" : "perspective ", cam->position[0], cam->position[1],
+               cam->position[2], cam->target[0], cam->target[1], cam->target[2]);
+        if (cam->orthographic) printf("ymag %.4g\n", cam->ymag);
+        else printf("fov_y %.4g deg\n", cam->fov_y_deg);
+    }
+}
+
 /* ---------------------------------------------------------------- main ------------------ */
 
 static double now_ms(void) {
@@ -319,7 +338,8 @@ int main(int argc, char **argv) {
         SL_INFO("reference for %s: %s", c.reference, ref_description);
     }
     if (c.auto_quality && !sl_autoquality_apply(&app, c.auto_quality, err, sizeof err)) { sl_app_shutdown(&app); free(ref_copy); return die(err); }
-    if (c.list_plugins || c.dump_params || c.list_views || c.help_keys) {
+    if (c.list_plugins || c.dump_params || c.list_views || c.help_keys || c.list_cameras) {
+        if (c.list_cameras) list_cameras(&app);
         if (c.list_plugins) sl_plugins_print(&app.plugins, stdout);
         if (c.dump_params) sl_params_dump_json(&app.params, stdout);
         if (c.list_views) list_views(&app);

@@ -16,6 +16,7 @@ static void free_desc(sl_param_desc *d) {
     free((char *)d->group);
     free((char *)d->description);
     free((char *)d->light_type);
+    free((char *)d->material_input);
     free((char *)d->default_value.s);
     if (d->enum_values) {
         for (const char *const *e = d->enum_values; *e; e++) free((char *)*e);
@@ -104,7 +105,10 @@ sl_status sl_params_add(sl_params *p, const char *owner, const sl_param_desc *in
                          d.scope == SL_SCOPE_MATERIAL ? "material" : "light", full, owner, prev->owner);
                 return SL_ERR_DUPLICATE;
             }
-            return SL_OK; /* shared vocabulary: first declaration's schema stands */
+            /* shared vocabulary: first declaration's schema stands (a later declarer may name
+             * the standard material input the first did not) */
+            if (!prev->desc.material_input && d.material_input) prev->desc.material_input = dupstr(d.material_input);
+            return SL_OK;
         }
     }
     if (p->count == p->cap) {
@@ -122,6 +126,7 @@ sl_status sl_params_add(sl_params *p, const char *owner, const sl_param_desc *in
     q->desc.group = dupstr(d.group);
     q->desc.description = dupstr(d.description);
     q->desc.light_type = dupstr(d.light_type);
+    q->desc.material_input = dupstr(d.material_input);
     q->desc.default_value.s = dupstr(d.default_value.s);
     if (nenum) {
         const char **e = calloc(nenum + 1, sizeof *e);
@@ -327,6 +332,7 @@ void sl_params_dump_json(sl_params *p, FILE *f) {
             for (const char *const *s = q->desc.enum_values; *s; s++) cJSON_AddItemToArray(e, cJSON_CreateString(*s));
         }
         if (q->desc.light_type) cJSON_AddStringToObject(o, "light_type", q->desc.light_type);
+        if (q->desc.material_input) cJSON_AddStringToObject(o, "material_input", q->desc.material_input);
         cJSON *flags = cJSON_AddArrayToObject(o, "flags");
         if (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE) cJSON_AddItemToArray(flags, cJSON_CreateString("needs_recompile"));
         if (q->desc.flags & SL_PARAM_QUALITY_KNOB) cJSON_AddItemToArray(flags, cJSON_CreateString("quality_knob"));

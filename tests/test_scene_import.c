@@ -62,9 +62,12 @@ static void test_obj(void) {
     const sl_material *m = &s.materials[s.meshes[0].material];
     CHECK(strcmp(m->name, "quad/tile") == 0 && strcmp(m->model, "lambert") == 0);
     CHECK(s.material_count == 1); /* unused assimp defaults are not imported */
-    const sl_prop *bc = sl_prop_find(&m->props, "base_color");
+    /* imported materials publish standard inputs (glTF names), never a plugin's keys */
+    CHECK(m->props.count == 0 && m->source && ends_with(m->source, "quad.obj"));
+    CHECK(!sl_prop_find(&m->inputs, "brdf")); /* plain diffuse OBJ: no metallic-roughness, no ggx */
+    const sl_prop *bc = sl_prop_find(&m->inputs, "base_color");
     CHECK(bc && bc->count == 3 && fabsf(bc->v[0] - 0.2f) < 1e-6f && fabsf(bc->v[2] - 0.6f) < 1e-6f);
-    const sl_prop *map = sl_prop_find(&m->props, "base_color_map");
+    const sl_prop *map = sl_prop_find(&m->inputs, "base_color_texture");
     CHECK(map && map->str[0] == '/' && ends_with(map->str, "/tests/data/scenes/tile.png"));
     CHECK_CONTAINS(logbuf, "tile.png' not found"); /* referenced but absent: said so */
     sl_scene_free(&s);
@@ -101,18 +104,19 @@ static void test_gltf(void) {
     }
     const sl_material *m = &s.materials[0];
     CHECK(strcmp(m->name, "quads/paint") == 0);
-    const sl_prop *p = sl_prop_find(&m->props, "base_color");
+    CHECK(m->props.count == 0);
+    const sl_prop *p = sl_prop_find(&m->inputs, "base_color");
     CHECK(p && p->count == 3 && p->v[0] == 0.5f && p->v[1] == 0.25f && p->v[2] == 1.0f);
-    p = sl_prop_find(&m->props, "metallic");
+    p = sl_prop_find(&m->inputs, "brdf");
+    CHECK(p && p->kind == SL_PROP_STRING && strcmp(p->str, "metallic-roughness") == 0);
+    p = sl_prop_find(&m->inputs, "metallic");
     CHECK(p && fabsf(p->v[0] - 0.2f) < 1e-6f);
-    p = sl_prop_find(&m->props, "roughness");
+    p = sl_prop_find(&m->inputs, "roughness");
     CHECK(p && fabsf(p->v[0] - 0.7f) < 1e-6f);
-    p = sl_prop_find(&m->props, "base_color_map");
+    p = sl_prop_find(&m->inputs, "base_color_texture");
     CHECK(p && ends_with(p->str, "/tests/data/scenes/albedo.png") && p->str[0] == '/');
-    p = sl_prop_find(&m->props, "normal_map");
+    p = sl_prop_find(&m->inputs, "normal_texture");
     CHECK(p && ends_with(p->str, "/tests/data/scenes/normal.png"));
-    p = sl_prop_find(&m->props, "normal_space");
-    CHECK(p && strcmp(p->str, "tangent") == 0);
 
     int sun = sl_scene_find_light(&s, "quads/sun"), spot = sl_scene_find_light(&s, "quads/spot"),
         bulb = sl_scene_find_light(&s, "quads/bulb");

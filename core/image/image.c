@@ -134,6 +134,8 @@ static bool colorspace_is_linear(const char *cs) {
     return false;
 }
 
+static bool decode(sl_image *img, const char *path, const void *data, size_t size, char *err, size_t err_size);
+
 bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) {
     if (!img) {
         set_err(err, err_size, "%s: no output image given", path ? path : "(null)");
@@ -172,10 +174,31 @@ bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) 
         return false;
     }
 
+    return decode(img, path, NULL, 0, err, err_size);
+}
+
+bool sl_image_load_memory(sl_image *img, const void *data, size_t size, const char *name, char *err,
+                          size_t err_size) {
+    if (!name) name = "(in memory)";
+    if (!img) {
+        set_err(err, err_size, "%s: no output image given", name);
+        return false;
+    }
+    memset(img, 0, sizeof *img);
+    if (!data || size == 0) {
+        set_err(err, err_size, "%s: empty image data (0 bytes)", name);
+        return false;
+    }
+    return decode(img, name, data, size, err, err_size);
+}
+
+/* Opens (a file, or `data` when given) and decodes: the checks and conversions every image gets. */
+static bool decode(sl_image *img, const char *path, const void *data, size_t size, char *err, size_t err_size) {
     char ext[16], msg[1024] = "";
     path_extension(path, ext, sizeof ext);
     sl_oiio_info info;
-    sl_oiio_input *in = sl_oiio_open(path, &info, msg, sizeof msg);
+    sl_oiio_input *in = data ? sl_oiio_open_memory(data, size, path, &info, msg, sizeof msg)
+                             : sl_oiio_open(path, &info, msg, sizeof msg);
     if (!in) {
         /* OIIO tries every reader when the one named by the extension fails, so a known
          * extension here means the content is damaged or not what the name says. */

@@ -44,6 +44,11 @@ typedef struct sl_image {
  * permission denied, empty file, unsupported format, corrupt or truncated data, too large)
  * and returns false with *img zeroed. Never aborts on bad input. */
 bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size);
+/* The same for an encoded image held in memory (PNG/JPEG… bytes embedded in a .glb or a data:
+ * URI): name (with the format's extension, e.g. "model.glb#image0.png") is used in messages and
+ * to pick the reader first; the same limits apply. */
+bool sl_image_load_memory(sl_image *img, const void *data, size_t size, const char *name, char *err,
+                          size_t err_size);
 /* sRGB-encoded → linear in place (RGB only, alpha untouched), per IEC 61966-2-1 (see
  * sl_srgb_decode: inputs are clamped to [0,1] and NaN becomes 0). Call it exactly once, for
  * colour textures whose img->source_srgb is true. */
@@ -142,6 +147,9 @@ typedef struct sl_oiio_info {
 } sl_oiio_info;
 typedef struct sl_oiio_input sl_oiio_input;
 sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, char *err, size_t err_size);
+/* The same for an image held in memory; name's extension picks the reader to try first. */
+sl_oiio_input *sl_oiio_open_memory(const void *data, size_t size, const char *name, sl_oiio_info *info,
+                                   char *err, size_t err_size);
 /* Reads channels [chbegin, chend) of subimage 0, mip 0 as float, tightly packed. */
 bool sl_oiio_read(sl_oiio_input *in, int chbegin, int chend, float *out, char *err,
                   size_t err_size);

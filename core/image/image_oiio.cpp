@@ -7,6 +7,7 @@ extern "C" {
 #include "image/image.h"
 }
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cstdio>
@@ -17,6 +18,7 @@ extern "C" {
 using namespace OIIO;
 
 struct sl_oiio_input {
+    std::unique_ptr<Filesystem::IOMemReader> proxy; // in-memory images: outlives `in`
     std::unique_ptr<ImageInput> in;
 };
 
@@ -34,14 +36,20 @@ static void copy_str(char *dst, size_t size, const std::string &s) {
     std::snprintf(dst, size, "%s", s.c_str());
 }
 
-extern "C" sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, char *err,
-                                       size_t err_size) {
+static sl_oiio_input *open_any(const char *path, const void *data, size_t size, sl_oiio_info *info,
+                               char *err, size_t err_size) {
     try {
         // Return the samples as stored: without this hint OIIO premultiplies the colour of
         // files that store unassociated alpha (PNG, many TIFFs) by alpha on read.
         ImageSpec config;
         config.attribute("oiio:UnassociatedAlpha", 1);
-        auto in = ImageInput::open(path, &config);
+        std::unique_ptr<Filesystem::IOMemReader> proxy;
+        if (data) {
+            proxy.reset(new Filesystem::IOMemReader(data, size));
+            void *ptr = proxy.get(); /* how OIIO 2.4's readers find a proxy (imageio.h, "oiio:ioproxy") */
+            config.attribute("oiio:ioproxy", TypeDesc::PTR, &ptr);
+        }
+        auto in = ImageInput::open(path, &config, proxy.get());
         if (!in) {
             set_err(err, err_size, OIIO::geterror());
             return nullptr;
@@ -60,6 +68,7 @@ extern "C" sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, cha
         copy_str(info->colorspace, sizeof info->colorspace,
                  spec.get_string_attribute("oiio:ColorSpace"));
         auto *h = new sl_oiio_input;
+        h->proxy = std::move(proxy);
         h->in = std::move(in);
         return h;
     } catch (const std::exception &e) {
@@ -68,6 +77,17 @@ extern "C" sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, cha
         set_err(err, err_size, "unknown exception in OpenImageIO");
     }
     return nullptr;
+}
+
+extern "C" sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, char *err,
+                                       size_t err_size) {
+    return open_any(path, nullptr, 0, info, err, err_size);
+}
+
+// An image held in memory (an embedded glTF image): `name`'s extension picks the reader first.
+extern "C" sl_oiio_input *sl_oiio_open_memory(const void *data, size_t size, const char *name,
+                                              sl_oiio_info *info, char *err, size_t err_size) {
+    return open_any(name, data, size, info, err, err_size);
 }
 
 extern "C" bool sl_oiio_read(sl_oiio_input *h, int chbegin, int chend, float *out, char *err,

@@ -73,4 +73,9 @@ int sl_plugins_reserve_unit(sl_plugins *P, int owner);
 const void *sl_plugins_extension(const sl_plugins *P, const char *id);
 /* The directories searched for NAME (for messages and --list-plugins). */
 int sl_plugin_search_dirs(char dirs[][1024], int max);
+/* Discovery (discover.c): whether a plugin of this id is in the search directories, and the id
+ * of the first one (directory order, then by name) whose descriptor lists the standard material
+ * input `input` in material_inputs (read without create()). */
+bool sl_plugin_available(const char *id);
+bool sl_plugin_for_input(const char *input, char *id, size_t n);
 #endif

@@ -79,9 +79,14 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         ok = sl_image_procedural(&img, spec, 256, err, sizeof err);
         /* procedural colours are linear already */
     } else {
-        char *path = sl_scene_resolve_path(&app->scene, app->opt.data_dir, spec, err, sizeof err);
-        ok = path && sl_image_load(&img, path, err, sizeof err);
-        free(path);
+        const sl_embedded_image *e = sl_scene_find_image(&app->scene, spec); /* a .glb's own images */
+        if (e) {
+            ok = sl_image_load_memory(&img, e->data, e->size, e->name, err, sizeof err);
+        } else {
+            char *path = sl_scene_resolve_path(&app->scene, app->opt.data_dir, spec, err, sizeof err);
+            ok = path && sl_image_load(&img, path, err, sizeof err);
+            free(path);
+        }
         if (ok && !linear_data && img.source_srgb) {
             if (img.source_bits == 8) srgb_storage = true;
             else sl_image_srgb_to_linear(&img);

@@ -272,19 +272,48 @@ int sl_scene_add_camera(sl_scene *scene, const char *name) {
     c->position[2] = 5.0f;
     c->up[1] = 1.0f;
     c->fov_y_deg = 45.0f;
+    c->xmag = c->ymag = 1.0f;
     c->znear = 0.05f;
     c->zfar = 100.0f;
     return scene->camera_count++;
 }
 
+int sl_scene_add_image(sl_scene *scene, const char *name, const void *data, size_t size) {
+    if (!grow((void **)&scene->images, scene->image_count, sizeof(sl_embedded_image))) return -1;
+    sl_embedded_image *e = &scene->images[scene->image_count];
+    e->name = dup_str(name);
+    e->data = malloc(size ? size : 1);
+    if (!e->name || !e->data) {
+        free(e->name);
+        free(e->data);
+        return -1;
+    }
+    memcpy(e->data, data, size);
+    e->size = size;
+    return scene->image_count++;
+}
+
+const sl_embedded_image *sl_scene_find_image(const sl_scene *scene, const char *name) {
+    for (int i = 0; name && i < scene->image_count; i++)
+        if (!strcmp(scene->images[i].name, name)) return &scene->images[i];
+    return NULL;
+}
+
 void sl_scene_free(sl_scene *scene) {
     if (!scene) return;
+    for (int i = 0; i < scene->image_count; i++) {
+        free(scene->images[i].name);
+        free(scene->images[i].data);
+    }
+    free(scene->images);
     free(scene->path);
     free(scene->dir);
     for (int i = 0; i < scene->material_count; i++) {
         free(scene->materials[i].name);
         free(scene->materials[i].model);
         sl_prop_list_free(&scene->materials[i].props);
+        sl_prop_list_free(&scene->materials[i].inputs);
+        free(scene->materials[i].source);
     }
     free(scene->materials);
     for (int i = 0; i < scene->mesh_count; i++) {

@@ -42,6 +42,12 @@ typedef struct sl_material {
     bool cast_shadows;      /* default true */
     sl_prop_list props;     /* everything else: base_color, base_color_map, alpha, … */
     int line;
+    /* Imported materials: the standard material inputs the asset gives (SL_MATERIAL_INPUT_NAMES
+     * in <shadelab/params.h>: "brdf", "metallic", "normal_texture"…), which the app writes into
+     * the keys plugins declare for them (props above win), and the asset file they came from
+     * (messages name it; NULL for materials the scene file defines). */
+    sl_prop_list inputs;
+    char *source;
 } sl_material;
 
 typedef struct sl_mesh {
@@ -90,6 +96,10 @@ typedef struct sl_camera {
     float position[3], target[3], up[3];
     float fov_y_deg;        /* vertical field of view, default 45 */
     float znear, zfar;      /* default 0.05, 100 */
+    /* "type": "orthographic" (glTF 2.0): a parallel projection whose view is 2·ymag high (and
+     * the viewport's aspect wide; xmag is the file's own half-width, kept for listings). */
+    bool orthographic;
+    float xmag, ymag;
 } sl_camera;
 
 typedef struct sl_environment {
@@ -113,7 +123,19 @@ typedef struct sl_scene {
     char **plugins;         int plugin_count;   /* plugin NAMES only (never paths) */
     sl_prop_list params;    /* "plugin.param": value assignments from the scene */
     float bounds_min[3], bounds_max[3];         /* world bounds after transforms */
+    /* Encoded images held in memory (a .glb's buffer views, data: URIs), by the name texture
+     * values use for them ("<file>#image<N>.<ext>"); the renderer decodes them like files. */
+    struct sl_embedded_image *images; int image_count;
+    /* The scene is one model file opened directly (shadelab model.glb): the app adds a default
+     * environment and tone mapping, and frames the camera on it. */
+    bool from_model;
 } sl_scene;
+
+typedef struct sl_embedded_image {
+    char *name;
+    unsigned char *data;
+    size_t size;
+} sl_embedded_image;
 
 /* Where relative asset paths are looked up, in order: the scene file's directory, then
  * data_dir (--data DIR or SHADELAB_DATA). */
@@ -165,6 +187,11 @@ bool sl_mesh_teapot(sl_mesh_data *m, float size, int tessellation);
  * to place lights and cameras. On failure err says why ("path: assimp could not import it:
  * …") and the scene may hold part of the file (a loader then discards the whole scene). */
 bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
+/* A model file (glTF, GLB, OBJ… anything assimp reads) as a whole scene: one root node named
+ * after the file holding its contents, from_model set (the app adds a default environment and
+ * tone mapping and frames the camera). sl_scene_load_file calls it when the file's content is
+ * not a shadelab scene. On failure *scene is untouched. */
+bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t err_size);
 /* Generates tangents (xyz + handedness w) from positions, normals and uvs; degenerate UVs
  * fall back to an arbitrary tangent orthogonal to the normal. */
 void sl_mesh_generate_tangents(sl_mesh_data *m);
@@ -206,6 +233,10 @@ int sl_scene_add_light(sl_scene *scene, const char *name, const char *type);
 /* Where an animated light is at time t (seconds): its position and unit direction. */
 void sl_light_at_time(const sl_light *light, double t, float position[3], float direction[3]);
 int sl_scene_add_camera(sl_scene *scene, const char *name);
+/* Copies size bytes of an encoded image under `name`; its index, or -1 when out of memory. */
+int sl_scene_add_image(sl_scene *scene, const char *name, const void *data, size_t size);
+/* The embedded image a texture value names, or NULL. */
+const sl_embedded_image *sl_scene_find_image(const sl_scene *scene, const char *name);
 
 /* Set (add or replace) a property; returns it, or NULL when out of memory. */
 sl_prop *sl_prop_set_number(sl_prop_list *list, const char *key, float value, int line);

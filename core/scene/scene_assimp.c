@@ -19,6 +19,7 @@
 
 #include <assimp/cimport.h>
 #include <assimp/config.h>
+#include <assimp/GltfMaterial.h>
 #include <assimp/light.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -50,7 +51,20 @@ typedef struct importer {
     int node_count, node_cap;
     char *err;
     size_t err_size;
+    unsigned unsupported; /* UNSUPPORTED_* bits: what of the file is not rendered as authored */
+    int warned_raw;
 } importer;
+
+enum {
+    UNSUPPORTED_TEXCOORD1 = 1u << 0,
+    UNSUPPORTED_SAMPLER = 1u << 1,
+    UNSUPPORTED_MASK = 1u << 2,
+    UNSUPPORTED_BLEND = 1u << 3,
+    UNSUPPORTED_DOUBLE_SIDED = 1u << 4,
+    UNSUPPORTED_SKIN = 1u << 5,
+    UNSUPPORTED_MORPH = 1u << 6,
+    UNSUPPORTED_ANIMATION = 1u << 7,
+};
 
 static bool fail(importer *im, const char *fmt, const char *arg) {
     if (im->err && im->err_size) snprintf(im->err, im->err_size, fmt, im->path, arg);
@@ -75,19 +89,66 @@ static void normalize(float v[3]) {
 
 /* ---- materials --------------------------------------------------------------------------- */
 
-/* A texture path as the renderer can open it: absolute, relative to the mesh file. */
+/* The texture value for an embedded image (a .glb buffer view or a data: URI, which assimp
+ * hands out as "*N"): the image's bytes join the scene under "<file>#image<N>.<format>", the
+ * name the renderer decodes it by (sl_scene_find_image). NULL when the image is unusable. */
+static const char *embedded_texture(importer *im, const char *ref, char *out, size_t size) {
+    const struct aiScene *ai = im->ai;
+    long index = -1;
+    if (ref[0] == '*') {
+        char *end;
+        index = strtol(ref + 1, &end, 10);
+        if (*end || index < 0 || index >= (long)ai->mNumTextures) index = -1;
+    } else { /* assimp also finds embedded images by their file name */
+        const char *b = strrchr(ref, '/');
+        b = b ? b + 1 : ref;
+        for (unsigned i = 0; i < ai->mNumTextures && index < 0; i++) {
+            const char *f = ai->mTextures[i]->mFilename.data, *fb = strrchr(f, '/');
+            if (ai->mTextures[i]->mFilename.length && !strcmp(fb ? fb + 1 : f, b)) index = i;
+        }
+    }
+    if (index < 0) return NULL;
+    const struct aiTexture *t = ai->mTextures[index];
+    if (t->mHeight != 0 || !t->pcData || t->mWidth == 0) {
+        if (!im->warned_raw++)
+            SL_WARN("%s: embedded texture %s is stored as raw texels, which shadelab does not read (skipped)",
+                    im->path, ref);
+        return NULL;
+    }
+    char hint[16];
+    snprintf(hint, sizeof hint, "%s", t->achFormatHint[0] ? t->achFormatHint : "png");
+    for (char *c = hint; *c; c++) *c = (char)(*c >= 'A' && *c <= 'Z' ? *c - 'A' + 'a' : *c);
+    if (!strcmp(hint, "jpeg")) snprintf(hint, sizeof hint, "jpg");
+    const char *base = strrchr(im->path, '/');
+    snprintf(out, size, "%s#image%ld.%s", base ? base + 1 : im->path, index, hint);
+    if (!sl_scene_find_image(im->scene, out) && sl_scene_add_image(im->scene, out, t->pcData, t->mWidth) < 0)
+        return NULL;
+    return out;
+}
+
+/* A texture of the material as a texture value: an embedded image's name, or a path the
+ * renderer can open (absolute, relative to the mesh file). Records what the importer cannot
+ * honour yet (texCoord 1, non-repeat samplers) for the file's summary warning. */
 static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiTextureType type,
                          char *out, size_t size) {
     struct aiString p;
+    enum aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
+    unsigned uv = 0;
     if (aiGetMaterialTextureCount(mat, type) == 0) return false;
-    if (aiGetMaterialTexture(mat, type, 0, &p, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
+    if (aiGetMaterialTexture(mat, type, 0, &p, NULL, &uv, NULL, NULL, modes, NULL) != aiReturn_SUCCESS)
         return false;
     if (p.length == 0) return false;
-    if (p.data[0] == '*') {
-        SL_WARN("%s: embedded texture %s is not supported yet (skipped); extract it next to the "
-                "file and reference it by name", im->path, p.data);
-        return false;
+    if (uv != 0) im->unsupported |= UNSUPPORTED_TEXCOORD1;
+    if (modes[0] != aiTextureMapMode_Wrap || modes[1] != aiTextureMapMode_Wrap) im->unsupported |= UNSUPPORTED_SAMPLER;
+    if (p.data[0] == '*' || im->ai->mNumTextures) {
+        char name[1200];
+        if (embedded_texture(im, p.data, name, sizeof name)) {
+            snprintf(out, size, "%s", name);
+            return true;
+        }
+        if (p.data[0] == '*') return false;
     }
+    if (!strncmp(p.data, "data:", 5)) return false; /* a data: URI assimp did not decode */
     if (p.data[0] == '/') snprintf(out, size, "%s", p.data);
     else snprintf(out, size, "%s/%s", im->dir, p.data);
     struct stat st;
@@ -95,57 +156,96 @@ static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiText
     return true;
 }
 
+static float material_float(const struct aiMaterial *mat, const char *key, unsigned type, unsigned index, float fallback,
+                            bool *found) {
+    ai_real f;
+    unsigned n = 1;
+    bool ok = aiGetMaterialFloatArray(mat, key, type, index, &f, &n) == aiReturn_SUCCESS && n == 1 && isfinite(f);
+    if (found) *found = ok;
+    return ok ? (float)f : fallback;
+}
+
 /* The scene material for ai material i, created on first use (files often carry unused
- * defaults); −1 when out of memory. */
+ * defaults); −1 when out of memory. What the asset says is published as standard material
+ * inputs (scene.h, sl_material.inputs; names from glTF 2.0), never as a plugin's keys: the app
+ * writes them into the keys plugins declare for them. glTF materials are metallic-roughness
+ * materials, defaults included (metallic 1, roughness 1); other formats' plain diffuse
+ * materials publish only a colour and a texture. */
 static int material_for(importer *im, unsigned i) {
     if (i >= im->ai->mNumMaterials) {
         int mi = sl_scene_find_material(im->scene, "default");
         return mi >= 0 ? mi : sl_scene_add_material(im->scene, "default", "lambert");
     }
     if (im->material_map[i] >= 0) return im->material_map[i];
-    {
-        const struct aiMaterial *mat = im->ai->mMaterials[i];
-        struct aiString ainame;
-        char name[600];
-        if (aiGetMaterialString(mat, AI_MATKEY_NAME, &ainame) == aiReturn_SUCCESS && ainame.length)
-            snprintf(name, sizeof name, "%.250s/%.300s", im->stem, ainame.data);
-        else
-            snprintf(name, sizeof name, "%s/material%u", im->stem, i);
-        int existing = sl_scene_find_material(im->scene, name);
-        if (existing >= 0) return im->material_map[i] = existing;
-        int mi = sl_scene_add_material(im->scene, name, "lambert");
-        if (mi < 0) return -1;
-        im->material_map[i] = mi;
-        sl_prop_list *props = &im->scene->materials[mi].props;
-        struct aiColor4D c;
-        if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) == aiReturn_SUCCESS ||
-            aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) {
-            float rgb[3] = {c.r, c.g, c.b};
-            sl_prop_set_vec(props, "base_color", rgb, 3, 0);
-            if (c.a < 1.0f && c.a >= 0.0f) sl_prop_set_number(props, "alpha", c.a, 0);
-        }
-        char tex[4096 + 1024];
-        if (texture_path(im, mat, aiTextureType_BASE_COLOR, tex, sizeof tex) ||
-            texture_path(im, mat, aiTextureType_DIFFUSE, tex, sizeof tex))
-            sl_prop_set_string(props, "base_color_map", tex, 0);
-        if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) {
-            sl_prop_set_string(props, "normal_map", tex, 0);
-            sl_prop_set_string(props, "normal_space", "tangent", 0);
-        }
-        ai_real f;
-        unsigned n = 1;
-        if (aiGetMaterialFloatArray(mat, AI_MATKEY_METALLIC_FACTOR, &f, &n) == aiReturn_SUCCESS && n == 1)
-            sl_prop_set_number(props, "metallic", (float)f, 0);
-        n = 1;
-        if (aiGetMaterialFloatArray(mat, AI_MATKEY_ROUGHNESS_FACTOR, &f, &n) == aiReturn_SUCCESS && n == 1)
-            sl_prop_set_number(props, "roughness", (float)f, 0);
-        n = 1;
-        if (!sl_prop_find(props, "alpha") &&
-            aiGetMaterialFloatArray(mat, AI_MATKEY_OPACITY, &f, &n) == aiReturn_SUCCESS && n == 1 &&
-            f < 1.0f && f >= 0.0f)
-            sl_prop_set_number(props, "alpha", (float)f, 0);
-        return mi;
+    const struct aiMaterial *mat = im->ai->mMaterials[i];
+    struct aiString ainame;
+    char name[600];
+    if (aiGetMaterialString(mat, AI_MATKEY_NAME, &ainame) == aiReturn_SUCCESS && ainame.length)
+        snprintf(name, sizeof name, "%.250s/%.300s", im->stem, ainame.data);
+    else
+        snprintf(name, sizeof name, "%s/material%u", im->stem, i);
+    int existing = sl_scene_find_material(im->scene, name);
+    if (existing >= 0) return im->material_map[i] = existing;
+    int mi = sl_scene_add_material(im->scene, name, "lambert");
+    if (mi < 0) return -1;
+    im->material_map[i] = mi;
+    sl_material *sm = &im->scene->materials[mi];
+    sm->source = strdup(im->path);
+    sl_prop_list *in = &sm->inputs;
+    struct aiColor4D c;
+    if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) == aiReturn_SUCCESS ||
+        aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) {
+        float rgb[3] = {c.r, c.g, c.b};
+        sl_prop_set_vec(in, "base_color", rgb, 3, 0);
+        if (c.a < 1.0f && c.a >= 0.0f) sl_prop_set_number(in, "opacity", c.a, 0);
     }
+    char tex[4096 + 1024];
+    if (texture_path(im, mat, aiTextureType_BASE_COLOR, tex, sizeof tex) ||
+        texture_path(im, mat, aiTextureType_DIFFUSE, tex, sizeof tex))
+        sl_prop_set_string(in, "base_color_texture", tex, 0);
+    bool has_metal = false, has_rough = false, found;
+    float metal = material_float(mat, AI_MATKEY_METALLIC_FACTOR, 1.0f, &has_metal);
+    float rough = material_float(mat, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f, &has_rough);
+    if (im->is_gltf || has_metal || has_rough) {
+        sl_prop_set_string(in, "brdf", "metallic-roughness", 0);
+        sl_prop_set_number(in, "metallic", fminf(fmaxf(metal, 0.0f), 1.0f), 0);
+        sl_prop_set_number(in, "roughness", fminf(fmaxf(rough, 0.0f), 1.0f), 0);
+        /* assimp 5.2's glTF importer files it under UNKNOWN (AI_MATKEY_GLTF_…_METALLICROUGHNESS_TEXTURE) */
+        if (texture_path(im, mat, aiTextureType_UNKNOWN, tex, sizeof tex) ||
+            texture_path(im, mat, aiTextureType_DIFFUSE_ROUGHNESS, tex, sizeof tex))
+            sl_prop_set_string(in, "metallic_roughness_texture", tex, 0);
+    }
+    if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) {
+        sl_prop_set_string(in, "normal_texture", tex, 0);
+        float scale = material_float(mat, AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), 1.0f, &found);
+        if (found && scale != 1.0f) sl_prop_set_number(in, "normal_scale", scale, 0);
+    }
+    if (texture_path(im, mat, aiTextureType_LIGHTMAP, tex, sizeof tex)) {
+        sl_prop_set_string(in, "occlusion_texture", tex, 0);
+        float strength = material_float(mat, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_LIGHTMAP, 0), 1.0f, &found);
+        if (found) sl_prop_set_number(in, "occlusion_strength", strength, 0);
+    }
+    if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS && (c.r > 0 || c.g > 0 || c.b > 0)) {
+        float rgb[3] = {c.r, c.g, c.b};
+        sl_prop_set_vec(in, "emissive", rgb, 3, 0);
+        float strength = material_float(mat, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f, &found);
+        if (found && strength != 1.0f) sl_prop_set_number(in, "emissive_strength", strength, 0);
+    }
+    if (texture_path(im, mat, aiTextureType_EMISSIVE, tex, sizeof tex)) sl_prop_set_string(in, "emissive_texture", tex, 0);
+    if (!sl_prop_find(in, "opacity")) {
+        float opacity = material_float(mat, AI_MATKEY_OPACITY, 1.0f, &found);
+        if (found && opacity < 1.0f && opacity >= 0.0f) sl_prop_set_number(in, "opacity", opacity, 0);
+    }
+    struct aiString mode;
+    if (aiGetMaterialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
+        if (!strcmp(mode.data, "MASK")) im->unsupported |= UNSUPPORTED_MASK;
+        if (!strcmp(mode.data, "BLEND")) im->unsupported |= UNSUPPORTED_BLEND;
+    }
+    int two_sided = 0;
+    unsigned n = 1;
+    if (aiGetMaterialIntegerArray(mat, AI_MATKEY_TWOSIDED, &two_sided, &n) == aiReturn_SUCCESS && two_sided)
+        im->unsupported |= UNSUPPORTED_DOUBLE_SIDED;
+    return mi;
 }
 
 /* ---- meshes ------------------------------------------------------------------------------ */
@@ -349,13 +449,79 @@ static bool import_cameras(importer *im) {
         double vfov = im->is_gltf ? hfov / aspect : 2.0 * atan(tan(hfov) / aspect);
         vfov *= 180.0 / M_PI;
         if (vfov > 0.5 && vfov < 179.0) c->fov_y_deg = (float)vfov;
+        /* orthographic (assimp 5.2: mOrthographicWidth = xmag, mAspect = xmag / ymag, hfov 0) */
+        if (ac->mOrthographicWidth > 0 && isfinite(ac->mOrthographicWidth)) {
+            c->orthographic = true;
+            c->xmag = ac->mOrthographicWidth;
+            c->ymag = (float)(ac->mOrthographicWidth / aspect);
+        }
         if (ac->mClipPlaneNear > 0 && isfinite(ac->mClipPlaneNear)) c->znear = ac->mClipPlaneNear;
         if (ac->mClipPlaneFar > c->znear && isfinite(ac->mClipPlaneFar)) c->zfar = ac->mClipPlaneFar;
     }
     return true;
 }
 
+/* One warning listing what of the file is not rendered as its author made it. */
+static void warn_unsupported(importer *im) {
+    for (unsigned i = 0; i < im->ai->mNumMeshes; i++) {
+        if (im->ai->mMeshes[i]->mNumBones) im->unsupported |= UNSUPPORTED_SKIN;
+        if (im->ai->mMeshes[i]->mNumAnimMeshes) im->unsupported |= UNSUPPORTED_MORPH;
+    }
+    if (im->ai->mNumAnimations) im->unsupported |= UNSUPPORTED_ANIMATION;
+    static const char *const what[] = {
+        "texCoord 1 (textures sample UV set 0)",
+        "texture samplers other than REPEAT (textures repeat)",
+        "alphaMode MASK (rendered opaque)",
+        "alphaMode BLEND (rendered opaque)",
+        "doubleSided (back faces shaded with the front normal)",
+        "skins (the bind pose is shown)",
+        "morph targets (the base shape is shown)",
+        "animations (the first frame's pose is shown)",
+    };
+    char list[1024] = "";
+    size_t u = 0;
+    for (unsigned b = 0; b < sizeof what / sizeof *what; b++)
+        if ((im->unsupported & (1u << b)) && u < sizeof list)
+            u += snprintf(list + u, sizeof list - u, "%s%s", u ? "; " : "", what[b]);
+    if (u) SL_WARN("%s: not rendered as authored: %s", im->path, list);
+}
+
 /* ---- entry ------------------------------------------------------------------------------- */
+
+bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t err_size) {
+    if (err && err_size) err[0] = 0;
+    sl_scene s;
+    memset(&s, 0, sizeof s);
+    char *abs = realpath(path, NULL);
+    s.path = strdup(path);
+    s.dir = strdup(abs ? abs : path);
+    free(abs);
+    char *slash = s.dir ? strrchr(s.dir, '/') : NULL;
+    if (slash) *slash = 0;
+    s.environment.intensity = 1.0f;
+    s.from_model = true;
+    const char *base = strrchr(path, '/');
+    char stem[256];
+    snprintf(stem, sizeof stem, "%s", base ? base + 1 : path);
+    char *dot = strrchr(stem, '.');
+    if (dot && dot != stem) *dot = 0;
+    int node = s.path && s.dir ? sl_scene_add_node(&s, stem, -1) : -1;
+    bool ok = node >= 0;
+    if (!ok && err && err_size) snprintf(err, err_size, "%s: out of memory", path);
+    if (ok) {
+        sl_scene_update_transforms(&s);
+        ok = sl_scene_import_file(&s, path, node, err, err_size);
+    }
+    if (!ok) {
+        sl_scene_free(&s);
+        return false;
+    }
+    sl_scene_update_transforms(&s);
+    *scene = s;
+    return true;
+}
+
+
 
 bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
     if (err && err_size) err[0] = 0;
@@ -407,6 +573,7 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
         for (unsigned i = 0; i < im.ai->mNumMeshes; i++) any = any || im.mesh_map[i] >= 0;
         if (!any && im.ai->mNumLights == 0 && im.ai->mNumCameras == 0)
             SL_WARN("%s: the file contains no triangle meshes", path);
+        warn_unsupported(&im);
     }
     free(im.mesh_map);
     free(im.material_map);

@@ -565,7 +565,9 @@ static bool load_materials(loader *L, const cJSON *arr) {
     return true;
 }
 
-static const char *const camera_keys[] = {"name", "position", "target", "up", "fov_y", "near", "far"};
+static const char *const camera_keys[] = {"name", "position", "target", "up", "fov_y", "near", "far",
+                                          "type", "xmag", "ymag"};
+static const char *const camera_types[] = {"perspective", "orthographic"};
 
 static bool load_cameras(loader *L, const cJSON *arr) {
     char buf[96];
@@ -596,6 +598,24 @@ static bool load_cameras(loader *L, const cJSON *arr) {
             !get_number(L, v, ctx, &c->fov_y_deg, 0.0, true, 179.0)) return false;
         if ((v = cJSON_GetObjectItemCaseSensitive(o, "near")) && !get_number(L, v, ctx, &c->znear, 0.0, true, FLT_MAX)) return false;
         if ((v = cJSON_GetObjectItemCaseSensitive(o, "far")) && !get_number(L, v, ctx, &c->zfar, 0.0, true, FLT_MAX)) return false;
+        /* glTF 2.0 cameras: "orthographic" with half-extents xmag, ymag (the viewport's aspect
+         * decides the width; xmag is kept for --list-cameras and the file's intent) */
+        if ((v = cJSON_GetObjectItemCaseSensitive(o, "type"))) {
+            const char *type;
+            if (!get_string(L, v, ctx, &type)) return false;
+            if (!in_list(type, KEYS(camera_types))) {
+                char hint[600];
+                key_hint(hint, sizeof hint, type, KEYS(camera_types), "types");
+                return failf(L, v, "%s: unknown camera type '%s'%s", ctx, type, hint);
+            }
+            c->orthographic = !strcmp(type, "orthographic");
+        }
+        c->ymag = c->xmag = 1.0f;
+        if ((v = cJSON_GetObjectItemCaseSensitive(o, "ymag")) && !get_number(L, v, ctx, &c->ymag, 0.0, true, FLT_MAX)) return false;
+        c->xmag = c->ymag;
+        if ((v = cJSON_GetObjectItemCaseSensitive(o, "xmag")) && !get_number(L, v, ctx, &c->xmag, 0.0, true, FLT_MAX)) return false;
+        if (!c->orthographic && (cJSON_GetObjectItemCaseSensitive(o, "xmag") || cJSON_GetObjectItemCaseSensitive(o, "ymag")))
+            warnf(L, o, "%s: \"xmag\"/\"ymag\" apply to \"type\": \"orthographic\" cameras only (ignored)", ctx);
         if (!(c->zfar > c->znear))
             return failf(L, o, "%s: \"far\" (%g) must be greater than \"near\" (%g)", ctx, c->zfar, c->znear);
         /* depth precision: measured on the 32-bit float depth buffer, far/near = 1e7 already
@@ -1223,6 +1243,29 @@ bool sl_scene_load_default(sl_scene *scene, const sl_scene_load_opts *opts, char
     return sl_scene_load_text(scene, sl_default_scene_json, "<default>", NULL, opts, err, err_size);
 }
 
+/* Detection by content, not by the extension: a binary glTF ("glTF" magic) or any file whose
+ * first character is not '{' or '[' (OBJ, FBX, PLY… text or binary) is a model for assimp; a
+ * JSON object with a top-level "asset" is a glTF document; other JSON is a shadelab scene. */
+static bool is_model_head(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    unsigned char head[64];
+    size_t n = fread(head, 1, sizeof head, f);
+    fclose(f);
+    if (n >= 4 && !memcmp(head, "glTF", 4)) return true;
+    size_t i = n >= 3 && !memcmp(head, "\xEF\xBB\xBF", 3) ? 3 : 0;
+    while (i < n && (head[i] == ' ' || head[i] == '\t' || head[i] == '\r' || head[i] == '\n')) i++;
+    return i < n && head[i] != '{' && head[i] != '[';
+}
+
+static bool is_gltf_json(const char *text, size_t len) {
+    if (!strstr(text, "\"asset\"")) return false; /* the scene format has no such key */
+    cJSON *root = cJSON_ParseWithLength(text, len);
+    bool yes = cJSON_IsObject(cJSON_GetObjectItemCaseSensitive(root, "asset"));
+    cJSON_Delete(root);
+    return yes;
+}
+
 bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_opts *opts,
                         char *err, size_t err_size) {
     if (err && err_size) err[0] = 0;
@@ -1239,6 +1282,7 @@ bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_o
         if (err && err_size) snprintf(err, err_size, "%s: is a directory, not a scene file", path);
         return false;
     }
+    if (S_ISREG(st.st_mode) && is_model_head(path)) return sl_scene_load_model(scene, path, err, err_size);
     if (st.st_size > (off_t)MAX_SCENE_FILE_BYTES) {
         if (err && err_size)
             snprintf(err, err_size, "%s: %lld bytes is too large for a scene file (limit %u MiB)", path,
@@ -1248,6 +1292,10 @@ bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_o
     size_t len;
     char *text = sl_read_file(path, &len, err, err_size);
     if (!text) return false;
+    if (is_gltf_json(text, len)) { /* a .gltf document, whatever its name */
+        free(text);
+        return sl_scene_load_model(scene, path, err, err_size);
+    }
     /* relative assets resolve against the scene file's directory (made absolute) */
     char *copy = strdup(path);
     char *slash = copy ? strrchr(copy, '/') : NULL;

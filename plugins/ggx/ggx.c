@@ -28,9 +28,10 @@ static const sl_param_desc params[] = {
     P(.id = "alpha", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {0.3f}}, .min = 0, .max = 1,
       .step = 0.01f, .group = "ggx", .description = "GGX α (width of the microfacet distribution); 0 is clamped to 2e-3."),
     P(.id = "roughness", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {0.5f}}, .min = 0,
-      .max = 1, .step = 0.01f, .group = "ggx", .description = "Perceptual roughness (glTF): α = roughness²."),
+      .max = 1, .step = 0.01f, .group = "ggx", .material_input = "roughness",
+      .description = "Perceptual roughness (glTF): α = roughness²."),
     P(.id = "roughness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
-      .group = "ggx", .description = "Roughness in the green channel (glTF layout), times roughness when given."),
+      .group = "ggx", .material_input = "metallic_roughness_texture", .description = "Roughness in the green channel (glTF layout), times roughness when given."),
     P(.id = "specular", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1}}, .min = 0,
       .max = 1, .step = 0.01f, .group = "ggx", .description = "k_s, the weight of the specular term."),
     P(.id = "specular_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
@@ -39,10 +40,10 @@ static const sl_param_desc params[] = {
       .min = 0.05f, .max = 20, .step = 0.01f, .group = "ggx",
       .description = "Relative index of refraction η = n1/n2 (air over glass: 1/1.5)."),
     P(.id = "fresnel", .type = SL_PARAM_ENUM, .scope = SL_SCOPE_MATERIAL, .enum_values = fresnel_modes,
-      .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "ggx",
+      .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "ggx", .material_input = "brdf",
       .description = "exact dielectric Fresnel, Schlick, or glTF metallic-roughness (F0 = mix(0.04, base, metallic))."),
     P(.id = "metallic", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
-      .group = "ggx", .description = "Metalness for fresnel = metallic-roughness."),
+      .group = "ggx", .material_input = "metallic", .description = "Metalness for fresnel = metallic-roughness."),
 };
 
 #define C(...) {.struct_size = sizeof(sl_shader_chunk_desc), __VA_ARGS__}
@@ -91,12 +92,17 @@ static sl_status ggx_create(const sl_host *host, void **user) {
     return SL_OK;
 }
 
+/* The glTF metallic-roughness BRDF (fresnel = metallic-roughness) and its inputs: imported
+ * glTF materials load this plugin (the host reads this list without calling create). */
+static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metallic_roughness_texture", NULL};
+
 static const sl_plugin_desc ggx_desc = {
     SL_PLUGIN_HEADER,
     .id = "ggx",
     .version = "1.0",
     .description = "Cook-Torrance GGX microfacet BRDF: exact/Schlick/metallic-roughness Fresnel, D/G/F debug views.",
     .create = ggx_create,
+    .material_inputs = ggx_inputs,
 };
 
 SL_DEFINE_PLUGIN(ggx_desc)

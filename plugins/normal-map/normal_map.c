@@ -26,7 +26,7 @@ static sl_status nm_create(const sl_host *host, void **user) {
           .description = "Mip bias of the normal-map lookup (phong's gloss lookups follow it). Negative sharpens and "
                          "aliases; -16 samples level 0 everywhere (the un-prefiltered surface, used by references)."),
         P(.id = "normal_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
-          .group = "normal map",
+          .group = "normal map", .material_input = "normal_texture",
           .description = "Normal map (linear data, n = 2*texel - 1); its space is normal_space. Materials without one "
                          "get no normal-map code."),
         P(.id = "normal_space", .type = SL_PARAM_ENUM, .scope = SL_SCOPE_MATERIAL, .enum_values = space_values,
@@ -34,7 +34,7 @@ static sl_status nm_create(const sl_host *host, void **user) {
           .description = "tangent: N = T*x + up*y + N*z in the vertex tangent frame; object: the map holds object-space "
                          "normals, transformed by the normal matrix."),
         P(.id = "normal_strength", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1}},
-          .min = 0, .max = 4, .step = 0.05f, .group = "normal map",
+          .min = 0, .max = 4, .step = 0.05f, .group = "normal map", .material_input = "normal_scale",
           .description = "Per-material strength (multiplies normal-map.strength)."),
     };
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
@@ -67,11 +67,15 @@ static sl_status nm_create(const sl_host *host, void **user) {
     return SL_OK;
 }
 
+/* glTF's normalTexture and its scale: imported materials with a normal texture load this plugin */
+static const char *const nm_inputs[] = {"normal_texture", "normal_scale", NULL};
+
 static const sl_plugin_desc nm_desc = {
     SL_PLUGIN_HEADER,
     .id = "normal-map",
     .version = "1.0",
     .description = "Tangent- and object-space normal maps (surface hook), debug views; bake tool in tools/.",
     .create = nm_create,
+    .material_inputs = nm_inputs,
 };
 SL_DEFINE_PLUGIN(nm_desc)

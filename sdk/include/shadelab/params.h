@@ -73,7 +73,32 @@ typedef struct sl_param_desc {
     int light_slot;
     /* LIGHT scope: the light type this key belongs to ("spot"); NULL = every light. */
     const char *light_type;
+    /* ABI 1.6, MATERIAL scope: the standard material input (SL_MATERIAL_INPUT_NAMES below) this
+     * key receives from imported assets (glTF, OBJ…), or NULL. The importer publishes inputs by
+     * these names only; the host writes each into the key that declares it, so the core never
+     * names a plugin's key. List the same names in sl_plugin_desc.material_inputs. */
+    const char *material_input;
 } sl_param_desc;
+
+/* ABI 1.6: the standard material inputs an importer publishes, named after the glTF 2.0
+ * material model (KHR spec, "Materials"). Values arrive in the schema's own text form.
+ *   brdf                      the BRDF the asset asks for: "metallic-roughness" (glTF 2.0,
+ *                             appendix B). The plugin whose key declares it provides the shading
+ *                             model the material uses (its SHADING_MODEL chunk); the value is
+ *                             parsed by that key's schema (an enum containing the name).
+ *   base_color                colour: baseColorFactor.rgb (linear)
+ *   base_color_texture        texture (sRGB): baseColorTexture
+ *   opacity                   float: baseColorFactor.a (or the file format's opacity)
+ *   metallic, roughness       float: metallicFactor, roughnessFactor
+ *   metallic_roughness_texture texture (linear): B = metal, G = roughness
+ *   normal_texture            texture (linear, tangent space, +Y up); normal_scale: its scale
+ *   occlusion_texture         texture (linear, R); occlusion_strength: its strength
+ *   emissive                  colour: emissiveFactor; emissive_texture: texture (sRGB)
+ *   emissive_strength, ior    floats (KHR_materials_emissive_strength, KHR_materials_ior) */
+#define SL_MATERIAL_INPUT_NAMES                                                                       \
+    "brdf", "base_color", "base_color_texture", "opacity", "metallic", "roughness",                   \
+        "metallic_roughness_texture", "normal_texture", "normal_scale", "occlusion_texture",          \
+        "occlusion_strength", "emissive", "emissive_texture", "emissive_strength", "ior"
 
 #ifdef __cplusplus
 }

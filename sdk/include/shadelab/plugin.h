@@ -46,6 +46,10 @@ typedef struct sl_plugin_desc {
     /* Extensions this plugin offers to others, by id with revision ("shadelab.shadow-maps/1");
      * NULL when not provided. May be NULL. */
     const void *(*get_extension)(void *user, const char *id);
+    /* ABI 1.6: NULL-terminated standard material inputs (params.h, SL_MATERIAL_INPUT_NAMES) that
+     * this plugin's material keys receive, or NULL. The host reads it from the descriptor without
+     * calling create(), to load the plugins an imported material needs, and no more. */
+    const char *const *material_inputs;
 } sl_plugin_desc;
 
 #if defined(__GNUC__)

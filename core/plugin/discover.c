@@ -1,0 +1,69 @@
+/* Discovery: which plugins are installed or built, and which standard material inputs each one
+ * declares it handles (sl_plugin_desc.material_inputs, ABI 1.6), read from the descriptors in
+ * the search directories without calling create(). The app uses it to load the plugins an
+ * imported material needs, and no more (docs/design-notes.md, "Material inputs"). */
+#include "plugin/plugins.h"
+#include <dirent.h>
+#include <dlfcn.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static bool plugin_file(const char *dir, const char *id, char *out, size_t n) {
+    struct stat st;
+    snprintf(out, n, "%s/%s/%s.so", dir, id, id);
+    return stat(out, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+bool sl_plugin_available(const char *id) {
+    char dirs[16][1024], path[2200];
+    int nd = sl_plugin_search_dirs(dirs, 16);
+    for (int i = 0; i < nd; i++)
+        if (plugin_file(dirs[i], id, path, sizeof path)) return true;
+    return false;
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* Does the descriptor of the plugin file declare `input`? The library is opened lazily and
+ * closed again: nothing of it runs but its entry function. */
+static bool declares(const char *path, const char *input) {
+    void *dl = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
+    if (!dl) return false;
+    bool found = false;
+    sl_plugin_entry_fn entry = (sl_plugin_entry_fn)dlsym(dl, SL_PLUGIN_ENTRY_SYMBOL);
+    const sl_plugin_desc *d = entry ? entry() : NULL;
+    if (d && d->abi_major == SL_ABI_MAJOR && d->abi_minor <= SL_ABI_MINOR &&
+        d->struct_size >= offsetof(sl_plugin_desc, material_inputs) + sizeof(void *) && d->material_inputs)
+        for (int k = 0; d->material_inputs[k] && k < 256 && !found; k++) found = !strcmp(d->material_inputs[k], input);
+    dlclose(dl);
+    return found;
+}
+
+bool sl_plugin_for_input(const char *input, char *id, size_t n) {
+    char dirs[16][1024];
+    int nd = sl_plugin_search_dirs(dirs, 16);
+    for (int i = 0; i < nd; i++) {
+        DIR *dir = opendir(dirs[i]);
+        if (!dir) continue;
+        char *names[256];
+        int count = 0;
+        for (struct dirent *e; (e = readdir(dir)) && count < 256;)
+            if (e->d_name[0] != '.') names[count++] = strdup(e->d_name);
+        closedir(dir);
+        qsort(names, count, sizeof *names, cmp_str); /* the same choice on every machine */
+        bool found = false;
+        for (int k = 0; k < count; k++) {
+            char path[2200];
+            if (!found && names[k] && plugin_file(dirs[i], names[k], path, sizeof path) && declares(path, input)) {
+                snprintf(id, n, "%s", names[k]);
+                found = true;
+            }
+            free(names[k]);
+        }
+        if (found) return true;
+    }
+    return false;
+}
