@@ -100,8 +100,11 @@ static void begin_frame(void *user, const sl_frame *f) {
     a->frames_begun++;
     if (param(a, "method").i != AA_TAA) return;
     int n = param(a, "taa_frames").i;
-    unsigned k = (unsigned)(f->index % (uint64_t)(n > 0 ? n : 1)) + 1; /* Halton from index 1: 0 is a corner */
-    a->host->set_jitter(a->host, halton(k, 2) - 0.5f, halton(k, 3) - 0.5f);
+    /* Frame k of each run of n samples the pixel centre (k = 0), then Halton points 1..n-1
+     * (Halton 0 is a corner). A first frame is therefore the image without antialiasing, so a
+     * single-frame render is the same with TAA on (a TAA still is the mean of n frames). */
+    unsigned k = (unsigned)(f->index % (uint64_t)(n > 0 ? n : 1));
+    if (k) a->host->set_jitter(a->host, halton(k, 2) - 0.5f, halton(k, 3) - 0.5f);
     a->host->set_still_frames(a->host, n);
 }
 

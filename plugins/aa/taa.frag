@@ -53,7 +53,14 @@ void main() {
     ivec2 size = textureSize(aa_color, 0);
     vec2 uv = (vec2(p) + 0.5) / vec2(size);
     vec3 c = texelFetch(aa_color, p, 0).rgb;
-    c = mix(c, vec3(0.0), bvec3(isnan(c)));
+    if (aa_history_valid == 0) { // no history: this frame as it is (NaN stays visible: stability tests)
+        o_color = vec4(c, 1.0);
+        return;
+    }
+    if (any(isnan(c))) { // a shading bug stays visible, not averaged away (the next frame drops it)
+        o_color = vec4(c, 0.0);
+        return;
+    }
 
     // 3x3 neighbourhood: colour box (YCoCg) and the nearest surface
     ivec2 dsize = textureSize(aa_depth, 0);
@@ -76,7 +83,7 @@ void main() {
 
     float frames = 0.0;
     vec3 h = c;
-    bool keep = aa_history_valid != 0 && all(greaterThanEqual(uv_prev, vec2(0.0))) && all(lessThanEqual(uv_prev, vec2(1.0)));
+    bool keep = all(greaterThanEqual(uv_prev, vec2(0.0))) && all(lessThanEqual(uv_prev, vec2(1.0)));
     if (keep && aa_reject != 0) {
         // The surface the history shows (the last frame's depth where this pixel came from,
         // reconstructed to world space) must still be visible in this pixel's 3x3 neighbourhood
@@ -98,8 +105,8 @@ void main() {
     }
     if (keep) {
         vec4 hist = textureLod(aa_history, uv_prev, 0.0);
-        frames = hist.a;
-        h = hist.rgb;
+        frames = any(isnan(hist)) ? 0.0 : hist.a;
+        h = any(isnan(hist)) ? c : hist.rgb;
         if (aa_clamp != 0) h = aa_rgb(aa_clip(aa_ycocg(h), lo, hi));
     }
     float n = min(frames + 1.0, float(aa_frames));

@@ -104,6 +104,13 @@ static void test_taa_still(void) {
         if (!render_still(json, s_ref, 1, ref) || !render_still(json, s_none, 1, base) ||
             !render_still(json, s_taa, 16, img))
             return;
+        /* one frame (--frames 1, a single harness render): the pixel centre, no history = the
+         * image without antialiasing, bit for bit */
+        static float one[W * H * 4];
+        if (!render_still(json, s_taa, 1, one)) return;
+        long differ = 0;
+        for (int i = 0; i < W * H; i++) differ += memcmp(one + i * 4, base + i * 4, 3 * sizeof(float)) != 0;
+        CHECK_MSG(differ == 0, "edge %g deg: a single TAA frame differs from none in %ld pixels", angles[k], differ);
         double e_none = rmse(base, ref), e_taa = rmse(img, ref);
         printf("edge %4.1f deg: RMSE to ssaa=8: none %.5f, taa after 16 frames %.5f (%.0f %% less)\n", angles[k], e_none,
                e_taa, 100 * (1 - e_taa / e_none));
