@@ -29,6 +29,8 @@ struct SlSurface {
     float opacity;         // 1 by default
     float lod_bias;        // mip bias of lookups that follow the normal map's level (normal-map sets
                            // it; 0 by default): a model's gloss map filtered at the normal's level
+    vec3 object_position;  // ABI 1.6: object-space position before VERTEX hooks (rest pose),
+                           // interpolated: object-space regions stay on a moving surface
 };
 
 // One light as packed by the core (std430, 80 bytes).

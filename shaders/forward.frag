@@ -4,6 +4,7 @@ in vec3 v_world_pos;
 in vec3 v_normal;
 in vec4 v_tangent;
 in vec2 v_uv;
+in vec3 v_object_pos;
 
 layout(location = 0) out vec4 o_color;
 #ifdef SL_MOTION_VECTORS
@@ -41,6 +42,7 @@ SlSurface sl_surface_from_varyings() {
     s.ao = 1.0;
     s.opacity = 1.0;
     s.lod_bias = 0.0;
+    s.object_position = v_object_pos;
     return s;
 }
 

@@ -9,6 +9,7 @@ out vec3 v_world_pos;
 out vec3 v_normal;
 out vec4 v_tangent;
 out vec2 v_uv;
+out vec3 v_object_pos; // rest-pose object-space position (SlSurface.object_position)
 
 uniform int sl_uv_space; // texture-space passes rasterise at uv*2-1
 
@@ -33,6 +34,7 @@ void main() {
     v_normal = sl_normal_matrix * v.normal;
     v_tangent = vec4(mat3(sl_model) * v.tangent.xyz, v.tangent.w);
     v_uv = v.uv;
+    v_object_pos = a_position;
     gl_Position = sl_uv_space != 0 ? vec4(v.uv * 2.0 - 1.0, 0.0, 1.0) : sl_view_proj * world;
 #ifdef SL_MOTION_VECTORS
     v_clip_now = sl_unjittered_view_proj * world;

@@ -51,6 +51,10 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
         SL_ERROR("%s: shader chunk needs a file and (except LIBRARY) a function", id);
         return SL_ERR_INVALID;
     }
+    if (d.when_node_tag && d.hook != SL_HOOK_VERTEX) {
+        SL_ERROR("%s: shader chunk %s: when_node_tag is for VERTEX hooks only", id, d.file);
+        return SL_ERR_INVALID;
+    }
     bool named = d.hook == SL_HOOK_SHADING_MODEL || d.hook == SL_HOOK_MODEL_AMBIENT ||
                  d.hook == SL_HOOK_LIGHT || d.hook == SL_HOOK_DEBUG_VIEW || d.hook == SL_HOOK_DEBUG_VIEW_LIGHT;
     if (named && (!d.name || !*d.name)) {
@@ -82,6 +86,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     r->d.name = dup0(d.name);
     r->d.when_material_has = dup0(d.when_material_has);
     r->d.when_model = dup0(d.when_model);
+    r->d.when_node_tag = dup0(d.when_node_tag);
     r->d.description = dup0(d.description);
     return SL_OK;
 }
@@ -408,6 +413,7 @@ bool sl_plugins_add_builtin(sl_plugins *P, const sl_plugin_desc *desc) {
 static void free_chunk(sl_chunk_reg *c) {
     free((char *)c->d.file); free((char *)c->d.function); free((char *)c->d.name);
     free((char *)c->d.when_material_has); free((char *)c->d.description); free((char *)c->d.when_model);
+    free((char *)c->d.when_node_tag);
 }
 
 static void free_pass(sl_pass_reg *r) {

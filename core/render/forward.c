@@ -53,6 +53,16 @@ static bool material_has(sl_app *app, int m, const char *key) {
     return false;
 }
 
+/* Whether some node carrying `tag` (its own or an ancestor's) draws a mesh of material m: a
+ * VERTEX hook gated on the tag (when_node_tag) is left out of programs no such node uses. */
+static bool material_drawn_with_tag(sl_app *app, int m, const char *tag) {
+    const sl_scene *s = &app->scene;
+    for (int ni = 0; ni < s->node_count; ni++)
+        for (int k = 0; k < s->nodes[ni].mesh_count; k++)
+            if (s->meshes[s->nodes[ni].meshes[k]].material == m && sl_scene_node_has_tag(s, ni, tag)) return true;
+    return false;
+}
+
 static int cmp_chunk_order(const void *a, const void *b) {
     const sl_chunk_reg *x = *(const sl_chunk_reg *const *)a, *y = *(const sl_chunk_reg *const *)b;
     if (x->d.order != y->d.order) return x->d.order < y->d.order ? -1 : 1;
@@ -134,6 +144,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         if (c->d.when_material_has && !material_has(app, m, c->d.when_material_has)) continue;
         /* the material's own model, also in override programs (its surface stays the same) */
         if (c->d.when_model && strcmp(c->d.when_model, mat->model ? mat->model : "lambert")) continue;
+        if (c->d.when_node_tag && !material_drawn_with_tag(app, m, c->d.when_node_tag)) continue;
         if (c->d.hook == SL_HOOK_VERTEX && nv < 64) vertex_hooks[nv++] = c;
         if (c->d.hook == SL_HOOK_SURFACE && ns < 64) surface_hooks[ns++] = c;
         if (c->d.hook == SL_HOOK_AMBIENT && na < 64) ambient_hooks[na++] = c;
@@ -231,8 +242,21 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         snprintf(path, sizeof path, "%s/%s", P->items[vertex_hooks[i]->owner]->resource_dir, vertex_hooks[i]->d.file);
         ok = sl_source_include(&p->vs, path, err, n);
     }
+    /* hooks for tagged nodes only (when_node_tag, ABI 1.6) run under a bit of a per-draw uniform */
+    const char *node_tags[32] = {0};
+    int node_tag_count = 0;
+    for (int i = 0; i < nv; i++)
+        if (vertex_hooks[i]->d.when_node_tag && node_tag_count < 31)
+            node_tags[node_tag_count++] = vertex_hooks[i]->d.when_node_tag;
+    if (node_tag_count) sl_sb_append(&gen, "uniform int sl_vertex_hook_mask; // bit k: node carries tag k\n");
     sl_sb_append(&gen, "void sl_run_vertex_hooks(inout SlVertex v) {\n");
-    for (int i = 0; i < nv; i++) sl_sb_printf(&gen, "    %s(v);\n", vertex_hooks[i]->d.function);
+    for (int i = 0, k = 0; i < nv; i++) {
+        if (vertex_hooks[i]->d.when_node_tag && k < 31)
+            sl_sb_printf(&gen, "    if ((sl_vertex_hook_mask & %d) != 0) %s(v); // node tag \"%s\"\n", 1 << k++,
+                         vertex_hooks[i]->d.function, vertex_hooks[i]->d.when_node_tag);
+        else if (!vertex_hooks[i]->d.when_node_tag)
+            sl_sb_printf(&gen, "    %s(v);\n", vertex_hooks[i]->d.function);
+    }
     sl_sb_append(&gen, "}\n");
     sl_source_generated(&p->vs, gen.s);
     sl_sb_free(&gen);
@@ -330,6 +354,9 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         sl_program_free(p);
         return false;
     }
+    /* the program's sl_vertex_hook_mask bits (the tag strings live as long as the plugin) */
+    memcpy(out->node_tags, node_tags, sizeof node_tags);
+    out->node_tag_count = node_tag_count;
     p->hash = sl_hash64(p->vs.text.s, p->vs.text.len, sl_hash64(p->fs.text.s, p->fs.text.len, 0));
     for (int i = 0; i < *cache_count; i++) {
         if ((*cache)[i]->hash == p->hash && (*cache)[i]->id && !(*cache)[i]->stale) {

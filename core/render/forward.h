@@ -14,6 +14,10 @@ typedef struct sl_forward_variant {
     int texture_params[16];     /* material texture keys bound to units 0.. (param indices) */
     int texture_count;
     char *chunks;               /* human-readable list of the chunks included (--explain) */
+    /* VERTEX hooks with when_node_tag: bit k of the uniform sl_vertex_hook_mask runs node_tags[k]'s
+     * hook; the draw sets the bits of the tags its node carries (sl_scene_node_has_tag) */
+    const char *node_tags[32];
+    int node_tag_count;
 } sl_forward_variant;
 
 typedef enum sl_variant_kind { SL_VARIANT_FORWARD, SL_VARIANT_DEPTH } sl_variant_kind;

@@ -338,15 +338,16 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
         }
         unsigned prog = custom ? custom->id : 0;
         bool bound = custom != NULL;
+        const sl_forward_variant *var = NULL;
         for (int ni = 0; ni < s->node_count; ni++) {
             const sl_node *node = &s->nodes[ni];
             for (int k = 0; k < node->mesh_count; k++) {
                 int mi = node->meshes[k];
                 if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
                 if (!bound) {
-                    const sl_forward_variant *var = depth_only       ? &r->materials[m].depth
-                                                    : model_override ? override_variant_of(app, m, model_override)
-                                                                     : &r->materials[m].forward;
+                    var = depth_only       ? &r->materials[m].depth
+                          : model_override ? override_variant_of(app, m, model_override)
+                                           : &r->materials[m].forward;
                     prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
                     glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
                     bound = true;
@@ -365,6 +366,12 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 /* nodes do not animate (scene.h): last frame's model matrix is this one */
                 if (r->motion) glUniformMatrix4fv(glGetUniformLocation(prog, "sl_prev_model"), 1, GL_FALSE, (float *)model);
                 glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
+                if (var && var->node_tag_count) { /* VERTEX hooks gated on node tags (when_node_tag) */
+                    int mask = 0;
+                    for (int t = 0; t < var->node_tag_count; t++)
+                        if (sl_scene_node_has_tag(s, ni, var->node_tags[t])) mask |= 1 << t;
+                    glUniform1i(glGetUniformLocation(prog, "sl_vertex_hook_mask"), mask);
+                }
                 glBindVertexArray(r->meshes[mi].vao);
                 glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
                 r->stats.draw_calls++;

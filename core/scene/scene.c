@@ -164,6 +164,14 @@ void sl_mesh_compute_bounds(sl_mesh_data *m) {
 int sl_scene_find_material(const sl_scene *scene, const char *name) { FIND_BY_NAME(materials, material_count) }
 int sl_scene_find_node(const sl_scene *scene, const char *name) { FIND_BY_NAME(nodes, node_count) }
 int sl_scene_find_light(const sl_scene *scene, const char *name) { FIND_BY_NAME(lights, light_count) }
+
+bool sl_scene_node_has_tag(const sl_scene *scene, int node, const char *tag) {
+    /* parents come before children (sl_scene_add_node), so the walk up ends */
+    for (int n = node; n >= 0 && n < scene->node_count; n = scene->nodes[n].parent)
+        for (int k = 0; k < scene->nodes[n].tag_count; k++)
+            if (!strcmp(scene->nodes[n].tags[k], tag)) return true;
+    return false;
+}
 int sl_scene_find_camera(const sl_scene *scene, const char *name) { FIND_BY_NAME(cameras, camera_count) }
 
 int sl_scene_add_material(sl_scene *scene, const char *name, const char *model) {
@@ -324,6 +332,8 @@ void sl_scene_free(sl_scene *scene) {
     for (int i = 0; i < scene->node_count; i++) {
         free(scene->nodes[i].name);
         free(scene->nodes[i].meshes);
+        for (int k = 0; k < scene->nodes[i].tag_count; k++) free(scene->nodes[i].tags[k]);
+        free(scene->nodes[i].tags);
     }
     free(scene->nodes);
     for (int i = 0; i < scene->light_count; i++) {

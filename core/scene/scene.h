@@ -63,6 +63,10 @@ typedef struct sl_node {
     float world[16];        /* filled by sl_scene_update_transforms */
     int *meshes;            /* indices into scene.meshes */
     int mesh_count;
+    /* Scene-file "tags" (names [a-z0-9_-]); a node also carries its ancestors' tags
+     * (sl_scene_node_has_tag). VERTEX chunks with when_node_tag run only on such nodes. */
+    char **tags;
+    int tag_count;
 } sl_node;
 
 /* The most radiance a pixel can hold: the largest finite half float (the colour target is
@@ -215,6 +219,8 @@ int sl_mesh_repair_frames(sl_mesh_data *m);
 /* Index of the named item, or -1. */
 int sl_scene_find_material(const sl_scene *scene, const char *name);
 int sl_scene_find_node(const sl_scene *scene, const char *name);
+/* Whether node (or one of its ancestors) carries the scene-file tag. */
+bool sl_scene_node_has_tag(const sl_scene *scene, int node, const char *tag);
 int sl_scene_find_light(const sl_scene *scene, const char *name);
 int sl_scene_find_camera(const sl_scene *scene, const char *name);
 

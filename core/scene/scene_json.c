@@ -886,7 +886,8 @@ static bool load_mesh(loader *L, const cJSON *mesh, int node, int material, cons
 }
 
 static const char *const node_keys[] = {"name", "parent", "children", "translate", "rotate",
-                                        "scale", "matrix", "material", "mesh"};
+                                        "scale", "matrix", "material", "mesh", "tags"};
+#define SL_NODE_MAX_TAGS 16
 
 static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *counter) {
     char buf[96];
@@ -977,6 +978,26 @@ static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *cou
                 return failf(L, s, "%s: \"scale\" must not be zero (the node would be flat)", ctx);
         }
         sl_mat4_from_trs(L->scene->nodes[ni].local, tr, q, sc);
+    }
+
+    /* "tags": names that VERTEX chunks with when_node_tag select (ABI 1.6); inherited by children */
+    if ((v = cJSON_GetObjectItemCaseSensitive(o, "tags"))) {
+        if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) > SL_NODE_MAX_TAGS)
+            return failf(L, v, "%s: \"tags\" must be an array of at most %d names, found %s", ctx, SL_NODE_MAX_TAGS,
+                         describe(v, buf, sizeof buf));
+        sl_node *nd = &L->scene->nodes[ni];
+        nd->tags = calloc(SL_NODE_MAX_TAGS, sizeof *nd->tags);
+        if (!nd->tags) return failf(L, v, "out of memory");
+        for (const cJSON *e = v->child; e; e = e->next) {
+            if (!cJSON_IsString(e))
+                return failf(L, e, "%s: each tag must be a string, found %s", ctx, describe(e, buf, sizeof buf));
+            const char *tag = e->valuestring;
+            size_t len = strlen(tag);
+            if (!len || len > 64 || strspn(tag, "abcdefghijklmnopqrstuvwxyz0123456789_-") != len)
+                return failf(L, e, "%s: tag '%.80s' must be 1 to 64 characters of a-z, 0-9, '_' and '-'", ctx, tag);
+            if (!(nd->tags[nd->tag_count] = strdup(tag))) return failf(L, e, "out of memory");
+            nd->tag_count++;
+        }
     }
 
     int material = -1;

@@ -11,8 +11,12 @@
  *   struct SlSurface { vec3 position; vec3 normal; vec3 geometric_normal;
  *                      vec3 tangent; vec3 bitangent; vec2 uv; vec3 view;        world space
  *                      vec3 base_color; float alpha; float specular; float ao; float opacity;
- *                      float lod_bias; };   lod_bias (ABI 1.5): mip bias of lookups that follow
- *                      the normal map's level; normal-map sets it, phong's gloss map reads it
+ *                      float lod_bias; vec3 object_position; };
+ *                      lod_bias (ABI 1.5): mip bias of lookups that follow
+ *                      the normal map's level; normal-map sets it, phong's gloss map reads it;
+ *                      object_position (ABI 1.6): the mesh's object-space position before
+ *                      VERTEX hooks (rest pose), interpolated: regions defined in object space
+ *                      stay on the surface while vertex hooks move it
  *   struct SlLight   { vec4 position; vec4 direction; vec4 color; vec4 params[2]; };
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size.
@@ -106,6 +110,12 @@ typedef struct sl_shader_chunk_desc {
     /* ABI 1.5, VERTEX/SURFACE/AMBIENT: include the chunk only for materials whose shading model
      * is this one ("blinn-gloss"); NULL = every model. Combines with when_material_has. */
     const char *when_model;
+    /* ABI 1.6, VERTEX only: run the hook only on meshes of scene nodes carrying this tag (the
+     * scene file's node "tags": ["nod"]; a node carries its ancestors' tags too, so meshes
+     * imported under a tagged node are included); other meshes drawn with the same program keep
+     * their vertices. NULL = every node. Combines with when_material_has and when_model. The
+     * core selects per draw with a uniform (one branch per vertex, no extra program). */
+    const char *when_node_tag;
 } sl_shader_chunk_desc;
 
 typedef enum sl_chunk_flags {
