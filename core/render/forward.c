@@ -272,7 +272,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         sl_strbuf decl = {0};
         sl_sb_append(&decl, uni.s ? uni.s : "");
         sl_sb_append(&decl, "layout(std430, binding = 0) readonly buffer SlLightBuffer { SlLight sl_lights[]; };\n"
-                            "uniform vec3 sl_ambient_irradiance; // π × constant environment radiance\n");
+                            "uniform vec3 sl_ambient_irradiance; // π × constant environment radiance\n"
+                            "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E); // the material's model (ABI 1.6)\n");
         for (int t = 0; t < ntypes; t++) {
             char id[128];
             sl_glsl_ident(types[t], id, sizeof id, false);
@@ -307,6 +308,14 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
             if (!light_chunks[t]) continue; /* warned at load: no plugin provides this light type */
             char id[128];
             sl_glsl_ident(types[t], id, sizeof id, false);
+            if (light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE) {
+                /* the light integrates the model itself (area lights): radiance, no l/E pair, so
+                 * no shadow hook and nothing in per-light debug views (shader.h) */
+                if (view) continue;
+                sl_sb_printf(&gen, "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) Lo += %s(sl_lights[i], s);\n",
+                             id, id, light_chunks[t]->d.function);
+                continue;
+            }
             char vis[256] = "E";
             if (shadow) snprintf(vis, sizeof vis, "E * %s(i, sl_lights[i], s, l)", shadow->d.function);
             sl_sb_printf(&gen,
@@ -317,6 +326,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
                          id, id, light_chunks[t]->d.function, per_light, vis);
         }
         sl_sb_append(&gen, "    return Lo;\n}\n");
+        sl_sb_printf(&gen, "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E) { return %s(s, l, E); }\n",
+                     model_chunk->d.function);
         sl_sb_append(&gen, "vec3 sl_shade_surface(SlSurface s) {\n");
         if (view && view->d.hook == SL_HOOK_DEBUG_VIEW) {
             sl_sb_printf(&gen, "    return %s(s);\n}\n", view->d.function);

@@ -111,6 +111,9 @@ static sl_status tp_create(const sl_host *host, void **user) {
          .function = "tp_vertex", .when_material_has = "tp_lift"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = TP_GLSL,
          .function = "tp_view", .name = TP_ID "-view", .description = "constant test colour"},
+        /* ABI 1.6: a light that returns radiance (area lights) through sl_shading_model */
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_LIGHT, .file = TP_GLSL,
+         .function = "tp_glow", .name = TP_ID "-glow", .flags = SL_CHUNK_LIGHT_RADIANCE},
     };
     for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
         if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;

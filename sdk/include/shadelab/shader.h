@@ -20,6 +20,8 @@
  *   struct SlLight   { vec4 position; vec4 direction; vec4 color; vec4 params[2]; };
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size.
+ *   function (ABI 1.6, fragment stage of forward programs):
+ *             vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E)   the material's SHADING_MODEL
  *
  * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX),
  * and "#define SL_MODEL_MASKS_FACING_AWAY 1" when that model's chunk carries
@@ -54,7 +56,11 @@
  *                                                                ambient light
  *   LIGHT            bool FN(SlLight L, SlSurface s, out vec3 l, out vec3 E)
  *                                                                evaluates one light of type
- *                                                                `name`; false = no light here
+ *                                                                `name`; false = no light here.
+ *                                                                With SL_CHUNK_LIGHT_RADIANCE
+ *                                                                (ABI 1.6, area lights):
+ *                                                                vec3 FN(SlLight L, SlSurface s),
+ *                                                                outgoing radiance (see below)
  *   AMBIENT          vec3 FN(SlSurface s)                        added irradiance-like term
  *                                                                (environment lighting);
  *                                                                summed over plugins; not in
@@ -122,7 +128,15 @@ typedef enum sl_chunk_flags {
     /* SHADING_MODEL: the model handles shading normals facing away from the viewer itself
      * (e.g. Smith masking G1(v) = 0 for n·v <= 0), so normal perturbation must not bend them
      * toward the viewer; defines SL_MODEL_MASKS_FACING_AWAY in its programs (see above). */
-    SL_CHUNK_MASKS_FACING_AWAY = 1u << 0
+    SL_CHUNK_MASKS_FACING_AWAY = 1u << 0,
+    /* ABI 1.6, LIGHT: the light integrates the material's model over its own extent (area
+     * lights) and returns outgoing radiance instead of a direction and an irradiance. Signature
+     *     vec3 FN(SlLight L, SlSurface s)        radiance towards s.view, added to the light loop
+     * It may call sl_shading_model(s, l, E) (declared in every forward program, ABI 1.6: the
+     * material's model, e.g. for sampling points on the light) and test SL_MODEL_<NAME> to use
+     * a closed form for a model it knows. The SHADOW hook is not applied (the light handles its
+     * own visibility) and per-light debug views (DEBUG_VIEW_LIGHT) get nothing from it. */
+    SL_CHUNK_LIGHT_RADIANCE = 1u << 1
 } sl_chunk_flags;
 
 /* A stand-alone program (for passes: shadow maps, blurs, post effects). Files are relative to
