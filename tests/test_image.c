@@ -764,6 +764,50 @@ static void test_procedural_errors(void) {
     CHECK(!sl_image_procedural(&img, "checker:2:1,1,1:0,0,0:", 4, NULL, 0));
 }
 
+/* Procedural tangent-space normal maps against their closed forms: texel (x, y) has its centre
+ * at X = (x+0.5)/size, Y = 1 − (y+0.5)/size (image up); n = (−h_X, −h_Y, 1)/|…| stored as n/2+1/2. */
+static void test_procedural_normals(void) {
+    char err[512] = "";
+    sl_image img;
+    const int S = 64;
+    CHECK_MSG(sl_image_procedural(&img, "bumps:4:0.8", S, err, sizeof err), "%s", err);
+    double worst = 0;
+    for (int y = 0; y < S && img.pixels; y++)
+        for (int x = 0; x < S; x++) {
+            double X = (x + 0.5) / S, Y = 1 - (y + 0.5) / S, w = 2 * M_PI * 4;
+            double hx = 0.8 * cos(w * X) * sin(w * Y), hy = 0.8 * sin(w * X) * cos(w * Y), l = sqrt(hx * hx + hy * hy + 1);
+            double n[3] = {-hx / l, -hy / l, 1 / l};
+            for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(PX(img, x, y)[c] - (n[c] * 0.5 + 0.5)));
+        }
+    CHECK_MSG(worst < 1e-6, "bumps: worst texel error %g", worst);
+    sl_image_free(&img);
+    CHECK(sl_image_procedural(&img, "tilt:0.6,-0.8", 8, err, sizeof err));
+    if (img.pixels) CHECK(same_colour(PX(img, 3, 5), 0.8f, 0.1f, 0.5f, 1));
+    sl_image_free(&img);
+    CHECK(sl_image_procedural(&img, "flat", 4, err, sizeof err));
+    if (img.pixels) CHECK(same_colour(PX(img, 1, 2), 0.5f, 0.5f, 1, 1));
+    sl_image_free(&img);
+    /* waves: unit normals, tileable (integer frequencies: the left and right columns' neighbours
+     * across the seam differ as much as neighbours inside) */
+    CHECK(sl_image_procedural(&img, "waves:12:0.7:5", 128, err, sizeof err));
+    double len_err = 0;
+    for (int i = 0; i < 128 * 128 && img.pixels; i++) {
+        double v[3];
+        for (int c = 0; c < 3; c++) v[c] = img.pixels[i * 4 + c] * 2.0 - 1.0;
+        len_err = fmax(len_err, fabs(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - 1));
+    }
+    CHECK_MSG(len_err < 1e-5, "waves: |n| - 1 up to %g", len_err);
+    sl_image_free(&img);
+    expect_spec_error("bumps:0:1", 16, "expected 'bumps:N:A'");
+    expect_spec_error("bumps:4:nan", 16, "expected 'bumps:N:A'");
+    expect_spec_error("bumps:4", 16, "missing fields");
+    expect_spec_error("tilt:1,1", 16, "X^2 + Y^2 <= 1");
+    expect_spec_error("waves:1:0.5:3", 16, "expected 'waves:N:A:SEED'");
+    expect_spec_error("waves:8:0.5:-3", 16, "SEED");
+    CHECK(sl_image_is_procedural("bumps:16:0.8") && sl_image_is_procedural("flat") && sl_image_is_procedural("uv"));
+    CHECK(!sl_image_is_procedural("bumps.png") && !sl_image_is_procedural("flat.png") && !sl_image_is_procedural("textures/uv"));
+}
+
 /* ---- small conversions ------------------------------------------------------------------ */
 
 static void test_conversions(void) {
@@ -846,6 +890,7 @@ int main(void) {
     test_compare();
     test_procedural();
     test_procedural_errors();
+    test_procedural_normals();
     test_conversions();
     remove_tmpdir();
     return check_result();

@@ -6,6 +6,7 @@
 #include "log.h"
 #include "render/renderer.h"
 #include "render/composer.h"
+#include "image/image.h"
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -98,7 +99,7 @@ static bool host_material_value(const sl_host *h, int m, const char *key, sl_val
     if (path && n) path[0] = 0;
     if (!v || !v->present) return false;
     if (out) *out = v->v;
-    if (path && n && v->str && app->params.items[v->param].desc.type == SL_PARAM_TEXTURE && !sl_texture_is_procedural(v->str)) {
+    if (path && n && v->str && app->params.items[v->param].desc.type == SL_PARAM_TEXTURE && !sl_image_is_procedural(v->str)) {
         char err[1024];
         char *resolved = sl_scene_resolve_path(&app->scene, app->opt.data_dir, v->str, err, sizeof err);
         if (resolved) snprintf(path, n, "%s", resolved);

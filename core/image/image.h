@@ -91,9 +91,21 @@ void sl_image_free(sl_image *img);
  *                     centre's texture coordinate (row 0 = v near 0, see above), so sampling
  *                     it shows the UVs a mesh uses.
  *   "constant:A"      one colour.
+ * Tangent-space normal maps (linear data, n·0.5 + 0.5, +Y convention: green = slope toward image
+ * up) from height fields over X = u (right) and Y = 1 − v (image up), both 0..1:
+ *   "flat"            n = (0, 0, 1)
+ *   "tilt:X,Y"        constant n = (X, Y, √(1−X²−Y²)), X² + Y² ≤ 1
+ *   "bumps:N:A"       h = A/(2πN)·sin(2πNX)·sin(2πNY): N×N egg-crate bumps (N = 1..4096) of
+ *                     slope amplitude A (|A| ≤ 100)
+ *   "waves:N:A:SEED"  six plane waves with integer frequencies of length N/2..N (tileable),
+ *                     random directions and phases from SEED, total slope amplitude about A
  * A malformed spec gives an error naming the spec, what is wrong and the expected form, e.g.
  * "procedural texture 'checker:8': expected 'checker:N:r,g,b:r,g,b'". */
 bool sl_image_procedural(sl_image *img, const char *spec, int size, char *err, size_t err_size);
+#define SL_PROCEDURAL_KINDS "checker, grid, gradient, uv, constant, flat, tilt, bumps, waves"
+/* Whether a texture spec names a procedural texture (its kind before the first ':') rather than
+ * a file. */
+bool sl_image_is_procedural(const char *spec);
 
 /* Image comparison (stated metrics, on linear RGB(A) floats). a and b hold width*height
  * pixels of `channels` (1..4) floats each; the metrics use the colour channels only (the

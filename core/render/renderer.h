@@ -43,8 +43,6 @@ const sl_frame_stats *sl_renderer_stats(struct sl_app *app);
 /* Per material: the composed program's hash and which chunks it includes (for --explain). */
 void sl_renderer_explain(struct sl_app *app, FILE *f);
 
-/* Whether a texture spec names a procedural texture ("checker:…") rather than a file. */
-bool sl_texture_is_procedural(const char *spec);
 
 /* Host-interface implementations (see sdk/include/shadelab/host.h). */
 sl_program *sl_renderer_load_program(struct sl_app *app, int owner, const sl_program_desc *desc);

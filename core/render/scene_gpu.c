@@ -43,15 +43,6 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
 
 /* ------------------------------------------------------------------ textures -------- */
 
-bool sl_texture_is_procedural(const char *spec) {
-    static const char *prefixes[] = {"checker:", "grid:", "constant:", "gradient", "uv"};
-    for (size_t i = 0; i < sizeof prefixes / sizeof *prefixes; i++) {
-        size_t l = strlen(prefixes[i]);
-        if (!strncmp(spec, prefixes[i], l) && (prefixes[i][l - 1] == ':' || spec[l] == 0 || spec[l] == ':')) return true;
-    }
-    return false;
-}
-
 /* Loads a material texture: colour textures decode sRGB in the sampler (8-bit) or on the CPU
  * (16-bit); data textures stay linear. */
 /* core.anisotropy onto every material texture (a parameter change reaches the loaded ones too). */
@@ -75,7 +66,7 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
     char err[1024] = "";
     bool ok;
     bool srgb_storage = false;
-    if (sl_texture_is_procedural(spec)) {
+    if (sl_image_is_procedural(spec)) {
         ok = sl_image_procedural(&img, spec, 256, err, sizeof err);
         /* procedural colours are linear already */
     } else {

@@ -6,7 +6,8 @@
  *   "a material without a map compiles no normal-map code" (program hashes);
  *   stability: normals facing away from the viewer, grazing light and light behind the
  *   surface, zero-area UV triangles — no NaN/Inf, no negative radiance, stated values. */
-#include "nm_test_util.h"
+#include "nm_tools.h"
+#include "plane_scene.h"
 
 #define W 96
 #define H 72
@@ -37,11 +38,11 @@ static double check_lambert(const float *im, const double l[3], double E, double
     for (int y = 0; y < H; y += 3)
         for (int x = 0; x < W; x += 3) {
             float p[3], v[3];
-            if (!nt_plane_hit(x, y, W, H, 9.5f, p)) continue;
-            nt_view_dir(p, v);
+            if (!pt_plane_hit(x, y, W, H, 9.5f, p)) continue;
+            pt_view_dir(p, v);
             double n[3];
             nf(p, v, n, user);
-            double cosv = nt_dot(n, l);
+            double cosv = pt_dot(n, l);
             for (int c = 0; c < 3; c++) {
                 double expect = KD[c] / M_PI * E * (cosv > 0 ? cosv : 0) + KD[c] * ambient;
                 double e = fabs(im[(y * W + x) * 4 + c] - expect) / (expect > 1e-3 ? expect : 1e-3);
@@ -54,8 +55,8 @@ static double check_lambert(const float *im, const double l[3], double E, double
 
 static void tangent_normal(const float p[3], const float v[3], double n[3], void *user) {
     const double *nt = user;
-    nt_plane_tangent_to_world(nt, n);
-    nt_face_viewer(n, v);
+    pt_plane_tangent_to_world(nt, n);
+    pt_face_viewer(n, v);
 }
 
 /* ---- GLSL unit tests ----------------------------------------------------------------- */
@@ -71,7 +72,7 @@ static void test_glsl(void) {
     /* (an explicit scene, not the built-in one: with the built-in scene and this plugin loaded,
      * LeakSanitizer's exit-time scan crashes on a stale dynamic-TLS entry in the sanitize build;
      * not a leak or memory error, see README "Known issues") */
-    sl_harness *h = nt_harness(plane_scene("", "", NULL, NULL), 8, 8, NM, NULL, NULL);
+    sl_harness *h = pt_harness(plane_scene("", "", NULL, NULL), 8, 8, NM, NULL, NULL);
     CHECK(h != NULL);
     if (!h) return;
     const char *files[] = {"nm_lib.glsl", NULL};
@@ -90,7 +91,7 @@ static void test_glsl(void) {
     for (int i = 0; i < G * G; i++) {
         double k = in0[i * 4 + 3];
         double m[3] = {(2.0 * in0[i * 4] - 1) * k, (2.0 * in0[i * 4 + 1] - 1) * k, fmax(2.0 * in0[i * 4 + 2] - 1, 0)};
-        double l = sqrt(nt_dot(m, m));
+        double l = sqrt(pt_dot(m, m));
         if (l < 1e-6) m[0] = 0, m[1] = 0, m[2] = 1, l = 1;
         for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(out[i * 4 + c] - m[c] / l));
     }
@@ -103,7 +104,7 @@ static void test_glsl(void) {
         double a = 2 * M_PI * frand(), b = acos(2 * frand() - 1);
         in0[i * 4 + 0] = (float)(sin(b) * cos(a)), in0[i * 4 + 1] = (float)(sin(b) * sin(a)), in0[i * 4 + 2] = (float)cos(b);
         double nt[3] = {2 * frand() - 1, 2 * frand() - 1, frand() + 0.05};
-        nt_normalize(nt);
+        pt_normalize(nt);
         for (int c = 0; c < 3; c++) in1[i * 4 + c] = (float)nt[c];
     }
     d.in1 = in1;
@@ -116,7 +117,7 @@ static void test_glsl(void) {
         double N[3] = {in0[i * 4], in0[i * 4 + 1], in0[i * 4 + 2]}, ax[3] = {0, 0, 0}, T[3], U[3];
         if (fabs(N[1]) < 0.9) ax[1] = 1; else ax[0] = 1;
         T[0] = N[1] * ax[2] - N[2] * ax[1], T[1] = N[2] * ax[0] - N[0] * ax[2], T[2] = N[0] * ax[1] - N[1] * ax[0];
-        nt_normalize(T);
+        pt_normalize(T);
         U[0] = N[1] * T[2] - N[2] * T[1], U[1] = N[2] * T[0] - N[0] * T[2], U[2] = N[0] * T[1] - N[1] * T[0];
         for (int c = 0; c < 3; c++) {
             double e = in1[i * 4] * T[c] + in1[i * 4 + 1] * U[c] + in1[i * 4 + 2] * N[c];
@@ -148,7 +149,7 @@ static void test_glsl(void) {
         for (int c = 0; c < 4; c++) nonfinite += !isfinite(out[i * 4 + c]);
         if (ndv >= eps + 1e-6)
             for (int c = 0; c < 3; c++) unchanged_bad += out[i * 4 + c] != in0[i * 4 + c];
-        nt_face_viewer(n, v);
+        pt_face_viewer(n, v);
         for (int c = 0; c < 3; c++) worst_formula = fmax(worst_formula, fabs(out[i * 4 + c] - n[c]));
         min_ndv = fmin(min_ndv, out[i * 4 + 3]);
     }
@@ -174,7 +175,7 @@ static void test_glsl(void) {
         double x = in0[i * 4], y = in0[i * 4 + 1], z = in0[i * 4 + 2], k = in0[i * 4 + 3];
         double w[3] = {0.8660254 * x - 0.5 * y, 0.5 * x + 0.8660254 * y, z}, m[3];
         for (int c = 0; c < 3; c++) m[c] = (1 - k) * (c == 1) + k * w[c];
-        nt_normalize(m);
+        pt_normalize(m);
         for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(out[i * 4 + c] - m[c]));
     }
     CHECK_MSG(worst < 2e-5, "nm_from_object_space differs from C by %g", worst);
@@ -199,9 +200,9 @@ static const char *AMBIENT = ", \"environment\": {\"color\": [1, 1, 1], \"intens
 
 static void test_flat_maps(void) {
     /* unmapped reference */
-    CHECK(nt_render(plane_scene("", SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, ref));
+    CHECK(pt_render(plane_scene("", SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, ref));
     /* float flat map: procedural constant (RGBA32F texture) → identical image */
-    CHECK(nt_render(plane_scene(", \"normal_map\": \"constant:0.5,0.5,1\"", SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
+    CHECK(pt_render(plane_scene(", \"normal_map\": \"constant:0.5,0.5,1\"", SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
     sl_compare cmp;
     sl_harness_compare(ref, img, W, H, 0, &cmp);
     CHECK_MSG(cmp.max_abs <= 1e-6, "float flat map changes the image by %g (expected exact up to 1 ulp)", cmp.max_abs);
@@ -212,14 +213,14 @@ static void test_flat_maps(void) {
      * |Δn| = √2/255·(1 + O(1e-5)) = 0.005546; Lambert changes by at most k_d/π·E·|Δn|. The
      * bound is stated and checked; the exact per-pixel value is also computed in C. */
     char path[1200];
-    snprintf(path, sizeof path, "%s/flat8.png", nt_scratch("normal-map"));
+    snprintf(path, sizeof path, "%s/flat8.png", pt_scratch("normal-map"));
     sl_image flat;
-    nt_constant_image(&flat, 16, 128 / 255.0f, 128 / 255.0f, 1.0f);
-    CHECK(nt_write(path, &flat));
+    pt_constant_image(&flat, 16, 128 / 255.0f, 128 / 255.0f, 1.0f);
+    CHECK(pt_write(path, &flat));
     sl_image_free(&flat);
     char keys[1400];
     snprintf(keys, sizeof keys, ", \"normal_map\": \"%s\"", path);
-    CHECK(nt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
+    CHECK(pt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
     double e = 1.0 / 255, dn = sqrt(2 - 2 / sqrt(1 + 2 * e * e));
     double bound = KD[0] / M_PI * 2 * dn;
     sl_harness_compare(ref, img, W, H, bound, &cmp);
@@ -227,7 +228,7 @@ static void test_flat_maps(void) {
     CHECK_MSG(cmp.max_abs > 0, "8-bit flat map changed nothing: the map is not applied?");
     printf("flat 8-bit map: max |diff| %.5f, bound k_d/pi*E*|dn| = %.5f (|dn| = %.6f)\n", cmp.max_abs, bound, dn);
     double nt[3] = {e, e, 1};
-    nt_normalize(nt);
+    pt_normalize(nt);
     int count;
     double worst = check_lambert(img, SUN_L, 2, 0.1, tangent_normal, nt, &count);
     CHECK_MSG(worst < 2e-3 && count > 100, "8-bit flat map vs C: worst relative error %g over %d px", worst, count);
@@ -239,14 +240,14 @@ static void test_tilted_maps(void) {
     char keys[256];
     snprintf(keys, sizeof keys, ", \"normal_map\": \"constant:%.9g,%.9g,%.9g\"", nt[0] * 0.5 + 0.5, nt[1] * 0.5 + 0.5,
              nt[2] * 0.5 + 0.5);
-    CHECK(nt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
+    CHECK(pt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
     int count;
     double worst = check_lambert(img, SUN_L, 2, 0.1, tangent_normal, nt, &count);
     CHECK_MSG(worst < 2e-4 && count > 100, "tilted tangent map vs C: worst relative error %g over %d px", worst, count);
     printf("tilted tangent map: worst relative error %.2g over %d px\n", worst, count);
 
     /* the same with the green convention flipped: y → −y */
-    CHECK(nt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, (const char *[]){"normal-map.green=directx", NULL},
+    CHECK(pt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, (const char *[]){"normal-map.green=directx", NULL},
                     NULL, img));
     double flipped[3] = {nt[0], -nt[1], nt[2]};
     worst = check_lambert(img, SUN_L, 2, 0.1, tangent_normal, flipped, &count);
@@ -255,15 +256,15 @@ static void test_tilted_maps(void) {
     /* strength: global 0.5 × material 1.5 = 0.75 scales xy (glTF) */
     char keys2[300];
     snprintf(keys2, sizeof keys2, "%s, \"normal_strength\": 1.5", keys);
-    CHECK(nt_render(plane_scene(keys2, SUN, AMBIENT, NULL), W, H, NM, (const char *[]){"normal-map.strength=0.5", NULL},
+    CHECK(pt_render(plane_scene(keys2, SUN, AMBIENT, NULL), W, H, NM, (const char *[]){"normal-map.strength=0.5", NULL},
                     NULL, img));
     double scaled[3] = {nt[0] * 0.75, nt[1] * 0.75, nt[2]};
-    nt_normalize(scaled);
+    pt_normalize(scaled);
     worst = check_lambert(img, SUN_L, 2, 0.1, tangent_normal, scaled, &count);
     CHECK_MSG(worst < 2e-4, "strength 0.75 vs C: worst relative error %g", worst);
     /* strength 0: the unmapped image */
-    CHECK(nt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, (const char *[]){"normal-map.strength=0", NULL}, NULL, img));
-    CHECK(nt_render(plane_scene("", SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, ref));
+    CHECK(pt_render(plane_scene(keys, SUN, AMBIENT, NULL), W, H, NM, (const char *[]){"normal-map.strength=0", NULL}, NULL, img));
+    CHECK(pt_render(plane_scene("", SUN, AMBIENT, NULL), W, H, NM, NULL, NULL, ref));
     sl_compare cmp;
     sl_harness_compare(ref, img, W, H, 0, &cmp);
     CHECK_MSG(cmp.max_abs <= 1e-6, "strength 0 differs from unmapped by %g", cmp.max_abs);
@@ -277,35 +278,35 @@ static void object_normal(const float p[3], const float v[3], double n[3], void 
     n[0] = no[0];
     n[1] = cos(a) * no[1] - sin(a) * no[2];
     n[2] = sin(a) * no[1] + cos(a) * no[2];
-    nt_face_viewer(n, v);
+    pt_face_viewer(n, v);
 }
 
 static void test_object_space(void) {
     double no[3] = {0.2, 0.9, -0.3};
-    nt_normalize(no);
+    pt_normalize(no);
     char keys[300];
     snprintf(keys, sizeof keys, ", \"normal_map\": \"constant:%.9g,%.9g,%.9g\", \"normal_space\": \"object\"",
              no[0] * 0.5 + 0.5, no[1] * 0.5 + 0.5, no[2] * 0.5 + 0.5);
     /* the plane rotated 25° about X: hits are no longer on y = 0, so test via the debug view
      * (world normal, independent of position) and one radiance value at the image centre */
-    CHECK(nt_render(plane_scene(keys, SUN, "", ", \"rotate\": [25, 0, 0]"), W, H, NM, NULL, "final-normal", img));
+    CHECK(pt_render(plane_scene(keys, SUN, "", ", \"rotate\": [25, 0, 0]"), W, H, NM, NULL, "final-normal", img));
     double n[3];
     float v[3] = {0, 0.7071f, 0.7071f};
     object_normal(NULL, v, n, no);
     int c = (H / 2 * W + W / 2) * 4;
     for (int k = 0; k < 3; k++) {
-        double shown = nt_srgb_encode(img[c + k]); /* the view outputs decode(n·0.5+0.5) */
+        double shown = pt_srgb_encode(img[c + k]); /* the view outputs decode(n·0.5+0.5) */
         CHECK_NEAR(shown, n[k] * 0.5 + 0.5, 2e-4);
     }
     /* the green convention does not apply to object-space maps */
-    CHECK(nt_render(plane_scene(keys, SUN, "", ", \"rotate\": [25, 0, 0]"), W, H, NM,
+    CHECK(pt_render(plane_scene(keys, SUN, "", ", \"rotate\": [25, 0, 0]"), W, H, NM,
                     (const char *[]){"normal-map.green=directx", NULL}, "final-normal", ref));
     sl_compare cmp;
     sl_harness_compare(ref, img, W, H, 0, &cmp);
     CHECK_MSG(cmp.max_abs == 0, "green convention changed an object-space map (%g)", cmp.max_abs);
     /* radiance at the centre: k_d/π·E·max(0, n·l) */
-    CHECK(nt_render(plane_scene(keys, SUN, "", ", \"rotate\": [25, 0, 0]"), W, H, NM, NULL, NULL, img));
-    double cosv = nt_dot(n, SUN_L);
+    CHECK(pt_render(plane_scene(keys, SUN, "", ", \"rotate\": [25, 0, 0]"), W, H, NM, NULL, NULL, img));
+    double cosv = pt_dot(n, SUN_L);
     CHECK_NEAR(img[c], KD[0] / M_PI * 2 * fmax(cosv, 0), 1e-4);
 }
 
@@ -314,16 +315,16 @@ static void test_object_space(void) {
  * 0 at the top); a +Y map whose green tilts toward the image's top must tilt the world
  * normal toward that same place. */
 static void test_orientation(void) {
-    CHECK(nt_render(plane_scene(", \"base_color_map\": \"gradient\"", SUN, "", NULL), W, H, NM, NULL, "diffuse-texture", img));
+    CHECK(pt_render(plane_scene(", \"base_color_map\": \"gradient\"", SUN, "", NULL), W, H, NM, NULL, "diffuse-texture", img));
     float pn[3], pf[3];
     int near_px = (H * 3 / 4 * W + W / 2) * 4, far_px = (H / 4 * W + W / 2) * 4;
-    CHECK(nt_plane_hit(W / 2, H * 3 / 4, W, H, 9.5f, pn) && nt_plane_hit(W / 2, H / 4, W, H, 9.5f, pf));
+    CHECK(pt_plane_hit(W / 2, H * 3 / 4, W, H, 9.5f, pn) && pt_plane_hit(W / 2, H / 4, W, H, 9.5f, pf));
     /* +1 when the image top is toward the far pixel (−Z side), −1 toward the near one */
     double top_toward_far = img[far_px + 1] < img[near_px + 1] ? 1 : -1;
     double toward_far_z = pf[2] < pn[2] ? -1 : 1; /* world z direction from near to far */
-    CHECK(nt_render(plane_scene(", \"normal_map\": \"constant:0.5,0.8,0.9\"", SUN, "", NULL), W, H, NM, NULL,
+    CHECK(pt_render(plane_scene(", \"normal_map\": \"constant:0.5,0.8,0.9\"", SUN, "", NULL), W, H, NM, NULL,
                     "final-normal", img));
-    double nz = nt_srgb_encode(img[(H / 2 * W + W / 2) * 4 + 2]) * 2 - 1;
+    double nz = pt_srgb_encode(img[(H / 2 * W + W / 2) * 4 + 2]) * 2 - 1;
     double image_up_z = top_toward_far * toward_far_z; /* world z of the image's up direction */
     CHECK_MSG(nz * image_up_z > 0.3, "a +Y map tilts the normal (z = %.3f) away from the image's top (world z sign %.0f): "
               "NM_IMAGE_UP_SIGN in nm_lib.glsl/nm_tools.h disagrees with the core's texture orientation", nz, image_up_z);
@@ -333,17 +334,17 @@ static void test_orientation(void) {
 
 static void test_debug_views(void) {
     const char *keys = ", \"normal_map\": \"constant:0.25,0.75,0.6\"";
-    CHECK(nt_render(plane_scene(keys, SUN, "", NULL), W, H, NM, NULL, "normal-map-texture", img));
+    CHECK(pt_render(plane_scene(keys, SUN, "", NULL), W, H, NM, NULL, "normal-map-texture", img));
     int c = (H / 2 * W + W / 2) * 4;
-    CHECK_NEAR(nt_srgb_encode(img[c + 0]), 0.25, 1e-4);
-    CHECK_NEAR(nt_srgb_encode(img[c + 1]), 0.75, 1e-4);
-    CHECK_NEAR(nt_srgb_encode(img[c + 2]), 0.60, 1e-4);
+    CHECK_NEAR(pt_srgb_encode(img[c + 0]), 0.25, 1e-4);
+    CHECK_NEAR(pt_srgb_encode(img[c + 1]), 0.75, 1e-4);
+    CHECK_NEAR(pt_srgb_encode(img[c + 2]), 0.60, 1e-4);
     /* without a map: the flat texel colour */
-    CHECK(nt_render(plane_scene("", SUN, "", NULL), W, H, NM, NULL, "normal-map-texture", img));
-    CHECK_NEAR(nt_srgb_encode(img[c + 2]), 1.0, 1e-4);
-    CHECK(nt_render(plane_scene("", SUN, "", NULL), W, H, NM, NULL, "final-normal", img));
-    CHECK_NEAR(nt_srgb_encode(img[c + 1]), 1.0, 1e-4); /* (0,1,0)·0.5+0.5 */
-    CHECK_NEAR(nt_srgb_encode(img[c + 0]), 0.5, 1e-4);
+    CHECK(pt_render(plane_scene("", SUN, "", NULL), W, H, NM, NULL, "normal-map-texture", img));
+    CHECK_NEAR(pt_srgb_encode(img[c + 2]), 1.0, 1e-4);
+    CHECK(pt_render(plane_scene("", SUN, "", NULL), W, H, NM, NULL, "final-normal", img));
+    CHECK_NEAR(pt_srgb_encode(img[c + 1]), 1.0, 1e-4); /* (0,1,0)·0.5+0.5 */
+    CHECK_NEAR(pt_srgb_encode(img[c + 0]), 0.5, 1e-4);
 }
 
 /* ---- "no map, no code" --------------------------------------------------------------------- */
@@ -358,9 +359,9 @@ static const char *two_materials =
 static void test_zero_cost(void) {
     /* the "mapped" material's key is unknown without the plugin (a warning): compare per material */
     sl_harness_structure none, loaded, disabled;
-    CHECK(nt_structure(two_materials, (const char *[]){NULL}, NULL, &none));
-    CHECK(nt_structure(two_materials, NM, NULL, &loaded));
-    CHECK(nt_structure(two_materials, NM, (const char *[]){"normal-map.enabled=false", NULL}, &disabled));
+    CHECK(pt_structure(two_materials, (const char *[]){NULL}, NULL, &none));
+    CHECK(pt_structure(two_materials, NM, NULL, &loaded));
+    CHECK(pt_structure(two_materials, NM, (const char *[]){"normal-map.enabled=false", NULL}, &disabled));
     CHECK(none.program_count == 2 && loaded.program_count == 2);
     CHECK_MSG(loaded.program_hashes[0] == none.program_hashes[0], "a material without a normal map got normal-map code");
     CHECK_MSG(loaded.program_hashes[1] != none.program_hashes[1], "the mapped material's program did not change");
@@ -381,7 +382,7 @@ static void test_facing_away(void) {
     snprintf(keys, sizeof keys, ", \"normal_map\": \"constant:%.9g,%.9g,%.9g\"", 0.5, nt[1] * 0.5 + 0.5, nt[2] * 0.5 + 0.5);
     const char *back_light = "{\"name\": \"back\", \"type\": \"directional\", \"direction\": [0, -0.287348, 0.957826], \"intensity\": 2}";
     double l[3] = {0, 0.287348, -0.957826};
-    CHECK(nt_render(plane_scene(keys, back_light, "", NULL), W, H, NM, NULL, NULL, img));
+    CHECK(pt_render(plane_scene(keys, back_light, "", NULL), W, H, NM, NULL, NULL, img));
     CHECK(sl_harness_count_nonfinite(img, W, H) == 0);
     CHECK(sl_harness_count_negative(img, W, H) == 0);
     int count;
@@ -392,7 +393,7 @@ static void test_facing_away(void) {
     printf("facing away: centre radiance %.4f (= %.3f k_d/pi E), worst relative error %.2g\n", img[c], img[c] / (KD[0] / M_PI * 2), worst);
     /* every mapped normal really faced away without the guard */
     double n[3];
-    nt_plane_tangent_to_world(nt, n);
+    pt_plane_tangent_to_world(nt, n);
     CHECK(n[1] * 0.7071 + n[2] * 0.7071 < 0);
 }
 
@@ -402,31 +403,31 @@ static void test_grazing_and_behind(void) {
      * model uses the mapped normal, so the second leaks light, bounded by k_d/π·E·sin(tilt);
      * both are stated and checked in C; the ambient term (k_d·0.1) keeps the image non-black. */
     double nt[3] = {0.3, 0.4, sqrt(0.75)}, n[3];
-    nt_plane_tangent_to_world(nt, n); /* (0.3, 0.866, −0.4) */
+    pt_plane_tangent_to_world(nt, n); /* (0.3, 0.866, −0.4) */
     char keys[256];
     snprintf(keys, sizeof keys, ", \"normal_map\": \"constant:%.9g,%.9g,%.9g\"", nt[0] * 0.5 + 0.5, nt[1] * 0.5 + 0.5,
              nt[2] * 0.5 + 0.5);
     /* grazing: l ⟂ n, l = ±normalize(n × X), the one above the plane */
     double l1[3] = {0, n[2], -n[1]};
     if (l1[1] < 0) l1[1] = -l1[1], l1[2] = -l1[2];
-    nt_normalize(l1);
+    pt_normalize(l1);
     /* behind the geometric surface: l = (0, −0.05, ∓1) normalized, on the side the normal leans
      * to: l·Y < 0 but n·l = 0.4·0.9988 − 0.866·0.05 > 0 */
     double l2[3] = {0, -0.05, n[2] > 0 ? 1 : -1};
-    nt_normalize(l2);
+    pt_normalize(l2);
     for (int k = 0; k < 2; k++) {
         const double *l = k ? l2 : l1;
         char light[256];
         snprintf(light, sizeof light, "{\"name\": \"g\", \"type\": \"directional\", \"direction\": [%.9g, %.9g, %.9g], \"intensity\": 2}",
                  -l[0], -l[1], -l[2]);
-        CHECK(nt_render(plane_scene(keys, light, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
+        CHECK(pt_render(plane_scene(keys, light, AMBIENT, NULL), W, H, NM, NULL, NULL, img));
         CHECK(sl_harness_count_nonfinite(img, W, H) == 0);
         CHECK(sl_harness_count_negative(img, W, H) == 0);
         int count;
         double worst = check_lambert(img, l, 2, 0.1, tangent_normal, (void *)nt, &count);
         CHECK_MSG(worst < 1e-3 && count > 100, "%s light vs C: worst relative error %g", k ? "behind" : "grazing", worst);
         int c = (H / 2 * W + W / 2) * 4;
-        double expect = KD[0] * 0.1 + KD[0] / M_PI * 2 * fmax(0, nt_dot(n, l));
+        double expect = KD[0] * 0.1 + KD[0] / M_PI * 2 * fmax(0, pt_dot(n, l));
         CHECK_NEAR(img[c], expect, 1e-3 * expect);
         CHECK(img[c] >= KD[0] * 0.1 * 0.999); /* at least the ambient term: not black */
         if (k) CHECK(img[c] <= KD[0] * 0.1 + KD[0] / M_PI * 2 * 0.5 + 1e-4); /* leak ≤ k_d/π·E·sin 30° */
@@ -440,7 +441,7 @@ static void test_zero_area_uv(void) {
      * Flat map: the exact Lambert value everywhere. Tilted map (tilt θ, sin θ = 0.5): finite,
      * and n·l within [cos(θ_l + θ), cos(θ_l − θ)] whatever the tangent. */
     char obj[1200];
-    snprintf(obj, sizeof obj, "%s/zero_area_uv.obj", nt_scratch("normal-map"));
+    snprintf(obj, sizeof obj, "%s/zero_area_uv.obj", pt_scratch("normal-map"));
     FILE *f = fopen(obj, "w");
     CHECK(f != NULL);
     if (!f) return;
@@ -458,7 +459,7 @@ static void test_zero_area_uv(void) {
                  " \"nodes\": [{\"name\": \"quad\", \"mesh\": {\"file\": \"%s\"}, \"material\": \"m\"}],"
                  " \"lights\": [%s]}",
                  k ? "constant:0.5,0.75,0.9330127" : "constant:0.5,0.5,1", obj, sun_top);
-        CHECK(nt_render(scene, W, H, NM, NULL, NULL, img));
+        CHECK(pt_render(scene, W, H, NM, NULL, NULL, img));
         CHECK(sl_harness_count_nonfinite(img, W, H) == 0);
         CHECK(sl_harness_count_negative(img, W, H) == 0);
         double lo = KD[0] / M_PI * 2 * cos(acos(0.8) + asin(0.5)), hi = KD[0] / M_PI * 2 * cos(fmax(0, acos(0.8) - asin(0.5)));
@@ -467,7 +468,7 @@ static void test_zero_area_uv(void) {
         for (int y = 0; y < H; y += 2)
             for (int x = 0; x < W; x += 2) {
                 float p[3];
-                if (!nt_plane_hit(x, y, W, H, 8.9f, p)) continue;
+                if (!pt_plane_hit(x, y, W, H, 8.9f, p)) continue;
                 double r = img[(y * W + x) * 4];
                 if (k == 0) worst = fmax(worst, fabs(r - flat) / flat);
                 else CHECK_MSG(r >= lo - 1e-4 && r <= hi + 1e-4, "pixel %d,%d: %g outside [%g, %g]", x, y, r, lo, hi);
@@ -483,7 +484,7 @@ static void test_zero_area_uv(void) {
 
 int main(void) {
     SUN_L[0] = -0.3, SUN_L[1] = 0.6, SUN_L[2] = 0.74162;
-    nt_normalize(SUN_L);
+    pt_normalize(SUN_L);
     test_glsl();
     test_flat_maps();
     test_tilted_maps();

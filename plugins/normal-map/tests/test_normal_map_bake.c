@@ -4,7 +4,8 @@
  *   - a procedural sphere with a generated tangent-space map (runs everywhere);
  *   - the head scan with its tangent-space map (skipped, saying why, without the data);
  * plus the green-convention detector on generated maps, and renders of the plugin's scenes. */
-#include "nm_test_util.h"
+#include "nm_tools.h"
+#include "plane_scene.h"
 #include <unistd.h>
 
 static const char *const NM[] = {"normal-map", NULL};
@@ -27,9 +28,9 @@ static angle_stats normal_angles_dump(const float *a, const float *b, int w, int
         const float *pa = a + i * 4, *pb = b + i * 4;
         if (pa[0] + pa[1] + pa[2] <= 0 || pb[0] + pb[1] + pb[2] <= 0) continue;
         double na[3], nb[3];
-        for (int c = 0; c < 3; c++) na[c] = nt_srgb_encode(pa[c]) * 2 - 1, nb[c] = nt_srgb_encode(pb[c]) * 2 - 1;
-        nt_normalize(na), nt_normalize(nb);
-        double d = nt_dot(na, nb);
+        for (int c = 0; c < 3; c++) na[c] = pt_srgb_encode(pa[c]) * 2 - 1, nb[c] = pt_srgb_encode(pb[c]) * 2 - 1;
+        pt_normalize(na), pt_normalize(nb);
+        double d = pt_dot(na, nb);
         ang[s.n++] = acos(d > 1 ? 1 : d < -1 ? -1 : d) * 180 / M_PI;
         if (vis) vis[i * 4] = vis[i * 4 + 1] = vis[i * 4 + 2] = (float)fmin(1, ang[s.n - 1] / 10), vis[i * 4 + 3] = 1;
     }
@@ -70,7 +71,7 @@ static bool bake_for_scene(const char *scene_json, const char *map_path, const c
     if (ok) {
         nm_bake_opts o = {.green_sign = 1, .strength = 1, .dilate = 8};
         *covered = nm_bake_object_space(meshes, count, &tmap, &o, size, size, &obj, err, sizeof err);
-        ok = *covered > 0 && nt_write(out_path, &obj);
+        ok = *covered > 0 && pt_write(out_path, &obj);
         sl_image_free(&obj);
         sl_image_free(&tmap);
     }
@@ -112,7 +113,7 @@ static const char *sphere_scene(char *buf, size_t n, const char *map, bool objec
 }
 
 static void test_sphere_cross_check(void) {
-    const char *dir = nt_scratch("normal-map");
+    const char *dir = pt_scratch("normal-map");
     char tpath[1200], opng[1200], oexr[1200], scene[4096];
     snprintf(tpath, sizeof tpath, "%s/sphere_waves_tangent.exr", dir);
     snprintf(opng, sizeof opng, "%s/sphere_waves_object.png", dir);
@@ -120,7 +121,7 @@ static void test_sphere_cross_check(void) {
     sl_image m;
     char err[512];
     CHECK(nm_generate_tangent_map(&m, "waves:12:0.7:5", 512, err, sizeof err));
-    CHECK(nt_write(tpath, &m));
+    CHECK(pt_write(tpath, &m));
     sl_image_free(&m);
     long covered = 0;
     CHECK(bake_for_scene(sphere_scene(scene, sizeof scene, tpath, false), tpath, oexr, 512, &covered));
@@ -132,9 +133,9 @@ static void test_sphere_cross_check(void) {
      * curvature (silhouettes): averaging object-space normals is not averaging tangent-space
      * normals and rotating them; that is reported, with a looser bound. */
     const char *const lod0[] = {"normal-map.lod_bias=-16", NULL};
-    CHECK(nt_render(sphere_scene(scene, sizeof scene, tpath, false), SW, SH, NM, lod0, "final-normal", ta));
-    CHECK(nt_render(sphere_scene(scene, sizeof scene, oexr, true), SW, SH, NM, lod0, "final-normal", tb));
-    CHECK(nt_render(sphere_scene(scene, sizeof scene, opng, true), SW, SH, NM, lod0, "final-normal", tc));
+    CHECK(pt_render(sphere_scene(scene, sizeof scene, tpath, false), SW, SH, NM, lod0, "final-normal", ta));
+    CHECK(pt_render(sphere_scene(scene, sizeof scene, oexr, true), SW, SH, NM, lod0, "final-normal", tb));
+    CHECK(pt_render(sphere_scene(scene, sizeof scene, opng, true), SW, SH, NM, lod0, "final-normal", tc));
     char dump[1200];
     snprintf(dump, sizeof dump, "%s/sphere_angle_error.png", dir);
     angle_stats half = normal_angles_dump(ta, tb, SW, SH, dump), png = normal_angles(ta, tc, SW, SH);
@@ -151,8 +152,8 @@ static void test_sphere_cross_check(void) {
      * normals through REPEAT: max 156° instead of 88° */
     CHECK_MSG(half.max < 120, "half: max %.1f deg (border wrap?)", half.max);
     /* with the core's trilinear + 8x anisotropic filtering */
-    CHECK(nt_render(sphere_scene(scene, sizeof scene, tpath, false), SW, SH, NM, NULL, "final-normal", ta));
-    CHECK(nt_render(sphere_scene(scene, sizeof scene, oexr, true), SW, SH, NM, NULL, "final-normal", tb));
+    CHECK(pt_render(sphere_scene(scene, sizeof scene, tpath, false), SW, SH, NM, NULL, "final-normal", ta));
+    CHECK(pt_render(sphere_scene(scene, sizeof scene, oexr, true), SW, SH, NM, NULL, "final-normal", tb));
     angle_stats mip = normal_angles(ta, tb, SW, SH);
     printf("sphere, mip-filtered, tangent vs baked object-space (half EXR): mean %.3f deg, p99 %.3f deg, %.2f%% > 2 deg\n",
            mip.mean, mip.p99, 100 * mip.frac_over_2deg);
@@ -167,10 +168,10 @@ static void test_sphere_cross_check(void) {
     CHECK(nm_bake_object_space(&md, 1, &t2, &wrong, 512, 512, &o2, err, sizeof err) > 0);
     char owrong[1200];
     snprintf(owrong, sizeof owrong, "%s/sphere_waves_object_wrong_green.exr", dir);
-    CHECK(nt_write(owrong, &o2));
+    CHECK(pt_write(owrong, &o2));
     sl_image_free(&o2), sl_image_free(&t2), sl_scene_free(&sc);
-    CHECK(nt_render(sphere_scene(scene, sizeof scene, tpath, false), SW, SH, NM, lod0, "final-normal", ta));
-    CHECK(nt_render(sphere_scene(scene, sizeof scene, owrong, true), SW, SH, NM, lod0, "final-normal", tb));
+    CHECK(pt_render(sphere_scene(scene, sizeof scene, tpath, false), SW, SH, NM, lod0, "final-normal", ta));
+    CHECK(pt_render(sphere_scene(scene, sizeof scene, owrong, true), SW, SH, NM, lod0, "final-normal", tb));
     angle_stats bad = normal_angles(ta, tb, SW, SH);
     CHECK_MSG(bad.mean > 3 * half.mean + 1, "a wrong green convention is not detected (mean %.3f deg)", bad.mean);
     printf("sphere, wrong green convention in the bake: mean %.2f deg (the check can fail)\n", bad.mean);
@@ -191,7 +192,7 @@ static void test_head_cross_check(void) {
         return;
     }
     char obj[1200], scene[4096];
-    snprintf(obj, sizeof obj, "%s/head_object.exr", nt_scratch("normal-map"));
+    snprintf(obj, sizeof obj, "%s/head_object.exr", pt_scratch("normal-map"));
     const char *fmt =
         "{\"cameras\": [{\"name\": \"c\", \"position\": [%s], \"target\": [0, 0.6, 0], \"fov_y\": 35}],"
         " \"materials\": [{\"name\": \"m\", \"base_color\": [0.8, 0.8, 0.8], \"normal_map\": \"%s\"%s}],"
@@ -205,11 +206,11 @@ static void test_head_cross_check(void) {
     for (int v = 0; v < 2; v++) {
         const char *const lod0[] = {"normal-map.lod_bias=-16", NULL};
         snprintf(scene, sizeof scene, fmt, views[v], map, "", mesh);
-        CHECK(nt_render(scene, HW, HH, NM, lod0, "final-normal", ha));
+        CHECK(pt_render(scene, HW, HH, NM, lod0, "final-normal", ha));
         snprintf(scene, sizeof scene, fmt, views[v], obj, ", \"normal_space\": \"object\"", mesh);
-        CHECK(nt_render(scene, HW, HH, NM, lod0, "final-normal", hb));
+        CHECK(pt_render(scene, HW, HH, NM, lod0, "final-normal", hb));
         char dump[1200];
-        snprintf(dump, sizeof dump, "%s/head_angle_error_view%d.png", nt_scratch("normal-map"), v);
+        snprintf(dump, sizeof dump, "%s/head_angle_error_view%d.png", pt_scratch("normal-map"), v);
         angle_stats s = normal_angles_dump(ha, hb, HW, HH, dump);
         printf("head (view %d, %dx%d, level 0), tangent vs baked object-space (half EXR): mean %.3f deg, p99 %.3f deg, max %.2f deg, "
                "%.2f%% > 2 deg, %ld px\n", v, HW, HH, s.mean, s.p99, s.max, 100 * s.frac_over_2deg, s.n);

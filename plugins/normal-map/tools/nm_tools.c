@@ -22,99 +22,23 @@ static bool alloc_image(sl_image *img, int w, int h) {
 
 /* ---- procedural maps ------------------------------------------------------------------- */
 
-typedef struct wave { float fx, fy, phase, amp; } wave;
-
-/* Slope (∂h/∂X, ∂h/∂Y) of a procedural height field at image coordinates (X, Y). */
-typedef struct field {
-    enum { F_FLAT, F_TILT, F_BUMPS, F_WAVES } kind;
-    float tx, ty;      /* tilt */
-    int n;             /* bumps / waves frequency */
-    float amplitude;
-    wave waves[6];
-} field;
-
 float nm_bumps_height(float X, float Y, int n, float amplitude) {
     return amplitude / (2.0f * (float)M_PI * n) * sinf(2.0f * (float)M_PI * n * X) * sinf(2.0f * (float)M_PI * n * Y);
 }
 
-static void field_slope(const field *f, double X, double Y, double *hx, double *hy) {
-    *hx = *hy = 0;
-    if (f->kind == F_BUMPS) {
-        double w = 2 * M_PI * f->n;
-        *hx = f->amplitude * cos(w * X) * sin(w * Y);
-        *hy = f->amplitude * sin(w * X) * cos(w * Y);
-    } else if (f->kind == F_WAVES) {
-        for (int k = 0; k < 6; k++) {
-            const wave *q = &f->waves[k];
-            double c = cos(2 * M_PI * (q->fx * X + q->fy * Y) + q->phase);
-            double len = sqrt(q->fx * q->fx + q->fy * q->fy);
-            /* h_k = amp/(2π|f|)·sin(…): slope amplitude amp along the wave direction */
-            *hx += q->amp * c * q->fx / len;
-            *hy += q->amp * c * q->fy / len;
-        }
-    }
-}
-
-static unsigned lcg(unsigned *s) { *s = *s * 1664525u + 1013904223u; return *s >> 8; }
-
-static bool parse_field(field *f, const char *spec, char *err, size_t n) {
-    memset(f, 0, sizeof *f);
-    int N = 0, seed = 0;
-    float a = 0, x = 0, y = 0;
-    char tail;
-    if (!strcmp(spec, "flat")) { f->kind = F_FLAT; return true; }
-    if (sscanf(spec, "tilt:%f,%f%c", &x, &y, &tail) == 2) {
-        if (!(x * x + y * y <= 1.0f)) {
-            snprintf(err, n, "normal map '%s': tilt X,Y must satisfy X^2 + Y^2 <= 1", spec);
-            return false;
-        }
-        f->kind = F_TILT, f->tx = x, f->ty = y;
-        return true;
-    }
-    if (sscanf(spec, "bumps:%d:%f%c", &N, &a, &tail) == 2 && N >= 1 && N <= 4096 && isfinite(a)) {
-        f->kind = F_BUMPS, f->n = N, f->amplitude = a;
-        return true;
-    }
-    if (sscanf(spec, "waves:%d:%f:%d%c", &N, &a, &seed, &tail) == 3 && N >= 2 && N <= 4096 && isfinite(a)) {
-        f->kind = F_WAVES, f->n = N, f->amplitude = a;
-        unsigned s = (unsigned)seed * 2654435761u + 12345u;
-        for (int k = 0; k < 6; k++) {
-            int fx, fy;
-            do {
-                fx = (int)(lcg(&s) % (unsigned)(2 * N + 1)) - N;
-                fy = (int)(lcg(&s) % (unsigned)(2 * N + 1)) - N;
-            } while (fx * fx + fy * fy < N * N / 4 || fx * fx + fy * fy > N * N);
-            f->waves[k] = (wave){(float)fx, (float)fy, (float)(2 * M_PI * (lcg(&s) % 1000) / 1000.0), a / sqrtf(6.0f)};
-        }
-        return true;
-    }
-    snprintf(err, n, "normal map '%s': expected flat, tilt:X,Y, bumps:N:A or waves:N:A:SEED", spec);
-    return false;
-}
-
+/* The core's procedural normal maps (flat, tilt, bumps, waves: one parser and one generator,
+ * also what a scene's "normal_map": "bumps:16:0.8" gets). */
 bool nm_generate_tangent_map(sl_image *out, const char *spec, int size, char *err, size_t n) {
-    field f;
+    static const char *const kinds[] = {"flat", "tilt:", "bumps:", "waves:", NULL};
+    bool normal_kind = false;
+    for (const char *const *k = kinds; *k && !normal_kind; k++)
+        normal_kind = (*k)[strlen(*k) - 1] == ':' ? !strncmp(spec, *k, strlen(*k)) : !strcmp(spec, *k);
     memset(out, 0, sizeof *out);
-    if (!parse_field(&f, spec, err, n)) return false;
-    if (!alloc_image(out, size, size)) {
-        snprintf(err, n, "normal map '%s': size %d outside 1..%d (or out of memory)", spec, size, SL_IMAGE_MAX_DIM);
+    if (!normal_kind) {
+        snprintf(err, n, "normal map '%s': expected flat, tilt:X,Y, bumps:N:A or waves:N:A:SEED", spec);
         return false;
     }
-    for (int row = 0; row < size; row++)
-        for (int col = 0; col < size; col++) {
-            double X = (col + 0.5) / size, Y = 1.0 - (row + 0.5) / size, nx, ny, nz;
-            if (f.kind == F_TILT) {
-                nx = f.tx, ny = f.ty, nz = sqrt(fmax(0.0, 1.0 - nx * nx - ny * ny));
-            } else {
-                double hx, hy;
-                field_slope(&f, X, Y, &hx, &hy);
-                double l = sqrt(hx * hx + hy * hy + 1);
-                nx = -hx / l, ny = -hy / l, nz = 1 / l;
-            }
-            float *p = out->pixels + ((size_t)row * size + col) * 4;
-            p[0] = (float)(nx * 0.5 + 0.5), p[1] = (float)(ny * 0.5 + 0.5), p[2] = (float)(nz * 0.5 + 0.5), p[3] = 1;
-        }
-    return true;
+    return sl_image_procedural(out, spec, size, err, n);
 }
 
 bool nm_generate_property_map(sl_image *out, const char *spec, int size, char *err, size_t n) {

@@ -3,7 +3,7 @@
  * "unused costs nothing" (program hashes), stability renders (normal-mapped normals facing
  * away, gloss 0 and 1, light grazing and behind), the specular antialiasing test against a
  * supersampled reference, and the plugin's scenes. */
-#include "nm_test_util.h"
+#include "plane_scene.h"
 
 #define W 96
 #define H 72
@@ -40,15 +40,15 @@ typedef struct expect_desc {
 /* Expected radiance of channel c at plane point p with unit normal n (world). */
 static double expected(const expect_desc *e, const double n[3], const float p[3], int c) {
     float vf[3];
-    nt_view_dir(p, vf);
+    pt_view_dir(p, vf);
     double v[3] = {vf[0], vf[1], vf[2]}, kd = e->albedo_scale < 0 ? 0.5 : KD[c];
-    double ndl = nt_dot(n, e->l), ndv = nt_dot(n, v), E = 2;
+    double ndl = pt_dot(n, e->l), ndv = pt_dot(n, v), E = 2;
     if (e->classic) {
         double direct = 0;
         if (ndl > 0) {
             double r[3];
             for (int i = 0; i < 3; i++) r[i] = 2 * ndl * n[i] - e->l[i];
-            double rv = nt_dot(r, v);
+            double rv = pt_dot(r, v);
             direct = E / M_PI * (kd * ndl + 0.5 * e->ks * (rv > 0 ? pow(rv, e->power) : 0));
         }
         return direct + kd * e->ao * e->env;
@@ -56,8 +56,8 @@ static double expected(const expect_desc *e, const double n[3], const float p[3]
     double F = schlick(ndv), direct = 0;
     if (ndl > 0) {
         double hv[3] = {e->l[0] + v[0], e->l[1] + v[1], e->l[2] + v[2]};
-        nt_normalize(hv);
-        double ndh = nt_dot(n, hv);
+        pt_normalize(hv);
+        double ndh = pt_dot(n, hv);
         direct = E / M_PI * ndl * ((1 - F) * kd + F * e->ks * (ndh > 0 ? (e->power + 1) / 2 * pow(ndh, e->power) : 0));
     }
     return direct + (1 - F) * kd * e->ao * e->env;
@@ -72,7 +72,7 @@ static double compare_plane(const float *im, const expect_desc *e, const double 
     for (int y = 0; y < H; y += 2)
         for (int x = 0; x < W; x += 2) {
             float p[3];
-            if (!nt_plane_hit(x, y, W, H, 9.5f, p)) continue;
+            if (!pt_plane_hit(x, y, W, H, 9.5f, p)) continue;
             for (int c = 0; c < 3; c++) {
                 double ex = expected(e, n, p, c), got = im[(y * W + x) * 4 + c];
                 double tol = fmax(1e-4, (1e-3 + 3e-7 * e->power) * ex);
@@ -93,28 +93,28 @@ static void test_closed_form(void) {
     int count;
     double peak;
     /* blinn-gloss without a property map: gloss 0.5 → SpecPower 64 */
-    CHECK(nt_render(plane_scene("blinn-gloss", "", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+    CHECK(pt_render(plane_scene("blinn-gloss", "", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
     double worst = compare_plane(img, &e, UP, &count, &peak);
     CHECK_MSG(worst <= 1 && count > 200, "blinn-gloss plane: worst error %.3g x tolerance over %d px", worst, count);
     /* diffuse alone peaks at 2/π·0.707·(1−F)·0.7 ≈ 0.30; the highlight lifts it to ≈ 1.1 */
     CHECK_MSG(peak > 0.9, "no highlight in view (peak %g)", peak);
     printf("blinn-gloss plane, SpecPower 64: worst error %.3f x tolerance over %d px, peak radiance %.2f\n", worst, count, peak);
     /* material gloss 0.9 → 2^10.8 */
-    CHECK(nt_render(plane_scene("blinn-gloss", ", \"gloss\": 0.9", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+    CHECK(pt_render(plane_scene("blinn-gloss", ", \"gloss\": 0.9", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
     e.power = pow(2, 12 * 0.9);
     worst = compare_plane(img, &e, UP, &count, &peak);
     CHECK_MSG(worst <= 1, "blinn-gloss gloss 0.9: worst error %.3g x tolerance", worst);
     /* another plugin's surface hook sets the gloss (ggx's "alpha" key: s.alpha = 0.3): blinn-gloss
      * honours it, SpecPower = 2/α² − 2 (Walter 2007), whatever the material's own gloss */
     const char *const with_ggx[] = {"normal-map", "phong", "ggx", NULL};
-    CHECK(nt_render(plane_scene("blinn-gloss", ", \"gloss\": 0.9, \"alpha\": 0.3", MIRROR_DIR, 0.25), W, H, with_ggx, NULL,
+    CHECK(pt_render(plane_scene("blinn-gloss", ", \"gloss\": 0.9, \"alpha\": 0.3", MIRROR_DIR, 0.25), W, H, with_ggx, NULL,
                     NULL, img));
     e.power = 2 / (0.3 * 0.3) - 2;
     worst = compare_plane(img, &e, UP, &count, &peak);
     CHECK_MSG(worst <= 1, "blinn-gloss with s.alpha = 0.3 from another plugin: worst error %.3g x tolerance", worst);
     printf("blinn-gloss, s.alpha 0.3 set by ggx's surface hook: worst error %.3f x tolerance\n", worst);
     /* classic Phong, shininess 40, k_s 0.5 (default specular_color) */
-    CHECK(nt_render(plane_scene("phong", ", \"shininess\": 40", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+    CHECK(pt_render(plane_scene("phong", ", \"shininess\": 40", MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
     expect_desc ec = {.classic = true, .power = 40, .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, 0.70710678, -0.70710678}};
     worst = compare_plane(img, &ec, UP, &count, &peak);
     CHECK_MSG(worst <= 1, "classic phong plane: worst error %.3g x tolerance", worst);
@@ -124,7 +124,7 @@ static void test_closed_form(void) {
 static void test_property_map_and_keys(void) {
     /* property map constant: gloss 0.75 → SpecPower 512; AO 0.5 */
     const char *keys = ", \"property_map\": \"constant:0.75,0,0.5\"";
-    sl_harness *h = nt_harness(plane_scene("blinn-gloss", keys, MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL);
+    sl_harness *h = pt_harness(plane_scene("blinn-gloss", keys, MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL);
     CHECK(h != NULL);
     if (!h) return;
     expect_desc e = {.power = 512, .albedo_scale = 1, .ao = 0.5, .env = 0.25, .ks = 1, .l = {0, 0.70710678, -0.70710678}};
@@ -167,10 +167,10 @@ static const char *mats_scene(const char *nm) {
 static void test_zero_cost(const char *normal_map) {
     const char *scene = mats_scene(normal_map);
     sl_harness_structure nm_only, both, no_aa, disabled;
-    CHECK(nt_structure(scene, (const char *[]){"normal-map", NULL}, NULL, &nm_only));
-    CHECK(nt_structure(scene, PLUGINS, NULL, &both));
-    CHECK(nt_structure(scene, PLUGINS, (const char *[]){"phong.specular_aa=false", NULL}, &no_aa));
-    CHECK(nt_structure(scene, PLUGINS, (const char *[]){"phong.enabled=false", NULL}, &disabled));
+    CHECK(pt_structure(scene, (const char *[]){"normal-map", NULL}, NULL, &nm_only));
+    CHECK(pt_structure(scene, PLUGINS, NULL, &both));
+    CHECK(pt_structure(scene, PLUGINS, (const char *[]){"phong.specular_aa=false", NULL}, &no_aa));
+    CHECK(pt_structure(scene, PLUGINS, (const char *[]){"phong.enabled=false", NULL}, &disabled));
     CHECK(both.program_count == 3);
     CHECK_MSG(both.program_hashes[0] == nm_only.program_hashes[0], "a lambert material got phong code");
     /* (specular_aa is a #define of every phong program, so toggling it recompiles them all; only
@@ -190,7 +190,7 @@ static void test_stability(const char *dir) {
     for (int k = 0; k < 2; k++) {
         char keys[200];
         snprintf(keys, sizeof keys, ", \"property_map\": \"constant:%d,0,1\"", k);
-        CHECK(nt_render(plane_scene("blinn-gloss", keys, MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
+        CHECK(pt_render(plane_scene("blinn-gloss", keys, MIRROR_DIR, 0.25), W, H, PLUGINS, NULL, NULL, img));
         CHECK(sl_harness_count_nonfinite(img, W, H) == 0 && sl_harness_count_negative(img, W, H) == 0);
         expect_desc e = {.power = k ? 4096 : 1, .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, 0.70710678, -0.70710678}};
         worst = compare_plane(img, &e, UP, &count, &peak);
@@ -200,7 +200,7 @@ static void test_stability(const char *dir) {
     /* light grazing (n·l = 0) and behind (n·l < 0): exactly the ambient (1−F)·k_d·AO·L_env */
     const char *dirs[2] = {"0, 0, -1", "0, 0.3, -0.953939"};
     for (int k = 0; k < 2; k++) {
-        CHECK(nt_render(plane_scene("blinn-gloss", "", dirs[k], 0.25), W, H, PLUGINS, NULL, NULL, img));
+        CHECK(pt_render(plane_scene("blinn-gloss", "", dirs[k], 0.25), W, H, PLUGINS, NULL, NULL, img));
         CHECK(sl_harness_count_nonfinite(img, W, H) == 0 && sl_harness_count_negative(img, W, H) == 0);
         expect_desc e = {.power = 64, .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, k ? -0.3 : 0, k ? 0.953939 : 1}};
         worst = compare_plane(img, &e, UP, &count, &peak);
@@ -216,7 +216,7 @@ static void test_stability(const char *dir) {
     double nt[3] = {0, 0.99, sqrt(1 - 0.99 * 0.99)};
     char keys[300];
     snprintf(keys, sizeof keys, ", \"normal_map\": \"constant:0.5,%.9g,%.9g\", \"gloss\": 0.9", nt[1] * 0.5 + 0.5, nt[2] * 0.5 + 0.5);
-    CHECK(nt_render(plane_scene("blinn-gloss", keys, "0, -0.287348, 0.957826", 0.25), W, H, PLUGINS, NULL, NULL, img));
+    CHECK(pt_render(plane_scene("blinn-gloss", keys, "0, -0.287348, 0.957826", 0.25), W, H, PLUGINS, NULL, NULL, img));
     CHECK(sl_harness_count_nonfinite(img, W, H) == 0 && sl_harness_count_negative(img, W, H) == 0);
     expect_desc e = {.power = pow(2, 10.8), .albedo_scale = 1, .ao = 1, .env = 0.25, .ks = 1, .l = {0, 0.287348, -0.957826}};
     worst = 0;
@@ -224,11 +224,11 @@ static void test_stability(const char *dir) {
     for (int y = 0; y < H; y += 2)
         for (int x = 0; x < W; x += 2) {
             float p[3], v[3];
-            if (!nt_plane_hit(x, y, W, H, 9.5f, p)) continue;
-            nt_view_dir(p, v);
+            if (!pt_plane_hit(x, y, W, H, 9.5f, p)) continue;
+            pt_view_dir(p, v);
             double n[3];
-            nt_plane_tangent_to_world(nt, n);
-            nt_face_viewer(n, v);
+            pt_plane_tangent_to_world(nt, n);
+            pt_face_viewer(n, v);
             for (int c = 0; c < 3; c++) {
                 double ex = expected(&e, n, p, c), got = img[(y * W + x) * 4 + c];
                 worst = fmax(worst, fabs(got - ex) / fmax(1e-4, (1e-3 + 3e-7 * e.power) * ex));
@@ -312,13 +312,8 @@ static void test_scenes(void) {
 }
 
 int main(void) {
-    const char *dir = nt_scratch("phong");
-    char nm[1200];
-    snprintf(nm, sizeof nm, "%s/bumps.png", dir);
-    sl_image m;
-    char err[256];
-    CHECK(nm_generate_tangent_map(&m, "bumps:16:0.8", 128, err, sizeof err) && nt_write(nm, &m));
-    sl_image_free(&m);
+    const char *dir = pt_scratch("phong");
+    const char *nm = "bumps:16:0.8"; /* the core's procedural normal map */
     test_closed_form();
     test_property_map_and_keys();
     test_zero_cost(nm);

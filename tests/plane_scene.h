@@ -1,11 +1,12 @@
-/* Shared helpers for the normal-map and phong tests: a plane scene seen by a known camera,
- * per-pixel camera rays (so expected radiance is computed in C, independently of the
- * renderer), scratch files for generated maps, and small vector maths. */
-#ifndef NM_TEST_UTIL_H
-#define NM_TEST_UTIL_H
+/* Test support shared by plugin tests (tests/ belongs to no module; every sl_add_test sees it):
+ * a plane scene seen by a known camera, per-pixel camera rays (so expected radiance is computed
+ * in C, independently of the renderer), harness shortcuts, scratch files for generated maps,
+ * and small vector maths. Used by the normal-map and phong tests. */
+#ifndef SL_TEST_PLANE_SCENE_H
+#define SL_TEST_PLANE_SCENE_H
 
 #include "check.h"
-#include "nm_tools.h"
+#include "image/image.h"
 #include "test_tmp.h"
 #include <cglm/cglm.h>
 #include <errno.h>
@@ -16,14 +17,14 @@
 #include <sys/stat.h>
 
 /* Camera of the plane scenes: position, target, vertical fov. */
-static const float nt_cam_pos[3] = {0, 5, 5}, nt_cam_target[3] = {0, 0, 0}, nt_fov_deg = 50;
+static const float pt_cam_pos[3] = {0, 5, 5}, pt_cam_target[3] = {0, 0, 0}, pt_fov_deg = 50;
 
 /* Ray through pixel (px, py) of a w×h image (py = 0 is the top row, as the harness returns
  * images) hits the plane y = 0 at hit[] (|x|, |z| < half); false when it misses. */
-static inline bool nt_plane_hit(int px, int py, int w, int h, float half, float hit[3]) {
+static inline bool pt_plane_hit(int px, int py, int w, int h, float half, float hit[3]) {
     mat4 view, proj, vp, inv;
-    glm_lookat((float *)nt_cam_pos, (float *)nt_cam_target, (vec3){0, 1, 0}, view);
-    glm_perspective(glm_rad(nt_fov_deg), (float)w / h, 0.1f, 100.f, proj);
+    glm_lookat((float *)pt_cam_pos, (float *)pt_cam_target, (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(pt_fov_deg), (float)w / h, 0.1f, 100.f, proj);
     glm_mat4_mul(proj, view, vp);
     glm_mat4_inv(vp, inv);
     float nx = (px + 0.5f) / w * 2 - 1, ny = 1 - (py + 0.5f) / h * 2;
@@ -39,38 +40,38 @@ static inline bool nt_plane_hit(int px, int py, int w, int h, float half, float 
 }
 
 /* Unit vector from p to the camera. */
-static inline void nt_view_dir(const float p[3], float v[3]) {
-    float d[3] = {nt_cam_pos[0] - p[0], nt_cam_pos[1] - p[1], nt_cam_pos[2] - p[2]};
+static inline void pt_view_dir(const float p[3], float v[3]) {
+    float d[3] = {pt_cam_pos[0] - p[0], pt_cam_pos[1] - p[1], pt_cam_pos[2] - p[2]};
     float l = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     for (int i = 0; i < 3; i++) v[i] = d[i] / l;
 }
 
-static inline void nt_normalize(double v[3]) {
+static inline void pt_normalize(double v[3]) {
     double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     for (int i = 0; i < 3; i++) v[i] /= l;
 }
-static inline double nt_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline double pt_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* The plane primitive's tangent frame (core/scene/primitives.c, scenes/README.md): T = +X,
  * N = +Y, bitangent w·cross(N, T) = −Z = image up (v grows along +Z and v = 0 is the image's
  * top row). A +Y tangent-space normal (x, y, z) is therefore the world normal x·X − y·Z + z·Y. */
-static inline void nt_plane_tangent_to_world(const double nt[3], double out[3]) {
+static inline void pt_plane_tangent_to_world(const double nt[3], double out[3]) {
     out[0] = nt[0], out[1] = nt[2], out[2] = -nt[1];
-    nt_normalize(out);
+    pt_normalize(out);
 }
 
 /* The view guard of nm_face_viewer (nm_lib.glsl), in double. */
-static inline void nt_face_viewer(double n[3], const float vf[3]) {
+static inline void pt_face_viewer(double n[3], const float vf[3]) {
     const double eps = 0.02;
     double v[3] = {vf[0], vf[1], vf[2]};
-    double d = nt_dot(n, v);
+    double d = pt_dot(n, v);
     if (d >= eps) return;
     for (int i = 0; i < 3; i++) n[i] += (eps - d) * v[i];
-    nt_normalize(n);
+    pt_normalize(n);
 }
 
 /* Scratch directory for generated files: <test directory>/<name>/ (created; tests/test_tmp.h). */
-static inline const char *nt_scratch(const char *name) {
+static inline const char *pt_scratch(const char *name) {
     static char dir[1024];
     snprintf(dir, sizeof dir, "%s/%s", sl_test_dir(), name);
     mkdir(dir, 0777);
@@ -78,7 +79,7 @@ static inline const char *nt_scratch(const char *name) {
 }
 
 /* Writes a float RGBA image as PNG (8-bit, values as they are) or EXR (half) by extension. */
-static inline bool nt_write(const char *path, const sl_image *img) {
+static inline bool pt_write(const char *path, const sl_image *img) {
     char err[1024];
     bool ok = sl_image_write(path, img->pixels, img->width, img->height, true, err, sizeof err);
     if (!ok) fprintf(stderr, "%s\n", err);
@@ -86,7 +87,7 @@ static inline bool nt_write(const char *path, const sl_image *img) {
 }
 
 /* A constant-colour image (for 8-bit maps written as PNG). */
-static inline bool nt_constant_image(sl_image *img, int size, float r, float g, float b) {
+static inline bool pt_constant_image(sl_image *img, int size, float r, float g, float b) {
     memset(img, 0, sizeof *img);
     img->pixels = malloc((size_t)size * size * 4 * sizeof(float));
     if (!img->pixels) return false;
@@ -98,7 +99,7 @@ static inline bool nt_constant_image(sl_image *img, int size, float r, float g, 
     return true;
 }
 
-static inline sl_harness *nt_harness(const char *json, int w, int h, const char *const *plugins, const char *const *settings,
+static inline sl_harness *pt_harness(const char *json, int w, int h, const char *const *plugins, const char *const *settings,
                               const char *debug_view) {
     char err[8192];
     sl_harness *hs = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = w, .height = h,
@@ -110,9 +111,9 @@ static inline sl_harness *nt_harness(const char *json, int w, int h, const char 
 }
 
 /* Renders json once into img (w*h*4 floats); false (and a message) on failure. */
-static inline bool nt_render(const char *json, int w, int h, const char *const *plugins, const char *const *settings,
+static inline bool pt_render(const char *json, int w, int h, const char *const *plugins, const char *const *settings,
                       const char *debug_view, float *img) {
-    sl_harness *hs = nt_harness(json, w, h, plugins, settings, debug_view);
+    sl_harness *hs = pt_harness(json, w, h, plugins, settings, debug_view);
     if (!hs) return false;
     bool ok = sl_harness_render(hs, img);
     sl_harness_destroy(hs);
@@ -121,9 +122,9 @@ static inline bool nt_render(const char *json, int w, int h, const char *const *
 
 /* One 32×32 frame of `scene`: its structure (passes, draw calls, program hashes per material),
  * for the "a material pays only for what it uses" checks. */
-static inline bool nt_structure(const char *scene, const char *const *plugins, const char *const *settings,
+static inline bool pt_structure(const char *scene, const char *const *plugins, const char *const *settings,
                                 sl_harness_structure *st) {
-    sl_harness *h = nt_harness(scene, 32, 32, plugins, settings, NULL);
+    sl_harness *h = pt_harness(scene, 32, 32, plugins, settings, NULL);
     if (!h) return false;
     bool ok = sl_harness_render(h, NULL);
     sl_harness_structure_of(h, st);
@@ -131,7 +132,7 @@ static inline bool nt_structure(const char *scene, const char *const *plugins, c
     return ok;
 }
 
-static inline double nt_srgb_encode(double x) {
+static inline double pt_srgb_encode(double x) {
     x = x < 0 ? 0 : x > 1 ? 1 : x;
     return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1 / 2.4) - 0.055;
 }
