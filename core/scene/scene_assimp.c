@@ -17,6 +17,7 @@
 #include "log.h"
 #include "scene/scene.h"
 
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/config.h>
 #include <assimp/GltfMaterial.h>
@@ -486,6 +487,66 @@ static void warn_unsupported(importer *im) {
     if (u) SL_WARN("%s: not rendered as authored: %s", im->path, list);
 }
 
+/* gltf_ext.c: extensionsRequired / extensionsUsed (an error naming the unsupported required ones) */
+bool sl_gltf_check_extensions(const char *path, char *err, size_t err_size);
+
+/* glTF by content, whatever the name: the GLB magic, or JSON with "asset" near the start. */
+static bool sniff_gltf(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    char head[4096];
+    size_t n = fread(head, 1, sizeof head - 1, f);
+    fclose(f);
+    head[n] = 0;
+    if (n >= 4 && !memcmp(head, "glTF", 4)) return true;
+    size_t i = 0;
+    while (i < n && (head[i] == ' ' || head[i] == '\t' || head[i] == '\r' || head[i] == '\n')) i++;
+    return i < n && head[i] == '{' && strstr(head, "\"asset\"") != NULL;
+}
+
+/* A glTF found by content under another name (a .glb called "model", a .gltf called ".json"):
+ * assimp picks its glTF reader by the extension, so the file is offered to it under an alias
+ * beside it ("<path>.glb"), which this file system maps back; every other file (a .gltf's
+ * buffers and images, relative to the same directory) opens as named. */
+typedef struct alias_io { char alias[4200]; const char *real; } alias_io;
+
+static size_t io_read(struct aiFile *f, char *buf, size_t size, size_t count) {
+    return fread(buf, size, count, (FILE *)f->UserData);
+}
+static size_t io_write(struct aiFile *f, const char *buf, size_t size, size_t count) {
+    (void)f, (void)buf, (void)size, (void)count;
+    return 0;
+}
+static size_t io_tell(struct aiFile *f) { return (size_t)ftell((FILE *)f->UserData); }
+static size_t io_size(struct aiFile *f) {
+    struct stat st;
+    return fstat(fileno((FILE *)f->UserData), &st) == 0 ? (size_t)st.st_size : 0;
+}
+static enum aiReturn io_seek(struct aiFile *f, size_t offset, enum aiOrigin origin) {
+    int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR : SEEK_END;
+    return fseek((FILE *)f->UserData, (long)offset, whence) == 0 ? aiReturn_SUCCESS : aiReturn_FAILURE;
+}
+static void io_flush(struct aiFile *f) { (void)f; }
+static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode) {
+    const alias_io *a = (const alias_io *)io->UserData;
+    FILE *fp = fopen(!strcmp(name, a->alias) ? a->real : name, mode);
+    if (!fp) return NULL;
+    struct aiFile *f = calloc(1, sizeof *f);
+    if (!f) {
+        fclose(fp);
+        return NULL;
+    }
+    f->ReadProc = io_read, f->WriteProc = io_write, f->TellProc = io_tell, f->FileSizeProc = io_size;
+    f->SeekProc = io_seek, f->FlushProc = io_flush, f->UserData = (aiUserData)fp;
+    return f;
+}
+static void io_close(struct aiFileIO *io, struct aiFile *f) {
+    (void)io;
+    if (!f) return;
+    fclose((FILE *)f->UserData);
+    free(f);
+}
+
 /* ---- entry ------------------------------------------------------------------------------- */
 
 bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t err_size) {
@@ -532,7 +593,9 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     base = base ? base + 1 : path;
     snprintf(im.stem, sizeof im.stem, "%s", base);
     char *dot = strrchr(im.stem, '.');
-    im.is_gltf = dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
+    bool named_gltf = dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
+    im.is_gltf = named_gltf || sniff_gltf(path);
+    if (im.is_gltf && !sl_gltf_check_extensions(path, err, err_size)) return false;
     if (dot && dot != im.stem) *dot = 0;
     char *abs = realpath(path, NULL);
     snprintf(im.dir, sizeof im.dir, "%s", abs ? abs : path);
@@ -548,7 +611,18 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_CalcTangentSpace |
                      aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                      aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
-    im.ai = aiImportFileExWithProperties(path, flags, NULL, store);
+    /* a glTF by content whose name assimp would not recognise: import it under an alias */
+    alias_io alias = {.real = path};
+    struct aiFileIO io = {.OpenProc = io_open, .CloseProc = io_close, .UserData = (aiUserData)&alias};
+    bool aliased = im.is_gltf && !named_gltf;
+    if (aliased) {
+        FILE *f = fopen(path, "rb");
+        char magic[4] = "";
+        bool binary = f && fread(magic, 1, 4, f) == 4 && !memcmp(magic, "glTF", 4);
+        if (f) fclose(f);
+        snprintf(alias.alias, sizeof alias.alias, "%s.%s", path, binary ? "glb" : "gltf");
+    }
+    im.ai = aiImportFileExWithProperties(aliased ? alias.alias : path, flags, aliased ? &io : NULL, store);
     if (store) aiReleasePropertyStore(store);
     if (!im.ai) {
         const char *why = aiGetErrorString();

@@ -1,0 +1,348 @@
+/* glTF 2.0 as people have it (issue 15), on fixtures this test writes itself (C writing the glTF
+ * JSON and the binary): a quad filling an orthographic glTF camera's view exactly, textured with
+ * a 2×2 image embedded in the .glb's binary chunk or as a data: URI.
+ *
+ *  - open_direct: the .glb, named without its extension, opens as a whole scene (detection by
+ *    content); the file's orthographic camera frames the quad exactly to the pixel; the
+ *    embedded texture lands texel by texel where the closed form puts it: at each pixel centre
+ *    (u, v) = ((i + ½)/W, (j + ½)/H), the bilinear REPEAT filter of the sRGB-decoded texels
+ *    (computed here in C; the "diffuse-texture" debug view shows the base colour). A one-pixel
+ *    shift of the framing or a flipped v changes values by 20× the tolerance.
+ *  - data_uri: the same as a .gltf with base64 data: URIs for buffer and image, named .json.
+ *  - plugins: a glTF inside a JSON scene loads ggx (its material input "brdf"), not normal-map;
+ *    a plain diffuse OBJ loads neither; no "unknown key" warning, no embedded-texture warning.
+ *  - extensions: extensionsRequired naming an unsupported one is an error naming it;
+ *    extensionsUsed a warning; alphaMode MASK is listed as not rendered as authored.
+ *  - cameras: the scene lists the file's camera (what --list-cameras prints) as orthographic. */
+#include "check.h"
+#include "image/image.h"
+#include "log.h"
+#include "scene/scene.h"
+#include "test_tmp.h"
+#include <shadelab/harness.h>
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W 64
+#define H 64
+
+static char err[8192];
+static char logbuf[1 << 16];
+
+/* the texels, top row first (glTF: uv (0, 0) is the image's top left) */
+static const unsigned char texels[2][2][3] = {{{200, 30, 30}, {30, 200, 30}}, {{30, 30, 200}, {220, 220, 40}}};
+
+typedef struct buf { unsigned char *d; size_t n, cap; } buf;
+static void put(buf *b, const void *p, size_t n) {
+    if (b->n + n > b->cap) {
+        b->cap = (b->n + n) * 2 + 64;
+        b->d = realloc(b->d, b->cap);
+    }
+    memcpy(b->d + b->n, p, n);
+    b->n += n;
+}
+static void pad(buf *b, unsigned char with) {
+    while (b->n % 4) put(b, &with, 1);
+}
+static void put_u32(buf *b, uint32_t v) {
+    unsigned char c[4] = {v & 255, v >> 8 & 255, v >> 16 & 255, v >> 24 & 255};
+    put(b, c, 4);
+}
+
+static bool read_all(const char *path, buf *out) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    unsigned char tmp[4096];
+    size_t n;
+    while ((n = fread(tmp, 1, sizeof tmp, f)) > 0) put(out, tmp, n);
+    fclose(f);
+    return true;
+}
+
+/* The 2×2 PNG's bytes (8-bit RGBA written through the image library: the values are exact). */
+static bool texture_png(buf *png) {
+    float rgba[2 * 2 * 4];
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 2; x++) {
+            for (int c = 0; c < 3; c++) rgba[(y * 2 + x) * 4 + c] = texels[y][x][c] / 255.0f;
+            rgba[(y * 2 + x) * 4 + 3] = 1;
+        }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/texels.png", sl_test_dir());
+    return sl_image_write(path, rgba, 2, 2, true, err, sizeof err) && read_all(path, png);
+}
+
+/* Geometry (positions, normals, uvs, u16 indices) then the PNG, as one binary buffer; the
+ * buffer view offsets are fixed by this layout. */
+static void geometry(buf *bin, const buf *png) {
+    const float pos[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
+    const float nrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const float uv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    const uint16_t idx[6] = {0, 3, 2, 0, 2, 1}; /* counter-clockwise seen from +Z */
+    put(bin, pos, sizeof pos);
+    put(bin, nrm, sizeof nrm);
+    put(bin, uv, sizeof uv);
+    put(bin, idx, sizeof idx);
+    pad(bin, 0);
+    put(bin, png->d, png->n);
+    pad(bin, 0);
+}
+
+/* The glTF JSON. buffer_uri / image_uri NULL: the GLB layout (buffer 0 is the binary chunk, the
+ * image a buffer view). extra: more top-level members (",\"extensionsUsed\": …"). */
+static char *gltf_json(size_t bin_len, size_t png_len, const char *buffer_uri, const char *image_uri,
+                       const char *material_extra, const char *extra) {
+    size_t need = 8192 + (buffer_uri ? strlen(buffer_uri) : 0) + (image_uri ? strlen(image_uri) : 0);
+    char *j = malloc(need), buffer[64], image[128];
+    if (buffer_uri) snprintf(buffer, sizeof buffer, ", \"uri\": \"%%s\"");
+    snprintf(image, sizeof image, "%s", image_uri ? "{\"uri\": \"%s\"}" : "{\"bufferView\": 4, \"mimeType\": \"image/png\"}");
+    char *tmpl = malloc(need);
+    snprintf(tmpl, need,
+             "{\"asset\": {\"version\": \"2.0\", \"generator\": \"shadelab test_gltf\"}%s,\n"
+             " \"scene\": 0, \"scenes\": [{\"nodes\": [0, 1]}],\n"
+             " \"nodes\": [{\"name\": \"quad\", \"mesh\": 0}, {\"name\": \"ortho\", \"camera\": 0, \"translation\": [0, 0, 5]}],\n"
+             " \"cameras\": [{\"name\": \"ortho\", \"type\": \"orthographic\", \"orthographic\": {\"xmag\": 1, \"ymag\": 1, "
+             "\"znear\": 0.1, \"zfar\": 10}}],\n"
+             " \"meshes\": [{\"name\": \"quad\", \"primitives\": [{\"attributes\": {\"POSITION\": 0, \"NORMAL\": 1, "
+             "\"TEXCOORD_0\": 2}, \"indices\": 3, \"material\": 0}]}],\n"
+             " \"materials\": [{\"name\": \"paint\", \"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}, "
+             "\"metallicFactor\": 0}%s}],\n"
+             " \"textures\": [{\"source\": 0, \"sampler\": 0}],\n"
+             " \"samplers\": [{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}],\n"
+             " \"images\": [%s],\n"
+             " \"buffers\": [{\"byteLength\": %zu%s}],\n"
+             " \"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48}, {\"buffer\": 0, \"byteOffset\": 48, "
+             "\"byteLength\": 48}, {\"buffer\": 0, \"byteOffset\": 96, \"byteLength\": 32}, {\"buffer\": 0, \"byteOffset\": 128, "
+             "\"byteLength\": 12}, {\"buffer\": 0, \"byteOffset\": 140, \"byteLength\": %zu}],\n"
+             " \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\", \"min\": [-1, -1, 0], "
+             "\"max\": [1, 1, 0]}, {\"bufferView\": 1, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}, "
+             "{\"bufferView\": 2, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC2\"}, {\"bufferView\": 3, "
+             "\"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"}]}\n",
+             extra ? extra : "", material_extra ? material_extra : "", image, bin_len, buffer_uri ? buffer : "", png_len);
+    /* the data: URIs go in last (they may hold '%') */
+    char *out = malloc(need);
+    if (buffer_uri && image_uri) snprintf(out, need, tmpl, image_uri, buffer_uri);
+    else snprintf(out, need, "%s", tmpl);
+    free(tmpl);
+    free(j);
+    return out;
+}
+
+/* A .glb: header, JSON chunk (space-padded), BIN chunk (zero-padded). */
+static bool write_glb(const char *path, const char *material_extra, const char *extra) {
+    buf png = {0}, bin = {0}, json = {0}, glb = {0};
+    if (!texture_png(&png)) return false;
+    geometry(&bin, &png);
+    char *text = gltf_json(bin.n, png.n, NULL, NULL, material_extra, extra);
+    put(&json, text, strlen(text));
+    free(text);
+    pad(&json, ' ');
+    put(&glb, "glTF", 4);
+    put_u32(&glb, 2);
+    put_u32(&glb, (uint32_t)(12 + 8 + json.n + 8 + bin.n));
+    put_u32(&glb, (uint32_t)json.n);
+    put(&glb, "JSON", 4);
+    put(&glb, json.d, json.n);
+    put_u32(&glb, (uint32_t)bin.n);
+    put(&glb, "BIN\0", 4);
+    put(&glb, bin.d, bin.n);
+    FILE *f = fopen(path, "wb");
+    bool ok = f && fwrite(glb.d, 1, glb.n, f) == glb.n;
+    if (f) fclose(f);
+    free(png.d), free(bin.d), free(json.d), free(glb.d);
+    return ok;
+}
+
+static char *base64(const unsigned char *d, size_t n, const char *prefix) {
+    static const char t[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    size_t lp = strlen(prefix);
+    char *o = malloc(lp + 4 * ((n + 2) / 3) + 1), *w = o + lp;
+    memcpy(o, prefix, lp);
+    for (size_t i = 0; i < n; i += 3) {
+        uint32_t v = (uint32_t)d[i] << 16 | (i + 1 < n ? (uint32_t)d[i + 1] << 8 : 0) | (i + 2 < n ? d[i + 2] : 0);
+        *w++ = t[v >> 18 & 63];
+        *w++ = t[v >> 12 & 63];
+        *w++ = i + 1 < n ? t[v >> 6 & 63] : '=';
+        *w++ = i + 2 < n ? t[v & 63] : '=';
+    }
+    *w = 0;
+    return o;
+}
+
+/* A .gltf with data: URIs (buffer: geometry; image: the PNG). */
+static bool write_gltf_data_uri(const char *path) {
+    buf png = {0}, bin = {0};
+    if (!texture_png(&png)) return false;
+    geometry(&bin, &png);
+    char *buri = base64(bin.d, bin.n, "data:application/octet-stream;base64,");
+    char *iuri = base64(png.d, png.n, "data:image/png;base64,");
+    char *text = gltf_json(bin.n, png.n, buri, iuri, NULL, NULL);
+    FILE *f = fopen(path, "wb");
+    bool ok = f && fputs(text, f) >= 0;
+    if (f) fclose(f);
+    free(text), free(buri), free(iuri), free(png.d), free(bin.d);
+    return ok;
+}
+
+static double srgb_decode(double e) { return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4); }
+
+/* Bilinear REPEAT filter of the decoded texels at (u, v) (OpenGL 4.5 §8.14.2, texel centres at
+ * (k + ½)/2). */
+static double expected(double u, double v, int c) {
+    double x = u * 2 - 0.5, y = v * 2 - 0.5;
+    int x0 = (int)floor(x), y0 = (int)floor(y);
+    double fx = x - x0, fy = y - y0, sum = 0;
+    for (int dy = 0; dy < 2; dy++)
+        for (int dx = 0; dx < 2; dx++) {
+            int tx = ((x0 + dx) % 2 + 2) % 2, ty = ((y0 + dy) % 2 + 2) % 2;
+            sum += (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy) * srgb_decode(texels[ty][tx][c] / 255.0);
+        }
+    return sum;
+}
+
+/* Renders the model file opened directly and compares every pixel with the closed form. */
+static void check_texture_render(const char *path, const char *what) {
+    const char *settings[] = {"tonemap.enabled=false", "core.anisotropy=1", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                         .scene_file = path, .settings = settings,
+                                                         .debug_view = "diffuse-texture"},
+                                      err, sizeof err);
+    CHECK_MSG(h, "%s: %s", what, err);
+    if (!h) return;
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    CHECK(sl_harness_render(h, img));
+    double worst = 0;
+    int wi = 0, wj = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++)
+            for (int c = 0; c < 3; c++) {
+                double e = fabs(img[(j * W + i) * 4 + c] - expected((i + 0.5) / W, (j + 0.5) / H, c));
+                if (e > worst) worst = e, wi = i, wj = j;
+            }
+    /* filtering weights are 8-bit fractions on llvmpipe: 1/512 of the largest texel difference */
+    if (worst >= 4e-3)
+        for (int k = 0; k < 4; k++) {
+            int i = k % 2 ? 48 : 15, j = k / 2 ? 48 : 15;
+            const float *p = img + (j * W + i) * 4;
+            printf("  pixel (%d, %d): %.4f %.4f %.4f, expected %.4f %.4f %.4f\n", i, j, p[0], p[1], p[2],
+                   expected((i + 0.5) / W, (j + 0.5) / H, 0), expected((i + 0.5) / W, (j + 0.5) / H, 1),
+                   expected((i + 0.5) / W, (j + 0.5) / H, 2));
+        }
+    CHECK_MSG(worst < 4e-3, "%s: worst pixel (%d, %d) off by %.4f from the bilinear closed form", what, wi, wj, worst);
+    printf("%s: every pixel within %.5f of the closed form\n", what, worst);
+    free(img);
+    sl_harness_destroy(h);
+}
+
+static void test_open_direct(void) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/quad_model", sl_test_dir()); /* no extension: by content */
+    CHECK_MSG(write_glb(path, NULL, NULL), "writing %s: %s", path, err);
+    sl_log_capture(logbuf, sizeof logbuf);
+    check_texture_render(path, "glb opened directly");
+    sl_log_capture(NULL, 0);
+    CHECK(!strstr(logbuf, "unknown key") && !strstr(logbuf, "no loaded plugin declares key"));
+    CHECK(!strstr(logbuf, "embedded texture"));
+    CHECK(!strstr(logbuf, "not rendered as authored"));
+}
+
+static void test_data_uri(void) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/quad_data_uri.json", sl_test_dir()); /* a glTF, whatever its name */
+    CHECK_MSG(write_gltf_data_uri(path), "writing %s", path);
+    check_texture_render(path, "gltf with data: URIs");
+}
+
+static bool has_plugin(sl_harness *h, const char *id) {
+    const char *ids[64];
+    int n = sl_harness_plugins(h, ids, 64);
+    for (int i = 0; i < n && i < 64; i++)
+        if (!strcmp(ids[i], id)) return true;
+    return false;
+}
+
+static void test_plugins(void) {
+    char glb[4200], obj[4200], json[9000];
+    snprintf(glb, sizeof glb, "%s/quad.glb", sl_test_dir());
+    CHECK(write_glb(glb, NULL, NULL));
+    snprintf(json, sizeof json, "{\"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}]}", glb);
+    sl_log_capture(logbuf, sizeof logbuf);
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .scene_json = json},
+                                      err, sizeof err);
+    sl_log_capture(NULL, 0);
+    CHECK_MSG(h, "%s", err);
+    if (h) {
+        CHECK(has_plugin(h, "ggx"));        /* glTF materials are metallic-roughness */
+        CHECK(!has_plugin(h, "normal-map")); /* no normal texture in the file */
+        CHECK(!has_plugin(h, "envmap") && !has_plugin(h, "tonemap")); /* a scene file: no defaults added */
+        char text[64];
+        CHECK(sl_harness_get(h, "ggx.enabled", text, sizeof text));
+        sl_harness_destroy(h);
+    }
+    CHECK_CONTAINS(logbuf, "it handles the material input \"brdf\"");
+    CHECK(!strstr(logbuf, "unknown key") && !strstr(logbuf, "did you mean"));
+
+    snprintf(obj, sizeof obj, "%s/plain.obj", sl_test_dir());
+    FILE *f = fopen(obj, "w");
+    if (f) {
+        fputs("mtllib plain.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nusemtl matte\nf 1//1 2//1 3//1 4//1\n", f);
+        fclose(f);
+    }
+    snprintf(json, sizeof json, "%s/plain.mtl", sl_test_dir());
+    f = fopen(json, "w");
+    if (f) {
+        fputs("newmtl matte\nKd 0.5 0.4 0.3\n", f);
+        fclose(f);
+    }
+    snprintf(json, sizeof json, "{\"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}]}", obj);
+    h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .scene_json = json}, err,
+                          sizeof err);
+    CHECK_MSG(h, "%s", err);
+    if (h) {
+        const char *ids[64];
+        int n = sl_harness_plugins(h, ids, 64);
+        CHECK_MSG(n == 0, "a plain diffuse OBJ loaded %d plugins (first: %s)", n, n ? ids[0] : "");
+        sl_harness_destroy(h);
+    }
+}
+
+static void test_extensions(void) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/requires.glb", sl_test_dir());
+    CHECK(write_glb(path, NULL, ", \"extensionsUsed\": [\"KHR_texture_basisu\"], \"extensionsRequired\": [\"KHR_texture_basisu\"]"));
+    sl_scene s = {0};
+    CHECK(!sl_scene_load_file(&s, path, NULL, err, sizeof err));
+    CHECK_CONTAINS(err, "requires glTF extension shadelab does not support: KHR_texture_basisu");
+    CHECK_CONTAINS(err, "requires.glb");
+    sl_scene_free(&s);
+
+    snprintf(path, sizeof path, "%s/uses.glb", sl_test_dir());
+    CHECK(write_glb(path, ", \"alphaMode\": \"MASK\"", ", \"extensionsUsed\": [\"KHR_materials_sheen\", \"KHR_lights_punctual\"]"));
+    sl_log_capture(logbuf, sizeof logbuf);
+    bool ok = sl_scene_load_file(&s, path, NULL, err, sizeof err);
+    sl_log_capture(NULL, 0);
+    CHECK_MSG(ok, "%s", err);
+    CHECK_CONTAINS(logbuf, "uses glTF extensions shadelab does not render (ignored, the file shows without them): "
+                           "KHR_materials_sheen\n");
+    CHECK_CONTAINS(logbuf, "alphaMode MASK");
+    /* what --list-cameras prints: the file's camera, orthographic, and the file's texture in memory */
+    CHECK(s.from_model && s.camera_count == 1 && s.image_count == 1 && s.mesh_count == 1);
+    if (s.camera_count == 1) {
+        CHECK(s.cameras[0].orthographic);
+        CHECK_NEAR(s.cameras[0].ymag, 1, 1e-6);
+        CHECK_NEAR(s.cameras[0].position[2], 5, 1e-6);
+    }
+    sl_scene_free(&s);
+}
+
+int main(void) {
+    test_open_direct();
+    test_data_uri();
+    test_plugins();
+    test_extensions();
+    return check_result();
+}
