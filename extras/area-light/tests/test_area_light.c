@@ -1,0 +1,405 @@
+/* area-light tests, against computations in C that share no code with the GLSL:
+ *   polygon     the GLSL vector irradiance (Lambert's formula, clipped to the horizon) against the
+ *               C evaluation of the same formula (ltc.h), to 1e-4, over rectangles and disks in
+ *               every position (straddling the horizon, below it, grazing); the C formula itself
+ *               against a Gauss–Legendre quadrature of ∫ cosθ cosθ' / d² dA (independent)
+ *   ltc         the GLSL LTC integral against the C one for table entries (1e-4)
+ *   table       the fitted table against an integration of the BRDF over a rectangle (midpoint
+ *               rule over its surface, 400² points): within 5 % up to θ_v = 40°, 15 % at 70°
+ *   lambert     an image of a Lambert plane under a rectangle light, every pixel against the C
+ *               closed form from the camera ray (float32 target)
+ *   reference   the plugin's Monte Carlo reference (through the model) against the same closed form
+ *   ggx         the LTC image against the reference image (the material's own ggx model)
+ *   sides       one-sided: nothing behind; two-sided: both faces equal
+ *   stability   roughness 0 and 1, grazing, lights cutting the surface, zero-size lights: finite,
+ *               within the energy bound
+ *   live/off    a light key changed live equals a fresh harness; off = not loaded */
+#include <shadelab/harness.h>
+#include "ltc.h"
+
+static int failures;
+#define CHECK(cond, ...) do { if (!(cond)) { failures++; printf("FAIL %s:%d: ", __FILE__, __LINE__); printf(__VA_ARGS__); printf("\n"); } } while (0)
+
+#define W 96
+#define H 72
+static float img[W * H * 4], img2[W * H * 4];
+
+/* ---- helpers: the light's frame as the GLSL builds it, camera rays ------------------------- */
+static void light_frame(al_v3 nl, al_v3 axis, al_v3 *ex, al_v3 *ey) {
+    nl = al_norm(nl);
+    al_v3 x = al_sub(axis, al_mul(nl, al_dot(axis, nl)));
+    if (al_len(x) < 1e-6) x = fabs(nl.y) < 0.999 ? al_cross(al_v(0, 1, 0), nl) : al_cross(al_v(1, 0, 0), nl);
+    *ex = al_norm(x);
+    *ey = al_cross(nl, *ex);
+}
+
+typedef struct cam { al_v3 pos, target; double fov_deg; } cam;
+static bool ground_hit(const cam *c, int px, int py, double half, al_v3 *hit) {
+    al_v3 f = al_norm(al_sub(c->target, c->pos)), r = al_norm(al_cross(f, al_v(0, 1, 0))), u = al_cross(r, f);
+    double t = tan(c->fov_deg * M_PI / 360), nx = ((px + 0.5) / W * 2 - 1) * t * W / H, ny = (1 - (py + 0.5) / H * 2) * t;
+    al_v3 d = al_norm(al_add(f, al_add(al_mul(r, nx), al_mul(u, ny))));
+    if (d.y >= 0) return false;
+    *hit = al_add(c->pos, al_mul(d, -c->pos.y / d.y));
+    return fabs(hit->x) < half && fabs(hit->z) < half;
+}
+
+static sl_harness *make(const char *json, const char *const *settings, int accumulate) {
+    char err[4096];
+    const char *plugins[] = {AREA_LIGHT_PLUGIN, "ggx", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+        .scene_json = json, .plugins = plugins, .settings = settings, .float32 = true, .strict = true,
+        .accumulate = accumulate}, err, sizeof err);
+    if (!h) { printf("FAIL: harness: %s\n", err); exit(1); }
+    return h;
+}
+static void render(const char *json, const char *const *settings, int accumulate, float *out) {
+    sl_harness *h = make(json, settings, accumulate);
+    if (!sl_harness_render(h, out)) { printf("FAIL: render\n"); exit(1); }
+    sl_harness_destroy(h);
+}
+
+#define SCENE(MATERIAL, LIGHTS)                                                                                   \
+    "{ \"cameras\": [{\"name\": \"c\", \"position\": [0,5,5], \"target\": [0,0,0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}]," \
+    "  \"materials\": [" MATERIAL "],"                                                                             \
+    "  \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}]," \
+    "  \"lights\": [" LIGHTS "] }"
+#define LAMBERT "{\"name\": \"m\", \"base_color\": [0.7, 0.5, 0.3]}"
+/* a 2 m × 1 m rectangle 1.5 m above the floor, tilted, facing down, radiance (3, 2, 1) */
+#define RECT "{\"name\": \"L\", \"type\": \"area\", \"position\": [0.3, 1.5, -0.2], \"direction\": [0.2, -1, 0.1], " \
+             "\"intensity\": 1, \"color\": [3, 2, 1], \"width\": 2, \"height\": 1, \"axis\": [1, 0, 0.3]}"
+static const al_v3 rect_c = {0.3, 1.5, -0.2}, rect_n = {0.2, -1, 0.1}, rect_axis = {1, 0, 0.3};
+
+/* ---- polygon integrals ---------------------------------------------------------------------- */
+/* Gauss–Legendre (20 points) on [-1,1], nodes by Newton on P_20 (computed, not tabulated). */
+static void gauss_legendre(int n, double *x, double *w) {
+    for (int i = 0; i < n; i++) {
+        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), pp = 0;
+        for (int it = 0; it < 100; it++) {
+            double p1 = 1, p2 = 0;
+            for (int j = 1; j <= n; j++) { double p3 = p2; p2 = p1; p1 = ((2 * j - 1) * z * p2 - (j - 1) * p3) / j; }
+            pp = n * (z * p1 - p2) / (z * z - 1);
+            double dz = p1 / pp;
+            z -= dz;
+            if (fabs(dz) < 1e-15) break;
+        }
+        x[i] = z, w[i] = 2 / ((1 - z * z) * pp * pp);
+    }
+}
+/* ∫_rect cosθ_s cosθ_l / d² dA (the rectangle entirely above the horizon, facing the point),
+ * composite Gauss–Legendre, 8×8 panels of 20×20 points. */
+static double quadrature_rect(al_v3 c, al_v3 ex, al_v3 ey, double w, double h) {
+    double gx[20], gw[20];
+    gauss_legendre(20, gx, gw);
+    al_v3 nl = al_cross(ex, ey);
+    double sum = 0;
+    const int P = 8;
+    for (int pi = 0; pi < P; pi++)
+        for (int pj = 0; pj < P; pj++)
+            for (int i = 0; i < 20; i++)
+                for (int j = 0; j < 20; j++) {
+                    double s = ((pi + 0.5 + 0.5 * gx[i]) / P - 0.5) * w, t = ((pj + 0.5 + 0.5 * gx[j]) / P - 0.5) * h;
+                    al_v3 y = al_add(c, al_add(al_mul(ex, s), al_mul(ey, t)));
+                    double d2 = al_dot(y, y), d = sqrt(d2);
+                    double cs = y.z / d, cl = fabs(al_dot(y, nl)) / d;
+                    sum += gw[i] * gw[j] * 0.25 * (w / P) * (h / P) * fmax(cs, 0) * cl / d2;
+                }
+    return sum;
+}
+
+static void test_polygon(void) {
+    enum { N = 16 };
+    float in0[N * N * 4], in1[N * N * 4], out[N * N * 4];
+    /* in0 = light centre (local frame, z = normal) and width; in1 = (height, tilt, azimuth, shape) */
+    srand(7);
+    for (int k = 0; k < N * N; k++) {
+        double r = (double)rand() / RAND_MAX;
+        in0[4 * k + 0] = (float)(4 * ((double)rand() / RAND_MAX) - 2);
+        in0[4 * k + 1] = (float)(4 * ((double)rand() / RAND_MAX) - 2);
+        in0[4 * k + 2] = (float)(k % 5 == 0 ? 0.3 * r - 0.15 : 3 * r - 0.5); /* a fifth straddle the horizon */
+        in0[4 * k + 3] = (float)(0.05 + 2 * ((double)rand() / RAND_MAX));
+        in1[4 * k + 0] = (float)(0.05 + 2 * ((double)rand() / RAND_MAX));
+        in1[4 * k + 1] = (float)(M_PI * ((double)rand() / RAND_MAX));
+        in1[4 * k + 2] = (float)(2 * M_PI * ((double)rand() / RAND_MAX));
+        in1[4 * k + 3] = (float)(k % 3 == 0);
+    }
+    sl_harness *h = make(SCENE(LAMBERT, RECT), NULL, 1);
+    char err[8192];
+    const char *files[] = {"area_polygon.glsl", NULL};
+    /* the light normal from (tilt, azimuth); axis = (cos(az+1), sin(az+1), 0.3); identity frame */
+    sl_glsl_eval_desc d = {.struct_size = sizeof d, .plugin = "area-light", .files = files, .width = N, .height = N,
+        .in0 = in0, .in1 = in1,
+        .expression = "vec4(area_light_polygon_irradiance(in0.xyz, vec3(sin(in1.y) * cos(in1.z), sin(in1.y) * sin(in1.z), "
+                      "cos(in1.y)), vec3(cos(in1.z + 1.0), sin(in1.z + 1.0), 0.3), in0.w, in1.x, in1.w > 0.5, 16, "
+                      "mat3(1.0)), 0.0)"};
+    bool ok = sl_harness_eval_glsl(h, &d, out, err, sizeof err);
+    CHECK(ok, "eval: %s", err);
+    double worst = 0;
+    int nonzero = 0;
+    for (int k = 0; ok && k < N * N; k++) {
+        al_v3 c = al_v(in0[4 * k], in0[4 * k + 1], in0[4 * k + 2]);
+        double t = in1[4 * k + 1], az = in1[4 * k + 2];
+        al_v3 nl = al_v(sin(t) * cos(az), sin(t) * sin(az), cos(t)), ex, ey, p[AL_MAX_VERTS];
+        light_frame(nl, al_v(cos(az + 1), sin(az + 1), 0.3), &ex, &ey);
+        int n = al_light_polygon(c, ex, ey, in0[4 * k + 3], in1[4 * k], in1[4 * k + 3] > 0.5, 16, p);
+        double want = al_polygon_cos_integral(p, n), got = out[4 * k + 2];
+        double e = fabs(got - want) / fmax(1, want);
+        if (e > worst) worst = e;
+        nonzero += want > 1e-3;
+        CHECK(e <= 1e-4, "polygon %d: GLSL %.7f, C %.7f", k, got, want);
+    }
+    printf("polygon: %d configurations (%d lit), worst |GLSL - C| %.2g\n", N * N, nonzero, worst);
+    CHECK(nonzero > N * N / 3, "only %d of the configurations are lit", nonzero);
+
+    /* the C formula against an independent quadrature (rectangles above the horizon, facing) */
+    double qworst = 0;
+    for (int k = 0; k < 40; k++) {
+        al_v3 c = al_v(2 * sin(k * 1.3), 2 * cos(k * 0.7), 0.8 + 2.5 * (k % 7) / 7.0), ex, ey, p[4];
+        light_frame(al_mul(al_norm(c), -1), al_v(cos(k), sin(k), 0.2), &ex, &ey); /* facing the point */
+        double w = 0.3 + (k % 4) * 0.3, hh = 0.2 + (k % 3) * 0.3;
+        al_light_polygon(c, ex, ey, w, hh, false, 4, p);
+        bool above = true;
+        for (int i = 0; i < 4; i++) above &= p[i].z > 0;
+        if (!above) continue;
+        double a = al_polygon_cos_integral(p, 4), q = quadrature_rect(c, ex, ey, w, hh);
+        double e = fabs(a - q) / fmax(1e-3, q);
+        if (e > qworst) qworst = e;
+        CHECK(e < 1e-6, "Lambert's formula %.9f vs quadrature %.9f", a, q);
+    }
+    /* a disk on its axis: ∫ cos dω = π r² / (r² + d²); the 64-gon with the disk's area */
+    {
+        al_v3 ex = al_v(1, 0, 0), ey = al_v(0, -1, 0), p[AL_MAX_VERTS];
+        int n = al_light_polygon(al_v(0, 0, 1), ex, ey, 2, 2, true, 64, p);
+        double want = M_PI / 2, got = al_polygon_cos_integral(p, n);
+        CHECK(fabs(got - want) / want < 1e-3, "disk on axis: 64-gon %.6f, closed form %.6f", got, want);
+        printf("polygon: Lambert's formula vs quadrature worst relative %.2g; disk as a 64-gon on axis %.2g\n", qworst,
+               fabs(got - want) / want);
+    }
+
+    /* the LTC integral: GLSL with M⁻¹ as a matrix vs C, for entries of the table */
+    al_ltc_table tab;
+    if (!al_table_read(AREA_LIGHT_TABLE, &tab, err, sizeof err)) { CHECK(false, "%s", err); sl_harness_destroy(h); return; }
+    for (int k = 0; k < N * N; k++) {
+        int i = k % tab.size, j = (k * 7) % tab.size;
+        const al_ltc_entry *e = &tab.e[j * tab.size + i];
+        in1[4 * k + 0] = (float)e->a, in1[4 * k + 1] = (float)e->b, in1[4 * k + 2] = (float)e->c, in1[4 * k + 3] = (float)e->d;
+    }
+    d.expression = "vec4(area_light_polygon_irradiance(in0.xyz, normalize(vec3(0.3, -0.2, -1.0)), vec3(1.0, 0.0, 0.0), "
+                   "in0.w, 0.7, false, 16, mat3(vec3(in1.x, 0.0, in1.z), vec3(0.0, 1.0, 0.0), vec3(in1.y, 0.0, in1.w))) "
+                   "* (1.0 / 3.14159265358979), 0.0)";
+    ok = sl_harness_eval_glsl(h, &d, out, err, sizeof err);
+    CHECK(ok, "eval: %s", err);
+    worst = 0;
+    for (int k = 0; ok && k < N * N; k++) {
+        int i = k % tab.size, j = (k * 7) % tab.size;
+        const al_ltc_entry *e = &tab.e[j * tab.size + i];
+        al_ltc_entry ef = {in1[4 * k], in1[4 * k + 1], in1[4 * k + 2], in1[4 * k + 3], 0, 0};
+        (void)e;
+        al_v3 ex, ey, p[4];
+        light_frame(al_norm(al_v(0.3, -0.2, -1)), al_v(1, 0, 0), &ex, &ey);
+        al_light_polygon(al_v(in0[4 * k], in0[4 * k + 1], in0[4 * k + 2]), ex, ey, in0[4 * k + 3], 0.7, false, 4, p);
+        double want = al_ltc_polygon(&ef, p, 4), got = out[4 * k + 2];
+        double err1 = fabs(got - want) / fmax(1, want);
+        if (err1 > worst) worst = err1;
+        CHECK(err1 <= 1e-4, "ltc %d: GLSL %.7f, C %.7f", k, got, want);
+    }
+    printf("ltc: worst |GLSL - C| %.2g over %d table entries and lights\n", worst, N * N);
+    free(tab.e);
+    sl_harness_destroy(h);
+}
+
+/* The table against Monte Carlo (ltc_fit validate does the full grid for the README). */
+static void test_table(void) {
+    al_ltc_table tab;
+    char err[512];
+    if (!al_table_read(AREA_LIGHT_TABLE, &tab, err, sizeof err)) { CHECK(false, "%s", err); return; }
+    const double rough[] = {0.25, 0.5, 0.75, 1.0}, theta[] = {0, 40, 70};
+    double worst = 0;
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 3; b++) {
+            double alpha = rough[a] * rough[a], th = theta[b] * M_PI / 180;
+            al_v3 v = al_v(sin(th), 0, cos(th));
+            al_v3 dir = al_v(-sin(fmin(th, 1.2)), 0, cos(fmin(th, 1.2))), ex, ey, p[4];
+            light_frame(al_mul(dir, -1), al_v(0, 1, 0), &ex, &ey);
+            al_light_polygon(al_mul(dir, 2), ex, ey, 1.5, 1.0, false, 4, p);
+            /* Monte Carlo: uniform points on the rectangle (area sampling) */
+            double sum = 0;
+            const int S = 400;
+            for (int i = 0; i < S; i++)
+                for (int j = 0; j < S; j++) {
+                    double s = ((i + 0.5) / S - 0.5) * 1.5, t = ((j + 0.5) / S - 0.5) * 1.0;
+                    al_v3 y = al_add(al_mul(dir, 2), al_add(al_mul(ex, s), al_mul(ey, t)));
+                    double d2 = al_dot(y, y);
+                    al_v3 l = al_mul(y, 1 / sqrt(d2));
+                    sum += al_ggx_fcos(v, l, alpha) * fabs(al_dot(l, al_cross(ex, ey))) / d2;
+                }
+            double mc = sum * 1.5 * 1.0 / ((double)S * S);
+            al_ltc_entry e = al_table_lookup(&tab, alpha, cos(th));
+            double ltc = e.norm * al_ltc_polygon(&e, p, 4), rel = fabs(ltc - mc) / mc;
+            if (rel > worst) worst = rel;
+            /* the fit's stated accuracy (README): within 5 % up to 40°, 15 % at grazing view */
+            double bound = theta[b] <= 40 ? 0.05 : 0.15;
+            CHECK(rel < bound, "table: roughness %.2f theta %.0f: LTC %.5f vs integral %.5f (%.1f%%, bound %.0f%%)",
+                  rough[a], theta[b], ltc, mc, 100 * rel, 100 * bound);
+            printf("table: roughness %.2f theta %2.0f: LTC %.5f, integral %.5f, %+.1f%%\n", rough[a], theta[b], ltc, mc,
+                   100 * (ltc - mc) / mc);
+        }
+    printf("table: LTC vs integration of the BRDF over a rectangle in the mirror direction, worst %.1f%%\n", 100 * worst);
+    free(tab.e);
+}
+
+/* ---- images ------------------------------------------------------------------------------- */
+static double lambert_expect(al_v3 p, int c) {
+    const double kd[3] = {0.7, 0.5, 0.3}, Le[3] = {3, 2, 1};
+    al_v3 ex, ey, v[4];
+    if (al_dot(al_sub(p, rect_c), rect_n) <= 0) return 0; /* behind the one-sided light's plane */
+    light_frame(rect_n, rect_axis, &ex, &ey);
+    al_light_polygon(al_sub(rect_c, p), ex, ey, 2, 1, false, 4, v);
+    /* local frame of the floor: z = +y */
+    for (int i = 0; i < 4; i++) v[i] = al_v(v[i].x, -v[i].z, v[i].y);
+    return kd[c] / M_PI * Le[c] * al_polygon_cos_integral(v, 4);
+}
+
+static void test_lambert_and_reference(void) {
+    cam c = {{0, 5, 5}, {0, 0, 0}, 50};
+    render(SCENE(LAMBERT, RECT), NULL, 1, img);
+    const char *ref[] = {"area-light.method=reference", "area-light.reference_samples=8", NULL};
+    render(SCENE(LAMBERT, RECT), ref, 16, img2);
+    double worst = 0, worst_ref = 0, mean_ref = 0;
+    int n = 0;
+    for (int y = 0; y < H; y += 3)
+        for (int x = 0; x < W; x += 3) {
+            al_v3 p;
+            if (!ground_hit(&c, x, y, 9.5, &p)) continue;
+            for (int ch = 0; ch < 3; ch++) {
+                double want = lambert_expect(p, ch), got = img[(y * W + x) * 4 + ch], r = img2[(y * W + x) * 4 + ch];
+                double e = fabs(got - want) / fmax(want, 0.05);
+                if (e > worst) worst = e;
+                double er = fabs(r - want) / fmax(want, 0.05);
+                if (er > worst_ref) worst_ref = er;
+                mean_ref += er;
+                CHECK(e < 2e-4, "lambert pixel (%d,%d) ch %d: %.7f, closed form %.7f", x, y, ch, got, want);
+            }
+            n++;
+        }
+    mean_ref /= 3.0 * n;
+    printf("lambert: %d pixels, worst relative error %.2g; reference (1024 points per pixel) worst %.2g mean %.2g\n", n,
+           worst, worst_ref, mean_ref);
+    CHECK(n > 300, "only %d floor pixels", n);
+    CHECK(worst_ref < 0.03 && mean_ref < 0.005, "reference vs closed form: worst %.3g, mean %.3g", worst_ref, mean_ref);
+}
+
+static double rel_rmse(const float *a, const float *b, double *peak) {
+    double s = 0, m = 0;
+    for (int i = 0; i < W * H; i++)
+        for (int c = 0; c < 3; c++) {
+            double d = a[i * 4 + c] - b[i * 4 + c];
+            s += d * d;
+            m = fmax(m, b[i * 4 + c]);
+        }
+    *peak = m;
+    return sqrt(s / (3.0 * W * H)) / fmax(m, 1e-9);
+}
+
+static void test_ggx(void) {
+    const char *const ref[] = {"area-light.method=reference", "area-light.reference_samples=8", NULL};
+    const char *const mats[] = {
+        "{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.2, 0.2, 0.2], \"roughness\": 0.3}",
+        "{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.2, 0.2, 0.2], \"roughness\": 0.6}",
+        "{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.9, 0.6, 0.3], \"roughness\": 0.5, \"fresnel\": \"metallic-roughness\", \"metallic\": 1}",
+    };
+    for (int i = 0; i < 3; i++) {
+        char json[4096];
+        snprintf(json, sizeof json, SCENE("%s", RECT), mats[i]);
+        render(json, NULL, 1, img);
+        render(json, ref, 16, img2);
+        double peak, e = rel_rmse(img, img2, &peak);
+        printf("ggx %d: LTC vs reference RMSE %.3f%% of the peak %.3f\n", i, 100 * e, peak);
+        CHECK(e < 0.03, "ggx material %d: LTC vs reference RMSE %.3g of the peak", i, e);
+        CHECK(sl_harness_count_nonfinite(img, W, H) == 0, "non-finite pixels");
+    }
+}
+
+static void test_sides_and_stability(void) {
+    /* a horizontal light facing up (away from the floor), one-sided: black; two-sided: exactly as
+     * the same light facing down (the same polygon, the other winding) */
+#define FLAT(DIR, EXTRA) "{\"name\": \"L\", \"type\": \"area\", \"position\": [0.3, 1.5, -0.2], \"direction\": " DIR ", " \
+             "\"intensity\": 1, \"color\": [3, 2, 1], \"width\": 2, \"height\": 1, \"axis\": [1, 0, 0.3]" EXTRA "}"
+    render(SCENE(LAMBERT, FLAT("[0, 1, 0]", "")), NULL, 1, img);
+    double m = 0;
+    for (int i = 0; i < W * H * 4; i += 4) m = fmax(m, fmax(img[i], fmax(img[i + 1], img[i + 2])));
+    CHECK(m == 0, "one-sided light facing away lights the floor (max %g)", m);
+    render(SCENE(LAMBERT, FLAT("[0, 1, 0]", ", \"two_sided\": true")), NULL, 1, img);
+    render(SCENE(LAMBERT, FLAT("[0, -1, 0]", "")), NULL, 1, img2);
+    sl_compare cmp;
+    sl_harness_compare(img, img2, W, H, 1e-4, &cmp);
+    CHECK(cmp.max_abs < 1e-5 && cmp.mean_abs > 0, "two-sided light facing away differs from it facing the floor by %g",
+          cmp.max_abs);
+    m = 0;
+    for (int i = 0; i < W * H * 4; i += 4) m = fmax(m, img2[i]);
+    CHECK(m > 0.1, "the flat light does not light the floor (max %g)", m);
+
+    /* stability: every case finite, below the bound L_e (k_d + 1) */
+    const char *const cases[] = {
+        /* roughness 0 and 1, the light cutting the floor, grazing light, zero-size, a disk on the floor */
+        SCENE("{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.5, 0.5, 0.5], \"roughness\": 0}",
+              "{\"name\": \"L\", \"type\": \"area\", \"position\": [0, 0.2, 0], \"direction\": [0, -0.3, -1], \"color\": [1, 1, 1], \"width\": 3, \"height\": 2, \"two_sided\": true}"),
+        SCENE("{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.5, 0.5, 0.5], \"roughness\": 1}",
+              "{\"name\": \"L\", \"type\": \"area\", \"position\": [0, 0.01, 0], \"direction\": [0, 0, -1], \"color\": [1, 1, 1], \"width\": 30, \"height\": 1}"),
+        SCENE("{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.5, 0.5, 0.5], \"alpha\": 0.002}",
+              "{\"name\": \"L\", \"type\": \"area\", \"position\": [0, 1, -8], \"direction\": [0, 0, 1], \"color\": [1, 1, 1], \"width\": 0, \"height\": 0}, "
+              "{\"name\": \"D\", \"type\": \"area\", \"position\": [0, 0, 0], \"direction\": [0, -1, 0], \"color\": [1, 1, 1], \"width\": 4, \"height\": 2, \"shape\": \"disk\", \"two_sided\": true}"),
+        SCENE(LAMBERT,
+              "{\"name\": \"L\", \"type\": \"area\", \"position\": [0, 0.5, 0], \"direction\": [0, 0, 1], \"color\": [1, 1, 1], \"width\": 100, \"height\": 100, \"shape\": \"disk\"}"),
+    };
+    for (int i = 0; i < 4; i++) {
+        render(cases[i], NULL, 1, img);
+        long bad = sl_harness_count_nonfinite(img, W, H) + sl_harness_count_negative(img, W, H);
+        double mx = 0;
+        for (int k = 0; k < W * H * 4; k += 4) mx = fmax(mx, fmax(img[k], fmax(img[k + 1], img[k + 2])));
+        CHECK(bad == 0, "stability case %d: %ld non-finite or negative values", i, bad);
+        CHECK(mx <= 1.5 * 1.001, "stability case %d: radiance %g above L_e (k_d + 1)", i, mx);
+        printf("stability %d: max radiance %.4f, non-finite/negative %ld\n", i, mx, bad);
+    }
+}
+
+static void test_live_and_off(void) {
+    char err[1024];
+    sl_harness *h = make(SCENE(LAMBERT, RECT), NULL, 1);
+    sl_harness_render(h, img);
+    CHECK(sl_harness_set(h, "light.L.width=0.7", err, sizeof err), "%s", err);
+    CHECK(sl_harness_set(h, "light.L.shape=disk", err, sizeof err), "%s", err);
+    CHECK(sl_harness_set(h, "area-light.disk_segments=9", err, sizeof err), "%s", err);
+    sl_harness_render(h, img);
+    sl_harness_destroy(h);
+    const char *fresh[] = {"light.L.width=0.7", "light.L.shape=disk", "area-light.disk_segments=9", NULL};
+    render(SCENE(LAMBERT, RECT), fresh, 1, img2);
+    sl_compare c;
+    sl_harness_compare(img, img2, W, H, 0, &c);
+    CHECK(c.max_abs == 0, "live change differs from a fresh start by %g", c.max_abs);
+
+    /* loaded but switched off = not loaded (the default scene: no area light) */
+    sl_harness_structure a, b;
+    const char *plugins[] = {AREA_LIGHT_PLUGIN, NULL}, *off[] = {"area-light.enabled=false", NULL};
+    h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                             .plugins = plugins, .settings = off}, err, sizeof err);
+    CHECK(h, "%s", err);
+    if (h) { sl_harness_render(h, img); sl_harness_structure_of(h, &a); sl_harness_destroy(h); }
+    h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H}, err, sizeof err);
+    if (h) { sl_harness_render(h, img2); sl_harness_structure_of(h, &b); sl_harness_destroy(h); }
+    CHECK(sl_harness_structure_equal(&a, &b), "switched off is not the same structure as not loaded");
+    sl_harness_compare(img, img2, W, H, 0, &c);
+    CHECK(c.max_abs == 0, "switched off renders differently from not loaded (%g)", c.max_abs);
+}
+
+int main(int argc, char **argv) {
+    const char *only = argc > 1 ? argv[1] : "";
+    if (!*only || !strcmp(only, "polygon")) test_polygon();
+    if (!*only || !strcmp(only, "table")) test_table();
+    if (!*only || !strcmp(only, "lambert")) test_lambert_and_reference();
+    if (!*only || !strcmp(only, "ggx")) test_ggx();
+    if (!*only || !strcmp(only, "sides")) test_sides_and_stability();
+    if (!*only || !strcmp(only, "live")) test_live_and_off();
+    if (failures) { printf("%d check(s) failed\n", failures); return 1; }
+    printf("area-light: all checks passed\n");
+    return 0;
+}
