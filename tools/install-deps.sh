@@ -12,6 +12,7 @@ PKGS=(
   libopenimageio-dev openimageio-tools  # images in and out, image compare
   libcjson-dev            # JSON scenes
   libassimp-dev           # glTF / OBJ meshes
+  assimp-testmodels       # test data: Debian's glTF2 sample models (ctest gltf_models), so it never skips
   libcglm-dev             # vector/matrix math
   libimgui-dev            # GUI (C++ adapter only)
   gnuplot-nox             # benchmark charts

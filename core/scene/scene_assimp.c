@@ -626,6 +626,10 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     if (store) aiReleasePropertyStore(store);
     if (!im.ai) {
         const char *why = aiGetErrorString();
+        if (why && strstr(why, "No meshes remaining")) /* assimp's words for: every mesh was dropped */
+            return fail(&im, "%s: %s", "no mesh left to draw: every mesh holds points or lines only (shadelab draws "
+                                       "triangles) or invalid data such as non-finite positions (assimp: No meshes "
+                                       "remaining)");
         return fail(&im, "%s: assimp could not import it: %s", why && why[0] ? why : "unknown error");
     }
     bool ok = true;
