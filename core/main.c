@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/resource.h>
 #include <time.h>
 
 static const char *usage =
@@ -199,6 +200,12 @@ static void summarise(const double *v, int n, double *med, double *mean, double 
     free(copy);
 }
 
+/* The process's peak resident memory (getrusage: llvmpipe's textures and buffers count here too). */
+static double peak_rss_mib(void) {
+    struct rusage ru;
+    return getrusage(RUSAGE_SELF, &ru) == 0 ? ru.ru_maxrss / 1024.0 : 0;
+}
+
 static bool write_stats(const char *path, sl_app *app, recorder *rec, double first_frame_ms, int warmup) {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "backend", app->backend.name);
@@ -210,6 +217,7 @@ static bool write_stats(const char *path, sl_app *app, recorder *rec, double fir
     cJSON_AddNumberToObject(root, "frames", rec->frames);
     cJSON_AddNumberToObject(root, "warmup_frames_excluded", warmup);
     cJSON_AddNumberToObject(root, "startup_to_first_frame_ms", first_frame_ms);
+    cJSON_AddNumberToObject(root, "peak_rss_mib", peak_rss_mib());
     double med, mean, mn;
     int skip = rec->frames > warmup ? warmup : 0;
     summarise(rec->frame + skip, rec->frames - skip, &med, &mean, &mn);
@@ -386,6 +394,7 @@ int main(int argc, char **argv) {
         if (c.bench) {
             print_bench(&app, &rec, warmup);
             printf("  startup to first frame: %.1f ms\n", first_frame_ms);
+            printf("  peak memory (resident): %.1f MiB\n", peak_rss_mib());
         }
         if (c.explain) sl_renderer_explain(&app, stdout);
         for (int i = 0; i < rec.count; i++) free(rec.s[i].ms);

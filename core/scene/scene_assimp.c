@@ -32,6 +32,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -611,6 +612,10 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_CalcTangentSpace |
                      aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                      aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
+    /* glTF meshes arrive indexed already: joining identical vertices (a sort of every vertex)
+     * finds nothing to join and costs a third of the import (tools/gltf/make_big_glb.py, 2 M
+     * triangles, on 2 busy cores, interleaved: 25.3 s with it, 16.6 s without, medians of 3) */
+    if (im.is_gltf) flags &= ~(unsigned)aiProcess_JoinIdenticalVertices;
     /* a glTF by content whose name assimp would not recognise: import it under an alias */
     alias_io alias = {.real = path};
     struct aiFileIO io = {.OpenProc = io_open, .CloseProc = io_close, .UserData = (aiUserData)&alias};
@@ -622,7 +627,20 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
         if (f) fclose(f);
         snprintf(alias.alias, sizeof alias.alias, "%s.%s", path, binary ? "glb" : "gltf");
     }
+    /* progress for large files: what is being read, and how long it took */
+    struct stat fst;
+    bool large = stat(path, &fst) == 0 && fst.st_size > (16 << 20);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    if (large) SL_INFO("%s: importing %.1f MB with assimp…", path, fst.st_size / 1048576.0);
     im.ai = aiImportFileExWithProperties(aliased ? alias.alias : path, flags, aliased ? &io : NULL, store);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (large && im.ai) {
+        unsigned long long tris = 0;
+        for (unsigned i = 0; i < im.ai->mNumMeshes; i++) tris += im.ai->mMeshes[i]->mNumFaces;
+        SL_INFO("%s: imported %u meshes, %llu triangles, %u embedded images in %.1f s", path, im.ai->mNumMeshes, tris,
+                im.ai->mNumTextures, (t1.tv_sec - t0.tv_sec) + (t1.tv_nsec - t0.tv_nsec) * 1e-9);
+    }
     if (store) aiReleasePropertyStore(store);
     if (!im.ai) {
         const char *why = aiGetErrorString();
