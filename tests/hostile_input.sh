@@ -6,9 +6,12 @@
 # header before decoding); plugin names and paths that are not plugins (GGX, /dev/zero, a
 # directory) and an over-long SHADELAB_PLUGIN_PATH; command-line numbers (--size overflowing int,
 # --time nan/abc, --accumulate 2abc / 1e9) and --stats to an unwritable path (errno named).
-#      usage: hostile_input.sh SHADELAB
+# Also: coordinates beyond float32's useful range (a node at 1e38, an OBJ vertex at 1e38) and a
+# node matrix that collapses it (all zero), and shadelab-bench --reference-scale 1000.
+#      usage: hostile_input.sh SHADELAB [SHADELAB-BENCH]
 set -uo pipefail
 SL=$(realpath "$1")
+BENCH=${2:+$(realpath "$2")}
 T=$(mktemp -d "${TMPDIR:-/tmp}/shadelab-hostile.XXXXXX")
 trap 'rm -rf "$T"' EXIT
 cd "$T"
@@ -67,5 +70,19 @@ run near_small    any  "far/near = 1e+06 loses depth precision" --scene near_sma
 "$SL" --headless -q --size 256x256 --output full.jpg && head -c 3000 full.jpg > trunc.jpg
 echo "{\"materials\": [{\"name\": \"m\", \"base_color_map\": \"trunc.jpg\"}], $sphere}" > tex_trunc.json
 run jpeg_truncated any "trunc.jpg: damaged image data" --scene tex_trunc.json --output p.png
+# coordinates and transforms
+echo "{\"materials\": [{\"name\": \"m\"}], \"nodes\": [{\"mesh\": {\"primitive\": \"sphere\"}, \"translate\": [1e38, 0, 0]}]}" > far_node.json
+echo "{\"materials\": [{\"name\": \"m\"}], \"nodes\": [{\"mesh\": {\"primitive\": \"sphere\"}, \"matrix\": [0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,1]}]}" > zero_matrix.json
+printf 'v 0 0 0\nv 1e38 0 0\nv 0 1 0\nf 1 2 3\n' > far.obj
+echo "{\"materials\": [{\"name\": \"m\"}], \"nodes\": [{\"mesh\": {\"file\": \"far.obj\"}}]}" > far_mesh.json
+run far_node      fail "\"translate\" 1e+38 is beyond 1e+07" --scene far_node.json --output keep.png
+run zero_matrix   fail "collapses the node to a line or a point" --scene zero_matrix.json --output keep.png
+run far_mesh      fail "reaches 1e+38 from the origin" --scene far_mesh.json --output keep.png
+if [ -n "$BENCH" ]; then
+  t0=$SECONDS
+  timeout 30 "$BENCH" --plugin core --reference-scale 1000 --out bench_out > bench.log 2>&1; rc=$?
+  printf '%-14s rc=%-3d %2ds  %s\n' bench_scale $rc $((SECONDS - t0)) "$(grep -m1 -F -- "--reference-scale 1000" bench.log | cut -c1-150)"
+  [ $rc -ne 0 ] && [ $rc -ne 124 ] && grep -qF -- "at most 16384 per side" bench.log || { cat bench.log; fail "bench --reference-scale 1000"; }
+fi
 [ "$(cat keep.png)" = "previous output" ] || fail "a failed run overwrote the existing output file"
 exit $FAILED

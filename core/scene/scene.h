@@ -74,6 +74,12 @@ typedef struct sl_node {
  * environment colour) are refused. */
 #define SL_MAX_RADIANCE 65504.0
 
+/* The farthest a scene file's node may reach from the origin. float32 positions have a step of 1
+ * at 1e7 (geometry and lighting vectors collapse there); the loader refuses a scene reaching
+ * further and warns beyond SL_SCENE_WARN_EXTENT (steps of 1/128). */
+#define SL_SCENE_MAX_EXTENT 1e7
+#define SL_SCENE_WARN_EXTENT 1e5
+
 typedef enum sl_light_animation { SL_ANIMATE_NONE, SL_ANIMATE_ORBIT, SL_ANIMATE_WOBBLE } sl_light_animation;
 
 typedef struct sl_light {

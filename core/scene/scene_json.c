@@ -889,6 +889,23 @@ static const char *const node_keys[] = {"name", "parent", "children", "translate
                                         "scale", "matrix", "material", "mesh", "tags"};
 #define SL_NODE_MAX_TAGS 16
 
+/* Whether the linear part of a column-major 4×4 transform has rank ≤ 1 (every 2×2 minor zero,
+ * relative to its columns' size): the node collapses to a line or a point, nothing to see. A
+ * rank-2 transform (one zero scale, a flattening matrix) draws flat geometry, which the forward
+ * pass shades with the geometric normal (stability_core singular_transform). */
+static bool transform_collapses(const float *m) {
+    const double a[3] = {m[0], m[1], m[2]}, b[3] = {m[4], m[5], m[6]}, c[3] = {m[8], m[9], m[10]};
+    const double *col[3] = {a, b, c};
+    double big = 0, minor = 0;
+    for (int i = 0; i < 3; i++) {
+        const double *x = col[i], *y = col[(i + 1) % 3];
+        double cx = x[1] * y[2] - x[2] * y[1], cy = x[2] * y[0] - x[0] * y[2], cz = x[0] * y[1] - x[1] * y[0];
+        minor = fmax(minor, sqrt(cx * cx + cy * cy + cz * cz));
+        big = fmax(big, x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    }
+    return !(minor > 1e-12 * big);
+}
+
 static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *counter) {
     char buf[96];
     int index = (*counter)++;
@@ -944,10 +961,21 @@ static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *cou
             return failf(L, mat, "%s: give either \"matrix\" or \"translate\"/\"rotate\"/\"scale\", not both", ctx);
         float m[16];
         if (!get_vec(L, mat, ctx, 16, m, false)) return false;
+        for (int k = 0; k < 16; k++)
+            if (fabsf(m[k]) > SL_SCENE_MAX_EXTENT)
+                return failf(L, mat, "%s: \"matrix\" element %d is %g; beyond %g float32 positions collapse", ctx, k,
+                             m[k], SL_SCENE_MAX_EXTENT);
+        if (transform_collapses(m))
+            return failf(L, mat, "%s: \"matrix\" collapses the node to a line or a point (its 3x3 part has rank < 2, "
+                         "e.g. all zero): nothing would be visible", ctx);
         memcpy(L->scene->nodes[ni].local, m, sizeof m);
     } else {
         float tr[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, sc[3] = {1, 1, 1};
         if (t && !get_vec(L, t, ctx, 3, tr, false)) return false;
+        for (int c = 0; t && c < 3; c++)
+            if (fabsf(tr[c]) > SL_SCENE_MAX_EXTENT)
+                return failf(L, t, "%s: \"translate\" %g is beyond %g, where float32 positions collapse", ctx, tr[c],
+                             SL_SCENE_MAX_EXTENT);
         if (r) {
             int n = cJSON_IsArray(r) ? cJSON_GetArraySize(r) : 0;
             if (n == 4) {
@@ -974,8 +1002,13 @@ static bool load_node(loader *L, const cJSON *o, int parent, int depth, int *cou
                 return failf(L, s, "%s: \"scale\" must be a number or an array of 3 numbers, found %s",
                              ctx, describe(s, buf, sizeof buf));
             }
-            if (sc[0] == 0 || sc[1] == 0 || sc[2] == 0)
-                return failf(L, s, "%s: \"scale\" must not be zero (the node would be flat)", ctx);
+            if ((sc[0] == 0) + (sc[1] == 0) + (sc[2] == 0) >= 2)
+                return failf(L, s, "%s: \"scale\" must not be zero in more than one axis (the node would collapse to "
+                             "a line or a point: nothing visible); one zero axis flattens it", ctx);
+            for (int c = 0; c < 3; c++)
+                if (fabsf(sc[c]) > SL_SCENE_MAX_EXTENT)
+                    return failf(L, s, "%s: \"scale\" %g is beyond %g, where float32 positions collapse", ctx, sc[c],
+                                 SL_SCENE_MAX_EXTENT);
         }
         sl_mat4_from_trs(L->scene->nodes[ni].local, tr, q, sc);
     }
@@ -1225,6 +1258,17 @@ static bool load(loader *L, const char *dir) {
     if (ok && (v = cJSON_GetObjectItemCaseSensitive(root, "lights"))) ok = load_lights(L, v);
     if (ok && (v = cJSON_GetObjectItemCaseSensitive(root, "environment"))) ok = load_environment(L, v);
     if (ok) sl_scene_update_transforms(s);
+    if (ok && s->node_count) { /* how far the geometry reaches (imported meshes included) */
+        double reach = 0;
+        for (int c = 0; c < 3; c++) reach = fmax(reach, fmax(fabs(s->bounds_min[c]), fabs(s->bounds_max[c])));
+        const cJSON *nodes = cJSON_GetObjectItemCaseSensitive(root, "nodes");
+        if (!(reach <= SL_SCENE_MAX_EXTENT))
+            ok = failf(L, nodes, "the scene's geometry reaches %g from the origin; beyond %g float32 positions "
+                       "collapse (move it toward the origin or scale it down)", reach, SL_SCENE_MAX_EXTENT);
+        else if (reach > SL_SCENE_WARN_EXTENT)
+            warnf(L, nodes, "the scene's geometry reaches %g from the origin: float32 positions there have steps "
+                  "of %g; detail smaller than that jitters", reach, reach / 8388608.0);
+    }
 done:
     cJSON_Delete(root);
     return ok && !L->failed;

@@ -123,6 +123,17 @@ int main(int argc, char **argv) {
 #undef NEED
     }
     if (!o.plugin) return die("--plugin NAME is required (\"core\" for the core's own knobs); see --help");
+    if (o.reference_scale > 1) { /* every size derived from a user number is checked before use */
+        long w = o.width > 0 ? o.width : 320, h = o.height > 0 ? o.height : 180, k = o.reference_scale;
+        long kmax = 16384 / (w > h ? w : h);
+        while (kmax > 1 && (double)(w * kmax) * (h * kmax) > SL_IMAGE_MAX_PIXELS) kmax--;
+        if (k > kmax) {
+            snprintf(err, sizeof err, "--reference-scale %ld: the reference would be %ldx%ld; at most 16384 per side and "
+                     "%ld Mpixel, so at most %ld for --size %ldx%ld", k, w * k, h * k, (long)(SL_IMAGE_MAX_PIXELS >> 20),
+                     kmax < 1 ? 1 : kmax, w, h);
+            return die(err);
+        }
+    }
     o.plugins = plugins; o.plugin_count = np;
     o.base_settings = base; o.base_setting_count = nb;
     o.settings = settings; o.setting_count = ns;
