@@ -15,6 +15,7 @@
  *     equal the base frame × mix(base, nod_color, strength)/base per channel.
  *  7. costs nothing: switched off, or on with no tagged node and no nod_color material, the
  *     frame's structure (passes, draws, program hashes) equals the one without the plugin.
+ *  stability: ±90°, a 1 cm band, a pivot 1000 km away, zero axis/region/radius: finite pixels.
  *  8. live equals fresh: nod.amplitude and nod.normals changed with set() give the frame a new
  *     harness with those settings gives. */
 #include <shadelab/harness.h>
@@ -292,6 +293,23 @@ int main(void) {
         free(render_at(h0, 30)), sl_harness_structure_of(h0, &s3), sl_harness_destroy(h0);
         CHECK(sl_harness_structure_equal(&s0, &s1), "on, but no tagged node and no nod_color: programs or passes differ");
         CHECK(sl_harness_structure_equal(&s2, &s3), "switched off: programs or passes differ from not loaded");
+    }
+
+    /* ---- stability: extreme settings give finite, non-negative pixels ---- */
+    {
+        const char *extreme[][8] = {
+            {"nod.pose_time=0.25", "nod.amplitude=90", "nod.frequency=1", "nod.blend=0", NULL},
+            {"nod.pose_time=0.25", "nod.amplitude=-90", "nod.frequency=1", "nod.blend=0.01", "nod.pivot=0,1.1,0", NULL},
+            {"nod.pose_time=0.25", "nod.amplitude=90", "nod.frequency=1", "nod.pivot=1000000,0,0", "nod.blend=10", NULL},
+            {"nod.pose_time=3", "nod.axis=0,0,0", "nod.region=0,0,0", "nod.color_radius=0", NULL},
+        };
+        cube_scene(moving, sizeof moving, cube_tagged, ", \"nod_color\": [0.9, 0.1, 0.1]", true);
+        for (int k = 0; k < 4; k++) {
+            float *img = render(moving, extreme[k], true, 0);
+            long bad = sl_harness_count_nonfinite(img, W, H) + sl_harness_count_negative(img, W, H);
+            CHECK(bad == 0, "extreme settings %d: %ld non-finite or negative values", k, bad);
+            free(img);
+        }
     }
 
     /* ---- 8. live equals fresh ---- */
