@@ -23,6 +23,26 @@ static sl_status core_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_param_desc), .id = "base_color_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
          .group = "material", .material_input = "base_color_texture",
          .description = "Diffuse colour texture (sRGB), or a procedural spec such as checker:8:r,g,b:r,g,b."},
+        /* glTF 2.0 material inputs every model honours (shaders/material.glsl): emission adds its
+         * radiance to whatever the model computes; occlusion scales s.ao, which only the ambient and
+         * environment terms read (glTF: occlusion "applies only to indirect lighting") */
+        {.struct_size = sizeof(sl_param_desc), .id = "emissive", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
+         .group = "material", .material_input = "emissive",
+         .description = "Emitted radiance (linear RGB, W/(m² sr)) added to the shading: glTF emissiveFactor; times "
+                        "emissive_map and emissive_strength when given."},
+        {.struct_size = sizeof(sl_param_desc), .id = "emissive_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
+         .group = "material", .material_input = "emissive_texture",
+         .description = "Emission texture (sRGB), times emissive (glTF emissiveTexture; without emissive it emits nothing)."},
+        {.struct_size = sizeof(sl_param_desc), .id = "emissive_strength", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
+         .default_value = {.f = {1}}, .min = 0, .max = 10000, .group = "material", .material_input = "emissive_strength",
+         .description = "Multiplier of the emission (KHR_materials_emissive_strength)."},
+        {.struct_size = sizeof(sl_param_desc), .id = "occlusion_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
+         .flags = SL_PARAM_LINEAR_DATA, .group = "material", .material_input = "occlusion_texture",
+         .description = "Ambient occlusion in the red channel (linear, glTF occlusionTexture): scales the ambient and "
+                        "environment light only, never a light's direct term."},
+        {.struct_size = sizeof(sl_param_desc), .id = "occlusion_strength", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
+         .default_value = {.f = {1}}, .min = 0, .max = 1, .group = "material", .material_input = "occlusion_strength",
+         .description = "glTF occlusionTexture.strength: ao = 1 + strength · (texel.r − 1)."},
         /* light keys every light has (they map onto the light record's own fields) */
         {.struct_size = sizeof(sl_param_desc), .id = "enabled", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
          .default_value = {.b = true}, .group = "light", .description = "Per-light on/off."},
@@ -61,6 +81,8 @@ static sl_status core_create(const sl_host *host, void **user) {
          .function = "sl_light_directional", .name = "directional"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_LIGHT, .file = "lights.glsl",
          .function = "sl_light_point", .name = "point"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SURFACE, .file = "occlusion.glsl",
+         .function = "sl_surface_occlusion", .when_material_has = "occlusion_map", .order = 30},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = "debug_views.glsl",
          .function = "sl_debug_diffuse_texture", .name = "diffuse-texture", .description = "base colour (texture × factor)"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = "debug_views.glsl",
@@ -78,8 +100,9 @@ static sl_status core_create(const sl_host *host, void **user) {
     return SL_OK;
 }
 
-/* the standard material inputs of imported assets the core's keys take (base_color, base_color_map) */
-static const char *const core_inputs[] = {"base_color", "base_color_texture", NULL};
+/* the standard material inputs of imported assets the core's keys take */
+static const char *const core_inputs[] = {"base_color", "base_color_texture", "emissive", "emissive_texture",
+                                          "emissive_strength", "occlusion_texture", "occlusion_strength", NULL};
 
 const sl_plugin_desc sl_core_plugin = {
     SL_PLUGIN_HEADER,

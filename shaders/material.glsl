@@ -14,3 +14,17 @@ vec3 sl_base_color(vec2 uv) {
     return sl_mat_base_color;
 #endif
 }
+
+// glTF 2.0 emission: emissiveFactor × emissiveTexture × emissive_strength, added to the shaded
+// radiance (forward.c calls it only for materials carrying "emissive"; glTF's factor defaults to
+// 0, so a texture alone emits nothing).
+#ifdef SL_MAT_HAS_EMISSIVE
+vec3 sl_emission(vec2 uv) {
+    vec3 e = sl_mat_emissive * sl_mat_emissive_strength;
+#ifdef SL_MAT_HAS_EMISSIVE_MAP
+    e *= texture(sl_mat_emissive_map, uv).rgb;
+#endif
+    return e;
+}
+#endif
+

@@ -339,10 +339,92 @@ static void test_extensions(void) {
     sl_scene_free(&s);
 }
 
+/* Renders a JSON scene holding the model file under one node (the file's orthographic camera is
+ * the view), with `lights` and a constant environment of radiance env. */
+static bool render_wrapped(const char *model, const char *lights, float env, float *img) {
+    char json[9000];
+    snprintf(json, sizeof json,
+             "{\"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}], \"lights\": [%s], "
+             "\"environment\": {\"color\": [%g, %g, %g]}}",
+             model, lights, env, env, env);
+    const char *settings[] = {"core.anisotropy=1", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                         .scene_json = json, .settings = settings},
+                                      err, sizeof err);
+    CHECK_MSG(h, "%s", err);
+    if (!h) return false;
+    bool ok = sl_harness_render(h, img);
+    CHECK(ok);
+    sl_harness_destroy(h);
+    return ok;
+}
+
+/* Emission adds exactly its radiance: no light, no environment, so every pixel is
+ * emissiveFactor × emissiveStrength (KHR_materials_emissive_strength), whatever the base colour. */
+static void test_emissive(void) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/emissive.glb", sl_test_dir());
+    CHECK(write_glb(path, ", \"emissiveFactor\": [0.5, 0.25, 1], \"extensions\": {\"KHR_materials_emissive_strength\": "
+                          "{\"emissiveStrength\": 3}}",
+                    ", \"extensionsUsed\": [\"KHR_materials_emissive_strength\"]"));
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    if (render_wrapped(path, "", 0, img)) {
+        const float want[3] = {1.5f, 0.75f, 3.0f};
+        double worst = 0;
+        for (int i = 0; i < W * H; i++)
+            for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(img[4 * i + c] - want[c]));
+        CHECK_MSG(worst < 1e-3, "emission: worst pixel %.5f from (1.5, 0.75, 3)", worst);
+        printf("emissive: every pixel within %.6f of emissiveFactor x strength\n", worst);
+    }
+    free(img);
+}
+
+/* Occlusion (strength 0.5, the texels' red channel, linear) scales only indirect light: under a
+ * directional light alone the image equals the one without occlusion; under the constant
+ * environment alone it is the one without, times ao = 1 + 0.5 (r - 1), r the bilinear red. */
+static void test_occlusion(void) {
+    char with[4200], without[4200];
+    snprintf(with, sizeof with, "%s/occluded.glb", sl_test_dir());
+    snprintf(without, sizeof without, "%s/open.glb", sl_test_dir());
+    CHECK(write_glb(with, ", \"occlusionTexture\": {\"index\": 0, \"strength\": 0.5}", NULL));
+    CHECK(write_glb(without, NULL, NULL));
+    float *a = malloc(sizeof(float) * 4 * W * H), *b = malloc(sizeof(float) * 4 * W * H);
+    const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2}";
+    if (render_wrapped(with, sun, 0, a) && render_wrapped(without, sun, 0, b)) {
+        double worst = 0, peak = 0;
+        for (int i = 0; i < W * H * 4; i++) worst = fmax(worst, fabs(a[i] - b[i])), peak = fmax(peak, b[i]);
+        CHECK_MSG(worst < 1e-5 && peak > 0.01, "occlusion changed direct light by %g (peak %g)", worst, peak);
+        printf("occlusion, direct light only: largest change %g (peak radiance %.3f)\n", worst, peak);
+    }
+    if (render_wrapped(with, "", 0.5f, a) && render_wrapped(without, "", 0.5f, b)) {
+        double worst = 0;
+        for (int j = 0; j < H; j++)
+            for (int i = 0; i < W; i++) {
+                double u = (i + 0.5) / W, v = (j + 0.5) / H, x = u * 2 - 0.5, y = v * 2 - 0.5;
+                int x0 = (int)floor(x), y0 = (int)floor(y);
+                double r = 0;
+                for (int dy = 0; dy < 2; dy++)
+                    for (int dx = 0; dx < 2; dx++)
+                        r += (dx ? x - x0 : 1 - (x - x0)) * (dy ? y - y0 : 1 - (y - y0)) *
+                             texels[((y0 + dy) % 2 + 2) % 2][((x0 + dx) % 2 + 2) % 2][0] / 255.0;
+                double ao = 1 + 0.5 * (r - 1);
+                for (int c = 0; c < 3; c++) {
+                    double base = b[(j * W + i) * 4 + c];
+                    if (base > 1e-3) worst = fmax(worst, fabs(a[(j * W + i) * 4 + c] / base - ao));
+                }
+            }
+        CHECK_MSG(worst < 3e-3, "occlusion under the environment: ratio off by %.4f from ao", worst);
+        printf("occlusion, environment only: with/without within %.5f of ao at every pixel\n", worst);
+    }
+    free(a), free(b);
+}
+
 int main(void) {
     test_open_direct();
     test_data_uri();
     test_plugins();
     test_extensions();
+    test_emissive();
+    test_occlusion();
     return check_result();
 }

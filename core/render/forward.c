@@ -344,6 +344,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
                 sl_sb_printf(&gen, "    Lo += %s(s, %s);\n", model_ambient->d.function, hooks ? "vec3(0.0)" : "sl_ambient_irradiance");
             else if (!hooks)
                 sl_sb_append(&gen, "    Lo += s.base_color * SL_INV_PI * sl_ambient_irradiance * s.ao;\n");
+            /* glTF emission (shaders/material.glsl), whatever the model */
+            sl_sb_append(&gen, "#ifdef SL_MAT_HAS_EMISSIVE\n    Lo += sl_emission(s.uv);\n#endif\n");
             sl_sb_append(&gen, "    return Lo;\n}\n");
         }
         sl_source_generated(&p->fs, gen.s);

@@ -13,7 +13,7 @@
 #include <string.h>
 
 /* Extensions the import renders as their authors meant (the rest: warned or refused). */
-static const char *const understood[] = {"KHR_lights_punctual"};
+static const char *const understood[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
 
 static bool is_understood(const char *name) {
     for (size_t i = 0; i < sizeof understood / sizeof *understood; i++)
@@ -61,22 +61,40 @@ static int not_understood(const cJSON *arr, char *out, size_t size) {
     return count;
 }
 
-bool sl_gltf_check_extensions(const char *path, char *err, size_t err_size) {
+void *sl_gltf_read_json(const char *path) {
     char *text = gltf_json(path);
-    if (!text) return true; /* assimp reports what is wrong with the file */
+    if (!text) return NULL;
     cJSON *root = cJSON_Parse(text);
     free(text);
-    bool ok = true;
+    return root;
+}
+
+void sl_gltf_free_json(void *json) { cJSON_Delete(json); }
+
+bool sl_gltf_check_extensions(const void *json, const char *path, char *err, size_t err_size) {
+    const cJSON *root = json;
+    if (!root) return true; /* assimp reports what is wrong with the file */
     char list[1024];
     int n = not_understood(cJSON_GetObjectItemCaseSensitive(root, "extensionsRequired"), list, sizeof list);
     if (n) {
         snprintf(err, err_size, "%s: the file requires glTF extension%s shadelab does not support: %s", path,
                  n > 1 ? "s" : "", list);
-        ok = false;
-    } else if (not_understood(cJSON_GetObjectItemCaseSensitive(root, "extensionsUsed"), list, sizeof list)) {
+        return false;
+    }
+    if (not_understood(cJSON_GetObjectItemCaseSensitive(root, "extensionsUsed"), list, sizeof list))
         SL_WARN("%s: uses glTF extensions shadelab does not render (ignored, the file shows without them): %s", path,
                 list);
-    }
-    cJSON_Delete(root);
-    return ok;
+    return true;
+}
+
+/* Material extensions assimp 5.2 does not expose, for glTF material `index` (assimp keeps the
+ * file's material order): KHR_materials_emissive_strength. */
+void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inputs) {
+    const cJSON *mats = cJSON_GetObjectItemCaseSensitive(json, "materials");
+    const cJSON *mat = cJSON_IsArray(mats) ? cJSON_GetArrayItem(mats, (int)index) : NULL;
+    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(mat, "extensions");
+    const cJSON *es = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_emissive_strength"),
+                                                       "emissiveStrength");
+    if (cJSON_IsNumber(es) && es->valuedouble >= 0 && es->valuedouble <= 1e4)
+        sl_prop_set_number(inputs, "emissive_strength", (float)es->valuedouble, 0);
 }

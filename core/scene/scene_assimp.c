@@ -38,6 +38,13 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+/* gltf_ext.c: what assimp does not expose, from the glTF JSON: extensionsRequired/extensionsUsed
+ * (an error naming the unsupported required ones), material extensions by material index */
+void *sl_gltf_read_json(const char *path);
+void sl_gltf_free_json(void *json);
+bool sl_gltf_check_extensions(const void *json, const char *path, char *err, size_t err_size);
+void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inputs);
+
 typedef struct importer {
     sl_scene *scene;
     const struct aiScene *ai;
@@ -54,6 +61,7 @@ typedef struct importer {
     char *err;
     size_t err_size;
     unsigned unsupported; /* UNSUPPORTED_* bits: what of the file is not rendered as authored */
+    void *gltf;           /* the glTF JSON (cJSON) for what assimp does not expose; NULL if none */
     int warned_raw;
 } importer;
 
@@ -234,6 +242,7 @@ static int material_for(importer *im, unsigned i) {
         if (found && strength != 1.0f) sl_prop_set_number(in, "emissive_strength", strength, 0);
     }
     if (texture_path(im, mat, aiTextureType_EMISSIVE, tex, sizeof tex)) sl_prop_set_string(in, "emissive_texture", tex, 0);
+    if (im->gltf) sl_gltf_material_inputs(im->gltf, i, in);
     if (!sl_prop_find(in, "opacity")) {
         float opacity = material_float(mat, AI_MATKEY_OPACITY, 1.0f, &found);
         if (found && opacity < 1.0f && opacity >= 0.0f) sl_prop_set_number(in, "opacity", opacity, 0);
@@ -488,8 +497,6 @@ static void warn_unsupported(importer *im) {
     if (u) SL_WARN("%s: not rendered as authored: %s", im->path, list);
 }
 
-/* gltf_ext.c: extensionsRequired / extensionsUsed (an error naming the unsupported required ones) */
-bool sl_gltf_check_extensions(const char *path, char *err, size_t err_size);
 
 /* glTF by content, whatever the name: the GLB magic, or JSON with "asset" near the start. */
 static bool sniff_gltf(const char *path) {
@@ -596,7 +603,13 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     char *dot = strrchr(im.stem, '.');
     bool named_gltf = dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
     im.is_gltf = named_gltf || sniff_gltf(path);
-    if (im.is_gltf && !sl_gltf_check_extensions(path, err, err_size)) return false;
+    if (im.is_gltf) {
+        im.gltf = sl_gltf_read_json(path);
+        if (!sl_gltf_check_extensions(im.gltf, path, err, err_size)) {
+            sl_gltf_free_json(im.gltf);
+            return false;
+        }
+    }
     if (dot && dot != im.stem) *dot = 0;
     char *abs = realpath(path, NULL);
     snprintf(im.dir, sizeof im.dir, "%s", abs ? abs : path);
@@ -643,6 +656,7 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     }
     if (store) aiReleasePropertyStore(store);
     if (!im.ai) {
+        sl_gltf_free_json(im.gltf);
         const char *why = aiGetErrorString();
         if (why && strstr(why, "No meshes remaining")) /* assimp's words for: every mesh was dropped */
             return fail(&im, "%s: %s", "no mesh left to draw: every mesh holds points or lines only (shadelab draws "
@@ -676,5 +690,6 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     free(im.ai_nodes);
     free(im.scene_nodes);
     aiReleaseImport(im.ai);
+    sl_gltf_free_json(im.gltf);
     return ok;
 }
