@@ -9,7 +9,7 @@ void nod_vertex(inout SlVertex v) {
     vec3 u = nod_region_unit();
     float t = nod_time();
     float th = nod_theta(t);
-    vec2 w = nod_weight(dot(pw - nod_pivot, u));
+    vec2 w = nod_weight(dot((nod_mirrored(pw) ? nod_reflect(pw) : pw) - nod_pivot, u));
     if (th * w.x == 0.0 && th * w.y == 0.0) return; // at rest (t = 0, below the region): untouched, bit for bit
     mat3 M = mat3(sl_model), Minv = transpose(sl_normal_matrix);
     v.position += Minv * (nod_displace(pw, t) - pw);

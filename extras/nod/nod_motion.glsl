@@ -29,14 +29,23 @@ vec3 nod_rotate_delta(vec3 x, vec3 k, float a) {
 }
 vec3 nod_rotate(vec3 x, vec3 k, float a) { return x + nod_rotate_delta(x, k, a); }
 
+// Mirror (nod.mirror ≠ 0): points on the negative side of the plane through the origin with
+// normal m are reflected (S = I − 2mmᵀ), moved, and reflected back, so the motion repeats
+// mirrored (the other ear). S is its own inverse and keeps normals' transform (S J S)⁻ᵀ = S J⁻ᵀ S.
+bool nod_mirrored(vec3 p) { return dot(nod_mirror, nod_mirror) > 1e-12 && dot(p, nod_mirror) < 0.0; }
+vec3 nod_reflect(vec3 x) { vec3 m = normalize(nod_mirror); return x - 2.0 * dot(x, m) * m; }
+
 vec3 nod_displace(vec3 p, float t) {
-    vec3 d = p - nod_pivot;
+    bool mir = nod_mirrored(p);
+    vec3 q = mir ? nod_reflect(p) : p;
+    vec3 d = q - nod_pivot;
     float a = nod_theta(t) * nod_weight(dot(d, nod_region_unit())).x;
-    return p + nod_rotate_delta(d, nod_axis_unit(), a);
+    vec3 delta = nod_rotate_delta(d, nod_axis_unit(), a);
+    return p + (mir ? nod_reflect(delta) : delta);
 }
 
 // normal (xyz) of the deformed surface at rest position p with rest normal n; method per NOD_NORMALS
-vec3 nod_normal(vec3 p, vec3 n, float t) {
+vec3 nod_normal_unmirrored(vec3 p, vec3 n, float t) {
     vec3 d = p - nod_pivot, k = nod_axis_unit(), u = nod_region_unit();
     float th = nod_theta(t);
     vec2 w = nod_weight(dot(d, u));
@@ -51,7 +60,7 @@ vec3 nod_normal(vec3 p, vec3 n, float t) {
 #endif
 }
 
-vec3 nod_tangent(vec3 p, vec3 tg, float t) {
+vec3 nod_tangent_unmirrored(vec3 p, vec3 tg, float t) {
     vec3 d = p - nod_pivot, k = nod_axis_unit(), u = nod_region_unit();
     float th = nod_theta(t);
     vec2 w = nod_weight(dot(d, u));
@@ -62,4 +71,13 @@ vec3 nod_tangent(vec3 p, vec3 tg, float t) {
 #else
     return nod_rotate(tg + th * w.y * cross(k, d) * dot(u, tg), k, th * w.x);
 #endif
+}
+
+vec3 nod_normal(vec3 p, vec3 n, float t) {
+    if (!nod_mirrored(p)) return nod_normal_unmirrored(p, n, t);
+    return nod_reflect(nod_normal_unmirrored(nod_reflect(p), nod_reflect(n), t));
+}
+vec3 nod_tangent(vec3 p, vec3 tg, float t) {
+    if (!nod_mirrored(p)) return nod_tangent_unmirrored(p, tg, t);
+    return nod_reflect(nod_tangent_unmirrored(nod_reflect(p), nod_reflect(tg), t));
 }

@@ -63,8 +63,8 @@ static void rotate(const double x[3], const double k[3], double a, double out[3]
 }
 
 /* the deformation, written from the README's definition (not from the GLSL) */
-typedef struct { double amp_deg, freq, pivot[3], axis[3], region[3], blend; } motion;
-static void displace(const motion *m, const double p[3], double t, double out[3]) {
+typedef struct { double amp_deg, freq, pivot[3], axis[3], region[3], blend, mirror[3]; } motion;
+static void displace_unmirrored(const motion *m, const double p[3], double t, double out[3]) {
     double d[3] = {p[0] - m->pivot[0], p[1] - m->pivot[1], p[2] - m->pivot[2]};
     double ul = sqrt(m->region[0] * m->region[0] + m->region[1] * m->region[1] + m->region[2] * m->region[2]);
     double kl = sqrt(m->axis[0] * m->axis[0] + m->axis[1] * m->axis[1] + m->axis[2] * m->axis[2]);
@@ -76,15 +76,27 @@ static void displace(const motion *m, const double p[3], double t, double out[3]
     rotate(d, k, m->amp_deg * PI / 180 * sin(2 * PI * m->freq * t) * w, r);
     for (int i = 0; i < 3; i++) out[i] = m->pivot[i] + r[i];
 }
+/* nod.mirror: on the negative side of the plane through the origin with normal `mirror`, the
+ * motion of the reflected point, reflected back */
+static void displace(const motion *m, const double p[3], double t, double out[3]) {
+    double ml = sqrt(m->mirror[0] * m->mirror[0] + m->mirror[1] * m->mirror[1] + m->mirror[2] * m->mirror[2]);
+    double pm = ml > 0 ? (p[0] * m->mirror[0] + p[1] * m->mirror[1] + p[2] * m->mirror[2]) / ml : 0;
+    if (pm >= 0) { displace_unmirrored(m, p, t, out); return; }
+    double q[3], r[3];
+    for (int i = 0; i < 3; i++) q[i] = p[i] - 2 * pm * m->mirror[i] / ml;
+    displace_unmirrored(m, q, t, r);
+    double rm = (r[0] * m->mirror[0] + r[1] * m->mirror[1] + r[2] * m->mirror[2]) / ml;
+    for (int i = 0; i < 3; i++) out[i] = r[i] - 2 * rm * m->mirror[i] / ml;
+}
 
 static char *defines_of(const motion *m, const char *normals) {
     static char buf[1024];
     snprintf(buf, sizeof buf,
              "nod_amplitude %.9g\nnod_frequency %.9g\nnod_pivot vec3(%.9g,%.9g,%.9g)\nnod_axis vec3(%.9g,%.9g,%.9g)\n"
              "nod_region vec3(%.9g,%.9g,%.9g)\nnod_blend %.9g\nNOD_NORMALS_REST 0\nNOD_NORMALS_RIGID 1\nNOD_NORMALS_EXACT 2\n"
-             "NOD_NORMALS %s\nnod_pose_time -1.0",
+             "NOD_NORMALS %s\nnod_pose_time -1.0\nnod_mirror vec3(%.9g,%.9g,%.9g)",
              m->amp_deg, m->freq, m->pivot[0], m->pivot[1], m->pivot[2], m->axis[0], m->axis[1], m->axis[2],
-             m->region[0], m->region[1], m->region[2], m->blend, normals);
+             m->region[0], m->region[1], m->region[2], m->blend, normals, m->mirror[0], m->mirror[1], m->mirror[2]);
     return buf;
 }
 
@@ -117,8 +129,10 @@ int main(void) {
         }
         sl_harness *h = make(NULL, NULL, true);
         char err[4096];
-        for (int tcase = 0; tcase < 2; tcase++) {
+        for (int tcase = 0; tcase < 3; tcase++) {
             double t = tcase == 0 ? 1.0 : 0.37; /* quarter period (f = 0.25 Hz), and any time */
+            /* third case: mirrored across the plane x + 0.2 z = 0 (both ears), points on both sides */
+            if (tcase == 2) m.mirror[0] = 1, m.mirror[2] = 0.2, m.pivot[0] = 0.5;
             char expr[128];
             snprintf(expr, sizeof expr, "vec4(nod_displace(in0.xyz, %.9g), 0.0)", t);
             sl_glsl_eval_desc d = {.struct_size = sizeof d, .plugin = "nod", .files = files, .expression = expr,
@@ -133,7 +147,8 @@ int main(void) {
                     moved_max = fmax(moved_max, fabs(q[k] - p[k]));
                 }
             }
-            printf("displacement t=%.2f: max |GLSL - C Rodrigues| = %.3g (largest motion %.3g)\n", t, worst, moved_max);
+            printf("displacement t=%.2f%s: max |GLSL - C Rodrigues| = %.3g (largest motion %.3g)\n", t,
+                   tcase == 2 ? " mirrored" : "", worst, moved_max);
             CHECK(worst < 2e-5, "displacement differs from the closed-form rotation by %g", worst);
             CHECK(moved_max > 0.3, "the region did not move (max %g)", moved_max);
         }
