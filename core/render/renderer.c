@@ -34,6 +34,7 @@ int sl_renderer_reload_shaders(sl_app *app) {
     sl_renderer *r = R(app);
     int failures = 0;
     char err[16384];
+    r->programs_version++;
     for (int i = 0; i < r->program_count; i++) {
         sl_program *p = r->programs[i];
         const char *dir = p->owner >= 0 ? app->plugins.items[p->owner]->resource_dir : sl_shader_dir();
@@ -77,6 +78,7 @@ static void refresh(sl_app *app) {
     if (lights_changed || (sl_gpu_lights_animated(app) && r->seen_light_time != app->time)) sl_gpu_pack_lights(app);
     r->seen_light_time = app->time;
     if (recompose) {
+        r->programs_version++;
         sl_gpu_compose_all(app);
         free(r->seen_debug_view);
         r->seen_debug_view = app->debug_view ? strdup(app->debug_view) : NULL;
@@ -115,7 +117,8 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
         animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(&app->plugins, app->plugins.chunks[i].owner);
     f->geometry_version = animated ? app->frame_index + 1 : 0;
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
-    f->params_version = app->params.version + app->materials_version;
+    /* + programs recomposed or reloaded (debug view, hot reload): what a pass shows may change */
+    f->params_version = app->params.version + app->materials_version + r->programs_version;
     f->accumulate_index = acc_index;
     f->accumulate_count = acc_count;
     /* temporal antialiasing (ABI 1.6): the previous frame's camera, the unjittered view-projection,

@@ -15,7 +15,7 @@ enum { AA_NONE, AA_FXAA, AA_TAA };
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
 static const sl_param_desc params[] = {
-    P(.id = "method", .type = SL_PARAM_ENUM, .enum_values = methods, .default_value = {.i = AA_FXAA},
+    P(.id = "method", .type = SL_PARAM_ENUM, .enum_values = methods, .default_value = {.i = AA_TAA},
       .flags = SL_PARAM_QUALITY_KNOB, .group = "method",
       .description = "none; fxaa (Lottes 2009: edge-directed blend of the final image, one pass); taa (Karis 2014: "
                      "jittered frames accumulated with motion-vector reprojection, neighbourhood clamping and "
@@ -52,6 +52,10 @@ typedef struct aa {
     int current, hw, hh, dw, dh;
     uint64_t frames_begun, taa_ran_at; /* begin_frame count; its value when TAA last ran */
     bool history_valid;
+    /* stills: frames since the view last changed (versions and size of sl_frame) */
+    uint64_t signature, cut;
+    int still, restart;       /* frames of the current still; 1 = restart the history this frame */
+    bool converged;           /* the still has its taa_frames frames: show the history as it is */
 } aa;
 
 static sl_value param(aa *a, const char *id) {
@@ -95,17 +99,51 @@ static float halton(unsigned i, unsigned b) {
     return r;
 }
 
+/* What moves the image (camera, animated geometry and lights): while it stays, the view is
+ * still. A change of settings or size is a cut instead: the history of another setting is no
+ * history of this one, so the accumulation restarts (a live change equals a fresh start). */
+static uint64_t motion_signature(const sl_frame *f) {
+    uint64_t v[] = {f->camera_version, f->geometry_version, f->lights_version};
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < sizeof v / sizeof *v; i++) h = (h ^ v[i]) * 1099511628211ull;
+    return h;
+}
+static uint64_t cut_signature(const sl_frame *f) {
+    uint64_t v[] = {f->params_version, (uint64_t)f->width << 32 | (uint32_t)f->height};
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < sizeof v / sizeof *v; i++) h = (h ^ v[i]) * 1099511628211ull;
+    return h;
+}
+
 static void begin_frame(void *user, const sl_frame *f) {
     aa *a = user;
     a->frames_begun++;
     if (param(a, "method").i != AA_TAA) return;
     int n = param(a, "taa_frames").i;
+    a->host->set_still_frames(a->host, n);
+    /* A still view (nothing changed since the last frame, which TAA rendered) accumulates
+     * exactly: the first frame of the still restarts the history at the pixel centre, the next
+     * n-1 frames add Halton points 1..n-1 with equal weights, and from then on the history is
+     * shown as it is (no jitter): the window shows what a headless still (n frames) gives. */
+    uint64_t sig = motion_signature(f), cut = cut_signature(f);
+    bool consecutive = a->history_valid && a->taa_ran_at + 1 == a->frames_begun;
+    if (!consecutive || cut != a->cut) a->still = 0, a->restart = 1; /* a first frame starts a still */
+    else if (sig != a->signature) a->still = -1, a->restart = 0; /* moving: ordinary TAA */
+    else if (a->still < 0) a->still = 0, a->restart = 1;        /* it just stopped: restart */
+    else a->still++, a->restart = 0;
+    a->signature = sig;
+    a->cut = cut;
+    a->converged = a->still >= n;
+    if (a->still >= 0) {
+        if (!a->converged && a->still > 0)
+            a->host->set_jitter(a->host, halton((unsigned)a->still, 2) - 0.5f, halton((unsigned)a->still, 3) - 0.5f);
+        return;
+    }
     /* Frame k of each run of n samples the pixel centre (k = 0), then Halton points 1..n-1
      * (Halton 0 is a corner). A first frame is therefore the image without antialiasing, so a
      * single-frame render is the same with TAA on (a TAA still is the mean of n frames). */
     unsigned k = (unsigned)(f->index % (uint64_t)(n > 0 ? n : 1));
     if (k) a->host->set_jitter(a->host, halton(k, 2) - 0.5f, halton(k, 3) - 0.5f);
-    a->host->set_still_frames(a->host, n);
 }
 
 static bool taa_active(void *user, const sl_frame *f) {
@@ -175,7 +213,18 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     taa_textures(a, w, hh, dw, dh);
     /* the history continues only from the frame just before (not after the method was off, a
      * pause or a resize) */
-    bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun;
+    bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun && !a->restart;
+    if (a->converged && valid) { /* a converged still: the history as it is */
+        if (h->bind_outputs(h, ctx, 0) == SL_OK) {
+            glUseProgram(p);
+            bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_nearest);
+            glUniform1i(glGetUniformLocation(p, "aa_copy"), 1);
+            h->draw_fullscreen(h, ctx);
+            glBindSampler(a->unit[3], 0);
+        }
+        a->taa_ran_at = a->frames_begun;
+        return;
+    }
     float inv[16], prev_inv[16];
     if (!invert4(f->view_proj, inv) || !invert4(f->prev_view_proj, prev_inv)) valid = false, memset(inv, 0, sizeof inv),
                                                                                memset(prev_inv, 0, sizeof prev_inv);

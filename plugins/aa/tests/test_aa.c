@@ -111,6 +111,12 @@ static void test_taa_still(void) {
         long differ = 0;
         for (int i = 0; i < W * H; i++) differ += memcmp(one + i * 4, base + i * 4, 3 * sizeof(float)) != 0;
         CHECK_MSG(differ == 0, "edge %g deg: a single TAA frame differs from none in %ld pixels", angles[k], differ);
+        /* a still keeps its 16-frame mean however long it is shown (the window = headless) */
+        static float longer[W * H * 4];
+        if (!render_still(json, s_taa, 40, longer)) return;
+        differ = 0;
+        for (int i = 0; i < W * H; i++) differ += memcmp(longer + i * 4, img + i * 4, 3 * sizeof(float)) != 0;
+        CHECK_MSG(differ == 0, "edge %g deg: 40 frames of a still differ from its 16 in %ld pixels", angles[k], differ);
         double e_none = rmse(base, ref), e_taa = rmse(img, ref);
         printf("edge %4.1f deg: RMSE to ssaa=8: none %.5f, taa after 16 frames %.5f (%.0f %% less)\n", angles[k], e_none,
                e_taa, 100 * (1 - e_taa / e_none));
