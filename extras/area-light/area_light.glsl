@@ -6,12 +6,15 @@
 // or on both faces (two_sided).
 //
 //   ggx model:   diffuse by Lambert's formula, specular by the LTC fitted to the ggx plugin's BRDF
-//                (ltc_fit.c; Heitz et al. 2016), Fresnel by Schlick's F0 (see README)
+//                (ltc_fit.c; Heitz et al. 2016); Fresnel: Schlick's split for the schlick and
+//                metallic-roughness modes, the exact dielectric Fresnel at the lobe's mean angle
+//                for exact (see README)
 //   lambert:     Lambert's formula: exact for the polygon
 //   other models: the model evaluated once, at the direction of the polygon's vector irradiance
 //                with its magnitude (exact for Lambertian terms; an approximation otherwise)
 //   method = reference: Monte Carlo over the light's surface with the model itself (no visibility)
 #include "area_polygon.glsl"
+#include "sl:ggx_brdf.glsl" // the SDK's GGX terms (ggx_fresnel_exact)
 
 uniform sampler2D area_light_ltc_m;     // M⁻¹ entries (a, b, c, d), see ltc.h
 uniform sampler2D area_light_ltc_n;     // (norm, fresnel, -, -)
@@ -70,8 +73,7 @@ vec3 area_light_reference(SlLight L, SlSurface s, vec3 c, vec3 nl, vec3 ex, vec3
 
 #ifdef SL_MODEL_GGX
 // F0 of the ggx plugin's Fresnel modes, from the material keys this plugin shares with it
-// (fresnel, eta, metallic): Schlick's F0 = ((1 − η)/(1 + η))² for exact and schlick (the exact
-// dielectric Fresnel is approximated by Schlick here), mix(0.04, base, metallic) for
+// (fresnel, eta, metallic): Schlick's F0 = ((1 − η)/(1 + η))², mix(0.04, base, metallic) for
 // metallic-roughness.
 vec3 area_light_f0(SlSurface s) {
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
@@ -91,11 +93,10 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
 #if AREA_LIGHT_METHOD == AREA_LIGHT_METHOD_REFERENCE
     return area_light_reference(L, s, c, nl, ex, ey);
 #else
-    vec3 v[AREA_LIGHT_MAX_VERTS];
-    int n = area_light_polygon(c - s.position, ex, ey, L.params[0].x, L.params[0].y, L.params[0].z > 0.5,
-                               AREA_LIGHT_DISK_SEGMENTS, v);
+    AreaLightPolygon poly = area_light_make_polygon(c - s.position, ex, ey, L.params[0].x, L.params[0].y,
+                                                    L.params[0].z > 0.5, AREA_LIGHT_DISK_SEGMENTS);
     mat3 frame = area_light_frame(s.normal, s.view);
-    vec3 phi = area_light_vector_irradiance(v, n, frame); // local frame; phi.z = ∫ cos dω
+    vec3 phi = area_light_vector_irradiance(poly, frame); // local frame; phi.z = ∫ cos dω
     vec3 Le = L.color.rgb;
 #if defined(SL_MODEL_GGX)
     float alpha = max(s.alpha, 2e-3), ndv = clamp(dot(s.normal, s.view), 0.0, 1.0);
@@ -103,9 +104,15 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
     vec4 m = texture(area_light_ltc_m, tc);
     vec2 nf = texture(area_light_ltc_n, tc).xy;
     mat3 minv = mat3(vec3(m.x, 0.0, m.z), vec3(0.0, 1.0, 0.0), vec3(m.y, 0.0, m.w)); // columns
-    float spec = area_light_vector_irradiance(v, n, minv * frame).z * SL_INV_PI;
+    float spec = area_light_vector_irradiance(poly, minv * frame).z * SL_INV_PI;
     vec3 f0 = area_light_f0(s);
-    vec3 fs = f0 * (nf.x - nf.y) + nf.y; // ∫ F f cos / ∫ D_ltc, Schlick split (see ltc.h)
+#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_SCHLICK || SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+    vec3 fs = f0 * (nf.x - nf.y) + nf.y; // ∫ F f cos / ∫ D_ltc, Schlick split (exact for Schlick; see ltc.h)
+#else
+    // exact dielectric Fresnel at the lobe's mean Schlick argument: (1 − c)⁵ = fresnel / norm
+    float c5 = clamp(nf.y / max(nf.x, 1e-8), 0.0, 1.0);
+    vec3 fs = vec3(nf.x * ggx_fresnel_exact(1.0 - pow(c5, 0.2), sl_mat_eta));
+#endif
     if (ndv <= 0.0) fs = vec3(0.0);      // the model's masking: no specular facing away
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
     vec3 kd = (1.0 - f0) * (1.0 - sl_mat_metallic); // (1 − F) approximated by (1 − F0)

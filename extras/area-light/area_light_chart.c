@@ -61,6 +61,7 @@ static double now(void) {
 static int cmp_d(const void *a, const void *b) { double x = *(const double *)a, y = *(const double *)b; return (x > y) - (x < y); }
 
 int main(int argc, char **argv) {
+    setvbuf(stdout, NULL, _IOLBF, 0); /* progress as it goes */
     int frames = 15, accumulate = 64;
     const char *out = "area-light-chart";
     for (int i = 1; i < argc; i++) {

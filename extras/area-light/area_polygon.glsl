@@ -10,26 +10,37 @@
 
 const int AREA_LIGHT_MAX_VERTS = 64;
 
-// Vertices of a rectangle (width along ex, height along ey, centred at c) or of a disk (ellipse of
-// diameters w, h) drawn as a regular polygon of `segments` vertices with the disk's area: the
-// radius is scaled by √(2π / (N sin(2π/N))). Returns the vertex count.
-int area_light_polygon(vec3 c, vec3 ex, vec3 ey, float w, float h, bool disk, int segments,
-                       out vec3 v[AREA_LIGHT_MAX_VERTS]) {
-    if (!disk) {
-        vec3 x = ex * (0.5 * w), y = ey * (0.5 * h);
-        v[0] = c - x - y;
-        v[1] = c + x - y;
-        v[2] = c + x + y;
-        v[3] = c - x + y;
-        return 4;
+// A light polygon: a rectangle (width along ex, height along ey, centred at c) or a disk (ellipse
+// of diameters w, h) drawn as a regular polygon of n vertices with the disk's area: the radius is
+// scaled by √(2π / (N sin(2π/N))). Vertices are made on the fly (no arrays: llvmpipe spills
+// them to memory).
+struct AreaLightPolygon {
+    vec3 c, ex, ey; // centre (relative to the shading point) and the half axes
+    bool disk;
+    int n;
+};
+
+AreaLightPolygon area_light_make_polygon(vec3 c, vec3 ex, vec3 ey, float w, float h, bool disk, int segments) {
+    AreaLightPolygon p;
+    p.disk = disk;
+    p.n = disk ? clamp(segments, 3, AREA_LIGHT_MAX_VERTS) : 4;
+    float k = disk ? sqrt(2.0 * SL_PI / (float(p.n) * sin(2.0 * SL_PI / float(p.n)))) : 1.0;
+    p.c = c;
+    p.ex = ex * (0.5 * w * k);
+    p.ey = ey * (0.5 * h * k);
+    return p;
+}
+
+// Vertex i (0..n-1, counter-clockwise about ex × ey): rectangle corners (−,−) (+,−) (+,+) (−,+).
+vec3 area_light_vertex(AreaLightPolygon p, int i) {
+    vec2 q;
+    if (p.disk) {
+        float a = 2.0 * SL_PI * float(i) / float(p.n);
+        q = vec2(cos(a), sin(a));
+    } else {
+        q = vec2(i == 1 || i == 2 ? 1.0 : -1.0, i >= 2 ? 1.0 : -1.0);
     }
-    int n = clamp(segments, 3, AREA_LIGHT_MAX_VERTS);
-    float k = sqrt(2.0 * SL_PI / (float(n) * sin(2.0 * SL_PI / float(n))));
-    for (int i = 0; i < n; ++i) {
-        float a = 2.0 * SL_PI * float(i) / float(n);
-        v[i] = c + ex * (cos(a) * 0.5 * w * k) + ey * (sin(a) * 0.5 * h * k);
-    }
-    return n;
+    return p.c + p.ex * q.x + p.ey * q.y;
 }
 
 // One edge's term of Lambert's formula for unit a, b: γ (a × b)/|a × b|, with γ = atan(|a×b|, a·b)
@@ -50,22 +61,22 @@ void area_light_emit(vec3 q, inout vec3 first, inout vec3 last, inout int count,
     count++;
 }
 
-// Vector form factor ×π (the vector irradiance of unit radiance) of the polygon v[0..n) (relative
-// to the shading point) after the linear map m (world → local frame, z = normal, possibly
-// followed by an LTC's M⁻¹), clipped to z >= 0 (Sutherland–Hodgman, streamed: the clipped
-// polygon's edges are summed as they are produced). Oriented so that z >= 0; z = ∫ cos dω.
-vec3 area_light_vector_irradiance(vec3 v[AREA_LIGHT_MAX_VERTS], int n, mat3 m) {
+// Vector form factor ×π (the vector irradiance of unit radiance) of the polygon (relative to the
+// shading point) after the linear map m (world → local frame, z = normal, possibly followed by an
+// LTC's M⁻¹), clipped to z >= 0 (Sutherland–Hodgman, streamed: the clipped polygon's edges are
+// summed as they are produced). Oriented so that z >= 0; z = ∫ cos dω.
+vec3 area_light_vector_irradiance(AreaLightPolygon p, mat3 m) {
     vec3 first = vec3(0.0), last = vec3(0.0), sum = vec3(0.0);
     int count = 0;
-    vec3 a = m * v[0];
-    for (int i = 0; i < n; ++i) {
-        vec3 b = m * v[i + 1 < n ? i + 1 : 0];
+    vec3 v0 = m * area_light_vertex(p, 0), a = v0;
+    for (int i = 0; i < p.n; ++i) {
+        vec3 b = i + 1 < p.n ? m * area_light_vertex(p, i + 1) : v0;
         bool ain = a.z >= 0.0, bin = b.z >= 0.0;
         if (ain) area_light_emit(a, first, last, count, sum);
         if (ain != bin) {
-            vec3 p = mix(a, b, a.z / (a.z - b.z));
-            p.z = 0.0;
-            area_light_emit(p, first, last, count, sum);
+            vec3 q = mix(a, b, a.z / (a.z - b.z));
+            q.z = 0.0;
+            area_light_emit(q, first, last, count, sum);
         }
         a = b;
     }
@@ -97,8 +108,7 @@ void area_light_axes(vec3 nl, vec3 axis, out vec3 ex, out vec3 ey) {
 // The vector irradiance (×π form factor, see above) of a rectangle or disk light of centre c
 // (relative to the shading point), normal nl, width axis `axis`, after the map m.
 vec3 area_light_polygon_irradiance(vec3 c, vec3 nl, vec3 axis, float w, float h, bool disk, int segments, mat3 m) {
-    vec3 ex, ey, v[AREA_LIGHT_MAX_VERTS];
+    vec3 ex, ey;
     area_light_axes(normalize(nl), axis, ex, ey);
-    int n = area_light_polygon(c, ex, ey, w, h, disk, segments, v);
-    return area_light_vector_irradiance(v, n, m);
+    return area_light_vector_irradiance(area_light_make_polygon(c, ex, ey, w, h, disk, segments), m);
 }
