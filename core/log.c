@@ -6,6 +6,18 @@ sl_log_level sl_log_threshold = SL_LOG_INFO;
 static int counts[4];
 static char *capture_buf;
 static size_t capture_size;
+static char problems[6144];
+static int problems_dropped;
+
+const char *sl_log_problems(void) {
+    static char out[sizeof problems + 64];
+    snprintf(out, sizeof out, "%s", problems);
+    if (problems_dropped) {
+        size_t l = strlen(out);
+        snprintf(out + l, sizeof out - l, "… and %d more (stderr has them all)\n", problems_dropped);
+    }
+    return out;
+}
 
 void sl_log_capture(char *buf, size_t size) {
     capture_buf = buf;
@@ -29,6 +41,11 @@ void sl_logv(sl_log_level level, const char *prefix, const char *fmt, va_list ap
     if (capture_buf) {
         size_t used = strlen(capture_buf);
         if (used + 1 < capture_size) snprintf(capture_buf + used, capture_size - used, "%s", line);
+    }
+    if (level >= SL_LOG_WARN) {
+        size_t used = strlen(problems), len = strlen(line);
+        if (used + len < sizeof problems) memcpy(problems + used, line, len + 1);
+        else problems_dropped++;
     }
     if (level >= sl_log_threshold) fputs(line, stderr);
 }

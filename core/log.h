@@ -11,6 +11,9 @@ void sl_logv(sl_log_level level, const char *prefix, const char *fmt, va_list ap
 int sl_log_count(sl_log_level level);
 /* Captures everything logged into a buffer as well (tests); NULL stops. */
 void sl_log_capture(char *buf, size_t size);
+/* Every warning and error logged so far, one per line ("warning: …", "error: …"), bounded (the
+ * oldest stay; a last line counts what did not fit). The window shows what loading left here. */
+const char *sl_log_problems(void);
 
 #define SL_DEBUG(...) sl_log(SL_LOG_DEBUG, __VA_ARGS__)
 #define SL_INFO(...) sl_log(SL_LOG_INFO, __VA_ARGS__)

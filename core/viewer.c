@@ -387,6 +387,18 @@ int sl_viewer_run(sl_app *app, double start_time) {
             SL_WARN("no GUI panel: %s", err);
         }
     }
+    /* what loading left (a missing texture, an unknown key, a plugin that did not load) stays on
+     * screen until dismissed, like a shader error: a window user may never see stderr */
+    const char *load_problems = sl_log_problems();
+    if (v->panel && *load_problems) {
+        size_t n = strlen(load_problems) + 64;
+        char *text = malloc(n);
+        if (text) {
+            snprintf(text, n, "Loading reported:\n%s", load_problems);
+            sl_panel_set_shader_error(v->panel, text);
+            free(text);
+        }
+    }
     script sc = {0};
     const char *st = getenv("SHADELAB_VIEWER_SCRIPT");
     if (st && *st) sc.cursor = sc.text = strdup(st);

@@ -13,6 +13,7 @@
 #   3. keys: two plugins wanting the same key: reported, resolved (Shift+key), both usable.
 #   4. real key presses (XTEST): X server → GLFW → Dear ImGui's chained callbacks → the viewer:
 #      P saves a screenshot, the example plugin's V toggles its vignette, F1 hides the panel.
+#   5. a scene that loads with an error (a missing texture) shows it in the window.
 # Tolerances: display-encoded PNG max |diff| <= 1/255 (one 8-bit code value); EXR (half)
 # max |diff| <= 1e-3. Measured on Mesa llvmpipe: 0 for both (GLX and OSMesa give equal pixels).
 #   usage: gui_smoke.sh SHADELAB IMGDIFF EXAMPLE_DIR KEYS_A.so KEYS_B.so SL-XKEY
@@ -139,6 +140,17 @@ wait 3; grab $T/run3/nopanel.png; quit" \
     same_png nopanel.png shadelab-001.png           # F1 hid the panel: the window is the image
   fi
 fi
+
+echo "== 5. what loading reports (a missing texture) is shown in the window, not only on stderr"
+mkdir -p "$T/run5" && cd "$T/run5"
+echo '{"materials": [{"name": "m", "base_color_map": "no-such-texture.png"}], "nodes": [{"mesh": {"primitive": "sphere"}, "material": "m"}], "lights": [{"type": "directional"}]}' >missing.json
+SHADELAB_VIEWER_SCRIPT="wait 2; key P; grab $T/run5/window.png; quit" \
+  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --size $SIZE --scene missing.json \
+    >"$T/run5.out" 2>"$T/run5.err"
+[ $? -eq 0 ] || { cat "$T/run5.err"; fail "part 5: viewer failed"; }
+grep -q "no-such-texture.png" "$T/run5.err" || fail "part 5: stderr lacks the missing texture"
+# the overlay covers the bottom of the window over the image (the panel is on the left)
+[ -e window.png ] && differ window.png shadelab-000.png --region $PANEL_RIGHT $((H - 24)) $W $H
 
 [ $FAILED -eq 0 ] || { echo "--- run1 stderr"; cat "$T/run1.err"; echo "--- run2 stderr"; cat "$T/run2.err"; exit 1; }
 echo "PASS: GUI smoke test"

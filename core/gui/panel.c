@@ -450,9 +450,12 @@ void sl_panel_draw(sl_panel *p, double dt, sl_panel_actions *act) {
             if (strstr(p->shader_error, "keep their last good program"))
                 sl_ui_text_colored(1, 0.8f, 0.3f, "Shader error: the last good program is still in use. "
                                                   "Fix the file; it reloads on save (or F5).");
+            else if (!strncmp(p->shader_error, "Loading reported:", 17))
+                sl_ui_text_colored(1, 0.8f, 0.3f, "Problems while loading (stderr has the full log):");
             else
                 sl_ui_text_colored(1, 0.8f, 0.3f, "Error (stderr has the full log):");
-            sl_ui_text_wrapped(p->shader_error);
+            const char *nl = strchr(p->shader_error, '\n');
+            sl_ui_text_wrapped(!strncmp(p->shader_error, "Loading reported:", 17) && nl ? nl + 1 : p->shader_error);
             dismiss = sl_ui_small_button("dismiss");
         }
         sl_ui_end();

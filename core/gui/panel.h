@@ -36,7 +36,8 @@ void sl_panel_draw(sl_panel *p, double frame_dt, sl_panel_actions *actions);
 void sl_panel_toggle(sl_panel *p);
 /* A status line over the image ("compiling shaders …"; a static string); NULL clears it. */
 void sl_panel_set_status(sl_panel *p, const char *text);
-/* The shader compile error shown on screen (file:line …); NULL clears it. */
+/* The error overlay, shown whether or not the panel is, until dismissed: a shader compile error
+ * (file:line …), or what loading logged (text starting "Loading reported:"); NULL clears it. */
 void sl_panel_set_shader_error(sl_panel *p, const char *text);
 
 /* "id=value" (plugin.param, material.NAME.key, light.NAME.key) from the GUI. On failure the
