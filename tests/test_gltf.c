@@ -36,6 +36,11 @@ static char logbuf[1 << 16];
 /* the texels, top row first (glTF: uv (0, 0) is the image's top left) */
 static const unsigned char texels[2][2][3] = {{{200, 30, 30}, {30, 200, 30}}, {{30, 30, 200}, {220, 220, 40}}};
 
+/* the fixture's sampler (glTF JSON) and UV range; the closed form follows them */
+static const char *g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
+static float g_uv_lo = 0, g_uv_hi = 1;
+static int g_wrap[2] = {10497, 10497}, g_nearest = 0;
+
 typedef struct buf { unsigned char *d; size_t n, cap; } buf;
 static void put(buf *b, const void *p, size_t n) {
     if (b->n + n > b->cap) {
@@ -81,7 +86,8 @@ static bool texture_png(buf *png) {
 static void geometry(buf *bin, const buf *png) {
     const float pos[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
     const float nrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-    const float uv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    const float lo = g_uv_lo, hi = g_uv_hi;
+    const float uv[8] = {lo, lo, hi, lo, hi, hi, lo, hi};
     const uint16_t idx[6] = {0, 3, 2, 0, 2, 1}; /* counter-clockwise seen from +Z */
     put(bin, pos, sizeof pos);
     put(bin, nrm, sizeof nrm);
@@ -112,7 +118,7 @@ static char *gltf_json(size_t bin_len, size_t png_len, const char *buffer_uri, c
              " \"materials\": [{\"name\": \"paint\", \"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}, "
              "\"metallicFactor\": 0}%s}],\n"
              " \"textures\": [{\"source\": 0, \"sampler\": 0}],\n"
-             " \"samplers\": [{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}],\n"
+             " \"samplers\": [%s],\n"
              " \"images\": [%s],\n"
              " \"buffers\": [{\"byteLength\": %zu%s}],\n"
              " \"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48}, {\"buffer\": 0, \"byteOffset\": 48, "
@@ -122,7 +128,8 @@ static char *gltf_json(size_t bin_len, size_t png_len, const char *buffer_uri, c
              "\"max\": [1, 1, 0]}, {\"bufferView\": 1, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}, "
              "{\"bufferView\": 2, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC2\"}, {\"bufferView\": 3, "
              "\"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"}]}\n",
-             extra ? extra : "", material_extra ? material_extra : "", image, bin_len, buffer_uri ? buffer : "", png_len);
+             extra ? extra : "", material_extra ? material_extra : "", g_sampler, image, bin_len, buffer_uri ? buffer : "",
+             png_len);
     /* the data: URIs go in last (they may hold '%') */
     char *out = malloc(need);
     if (buffer_uri && image_uri) snprintf(out, need, tmpl, image_uri, buffer_uri);
@@ -190,15 +197,28 @@ static bool write_gltf_data_uri(const char *path) {
 
 static double srgb_decode(double e) { return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4); }
 
-/* Bilinear REPEAT filter of the decoded texels at (u, v) (OpenGL 4.5 §8.14.2, texel centres at
- * (k + ½)/2). */
+/* A texel index wrapped as OpenGL 4.5 §8.14.2 says for a 2-texel axis (REPEAT, CLAMP_TO_EDGE,
+ * MIRRORED_REPEAT: (N − 1) − mirror((i mod 2N) − N), mirror(a) = a ≥ 0 ? a : −(1 + a)). */
+static int wrap_index(int i, int mode) {
+    if (mode == 33071) return i < 0 ? 0 : i > 1 ? 1 : i;
+    if (mode == 33648) {
+        int a = ((i % 4) + 4) % 4 - 2;
+        return 1 - (a >= 0 ? a : -(1 + a));
+    }
+    return ((i % 2) + 2) % 2;
+}
+
+/* The texture filtered at (u, v) as the fixture's sampler says: NEAREST (the texel holding the
+ * point) or LINEAR (bilinear over the texel centres (k + ½)/2), each axis wrapped by its mode. */
 static double expected(double u, double v, int c) {
+    if (g_nearest)
+        return srgb_decode(texels[wrap_index((int)floor(v * 2), g_wrap[1])][wrap_index((int)floor(u * 2), g_wrap[0])][c] / 255.0);
     double x = u * 2 - 0.5, y = v * 2 - 0.5;
     int x0 = (int)floor(x), y0 = (int)floor(y);
     double fx = x - x0, fy = y - y0, sum = 0;
     for (int dy = 0; dy < 2; dy++)
         for (int dx = 0; dx < 2; dx++) {
-            int tx = ((x0 + dx) % 2 + 2) % 2, ty = ((y0 + dy) % 2 + 2) % 2;
+            int tx = wrap_index(x0 + dx, g_wrap[0]), ty = wrap_index(y0 + dy, g_wrap[1]);
             sum += (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy) * srgb_decode(texels[ty][tx][c] / 255.0);
         }
     return sum;
@@ -220,7 +240,8 @@ static void check_texture_render(const char *path, const char *what) {
     for (int j = 0; j < H; j++)
         for (int i = 0; i < W; i++)
             for (int c = 0; c < 3; c++) {
-                double e = fabs(img[(j * W + i) * 4 + c] - expected((i + 0.5) / W, (j + 0.5) / H, c));
+                double u = g_uv_lo + (g_uv_hi - g_uv_lo) * (i + 0.5) / W, v = g_uv_lo + (g_uv_hi - g_uv_lo) * (j + 0.5) / H;
+                double e = fabs(img[(j * W + i) * 4 + c] - expected(u, v, c));
                 if (e > worst) worst = e, wi = i, wj = j;
             }
     /* filtering weights are 8-bit fractions on llvmpipe: 1/512 of the largest texel difference */
@@ -419,6 +440,27 @@ static void test_occlusion(void) {
     free(a), free(b);
 }
 
+/* The file's sampler is honoured: UVs from −0.5 to 1.5 (each texel's wrap shows), CLAMP_TO_EDGE
+ * along s, MIRRORED_REPEAT along t, NEAREST magnification; then the same with REPEAT and LINEAR. */
+static void test_samplers(void) {
+    char path[4200];
+    struct { const char *json; int s, t, nearest; } cases[] = {
+        {"{\"magFilter\": 9728, \"minFilter\": 9728, \"wrapS\": 33071, \"wrapT\": 33648}", 33071, 33648, 1},
+        {"{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 33648, \"wrapT\": 10497}", 33648, 10497, 0},
+    };
+    g_uv_lo = -0.5f, g_uv_hi = 1.5f;
+    for (int k = 0; k < 2; k++) {
+        g_sampler = cases[k].json, g_wrap[0] = cases[k].s, g_wrap[1] = cases[k].t, g_nearest = cases[k].nearest;
+        snprintf(path, sizeof path, "%s/sampler%d.glb", sl_test_dir(), k);
+        CHECK(write_glb(path, NULL, NULL));
+        char what[64];
+        snprintf(what, sizeof what, "sampler %d (wrap %d/%d, %s)", k, cases[k].s, cases[k].t, k ? "linear" : "nearest");
+        check_texture_render(path, what);
+    }
+    g_uv_lo = 0, g_uv_hi = 1, g_nearest = 0, g_wrap[0] = g_wrap[1] = 10497;
+    g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
+}
+
 int main(void) {
     test_open_direct();
     test_data_uri();
@@ -426,5 +468,6 @@ int main(void) {
     test_extensions();
     test_emissive();
     test_occlusion();
+    test_samplers();
     return check_result();
 }

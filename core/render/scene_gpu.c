@@ -110,6 +110,12 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(tex, GL_TEXTURE_WRAP_S, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
         glTextureParameteri(tex, GL_TEXTURE_WRAP_T, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
+        /* an imported texture's own sampler (glTF "samplers": GL enums; 0 keeps the default) */
+        const sl_texture_sampler *smp = sl_scene_find_sampler(&app->scene, spec);
+        if (smp && smp->wrap_s) glTextureParameteri(tex, GL_TEXTURE_WRAP_S, smp->wrap_s);
+        if (smp && smp->wrap_t) glTextureParameteri(tex, GL_TEXTURE_WRAP_T, smp->wrap_t);
+        if (smp && smp->mag_filter) glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, smp->mag_filter);
+        if (smp && smp->min_filter) glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, smp->min_filter);
         if (!r->anisotropy) sl_gpu_apply_anisotropy(app);
         glTextureParameterf(tex, GL_TEXTURE_MAX_ANISOTROPY, (float)r->anisotropy);
     }

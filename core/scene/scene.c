@@ -301,6 +301,25 @@ int sl_scene_add_image(sl_scene *scene, const char *name, const void *data, size
     return scene->image_count++;
 }
 
+const sl_texture_sampler *sl_scene_find_sampler(const sl_scene *scene, const char *texture) {
+    for (int i = 0; texture && i < scene->sampler_count; i++)
+        if (!strcmp(scene->samplers[i].texture, texture)) return &scene->samplers[i];
+    return NULL;
+}
+
+bool sl_scene_set_sampler(sl_scene *scene, const sl_texture_sampler *sampler) {
+    const sl_texture_sampler *prev = sl_scene_find_sampler(scene, sampler->texture);
+    if (prev)
+        return prev->wrap_s == sampler->wrap_s && prev->wrap_t == sampler->wrap_t &&
+               prev->mag_filter == sampler->mag_filter && prev->min_filter == sampler->min_filter;
+    if (!grow((void **)&scene->samplers, scene->sampler_count, sizeof(sl_texture_sampler))) return false;
+    sl_texture_sampler *d = &scene->samplers[scene->sampler_count];
+    *d = *sampler;
+    if (!(d->texture = dup_str(sampler->texture))) return false;
+    scene->sampler_count++;
+    return true;
+}
+
 const sl_embedded_image *sl_scene_find_image(const sl_scene *scene, const char *name) {
     for (int i = 0; name && i < scene->image_count; i++)
         if (!strcmp(scene->images[i].name, name)) return &scene->images[i];
@@ -314,6 +333,8 @@ void sl_scene_free(sl_scene *scene) {
         free(scene->images[i].data);
     }
     free(scene->images);
+    for (int i = 0; i < scene->sampler_count; i++) free(scene->samplers[i].texture);
+    free(scene->samplers);
     free(scene->path);
     free(scene->dir);
     for (int i = 0; i < scene->material_count; i++) {

@@ -139,7 +139,17 @@ typedef struct sl_scene {
     /* The scene is one model file opened directly (shadelab model.glb): the app adds a default
      * environment and tone mapping, and frames the camera on it. */
     bool from_model;
+    /* glTF samplers of imported textures, by texture value (see sl_texture_sampler) */
+    struct sl_texture_sampler *samplers; int sampler_count;
 } sl_scene;
+
+/* How an imported texture is sampled (glTF 2.0 "samplers", whose values are OpenGL's enums):
+ * wrap_s/wrap_t GL_REPEAT, GL_CLAMP_TO_EDGE or GL_MIRRORED_REPEAT; mag/min filters GL_NEAREST,
+ * GL_LINEAR, GL_*_MIPMAP_*; 0 = the renderer's default for that field. */
+typedef struct sl_texture_sampler {
+    char *texture;          /* the texture value (an embedded image's name or a path) */
+    int wrap_s, wrap_t, mag_filter, min_filter;
+} sl_texture_sampler;
 
 typedef struct sl_embedded_image {
     char *name;
@@ -249,6 +259,11 @@ int sl_scene_add_camera(sl_scene *scene, const char *name);
 int sl_scene_add_image(sl_scene *scene, const char *name, const void *data, size_t size);
 /* The embedded image a texture value names, or NULL. */
 const sl_embedded_image *sl_scene_find_image(const sl_scene *scene, const char *name);
+/* Records the sampler of a texture value (the first one recorded stands; false when another
+ * sampler was recorded for it already, or out of memory). */
+bool sl_scene_set_sampler(sl_scene *scene, const sl_texture_sampler *sampler);
+/* The sampler recorded for a texture value, or NULL. */
+const sl_texture_sampler *sl_scene_find_sampler(const sl_scene *scene, const char *texture);
 
 /* Set (add or replace) a property; returns it, or NULL when out of memory. */
 sl_prop *sl_prop_set_number(sl_prop_list *list, const char *key, float value, int line);

@@ -99,6 +99,34 @@ static void normalize(float v[3]) {
 
 /* ---- materials --------------------------------------------------------------------------- */
 
+/* Records the texture's sampler (glTF: wrap modes and filters, OpenGL's enum values) under its
+ * texture value; a texture value used with two different samplers keeps the first (noted). */
+static void record_sampler(importer *im, const struct aiMaterial *mat, enum aiTextureType type,
+                           const enum aiTextureMapMode modes[2], const char *value) {
+    static const int wrap[] = {[aiTextureMapMode_Wrap] = 0x2901 /* GL_REPEAT */,
+                               [aiTextureMapMode_Clamp] = 0x812F /* GL_CLAMP_TO_EDGE */,
+                               [aiTextureMapMode_Decal] = 0x812F,
+                               [aiTextureMapMode_Mirror] = 0x8370 /* GL_MIRRORED_REPEAT */};
+    sl_texture_sampler smp = {.texture = (char *)value};
+    for (int k = 0; k < 2; k++) {
+        int w = (unsigned)modes[k] < sizeof wrap / sizeof *wrap ? wrap[modes[k]] : 0;
+        if (k) smp.wrap_t = w;
+        else smp.wrap_s = w;
+    }
+    int f = 0;
+    unsigned n = 1;
+    if (aiGetMaterialIntegerArray(mat, AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), &f, &n) == aiReturn_SUCCESS &&
+        (f == 0x2600 || f == 0x2601)) /* GL_NEAREST, GL_LINEAR */
+        smp.mag_filter = f;
+    n = 1;
+    if (aiGetMaterialIntegerArray(mat, AI_MATKEY_GLTF_MAPPINGFILTER_MIN(type, 0), &f, &n) == aiReturn_SUCCESS &&
+        (f == 0x2600 || f == 0x2601 || (f >= 0x2700 && f <= 0x2703))) /* …_MIPMAP_… */
+        smp.min_filter = f;
+    if (!smp.wrap_s && !smp.wrap_t && !smp.mag_filter && !smp.min_filter) return;
+    if (!sl_scene_set_sampler(im->scene, &smp))
+        SL_WARN("%s: texture %s is used with two different samplers; the first one is used", im->path, value);
+}
+
 /* The texture value for an embedded image (a .glb buffer view or a data: URI, which assimp
  * hands out as "*N"): the image's bytes join the scene under "<file>#image<N>.<format>", the
  * name the renderer decodes it by (sl_scene_find_image). NULL when the image is unusable. */
@@ -149,11 +177,11 @@ static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiText
         return false;
     if (p.length == 0) return false;
     if (uv != 0) im->unsupported |= UNSUPPORTED_TEXCOORD1;
-    if (modes[0] != aiTextureMapMode_Wrap || modes[1] != aiTextureMapMode_Wrap) im->unsupported |= UNSUPPORTED_SAMPLER;
     if (p.data[0] == '*' || im->ai->mNumTextures) {
         char name[1200];
         if (embedded_texture(im, p.data, name, sizeof name)) {
             snprintf(out, size, "%s", name);
+            if (im->is_gltf) record_sampler(im, mat, type, modes, out);
             return true;
         }
         if (p.data[0] == '*') return false;
@@ -163,6 +191,7 @@ static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiText
     else snprintf(out, size, "%s/%s", im->dir, p.data);
     struct stat st;
     if (stat(out, &st) != 0) SL_WARN("%s: texture '%s' not found (%s)", im->path, out, p.data);
+    if (im->is_gltf) record_sampler(im, mat, type, modes, out);
     return true;
 }
 
@@ -481,7 +510,7 @@ static void warn_unsupported(importer *im) {
     if (im->ai->mNumAnimations) im->unsupported |= UNSUPPORTED_ANIMATION;
     static const char *const what[] = {
         "texCoord 1 (textures sample UV set 0)",
-        "texture samplers other than REPEAT (textures repeat)",
+        "(unused)",
         "alphaMode MASK (rendered opaque)",
         "alphaMode BLEND (rendered opaque)",
         "doubleSided (back faces shaded with the front normal)",
