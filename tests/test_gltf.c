@@ -13,7 +13,10 @@
  *    a plain diffuse OBJ loads neither; no "unknown key" warning, no embedded-texture warning.
  *  - extensions: extensionsRequired naming an unsupported one is an error naming it;
  *    extensionsUsed a warning; alphaMode MASK is listed as not rendered as authored.
- *  - cameras: the scene lists the file's camera (what --list-cameras prints) as orthographic. */
+ *  - cameras: the scene lists the file's camera (what --list-cameras prints) as orthographic.
+ *  - emissive: with no light, every pixel is emissiveFactor × emissiveStrength exactly.
+ *  - occlusion: a directional light's image is unchanged; the environment's is scaled by ao.
+ *  - samplers: UVs beyond [0, 1] under the file's wrap modes and filters, per the GL closed form. */
 #include "check.h"
 #include "image/image.h"
 #include "log.h"

@@ -67,7 +67,7 @@ typedef struct importer {
 
 enum {
     UNSUPPORTED_TEXCOORD1 = 1u << 0,
-    UNSUPPORTED_SAMPLER = 1u << 1,
+    UNSUPPORTED_METAL_CHANNEL = 1u << 1,
     UNSUPPORTED_MASK = 1u << 2,
     UNSUPPORTED_BLEND = 1u << 3,
     UNSUPPORTED_DOUBLE_SIDED = 1u << 4,
@@ -251,8 +251,10 @@ static int material_for(importer *im, unsigned i) {
         sl_prop_set_number(in, "roughness", fminf(fmaxf(rough, 0.0f), 1.0f), 0);
         /* assimp 5.2's glTF importer files it under UNKNOWN (AI_MATKEY_GLTF_…_METALLICROUGHNESS_TEXTURE) */
         if (texture_path(im, mat, aiTextureType_UNKNOWN, tex, sizeof tex) ||
-            texture_path(im, mat, aiTextureType_DIFFUSE_ROUGHNESS, tex, sizeof tex))
+            texture_path(im, mat, aiTextureType_DIFFUSE_ROUGHNESS, tex, sizeof tex)) {
             sl_prop_set_string(in, "metallic_roughness_texture", tex, 0);
+            im->unsupported |= UNSUPPORTED_METAL_CHANNEL; /* ggx's roughness_map reads green only */
+        }
     }
     if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) {
         sl_prop_set_string(in, "normal_texture", tex, 0);
@@ -510,7 +512,7 @@ static void warn_unsupported(importer *im) {
     if (im->ai->mNumAnimations) im->unsupported |= UNSUPPORTED_ANIMATION;
     static const char *const what[] = {
         "texCoord 1 (textures sample UV set 0)",
-        "(unused)",
+        "the metal (blue) channel of metallicRoughnessTexture (metallicFactor alone applies)",
         "alphaMode MASK (rendered opaque)",
         "alphaMode BLEND (rendered opaque)",
         "doubleSided (back faces shaded with the front normal)",
