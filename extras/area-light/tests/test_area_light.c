@@ -13,7 +13,8 @@
  *   sides       one-sided: nothing behind; two-sided: both faces equal
  *   stability   roughness 0 and 1, grazing, lights cutting the surface, zero-size lights: finite,
  *               within the energy bound
- *   live/off    a light key changed live equals a fresh harness; off = not loaded */
+ *   live/off    a light key changed live equals a fresh harness; off = not loaded
+ *   scenes      the module's scenes load and render finite (the head only with $SHADELAB_DATA) */
 #include <shadelab/harness.h>
 #include "ltc.h"
 
@@ -391,6 +392,34 @@ static void test_live_and_off(void) {
     CHECK(c.max_abs == 0, "switched off renders differently from not loaded (%g)", c.max_abs);
 }
 
+/* The module's scenes load and render finite (the head only when $SHADELAB_DATA has it). */
+static void test_scenes(void) {
+    const char *files[] = {AREA_LIGHT_SCENES "/spheres_rect.json", AREA_LIGHT_SCENES "/bench_disk.json",
+                           AREA_LIGHT_SCENES "/head_softbox.json"};
+    for (int i = 0; i < 3; i++) {
+        if (i == 2) {
+            const char *data = getenv("SHADELAB_DATA");
+            char probe[4096];
+            snprintf(probe, sizeof probe, "%s/head/LeePerrySmith.glb", data ? data : "");
+            FILE *f = data ? fopen(probe, "rb") : NULL;
+            if (!f) { printf("scenes: head_softbox.json skipped (no $SHADELAB_DATA/head)\n"); continue; }
+            fclose(f);
+        }
+        char err[4096];
+        const char *plugins[] = {AREA_LIGHT_PLUGIN, NULL};
+        sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W,
+            .height = H, .scene_file = files[i], .plugins = plugins, .strict = true}, err, sizeof err);
+        CHECK(h, "%s: %s", files[i], err);
+        if (!h) continue;
+        sl_harness_render(h, img);
+        sl_harness_destroy(h);
+        long bad = sl_harness_count_nonfinite(img, W, H) + sl_harness_count_negative(img, W, H), lit = 0;
+        for (int k = 0; k < W * H; k++) lit += img[4 * k] > 0.05f;
+        CHECK(bad == 0 && lit > W * H / 10, "%s: %ld non-finite/negative, %ld lit pixels", files[i], bad, lit);
+        printf("scenes: %s: %ld of %d pixels lit, finite\n", files[i], lit, W * H);
+    }
+}
+
 int main(int argc, char **argv) {
     const char *only = argc > 1 ? argv[1] : "";
     if (!*only || !strcmp(only, "polygon")) test_polygon();
@@ -399,6 +428,7 @@ int main(int argc, char **argv) {
     if (!*only || !strcmp(only, "ggx")) test_ggx();
     if (!*only || !strcmp(only, "sides")) test_sides_and_stability();
     if (!*only || !strcmp(only, "live")) test_live_and_off();
+    if (!*only || !strcmp(only, "scenes")) test_scenes();
     if (failures) { printf("%d check(s) failed\n", failures); return 1; }
     printf("area-light: all checks passed\n");
     return 0;
