@@ -36,6 +36,13 @@ static sl_status core_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_param_desc), .id = "emissive_strength", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {1}}, .min = 0, .max = 10000, .group = "material", .material_input = "emissive_strength",
          .description = "Multiplier of the emission (KHR_materials_emissive_strength)."},
+        {.struct_size = sizeof(sl_param_desc), .id = "opacity", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
+         .default_value = {.f = {1}}, .min = 0, .max = 1, .group = "material", .material_input = "opacity",
+         .description = "Coverage factor (glTF baseColorFactor.a), times base_color_map's alpha; read by alpha_cutoff."},
+        {.struct_size = sizeof(sl_param_desc), .id = "alpha_cutoff", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
+         .default_value = {.f = {0.5f}}, .min = 0, .max = 1, .group = "material", .material_input = "alpha_cutoff",
+         .description = "glTF alphaMode MASK: fragments whose coverage (opacity x base_color_map alpha) is below it "
+                        "are cut out; materials without the key are opaque."},
         {.struct_size = sizeof(sl_param_desc), .id = "occlusion_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
          .flags = SL_PARAM_LINEAR_DATA, .group = "material", .material_input = "occlusion_texture",
          .description = "Ambient occlusion in the red channel (linear, glTF occlusionTexture): scales the ambient and "
@@ -102,7 +109,8 @@ static sl_status core_create(const sl_host *host, void **user) {
 
 /* the standard material inputs of imported assets the core's keys take */
 static const char *const core_inputs[] = {"base_color", "base_color_texture", "emissive", "emissive_texture",
-                                          "emissive_strength", "occlusion_texture", "occlusion_strength", NULL};
+                                          "emissive_strength", "occlusion_texture", "occlusion_strength", "opacity",
+                                          "alpha_cutoff", NULL};
 
 const sl_plugin_desc sl_core_plugin = {
     SL_PLUGIN_HEADER,

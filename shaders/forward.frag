@@ -48,6 +48,9 @@ SlSurface sl_surface_from_varyings() {
 
 void main() {
     SlSurface s = sl_surface_from_varyings();
+#ifdef SL_MAT_HAS_ALPHA_CUTOFF
+    if (sl_coverage(s.uv) < sl_mat_alpha_cutoff) discard; // glTF alphaMode MASK
+#endif
     sl_run_surface_hooks(s);
     // Radiance beyond what the colour target holds (65504 in RGBA16F) would become Inf there:
     // clamp to it (SL_MAX_RADIANCE, scene.h). An explicit comparison, not min(): NaN compares

@@ -28,3 +28,14 @@ vec3 sl_emission(vec2 uv) {
 }
 #endif
 
+// glTF 2.0 alphaMode MASK (materials carrying "alpha_cutoff"): the coverage the cut-off tests,
+// opacity (baseColorFactor.a) times the base colour texture's alpha.
+#ifdef SL_MAT_HAS_ALPHA_CUTOFF
+float sl_coverage(vec2 uv) {
+    float a = sl_mat_opacity;
+#ifdef SL_MAT_HAS_BASE_COLOR_MAP
+    a *= texture(sl_mat_base_color_map, uv).a;
+#endif
+    return a;
+}
+#endif

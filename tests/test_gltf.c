@@ -12,11 +12,12 @@
  *  - plugins: a glTF inside a JSON scene loads ggx (its material input "brdf"), not normal-map;
  *    a plain diffuse OBJ loads neither; no "unknown key" warning, no embedded-texture warning.
  *  - extensions: extensionsRequired naming an unsupported one is an error naming it;
- *    extensionsUsed a warning; alphaMode MASK is listed as not rendered as authored.
+ *    extensionsUsed a warning; alphaMode BLEND is listed as not rendered as authored.
  *  - cameras: the scene lists the file's camera (what --list-cameras prints) as orthographic.
  *  - emissive: with no light, every pixel is emissiveFactor × emissiveStrength exactly.
  *  - occlusion: a directional light's image is unchanged; the environment's is scaled by ao.
- *  - samplers: UVs beyond [0, 1] under the file's wrap modes and filters, per the GL closed form. */
+ *  - samplers: UVs beyond [0, 1] under the file's wrap modes and filters, per the GL closed form.
+ *  - mask: alphaMode MASK cuts out exactly the texels below alphaCutoff. */
 #include "check.h"
 #include "image/image.h"
 #include "log.h"
@@ -42,7 +43,8 @@ static const unsigned char texels[2][2][3] = {{{200, 30, 30}, {30, 200, 30}}, {{
 /* the fixture's sampler (glTF JSON) and UV range; the closed form follows them */
 static const char *g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
 static float g_uv_lo = 0, g_uv_hi = 1;
-static int g_wrap[2] = {10497, 10497}, g_nearest = 0;
+static int g_wrap[2] = {10497, 10497}, g_nearest = 0, g_alpha = 0;
+static const unsigned char alphas[2][2] = {{51, 204}, {140, 102}}; /* 0.2, 0.8 / 0.549, 0.4 */
 
 typedef struct buf { unsigned char *d; size_t n, cap; } buf;
 static void put(buf *b, const void *p, size_t n) {
@@ -77,7 +79,7 @@ static bool texture_png(buf *png) {
     for (int y = 0; y < 2; y++)
         for (int x = 0; x < 2; x++) {
             for (int c = 0; c < 3; c++) rgba[(y * 2 + x) * 4 + c] = texels[y][x][c] / 255.0f;
-            rgba[(y * 2 + x) * 4 + 3] = 1;
+            rgba[(y * 2 + x) * 4 + 3] = g_alpha ? alphas[y][x] / 255.0f : 1;
         }
     char path[4200];
     snprintf(path, sizeof path, "%s/texels.png", sl_test_dir());
@@ -345,14 +347,14 @@ static void test_extensions(void) {
     sl_scene_free(&s);
 
     snprintf(path, sizeof path, "%s/uses.glb", sl_test_dir());
-    CHECK(write_glb(path, ", \"alphaMode\": \"MASK\"", ", \"extensionsUsed\": [\"KHR_materials_sheen\", \"KHR_lights_punctual\"]"));
+    CHECK(write_glb(path, ", \"alphaMode\": \"BLEND\"", ", \"extensionsUsed\": [\"KHR_materials_sheen\", \"KHR_lights_punctual\"]"));
     sl_log_capture(logbuf, sizeof logbuf);
     bool ok = sl_scene_load_file(&s, path, NULL, err, sizeof err);
     sl_log_capture(NULL, 0);
     CHECK_MSG(ok, "%s", err);
     CHECK_CONTAINS(logbuf, "uses glTF extensions shadelab does not render (ignored, the file shows without them): "
                            "KHR_materials_sheen\n");
-    CHECK_CONTAINS(logbuf, "alphaMode MASK");
+    CHECK_CONTAINS(logbuf, "alphaMode BLEND");
     /* what --list-cameras prints: the file's camera, orthographic, and the file's texture in memory */
     CHECK(s.from_model && s.camera_count == 1 && s.image_count == 1 && s.mesh_count == 1);
     if (s.camera_count == 1) {
@@ -464,6 +466,49 @@ static void test_samplers(void) {
     g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
 }
 
+/* alphaMode MASK cuts out exactly the texels whose alpha is below alphaCutoff: a NEAREST-sampled
+ * 2×2 texture with alphas 0.2, 0.8 / 0.549, 0.4 and cutoff 0.5 shows the top-right and bottom-left
+ * texels and nothing (black, no light, no environment) in the other two quadrants. */
+static void test_mask(void) {
+    char path[4200], json[9000];
+    g_sampler = "{\"magFilter\": 9728, \"minFilter\": 9728}";
+    g_nearest = 1, g_alpha = 1;
+    snprintf(path, sizeof path, "%s/mask.glb", sl_test_dir());
+    CHECK(write_glb(path, ", \"alphaMode\": \"MASK\", \"alphaCutoff\": 0.5", NULL));
+    snprintf(json, sizeof json, "{\"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}]}", path);
+    const char *settings[] = {"core.anisotropy=1", NULL};
+    sl_log_capture(logbuf, sizeof logbuf);
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                         .scene_json = json, .settings = settings,
+                                                         .debug_view = "diffuse-texture"},
+                                      err, sizeof err);
+    sl_log_capture(NULL, 0);
+    CHECK_MSG(h, "%s", err);
+    CHECK(!strstr(logbuf, "alphaMode MASK"));
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    if (h && sl_harness_render(h, img)) {
+        double worst = 0;
+        int wrong = 0;
+        for (int j = 0; j < H; j++)
+            for (int i = 0; i < W; i++) {
+                int tx = i * 2 / W, ty = j * 2 / H;
+                bool kept = alphas[ty][tx] / 255.0 >= 0.5;
+                for (int c = 0; c < 3; c++) {
+                    double want = kept ? srgb_decode(texels[ty][tx][c] / 255.0) : 0.0;
+                    double e = fabs(img[(j * W + i) * 4 + c] - want);
+                    worst = fmax(worst, e);
+                    wrong += e > 0.01;
+                }
+            }
+        CHECK_MSG(worst < 2e-3, "MASK: %d channel values wrong, worst %.4f", wrong, worst);
+        printf("alphaMode MASK: every pixel within %.5f of the cut-out closed form\n", worst);
+    }
+    free(img);
+    if (h) sl_harness_destroy(h);
+    g_nearest = 0, g_alpha = 0;
+    g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
+}
+
 int main(void) {
     test_open_direct();
     test_data_uri();
@@ -472,5 +517,6 @@ int main(void) {
     test_emissive();
     test_occlusion();
     test_samplers();
+    test_mask();
     return check_result();
 }

@@ -280,7 +280,9 @@ static int material_for(importer *im, unsigned i) {
     }
     struct aiString mode;
     if (aiGetMaterialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
-        if (!strcmp(mode.data, "MASK")) im->unsupported |= UNSUPPORTED_MASK;
+        if (!strcmp(mode.data, "MASK")) /* cut out by the core (alpha_cutoff; glTF default 0.5) */
+            sl_prop_set_number(in, "alpha_cutoff",
+                               fminf(fmaxf(material_float(mat, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f, NULL), 0.0f), 1.0f), 0);
         if (!strcmp(mode.data, "BLEND")) im->unsupported |= UNSUPPORTED_BLEND;
     }
     int two_sided = 0;
@@ -513,7 +515,7 @@ static void warn_unsupported(importer *im) {
     static const char *const what[] = {
         "texCoord 1 (textures sample UV set 0)",
         "the metal (blue) channel of metallicRoughnessTexture (metallicFactor alone applies)",
-        "alphaMode MASK (rendered opaque)",
+        "(unused)",
         "alphaMode BLEND (rendered opaque)",
         "doubleSided (back faces shaded with the front normal)",
         "skins (the bind pose is shown)",
