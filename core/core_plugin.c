@@ -43,6 +43,9 @@ static sl_status core_create(const sl_host *host, void **user) {
          .default_value = {.f = {0.5f}}, .min = 0, .max = 1, .group = "material", .material_input = "alpha_cutoff",
          .description = "glTF alphaMode MASK: fragments whose coverage (opacity x base_color_map alpha) is below it "
                         "are cut out; materials without the key are opaque."},
+        {.struct_size = sizeof(sl_param_desc), .id = "double_sided", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
+         .group = "material", .material_input = "double_sided",
+         .description = "glTF doubleSided: back faces are drawn (shaded with the flipped normal) instead of culled."},
         {.struct_size = sizeof(sl_param_desc), .id = "occlusion_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
          .flags = SL_PARAM_LINEAR_DATA, .group = "material", .material_input = "occlusion_texture",
          .description = "Ambient occlusion in the red channel (linear, glTF occlusionTexture): scales the ambient and "
@@ -110,7 +113,7 @@ static sl_status core_create(const sl_host *host, void **user) {
 /* the standard material inputs of imported assets the core's keys take */
 static const char *const core_inputs[] = {"base_color", "base_color_texture", "emissive", "emissive_texture",
                                           "emissive_strength", "occlusion_texture", "occlusion_strength", "opacity",
-                                          "alpha_cutoff", NULL};
+                                          "alpha_cutoff", "double_sided", NULL};
 
 const sl_plugin_desc sl_core_plugin = {
     SL_PLUGIN_HEADER,

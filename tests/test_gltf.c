@@ -17,7 +17,8 @@
  *  - emissive: with no light, every pixel is emissiveFactor × emissiveStrength exactly.
  *  - occlusion: a directional light's image is unchanged; the environment's is scaled by ao.
  *  - samplers: UVs beyond [0, 1] under the file's wrap modes and filters, per the GL closed form.
- *  - mask: alphaMode MASK cuts out exactly the texels below alphaCutoff. */
+ *  - mask: alphaMode MASK cuts out exactly the texels below alphaCutoff.
+ *  - double_sided: a back face is culled unless the material is doubleSided. */
 #include "check.h"
 #include "image/image.h"
 #include "log.h"
@@ -43,7 +44,7 @@ static const unsigned char texels[2][2][3] = {{{200, 30, 30}, {30, 200, 30}}, {{
 /* the fixture's sampler (glTF JSON) and UV range; the closed form follows them */
 static const char *g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
 static float g_uv_lo = 0, g_uv_hi = 1;
-static int g_wrap[2] = {10497, 10497}, g_nearest = 0, g_alpha = 0;
+static int g_wrap[2] = {10497, 10497}, g_nearest = 0, g_alpha = 0, g_back = 0;
 static const unsigned char alphas[2][2] = {{51, 204}, {140, 102}}; /* 0.2, 0.8 / 0.549, 0.4 */
 
 typedef struct buf { unsigned char *d; size_t n, cap; } buf;
@@ -93,11 +94,13 @@ static void geometry(buf *bin, const buf *png) {
     const float nrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     const float lo = g_uv_lo, hi = g_uv_hi;
     const float uv[8] = {lo, lo, hi, lo, hi, hi, lo, hi};
-    const uint16_t idx[6] = {0, 3, 2, 0, 2, 1}; /* counter-clockwise seen from +Z */
+    const uint16_t ccw[6] = {0, 3, 2, 0, 2, 1}; /* counter-clockwise seen from +Z */
+    const uint16_t cw[6] = {0, 2, 3, 0, 1, 2};  /* the quad turned away: its back faces the camera */
+    const uint16_t *idx = g_back ? cw : ccw;
     put(bin, pos, sizeof pos);
     put(bin, nrm, sizeof nrm);
     put(bin, uv, sizeof uv);
-    put(bin, idx, sizeof idx);
+    put(bin, idx, sizeof ccw);
     pad(bin, 0);
     put(bin, png->d, png->n);
     pad(bin, 0);
@@ -509,6 +512,37 @@ static void test_mask(void) {
     g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
 }
 
+/* doubleSided: the quad turned away from the camera is culled (every pixel of a scene without
+ * light or environment stays 0) unless its material is doubleSided, when its back face shows the
+ * texture exactly where the front face did (the closed form of test_open_direct). */
+static void test_double_sided(void) {
+    char culled[4200], shown[4200], json[9000];
+    g_back = 1;
+    snprintf(culled, sizeof culled, "%s/back.glb", sl_test_dir());
+    snprintf(shown, sizeof shown, "%s/back_double_sided.glb", sl_test_dir());
+    CHECK(write_glb(culled, NULL, NULL));
+    CHECK(write_glb(shown, ", \"doubleSided\": true", NULL));
+    g_back = 0;
+    snprintf(json, sizeof json, "{\"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}]}", culled);
+    const char *settings[] = {"core.anisotropy=1", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                         .scene_json = json, .settings = settings,
+                                                         .debug_view = "diffuse-texture"},
+                                      err, sizeof err);
+    CHECK_MSG(h, "%s", err);
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    if (h && sl_harness_render(h, img)) {
+        double peak = 0;
+        for (int i = 0; i < W * H; i++)
+            for (int c = 0; c < 3; c++) peak = fmax(peak, fabs(img[4 * i + c]));
+        CHECK_MSG(peak == 0, "a single-sided back face was drawn (peak %g)", peak);
+        printf("single-sided back face: culled (peak %g)\n", peak);
+    }
+    free(img);
+    if (h) sl_harness_destroy(h);
+    check_texture_render(shown, "doubleSided back face");
+}
+
 int main(void) {
     test_open_direct();
     test_data_uri();
@@ -518,5 +552,6 @@ int main(void) {
     test_occlusion();
     test_samplers();
     test_mask();
+    test_double_sided();
     return check_result();
 }

@@ -336,6 +336,13 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
         unsigned prog = custom ? custom->id : 0;
         bool bound = custom != NULL;
         const sl_forward_variant *var = NULL;
+        /* glTF doubleSided (the core's material key double_sided): back faces are drawn, and the
+         * forward pass shades them with the flipped normal, wherever a pass culls back faces */
+        const sl_mat_value *two = d->cull == 1 ? sl_app_material_value(app, m, "double_sided") : NULL;
+        if (d->cull == 1) {
+            if (two && two->v.b) glDisable(GL_CULL_FACE);
+            else glEnable(GL_CULL_FACE);
+        }
         for (int ni = 0; ni < s->node_count; ni++) {
             const sl_node *node = &s->nodes[ni];
             for (int k = 0; k < node->mesh_count; k++) {

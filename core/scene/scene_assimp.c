@@ -288,7 +288,7 @@ static int material_for(importer *im, unsigned i) {
     int two_sided = 0;
     unsigned n = 1;
     if (aiGetMaterialIntegerArray(mat, AI_MATKEY_TWOSIDED, &two_sided, &n) == aiReturn_SUCCESS && two_sided)
-        im->unsupported |= UNSUPPORTED_DOUBLE_SIDED;
+        sl_prop_set_bool(in, "double_sided", true, 0);
     return mi;
 }
 
@@ -517,7 +517,7 @@ static void warn_unsupported(importer *im) {
         "the metal (blue) channel of metallicRoughnessTexture (metallicFactor alone applies)",
         "(unused)",
         "alphaMode BLEND (rendered opaque)",
-        "doubleSided (back faces shaded with the front normal)",
+        "(unused)",
         "skins (the bind pose is shown)",
         "morph targets (the base shape is shown)",
         "animations (the first frame's pose is shown)",

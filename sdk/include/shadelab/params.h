@@ -95,11 +95,13 @@ typedef struct sl_param_desc {
  *   occlusion_texture         texture (linear, R); occlusion_strength: its strength
  *   emissive                  colour: emissiveFactor; emissive_texture: texture (sRGB)
  *   emissive_strength, ior    floats (KHR_materials_emissive_strength, KHR_materials_ior)
- *   alpha_cutoff              float: alphaMode MASK's alphaCutoff (absent: not masked) */
+ *   alpha_cutoff              float: alphaMode MASK's alphaCutoff (absent: not masked)
+ *   double_sided              bool: glTF doubleSided (back faces drawn, not culled) */
 #define SL_MATERIAL_INPUT_NAMES                                                                       \
     "brdf", "base_color", "base_color_texture", "opacity", "metallic", "roughness",                   \
         "metallic_roughness_texture", "normal_texture", "normal_scale", "occlusion_texture",          \
-        "occlusion_strength", "emissive", "emissive_texture", "emissive_strength", "ior", "alpha_cutoff"
+        "occlusion_strength", "emissive", "emissive_texture", "emissive_strength", "ior", "alpha_cutoff", \
+        "double_sided"
 
 #ifdef __cplusplus
 }
