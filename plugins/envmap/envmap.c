@@ -24,6 +24,7 @@
 #define CONSTANT_CUBE 8 /* a constant environment prefilters to itself: no need for a big cube */
 
 static const char *const modes[] = {"split-sum", "reference", NULL};
+static const char *const speculars[] = {"mirror", "dominant", "fis", NULL};
 static const char *const irradiance_methods[] = {"sh", "convolved", NULL};
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
@@ -33,8 +34,22 @@ static const sl_param_desc params[] = {
     P(.id = "background", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "environment",
       .description = "Draw the environment behind the geometry (off: the core's constant clear colour)."),
     P(.id = "mode", .type = SL_PARAM_ENUM, .enum_values = modes, .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "lighting",
-      .description = "split-sum: prefiltered image-based lighting; reference: Monte Carlo integration of the source "
-                     "with the exact BRDF (accumulate frames)."),
+      .description = "split-sum: prefiltered image-based lighting (envmap.specular says how); reference: Monte Carlo "
+                     "integration of the source with the exact BRDF (accumulate frames)."),
+    P(.id = "specular", .type = SL_PARAM_ENUM, .enum_values = speculars, .default_value = {.i = 1},
+      .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
+      .description = "ggx's environment specular in split-sum mode: mirror: the prefiltered chain along the mirror "
+                     "direction (Karis 2013); dominant: along GGX's dominant, off-specular direction (Lagarde & de "
+                     "Rousiers 2014); fis: filtered importance sampling, fis_samples GGX visible-normal samples per "
+                     "pixel from the base cube's mips (Krivanek & Colbert 2007), times the environment BRDF."),
+    P(.id = "fis_samples", .type = SL_PARAM_INT, .default_value = {.i = 8}, .min = 1, .max = 32, .group = "lighting",
+      .flags = SL_PARAM_QUALITY_KNOB,
+      .description = "Samples per pixel of specular=fis (1, 2, 4, 8, 16, 32: error falls with cost; accumulated frames "
+                     "continue the sequence)."),
+    P(.id = "fis_lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {-1}}, .min = -3, .max = 3, .step = 0.25f,
+      .group = "lighting",
+      .description = "Bias added to specular=fis's per-sample mip level (1/2 log2 of the sample's solid angle over the base "
+                     "texel's); Krivanek & Colbert use +1, chosen here from the measured error."),
     P(.id = "irradiance", .type = SL_PARAM_ENUM, .enum_values = irradiance_methods,
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
       .description = "Diffuse irradiance: order-2 spherical harmonics (9 coefficients) or a convolved cube."),
@@ -75,7 +90,7 @@ static const sl_shader_chunk_desc chunks[] = {
 
 typedef struct envmap {
     const sl_host *host;
-    int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut; /* unit_cube = unit_2d + 1 (em_gpu) */
+    int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut, unit_base; /* unit_cube = unit_2d + 1 (em_gpu) */
     em_gpu gpu;
     sl_program *progs[5], *bg_prog;
     char glsl_dir[2048];
@@ -462,16 +477,19 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     if (!e->have_src) return;
     int l_spec = glGetUniformLocation(prog, "envmap_spec"), l_irr = glGetUniformLocation(prog, "envmap_irr");
     int l_sh = glGetUniformLocation(prog, "envmap_sh"), l_lut = glGetUniformLocation(prog, "envmap_lut");
+    int l_base = glGetUniformLocation(prog, "envmap_base"); /* specular=fis reads the base cube's mips */
     /* compute what this program reads, the first time it is needed (a mirror-only scene never
      * prefilters); the forward pass is mid-flight, so GL state is saved and restored */
     bool need_spec = l_spec >= 0 && !e->spec_from_chain, need_irr = l_irr >= 0 || l_sh >= 0, need_lut = l_lut >= 0;
-    if (need_spec || need_irr || need_lut) {
+    bool need_base = l_base >= 0;
+    if (need_spec || need_irr || need_lut || need_base) {
         gl_state st;
         save_state(&st);
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); /* the prefilter always filters across edges */
         if (need_spec) ensure_spec(e);
         if (need_irr) ensure_irradiance(e);
         if (need_lut) ensure_lut(e);
+        if (need_base) ensure_base(e);
         (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
         restore_state(&st);
     }
@@ -482,6 +500,11 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     if (l_spec >= 0) glUniform1i(l_spec, e->unit_spec);
     if (l_irr >= 0) glUniform1i(l_irr, e->unit_irr);
     if (l_lut >= 0) glUniform1i(l_lut, e->unit_lut);
+    if (l_base >= 0) {
+        glBindTextureUnit(e->unit_base, e->base ? e->base : e->dummy_cube);
+        glUniform1i(l_base, e->unit_base);
+        glUniform1f(glGetUniformLocation(prog, "envmap_base_size"), (float)(e->base ? e->base_size : 1));
+    }
     if (l_sh >= 0) glUniform3fv(l_sh, 9, &e->sh[0][0]);
     glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
 }
@@ -568,10 +591,11 @@ static sl_status envmap_create(const sl_host *host, void **user) {
                        "64 frames x 64 samples per pixel."};
     host->set_reference(host, &ref);
     host->set_bind_callback(host, envmap_bind, e);
-    int units[5];
-    for (int i = 0; i < 5; i++)
+    int units[6];
+    for (int i = 0; i < 6; i++)
         if ((units[i] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     e->unit_2d = units[0], e->unit_cube = units[1], e->unit_spec = units[2], e->unit_irr = units[3], e->unit_lut = units[4];
+    e->unit_base = units[5];
     if (e->unit_cube != e->unit_2d + 1) return SL_ERR_FAILED;
     snprintf(e->glsl_dir, sizeof e->glsl_dir, "%s", host->resource_dir(host));
     return SL_OK;

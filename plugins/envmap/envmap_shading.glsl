@@ -21,6 +21,10 @@ uniform vec3 envmap_sh[9];        // SH irradiance (E/π), coefficients × Â_l/
 uniform sampler2D envmap_lut;     // environment BRDF (A, B), envmap_lut_size² (the parameter's uniform)
 uniform mat3 envmap_rot;          // world → map: R_y(−yaw)
 uniform float envmap_scale;       // the scene environment's intensity
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS
+uniform samplerCube envmap_base;  // the base cube with its solid-angle-weighted mips (specular=fis reads it)
+uniform float envmap_base_size;   // its face size
+#endif
 
 // Radiance arriving from world direction d.
 vec3 envmap_source(vec3 d, float lod) {
@@ -52,6 +56,20 @@ vec3 envmap_diffuse(vec3 n) { // E(n)/π: the outgoing radiance of a white Lambe
 
 vec3 envmap_specular(vec3 r, float alpha) {
     return textureLod(envmap_spec, envmap_rot * r, sqrt(alpha) * envmap_spec_lod_max).rgb * envmap_scale;
+}
+
+// The direction the prefiltered chain is looked up along. The split sum's n = v = r lobe sits on
+// the mirror direction r; GGX's real lobe, with the G and cos factors, peaks between r and n, the
+// more so the rougher (the off-specular peak). specular=dominant uses Lagarde & de Rousiers' fit
+// ("Moving Frostbite to PBR", SIGGRAPH 2014 course notes, §4.9.3): lerp(n, r, s(√s + α)) with
+// s = 1 − α, normalised (their "roughness" is α).
+vec3 envmap_lookup_dir(vec3 n, vec3 r, float alpha) {
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_DOMINANT
+    float s = clamp(1.0 - alpha, 0.0, 1.0);
+    return normalize(mix(n, r, s * (sqrt(s) + alpha)));
+#else
+    return r;
+#endif
 }
 
 vec2 envmap_brdf(float mu, float alpha) { // texel i ↔ n·v = i/(n−1), j ↔ r = j/(n−1)
@@ -88,6 +106,76 @@ float envmap_zero_specular() {
 #endif
 }
 
+// Horizon occlusion for normal-mapped normals (Russell 2015, "Horizon occlusion for normal mapped
+// reflections", Marmoset): a lookup direction d bent below the geometric surface (d·n_g < 0)
+// would pick up light from under it; the factor fades it out, (1 + 1.3 d·n_g)² clamped. Only for
+// normal-mapped materials: n_g is the flat triangle normal, and a tessellated smooth mesh's
+// interpolated normals lean a degree or more off it, which would darken grazing samples.
+float envmap_horizon(vec3 d, vec3 ng) {
+#if defined(SL_MAT_HAS_NORMAL_MAP)
+    float h = clamp(1.0 + 1.3 * dot(d, ng), 0.0, 1.0);
+    return h * h;
+#else
+    return 1.0;
+#endif
+}
+// The same for one sampled direction l (fis, the reference): light from under the geometric
+// surface is blocked, a hard cut (a sample is one direction, not a lobe).
+float envmap_above(vec3 l, vec3 ng) {
+#if defined(SL_MAT_HAS_NORMAL_MAP)
+    return dot(l, ng) > 0.0 ? 1.0 : 0.0;
+#else
+    return 1.0;
+#endif
+}
+// Specular occlusion from the surface's ambient occlusion (an AO map or glTF occlusionTexture,
+// s.ao): Lagarde & de Rousiers 2014 ("Moving Frostbite to PBR", §4.10.2), an approximation fitted
+// to a cone-shaped visibility: clamp((n·v + ao)^(2^(−16α − 1)) − 1 + ao, 0, 1). 1 when ao = 1.
+float envmap_specular_occlusion(float n_dot_v, float ao, float alpha) {
+    return clamp(pow(max(n_dot_v + ao, 0.0), exp2(-16.0 * alpha - 1.0)) - 1.0 + ao, 0.0, 1.0);
+}
+
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS
+// Filtered importance sampling (Křivánek & Colbert 2007, GPU Gems 3 ch. 20): envmap_fis_samples
+// GGX visible-normal samples (Heitz 2018) of the real lobe for this n and v, each read from the
+// base cube at the mip level whose texel solid angle matches the sample's share of the lobe,
+// Ω_s = 1/(N·pdf(l)), lod = ½ log2(Ω_s/Ω_texel) + envmap.fis_lod_bias (K&C: +1; see the README). The weights are the BRDF's f·cos/pdf =
+// G(v,l)/G1(v) (F left to the LUT, as in the split sum): the normalised sum is the lobe's mean
+// radiance, which multiplies the environment BRDF (F0·A + B). In a uniform environment it is
+// exactly the LUT's value (the furnace holds for any N); the per-pixel sequence is rotated per
+// pixel and continued over accumulated frames (sl_frame_index), so accumulating converges to
+// the filtered integral — whose remaining bias (the mips' box filter) the bench charts.
+vec3 envmap_fis_radiance(SlSurface s, float alpha, vec3 r) {
+    vec3 n = s.normal, v = s.view;
+    vec3 t, b;
+    envmap_frame(n, t, b);
+    vec3 vl = vec3(dot(v, t), dot(v, b), dot(v, n));
+    if (vl.z <= 0.0) return vec3(0.0);
+    int count = clamp(envmap_fis_samples, 1, 32);
+    vec2 rot = envmap_hash2(uvec2(gl_FragCoord.xy));
+    float g1v = envmap_smith_g1(vl.z, alpha);
+    float texel = 4.0 * ENVMAP_PI / (6.0 * envmap_base_size * envmap_base_size);
+    float lod_max = log2(envmap_base_size);
+    vec3 sum = vec3(0.0);
+    float wsum = 0.0;
+    for (int i = 0; i < count; i++) {
+        vec2 xi = fract(envmap_r2(uint(sl_frame_index) * uint(count) + uint(i)) + rot);
+        vec3 hl = envmap_sample_vndf(vl, alpha, xi);
+        vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
+        if (ll.z <= 0.0) continue;
+        vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
+        float w = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v;
+        // pdf(l) = G1(v) D(h) / (4 n·v) for visible-normal sampling
+        float pdf = g1v * ggx_D(hl.z, alpha) / (4.0 * vl.z);
+        float lod = clamp(0.5 * log2(1.0 / (float(count) * max(pdf, 1e-20) * texel)) + envmap_fis_lod_bias, 0.0, lod_max);
+        // light from under the geometric surface (normal maps) is blocked (the weight stays)
+        sum += w * envmap_above(l, s.geometric_normal) * textureLod(envmap_base, envmap_rot * l, lod).rgb;
+        wsum += w;
+    }
+    return wsum > 0.0 ? sum / wsum * envmap_scale : envmap_specular(r, alpha);
+}
+#endif
+
 vec3 envmap_ggx_split_sum(SlSurface s) {
     vec3 n = s.normal, v = s.view;
     float mu = clamp(dot(n, v), 1e-4, 1.0);
@@ -111,7 +199,14 @@ vec3 envmap_ggx_split_sum(SlSurface s) {
     // a (normal-mapped) normal facing away from the viewer is masked, G1(v) = 0: no specular,
     // as in the reference below and in ggx's direct term (ggx leaves such normals unbent)
     float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
-    return kd * envmap_diffuse(n) * s.ao + ks * envmap_zero_specular() * visible * spec * envmap_specular(r, alpha);
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS
+    vec3 radiance = envmap_fis_radiance(s, alpha, r);
+#else
+    vec3 d = envmap_lookup_dir(n, r, alpha);
+    vec3 radiance = envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
+#endif
+    visible *= envmap_specular_occlusion(mu, s.ao, alpha);
+    return kd * envmap_diffuse(n) * s.ao + ks * envmap_zero_specular() * visible * spec * radiance;
 }
 
 // Monte Carlo with the exact BRDF: specular by GGX visible-normal sampling (f·cos/pdf =
@@ -138,7 +233,8 @@ vec3 envmap_ggx_reference(SlSurface s) {
             if (ll.z > 0.0) {
                 vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
                 float g = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / envmap_smith_g1(vl.z, alpha);
-                spec += ggx_fresnel(dot(l, h), s) * g * envmap_source(l, 0.0);
+                // light from under the geometric surface (normal-mapped normals) is blocked
+                spec += ggx_fresnel(dot(l, h), s) * g * envmap_above(l, s.geometric_normal) * envmap_source(l, 0.0);
             }
         }
         vec3 lc = envmap_sample_cosine(fract(xi + vec2(0.5, 0.25)));
@@ -151,6 +247,8 @@ vec3 envmap_ggx_reference(SlSurface s) {
 #endif
         diff += kd * envmap_source(l, 0.0);
     }
+    // the same specular occlusion from s.ao as the split sum (an input, not something to integrate)
+    ks *= envmap_specular_occlusion(vl.z, s.ao, alpha);
     return (ks * spec + diff * s.ao) / float(envmap_reference_samples);
 }
 #endif

@@ -1,0 +1,167 @@
+/* envmap's specular methods against its Monte Carlo reference, per sphere (issue 16): relative RMS
+ * error and frame time for split-sum, dominant, fis N = 1 … 32 (and fis N = 32 accumulated over
+ * many frames: its remaining bias), on a real HDR (Blender's courtyard.exr, Debian blender-data) and
+ * the procedural sky without its sun ("sky:0"), metal (copper-like) and dielectric, α = 0.05 … 1.
+ *
+ * Relative RMS of a sphere = √(mean over its pixels of |x − ref|²) / mean over its pixels of ref
+ * (luminance-free: all three channels), the sphere's pixels given by the depth of the frame (not
+ * background). Milliseconds: the fastest of `--frames` single-frame renders with read-back.
+ * Output: CSV on stdout, one row per (environment, material, α, method).
+ * Usage: envmap_bench_methods [--size N] [--frames N] [--reference-frames N] [--env PATH|sky]...
+ * (plugins/envmap/bench/methods.sh runs it and draws the charts). */
+#include <shadelab/harness.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+static const char *materials[2][2] = {
+    {"metal", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, \"base_color\": [0.95, 0.64, 0.54]"},
+    {"dielectric", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, \"base_color\": [0.5, 0.5, 0.5]"},
+};
+static const double alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
+static const char *methods[][2] = {
+    {"mirror", "envmap.specular=mirror"}, {"dominant", "envmap.specular=dominant"},
+    {"fis1", "envmap.specular=fis envmap.fis_samples=1"}, {"fis2", "envmap.specular=fis envmap.fis_samples=2"},
+    {"fis4", "envmap.specular=fis envmap.fis_samples=4"}, {"fis8", "envmap.specular=fis envmap.fis_samples=8"},
+    {"fis16", "envmap.specular=fis envmap.fis_samples=16"}, {"fis32", "envmap.specular=fis envmap.fis_samples=32"},
+};
+enum { NM = sizeof methods / sizeof *methods, NA = sizeof alphas / sizeof *alphas };
+
+static sl_harness *make(const char *env, const char *mat, int size, int accumulate, const char *const *extra) {
+    char json[4096], err[4096], envjson[1200];
+    char sun[64] = "";
+    if (!strncmp(env, "sky", 3)) { /* "sky" or "sky:E", E the sun's irradiance (0: no sun) */
+        snprintf(envjson, sizeof envjson, "{}");
+        if (env[3] == ':') snprintf(sun, sizeof sun, "envmap.sun_irradiance=%s", env + 4);
+    }
+    else snprintf(envjson, sizeof envjson, "{\"map\": \"%s\"}", env);
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"envmap\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3.1], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
+             " \"materials\": [{\"name\": \"m\", %s, \"alpha\": 0.2}],\n"
+             " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
+             " \"environment\": %s}",
+             mat, envjson);
+    const char *settings[16];
+    int n = 0;
+    settings[n++] = "envmap.background=false";
+    if (sun[0]) settings[n++] = sun;
+    for (const char *const *s = extra; s && *s; s++) settings[n++] = *s;
+    settings[n] = NULL;
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
+                                                          .scene_json = json, .settings = settings, .float32 = true,
+                                                          .strict = true, .accumulate = accumulate},
+                                      err, sizeof err);
+    if (!h) fprintf(stderr, "harness: %s\n", err);
+    return h;
+}
+static bool set(sl_harness *h, const char *text) {
+    char buf[256], err[512];
+    snprintf(buf, sizeof buf, "%s", text);
+    for (char *tok = strtok(buf, " "); tok; tok = strtok(NULL, " "))
+        if (!sl_harness_set(h, tok, err, sizeof err)) {
+            fprintf(stderr, "%s: %s\n", tok, err);
+            return false;
+        }
+    return true;
+}
+/* relative RMS and relative mean difference over the sphere's pixels (alpha channel of the reference
+ * is not a coverage mask: the sphere is where the reference is non-zero, background off) */
+static void compare(const float *x, const float *ref, const unsigned char *mask, int n, double *rel_rms, double *rel_mean) {
+    double se = 0, sr = 0, sx = 0;
+    long count = 0;
+    for (int i = 0; i < n; i++) {
+        if (!mask[i]) continue;
+        for (int c = 0; c < 3; c++) {
+            double d = x[i * 4 + c] - ref[i * 4 + c];
+            se += d * d, sr += ref[i * 4 + c], sx += x[i * 4 + c];
+        }
+        count += 3;
+    }
+    *rel_rms = sqrt(se / count) / (sr / count);
+    *rel_mean = sx / sr - 1;
+}
+
+int main(int argc, char **argv) {
+    int size = 96, frames = 5, ref_frames = 64;
+    const char *envs[8];
+    int ne = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--size") && i + 1 < argc) size = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--frames") && i + 1 < argc) frames = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--reference-frames") && i + 1 < argc) ref_frames = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--env") && i + 1 < argc && ne < 8) envs[ne++] = argv[++i];
+        else {
+            fprintf(stderr, "usage: %s [--size N] [--frames N] [--reference-frames N] [--env PATH|sky]...\n", argv[0]);
+            return 2;
+        }
+    }
+    if (!ne) envs[ne++] = "sky";
+    int n = size * size;
+    float *ref = malloc((size_t)NA * n * 16), *img = malloc((size_t)n * 16);
+    unsigned char *mask = malloc((size_t)NA * n);
+    printf("env,material,alpha,method,ms,rel_rms,rel_mean\n");
+    for (int e = 0; e < ne; e++)
+        for (int m = 0; m < 2; m++) {
+            const char *envname = strrchr(envs[e], '/') ? strrchr(envs[e], '/') + 1 : envs[e];
+            /* one harness at a time (one GL context per process): the references of every α,
+             * the single-frame methods, then fis N = 32 accumulated as long as the reference */
+            char buf[128];
+            sl_harness *h = make(envs[e], materials[m][1], size, ref_frames, NULL);
+            if (!h || !set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
+            for (int a = 0; a < NA; a++) {
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                double t0 = now_ms();
+                if (!set(h, buf) || !sl_harness_render(h, ref + (size_t)a * n * 4)) return 1;
+                printf("%s,%s,%.2f,reference,%.2f,0,0\n", envname, materials[m][0], alphas[a], (now_ms() - t0) / ref_frames);
+                for (int i = 0; i < n; i++) {
+                    const float *r = ref + ((size_t)a * n + i) * 4;
+                    mask[(size_t)a * n + i] = r[0] + r[1] + r[2] > 0;
+                }
+            }
+            sl_harness_destroy(h);
+            h = make(envs[e], materials[m][1], size, 1, NULL);
+            if (!h) return 1;
+            for (int a = 0; a < NA; a++) {
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                if (!set(h, buf)) return 1;
+                for (int k = 0; k < NM; k++) {
+                    if (!set(h, methods[k][1])) return 1;
+                    double best = 1e30;
+                    sl_harness_render(h, img); /* compile, prefilter */
+                    for (int f = 0; f < frames; f++) {
+                        double t = now_ms();
+                        sl_harness_render(h, img);
+                        t = now_ms() - t;
+                        if (t < best) best = t;
+                    }
+                    double rr, rm;
+                    compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
+                    printf("%s,%s,%.2f,%s,%.2f,%.5f,%+.5f\n", envname, materials[m][0], alphas[a], methods[k][0], best, rr, rm);
+                    fflush(stdout);
+                }
+            }
+            sl_harness_destroy(h);
+            h = make(envs[e], materials[m][1], size, ref_frames, NULL);
+            if (!h || !set(h, "envmap.specular=fis envmap.fis_samples=32")) return 1;
+            for (int a = 0; a < NA; a++) {
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                if (!set(h, buf) || !sl_harness_render(h, img)) return 1;
+                double rr, rm;
+                compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
+                printf("%s,%s,%.2f,fis32-accumulated,0,%.5f,%+.5f\n", envname, materials[m][0], alphas[a], rr, rm);
+                fflush(stdout);
+            }
+            sl_harness_destroy(h);
+        }
+    free(ref), free(img), free(mask);
+    return 0;
+}
