@@ -660,6 +660,38 @@ static void envmap_destroy(void *user) {
     free(e);
 }
 
+/* Extension "shadelab.environment/1" (sdk/include/shadelab/ext/environment.h): the base cube
+ * (level 0 = the source resampled, solid-angle-weighted mips), its rotation and intensity, for
+ * other plugins (extras/refraction). One envmap per process, so one static record. */
+#include <shadelab/ext/environment.h>
+static bool envmap_ext_environment_get(void *ctx, sl_environment_cube *out) {
+    envmap *e = ctx;
+    if (!e || !out || out->struct_size < sizeof *out || !e->have_src) return false;
+    if (!e->base) {
+        gl_state st;
+        save_state(&st);
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        ensure_base(e);
+        (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        restore_state(&st);
+    }
+    if (!e->base) return false;
+    out->texture = e->base;
+    out->size = e->base_size;
+    out->levels = em_max_levels(e->base_size);
+    rotation(e, out->world_to_map);
+    out->scale = e->scale;
+    out->version = e->base_key;
+    return true;
+}
+static sl_ext_environment envmap_ext_environment = {.struct_size = sizeof(sl_ext_environment),
+                                                   .get = envmap_ext_environment_get};
+static const void *envmap_get_extension(void *user, const char *id) {
+    if (!user || strcmp(id, SL_EXT_ENVIRONMENT)) return NULL;
+    envmap_ext_environment.ctx = user;
+    return &envmap_ext_environment;
+}
+
 static const char *const requires_[] = {"ggx", NULL};
 
 static const sl_plugin_desc envmap_desc = {
@@ -674,6 +706,7 @@ static const sl_plugin_desc envmap_desc = {
     .begin_frame = envmap_begin_frame,
     .deactivate = envmap_deactivate,
     .destroy = envmap_destroy,
+    .get_extension = envmap_get_extension,
 };
 
 SL_DEFINE_PLUGIN(envmap_desc)
