@@ -49,7 +49,7 @@ typedef struct aa {
     unsigned sampler_linear, sampler_nearest;
     /* TAA: the history (rgb + frames in alpha) as a ping-pong pair, the last frame's depth */
     unsigned history[2], prev_depth, fbo, depth_fbo[2];
-    int current, hw, hh, dw, dh;
+    int current, hw, hh, dw, dh, hformat;
     uint64_t frames_begun, taa_ran_at; /* begin_frame count; its value when TAA last ran */
     bool history_valid;
     /* stills: frames since the view last changed (versions and size of sl_frame) */
@@ -175,12 +175,13 @@ static bool invert4(const float *m, float *out) {
     return true;
 }
 
-static void taa_textures(aa *a, int w, int h, int dw, int dh) {
-    if (w != a->hw || h != a->hh) {
+/* The history in the colour target's own format (RGBA16F, RGBA32F with --float). */
+static void taa_textures(aa *a, int w, int h, int format, int dw, int dh) {
+    if (w != a->hw || h != a->hh || format != a->hformat) {
         if (a->history[0]) glDeleteTextures(2, a->history);
         glCreateTextures(GL_TEXTURE_2D, 2, a->history);
-        for (int i = 0; i < 2; i++) glTextureStorage2D(a->history[i], 1, GL_RGBA16F, w, h);
-        a->hw = w, a->hh = h;
+        for (int i = 0; i < 2; i++) glTextureStorage2D(a->history[i], 1, (GLenum)format, w, h);
+        a->hw = w, a->hh = h, a->hformat = format;
         a->history_valid = false;
     }
     if (dw != a->dw || dh != a->dh) {
@@ -205,12 +206,13 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth"),
              motion = h->pass_texture(h, ctx, "motion");
     if (!p || !color || !depth || !motion) return;
-    int w, hh, dw, dh;
+    int w, hh, dw, dh, format;
+    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_WIDTH, &w);
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_HEIGHT, &hh);
     glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_WIDTH, &dw);
     glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_HEIGHT, &dh);
-    taa_textures(a, w, hh, dw, dh);
+    taa_textures(a, w, hh, format, dw, dh);
     /* the history continues only from the frame just before (not after the method was off, a
      * pause or a resize) */
     bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun && !a->restart;
@@ -337,7 +339,7 @@ static void deactivate(void *user) {
     if (a->history[0]) glDeleteTextures(2, a->history);
     if (a->prev_depth) glDeleteTextures(1, &a->prev_depth);
     a->sampler_linear = a->sampler_nearest = a->fbo = a->history[0] = a->history[1] = a->prev_depth = 0;
-    a->hw = a->hh = a->dw = a->dh = 0;
+    a->hw = a->hh = a->dw = a->dh = a->hformat = 0;
 }
 
 static void destroy(void *user) { free(user); }
