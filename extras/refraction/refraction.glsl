@@ -30,7 +30,7 @@ float refraction_lod(vec3 d) {
 // Radiance carried back along −t1 by a ray that entered at p with direction t1 (η = ior inside).
 vec3 refraction_inside(vec3 p, vec3 t1, float ior) {
 #if REFRACTION_METHOD == REFRACTION_METHOD_TWO_INTERFACE
-    vec3 cam = inverse(sl_view)[3].xyz;
+    vec3 cam = sl_camera_pos;
     vec4 c = sl_view_proj * vec4(p, 1.0);
     vec4 back = texture(refraction_back, c.xy / c.w * 0.5 + 0.5);
     // Wyman's d_V: front-to-back distance along the view ray, then `steps` refinements: the back
