@@ -3,6 +3,7 @@
 #include <shadelab/shadelab.h>
 #include <shadelab/harness.h>
 #include <shadelab/ext/shadow_maps.h>
+#include <shadelab/ext/environment.h>
 int main() {
     sl_plugin_desc d{};
     d.dependencies = nullptr;
