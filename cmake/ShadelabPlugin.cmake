@@ -1,9 +1,10 @@
-# shadelab_add_plugin(NAME SOURCES src.c… [GLSL file.glsl…])
+# shadelab_add_plugin(NAME SOURCES src.c… [GLSL file.glsl…] [NO_INSTALL])
 #
 # Builds NAME as a loadable module NAME.so in ${CMAKE_CURRENT_BINARY_DIR}/plugins/NAME/ with its
 # GLSL beside it (the plugin's resource directory is the directory of its .so), hides every
 # symbol but the entry point, and installs both into <prefix>/lib/shadelab/plugins/NAME/ where
-# the viewer finds it by name (--plugin NAME, scene "plugins": ["NAME"]).
+# the viewer finds it by name (--plugin NAME, scene "plugins": ["NAME"]). NO_INSTALL: built only
+# (test plugins that a test loads by path).
 # GLSL files are symlinked into the build tree, so editing them hot-reloads a running viewer.
 #
 # One function for every plugin: installed with the SDK (find_package(shadelab) includes it) and
@@ -19,7 +20,7 @@ include_guard(GLOBAL)
 include(GNUInstallDirs)
 
 function(shadelab_add_plugin name)
-  cmake_parse_arguments(P "" "" "SOURCES;GLSL" ${ARGN})
+  cmake_parse_arguments(P "NO_INSTALL" "" "SOURCES;GLSL" ${ARGN})
   if(NOT P_SOURCES)
     message(FATAL_ERROR "shadelab_add_plugin(${name}): SOURCES is required")
   endif()
@@ -42,7 +43,11 @@ function(shadelab_add_plugin name)
     get_filename_component(abs "${f}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
     get_filename_component(fn "${f}" NAME)
     file(CREATE_LINK "${abs}" "${dir}/${fn}" SYMBOLIC COPY_ON_ERROR)
-    install(FILES "${abs}" DESTINATION "${CMAKE_INSTALL_LIBDIR}/shadelab/plugins/${name}")
+    if(NOT P_NO_INSTALL)
+      install(FILES "${abs}" DESTINATION "${CMAKE_INSTALL_LIBDIR}/shadelab/plugins/${name}")
+    endif()
   endforeach()
-  install(TARGETS ${target} LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/shadelab/plugins/${name}")
+  if(NOT P_NO_INSTALL)
+    install(TARGETS ${target} LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/shadelab/plugins/${name}")
+  endif()
 endfunction()

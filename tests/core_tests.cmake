@@ -8,19 +8,14 @@ set_target_properties(tp_dep PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${SL_TP_DIR}/de
 
 function(sl_test_plugin name glsl)
   cmake_parse_arguments(T "NO_RPATH" "" "DEFS;LIBS" ${ARGN})
-  add_library(tp_${name} MODULE ${CMAKE_CURRENT_SOURCE_DIR}/plugins/test_plugin.c)
-  set_target_properties(tp_${name} PROPERTIES PREFIX "" OUTPUT_NAME ${name}
-    LIBRARY_OUTPUT_DIRECTORY ${SL_TP_DIR}/${name} C_VISIBILITY_PRESET hidden)
+  sl_add_test_plugin(${name} DIR ${SL_TP_DIR} PREFIX tp_ SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/plugins/test_plugin.c
+                     GLSL plugins/${glsl} plugins/tp_gain.frag)
   if(T_NO_RPATH)
     set_target_properties(tp_${name} PROPERTIES SKIP_BUILD_RPATH TRUE)
   endif()
-  target_link_libraries(tp_${name} PRIVATE shadelab_sdk ${T_LIBS})
+  target_link_libraries(tp_${name} PRIVATE ${T_LIBS})
   target_compile_definitions(tp_${name} PRIVATE TP_ID="${name}" TP_MODEL="${name}-model"
                              TP_GLSL="${glsl}" ${T_DEFS})
-  foreach(f ${glsl} tp_gain.frag)
-    file(MAKE_DIRECTORY ${SL_TP_DIR}/${name})
-    file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR}/plugins/${f} ${SL_TP_DIR}/${name}/${f} SYMBOLIC)
-  endforeach()
   set(SL_TEST_PLUGINS ${SL_TEST_PLUGINS} tp_${name} PARENT_SCOPE)
 endfunction()
 
