@@ -56,8 +56,18 @@ static void rf_bind(void *user, unsigned prog, int material, const sl_frame *f) 
     }
 }
 
+/* the back-face pass runs only in two-interface mode and when some material carries `ior`
+ * (the materials it draws): a scene without glass pays nothing */
 static bool back_active(void *user, const sl_frame *f) {
-    (void)f; return two_interface(user); }
+    (void)f;
+    refraction *r = user;
+    if (!two_interface(r)) return false;
+    for (int i = 0, n = r->host->material_count(r->host); i < n; i++) {
+        sl_value v;
+        if (r->host->material_value(r->host, i, "ior", &v, NULL, 0)) return true;
+    }
+    return false;
+}
 
 static void back_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     refraction *r = user;

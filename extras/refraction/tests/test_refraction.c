@@ -16,7 +16,9 @@
  *     two-interface; two-interface must be closer to it than single.
  * Tests 1-4 read the environment at level 0 (refraction.filter=false): the C side point-samples.
  *  6. stability: η at its limits gives finite, non-negative pixels; live equals fresh for
- *     method, steps and dispersion. */
+ *     method, steps and dispersion.
+ *  7. a scene without glass costs nothing: no back-face pass, the frame's structure (passes, draw
+ *     calls, programs) equals the one without the plugin. */
 #include <shadelab/harness.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -275,6 +277,48 @@ int main(void) {
     sl_harness_compare(live, fresh, W, H, 0, &cmp);
     CHECK(cmp.max_abs == 0, "live differs from fresh: max %g", cmp.max_abs);
     sl_harness_destroy(h);
+
+    /* 7. a scene without glass pays nothing: no back-face pass, same structure as without the plugin */
+    {
+        const char *json = "{\"plugins\": [\"envmap\"], \"cameras\": [{\"name\": \"main\", \"position\": [0, 0, 4], "
+                           "\"target\": [0, 0, 0], \"fov_y\": 40}], \"materials\": [{\"name\": \"m\", \"model\": \"lambert\"}], "
+                           "\"nodes\": [{\"name\": \"b\", \"mesh\": {\"primitive\": \"sphere\"}, \"material\": \"m\"}], "
+                           "\"lights\": [], \"environment\": {\"map\": \"uv\"}}";
+        sl_harness_structure with, without;
+        static char names[64][128]; /* the pass names live as long as their plugins: copied */
+        h = make(json, NULL);
+        free(render(h));
+        sl_harness_structure_of(h, &with);
+        bool back = false;
+        for (int i = 0; i < with.pass_count && i < 64; i++) {
+            back = back || !strcmp(with.passes[i], "refraction-back");
+            snprintf(names[i], sizeof names[i], "%s", with.passes[i]);
+            with.passes[i] = names[i];
+        }
+        sl_harness_destroy(h);
+        char err[4096];
+        sl_harness_desc d = {.struct_size = sizeof d, .width = W, .height = H, .scene_json = json, .strict = true};
+        h = sl_harness_create(&d, err, sizeof err);
+        if (!h) { printf("FAIL: harness: %s\n", err); return 1; }
+        free(render(h));
+        sl_harness_structure_of(h, &without);
+        static char names2[64][128];
+        for (int i = 0; i < without.pass_count && i < 64; i++) {
+            snprintf(names2[i], sizeof names2[i], "%s", without.passes[i]);
+            without.passes[i] = names2[i];
+        }
+        sl_harness_destroy(h);
+        printf("no glass: %d passes (%s), structure %s the frame without the plugin\n", with.pass_count,
+               back ? "refraction-back ran" : "no refraction-back", sl_harness_structure_equal(&with, &without) ? "equals" : "differs from");
+        if (!sl_harness_structure_equal(&with, &without)) {
+            printf("  with: %d draws, %d passes, %d programs; without: %d draws, %d passes, %d programs\n", with.draw_calls,
+                   with.pass_count, with.program_count, without.draw_calls, without.pass_count, without.program_count);
+            for (int i = 0; i < with.pass_count && i < without.pass_count; i++) printf("  pass %s / %s\n", with.passes[i], without.passes[i]);
+            for (int i = 0; i < with.program_count && i < without.program_count; i++)
+                printf("  program %016llx / %016llx\n", (unsigned long long)with.program_hashes[i], (unsigned long long)without.program_hashes[i]);
+        }
+        CHECK(!back && sl_harness_structure_equal(&with, &without), "a scene without glass pays for refraction");
+    }
     free(live), free(fresh), free(single_img), free(bg);
 
     printf(failures ? "FAILED: %d\n" : "PASS\n", failures);
