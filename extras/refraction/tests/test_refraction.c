@@ -4,7 +4,8 @@
  *  0. the C reference conserves energy: in a constant environment its weights sum to 1.
  *  1. η = 1 shows the background through the object exactly: the sphere's pixels equal the same
  *     pixels rendered without the sphere (envmap's background pass) and the C lookup along the
- *     view ray, for method single and two-interface.
+ *     view ray, for method single and two-interface; with envmap.yaw = 90 too (the extension's
+ *     rotation: the sphere must match the background turned the same way).
  *  2. single interface, η = 1.5: every tested pixel equals F·L(r) + (1 − F)·L(t) from C.
  *  3. total internal reflection where Snell says: η = 0.75 (a bubble); beyond the critical angle
  *     (sin θ > 0.75) the pixel is L(r) exactly, inside it the C formula with F < 1 (a band of
@@ -150,6 +151,30 @@ int main(void) {
         CHECK(compare(m ? "eta = 1, two-interface vs C" : "eta = 1, single vs C", img, one, true, true, NULL) < TOL,
               "eta = 1 differs from the environment along the view ray");
         free(img);
+    }
+
+    /* 1b. the extension's rotation: the environment turned by envmap.yaw = 90 (+Z towards +X), η = 1
+     * still shows the background exactly (both read the map through envmap's yaw) */
+    {
+        sl_harness_destroy(h);
+        sl_harness *hb = make(scene(false, NULL), (const char *const[]){"envmap.yaw=90", NULL});
+        float *bg90 = render(hb);
+        sl_harness_destroy(hb);
+        h = make(scene(true, NULL), (const char *const[]){"refraction.method=single", "refraction.filter=false",
+                                                          "material.glass.ior=1", "envmap.yaw=90", NULL});
+        float *img = render(h), worst = 0, moved = 0;
+        for (int y = 2; y < H; y += 4)
+            for (int x = 2; x < W; x += 4) {
+                double ref[3];
+                if (reference(x, y, one, true, ref) < 0.2) continue;
+                const float *p = img + ((size_t)y * W + x) * 4, *q = bg90 + ((size_t)y * W + x) * 4;
+                worst = fmaxf(worst, fmaxf(fabsf(p[0] - q[0]), fabsf(p[1] - q[1])));
+                moved = fmaxf(moved, fabsf(p[0] - (float)ref[0])); /* u moved by a quarter turn */
+            }
+        printf("eta = 1, envmap.yaw = 90: max |sphere - background| = %.5f (red moved by up to %.3f from yaw 0)\n", worst, moved);
+        CHECK(worst < TOL && moved > 0.2, "the environment extension's rotation");
+        free(img), free(bg90);
+        set(h, "envmap.yaw=0");
     }
 
     /* 2. single interface, η = 1.5 */
