@@ -118,7 +118,7 @@ static sl_status rf_create(const sl_host *host, void **user) {
          .enum_values = methods, .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = quality,
          .description = "single: one interface (refracted ray to the environment); two-interface: out through the back "
                         "face found by a back-face pass (Wyman 2005)."},
-        {.struct_size = sizeof(sl_param_desc), .id = "steps", .type = SL_PARAM_INT, .default_value = {.i = 2}, .min = 0,
+        {.struct_size = sizeof(sl_param_desc), .id = "steps", .type = SL_PARAM_INT, .default_value = {.i = 4}, .min = 0,
          .max = 4, .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = quality,
          .description = "two-interface: refinements of the distance to the back face (0 = Wyman's front-to-back distance "
                         "along the view ray; each step re-reads the back face where the refracted ray's estimate lands)."},

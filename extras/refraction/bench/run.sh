@@ -25,7 +25,7 @@ add "dispersion off two-interface steps=2" "refraction.method=two-interface refr
 
 args=()
 for s in "${sets[@]}"; do args+=(--settings "$s"); done
-"$prefix/bin/shadelab-bench" --plugin refraction --scene "$scene" --size $size --frames 12 --warmup 3 --rounds 3 \
+"$prefix/bin/shadelab-bench" --plugin refraction --scene "$scene" --size $size --frames 12 --warmup 3 --rounds 5 \
   --metric rmse --no-cache --no-chart "${args[@]}" --out "$out/bench-timing"
 eargs=()
 for i in "${!sets[@]}"; do eargs+=("${labels[$i]}" "${sets[$i]}"); done
