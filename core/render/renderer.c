@@ -78,7 +78,10 @@ static void refresh(sl_app *app) {
     if (lights_changed || (sl_gpu_lights_animated(app) && r->seen_light_time != app->time)) sl_gpu_pack_lights(app);
     r->seen_light_time = app->time;
     if (recompose) {
-        r->programs_version++;
+        /* a new debug view changes every program's output without any other version moving */
+        if ((r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
+            (app->debug_view && strcmp(app->debug_view, r->seen_debug_view)))
+            r->programs_version++;
         sl_gpu_compose_all(app);
         free(r->seen_debug_view);
         r->seen_debug_view = app->debug_view ? strdup(app->debug_view) : NULL;
@@ -117,7 +120,7 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
         animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(&app->plugins, app->plugins.chunks[i].owner);
     f->geometry_version = animated ? app->frame_index + 1 : 0;
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
-    /* + programs recomposed or reloaded (debug view, hot reload): what a pass shows may change */
+    /* + programs reloaded or a new debug view: what a pass shows may change */
     f->params_version = app->params.version + app->materials_version + r->programs_version;
     f->accumulate_index = acc_index;
     f->accumulate_count = acc_count;

@@ -70,7 +70,7 @@ typedef struct sl_renderer {
     /* temporal antialiasing (ABI 1.6): the jitter plugins asked for this frame, the frames a still
      * needs, whether the forward pass writes "motion", and the previous frame's camera */
     float jitter_req[2];
-    uint64_t programs_version; /* bumps when programs are recomposed or reloaded (in params_version) */
+    uint64_t programs_version; /* bumps on a hot reload or a new debug view (in params_version) */
     int still_frames;
     bool motion;
     bool have_prev;

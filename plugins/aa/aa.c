@@ -10,16 +10,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const methods[] = {"none", "fxaa", "taa", NULL};
-enum { AA_NONE, AA_FXAA, AA_TAA };
+static const char *const methods[] = {"none", "taa", "fxaa", NULL}; /* the key X goes none → taa → fxaa */
+enum { AA_NONE, AA_TAA, AA_FXAA };
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
 static const sl_param_desc params[] = {
     P(.id = "method", .type = SL_PARAM_ENUM, .enum_values = methods, .default_value = {.i = AA_TAA},
       .flags = SL_PARAM_QUALITY_KNOB, .group = "method",
-      .description = "none; fxaa (Lottes 2009: edge-directed blend of the final image, one pass); taa (Karis 2014: "
+      .description = "none; taa (Karis 2014: "
                      "jittered frames accumulated with motion-vector reprojection, neighbourhood clamping and "
-                     "disocclusion rejection; a still converges after taa_frames frames)."),
+                     "disocclusion rejection; a still is the mean of taa_frames frames); fxaa (Lottes 2009: "
+                     "edge-directed blend of the final image, one pass)."),
     P(.id = "fxaa_threshold", .type = SL_PARAM_FLOAT, .default_value = {.f = {0.125f}}, .min = 0.03f, .max = 0.5f,
       .step = 0.005f, .group = "fxaa",
       .description = "FXAA: contrast of the 4-neighbourhood's display luma, relative to its brightest, below which a "
@@ -296,7 +297,7 @@ static sl_status create(const sl_host *host, void **user) {
                               .execute = taa_execute, .is_active = taa_active, .user = a};
     if (host->add_pass(host, &taa) != SL_OK) return SL_ERR_FAILED;
     static const sl_key_desc key = {.struct_size = sizeof(sl_key_desc), .key = "X", .param = "method",
-                                    .description = "next antialiasing method (none, fxaa, taa)"};
+                                    .description = "next antialiasing method (none, taa, fxaa)"};
     if (host->add_key(host, &key) != SL_OK) return SL_ERR_FAILED;
     const sl_reference_desc ref = {.struct_size = sizeof ref, .settings = "aa.method=none core.ssaa=8",
                                    .accumulate_frames = 1,

@@ -67,7 +67,7 @@ typedef struct sl_frame {
     float scene_min[3], scene_max[3];        /* world-space bounds of all geometry */
     /* Change counters: a pass may use them in its signature to skip work. */
     uint64_t camera_version, geometry_version, lights_version, params_version; /* params_version also
-                                                moves when programs are recomposed or hot-reloaded */
+                                                moves on a hot reload and a new debug view */
     int accumulate_index;    /* 0-based frame within an accumulated render; 0 otherwise */
     int accumulate_count;    /* frames being accumulated (1 = none) */
     /* ABI 1.6, temporal antialiasing. jitter: the sub-pixel offset in pixels (x right, y up) that
