@@ -122,6 +122,7 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
     /* + programs reloaded or a new debug view: what a pass shows may change */
     f->params_version = app->params.version + app->materials_version + r->programs_version;
+    f->edits_version = f->params_version + app->lights_version;
     f->accumulate_index = acc_index;
     f->accumulate_count = acc_count;
     /* temporal antialiasing (ABI 1.6): the previous frame's camera, the unjittered view-projection,

@@ -110,7 +110,7 @@ static uint64_t motion_signature(const sl_frame *f) {
     return h;
 }
 static uint64_t cut_signature(const sl_frame *f) {
-    uint64_t v[] = {f->params_version, (uint64_t)f->width << 32 | (uint32_t)f->height};
+    uint64_t v[] = {f->edits_version, (uint64_t)f->width << 32 | (uint32_t)f->height};
     uint64_t h = 1469598103934665603ull;
     for (size_t i = 0; i < sizeof v / sizeof *v; i++) h = (h ^ v[i]) * 1099511628211ull;
     return h;

@@ -78,6 +78,10 @@ typedef struct sl_frame {
     float jitter[2];
     float prev_view_proj[16];
     float unjittered_view_proj[16];
+    /* ABI 1.6: moves with every edit (parameters, material and light values, a hot reload, the
+     * debug view) and never by itself: unlike lights_version it stays put while lights animate.
+     * A temporal method restarts its history on it (a live change equals a fresh start). */
+    uint64_t edits_version;
 } sl_frame;
 
 typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() */
