@@ -78,6 +78,10 @@ typedef struct sl_node {
  * at 1e7 (geometry and lighting vectors collapse there); the loader refuses a scene reaching
  * further and warns beyond SL_SCENE_WARN_EXTENT (steps of 1/128). */
 #define SL_SCENE_MAX_EXTENT 1e7
+/* The most triangles one imported file may hold (all its meshes): about 48 bytes per vertex and
+ * 12 per triangle on the CPU, the same again on the GPU. 10 M triangles import in well under a
+ * minute (tools/import/bench_import.sh). */
+#define SL_IMPORT_MAX_TRIANGLES 32000000
 #define SL_SCENE_WARN_EXTENT 1e5
 
 typedef enum sl_light_animation { SL_ANIMATE_NONE, SL_ANIMATE_ORBIT, SL_ANIMATE_WOBBLE } sl_light_animation;

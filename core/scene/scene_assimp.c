@@ -5,9 +5,8 @@
  * metallic/roughness factors, opacity), KHR_lights_punctual lights and cameras.
  *
  * UVs: assimp hands out UVs with v = 0 at the BOTTOM of the image (it flips glTF's on import);
- * the scene convention is v = 0 at the top (scene.h), so v becomes 1 − v here. assimp's
- * bitangent points toward increasing assimp-v, i.e. up in the image, which is exactly the
- * direction scene.h gives w · cross(n, t): w = sign(dot(cross(n, t), bitangent)).
+ * the scene convention is v = 0 at the top (scene.h), so v becomes 1 − v here. Tangent frames
+ * (and normals a file lacks) are the project's own (core/scene/tangents.c), not assimp's.
  *
  * Names: the imported root and its descendants are named "<prefix>/<assimp node name>", with
  * prefix the parent node's name (or the file stem at the top level); lights and cameras
@@ -337,19 +336,9 @@ static int import_mesh(importer *im, unsigned index) {
         for (int k = 0; k < 3; k++) *ix++ = face->mIndices[k];
     }
     d.index_count = (int)(ix - d.indices);
-    if (am->mTangents && am->mBitangents && am->mTextureCoords[0]) {
-        for (unsigned v = 0; v < am->mNumVertices; v++) {
-            const float *n = d.normals + 3 * v;
-            float t[3] = {am->mTangents[v].x, am->mTangents[v].y, am->mTangents[v].z};
-            float b[3] = {am->mBitangents[v].x, am->mBitangents[v].y, am->mBitangents[v].z};
-            float c[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
-            memcpy(d.tangents + 4 * v, t, sizeof t);
-            d.tangents[4 * v + 3] = c[0] * b[0] + c[1] * b[1] + c[2] * b[2] < 0.0f ? -1.0f : 1.0f;
-        }
-        sl_mesh_repair_frames(&d); /* assimp leaves NaN on degenerate UVs */
-    } else {
-        sl_mesh_generate_tangents(&d); /* no UVs: tangents orthogonal to the normals */
-    }
+    /* normals the file lacks (left zero) become area-weighted vertex normals; tangents from the
+     * UVs (orthogonal to the normals without UVs) */
+    sl_mesh_generate_tangents(&d);
     sl_mesh_compute_bounds(&d);
     char name[600];
     if (am->mName.length) snprintf(name, sizeof name, "%.250s/%.300s", im->stem, am->mName.data);
@@ -655,13 +644,20 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     struct aiPropertyStore *store = aiCreatePropertyStore();
     if (store) /* drop the point and line primitives SortByPType splits off */
         aiSetImportPropertyInteger(store, AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_CalcTangentSpace |
-                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+    /* Only what assimp must do. Normals a file lacks and every tangent frame come from the
+     * project's own code (sl_mesh_generate_tangents: area-weighted normals over the indexed
+     * triangles, Lengyel tangents), linear in the mesh: assimp's GenSmoothNormals and
+     * CalcTangentSpace sort every vertex spatially (SpatialSort), which made a 10 M-triangle
+     * binary PLY take 97 s and 3.9 GB (issue 14; tools/import/bench_import.sh measures it). */
+    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                      aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
     /* glTF meshes arrive indexed already: joining identical vertices (a sort of every vertex)
      * finds nothing to join and costs a third of the import (tools/gltf/make_big_glb.py, 2 M
      * triangles, on 2 busy cores, interleaved: 25.3 s with it, 16.6 s without, medians of 3) */
-    if (im.is_gltf) flags &= ~(unsigned)aiProcess_JoinIdenticalVertices;
+    /* binary PLY arrives indexed too (its faces index a vertex list): the same holds */
+    const char *ext = strrchr(path, '.');
+    bool indexed_format = im.is_gltf || (ext && !strcasecmp(ext, ".ply"));
+    if (indexed_format) flags &= ~(unsigned)aiProcess_JoinIdenticalVertices;
     /* a glTF by content whose name assimp would not recognise: import it under an alias */
     alias_io alias = {.real = path};
     struct aiFileIO io = {.OpenProc = io_open, .CloseProc = io_close, .UserData = (aiUserData)&alias};
@@ -681,9 +677,19 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     if (large) SL_INFO("%s: importing %.1f MB with assimp…", path, fst.st_size / 1048576.0);
     im.ai = aiImportFileExWithProperties(aliased ? alias.alias : path, flags, aliased ? &io : NULL, store);
     clock_gettime(CLOCK_MONOTONIC, &t1);
+    unsigned long long tris = 0;
+    for (unsigned i = 0; im.ai && i < im.ai->mNumMeshes; i++) tris += im.ai->mMeshes[i]->mNumFaces;
+    if (im.ai && tris > SL_IMPORT_MAX_TRIANGLES) {
+        aiReleaseImport(im.ai);
+        im.ai = NULL;
+        if (store) aiReleasePropertyStore(store);
+        sl_gltf_free_json(im.gltf);
+        char why[200];
+        snprintf(why, sizeof why, "%llu triangles, over the import budget of %d (SL_IMPORT_MAX_TRIANGLES, about 3 GB "
+                 "with the GPU copy): refused", tris, SL_IMPORT_MAX_TRIANGLES);
+        return fail(&im, "%s: %s", why);
+    }
     if (large && im.ai) {
-        unsigned long long tris = 0;
-        for (unsigned i = 0; i < im.ai->mNumMeshes; i++) tris += im.ai->mMeshes[i]->mNumFaces;
         SL_INFO("%s: imported %u meshes, %llu triangles, %u embedded images in %.1f s", path, im.ai->mNumMeshes, tris,
                 im.ai->mNumTextures, (t1.tv_sec - t0.tv_sec) + (t1.tv_nsec - t0.tv_nsec) * 1e-9);
     }
