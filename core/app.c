@@ -453,6 +453,10 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     app->plugins.items[0]->resource_dir = strdup(sl_shader_dir());
     for (int i = 0; i < opt->plugin_count; i++) sl_plugins_load(&app->plugins, opt->plugins[i], "command line", true);
     for (int i = 0; i < app->scene.plugin_count; i++) sl_plugins_load(&app->plugins, app->scene.plugins[i], "scene", false);
+    /* Antialiasing is on by default (issue 20, plugins/aa/README.md): the bundled aa plugin when it
+     * is installed and nothing loaded it yet; aa.enabled=false switches it off (and costs nothing). */
+    if (!opt->no_default_plugins && sl_plugins_find(&app->plugins, "aa") < 0 && sl_plugin_available("aa"))
+        sl_plugins_load(&app->plugins, "aa", "default antialiasing", false);
     model_defaults(app);
     load_plugins_for_inputs(app);
     sl_plugins_create_all(&app->plugins);

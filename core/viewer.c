@@ -277,6 +277,11 @@ static void save_screenshot(viewer *v) {
         if (!file_exists(png) && !file_exists(exr)) break;
     }
     v->next_shot++;
+    /* A screenshot is a still, as a headless render without --frames is: the frames a plugin's
+     * still needs (TAA's history, plugins/aa) rendered at this time, so P gives the image the
+     * window settles on, even right after a change. */
+    int still = sl_renderer_still_frames(v->app);
+    for (int k = 0; still > 1 && k < still; k++) sl_app_render_frame(v->app);
     if (sl_app_save(v->app, png, err, sizeof err)) fprintf(stderr, "saved %s (display-encoded)\n", png);
     else fprintf(stderr, "screenshot: %s\n", err);
     if (sl_app_save(v->app, exr, err, sizeof err)) fprintf(stderr, "saved %s (linear HDR)\n", exr);

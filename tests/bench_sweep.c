@@ -26,8 +26,11 @@ int main(void) {
     snprintf(cache, sizeof cache, "%s/cache", dir);
     CHECK(sl_bench_mkdirs(dir, err, sizeof err));
     const char *settings[] = {"core.ssaa=1", "core.ssaa=4"};
+    /* the core's own supersampling, without the default antialiasing (plugins/aa) on top */
+    const char *base[] = {"aa.enabled=false"};
     sl_bench_options o = {.plugin = "core", .width = 32, .height = 32, .frames = 3, .warmup = 1,
-                          .settings = settings, .setting_count = 2, .cache_dir = cache};
+                          .settings = settings, .setting_count = 2, .cache_dir = cache,
+                          .base_settings = base, .base_setting_count = 1};
     const char *b = getenv("SHADELAB_TEST_BACKEND");
     if (b && *b) sl_backend_parse(b, &o.backend);
 

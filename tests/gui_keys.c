@@ -24,7 +24,8 @@ int main(void) {
     sl_app app;
     char err[4096];
     sl_app_options opt = {.scene_text = scene, .backend = SL_BACKEND_OSMESA, .width = 16, .height = 16,
-                          .plugins = {SL_KEYS_A, SL_KEYS_B}, .plugin_count = 2, .strict = true};
+                          .plugins = {SL_KEYS_A, SL_KEYS_B}, .plugin_count = 2, .strict = true,
+                          .no_default_plugins = true}; /* these two plugins' keys only */
     CHECK_MSG(sl_app_init(&app, &opt, err, sizeof err), "%s", err);
     sl_key_binding b[32];
     char *warnings = NULL;

@@ -22,7 +22,7 @@ static const char *scene =
 /* Loads the given plugins; returns the record of the last one. */
 static sl_plugin_rec *load(sl_app *app, const char *const *plugins, const char *json, bool strict, bool *ok) {
     sl_app_options opt = {.scene_text = json ? json : scene, .backend = SL_BACKEND_OSMESA, .width = 32, .height = 32,
-                          .strict = strict};
+                          .strict = strict, .no_default_plugins = true}; /* the loader's own records only */
     for (const char *const *p = plugins; *p; p++) opt.plugins[opt.plugin_count++] = *p;
     sl_log_capture(logbuf, sizeof logbuf);
     err[0] = 0;

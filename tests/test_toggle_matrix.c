@@ -50,6 +50,19 @@ static int base_settings(const char **ids, int n, const char **out) {
     return k;
 }
 
+/* Whether the scene file names plugin `id` in its text ("plugins": [..., "id", ...]). */
+static bool names_plugin(const char *path, const char *id) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    static char text[1 << 20];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    char quoted[80];
+    snprintf(quoted, sizeof quoted, "\"%s\"", id);
+    return strstr(text, quoted) != NULL;
+}
+
 static sl_harness *open_scene(const char *path, const char *const *settings, char *err, size_t n) {
     return sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
                                                 .scene_file = path, .settings = settings, .strict = true},
@@ -328,6 +341,16 @@ int main(int argc, char **argv) {
         if (nids > MAX_PLUGINS) nids = MAX_PLUGINS;
         for (int i = 0; i < nids; i++) snprintf(idbuf[i], sizeof idbuf[i], "%s", ids[i]), ids[i] = idbuf[i];
         sl_harness_destroy(h);
+        /* aa is loaded for every scene by default (antialiasing on, plugins/aa/README.md): it stays
+         * on while the scene's own plugins toggle; its own cells run on the scenes that name it
+         * (aa_edges.json), which keeps the matrix inside its time budget */
+        if (!names_plugin(path, "aa"))
+            for (int i = 0; i < nids; i++)
+                if (!strcmp(ids[i], "aa")) {
+                    for (int j = i; j + 1 < nids; j++) snprintf(idbuf[j], sizeof idbuf[j], "%s", idbuf[j + 1]);
+                    nids--;
+                    break;
+                }
         const char *settings[8];
         settings[base_settings(ids, nids, settings)] = NULL;
         h = open_scene(path, settings, err, sizeof err);
