@@ -116,13 +116,27 @@ int sl_harness_plugin_debug_views(sl_harness *h, const char *plugin, const char 
 bool sl_harness_read_display(sl_harness *h, float *rgba) { return sl_app_read_display(&h->app, rgba); }
 bool sl_harness_save(sl_harness *h, const char *path, char *err, size_t n) { return sl_app_save(&h->app, path, err, n); }
 
+/* Pass names outlive the harness and the plugin that registered them: a structure is often
+ * compared after its harness is destroyed (plugin unloaded, its strings gone). Interned copies,
+ * kept for the life of the process (a few dozen distinct names). */
+static const char *intern_pass_name(const char *name) {
+    static char *names[256];
+    static int count;
+    for (int i = 0; i < count; i++)
+        if (!strcmp(names[i], name)) return names[i];
+    if (count == 256) return "(more than 256 distinct pass names)";
+    char *copy = strdup(name);
+    if (!copy) return "(out of memory)";
+    return names[count++] = copy;
+}
+
 void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out) {
     memset(out, 0, sizeof *out);
     const sl_frame_stats *st = sl_renderer_stats(&h->app);
     if (!st) return;
     out->draw_calls = st->draw_calls;
     for (int i = 0; i < st->pass_count; i++)
-        if (st->passes[i].ran && out->pass_count < 64) out->passes[out->pass_count++] = st->passes[i].name;
+        if (st->passes[i].ran && out->pass_count < 64) out->passes[out->pass_count++] = intern_pass_name(st->passes[i].name);
     out->program_count = st->program_count;
     memcpy(out->program_hashes, st->program_hashes, sizeof out->program_hashes);
 }

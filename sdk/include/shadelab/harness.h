@@ -61,7 +61,8 @@ bool sl_harness_save(sl_harness *h, const char *path, char *err, size_t err_size
 typedef struct sl_harness_structure {
     int draw_calls;
     int pass_count;
-    const char *passes[64];          /* names of the passes that ran */
+    const char *passes[64];          /* names of the passes that ran (valid after the harness is
+                                        destroyed: compare structures of different harnesses) */
     int program_count;
     uint64_t program_hashes[256];    /* one per material, in material order */
 } sl_harness_structure;
