@@ -259,14 +259,24 @@ static void apply_material_inputs(sl_app *app, int m) {
                 strchr(unhandled, ',') ? "them" : "it");
 }
 
-/* A model file opened directly: a default environment (the envmap plugin's procedural sky, or a
- * neutral studio light without it) and tone mapping, unless the command line names them. */
+/* Loads the installed plugins that declare any of `bits` in their descriptor's default_for (the
+ * core names none); returns how many declare it, loaded now or already. */
+static int load_defaults(sl_app *app, unsigned bits, const char *why) {
+    char ids[32][64];
+    int n = sl_plugin_defaults(bits, ids, 32);
+    for (int i = 0; i < n; i++)
+        if (sl_plugins_find(&app->plugins, ids[i]) < 0) sl_plugins_load(&app->plugins, ids[i], why, false);
+    return n;
+}
+
+/* A model file opened directly: what installed plugins declare as a model file's defaults (the
+ * bundled ones: envmap's procedural sky as its environment, tone mapping), or a neutral studio
+ * light when no plugin lights it. */
 static void model_defaults(sl_app *app) {
     sl_scene *s = &app->scene;
     if (!s->from_model) return;
-    if (sl_plugin_available("envmap")) {
-        sl_plugins_load(&app->plugins, "envmap", "default environment of a model file", false);
-    } else if (s->light_count == 0) {
+    if (load_defaults(app, SL_PLUGIN_DEFAULT_MODEL_ENVIRONMENT, "default environment of a model file") == 0 &&
+        s->light_count == 0) {
         /* studio: a key light from the upper front left, a dimmer fill, a grey ambient */
         static const float dirs[2][3] = {{0.45f, -0.7f, -0.55f}, {-0.6f, -0.3f, -0.75f}};
         static const float power[2] = {2.5f, 0.8f};
@@ -279,7 +289,7 @@ static void model_defaults(sl_app *app) {
         }
         for (int c = 0; c < 3; c++) s->environment.color[c] = 0.3f;
     }
-    if (sl_plugin_available("tonemap")) sl_plugins_load(&app->plugins, "tonemap", "default tone mapping of a model file", false);
+    load_defaults(app, SL_PLUGIN_DEFAULT_MODEL_FILE, "default of a model file");
 }
 
 /* Validates and applies material/light props from the scene against the plugins' schema. */
@@ -453,10 +463,9 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     app->plugins.items[0]->resource_dir = strdup(sl_shader_dir());
     for (int i = 0; i < opt->plugin_count; i++) sl_plugins_load(&app->plugins, opt->plugins[i], "command line", true);
     for (int i = 0; i < app->scene.plugin_count; i++) sl_plugins_load(&app->plugins, app->scene.plugins[i], "scene", false);
-    /* Antialiasing is on by default (issue 20, plugins/aa/README.md): the bundled aa plugin when it
-     * is installed and nothing loaded it yet; aa.enabled=false switches it off (and costs nothing). */
-    if (!opt->no_default_plugins && sl_plugins_find(&app->plugins, "aa") < 0 && sl_plugin_available("aa"))
-        sl_plugins_load(&app->plugins, "aa", "default antialiasing", false);
+    /* Plugins on by default are those whose descriptor says so (the bundled aa: antialiasing on,
+     * issue 20); X.enabled=false switches one off and it costs nothing. */
+    if (!opt->no_default_plugins) load_defaults(app, SL_PLUGIN_DEFAULT_EVERY_SCENE, "loaded by default");
     model_defaults(app);
     load_plugins_for_inputs(app);
     sl_plugins_create_all(&app->plugins);

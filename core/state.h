@@ -24,7 +24,7 @@ typedef struct sl_app_options {
     const char *camera;          /* --camera NAME */
     const char *debug_view;      /* --debug-view NAME */
     bool strict;                 /* a plugin that fails is fatal */
-    bool no_default_plugins;     /* do not load the default antialiasing plugin (aa) */
+    bool no_default_plugins;     /* do not load the plugins declared SL_PLUGIN_DEFAULT_EVERY_SCENE (aa) */
     bool float32;                /* RGBA32F colour target instead of RGBA16F */
     bool finish_timing;          /* force glFinish timing (default on CPU rasterisers) */
     int accumulate;              /* frames averaged per output frame (references), >= 1 */

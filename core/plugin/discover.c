@@ -42,6 +42,43 @@ static bool declares(const char *path, const char *input) {
     return found;
 }
 
+/* The default_for bits of the plugin file's descriptor (0 when it has none or cannot be read). */
+static unsigned default_bits(const char *path) {
+    void *dl = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
+    if (!dl) return 0;
+    sl_plugin_entry_fn entry = (sl_plugin_entry_fn)dlsym(dl, SL_PLUGIN_ENTRY_SYMBOL);
+    const sl_plugin_desc *d = entry ? entry() : NULL;
+    unsigned bits = d && d->abi_major == SL_ABI_MAJOR && d->abi_minor <= SL_ABI_MINOR &&
+                    d->struct_size >= offsetof(sl_plugin_desc, default_for) + sizeof(unsigned) ? d->default_for : 0;
+    dlclose(dl);
+    return bits;
+}
+
+int sl_plugin_defaults(unsigned bits, char ids[][64], int max) {
+    char dirs[16][1024];
+    int nd = sl_plugin_search_dirs(dirs, 16), found = 0;
+    for (int i = 0; i < nd; i++) {
+        DIR *dir = opendir(dirs[i]);
+        if (!dir) continue;
+        char *names[256];
+        int count = 0;
+        for (struct dirent *e; (e = readdir(dir)) && count < 256;)
+            if (e->d_name[0] != '.' && strlen(e->d_name) < 64) names[count++] = strdup(e->d_name);
+        closedir(dir);
+        qsort(names, count, sizeof *names, cmp_str); /* the same order on every machine */
+        for (int k = 0; k < count; k++) {
+            char path[2200];
+            bool seen = false; /* an id found in an earlier directory wins */
+            for (int j = 0; j < found && names[k]; j++) seen |= !strcmp(ids[j], names[k]);
+            if (names[k] && !seen && found < max && plugin_file(dirs[i], names[k], path, sizeof path) &&
+                (default_bits(path) & bits))
+                snprintf(ids[found++], 64, "%s", names[k]);
+            free(names[k]);
+        }
+    }
+    return found;
+}
+
 bool sl_plugin_for_input(const char *input, char *id, size_t n) {
     char dirs[16][1024];
     int nd = sl_plugin_search_dirs(dirs, 16);

@@ -77,5 +77,8 @@ int sl_plugin_search_dirs(char dirs[][1024], int max);
  * of the first one (directory order, then by name) whose descriptor lists the standard material
  * input `input` in material_inputs (read without create()). */
 bool sl_plugin_available(const char *id);
+/* The ids (up to max, sorted, one per id) of the plugins in the search directories whose
+ * descriptor's default_for has any of `bits` (SL_PLUGIN_DEFAULT_*); returns how many. */
+int sl_plugin_defaults(unsigned bits, char ids[][64], int max);
 bool sl_plugin_for_input(const char *input, char *id, size_t n);
 #endif

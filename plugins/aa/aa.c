@@ -356,6 +356,7 @@ static const sl_plugin_desc desc = {
     .begin_frame = begin_frame,
     .deactivate = deactivate,
     .destroy = destroy,
+    .default_for = SL_PLUGIN_DEFAULT_EVERY_SCENE, /* antialiasing is on by default (README) */
 };
 
 SL_DEFINE_PLUGIN(desc)

@@ -707,6 +707,7 @@ static const sl_plugin_desc envmap_desc = {
     .deactivate = envmap_deactivate,
     .destroy = envmap_destroy,
     .get_extension = envmap_get_extension,
+    .default_for = SL_PLUGIN_DEFAULT_MODEL_FILE | SL_PLUGIN_DEFAULT_MODEL_ENVIRONMENT, /* a model's sky */
 };
 
 SL_DEFINE_PLUGIN(envmap_desc)

@@ -104,6 +104,7 @@ static const sl_plugin_desc desc = {
     .create = create,
     .activate = activate,
     .destroy = destroy,
+    .default_for = SL_PLUGIN_DEFAULT_MODEL_FILE, /* a model file opened directly is tone mapped */
 };
 
 SL_DEFINE_PLUGIN(desc)

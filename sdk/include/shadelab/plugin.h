@@ -50,7 +50,17 @@ typedef struct sl_plugin_desc {
      * this plugin's material keys receive, or NULL. The host reads it from the descriptor without
      * calling create(), to load the plugins an imported material needs, and no more. */
     const char *const *material_inputs;
+    /* ABI 1.6: when the host loads this plugin without being asked (SL_PLUGIN_DEFAULT_* bits; 0 =
+     * only when named), read from the descriptor without calling create(). The core names no
+     * plugin: what is on by default is what installed plugins declare here. */
+    unsigned default_for;
 } sl_plugin_desc;
+
+/* sl_plugin_desc.default_for bits (ABI 1.6). */
+#define SL_PLUGIN_DEFAULT_EVERY_SCENE 1u        /* loaded for every scene (aa: antialiasing on) */
+#define SL_PLUGIN_DEFAULT_MODEL_FILE 2u         /* loaded when a model file is opened directly */
+#define SL_PLUGIN_DEFAULT_MODEL_ENVIRONMENT 4u  /* ... and it lights it (envmap's sky); without one
+                                                   the core adds a neutral studio light */
 
 #if defined(__GNUC__)
 #define SL_EXPORT __attribute__((visibility("default")))
