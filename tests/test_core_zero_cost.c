@@ -21,8 +21,6 @@ static bool structure(const char *const *plugins, const char *const *settings, s
     if (!h) { fprintf(stderr, "%s\n", err); return false; }
     bool ok = sl_harness_render(h, NULL);
     sl_harness_structure_of(h, st);
-    /* pass names belong to their plugins, which the harness unloads: keep copies */
-    for (int i = 0; i < st->pass_count; i++) st->passes[i] = strdup(st->passes[i]);
     sl_harness_destroy(h);
     return ok;
 }

@@ -204,8 +204,6 @@ static bool structure(bool skin, const char *const *plugins, const char *const *
     if (!h) { fprintf(stderr, "%s\n", err); return false; }
     bool ok = sl_harness_render(h, NULL) && sl_harness_render(h, NULL); /* the second frame: skipped work stays skipped */
     sl_harness_structure_of(h, st);
-    /* pass names belong to their plugins, which the harness unloads: keep copies */
-    for (int i = 0; i < st->pass_count; i++) st->passes[i] = strdup(st->passes[i]);
     sl_harness_destroy(h);
     return ok;
 }
