@@ -28,7 +28,7 @@ add_test(NAME gui_smoke
          COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_smoke.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff>
                  ${SL_TEST_EXAMPLE_DIR} $<TARGET_FILE:sl_test_keys-a> $<TARGET_FILE:sl_test_keys-b>
                  $<TARGET_FILE:sl-xkey>)
-set_tests_properties(gui_smoke PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300 LABELS gui SKIP_RETURN_CODE 77)
+set_tests_properties(gui_smoke PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 900 LABELS gui SKIP_RETURN_CODE 77)
 
 # Real key presses for the smoke test (XTEST, loaded at run time).
 add_executable(sl-xkey ${CMAKE_CURRENT_LIST_DIR}/gui_xkey.c)
