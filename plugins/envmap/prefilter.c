@@ -267,7 +267,7 @@ unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src
 unsigned em_brdf_lut(em_gpu *g, int size, int samples) {
     unsigned t;
     glCreateTextures(GL_TEXTURE_2D, 1, &t);
-    glTextureStorage2D(t, 1, GL_RG16F, size, size);
+    glTextureStorage2D(t, 1, GL_RGBA16F, size, size);
     set_filtering(t, false);
     unsigned p = g->prog_lut;
     glUseProgram(p);

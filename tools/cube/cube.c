@@ -37,7 +37,8 @@ static const char *usage =
     "  --backend B       headless (default: EGL on a GPU, else OSMesa), osmesa or egl\n"
     "  -q, --quiet       no progress bar\n"
     "  -h, --help        this text\n"
-    "The --brdf-lut .exr holds A in red and B in green; texel (i, j) is n.v = i/(N-1) and roughness\n"
+    "The --brdf-lut .exr holds A in red, B in green, the diffuse Fresnel weight C(n.v) in blue;\n"
+    "texel (i, j) is n.v = i/(N-1) and roughness "
     "j/(N-1), row 0 (top) is roughness 0. The picture beside it (OUT with .png) shows the same.\n";
 
 static double now_s(void) {
@@ -159,7 +160,7 @@ int main(int argc, char **argv) {
         double secs = now_s() - t_start;
         unsigned char *pic = malloc((size_t)size * size * 4);
         for (int i = 0; i < size * size; i++) {
-            px[i * 4 + 2] = 0, px[i * 4 + 3] = 1;
+            px[i * 4 + 3] = 1;
             for (int c = 0; c < 4; c++) {
                 float v = c == 3 ? 1 : px[i * 4 + c];
                 pic[i * 4 + c] = (unsigned char)lrintf(255 * (v < 0 ? 0 : v > 1 ? 1 : v));
@@ -167,7 +168,7 @@ int main(int argc, char **argv) {
         }
         char png[4096];
         snprintf(png, sizeof png, "%.*s.png", (int)(ext - out), out);
-        bool ok = (strcasecmp(ext, ".exr") ? true : em_io_write_exr(out, px, size, size, "shadelab envmap BRDF LUT: R = A, G = B", err, sizeof err)) &&
+        bool ok = (strcasecmp(ext, ".exr") ? true : em_io_write_exr(out, px, size, size, "shadelab envmap BRDF LUT: R = A, G = B, B = diffuse weight C(n.v)", err, sizeof err)) &&
                   em_io_write_png8(png, pic, size, size, "shadelab envmap BRDF LUT picture", err, sizeof err);
         if (!ok) rc = fail("%s", err);
         else fprintf(stderr, "wrote %s%s%s (%d², %d samples) in %.2f s\n", strcasecmp(ext, ".exr") ? "" : out,

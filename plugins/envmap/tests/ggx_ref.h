@@ -54,6 +54,23 @@ static inline void ref_brdf_ab(double mu, double a, int nu, int nphi, double *A,
     *B = sb / ((double)nu * nphi);
 }
 
+/* The diffuse Fresnel weight C(mu) = ∫ (1 − v·h)^5 cos θ_l/π dl over the hemisphere, h the
+ * half-vector of l and v: glTF's diffuse (1 − F(v·h)) c/π with Schlick's F integrates to
+ * (1 − F0)(1 − C(mu)) c. Midpoint rule in (cos² θ_l, φ), where cos/π dl = d(cos²θ) dφ/2π. */
+static inline double ref_diffuse_fresnel(double mu, int n) {
+    double v[3] = {sqrt(fmax(0, 1 - mu * mu)), 0, mu}, s = 0;
+    for (int i = 0; i < n; i++) {
+        double c2 = (i + 0.5) / n, ct = sqrt(c2), st = sqrt(1 - c2);
+        for (int j = 0; j < n; j++) {
+            double phi = 2 * M_PI * (j + 0.5) / n;
+            double h[3] = {st * cos(phi) + v[0], st * sin(phi) + v[1], ct + v[2]};
+            double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+            s += pow(1 - (v[0] * h[0] + v[1] * h[1] + v[2] * h[2]) / hl, 5);
+        }
+    }
+    return s / ((double)n * n);
+}
+
 /* Directional albedo E(mu, α) with F = 1. */
 static inline double ref_albedo(double mu, double a) {
     double A, B;

@@ -2,7 +2,8 @@
  * OSMesa through the harness, 32 × 32 images of a unit metal sphere (F = 1):
  *   furnace  uniform environment 1: every method (split-sum, dominant, fis N = 1 and 32, the
  *            Monte Carlo reference) gives the directional albedo E(μ, α) (ggx_ref.h integrates it
- *            in C) within 0.5 % (the reference: its mean error), α = 0.05 … 1
+ *            in C) within 0.5 % (the reference: its mean error), α = 0.05 … 1; a white dielectric
+ *            gives glTF's diffuse + specular albedo (1 − F0)(1 − C(μ)) + F0·A + B, rim included
  *   band     1 plus 9 in a band of polar angle: the reference's 3 × 3 block means vs the C
  *            quadrature committed in ibl_quadrature_values.h (ibl_quadrature.c: no GL, no code
  *            shared with the GLSL), and the other methods' errors at the same points (printed;
@@ -146,6 +147,53 @@ static void test_furnace(void) {
             if (m == NM - 1) CHECK_MSG(fabs(mean) < 0.005, "%s alpha %.2f: mean %.4f", methods[m].name, alphas[a], mean);
             else CHECK_MSG(worst < 0.005, "%s alpha %.2f: %.4f", methods[m].name, alphas[a], worst);
         }
+        sl_harness_destroy(h);
+    }
+}
+
+/* White furnace, white dielectric (metallic 0, F0 = 0.04), α = 0.4: glTF's f = (1 − F(v·h))/π +
+ * F D G/(4 n·l n·v) integrates to (1 − F0)(1 − C(μ)) + F0·A + B (C, A, B in C, ggx_ref.h), down
+ * to μ = 0.1 (the rim, where a diffuse weighted by 1 − F(n·v) instead falls to 0.4 of it). */
+static void test_dielectric_furnace(void) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/one.exr", dir);
+    const double alpha = 0.4, f0 = 0.04;
+    static double want[W * H];
+    for (int i = 0; i < W * H; i++) {
+        double n[3], v[3], A, B;
+        want[i] = 0;
+        if (!sphere_pixel(i % W, i / W, n, v, 0.1)) continue;
+        double mu = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+        ref_brdf_ab(mu, alpha, 600, 64, &A, &B);
+        want[i] = (1 - f0) * (1 - ref_diffuse_fresnel(mu, 96)) + f0 * A + B;
+    }
+    const int pick[] = {1, 3, NM - 1}; /* dominant, fis N = 32, the reference */
+    for (int k = 0; k < 3; k++) {
+        const struct method *m = &methods[pick[k]];
+        sl_harness *h = make_method(path, m, m->accumulate);
+        CHECK(h != NULL);
+        if (!h) continue;
+        set(h, "material.m.metallic=%g", 0);
+        set(h, "material.m.alpha=%g", alpha);
+        CHECK(sl_harness_render(h, img));
+        double worst = 0, mean = 0, rim = 0;
+        int count = 0, nrim = 0;
+        for (int i = 0; i < W * H; i++) {
+            if (want[i] == 0) continue;
+            double rel = img[i * 4 + 1] / want[i] - 1;
+            worst = fmax(worst, fabs(rel));
+            mean += rel, count++;
+            double n[3], v[3];
+            if (!sphere_pixel(i % W, i / W, n, v, 0.1) || n[0] * v[0] + n[1] * v[1] + n[2] * v[2] > 0.3) continue;
+            rim += rel, nrim++;
+        }
+        mean /= count, rim /= nrim;
+        printf("dielectric furnace %-10s alpha %.2f: %d pixels (n.v > 0.1), max |rel. error| %.4f, mean %+.4f, rim (n.v < 0.3, "
+               "%d px) %+.4f\n",
+               m->name, alpha, count, worst, mean, nrim, rim);
+        CHECK(count > 300 && nrim >= 16);
+        if (pick[k] == NM - 1) CHECK_MSG(fabs(mean) < 0.005 && fabs(rim) < 0.01, "%s: mean %.4f rim %.4f", m->name, mean, rim);
+        else CHECK_MSG(worst < 0.005, "%s: %.4f", m->name, worst);
         sl_harness_destroy(h);
     }
 }
@@ -320,6 +368,7 @@ static void test_specular_occlusion(void) {
 int main(void) {
     snprintf(dir, sizeof dir, "%s", sl_test_dir());
     test_furnace();
+    test_dielectric_furnace();
     test_band();
     test_horizon();
     test_specular_occlusion();

@@ -169,6 +169,16 @@ static void test_lut(em_gpu *g) {
     printf("BRDF LUT (%d², 1024 VNDF samples) vs C integration at %d (n·v, α): max |Δ| %.4f, mean %.5f\n", S, n, worst,
            mean / n);
     CHECK_MSG(worst < 0.01, "LUT differs from the integral by %.4f", worst);
+    /* third channel: the diffuse Fresnel weight C(n·v), the same in every row */
+    double worst_c = 0, c_grazing = 0;
+    for (int i = 0; i < S; i += 2) {
+        double c = ref_diffuse_fresnel(fmax(i / (S - 1.0), 1e-3), 200);
+        if (i == 0) c_grazing = c;
+        for (int j = 0; j < S; j += 5) worst_c = fmax(worst_c, fabs(px[(j * S + i) * 4 + 2] - c));
+    }
+    printf("BRDF LUT diffuse weight C(n·v) vs C integration: max |Δ| %.5f (C(0) = %.4f)\n", worst_c, c_grazing);
+    CHECK_MSG(worst_c < 2e-3, "diffuse weight differs by %.4f", worst_c);
+    CHECK(c_grazing > 0.02); /* a weight that ignored it (C = 0) would be off by more than the bound */
     /* a LUT that ignored the Fresnel split (A = E, B = 0) is far off */
     double A, B;
     ref_brdf_ab(0.1, 0.25, 1500, 128, &A, &B);

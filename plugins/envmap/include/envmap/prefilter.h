@@ -150,9 +150,11 @@ unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int sa
 /* Diffuse irradiance cube (out_size², one level): E(n)/π by summing every texel of the base
  * cube's mip of face size src_size (exact cosine-weighted Riemann sum, no noise). */
 unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src_size, int out_size);
-/* Environment-BRDF LUT (RG16F, size²): x = n·v, y = perceptual roughness r (α = r²), at
- * texel centres x_i = i/(size−1): (A, B) with ∫ f_s cos = F0·A + B (Schlick), VNDF sampled
- * with `samples` samples and the ggx plugin's separable Smith G. */
+/* Environment-BRDF LUT (RGBA16F, size²): x = n·v, y = perceptual roughness r (α = r²), at
+ * texel centres x_i = i/(size−1): R, G = (A, B) with ∫ f_s cos = F0·A + B (Schlick), VNDF
+ * sampled with `samples` samples and the ggx plugin's separable Smith G; B = the diffuse weight
+ * C(n·v) = ∫ (1 − v·h)^5 cos/π dl (independent of r), so ∫ (1 − F(v·h)) cos/π = (1 − F0)(1 − C);
+ * A = 1. */
 unsigned em_brdf_lut(em_gpu *g, int size, int samples);
 /* Reads a cube level (6 faces of size², GL order) or a 2D texture (RGBA floats, GL row order:
  * row 0 = t = 0). Returns malloc'd memory. */

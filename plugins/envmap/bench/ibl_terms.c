@@ -1,0 +1,164 @@
+/* envmap's image-based lighting term by term against its Monte Carlo reference (issue 16): the
+ * diffuse and the specular parts of a GGX sphere separately (diffuse = the render with
+ * ggx.zero_specular=true, specular = full − diffuse, in the split sum and in the reference alike),
+ * and a Lambert sphere (the irradiance alone: SH and convolved against cosine-sampled Monte
+ * Carlo), per α, metal and dielectric, per environment. The diffuse is also binned by μ = n·v
+ * (mean ratio split sum / reference per bin), which tells a view-angle weighting error (it grows
+ * towards the rim) from an irradiance error (it follows the environment).
+ * Output: CSV on stdout, one row per (environment, material, α, term, method):
+ *   env,material,alpha,term,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5
+ * rel_rms = √(mean |x − ref|²) / mean ref over the sphere's pixels (all three channels), each
+ * term against the reference's same term.
+ * Usage: envmap_bench_terms [--size N] [--reference-frames N] [--specular METHOD] [--set "ID=V ..."]
+ *                           [--material metal|dielectric|lambert] [--env PATH|sky[:E]]...
+ * (plugins/envmap/bench/terms.sh runs it). */
+#include <shadelab/harness.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *materials[3][2] = {
+    {"metal", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, \"base_color\": [0.95, 0.64, 0.54]"},
+    {"dielectric", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, \"base_color\": [0.5, 0.5, 0.5]"},
+    {"lambert", "\"model\": \"lambert\", \"base_color\": [0.5, 0.5, 0.5]"},
+};
+static const double alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
+enum { NA = sizeof alphas / sizeof *alphas, NB = 3 };
+
+static sl_harness *make(const char *env, const char *mat, int size, int accumulate) {
+    char json[4096], err[4096], envjson[1200];
+    char sun[64] = "";
+    if (!strncmp(env, "sky", 3)) {
+        snprintf(envjson, sizeof envjson, "{}");
+        if (env[3] == ':') snprintf(sun, sizeof sun, "envmap.sun_irradiance=%s", env + 4);
+    }
+    else snprintf(envjson, sizeof envjson, "{\"map\": \"%s\"}", env);
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"envmap\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3.1], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
+             " \"materials\": [{\"name\": \"m\", %s, \"alpha\": 0.2}],\n"
+             " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
+             " \"environment\": %s}",
+             mat, envjson);
+    const char *settings[4] = {"envmap.background=false", sun[0] ? sun : NULL, NULL, NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
+                                                          .scene_json = json, .settings = settings, .float32 = true,
+                                                          .strict = true, .accumulate = accumulate},
+                                      err, sizeof err);
+    if (!h) fprintf(stderr, "harness: %s\n", err);
+    return h;
+}
+static bool set(sl_harness *h, const char *text) {
+    char buf[256], err[512];
+    snprintf(buf, sizeof buf, "%s", text);
+    for (char *tok = strtok(buf, " "); tok; tok = strtok(NULL, " "))
+        if (!sl_harness_set(h, tok, err, sizeof err)) {
+            fprintf(stderr, "%s: %s\n", tok, err);
+            return false;
+        }
+    return true;
+}
+/* μ = n·v of pixel i's sphere point (camera at (0, 0, 3.1) looking at the unit sphere, 40°), −1 off it */
+static double pixel_mu(int i, int size) {
+    double t = tan(20 * M_PI / 180);
+    double dx = (2 * ((i % size) + 0.5) / size - 1) * t, dy = (1 - 2 * ((i / size) + 0.5) / size) * t, dz = -1;
+    double l = sqrt(dx * dx + dy * dy + 1);
+    dx /= l, dy /= l, dz /= l;
+    double oz = 3.1, b = oz * dz, c = oz * oz - 1, disc = b * b - c;
+    if (disc <= 0) return -1;
+    double s = -b - sqrt(disc);
+    double nx = s * dx, ny = s * dy, nz = oz + s * dz;
+    return -(nx * dx + ny * dy + nz * dz);
+}
+/* x, ref: a term of the method and of the reference, each (a − b) when b is given */
+static void row(const char *env, const char *mat, double alpha, const char *term, const char *method, const float *xa,
+                const float *xb, const float *ra, const float *rb, const unsigned char *mask, int size) {
+    int n = size * size;
+    double se = 0, sr = 0, sx = 0, bx[NB] = {0}, br[NB] = {0};
+    long count = 0;
+    for (int i = 0; i < n; i++) {
+        if (!mask[i]) continue;
+        double mu = pixel_mu(i, size);
+        int bin = mu < 0.25 ? 0 : mu < 0.5 ? 1 : 2;
+        for (int c = 0; c < 3; c++) {
+            double x = xa[i * 4 + c] - (xb ? xb[i * 4 + c] : 0), r = ra[i * 4 + c] - (rb ? rb[i * 4 + c] : 0);
+            se += (x - r) * (x - r), sr += r, sx += x;
+            bx[bin] += x, br[bin] += r;
+        }
+        count += 3;
+    }
+    printf("%s,%s,%.2f,%s,%s,%.5f,%+.5f", env, mat, alpha, term, method, sqrt(se / count) / (sr / count), sx / sr - 1);
+    for (int b = 0; b < NB; b++) printf(",%.4f", br[b] > 0 ? bx[b] / br[b] : 0);
+    printf("\n");
+    fflush(stdout);
+}
+
+int main(int argc, char **argv) {
+    int size = 48, ref_frames = 32;
+    const char *envs[8], *spec = "dominant", *extra = "", *only = NULL;
+    int ne = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--size") && i + 1 < argc) size = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--reference-frames") && i + 1 < argc) ref_frames = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--specular") && i + 1 < argc) spec = argv[++i];
+        else if (!strcmp(argv[i], "--set") && i + 1 < argc) extra = argv[++i];     /* more settings of the method */
+        else if (!strcmp(argv[i], "--material") && i + 1 < argc) only = argv[++i]; /* metal, dielectric or lambert */
+        else if (!strcmp(argv[i], "--env") && i + 1 < argc && ne < 8) envs[ne++] = argv[++i];
+        else {
+            fprintf(stderr, "usage: %s [--size N] [--reference-frames N] [--specular METHOD] [--set \"ID=V ...\"] "
+                    "[--material NAME] [--env PATH|sky[:E]]...\n", argv[0]);
+            return 2;
+        }
+    }
+    if (!ne) envs[ne++] = "sky:0";
+    int n = size * size;
+    size_t img = (size_t)n * 4;
+    float *refF = malloc(NA * img * 4), *refD = malloc(NA * img * 4), *x = malloc(img * 4), *xd = malloc(img * 4);
+    unsigned char *mask = malloc((size_t)n);
+    char buf[160];
+    printf("env,material,alpha,term,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5\n");
+    for (int e = 0; e < ne; e++) {
+        const char *envname = strrchr(envs[e], '/') ? strrchr(envs[e], '/') + 1 : envs[e];
+        for (int m = 0; m < 3; m++) {
+            if (only && strcmp(only, materials[m][0])) continue;
+            bool lambert = m == 2;
+            int na = lambert ? 1 : NA;
+            sl_harness *h = make(envs[e], materials[m][1], size, ref_frames);
+            if (!h || !set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
+            for (int a = 0; a < na; a++) {
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                if (!set(h, buf) || !sl_harness_render(h, refF + a * img)) return 1;
+                if (m == 0) memset(refD + a * img, 0, img * 4); /* metal: no diffuse */
+                else if (!lambert && (!set(h, "ggx.zero_specular=true") || !sl_harness_render(h, refD + a * img) ||
+                                      !set(h, "ggx.zero_specular=false")))
+                    return 1;
+            }
+            sl_harness_destroy(h);
+            for (int i = 0; i < n; i++) mask[i] = refF[i * 4] + refF[i * 4 + 1] + refF[i * 4 + 2] > 0 && pixel_mu(i, size) > 0;
+            h = make(envs[e], materials[m][1], size, 1);
+            snprintf(buf, sizeof buf, "envmap.specular=%s %s", spec, extra);
+            if (!h || !set(h, buf)) return 1;
+            if (lambert) {
+                const char *irr[2] = {"sh", "convolved"};
+                for (int k = 0; k < 2; k++) {
+                    snprintf(buf, sizeof buf, "envmap.irradiance=%s", irr[k]);
+                    if (!set(h, buf) || !sl_harness_render(h, x)) return 1;
+                    row(envname, "lambert", 0, "irradiance", irr[k], x, NULL, refF, NULL, mask, size);
+                }
+            }
+            for (int a = 0; a < na && !lambert; a++) {
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                if (!set(h, buf) || !sl_harness_render(h, x)) return 1;
+                row(envname, materials[m][0], alphas[a], "all", spec, x, NULL, refF + a * img, NULL, mask, size);
+                if (m == 0) continue; /* metal: all specular */
+                if (!set(h, "ggx.zero_specular=true") || !sl_harness_render(h, xd) || !set(h, "ggx.zero_specular=false")) return 1;
+                row(envname, materials[m][0], alphas[a], "diffuse", spec, xd, NULL, refD + a * img, NULL, mask, size);
+                row(envname, materials[m][0], alphas[a], "specular", spec, x, xd, refF + a * img, refD + a * img, mask, size);
+            }
+            sl_harness_destroy(h);
+        }
+    }
+    free(refF), free(refD), free(x), free(xd), free(mask);
+    return 0;
+}
