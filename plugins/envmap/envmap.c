@@ -58,11 +58,12 @@ static const sl_param_desc params[] = {
       .description = "Face size of the base and prefiltered specular cubes."),
     P(.id = "samples", .type = SL_PARAM_INT, .default_value = {.i = 512}, .min = 1, .max = 65536, .group = "prefilter",
       .flags = SL_PARAM_QUALITY_KNOB, .description = "GGX importance samples per texel of the specular prefilter."),
-    P(.id = "mip_count", .type = SL_PARAM_INT, .default_value = {.i = 9}, .min = 2, .max = 12, .group = "prefilter",
+    P(.id = "mip_count", .type = SL_PARAM_INT, .default_value = {.i = 7}, .min = 2, .max = 12, .group = "prefilter",
       .flags = SL_PARAM_QUALITY_KNOB,
-      .description = "Roughness levels of the specular chain (level m: roughness m/(count-1)); at most log2(cube_size)+1."),
+      .description = "Roughness levels of the specular chain (level m: roughness m/(count-1)); at most log2(cube_size), "
+                     "so that the roughest level keeps 2x2 texels a face (bench/levels.sh)."),
     P(.id = "lut_size", .type = SL_PARAM_INT, .default_value = {.i = 64}, .min = 8, .max = 512, .group = "prefilter",
-      .flags = SL_PARAM_QUALITY_KNOB, .unit = "px", .description = "Size of the RG16F environment-BRDF table."),
+      .flags = SL_PARAM_QUALITY_KNOB, .unit = "px", .description = "Size of the RGBA16F environment-BRDF table."),
     P(.id = "lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = -2, .max = 4, .step = 0.25f,
       .group = "prefilter", .description = "Bias added to the PDF-chosen source mip level of each prefilter sample."),
     P(.id = "multiscatter", .type = SL_PARAM_BOOL, .group = "lighting",
@@ -362,7 +363,11 @@ static void ensure_spec(envmap *e) {
     int size = eff_cube_size(e);
     int samples = e->constant ? 64 : param(e, "samples").i;
     int levels = param(e, "mip_count").i;
-    if (levels > em_max_levels(size)) levels = em_max_levels(size);
+    /* Level m is a (size/2^m)² mip: a chain down to 1² stores the roughest lobe in one texel a
+     * face, and α = 1 measured 3-4x worse vs the reference than with a last level of 2² or more
+     * (bench/levels.sh: sky 0.093 vs ≤ 0.023, courtyard 0.30 vs ≤ 0.115, any cube size). */
+    if (levels > em_max_levels(size) - 1) levels = em_max_levels(size) - 1;
+    if (levels < 2) levels = 2;
     float bias = param(e, "lod_bias").f[0];
     uint64_t key = e->src_hash ^ e->glsl_hash;
     int ints[3] = {size, samples, levels};

@@ -11,7 +11,10 @@
  * term against the reference's same term.
  * Usage: envmap_bench_terms [--size N] [--reference-frames N] [--specular METHOD] [--set "ID=V ..."]
  *                           [--material metal|dielectric|lambert] [--env PATH|sky[:E]]...
- * (plugins/envmap/bench/terms.sh runs it). */
+ *                           [--sweep "LABEL=ID=V ID=V;LABEL=…"]
+ * --sweep: instead of the terms, the whole sphere ("all") for each labelled group of settings
+ * (applied after --set), against one reference per environment and material (bench/levels.sh).
+ * (plugins/envmap/bench/terms.sh runs it.) */
 #include <shadelab/harness.h>
 #include <math.h>
 #include <stdio.h>
@@ -96,7 +99,7 @@ static void row(const char *env, const char *mat, double alpha, const char *term
 
 int main(int argc, char **argv) {
     int size = 48, ref_frames = 32;
-    const char *envs[8], *spec = "dominant", *extra = "", *only = NULL;
+    const char *envs[8], *spec = "dominant", *extra = "", *only = NULL, *sweep = NULL;
     int ne = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--size") && i + 1 < argc) size = atoi(argv[++i]);
@@ -104,6 +107,7 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--specular") && i + 1 < argc) spec = argv[++i];
         else if (!strcmp(argv[i], "--set") && i + 1 < argc) extra = argv[++i];     /* more settings of the method */
         else if (!strcmp(argv[i], "--material") && i + 1 < argc) only = argv[++i]; /* metal, dielectric or lambert */
+        else if (!strcmp(argv[i], "--sweep") && i + 1 < argc) sweep = argv[++i];
         else if (!strcmp(argv[i], "--env") && i + 1 < argc && ne < 8) envs[ne++] = argv[++i];
         else {
             fprintf(stderr, "usage: %s [--size N] [--reference-frames N] [--specular METHOD] [--set \"ID=V ...\"] "
@@ -147,7 +151,22 @@ int main(int argc, char **argv) {
                     row(envname, "lambert", 0, "irradiance", irr[k], x, NULL, refF, NULL, mask, size);
                 }
             }
-            for (int a = 0; a < na && !lambert; a++) {
+            char list[4096];
+            snprintf(list, sizeof list, "%s", sweep ? sweep : "");
+            for (char *item = sweep ? list : NULL, *next; item && *item && !lambert; item = next) {
+                next = strchr(item, ';');
+                if (next) *next++ = 0;
+                else next = item + strlen(item);
+                char *eq = strchr(item, '=');
+                if (!eq || !set(h, eq + 1)) return 1;
+                *eq = 0;
+                for (int a = 0; a < na; a++) {
+                    snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                    if (!set(h, buf) || !sl_harness_render(h, x)) return 1;
+                    row(envname, materials[m][0], alphas[a], "all", item, x, NULL, refF + a * img, NULL, mask, size);
+                }
+            }
+            for (int a = 0; a < na && !lambert && !sweep; a++) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
                 if (!set(h, buf) || !sl_harness_render(h, x)) return 1;
                 row(envname, materials[m][0], alphas[a], "all", spec, x, NULL, refF + a * img, NULL, mask, size);

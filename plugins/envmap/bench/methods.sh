@@ -26,6 +26,24 @@ fi
 awk -F, 'NR > 1 && $4 != "reference" && $4 != "fis32-accumulated" { k = $3 "," $4; ms[k] += $5; e[k] += $6; n[k]++ }
   END { for (k in n) print k "," ms[k] / n[k] "," e[k] / n[k] }' "$out/methods.csv" | sort -t, -k1,1n -k3,3n > "$out/methods-mean.csv"
 awk -F, '{ a = $1; if (a != last) { best = 1e30; last = a } if ($4 < best) { best = $4; print $0 } }' "$out/methods-mean.csv" > "$out/methods-front.csv"
+# the README's table: relative RMS (sphere mean vs the reference's, %) per sphere, method and alpha
+awk -F, 'NR > 1 { k = $1 "|" $2 "|" $4; v[k "|" $3] = sprintf("%.3f (%+.1f %%)", $6, 100 * $7)
+                  if (!(($1 "|" $2) in seen)) { seen[$1 "|" $2] = 1; sph[++ns] = $1 "|" $2 } }
+  END {
+    print "| sphere | method | α = 0.05 | 0.2 | 0.4 | 0.7 | 1.0 |"
+    print "|---|---|---|---|---|---|---|"
+    nm = split("mirror dominant fis8 fis32 fis32-accumulated", m, " ")
+    split("mirror|**dominant (default)**|fis 8|fis 32|fis 32 accumulated", label, "|")
+    na = split("0.05 0.20 0.40 0.70 1.00", a, " ")
+    for (s = 1; s <= ns; s++) {
+      split(sph[s], p, "|"); name = p[1]; sub(/\.exr$/, "", name); sub(/^sky:0$/, "sky (no sun)", name)
+      for (i = 1; i <= nm; i++) {
+        line = "| " (i == 1 ? name ", " p[2] : "") " | " label[i]
+        for (j = 1; j <= na; j++) line = line " | " v[sph[s] "|" m[i] "|" a[j]]
+        print line " |"
+      }
+    }
+  }' "$out/methods.csv" > "$out/methods-table.md"
 gp() { gnuplot -e "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,760 font 'sans,9' } else { set terminal png size 1200,760 }; set termoption noenhanced; $1"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -46,4 +64,4 @@ for a in 0.05 0.20 0.40 0.70 1.00; do
 done
 cmd+="unset multiplot"
 gp "$cmd"
-echo "wrote $out/methods.csv, methods-mean.csv, methods-front.csv, methods-error-vs-ms.png"
+echo "wrote $out/methods.csv, methods-mean.csv, methods-front.csv, methods-table.md, methods-error-vs-ms.png"
