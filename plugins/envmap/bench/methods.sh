@@ -33,7 +33,7 @@ awk -F, 'NR > 1 { k = $1 "|" $2 "|" $4; v[k "|" $3] = sprintf("%.3f (%+.1f %%)",
     print "| sphere | method | α = 0.05 | 0.2 | 0.4 | 0.7 | 1.0 |"
     print "|---|---|---|---|---|---|---|"
     nm = split("mirror dominant fis8 fis32 fis32-accumulated", m, " ")
-    split("mirror|**dominant (default)**|fis 8|fis 32|fis 32 accumulated", label, "|")
+    split("mirror|**dominant (default)**|fis 8|fis 32|fis 32 + convolved, accumulated", label, "|")
     na = split("0.05 0.20 0.40 0.70 1.00", a, " ")
     for (s = 1; s <= ns; s++) {
       split(sph[s], p, "|"); name = p[1]; sub(/\.exr$/, "", name); sub(/^sky:0$/, "sky (no sun)", name)
@@ -60,7 +60,7 @@ for a in 0.05 0.20 0.40 0.70 1.00; do
   cmd+=" '$tmp/sky-dielectric-$a.csv' using 5:6 with points pt 11 ps 0.8 lc 7 title 'sky, dielectric',"
   cmd+=" '< grep -E \"^$a,\" $out/methods-mean.csv' using 3:4:2 with labels point pt 6 ps 1.4 lc 3 offset 0.6,0.5 font ',7' title 'mean of the 4 spheres (labelled)',"
   cmd+=" '< grep -E \"^$a,\" $out/methods-front.csv' using 3:4 with lines lw 2 lc 4 title 'Pareto front of the mean',"
-  cmd+=" '< grep -E \",$a,fis32-accumulated\" $out/methods.csv' using (150):6 with points pt 3 ps 1.2 lc 8 title 'fis N=32 accumulated (its bias), at x = 150';"
+  cmd+=" '< grep -E \",$a,fis32-accumulated\" $out/methods.csv' using (150):6 with points pt 3 ps 1.2 lc 8 title 'fis N=32 + irradiance=convolved, accumulated (its bias), at x = 150';"
 done
 cmd+="unset multiplot"
 gp "$cmd"
