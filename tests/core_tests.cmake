@@ -44,7 +44,7 @@ endforeach()
 # non-zero with the cause named.
 add_test(NAME cli_scenes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_scenes
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_scenes.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
-set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300)
+set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 900)
 
 # Pass order by stage value, not load order; dependencies switch off with what they need.
 sl_add_test(pass_order SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_pass_order.c)
