@@ -23,5 +23,6 @@ bool sl_app_set_debug_view(sl_app *app, const char *name, char *err, size_t n);
 void sl_app_resize(sl_app *app, int width, int height);
 void sl_app_shutdown(sl_app *app);
 
-extern const char sl_default_scene_json[];
+extern const char sl_default_scene_json[]; /* scenes/default.json: the showcase (issue 19) */
+extern const char sl_basic_scene_json[];   /* scenes/basic.json: the bare scene, the harness's default */
 #endif

@@ -20,6 +20,9 @@ sl_harness *sl_harness_create(const sl_harness_desc *in, char *err, size_t n) {
     opt.height = d.height > 0 ? d.height : 64;
     opt.scene_path = d.scene_file;
     opt.scene_text = d.scene_json;
+    /* No scene named: the bare scene (scenes/basic.json, compiled in), not the showcase default,
+     * which loads five plugins; tests that want the default name it (sl_default_scene_json). */
+    if (!opt.scene_path && !opt.scene_text) opt.scene_text = sl_basic_scene_json;
     opt.debug_view = d.debug_view;
     opt.accumulate = d.accumulate;
     opt.float32 = d.float32;

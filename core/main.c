@@ -3,6 +3,7 @@
 #include "quality/autoquality.h" /* --auto-quality (shadelab_quality) */
 #include "log.h"
 #include "render/renderer.h"
+#include "turntable.h"
 #include "viewer.h"
 #include <cjson/cJSON.h>
 #define GLFW_INCLUDE_NONE
@@ -14,6 +15,10 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <dirent.h>
+#include <unistd.h>
 #include <time.h>
 
 static const char *usage =
@@ -27,6 +32,9 @@ static const char *usage =
     "  --frames N             render N frames, then write --output and exit (headless default 1, or the\n"
     "                         frames a still needs: aa.taa_frames with TAA, all at --time)\n"
     "  --output FILE          .png (display-encoded) or .exr (linear HDR); headless default out.png\n"
+    "  --turntable N          N frames orbiting the camera once around the scene (a seamless loop, scene time\n"
+    "                         frozen), written as OUT-000.png ... from --output's name; --output x.mp4 (.mkv,\n"
+    "                         .webm, .mov) encodes them at 30 fps with ffmpeg when it is installed (optional)\n"
     "  --stats FILE.json      per-pass and frame times (median/mean/min over the frames)\n"
     "  --bench                print median frame and per-pass times over the frames (use --frames >= 30)\n"
     "  --plugin NAME|PATH     load a plugin (repeatable)\n"
@@ -51,7 +59,7 @@ static const char *usage =
 typedef struct cli {
     sl_app_options opt;
     const char *output, *stats, *reference, *auto_quality;
-    int frames;
+    int frames, turntable;
     bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys, list_cameras;
     double start_time;
 } cli;
@@ -92,6 +100,12 @@ static bool parse_size(const char *s, int *w, int *h) {
     return true;
 }
 
+/* --output names a video (encoded by ffmpeg from the turntable's PNG frames). */
+static bool is_video(const char *path) {
+    const char *dot = strrchr(path, '.');
+    return dot && (!strcasecmp(dot, ".mp4") || !strcasecmp(dot, ".mkv") || !strcasecmp(dot, ".webm") || !strcasecmp(dot, ".mov"));
+}
+
 static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
     memset(c, 0, sizeof *c);
     c->frames = -1;
@@ -117,6 +131,13 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
             if (!parse_long(v, 1, 1000000, &f)) { snprintf(err, n, "--frames %s: expected a whole number 1..1000000", v); return 1; }
             c->frames = (int)f;
         } else if (!strcmp(a, "--output")) { if (!(c->output = NEXT())) return 1; }
+        else if (!strcmp(a, "--turntable")) {
+            const char *v = NEXT();
+            if (!v) return 1;
+            long t;
+            if (!parse_long(v, 1, 100000, &t)) { snprintf(err, n, "--turntable %s: expected a whole number of frames 1..100000", v); return 1; }
+            c->turntable = (int)t;
+        }
         else if (!strcmp(a, "--stats")) { if (!(c->stats = NEXT())) return 1; }
         else if (!strcmp(a, "--bench")) c->bench = true;
         else if (!strcmp(a, "--plugin")) {
@@ -157,6 +178,11 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
 #undef NEXT
     }
     if (c->headless && c->opt.backend == SL_BACKEND_AUTO) c->opt.backend = SL_BACKEND_HEADLESS;
+    if (c->turntable && c->frames > 0) { snprintf(err, n, "--turntable renders its own frames (each a still); leave out --frames"); return 1; }
+    if (c->output && is_video(c->output) && !c->turntable) {
+        snprintf(err, n, "--output %s: a video is written by --turntable N (a still is .png or .exr)", c->output);
+        return 1;
+    }
     return 0;
 }
 
@@ -299,6 +325,127 @@ static double now_ms(void) {
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
+/* ------------------------------------------------------------- --turntable ------------- */
+
+/* An executable named `name` in $PATH (what `command -v` finds), without running a shell. */
+static bool find_in_path(const char *name, char *out, size_t n) {
+    const char *path = getenv("PATH");
+    if (!path || !*path) return false;
+    for (const char *p = path; *p;) {
+        const char *end = strchr(p, ':');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        int w = snprintf(out, n, "%.*s/%s", (int)len, len ? p : ".", name);
+        struct stat st;
+        if (w > 0 && (size_t)w < n && stat(out, &st) == 0 && S_ISREG(st.st_mode) && access(out, X_OK) == 0) return true;
+        if (!end) break;
+        p = end + 1;
+    }
+    return false;
+}
+
+/* ffmpeg -framerate 30 -i DIR/frame-%0Nd.png … OUTPUT (H.264/VP9 by the container's default,
+ * yuv420p for players; odd sizes padded to even, which yuv420p needs). */
+static bool encode_video(const char *ffmpeg, const char *pattern, const char *output) {
+    const char *args[] = {ffmpeg, "-y", "-hide_banner", "-loglevel", "error", "-framerate", "30", "-i", pattern, "-vf",
+                          "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p", output, NULL};
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) { fprintf(stderr, "shadelab: cannot start ffmpeg: %s\n", strerror(errno)); return false; }
+    if (pid == 0) {
+        execv(ffmpeg, (char *const *)args);
+        fprintf(stderr, "shadelab: cannot run %s: %s\n", ffmpeg, strerror(errno));
+        _exit(127);
+    }
+    int status;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return true;
+    fprintf(stderr, "shadelab: ffmpeg failed (%s %d) encoding %s\n", WIFEXITED(status) ? "exit status" : "signal",
+            WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), output);
+    return false;
+}
+
+static void remove_frames(const char *dir) {
+    DIR *d = opendir(dir);
+    if (d) {
+        char path[8192];
+        for (struct dirent *e; (e = readdir(d));)
+            if (!strncmp(e->d_name, "frame-", 6)) snprintf(path, sizeof path, "%s/%s", dir, e->d_name), unlink(path);
+        closedir(d);
+    }
+    rmdir(dir);
+}
+
+/* N frames orbiting the camera once around the scene's bounds (turntable.h); each frame is a
+ * still (the frames a plugin's still needs, TAA's history, at the frozen start time), so frame k
+ * depends only on its angle and frame N would equal frame 0. */
+static int run_turntable(sl_app *app, const cli *c, const char *ffmpeg, recorder *rec, double start, double *first_ms) {
+    const char *output = c->output ? c->output : "out.png";
+    bool video = is_video(output);
+    char dir[4096] = "", base[4200], path[4300], err[4096];
+    if (video) {
+        const char *tmp = getenv("TMPDIR");
+        snprintf(dir, sizeof dir, "%s/shadelab-turntable.XXXXXX", tmp && *tmp ? tmp : "/tmp");
+        if (!mkdtemp(dir)) {
+            fprintf(stderr, "shadelab: cannot create a directory for the frames (%s): %s\n", dir, strerror(errno));
+            return 1;
+        }
+        snprintf(base, sizeof base, "%s/frame.png", dir);
+    } else {
+        snprintf(base, sizeof base, "%s", output);
+    }
+    const int n = c->turntable;
+    if (!sl_turntable_frame_path(base, n - 1, n, path, sizeof path)) {
+        fprintf(stderr, "shadelab: --output %s: the frame names are too long\n", output);
+        if (video) remove_frames(dir);
+        return 1;
+    }
+    const sl_camera_state start_cam = app->camera;
+    double t0 = now_ms(), last_report = t0;
+    int rc = 0;
+    char first[4300] = "";
+    for (int k = 0; k < n && !rc; k++) {
+        sl_turntable_camera(&start_cam, app->scene.bounds_min, app->scene.bounds_max, k, n, &app->camera);
+        float p[3];
+        sl_camera_position(&app->camera, p);
+        SL_DEBUG("turntable frame %d: camera at %.4f %.4f %.4f, yaw %.4f rad", k, p[0], p[1], p[2], app->camera.yaw);
+        /* A still at this camera. After a move, the first frame is one of motion (TAA reprojects
+         * its history) and the still starts at the next: one frame more than the still needs. */
+        for (int f = 0;; f++) {
+            app->time = c->start_time;
+            sl_app_render_frame(app);
+            if (k == 0 && f == 0) *first_ms = now_ms() - start;
+            record(rec, sl_renderer_stats(app));
+            int still = sl_renderer_still_frames(app);
+            if (f + 1 >= (still > 1 && k > 0 ? still + 1 : still)) break;
+        }
+        sl_turntable_frame_path(base, k, n, path, sizeof path);
+        if (!sl_app_save(app, path, err, sizeof err)) { rc = die(err); break; }
+        if (k == 0) snprintf(first, sizeof first, "%s", path);
+        double t = now_ms();
+        if (n > 1 && (t - last_report > 1000 || k == n - 1)) {
+            double per = (t - t0) / (k + 1);
+            SL_INFO("turntable: frame %d of %d, %.1f s so far, about %.0f s left", k + 1, n, (t - t0) / 1e3,
+                    per * (n - k - 1) / 1e3);
+            last_report = t;
+        }
+    }
+    app->camera = start_cam;
+    if (rc) { if (video) remove_frames(dir); return rc; }
+    if (!video) {
+        SL_INFO("wrote %d frames %s ... %s (%dx%d, one orbit)", n, first, path, app->backend.width, app->backend.height);
+        return 0;
+    }
+    char pattern[4300];
+    int digits = (int)strlen(path) - (int)strlen(dir) - (int)strlen("/frame-.png");
+    snprintf(pattern, sizeof pattern, "%s/frame-%%0%dd.png", dir, digits);
+    SL_INFO("turntable: encoding %s with %s", output, ffmpeg);
+    bool ok = encode_video(ffmpeg, pattern, output);
+    remove_frames(dir);
+    if (!ok) return 1;
+    SL_INFO("wrote %s (%d frames at 30 fps, %dx%d, one orbit)", output, n, app->backend.width, app->backend.height);
+    return 0;
+}
+
 int main(int argc, char **argv) {
     double start = now_ms();
     cli c;
@@ -306,6 +453,12 @@ int main(int argc, char **argv) {
     int pr = parse_args(argc, argv, &c, err, sizeof err);
     if (pr == 2) return 0;
     if (pr) return die(err);
+    char ffmpeg[4096] = "";
+    if (c.turntable && c.output && is_video(c.output) && !find_in_path("ffmpeg", ffmpeg, sizeof ffmpeg)) {
+        snprintf(err, sizeof err, "--output %s: encoding a video needs ffmpeg, which is not installed (it is optional: "
+                 "apt-get install ffmpeg); --output NAME.png writes the frames as NAME-000.png ... instead", c.output);
+        return die(err);
+    }
     /* references: the plugin's declared settings become --set values, its accumulation count applies */
     const char *ref_settings[64];
     int nref = 0;
@@ -363,8 +516,17 @@ int main(int argc, char **argv) {
         return 1;
     }
     int rc = 0;
-    if (app.backend.has_window && c.frames < 0) {
+    if (app.backend.has_window && c.frames < 0 && !c.turntable) {
         rc = sl_viewer_run(&app, c.start_time);
+    } else if (c.turntable) {
+        recorder rec = {0};
+        double first_frame_ms = 0;
+        rc = run_turntable(&app, &c, ffmpeg, &rec, start, &first_frame_ms);
+        if (!rc && c.stats && !write_stats(c.stats, &app, &rec, first_frame_ms, 0)) rc = 1;
+        if (!rc && c.bench) print_bench(&app, &rec, 0);
+        if (c.explain) sl_renderer_explain(&app, stdout);
+        for (int i = 0; i < rec.count; i++) free(rec.s[i].ms);
+        free(rec.frame);
     } else {
         if (!app.backend.has_window && !c.output && !c.stats && !c.bench && !c.explain) c.output = "out.png";
         int frames = c.frames > 0 ? c.frames : 1;

@@ -1,7 +1,8 @@
-/* The tiny CI sweep: core.ssaa = 1 and 4 on the built-in scene at 32x32 against the core's
+/* The tiny CI sweep: core.ssaa = 1 and 4 on the bare scene (scenes/basic.json) at 32x32 against the core's
  * declared reference (core.ssaa=8), through the real renderer. The higher-quality setting must
  * have the lower error on every metric; the reference is cached and reused; the outputs are
  * written and --auto-quality picks from them. */
+#include "app.h"
 #include "autoquality.h"
 #include "bench.h"
 #include "check.h"
@@ -28,7 +29,8 @@ int main(void) {
     const char *settings[] = {"core.ssaa=1", "core.ssaa=4"};
     /* the core's own supersampling, without the default antialiasing (plugins/aa) on top */
     const char *base[] = {"aa.enabled=false"};
-    sl_bench_options o = {.plugin = "core", .width = 32, .height = 32, .frames = 3, .warmup = 1,
+    sl_bench_options o = {.plugin = "core", .scene_path = SL_TEST_DATA_DIR "/../../scenes/basic.json",
+                          .width = 32, .height = 32, .frames = 3, .warmup = 1,
                           .settings = settings, .setting_count = 2, .cache_dir = cache,
                           .base_settings = base, .base_setting_count = 1};
     const char *b = getenv("SHADELAB_TEST_BACKEND");
@@ -97,7 +99,7 @@ int main(void) {
     CHECK(!strcmp(c.settings, "core.ssaa=4") && c.within_budget);
     free(text);
     sl_app app;
-    sl_app_options ao = {.backend = SL_BACKEND_OSMESA};
+    sl_app_options ao = {.scene_text = sl_basic_scene_json, .backend = SL_BACKEND_OSMESA};
     CHECK(sl_app_init(&app, &ao, err, sizeof err));
     char spec[900];
     snprintf(spec, sizeof spec, "rmse=%g@%s", mid, json_path);

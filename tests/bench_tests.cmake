@@ -6,9 +6,9 @@ sl_add_test(bench_sweep SOURCES ${CMAKE_CURRENT_LIST_DIR}/bench_sweep.c LABELS b
 target_link_libraries(test_bench_sweep PRIVATE shadelab_bench)
 
 # The command line: two settings, tiny image, tiny reference, outputs in a temporary directory
-# (@TMP@, tests/run_in_tmpdir.sh).
+# (@TMP@, tests/run_in_tmpdir.sh), on the bare scene (the built-in default loads five plugins).
 add_test(NAME bench_cli COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_in_tmpdir.sh bench_cli $<TARGET_FILE:shadelab-bench>
-         --plugin core --size 32x24 --frames 3 --warmup 1
+         --plugin core --scene ${PROJECT_SOURCE_DIR}/scenes/basic.json --size 32x24 --frames 3 --warmup 1
          --settings core.ssaa=1 --settings core.ssaa=3 --cache @TMP@/cache
          --out @TMP@/core --metric rmse --metric dssim -q)
 # Bad input is refused with a message, not a crash.

@@ -54,3 +54,11 @@ add_dependencies(test_pass_order ${SL_TEST_PLUGINS})
 # --explain lists vertex hooks with the fragment chunks of each material's program.
 add_test(NAME explain_vertex_hooks COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/explain_vertex_hooks.sh $<TARGET_FILE:shadelab>)
 set_tests_properties(explain_vertex_hooks PROPERTIES ENVIRONMENT "${SL_TEST_ENV};SHADELAB_PLUGIN_PATH=${SL_TP_DIR}" TIMEOUT 120)
+
+# --turntable: the orbit's cameras against closed forms (seamless loop), frame names; and the
+# command line end to end (files, frames that differ, frame k depends only on its angle, ffmpeg
+# present or missing).
+sl_add_test(turntable SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_turntable.c)
+add_test(NAME cli_turntable COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_turntable
+         ${CMAKE_CURRENT_SOURCE_DIR}/cli_turntable.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff> @TMP@)
+set_tests_properties(cli_turntable PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300)

@@ -78,7 +78,7 @@ int main(void) {
     char so[600];
     snprintf(so, sizeof so, "%s/example.so", plugdir);
     sl_app app;
-    sl_app_options opt = {.backend = SL_BACKEND_OSMESA, .width = W, .height = H, .plugins = {so}, .plugin_count = 1,
+    sl_app_options opt = {.scene_text = sl_basic_scene_json, .backend = SL_BACKEND_OSMESA, .width = W, .height = H, .plugins = {so}, .plugin_count = 1,
                           .settings = {"example.vignette=false"}, .setting_count = 1, .strict = true};
     CHECK_MSG(sl_app_init(&app, &opt, err, sizeof err) && sl_app_start_gl(&app, err, sizeof err), "%s", err);
     static float good[W * H * 4], green[W * H * 4];

@@ -16,9 +16,11 @@
 #   5. a scene that loads with an error (a missing texture) shows it in the window.
 # Tolerances: display-encoded PNG max |diff| <= 1/255 (one 8-bit code value); EXR (half)
 # max |diff| <= 1e-3. Measured on Mesa llvmpipe: 0 for both (GLX and OSMesa give equal pixels).
-#   usage: gui_smoke.sh SHADELAB IMGDIFF EXAMPLE_DIR KEYS_A.so KEYS_B.so SL-XKEY
+# All runs use the bare scene (scenes/basic.json, BASIC): its lights and single program are what
+# the comparisons above were written for; the built-in default loads five plugins.
+#   usage: gui_smoke.sh SHADELAB IMGDIFF EXAMPLE_DIR KEYS_A.so KEYS_B.so SL-XKEY BASIC.json
 set -uo pipefail
-SHADELAB=$1 IMGDIFF=$2 EXDIR=$3 KEYSA=$4 KEYSB=$5 XKEY=${6:-}
+SHADELAB=$1 IMGDIFF=$2 EXDIR=$3 KEYSA=$4 KEYSB=$5 XKEY=${6:-} BASIC=${7:?scenes/basic.json}
 if ! command -v xvfb-run >/dev/null; then
   echo "SKIP: xvfb-run not found: install xvfb and xauth (tools/install-deps.sh) to run the GUI smoke test"
   exit 77
@@ -37,7 +39,7 @@ export SHADELAB_PLUGIN_PATH=
 same_png() { "$IMGDIFF" "$@" --same 0.0040 || fail "$1 vs $2 should be equal"; }
 same_exr() { "$IMGDIFF" "$@" --same 0.001 || fail "$1 vs $2 should be equal"; }
 differ() { "$IMGDIFF" "$@" --differ 0.005 || fail "$1 vs $2 should differ"; }
-headless() { local out=$1; shift; "$SHADELAB" --headless --size $SIZE --plugin "$PLUGIN" "$@" --output "$out" 2>/dev/null || fail "headless $out"; }
+headless() { local out=$1; shift; "$SHADELAB" --headless --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" "$@" --output "$out" 2>/dev/null || fail "headless $out"; }
 xvfb() { xvfb-run -a -s "-screen 0 1280x800x24" "$@"; }
 wait_for() { for _ in $(seq 1 600); do [ -e "$1" ] && return 0; kill -0 $VPID 2>/dev/null || break; sleep 0.2; done; [ -e "$1" ]; }
 
@@ -46,7 +48,7 @@ cd "$T/run1"
 SHADELAB_VIEWER_SCRIPT="wait 3; key P; set light.sun.enabled=false; wait 3; key P; grab $T/run1/window1.png; \
 key V; wait 3; key P; set example.enabled=false; wait 1; grab $T/run1/status.png; wait 3; key P; grab $T/run1/after.png; \
 key 1; key Shift+1; key 2; key Shift+P; wait 2; quit" \
-  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --size $SIZE --plugin "$PLUGIN" \
+  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" \
     --plugin "$KEYSA" --plugin "$KEYSB" >"$T/run1.out" 2>"$T/run1.err"
 rc=$?
 [ $rc -eq 0 ] || { cat "$T/run1.err"; fail "viewer exited with $rc"; }
@@ -89,7 +91,7 @@ echo "== 2. hot reload: error keeps the last good program and is shown; the fix 
 cd "$T/run2"
 SHADELAB_VIEWER_SCRIPT="wait 2; key P; waitfile $T/broken; key F5; wait 2; key P; grab $T/run2/window-error.png; \
 waitfile $T/fixed; key F5; wait 2; key P; grab $T/run2/window-fixed.png; quit" \
-  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --size $SIZE --plugin "$PLUGIN" \
+  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" \
     --set example.vignette=false >"$T/run2.out" 2>"$T/run2.err" &
 VPID=$!
 wait_for shadelab-000.png || fail "no first screenshot"
@@ -114,7 +116,7 @@ if [ -n "$XKEY" ]; then
   cp -L "$EXDIR/tint.glsl" "$T/example/"   # undo part 2's edit
   cd "$T/run3"
   cat >"$T/run3.sh" <<EOS
-"$SHADELAB" --backend glfw --size $SIZE --plugin "$PLUGIN" 2>"$T/run3.err" &
+"$SHADELAB" --backend glfw --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" 2>"$T/run3.err" &
 pid=\$!
 w() { for i in \$(seq 1 600); do [ -e "\$1" ] && return 0; sleep 0.2; done; return 1; }
 w "$T/run3/ready.png" || exit 3

@@ -27,7 +27,7 @@ add_dependencies(test_gui_hot_reload sl_test_example)
 add_test(NAME gui_smoke
          COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_smoke.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff>
                  ${SL_TEST_EXAMPLE_DIR} $<TARGET_FILE:sl_test_keys-a> $<TARGET_FILE:sl_test_keys-b>
-                 $<TARGET_FILE:sl-xkey>)
+                 $<TARGET_FILE:sl-xkey> ${PROJECT_SOURCE_DIR}/scenes/basic.json)
 set_tests_properties(gui_smoke PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 900 LABELS gui SKIP_RETURN_CODE 77)
 
 # Real key presses for the smoke test (XTEST, loaded at run time).

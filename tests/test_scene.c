@@ -46,52 +46,94 @@ static const float *node_world(const sl_scene *s, const char *name) {
     return i >= 0 ? s->nodes[i].world : NULL;
 }
 
-static void test_default_scene(void) {
-    sl_scene s = {0};
-    bool ok = sl_scene_load_default(&s, NULL, err, sizeof err);
-    CHECK_MSG(ok, "%s", err);
-    if (!ok) return;
-    CHECK(strcmp(s.path, "<default>") == 0);
-    CHECK(s.camera_count == 1 && s.material_count == 4 && s.node_count == 4);
-    CHECK(s.mesh_count == 4 && s.light_count == 2 && s.plugin_count == 0);
-    CHECK_NEAR(s.cameras[0].fov_y_deg, 40, 0);
-    CHECK_NEAR(s.cameras[0].znear, 0.05, 1e-7);
-    CHECK_NEAR(s.cameras[0].up[1], 1, 0);
-    int red = sl_scene_find_material(&s, "red");
+/* scenes/basic.json: the bare scene (the built-in default before issue 19, still compiled in as
+ * the harness's default scene). */
+static void check_basic_scene(sl_scene *s) {
+    CHECK(s->camera_count == 1 && s->material_count == 4 && s->node_count == 4);
+    CHECK(s->mesh_count == 4 && s->light_count == 2 && s->plugin_count == 0);
+    CHECK_NEAR(s->cameras[0].fov_y_deg, 40, 0);
+    CHECK_NEAR(s->cameras[0].znear, 0.05, 1e-7);
+    CHECK_NEAR(s->cameras[0].up[1], 1, 0);
+    int red = sl_scene_find_material(s, "red");
     CHECK(red >= 0);
     if (red >= 0) {
-        const sl_prop *map = sl_prop_find(&s.materials[red].props, "base_color_map");
+        const sl_prop *map = sl_prop_find(&s->materials[red].props, "base_color_map");
         CHECK(map && map->kind == SL_PROP_STRING && strncmp(map->str, "checker:8:", 10) == 0);
         CHECK(map && map->line == 8);
-        CHECK(strcmp(s.materials[red].model, "lambert") == 0 && s.materials[red].cast_shadows);
+        CHECK(strcmp(s->materials[red].model, "lambert") == 0 && s->materials[red].cast_shadows);
     }
-    int white = sl_scene_find_material(&s, "white");
-    const sl_prop *bc = white >= 0 ? sl_prop_find(&s.materials[white].props, "base_color") : NULL;
+    int white = sl_scene_find_material(s, "white");
+    const sl_prop *bc = white >= 0 ? sl_prop_find(&s->materials[white].props, "base_color") : NULL;
     CHECK(bc && bc->kind == SL_PROP_VEC && bc->count == 3 && bc->v[0] == 0.8f);
-    int sun = sl_scene_find_light(&s, "sun");
+    int sun = sl_scene_find_light(s, "sun");
     CHECK(sun >= 0);
     if (sun >= 0) {
-        const sl_light *l = &s.lights[sun];
+        const sl_light *l = &s->lights[sun];
         double len = sqrt(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
                           l->direction[2] * l->direction[2]);
         CHECK_NEAR(len, 1, 1e-6);
         CHECK_NEAR(l->direction[1] / l->direction[0], -1.0 / -0.4, 1e-5); /* normalised, same direction */
         CHECK(strcmp(l->type, "directional") == 0 && l->intensity == 2.5f && l->enabled && !l->cast_shadows);
     }
-    const float *w = node_world(&s, "sphere_left");
+    const float *w = node_world(s, "sphere_left");
     CHECK(w && w[12] == -1.6f && w[13] == 0.8f && w[14] == 0.0f);
     /* plane 12 × 12 at y = 0, spheres of radius 0.8 centred at y = 0.8 */
-    CHECK_NEAR(s.bounds_min[0], -6, 1e-5);
-    CHECK_NEAR(s.bounds_max[0], 6, 1e-5);
-    CHECK_NEAR(s.bounds_min[1], 0, 1e-5);
-    CHECK_NEAR(s.bounds_max[1], 1.6, 1e-5);
+    CHECK_NEAR(s->bounds_min[0], -6, 1e-5);
+    CHECK_NEAR(s->bounds_max[0], 6, 1e-5);
+    CHECK_NEAR(s->bounds_min[1], 0, 1e-5);
+    CHECK_NEAR(s->bounds_max[1], 1.6, 1e-5);
+}
+
+static bool has_plugin(const sl_scene *s, const char *name) {
+    for (int i = 0; i < s->plugin_count; i++)
+        if (!strcmp(s->plugins[i], name)) return true;
+    return false;
+}
+
+static void test_default_scene(void) {
+    sl_scene s = {0};
+    bool ok = sl_scene_load_default(&s, NULL, err, sizeof err);
+    CHECK_MSG(ok, "%s", err);
+    if (!ok) return;
+    CHECK(strcmp(s.path, "<default>") == 0);
+    /* issue 19: the default shows the bundled plugins together, needing no files */
+    CHECK(has_plugin(&s, "ggx") && has_plugin(&s, "envmap") && has_plugin(&s, "spotlight-shadow") &&
+          has_plugin(&s, "normal-map") && has_plugin(&s, "tonemap"));
+    CHECK(s.environment.map == NULL); /* no environment given: envmap's procedural sky */
+    int sun = sl_scene_find_light(&s, "sun"), spot = sl_scene_find_light(&s, "spot");
+    CHECK(sun >= 0 && spot >= 0);
+    if (sun >= 0) CHECK(!strcmp(s.lights[sun].type, "directional") && s.lights[sun].cast_shadows);
+    if (spot >= 0) CHECK(!strcmp(s.lights[spot].type, "spot"));
+    int floor = sl_scene_find_material(&s, "floor"), gold = sl_scene_find_material(&s, "gold");
+    CHECK(floor >= 0 && gold >= 0);
+    if (floor >= 0) {
+        const sl_prop *nm = sl_prop_find(&s.materials[floor].props, "normal_map");
+        CHECK(nm && nm->kind == SL_PROP_STRING && !strncmp(nm->str, "waves:", 6)); /* procedural, no file */
+    }
+    if (gold >= 0) {
+        const sl_prop *m = sl_prop_find(&s.materials[gold].props, "metallic");
+        CHECK(m && m->v[0] == 1.0f && !strcmp(s.materials[gold].model, "ggx"));
+    }
+    int ggx_spheres = 0;
+    for (int i = 0; i < s.material_count; i++)
+        if (!strcmp(s.materials[i].model, "ggx") && sl_prop_find(&s.materials[i].props, "roughness")) ggx_spheres++;
+    CHECK(ggx_spheres >= 5); /* several roughnesses, a metal, the floor, the teapot */
+    CHECK(sl_scene_find_node(&s, "teapot") >= 0);
     sl_scene_free(&s);
     CHECK(scene_is_zero(&s));
     sl_scene_free(&s); /* twice is harmless */
 
-    /* the file on disk is the same scene */
+    /* the files on disk are the same scenes: default.json, and basic.json (the bare scene, also
+     * compiled in as the harness's default) */
     CHECK(load_fixture(&s, SL_SOURCE_DIR "/scenes/default.json"));
-    CHECK(s.node_count == 4 && s.light_count == 2 && s.dir && s.dir[0] == '/');
+    CHECK(s.plugin_count == 5 && s.dir && s.dir[0] == '/');
+    sl_scene_free(&s);
+    CHECK(load_fixture(&s, SL_SOURCE_DIR "/scenes/basic.json"));
+    check_basic_scene(&s);
+    sl_scene_free(&s);
+    extern const char sl_basic_scene_json[];
+    CHECK(load_text(&s, sl_basic_scene_json));
+    check_basic_scene(&s);
     sl_scene_free(&s);
 }
 

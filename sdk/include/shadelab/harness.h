@@ -24,7 +24,8 @@ typedef struct sl_harness_desc {
     uint32_t struct_size;
     int width, height;               /* default 64×64 */
     const char *scene_file;          /* or */
-    const char *scene_json;          /* scene as JSON text; both NULL = built-in default scene */
+    const char *scene_json;          /* scene as JSON text; both NULL = the bare built-in scene
+                                        (scenes/basic.json: three Lambert spheres, no plugin) */
     const char *const *plugins;      /* NULL-terminated plugin names or paths */
     const char *const *settings;     /* NULL-terminated "id=value" (as --set) */
     const char *debug_view;
