@@ -24,6 +24,13 @@ void sl_turntable_camera(const sl_camera_state *start, const float bmin[3], cons
     for (int i = 0; i < 3; i++) out->target[i] = (float)axis[i];
     out->distance = (float)dist;
     out->pitch = (float)asin(fmax(-1.0, fmin(1.0, d[1] / dist)));
+    if ((float)axis[0] == start->target[0] && (float)axis[2] == start->target[2]) {
+        /* the start camera already looks at the axis: it keeps its own yaw, pitch and distance,
+         * so frame 0 is exactly the start camera (not a float rounding of it) */
+        yaw0 = start->yaw;
+        out->pitch = start->pitch;
+        out->distance = start->distance;
+    }
     out->yaw = (float)remainder(yaw0 + angle, 2 * M_PI); /* within [−π, π]: no precision lost over many turns */
     out->version = start->version + 1 + (unsigned long long)frame;
 }

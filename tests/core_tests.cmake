@@ -61,4 +61,4 @@ set_tests_properties(explain_vertex_hooks PROPERTIES ENVIRONMENT "${SL_TEST_ENV}
 sl_add_test(turntable SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_turntable.c)
 add_test(NAME cli_turntable COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_turntable
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_turntable.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff> @TMP@)
-set_tests_properties(cli_turntable PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300)
+set_tests_properties(cli_turntable PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 600)

@@ -50,6 +50,9 @@ static void test_orbit(void) {
         CHECK_NEAR(pn[i], p0[i], 1e-6);
     }
     CHECK_NEAR(cam[n].yaw, cam[0].yaw, 1e-6);
+    /* the start camera looks at the axis: frame 0 is it exactly (bit for bit, the same image) */
+    CHECK(cam[0].yaw == start.yaw && cam[0].pitch == start.pitch && cam[0].distance == start.distance &&
+          !memcmp(cam[0].target, start.target, sizeof start.target));
     CHECK_NEAR(cam[n].pitch, cam[0].pitch, 0);
     /* and the frames really move: a chord of 2·r·sin(π/N) between neighbours */
     CHECK_NEAR(hypot(p1[0] - p0[0], p1[2] - p0[2]), 2 * r0 * sin(M_PI / n), 1e-5);

@@ -1,5 +1,5 @@
 /* Headless test of the example plugin with the SDK's harness (link shadelab::harness).
- * Each feature is checked against its closed form on the built-in default scene (Lambert, so
+ * Each feature is checked against its closed form on the harness's default scene (scenes/basic.json: Lambert, so
  * outgoing radiance is linear in the base colour):
  *   tint     (SURFACE hook)  every surface pixel = baseline × (1 - s + s·tint_color), per channel;
  *                            background pixels unchanged
