@@ -29,7 +29,7 @@ render() {
           echo "![$name](gallery/$name.png)"
           echo
           echo '```'
-          echo "./build/shadelab --headless --size $size $* --output $name.png"
+          echo "./build/shadelab --headless --size $size ${*:+$* }--output $name.png"
           echo '```'
           echo; } >> "$md.tmp"
     else
@@ -47,7 +47,8 @@ echo "# Gallery"
 echo
 echo "One image per bundled scene and per bundled plugin, $size, made by \`tools/gallery.sh\`"
 echo "(headless, OSMesa/llvmpipe; re-run it after changing a scene or a plugin). Each image has the"
-echo "command that made it, run from the repository root."
+echo "command that made it, run from the repository root (the head scenes read the data directory:"
+echo "\`SHADELAB_DATA\` or \`--data ../shared/assets\`)."
 echo
 echo "## Scenes"
 echo
