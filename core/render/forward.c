@@ -100,6 +100,43 @@ static const char *glsl_type(sl_param_type t) {
     return "float";
 }
 
+/* The tessellation of a displaced material (DISPLACEMENT hooks, shader.h ABI 1.7): tess.vert runs
+ * the VERTEX hooks and hands the object-space vertex on; the control stage sets per-edge levels
+ * from each edge's endpoints (crack-free), the evaluation stage displaces along the normal. */
+static bool compose_tessellation(sl_plugins *P, sl_program *p, const char *pre, const char *uni,
+                                 const sl_chunk_reg *const *hooks, int nd, sl_variant_kind kind, char *err, size_t n) {
+    bool ok = sl_source_include(&p->vs, "sl:tess.vert", err, n);
+    sl_source *stages[2] = {&p->tcs, &p->tes};
+    const char *defines[2] = {"#define SL_TESS_CONTROL_STAGE 1\n", "#define SL_TESS_EVALUATION_STAGE 1\n"};
+    sl_strbuf gen = {0};
+    sl_sb_append(&gen, "float sl_tess_edge_level(vec3 a, vec3 b) {\n    float level = 1.0;\n");
+    for (int i = 0; i < nd; i++) {
+        if (hooks[i]->d.tess_level) sl_sb_printf(&gen, "    level = max(level, %s(a, b));\n", hooks[i]->d.tess_level);
+        else sl_sb_append(&gen, "    level = max(level, sl_tess_screen_level(a, b, 8.0));\n");
+    }
+    sl_sb_append(&gen, "    return level;\n}\nfloat sl_run_displacement(SlVertex v) {\n    float h = 0.0;\n");
+    for (int i = 0; i < nd; i++) sl_sb_printf(&gen, "    h += %s(v);\n", hooks[i]->d.function);
+    sl_sb_append(&gen, "    return h;\n}\n");
+    for (int k = 0; k < 2 && ok; k++) {
+        sl_sb_append(&stages[k]->text, pre);
+        sl_sb_append(&stages[k]->text, defines[k]);
+        if (k == 1 && kind == SL_VARIANT_FORWARD) sl_sb_append(&stages[k]->text, "#define SL_TESS_NORMALS 1\n");
+        ok = sl_source_include(stages[k], "sl:common.glsl", err, n);
+        sl_source_generated(stages[k], uni ? uni : "");
+        ok = ok && sl_source_include(stages[k], "sl:tess.glsl", err, n);
+        for (int i = 0; i < nd && ok; i++) {
+            char path[2048];
+            snprintf(path, sizeof path, "%s/%s", P->items[hooks[i]->owner]->resource_dir, hooks[i]->d.file);
+            ok = sl_source_include(stages[k], path, err, n);
+        }
+        if (ok) sl_source_generated(stages[k], gen.s);
+        ok = ok && sl_source_include(stages[k], k == 0 ? "sl:tess.tesc" : "sl:tess.tese", err, n);
+    }
+    sl_sb_free(&gen);
+    p->tessellated = true;
+    return ok;
+}
+
 bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *model_override, sl_forward_variant *out,
                         sl_program ***cache, int *cache_count, char *err, size_t n) {
     sl_plugins *P = &app->plugins;
@@ -135,12 +172,14 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
             if (P->chunks[c].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(&app->plugins, P->chunks[c].owner)) shadow = &P->chunks[c];
 
     /* hooks gated on material keys */
-    const sl_chunk_reg *vertex_hooks[64], *surface_hooks[64], *ambient_hooks[64];
-    int nv = 0, ns = 0, na = 0;
+    const sl_chunk_reg *vertex_hooks[64], *surface_hooks[64], *ambient_hooks[64], *displacement_hooks[64];
+    int nv = 0, ns = 0, na = 0, nd = 0;
     for (int i = 0; i < P->chunk_count; i++) {
         const sl_chunk_reg *c = &P->chunks[i];
         if (!sl_plugin_enabled(&app->plugins, c->owner)) continue;
-        if (c->d.hook != SL_HOOK_VERTEX && c->d.hook != SL_HOOK_SURFACE && c->d.hook != SL_HOOK_AMBIENT) continue;
+        if (c->d.hook != SL_HOOK_VERTEX && c->d.hook != SL_HOOK_SURFACE && c->d.hook != SL_HOOK_AMBIENT &&
+            c->d.hook != SL_HOOK_DISPLACEMENT)
+            continue;
         if (c->d.when_material_has && !material_has(app, m, c->d.when_material_has)) continue;
         /* the material's own model, also in override programs (its surface stays the same) */
         if (c->d.when_model && strcmp(c->d.when_model, mat->model ? mat->model : "lambert")) continue;
@@ -148,7 +187,9 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         if (c->d.hook == SL_HOOK_VERTEX && nv < 64) vertex_hooks[nv++] = c;
         if (c->d.hook == SL_HOOK_SURFACE && ns < 64) surface_hooks[ns++] = c;
         if (c->d.hook == SL_HOOK_AMBIENT && na < 64) ambient_hooks[na++] = c;
+        if (c->d.hook == SL_HOOK_DISPLACEMENT && nd < 64) displacement_hooks[nd++] = c;
     }
+    qsort(displacement_hooks, nd, sizeof *displacement_hooks, cmp_chunk_order);
     qsort(vertex_hooks, nv, sizeof *vertex_hooks, cmp_chunk_order);
     qsort(surface_hooks, ns, sizeof *surface_hooks, cmp_chunk_order);
 
@@ -167,6 +208,11 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         owners |= 1ull << (vertex_hooks[i]->owner & 63);
         sl_sb_printf(&explain, "%s%s:%s (vertex)", explain.len ? ", " : "", P->items[vertex_hooks[i]->owner]->id,
                      vertex_hooks[i]->d.function);
+    }
+    for (int i = 0; i < nd; i++) {
+        owners |= 1ull << (displacement_hooks[i]->owner & 63);
+        sl_sb_printf(&explain, "%s%s:%s (displacement)", explain.len ? ", " : "",
+                     P->items[displacement_hooks[i]->owner]->id, displacement_hooks[i]->d.function);
     }
 #undef ADD
 
@@ -260,7 +306,10 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     sl_sb_append(&gen, "}\n");
     sl_source_generated(&p->vs, gen.s);
     sl_sb_free(&gen);
-    ok = ok && sl_source_include(&p->vs, "sl:forward.vert", err, n);
+    /* DISPLACEMENT hooks (shader.h, ABI 1.7): a pass-through vertex stage and the tessellation
+     * stages; without them the vertex stage is forward.vert and nothing else changes */
+    if (nd) ok = ok && compose_tessellation(P, p, pre.s, uni.s, displacement_hooks, nd, kind, err, n);
+    else ok = ok && sl_source_include(&p->vs, "sl:forward.vert", err, n);
 
     /* ---- fragment stage ---- */
     sl_sb_append(&p->fs.text, pre.s);
@@ -371,6 +420,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     memcpy(out->node_tags, node_tags, sizeof node_tags);
     out->node_tag_count = node_tag_count;
     p->hash = sl_hash64(p->vs.text.s, p->vs.text.len, sl_hash64(p->fs.text.s, p->fs.text.len, 0));
+    if (p->tessellated)
+        p->hash = sl_hash64(p->tcs.text.s, p->tcs.text.len, sl_hash64(p->tes.text.s, p->tes.text.len, p->hash));
     for (int i = 0; i < *cache_count; i++) {
         if ((*cache)[i]->hash == p->hash && (*cache)[i]->id && !(*cache)[i]->stale) {
             sl_program_free(p);

@@ -271,6 +271,12 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
         glUniform2i(glGetUniformLocation(prog, name), r->type_range[t][0], r->type_range[t][1]);
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r->light_buffer);
+    if (var->program->tessellated) {
+        /* levels from the frame's camera in every pass (shaders/tess.glsl): shadow maps tessellate
+         * as the view does; proj[1][1] × height / 2 = pixels per unit at unit distance */
+        glUniform1f(glGetUniformLocation(prog, "sl_tess_pixel_scale"), r->frame.proj[5] * 0.5f * (float)r->frame.height);
+        glUniform1i(glGetUniformLocation(prog, "sl_tess_orthographic"), r->frame.proj[15] == 1.0f);
+    }
     sl_mat_state *ms = &app->materials[m];
     for (int i = 0; i < ms->count; i++) {
         const sl_param *q = &app->params.items[ms->values[i].param];
@@ -377,7 +383,12 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                     glUniform1i(glGetUniformLocation(prog, "sl_vertex_hook_mask"), mask);
                 }
                 glBindVertexArray(r->meshes[mi].vao);
-                glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+                if (var && var->program && var->program->tessellated) { /* DISPLACEMENT hooks (ABI 1.7) */
+                    glPatchParameteri(GL_PATCH_VERTICES, 3);
+                    glDrawElements(GL_PATCHES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+                } else {
+                    glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+                }
                 r->stats.draw_calls++;
             }
         }
