@@ -3,6 +3,8 @@
 // sl_run_displacement() before this file.
 layout(vertices = 3) out;
 
+const float SL_TESS_MAX_LEVEL = 48.0;
+
 in vec3 tc_position[];
 in vec3 tc_normal[];
 in vec4 tc_tangent[];
@@ -24,8 +26,10 @@ out vec3 te_prev_position[];
 float sl_tess_shared_edge_level(vec3 a, vec3 b) {
     bool swap = a.x > b.x || (a.x == b.x && (a.y > b.y || (a.y == b.y && a.z > b.z)));
     float level = swap ? sl_tess_edge_level(b, a) : sl_tess_edge_level(a, b);
-    // NaN (a bad chunk) and Inf end as the nearest bound, never as a discarded patch
-    return clamp(level == level ? level : 1.0, 1.0, float(gl_MaxTessGenLevel));
+    // NaN (a bad chunk) and Inf end as the nearest bound, never as a discarded patch. At most 48:
+    // llvmpipe (Mesa 22.3) draws patches of level 64 with holes and torn triangles (measured on a
+    // displaced plane: 32 and 48 clean, 64 broken), though it reports gl_MaxTessGenLevel = 64.
+    return clamp(level == level ? level : 1.0, 1.0, min(float(gl_MaxTessGenLevel), SL_TESS_MAX_LEVEL));
 }
 
 void main() {

@@ -97,7 +97,8 @@
  *   - `tess_level` names a function  float LEVEL(vec3 a, vec3 b)  (world space; the host passes
  *     the endpoints in a canonical order) returning the wanted level of one edge; NULL = edges
  *     of about 8 pixels. The host takes the maximum over the material's DISPLACEMENT chunks,
- *     clamps to [1, gl_MaxTessGenLevel] (64 on llvmpipe); inner level = the largest outer one.
+ *     clamps to [1, min(gl_MaxTessGenLevel, 48)] (llvmpipe breaks patches of level 64); inner
+ *     level = the largest outer one.
  *     Helper (sl:tess.glsl, in every tessellation stage):
  *       float sl_tess_screen_level(vec3 a, vec3 b, float target_px)
  *     the edge's length in pixels seen from the frame's camera (not the pass's view: shadow maps
