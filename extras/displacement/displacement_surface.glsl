@@ -82,7 +82,10 @@ void displacement_parallax(inout SlSurface s) {
     depth = d_map;
 #endif
     vec2 uv = s.uv + duv * depth;
-    s.position += -n * (depth * scale) + dpdu * (duv.x * depth) + dpdv * (duv.y * depth); // the point hit
+    // The point hit, moved along the surface only: moved down to its depth it would lie behind the
+    // polygon that the shadow maps hold and every light would see it shadowed by its own polygon.
+    // (So the relief casts no shadows on itself: Tatarchuk's soft self-shadowing is not done.)
+    s.position += dpdu * (duv.x * depth) + dpdv * (duv.y * depth);
     s.uv = uv;
     vec3 nn = displacement_relief_normal(uv, scale, n, dpdu, dpdv);
     s.normal = nn;

@@ -1,7 +1,7 @@
 /* gen_trunk: the demo's tree trunk as OBJ meshes (extras/displacement/README.md).
  *   gen_trunk OUT_DIR
- * writes OUT_DIR/trunk_side_low.obj, trunk_cap_low.obj (a 16-sided cylinder, 4 rings; the cap a
- * fan: what the GPU displaces) and trunk_side_high.obj, trunk_cap_high.obj (the same surfaces
+ * writes OUT_DIR/trunk_side_low.obj, trunk_cap_low.obj (a 16-sided cylinder, 4 rings; the cap a polar
+ * grid of 3 rings: what the GPU displaces) and trunk_side_high.obj, trunk_cap_high.obj (the same surfaces
  * finely tessellated and displaced here on the CPU with the heights of tests/height.h: bark
  * grooves on the side, growth rings on the cap; the reference). Radius 0.35 m, height 1.6 m,
  * standing on y = 0. Normals of the displaced meshes: cross product of the displaced surface's
@@ -87,8 +87,8 @@ int main(int argc, char **argv) {
     char p[4][1024];
     const char *names[4] = {"trunk_side_low.obj", "trunk_cap_low.obj", "trunk_side_high.obj", "trunk_cap_high.obj"};
     for (int i = 0; i < 4; i++) snprintf(p[i], sizeof p[i], "%s/%s", argv[1], names[i]);
-    bool ok = write_side(p[0], 16, 4, false) && write_cap(p[1], 16, 1, false) && write_side(p[2], 448, 224, true) &&
-              write_cap(p[3], 448, 96, true);
+    bool ok = write_side(p[0], 16, 4, false) && write_cap(p[1], 16, 3, false) && write_side(p[2], 384, 192, true) &&
+              write_cap(p[3], 384, 96, true);
     if (!ok) { fprintf(stderr, "gen_trunk: cannot write into %s\n", argv[1]); return 1; }
     return 0;
 }
