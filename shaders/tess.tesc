@@ -27,8 +27,9 @@ float sl_tess_shared_edge_level(vec3 a, vec3 b) {
     bool swap = a.x > b.x || (a.x == b.x && (a.y > b.y || (a.y == b.y && a.z > b.z)));
     float level = swap ? sl_tess_edge_level(b, a) : sl_tess_edge_level(a, b);
     // NaN (a bad chunk) and Inf end as the nearest bound, never as a discarded patch. At most 48:
-    // llvmpipe (Mesa 22.3) draws patches of level 64 with holes and torn triangles (measured on a
-    // displaced plane: 32 and 48 clean, 64 broken), though it reports gl_MaxTessGenLevel = 64.
+    // llvmpipe (Mesa 22.3), which reports gl_MaxTessGenLevel = 64, drew a displaced plane of 32
+    // patches at level 64 with holes and torn triangles (32 and 48 clean); the core also splits
+    // tessellated draws into 16 patches each (scene_gpu.c), which cured the same tearing at level 32.
     return clamp(level == level ? level : 1.0, 1.0, min(float(gl_MaxTessGenLevel), SL_TESS_MAX_LEVEL));
 }
 

@@ -384,8 +384,16 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 }
                 glBindVertexArray(r->meshes[mi].vao);
                 if (var && var->program && var->program->tessellated) { /* DISPLACEMENT hooks (ABI 1.7) */
+                    /* at most SL_PATCHES_PER_DRAW patches per draw: llvmpipe (Mesa 22.3) drops and
+                     * tears the later patches of a draw that generates too many triangles
+                     * (measured: 128 patches at level 32 lose the lower half of a cylinder) */
+                    enum { SL_PATCHES_PER_DRAW = 16 };
                     glPatchParameteri(GL_PATCH_VERTICES, 3);
-                    glDrawElements(GL_PATCHES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+                    for (int first = 0; first < r->meshes[mi].index_count; first += 3 * SL_PATCHES_PER_DRAW) {
+                        int n = r->meshes[mi].index_count - first;
+                        glDrawElements(GL_PATCHES, n < 3 * SL_PATCHES_PER_DRAW ? n : 3 * SL_PATCHES_PER_DRAW,
+                                       GL_UNSIGNED_INT, (const void *)(sizeof(uint32_t) * (size_t)first));
+                    }
                 } else {
                     glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
                 }
