@@ -450,7 +450,7 @@ static sl_status al_create(const sl_host *host, void **user) {
                                .signature = al_shadow_signature, .user = a};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
     const sl_reference_desc ref = {
-        .struct_size = sizeof ref, .settings = AL_ID ".method=reference " AL_ID ".reference_visibility=true",
+        .struct_size = sizeof ref, .settings = AL_ID ".method=reference " AL_ID ".reference_visibility=true " AL_ID ".reference_samples=4",
         .accumulate_frames = 256,
         .description = "Monte Carlo over each area light's surface with visibility: per accumulated frame one point "
                        "per light (a Hammersley set over the 256 frames, the exact ellipse for disks) and a depth cube "

@@ -149,25 +149,28 @@ vec3 area_light_reference(SlLight L, SlSurface s, vec3 c, vec3 nl, vec3 ex, vec3
     int layer = area_light_tex_layer(L);
     bool disk = L.params[0].z > 0.5, two_sided = L.params[0].w > 0.5;
     float area = disk ? 0.25 * SL_PI * w * h : w * h;
+    vec3 blocked = vec3(0.0); // this frame's point's light that does not arrive (see below)
 #if AREA_LIGHT_REFERENCE_VISIBILITY
-    // this frame's point on the light (the same for every pixel), shadowed through its cube map
+    // ∫ f V = ∫ f − ∫ f (1 − V): the first integral by the n×n points per pixel below (as without
+    // visibility), the second by this frame's point y_k on the light, the same for every pixel,
+    // shadowed through its cube map. Both estimators are unbiased, so is the difference; where
+    // nothing is occluded the second term is 0 and the result is the unshadowed estimate itself
+    // (no structured error from one point per frame in lit regions).
     int k = area_light_shadow_slot(L);
     if (k >= 0) {
         vec2 uv = area_light_shadow_uv[k].xy;
         vec3 y = c + ex * ((uv.x - 0.5) * w) + ey * ((uv.y - 0.5) * h);
         vec3 d = y - s.position;
         float d2 = dot(d, d);
-        if (!(d2 > 1e-12)) return vec3(0.0);
-        vec3 l = d * inversesqrt(d2);
+        vec3 l = d * inversesqrt(max(d2, 1e-24));
         float cl = -dot(l, nl);
         if (two_sided) cl = abs(cl);
-        if (cl <= 0.0) return vec3(0.0);
-        float vis = area_light_visible(k, s.position, s.geometric_normal);
-        if (vis <= 0.0) return vec3(0.0);
-        vec3 Le = layer >= 0 ? L.color.rgb * area_light_tex_at(layer, uv, 0.0) : L.color.rgb;
-        return sl_shading_model(s, l, Le * (cl * area / d2));
+        if (d2 > 1e-12 && cl > 0.0 && area_light_visible(k, s.position, s.geometric_normal) <= 0.0) {
+            vec3 Le = layer >= 0 ? L.color.rgb * area_light_tex_at(layer, uv, 0.0) : L.color.rgb;
+            blocked = sl_shading_model(s, l, Le * (cl * area / d2));
+        }
     }
-    // more area lights than shadow slots: unshadowed, as below
+    // more area lights than shadow slots: unshadowed
 #endif
     const int n = AREA_LIGHT_REFERENCE_SAMPLES;
     uvec3 key = uvec3(uvec2(gl_FragCoord.xy), uint(sl_frame_index));
@@ -194,7 +197,7 @@ vec3 area_light_reference(SlLight L, SlSurface s, vec3 c, vec3 nl, vec3 ex, vec3
             vec3 Le = layer >= 0 ? L.color.rgb * area_light_tex_at(layer, uv, 0.0) : L.color.rgb; // the texture itself
             Lo += sl_shading_model(s, l, Le * (cl * area / (d2 * float(n * n))));
         }
-    return Lo;
+    return Lo - blocked; // may be negative in one frame; the accumulated average is not
 }
 #endif
 
