@@ -147,17 +147,17 @@ int main(int argc, char **argv) {
     snprintf(csv, sizeof csv, "%s-cost.csv", out);
     f = fopen(csv, "w");
     if (f) {
-        fprintf(f, "light,median_ms\nrectangle (LTC),%g\npoint,%g\nshadowed reference (1 of N frames),%g\n", mr, mp, ms);
+        fprintf(f, "light,median_ms\nrectangle (LTC),%g\npoint,%g\nshadowed ref. (a frame),%g\n", mr, mp, ms);
         fclose(f);
     }
 
     /* the chart */
     char cmd[8192];
     snprintf(cmd, sizeof cmd,
-             "gnuplot -e \"set terminal pngcairo size 900,380 font ',10'; set output '%s'; set datafile separator ',';"
+             "gnuplot -e \"set terminal pngcairo size 900,440 font ',10'; set output '%s'; set datafile separator ',';"
              " set multiplot layout 1,2;"
              " set title 'area-light: LTC vs Monte Carlo reference'; set xlabel 'roughness'; set ylabel 'relative RMSE';"
-             " set key top right; set grid; set logscale y;"
+             " set key outside bottom center vertical maxrows 2 font ',8'; set grid; set logscale y;"
              " plot '%s.csv' using 1:2 skip 1 with linespoints title 'ggx (LTC specular + Lambert)',"
              " '' using 1:3 skip 1 with linespoints title 'lambert (exact formula)',"
              " '' using 1:4 skip 1 with lines dashtype 2 title 'ggx reference noise (estimated)',"
