@@ -43,7 +43,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     sl_shader_chunk_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
     const char *id = P->items[owner]->id;
-    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_SHADOW) {
+    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_LIGHT_LOOP) {
         SL_ERROR("%s: shader chunk %s: unknown hook %d", id, d.file ? d.file : "?", (int)d.hook);
         return SL_ERR_INVALID;
     }
