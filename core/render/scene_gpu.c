@@ -328,8 +328,7 @@ static const sl_forward_variant *override_variant_of(sl_app *app, int m, const c
  * material with its program and uniforms bound (deferred lighting). */
 static void draw_materials_fullscreen(sl_app *app, const sl_draw_scene_desc *d, const char *fragment) {
     sl_renderer *r = R(app);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
+    glDisable(GL_CULL_FACE); /* the depth test stays as the pass set it (pass.h) */
     glBindVertexArray(r->empty_vao);
     for (int m = 0; m < app->scene.material_count; m++) {
         if (d->only_materials_with) {

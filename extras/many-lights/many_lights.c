@@ -22,6 +22,7 @@ enum { ML_BRUTE, ML_DEFERRED, ML_TILED, ML_CLUSTERED };
 typedef struct ml {
     const sl_host *host;
     unsigned buf[3];         /* r2, cells, index */
+    unsigned vao;            /* empty: the deferred pass's own full-screen triangle */
     sl_program *copy;
     int unit_prepass, unit_g[4], unit_color;
     unsigned tex_prepass, tex_g[4], tex_color;
@@ -304,10 +305,21 @@ static void deferred_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     h->bind_outputs(h, ctx, 0);
     unsigned copy = h->program_id(h, m->copy);
     if (!copy) return;
+    /* colour copy + material depth (copy.frag), then each material's lighting at its depth */
     glUseProgram(copy);
     glBindTextureUnit(m->unit_color, m->tex_color);
+    glBindTextureUnit(m->unit_g[0], m->tex_g[0]);
     glUniform1i(glGetUniformLocation(copy, "many_lights_color"), m->unit_color);
-    h->draw_fullscreen(h, ctx);
+    glUniform1i(glGetUniformLocation(copy, "many_lights_g0"), m->unit_g[0]);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(m->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
     m->in_deferred = true;
     sl_draw_scene_desc d = {.struct_size = sizeof d, .mode = SL_DRAW_MATERIALS, .fragment = "deferred.frag",
                             .fullscreen = true};
@@ -315,6 +327,8 @@ static void deferred_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     memcpy(d.proj, f->proj, sizeof d.proj);
     h->draw_scene(h, ctx, &d);
     m->in_deferred = false;
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
 }
 
 /* every composed program holding the light loop (forward, G-buffer, deferred lighting) */
@@ -374,14 +388,15 @@ static sl_status ml_create(const sl_host *host, void **user) {
         {.name = ML_ID ".g2", .format = SL_FORMAT_RGBA16F}, {.name = ML_ID ".g3", .format = SL_FORMAT_RGBA16F},
         {.name = ML_ID ".gdepth", .format = SL_FORMAT_DEPTH32F}};
     static const char *const deferred_in[] = {"color", ML_ID ".g0", ML_ID ".g1", ML_ID ".g2", ML_ID ".g3", NULL};
-    static const sl_target_desc color_out[] = {{.name = "color", .format = SL_FORMAT_RGBA16F}};
+    static const sl_target_desc color_out[] = {{.name = "color", .format = SL_FORMAT_RGBA16F},
+                                               {.name = ML_ID ".matdepth", .format = SL_FORMAT_DEPTH32F}};
     const sl_pass_desc passes[] = {
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-clusters", .stage = SL_STAGE_PREPASS + 50,
          .outputs = depth_out, .output_count = 1, .execute = clustered_execute, .is_active = clustered_active, .user = m},
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-gbuffer", .stage = SL_STAGE_PREPASS + 50,
          .outputs = gbuf_out, .output_count = 5, .execute = gbuffer_execute, .is_active = gbuffer_active, .user = m},
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-deferred", .stage = SL_STAGE_OPAQUE + 50,
-         .inputs = deferred_in, .outputs = color_out, .output_count = 1, .execute = deferred_execute,
+         .inputs = deferred_in, .outputs = color_out, .output_count = 2, .execute = deferred_execute,
          .is_active = gbuffer_active, .user = m},
     };
     for (size_t i = 0; i < sizeof passes / sizeof *passes; i++)
@@ -401,6 +416,7 @@ static sl_status ml_activate(void *user) {
     ml *m = user;
     if (!sl_gl_load(m->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
     glCreateBuffers(3, m->buf);
+    glCreateVertexArrays(1, &m->vao);
     for (int i = 0; i < 3; i++) upload(m->buf[i], NULL, 0);
     m->copy = m->host->load_program(m->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                   .vertex = "sl:fullscreen.vert", .fragment = "copy.frag"});
@@ -410,6 +426,8 @@ static sl_status ml_activate(void *user) {
 static void ml_deactivate(void *user) {
     ml *m = user;
     glDeleteBuffers(3, m->buf);
+    glDeleteVertexArrays(1, &m->vao);
+    m->vao = 0;
     memset(m->buf, 0, sizeof m->buf);
 }
 

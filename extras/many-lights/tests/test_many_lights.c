@@ -20,6 +20,7 @@ static const float CAM_POS[3] = {0, 6, 9}, CAM_TARGET[3] = {0, 0, 0}, FOV_Y = 50
 /* the fixed 64-light scene: 56 point and 8 spot lights on a jittered 8×8 grid, a dim sun */
 typedef struct tl { float pos[3], color[3], I; bool spot; } tl;
 static tl lights[NL];
+static bool hostile; /* adds a light on the ground, one behind the camera reaching past the near plane, a black one */
 
 static char *scene_json(void) {
     static char buf[65536];
@@ -54,6 +55,11 @@ static char *scene_json(void) {
                       L->I, L->spot ? ", \"direction\": [0.2, -1, 0.1], \"cone_angle\": 50" : "",
                       i % 5 == 0 ? ", \"animate\": \"orbit\", \"animate_speed\": 0.4" : "");
     }
+    if (hostile)
+        n += snprintf(buf + n, sizeof buf - n,
+                      ",\n    {\"name\": \"on_ground\", \"type\": \"point\", \"position\": [0.5, 0, 2], \"intensity\": 0.05},\n"
+                      "    {\"name\": \"behind\", \"type\": \"point\", \"position\": [0.3, 6.3, 9.6], \"intensity\": 2},\n"
+                      "    {\"name\": \"black\", \"type\": \"point\", \"position\": [1, 1, 1], \"intensity\": 0}");
     snprintf(buf + n, sizeof buf - n, " ]\n}\n");
     return buf;
 }
@@ -259,6 +265,33 @@ int main(void) {
     }
     CHECK(checked >= 3, "tiles checked %d", checked);
     sl_harness_set_debug_view(h, NULL, e2, sizeof e2);
+
+    /* stability: a light on the surface, one behind the camera straddling the near plane (no
+     * screen rectangle: every tile), a black light (range 0); epsilon tiny (huge ranges) and 1
+     * (ranges of centimetres): every method finite and equal to brute force */
+    sl_harness_destroy(h);
+    hostile = true;
+    h = make(s_eps, true);
+    const char *const eps_cases[] = {"many-lights.epsilon=0.01", "many-lights.epsilon=0.0001", "many-lights.epsilon=1"};
+    for (int e = 0; e < 3; e++) {
+        set(h, eps_cases[e]);
+        set(h, "many-lights.method=brute");
+        render(h, 2, ref);
+        CHECK(sl_harness_count_nonfinite(ref, W, H) == 0 && sl_harness_count_negative(ref, W, H) == 0,
+              "%s: brute force not finite", eps_cases[e]);
+        for (int m = 1; m < 4; m++) {
+            char a2[96];
+            snprintf(a2, sizeof a2, "many-lights.method=%s", names[m]);
+            set(h, a2);
+            render(h, 2, img);
+            double d = max_diff(ref, img);
+            printf("stability %s: %-9s vs brute: max |diff| %.2e\n", eps_cases[e], names[m], d);
+            CHECK(d <= 1.0 / 255, "stability %s: %s differs by %.4f", eps_cases[e], names[m], d);
+        }
+    }
+    sl_harness_destroy(h);
+    hostile = false;
+    h = make(s_eps, true);
 
     /* 3. live equals fresh: method and epsilon changed live vs a harness started with them */
     set(h, "many-lights.method=tiled");

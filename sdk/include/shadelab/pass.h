@@ -144,7 +144,11 @@ typedef struct sl_draw_scene_desc {
      * triangle per material (sl:fullscreen.vert, v_uv in [0,1]; SL_FULLSCREEN_MATERIAL defined,
      * sl_surface_from_varyings absent: the fragment builds the SlSurface itself, e.g. from a
      * G-buffer) with the material's program and uniforms bound; `uniform int
-     * sl_material_index` holds the material's index. Depth test and culling are off. */
+     * sl_material_index` holds the material's index. The triangle lies at window depth
+     * (index + 1) / 1024 and the depth test stays as the pass set it (glDisable(GL_DEPTH_TEST)
+     * for none): a pass that wrote (material + 1) / 1024 per pixel into a depth output and sets
+     * glDepthFunc(GL_EQUAL) shades each material's pixels only (the others are rejected before
+     * the fragment shader runs). Culling is off. */
     bool fullscreen;
 } sl_draw_scene_desc;
 
