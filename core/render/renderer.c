@@ -401,6 +401,7 @@ void sl_renderer_destroy(sl_app *app) {
         free(r->materials[m].depth.chunks);
         for (int k = 0; k < r->materials[m].override_count; k++) {
             free(r->materials[m].overrides[k].model);
+            free(r->materials[m].overrides[k].fragment);
             free(r->materials[m].overrides[k].v.chunks);
         }
     }

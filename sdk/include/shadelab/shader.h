@@ -78,6 +78,23 @@
  *                                                                it. Compiled in only when an
  *                                                                enabled light casts shadows;
  *                                                                one provider (the first enabled)
+ *   LIGHT_LOOP       vec3 FN(SlSurface s)                        ABI 1.7: replaces the core's
+ *                                                                iteration over sl_lights in
+ *                                                                the forward programs (not in
+ *                                                                model_override programs): the
+ *                                                                direct lighting is FN(s). FN
+ *                                                                picks the lights (a culled list
+ *                                                                per tile or cluster) and adds
+ *                                                                vec3 sl_light_radiance(int i,
+ *                                                                SlSurface s), generated in these
+ *                                                                programs: light sl_lights[i]
+ *                                                                through its LIGHT chunk, the
+ *                                                                SHADOW hook and the material's
+ *                                                                model (or the DEBUG_VIEW_LIGHT
+ *                                                                view), exactly as the core's
+ *                                                                loop. One provider (the
+ *                                                                first enabled); absent, the
+ *                                                                programs are unchanged
  *   DISPLACEMENT     float FN(SlVertex v)                        ABI 1.7: height along the
  *                                                                object-space normal at a
  *                                                                tessellated vertex (v after the
@@ -128,6 +145,7 @@ typedef enum sl_hook {
     SL_HOOK_DEBUG_VIEW_LIGHT,
     SL_HOOK_LIBRARY,
     SL_HOOK_SHADOW,         /* ABI 1.1 (shadow maps); an older host refuses the chunk */
+    SL_HOOK_LIGHT_LOOP,     /* ABI 1.7 (light culling); an older host refuses the chunk */
     SL_HOOK_DISPLACEMENT    /* ABI 1.7 (tessellation, see above); an older host refuses it */
 } sl_hook;
 
