@@ -72,6 +72,19 @@ bool sl_harness_get(sl_harness *h, const char *id, char *text, size_t n) {
 
 void sl_harness_set_frame(sl_harness *h, uint64_t frame_index) { h->app.frame_index = frame_index; }
 
+bool sl_harness_set_camera(sl_harness *h, const float position[3], const float target[3]) {
+    float d[3] = {position[0] - target[0], position[1] - target[1], position[2] - target[2]};
+    float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 1e-6f) || !isfinite(len)) return false;
+    sl_camera_state *c = &h->app.camera; /* as the scene's camera does (camera.c), lens kept */
+    memcpy(c->target, target, sizeof c->target);
+    c->distance = len;
+    c->pitch = asinf(fmaxf(-1.f, fminf(1.f, d[1] / len)));
+    c->yaw = atan2f(d[0], d[2]);
+    c->version++;
+    return true;
+}
+
 int sl_harness_plugins(sl_harness *h, const char **ids, int max) {
     int n = 0;
     for (int i = 1; i < h->app.plugins.count; i++) {

@@ -1,17 +1,24 @@
 // Forward material fragment stage. The composer places the generated functions
-// sl_base_color(), sl_run_surface_hooks() and sl_shade_surface() before this file.
+// sl_base_color(), sl_run_surface_hooks() and sl_shade_surface() before this file. A plugin's
+// main (draw_scene `fragment`, ABI 1.7) follows it with SL_CUSTOM_MAIN defined; a full-screen
+// material pass (SL_FULLSCREEN_MATERIAL) has no varyings: it builds its surface itself.
+#ifndef SL_FULLSCREEN_MATERIAL
 in vec3 v_world_pos;
 in vec3 v_normal;
 in vec4 v_tangent;
 in vec2 v_uv;
 in vec3 v_object_pos;
+#endif
 
+#ifndef SL_CUSTOM_MAIN
 layout(location = 0) out vec4 o_color;
+#endif
 #ifdef SL_MOTION_VECTORS
 in vec4 v_clip_now, v_clip_prev;
 layout(location = 1) out vec2 o_motion; // "motion": UV now minus UV in the previous frame
 #endif
 
+#ifndef SL_FULLSCREEN_MATERIAL
 SlSurface sl_surface_from_varyings() {
     SlSurface s;
     s.position = v_world_pos;
@@ -45,7 +52,9 @@ SlSurface sl_surface_from_varyings() {
     s.object_position = v_object_pos;
     return s;
 }
+#endif
 
+#ifndef SL_CUSTOM_MAIN
 void main() {
     SlSurface s = sl_surface_from_varyings();
 #ifdef SL_MAT_HAS_ALPHA_CUTOFF
@@ -61,3 +70,4 @@ void main() {
     o_motion = 0.5 * (v_clip_now.xy / v_clip_now.w - v_clip_prev.xy / v_clip_prev.w);
 #endif
 }
+#endif

@@ -43,7 +43,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     sl_shader_chunk_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
     const char *id = P->items[owner]->id;
-    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_SHADOW) {
+    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_DISPLACEMENT) {
         SL_ERROR("%s: shader chunk %s: unknown hook %d", id, d.file ? d.file : "?", (int)d.hook);
         return SL_ERR_INVALID;
     }
@@ -53,6 +53,10 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     }
     if (d.when_node_tag && d.hook != SL_HOOK_VERTEX) {
         SL_ERROR("%s: shader chunk %s: when_node_tag is for VERTEX hooks only", id, d.file);
+        return SL_ERR_INVALID;
+    }
+    if (d.tess_level && d.hook != SL_HOOK_DISPLACEMENT) {
+        SL_ERROR("%s: shader chunk %s: tess_level is for DISPLACEMENT hooks only", id, d.file);
         return SL_ERR_INVALID;
     }
     bool named = d.hook == SL_HOOK_SHADING_MODEL || d.hook == SL_HOOK_MODEL_AMBIENT ||
@@ -87,6 +91,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     r->d.when_material_has = dup0(d.when_material_has);
     r->d.when_model = dup0(d.when_model);
     r->d.when_node_tag = dup0(d.when_node_tag);
+    r->d.tess_level = dup0(d.tess_level);
     r->d.description = dup0(d.description);
     return SL_OK;
 }
@@ -414,6 +419,7 @@ static void free_chunk(sl_chunk_reg *c) {
     free((char *)c->d.file); free((char *)c->d.function); free((char *)c->d.name);
     free((char *)c->d.when_material_has); free((char *)c->d.description); free((char *)c->d.when_model);
     free((char *)c->d.when_node_tag);
+    free((char *)c->d.tess_level);
 }
 
 static void free_pass(sl_pass_reg *r) {

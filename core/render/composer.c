@@ -229,10 +229,18 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
     char log[8192] = "";
     unsigned vs = compile_stage(GL_VERTEX_SHADER, &p->vs, log, sizeof log);
     unsigned fs = vs ? compile_stage(GL_FRAGMENT_SHADER, &p->fs, log, sizeof log) : 0;
+    /* tessellation stages (DISPLACEMENT hooks, shader.h ABI 1.7) only when composed */
+    unsigned tcs = 0, tes = 0;
+    if (p->tessellated && fs) {
+        tcs = compile_stage(GL_TESS_CONTROL_SHADER, &p->tcs, log, sizeof log);
+        tes = tcs ? compile_stage(GL_TESS_EVALUATION_SHADER, &p->tes, log, sizeof log) : 0;
+    }
     unsigned prog = 0;
-    if (vs && fs) {
+    if (vs && fs && (!p->tessellated || (tcs && tes))) {
         prog = glCreateProgram();
         glAttachShader(prog, vs);
+        if (tcs) glAttachShader(prog, tcs);
+        if (tes) glAttachShader(prog, tes);
         glAttachShader(prog, fs);
         glLinkProgram(prog);
         int ok = 0;
@@ -247,6 +255,8 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
     }
     if (vs) glDeleteShader(vs);
     if (fs) glDeleteShader(fs);
+    if (tcs) glDeleteShader(tcs);
+    if (tes) glDeleteShader(tes);
     free(p->error);
     p->error = NULL;
     if (!prog) {
@@ -333,6 +343,8 @@ void sl_program_free(sl_program *p) {
     if (p->id) glDeleteProgram(p->id);
     sl_source_free(&p->vs);
     sl_source_free(&p->fs);
+    sl_source_free(&p->tcs);
+    sl_source_free(&p->tes);
     free(p->label); free(p->error); free(p->vs_path); free(p->fs_path); free(p->defines);
     free(p);
 }

@@ -32,15 +32,17 @@ void sl_source_generated(sl_source *s, const char *text);
 void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n);
 
 struct sl_program {
-    uint64_t hash;          /* of vertex + fragment source */
+    uint64_t hash;          /* of vertex + fragment (+ tessellation) source */
     unsigned id;            /* GL program; 0 until compiled successfully */
     char *label;
     sl_source vs, fs;
+    sl_source tcs, tes;     /* tessellation stages (DISPLACEMENT hooks); empty text = none */
     char *error;            /* last compile/link error (mapped), NULL when good */
     char *vs_path, *fs_path, *defines; /* for stand-alone programs: rebuilt on reload */
     int owner;
     bool composed;          /* forward material program (rebuilt by the material code) */
     bool stale;             /* its files changed (hot reload): not reused from the cache */
+    bool tessellated;       /* has tcs/tes: draw GL_PATCHES of 3 vertices */
 };
 
 /* Compiles and links; on failure keeps any previous id and stores the mapped error. */

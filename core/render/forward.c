@@ -100,8 +100,52 @@ static const char *glsl_type(sl_param_type t) {
     return "float";
 }
 
+/* The tessellation of a displaced material (DISPLACEMENT hooks, shader.h ABI 1.7): tess.vert runs
+ * the VERTEX hooks and hands the object-space vertex on; the control stage sets per-edge levels
+ * from each edge's endpoints (crack-free), the evaluation stage displaces along the normal. */
+static bool compose_tessellation(sl_plugins *P, sl_program *p, const char *pre, const char *uni,
+                                 const sl_chunk_reg *const *hooks, int nd, sl_variant_kind kind, char *err, size_t n) {
+    bool ok = sl_source_include(&p->vs, "sl:tess.vert", err, n);
+    sl_source *stages[2] = {&p->tcs, &p->tes};
+    const char *defines[2] = {"#define SL_TESS_CONTROL_STAGE 1\n", "#define SL_TESS_EVALUATION_STAGE 1\n"};
+    sl_strbuf gen = {0};
+    sl_sb_append(&gen, "float sl_tess_edge_level(vec3 a, vec3 b) {\n    float level = 1.0;\n");
+    for (int i = 0; i < nd; i++) {
+        if (hooks[i]->d.tess_level) sl_sb_printf(&gen, "    level = max(level, %s(a, b));\n", hooks[i]->d.tess_level);
+        else sl_sb_append(&gen, "    level = max(level, sl_tess_screen_level(a, b, 8.0));\n");
+    }
+    sl_sb_append(&gen, "    return level;\n}\nfloat sl_run_displacement(SlVertex v) {\n    float h = 0.0;\n");
+    for (int i = 0; i < nd; i++) sl_sb_printf(&gen, "    h += %s(v);\n", hooks[i]->d.function);
+    sl_sb_append(&gen, "    return h;\n}\n");
+    for (int k = 0; k < 2 && ok; k++) {
+        sl_sb_append(&stages[k]->text, pre);
+        sl_sb_append(&stages[k]->text, defines[k]);
+        if (k == 1 && kind == SL_VARIANT_FORWARD) sl_sb_append(&stages[k]->text, "#define SL_TESS_NORMALS 1\n");
+        ok = sl_source_include(stages[k], "sl:common.glsl", err, n);
+        sl_source_generated(stages[k], uni ? uni : "");
+        ok = ok && sl_source_include(stages[k], "sl:tess.glsl", err, n);
+        for (int i = 0; i < nd && ok; i++) {
+            char path[2048];
+            snprintf(path, sizeof path, "%s/%s", P->items[hooks[i]->owner]->resource_dir, hooks[i]->d.file);
+            ok = sl_source_include(stages[k], path, err, n);
+        }
+        if (ok) sl_source_generated(stages[k], gen.s);
+        ok = ok && sl_source_include(stages[k], k == 0 ? "sl:tess.tesc" : "sl:tess.tese", err, n);
+    }
+    sl_sb_free(&gen);
+    p->tessellated = true;
+    return ok;
+}
+
 bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *model_override, sl_forward_variant *out,
                         sl_program ***cache, int *cache_count, char *err, size_t n) {
+    return sl_forward_compose_custom(app, m, kind, model_override, NULL, false, out, cache, cache_count, err, n);
+}
+
+bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const char *model_override, const char *fragment,
+                               bool fullscreen, sl_forward_variant *out, sl_program ***cache, int *cache_count, char *err,
+                               size_t n) {
+    if (!fragment) fullscreen = false;
     sl_plugins *P = &app->plugins;
     const sl_material *mat = &app->scene.materials[m];
     uint64_t owners = 1; /* the core */
@@ -133,14 +177,20 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     for (int i = 0; i < app->scene.light_count && !shadow; i++)
         for (int c = 0; c < P->chunk_count && !shadow && app->scene.lights[i].enabled && app->scene.lights[i].cast_shadows; c++)
             if (P->chunks[c].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(&app->plugins, P->chunks[c].owner)) shadow = &P->chunks[c];
+    /* LIGHT_LOOP hook (ABI 1.7, shader.h): the forward programs' light iteration; the first provider */
+    const sl_chunk_reg *loop = NULL;
+    for (int c = 0; c < P->chunk_count && !loop && kind == SL_VARIANT_FORWARD && !model_override; c++)
+        if (P->chunks[c].d.hook == SL_HOOK_LIGHT_LOOP && sl_plugin_enabled(&app->plugins, P->chunks[c].owner)) loop = &P->chunks[c];
 
     /* hooks gated on material keys */
-    const sl_chunk_reg *vertex_hooks[64], *surface_hooks[64], *ambient_hooks[64];
-    int nv = 0, ns = 0, na = 0;
+    const sl_chunk_reg *vertex_hooks[64], *surface_hooks[64], *ambient_hooks[64], *displacement_hooks[64];
+    int nv = 0, ns = 0, na = 0, nd = 0;
     for (int i = 0; i < P->chunk_count; i++) {
         const sl_chunk_reg *c = &P->chunks[i];
         if (!sl_plugin_enabled(&app->plugins, c->owner)) continue;
-        if (c->d.hook != SL_HOOK_VERTEX && c->d.hook != SL_HOOK_SURFACE && c->d.hook != SL_HOOK_AMBIENT) continue;
+        if (c->d.hook != SL_HOOK_VERTEX && c->d.hook != SL_HOOK_SURFACE && c->d.hook != SL_HOOK_AMBIENT &&
+            c->d.hook != SL_HOOK_DISPLACEMENT)
+            continue;
         if (c->d.when_material_has && !material_has(app, m, c->d.when_material_has)) continue;
         /* the material's own model, also in override programs (its surface stays the same) */
         if (c->d.when_model && strcmp(c->d.when_model, mat->model ? mat->model : "lambert")) continue;
@@ -148,7 +198,9 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         if (c->d.hook == SL_HOOK_VERTEX && nv < 64) vertex_hooks[nv++] = c;
         if (c->d.hook == SL_HOOK_SURFACE && ns < 64) surface_hooks[ns++] = c;
         if (c->d.hook == SL_HOOK_AMBIENT && na < 64) ambient_hooks[na++] = c;
+        if (c->d.hook == SL_HOOK_DISPLACEMENT && nd < 64) displacement_hooks[nd++] = c;
     }
+    qsort(displacement_hooks, nd, sizeof *displacement_hooks, cmp_chunk_order);
     qsort(vertex_hooks, nv, sizeof *vertex_hooks, cmp_chunk_order);
     qsort(surface_hooks, ns, sizeof *surface_hooks, cmp_chunk_order);
 
@@ -160,6 +212,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         for (int t = 0; t < ntypes; t++) ADD(light_chunks[t]);
         ADD(model_chunk);
         ADD(model_ambient);
+        ADD(loop);
         for (int i = 0; i < na; i++) ADD(ambient_hooks[i]);
         ADD(view);
     }
@@ -167,6 +220,11 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         owners |= 1ull << (vertex_hooks[i]->owner & 63);
         sl_sb_printf(&explain, "%s%s:%s (vertex)", explain.len ? ", " : "", P->items[vertex_hooks[i]->owner]->id,
                      vertex_hooks[i]->d.function);
+    }
+    for (int i = 0; i < nd; i++) {
+        owners |= 1ull << (displacement_hooks[i]->owner & 63);
+        sl_sb_printf(&explain, "%s%s:%s (displacement)", explain.len ? ", " : "",
+                     P->items[displacement_hooks[i]->owner]->id, displacement_hooks[i]->d.function);
     }
 #undef ADD
 
@@ -179,12 +237,16 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     sl_glsl_ident(model, model_id, sizeof model_id, true), sl_sb_printf(&pre, "#define SL_MODEL_%s 1\n", model_id);
     if (model_chunk->d.flags & SL_CHUNK_MASKS_FACING_AWAY) sl_sb_append(&pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");
     /* "motion" (pass.h) is read by an enabled pass: the forward program writes it (location 1) */
-    bool motion = kind == SL_VARIANT_FORWARD && !model_override && app->renderer && R(app)->motion;
+    bool motion = kind == SL_VARIANT_FORWARD && !model_override && !fragment && app->renderer && R(app)->motion;
+    if (fragment) sl_sb_append(&pre, "#define SL_CUSTOM_MAIN 1\n"); /* a plugin's main (draw_scene fragment, ABI 1.7) */
+    if (fullscreen) sl_sb_append(&pre, "#define SL_FULLSCREEN_MATERIAL 1\n");
     if (motion) sl_sb_append(&pre, "#define SL_MOTION_VECTORS 1\n");
     if (view) {
         char id[128];
         sl_glsl_ident(view->d.name, id, sizeof id, true);
         sl_sb_printf(&pre, "#define SL_DEBUG_VIEW_%s 1\n", id);
+        /* a view that replaces the whole output (not a per-light one): passes adding light skip it */
+        if (view->d.hook == SL_HOOK_DEBUG_VIEW) sl_sb_append(&pre, "#define SL_DEBUG_VIEW_REPLACES_OUTPUT 1\n");
     }
     sl_strbuf uni = {0};
     out->texture_count = 0;
@@ -260,7 +322,10 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     sl_sb_append(&gen, "}\n");
     sl_source_generated(&p->vs, gen.s);
     sl_sb_free(&gen);
-    ok = ok && sl_source_include(&p->vs, "sl:forward.vert", err, n);
+    /* DISPLACEMENT hooks (shader.h, ABI 1.7): a pass-through vertex stage and the tessellation
+     * stages; without them the vertex stage is forward.vert and nothing else changes */
+    if (nd && !fullscreen) ok = ok && compose_tessellation(P, p, pre.s, uni.s, displacement_hooks, nd, kind, err, n);
+    else ok = ok && sl_source_include(&p->vs, fullscreen ? "sl:fullscreen.vert" : "sl:forward.vert", err, n);
 
     /* ---- fragment stage ---- */
     sl_sb_append(&p->fs.text, pre.s);
@@ -279,6 +344,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
             sl_glsl_ident(types[t], id, sizeof id, false);
             sl_sb_printf(&decl, "uniform ivec2 sl_lights_%s; // [first, end) in sl_lights\n", id);
         }
+        if (loop) sl_sb_append(&decl, "vec3 sl_light_radiance(int i, SlSurface s); // one light (LIGHT_LOOP, ABI 1.7)\n");
+        if (fullscreen) sl_sb_append(&decl, "uniform int sl_material_index; // full-screen material pass (ABI 1.7)\n");
         sl_source_generated(&p->fs, decl.s);
         sl_sb_free(&decl);
         ok = ok && sl_source_include(&p->fs, "sl:material.glsl", err, n);
@@ -303,7 +370,10 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         sl_sb_append(&gen, "}\n");
         /* the light loop, one loop per light type present */
         const char *per_light = view && view->d.hook == SL_HOOK_DEBUG_VIEW_LIGHT ? view->d.function : model_chunk->d.function;
-        sl_sb_append(&gen, "vec3 sl_direct_lighting(SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
+        /* With a LIGHT_LOOP hook the same per-type code evaluates one light by index instead */
+        if (loop) sl_sb_append(&gen, "vec3 sl_light_radiance(int i, SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
+        else sl_sb_append(&gen, "vec3 sl_direct_lighting(SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
+        const char *range = loop ? "    if (i >= sl_lights_%s.x && i < sl_lights_%s.y)" : "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i)";
         for (int t = 0; t < ntypes; t++) {
             if (!light_chunks[t]) continue; /* warned at load: no plugin provides this light type */
             char id[128];
@@ -312,20 +382,22 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
                 /* the light integrates the model itself (area lights): radiance, no l/E pair, so
                  * no shadow hook and nothing in per-light debug views (shader.h) */
                 if (view) continue;
-                sl_sb_printf(&gen, "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) Lo += %s(sl_lights[i], s);\n",
-                             id, id, light_chunks[t]->d.function);
+                sl_sb_printf(&gen, range, id, id);
+                sl_sb_printf(&gen, " Lo += %s(sl_lights[i], s);\n", light_chunks[t]->d.function);
                 continue;
             }
             char vis[256] = "E";
             if (shadow) snprintf(vis, sizeof vis, "E * %s(i, sl_lights[i], s, l)", shadow->d.function);
+            sl_sb_printf(&gen, range, id, id);
             sl_sb_printf(&gen,
-                         "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) {\n"
+                         " {\n"
                          "        vec3 l, E;\n"
                          "        if (%s(sl_lights[i], s, l, E)) Lo += %s(s, l, %s);\n"
                          "    }\n",
-                         id, id, light_chunks[t]->d.function, per_light, vis);
+                         light_chunks[t]->d.function, per_light, vis);
         }
         sl_sb_append(&gen, "    return Lo;\n}\n");
+        if (loop) sl_sb_printf(&gen, "vec3 sl_direct_lighting(SlSurface s) { return %s(s); }\n", loop->d.function);
         sl_sb_printf(&gen, "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E) { return %s(s, l, E); }\n",
                      model_chunk->d.function);
         sl_sb_append(&gen, "vec3 sl_shade_surface(SlSurface s) {\n");
@@ -350,6 +422,7 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
         }
         sl_source_generated(&p->fs, gen.s);
         ok = ok && sl_source_include(&p->fs, "sl:forward.frag", err, n);
+        if (fragment) ok = ok && sl_source_include(&p->fs, fragment, err, n);
     }
     sl_sb_free(&gen);
     sl_sb_free(&pre);
@@ -371,6 +444,8 @@ bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *mo
     memcpy(out->node_tags, node_tags, sizeof node_tags);
     out->node_tag_count = node_tag_count;
     p->hash = sl_hash64(p->vs.text.s, p->vs.text.len, sl_hash64(p->fs.text.s, p->fs.text.len, 0));
+    if (p->tessellated)
+        p->hash = sl_hash64(p->tcs.text.s, p->tcs.text.len, sl_hash64(p->tes.text.s, p->tes.text.len, p->hash));
     for (int i = 0; i < *cache_count; i++) {
         if ((*cache)[i]->hash == p->hash && (*cache)[i]->id && !(*cache)[i]->stale) {
             sl_program_free(p);

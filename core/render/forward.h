@@ -29,6 +29,12 @@ typedef enum sl_variant_kind { SL_VARIANT_FORWARD, SL_VARIANT_DEPTH } sl_variant
 bool sl_forward_compose(struct sl_app *app, int material, sl_variant_kind kind, const char *model_override,
                         sl_forward_variant *out,
                         sl_program ***cache, int *cache_count, char *err, size_t n);
+/* The same with a plugin's fragment main (SL_DRAW_MATERIALS `fragment`, ABI 1.7: a resolved
+ * path, included after forward.frag with SL_CUSTOM_MAIN defined) and, with `fullscreen`, the
+ * full-screen vertex stage instead of the meshes' (SL_FULLSCREEN_MATERIAL). */
+bool sl_forward_compose_custom(struct sl_app *app, int material, sl_variant_kind kind, const char *model_override,
+                               const char *fragment, bool fullscreen, sl_forward_variant *out,
+                               sl_program ***cache, int *cache_count, char *err, size_t n);
 /* Light types present among the scene's enabled lights, in packing order. */
 int sl_forward_light_types(struct sl_app *app, const char **types, int max);
 /* GLSL-safe identifier from a name ("spotlight-shadow" → "spotlight_shadow"). */

@@ -50,8 +50,8 @@ int sl_renderer_reload_shaders(sl_app *app) {
      * re-print the error) every time, forever. A later edit changes the mtime again. */
     for (int i = 0; i < r->program_count + r->cache_count; i++) {
         sl_program *p = i < r->program_count ? r->programs[i] : r->cache[i - r->program_count];
-        sl_source *src[2] = {&p->vs, &p->fs};
-        for (int k = 0; k < 2; k++)
+        sl_source *src[4] = {&p->vs, &p->fs, &p->tcs, &p->tes};
+        for (int k = 0; k < 4; k++)
             for (int f = 1; f < src[k]->file_count; f++) {
                 struct stat st;
                 if (stat(src[k]->files[f], &st) == 0) src[k]->mtimes[f] = st.st_mtime;
@@ -64,7 +64,9 @@ static bool any_source_changed(sl_renderer *r) {
     for (int i = 0; i < r->program_count; i++)
         if (sl_source_changed(&r->programs[i]->vs) || sl_source_changed(&r->programs[i]->fs)) return true;
     for (int i = 0; i < r->cache_count; i++)
-        if (sl_source_changed(&r->cache[i]->vs) || sl_source_changed(&r->cache[i]->fs)) return true;
+        if (sl_source_changed(&r->cache[i]->vs) || sl_source_changed(&r->cache[i]->fs) ||
+            sl_source_changed(&r->cache[i]->tcs) || sl_source_changed(&r->cache[i]->tes))
+            return true;
     return false;
 }
 
@@ -399,6 +401,7 @@ void sl_renderer_destroy(sl_app *app) {
         free(r->materials[m].depth.chunks);
         for (int k = 0; k < r->materials[m].override_count; k++) {
             free(r->materials[m].overrides[k].model);
+            free(r->materials[m].overrides[k].fragment);
             free(r->materials[m].overrides[k].v.chunks);
         }
     }

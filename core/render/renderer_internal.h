@@ -13,7 +13,8 @@
 typedef struct gpu_mesh { unsigned vao, vbo[4], ibo; int index_count; } gpu_mesh;
 typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 
-typedef struct override_variant { char *model; sl_forward_variant v; } override_variant;
+/* model: NULL = the material's own; fragment (ABI 1.7): a plugin's main, resolved path */
+typedef struct override_variant { char *model; sl_forward_variant v; char *fragment; bool fullscreen; } override_variant;
 
 typedef struct material_rt {
     sl_forward_variant forward, depth;

@@ -211,8 +211,9 @@ void sl_gpu_compose_all(sl_app *app) {
         sl_forward_compose(app, m, SL_VARIANT_FORWARD, NULL, &mr->forward, &r->cache, &r->cache_count, err, sizeof err);
         sl_forward_compose(app, m, SL_VARIANT_DEPTH, NULL, &mr->depth, &r->cache, &r->cache_count, err, sizeof err);
         for (int k = 0; k < mr->override_count; k++)
-            sl_forward_compose(app, m, SL_VARIANT_FORWARD, mr->overrides[k].model, &mr->overrides[k].v, &r->cache,
-                               &r->cache_count, err, sizeof err);
+            sl_forward_compose_custom(app, m, SL_VARIANT_FORWARD, mr->overrides[k].model, mr->overrides[k].fragment,
+                                      mr->overrides[k].fullscreen, &mr->overrides[k].v, &r->cache, &r->cache_count, err,
+                                      sizeof err);
         for (int t = 0; t < mr->forward.texture_count; t++) {
             const sl_param *q = &app->params.items[mr->forward.texture_params[t]];
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
@@ -271,6 +272,12 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
         glUniform2i(glGetUniformLocation(prog, name), r->type_range[t][0], r->type_range[t][1]);
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r->light_buffer);
+    if (var->program->tessellated) {
+        /* levels from the frame's camera in every pass (shaders/tess.glsl): shadow maps tessellate
+         * as the view does; proj[1][1] × height / 2 = pixels per unit at unit distance */
+        glUniform1f(glGetUniformLocation(prog, "sl_tess_pixel_scale"), r->frame.proj[5] * 0.5f * (float)r->frame.height);
+        glUniform1i(glGetUniformLocation(prog, "sl_tess_orthographic"), r->frame.proj[15] == 1.0f);
+    }
     sl_mat_state *ms = &app->materials[m];
     for (int i = 0; i < ms->count; i++) {
         const sl_param *q = &app->params.items[ms->values[i].param];
@@ -300,21 +307,53 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
 /* ------------------------------------------------------------------ drawing --------- */
 
 /* The material's program with its shading model replaced (SL_DRAW_MATERIALS). */
-static const sl_forward_variant *override_variant_of(sl_app *app, int m, const char *model) {
+static bool same_name(const char *a, const char *b) { return a == b || (a && b && !strcmp(a, b)); }
+
+/* The material's program with its shading model replaced and/or a plugin's fragment main
+ * (SL_DRAW_MATERIALS; fragment: ABI 1.7). */
+static const sl_forward_variant *override_variant_of(sl_app *app, int m, const char *model, const char *fragment,
+                                                     bool fullscreen) {
     material_rt *mr = &R(app)->materials[m];
     for (int k = 0; k < mr->override_count; k++)
-        if (!strcmp(mr->overrides[k].model, model)) return &mr->overrides[k].v;
+        if (same_name(mr->overrides[k].model, model) && same_name(mr->overrides[k].fragment, fragment) &&
+            mr->overrides[k].fullscreen == fullscreen)
+            return &mr->overrides[k].v;
     if (mr->override_count == 8) return NULL;
     override_variant *o = &mr->overrides[mr->override_count++];
     memset(o, 0, sizeof *o);
-    o->model = strdup(model);
+    o->model = model ? strdup(model) : NULL;
+    o->fragment = fragment ? strdup(fragment) : NULL;
+    o->fullscreen = fullscreen;
     char err[16384];
-    sl_forward_compose(app, m, SL_VARIANT_FORWARD, model, &o->v, &R(app)->cache, &R(app)->cache_count, err, sizeof err);
+    sl_forward_compose_custom(app, m, SL_VARIANT_FORWARD, model, fragment, fullscreen, &o->v, &R(app)->cache,
+                              &R(app)->cache_count, err, sizeof err);
     return &o->v;
+}
+
+/* SL_DRAW_MATERIALS with a fragment and `fullscreen` (ABI 1.7): one full-screen triangle per
+ * material with its program and uniforms bound (deferred lighting). */
+static void draw_materials_fullscreen(sl_app *app, const sl_draw_scene_desc *d, const char *fragment) {
+    sl_renderer *r = R(app);
+    glDisable(GL_CULL_FACE); /* the depth test stays as the pass set it (pass.h) */
+    glBindVertexArray(r->empty_vao);
+    for (int m = 0; m < app->scene.material_count; m++) {
+        if (d->only_materials_with) {
+            sl_mat_value *v = sl_app_material_value(app, m, d->only_materials_with);
+            if (!v || !v->present) continue;
+        }
+        const sl_forward_variant *var = override_variant_of(app, m, d->model_override, fragment, true);
+        unsigned prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
+        if (!prog) continue;
+        glUniform1i(glGetUniformLocation(prog, "sl_material_index"), m);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        r->stats.draw_calls++;
+    }
+    glBindVertexArray(0);
 }
 
 void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom) {
     const char *model_override = d->mode == SL_DRAW_MATERIALS ? d->model_override : NULL;
+    const char *fragment = d->mode == SL_DRAW_MATERIALS ? d->fragment : NULL; /* resolved (draw_scene) */
     sl_renderer *r = R(app);
     sl_scene *s = &app->scene;
     glEnable(GL_DEPTH_TEST);
@@ -350,7 +389,7 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
                 if (!bound) {
                     var = depth_only       ? &r->materials[m].depth
-                          : model_override ? override_variant_of(app, m, model_override)
+                          : model_override || fragment ? override_variant_of(app, m, model_override, fragment, false)
                                            : &r->materials[m].forward;
                     prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
                     glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
@@ -377,7 +416,20 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                     glUniform1i(glGetUniformLocation(prog, "sl_vertex_hook_mask"), mask);
                 }
                 glBindVertexArray(r->meshes[mi].vao);
-                glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+                if (var && var->program && var->program->tessellated) { /* DISPLACEMENT hooks (ABI 1.7) */
+                    /* at most SL_PATCHES_PER_DRAW patches per draw: llvmpipe (Mesa 22.3) drops and
+                     * tears the later patches of a draw that generates too many triangles
+                     * (measured: 128 patches at level 32 lose the lower half of a cylinder) */
+                    enum { SL_PATCHES_PER_DRAW = 16 };
+                    glPatchParameteri(GL_PATCH_VERTICES, 3);
+                    for (int first = 0; first < r->meshes[mi].index_count; first += 3 * SL_PATCHES_PER_DRAW) {
+                        int n = r->meshes[mi].index_count - first;
+                        glDrawElements(GL_PATCHES, n < 3 * SL_PATCHES_PER_DRAW ? n : 3 * SL_PATCHES_PER_DRAW,
+                                       GL_UNSIGNED_INT, (const void *)(sizeof(uint32_t) * (size_t)first));
+                    }
+                } else {
+                    glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+                }
                 r->stats.draw_calls++;
             }
         }
@@ -394,9 +446,25 @@ void sl_renderer_draw_scene(sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_d
         SL_ERROR("draw_scene: SL_DRAW_PROGRAM without a program");
         return;
     }
-    if (d.mode == SL_DRAW_MATERIALS && !d.model_override) {
-        SL_ERROR("draw_scene: SL_DRAW_MATERIALS without model_override");
+    if (d.mode == SL_DRAW_MATERIALS && !d.model_override && !d.fragment) {
+        SL_ERROR("draw_scene: SL_DRAW_MATERIALS without model_override or fragment");
         return;
+    }
+    /* a plugin's fragment main (ABI 1.7) is a file of the calling pass's plugin */
+    char frag[2048];
+    if (d.mode == SL_DRAW_MATERIALS && d.fragment) {
+        if (!ctx || ctx->pass->owner < 0 || strstr(d.fragment, "..") || d.fragment[0] == '/') {
+            SL_ERROR("draw_scene: fragment \"%s\" must be a file in the calling plugin's directory", d.fragment);
+            return;
+        }
+        snprintf(frag, sizeof frag, "%s/%s", app->plugins.items[ctx->pass->owner]->resource_dir, d.fragment);
+        d.fragment = frag;
+        if (d.fullscreen) {
+            draw_materials_fullscreen(app, &d, frag);
+            return;
+        }
+    } else {
+        d.fragment = NULL, d.fullscreen = false;
     }
     sl_gpu_draw_meshes(app, &d, d.mode == SL_DRAW_DEPTH_ONLY, d.mode == SL_DRAW_PROGRAM ? d.program : NULL);
 }

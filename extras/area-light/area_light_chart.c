@@ -78,14 +78,19 @@ int main(int argc, char **argv) {
     snprintf(png, sizeof png, "%s.png", out);
     FILE *f = fopen(csv, "w");
     if (!f) { fprintf(stderr, "area_light_chart: cannot write %s\n", csv); return 1; }
-    fprintf(f, "roughness,ggx_ltc_relrmse,lambert_relrmse,ggx_reference_noise\n");
-    const char *const refset[] = {"area-light.method=reference", "area-light.reference_samples=8", NULL};
+    fprintf(f, "roughness,ggx_ltc_relrmse,lambert_relrmse,ggx_reference_noise,ggx_ltc_vs_shadowed_relrmse\n");
+    const char *const refset[] = {"area-light.method=reference", "area-light.reference_samples=8",
+                                  "area-light.reference_visibility=false", NULL};
+    /* the declared reference: with visibility (the ball shadows the floor; the LTC has no shadows) */
+    const char *const shadowset[] = {"area-light.method=reference", "area-light.reference_visibility=true",
+                                     "area-light.reference_map_size=1024", NULL};
     const double rough[] = {0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
-    printf("roughness  ggx LTC vs reference  lambert vs reference  ggx reference noise   (relative RMSE; reference: %d "
-           "frames x 64 points)\n", accumulate);
+    printf("roughness  ggx LTC vs reference  lambert vs reference  ggx reference noise  ggx LTC vs shadowed reference "
+           "(relative RMSE; reference: %d frames x 64 points, unshadowed; shadowed: %d frames x 1 point + cube map)\n",
+           accumulate, accumulate);
     float *quarter = malloc(sizeof(float) * 4 * W * H);
     for (size_t k = 0; k < sizeof rough / sizeof *rough; k++) {
-        double e[2], noise = 0;
+        double e[2], noise = 0, shadowed = 0;
         for (int m = 0; m < 2; m++) {
             snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, m ? "lambert" : "ggx", rough[k]);
             sl_harness *h = make(json, NULL, 1);
@@ -101,48 +106,62 @@ int main(int argc, char **argv) {
                 sl_harness_render(h, quarter);
                 sl_harness_destroy(h);
                 noise = rel_rmse(quarter, ref) / sqrt(3.0);
+                h = make(json, shadowset, accumulate);
+                sl_harness_render(h, ref);
+                sl_harness_destroy(h);
+                shadowed = rel_rmse(img, ref);
             }
         }
-        printf("%9.2f  %20.4f  %20.4f  %19.4f\n", rough[k], e[0], e[1], noise);
-        fprintf(f, "%g,%g,%g,%g\n", rough[k], e[0], e[1], noise);
+        printf("%9.2f  %20.4f  %20.4f  %19.4f  %29.4f\n", rough[k], e[0], e[1], noise, shadowed);
+        fprintf(f, "%g,%g,%g,%g,%g\n", rough[k], e[0], e[1], noise, shadowed);
     }
     fclose(f);
 
     /* cost: rectangle vs point light, interleaved on two harnesses (one GL context at a time:
      * re-created per round, the first frame after creation not timed) */
-    double *t_rect = calloc(frames, sizeof(double)), *t_point = calloc(frames, sizeof(double));
+    double *t_rect = calloc(frames, sizeof(double)), *t_point = calloc(frames, sizeof(double)),
+           *t_shadow = calloc(frames, sizeof(double));
     char json_rect[4096], json_point[4096];
     snprintf(json_rect, sizeof json_rect, SCENE_HEAD RECT_LIGHT, "ggx", 0.4);
     snprintf(json_point, sizeof json_point, SCENE_HEAD POINT_LIGHT, "ggx", 0.4);
     for (int i = 0; i < frames; i++)
-        for (int m = 0; m < 2; m++) {
-            sl_harness *h = make(m ? json_point : json_rect, NULL, 1);
+        for (int m = 0; m < 3; m++) {
+            /* m = 2: one frame of the shadowed reference (a new light point: cube map + shading) */
+            /* (4 accumulated frames, each from its own point, timed together and divided by 4) */
+            int acc = m == 2 ? 4 : 1;
+            sl_harness *h = make(m == 1 ? json_point : json_rect, m == 2 ? shadowset : NULL, acc);
             sl_harness_render(h, img); /* compile, warm */
             double t0 = now();
             sl_harness_render(h, img);
-            double t = (now() - t0) * 1000;
+            double t = (now() - t0) * 1000 / acc;
             sl_harness_destroy(h);
-            (m ? t_point : t_rect)[i] = t;
+            (m == 0 ? t_rect : m == 1 ? t_point : t_shadow)[i] = t;
         }
     qsort(t_rect, frames, sizeof(double), cmp_d);
     qsort(t_point, frames, sizeof(double), cmp_d);
-    double mr = t_rect[frames / 2], mp = t_point[frames / 2];
+    qsort(t_shadow, frames, sizeof(double), cmp_d);
+    double mr = t_rect[frames / 2], mp = t_point[frames / 2], ms = t_shadow[frames / 2];
     printf("cost at %dx%d (render + read-back, median of %d, interleaved): rectangle light %.2f ms, point light %.2f ms, "
-           "ratio %.2f\n", W, H, frames, mr, mp, mr / mp);
+           "ratio %.2f; one frame of the shadowed reference (6 faces of 1024^2 + one point) %.2f ms\n", W, H, frames, mr,
+           mp, mr / mp, ms);
     snprintf(csv, sizeof csv, "%s-cost.csv", out);
     f = fopen(csv, "w");
-    if (f) { fprintf(f, "light,median_ms\nrectangle (LTC),%g\npoint,%g\n", mr, mp); fclose(f); }
+    if (f) {
+        fprintf(f, "light,median_ms\nrectangle (LTC),%g\npoint,%g\nshadowed ref. (a frame),%g\n", mr, mp, ms);
+        fclose(f);
+    }
 
     /* the chart */
     char cmd[8192];
     snprintf(cmd, sizeof cmd,
-             "gnuplot -e \"set terminal pngcairo size 900,380 font ',10'; set output '%s'; set datafile separator ',';"
+             "gnuplot -e \"set terminal pngcairo size 900,440 font ',10'; set output '%s'; set datafile separator ',';"
              " set multiplot layout 1,2;"
              " set title 'area-light: LTC vs Monte Carlo reference'; set xlabel 'roughness'; set ylabel 'relative RMSE';"
-             " set key top right; set grid; set logscale y;"
+             " set key outside bottom center vertical maxrows 2 font ',8'; set grid; set logscale y;"
              " plot '%s.csv' using 1:2 skip 1 with linespoints title 'ggx (LTC specular + Lambert)',"
              " '' using 1:3 skip 1 with linespoints title 'lambert (exact formula)',"
-             " '' using 1:4 skip 1 with lines dashtype 2 title 'ggx reference noise (estimated)';"
+             " '' using 1:4 skip 1 with lines dashtype 2 title 'ggx reference noise (estimated)',"
+             " '' using 1:5 skip 1 with linespoints title 'ggx (LTC, no shadows) vs shadowed reference';"
              " unset logscale y;"
              " set title 'cost per frame, %dx%d, llvmpipe'; set xlabel ''; set ylabel 'ms'; set style fill solid 0.5;"
              " set boxwidth 0.5; set yrange [0:*]; unset key;"
@@ -151,6 +170,6 @@ int main(int argc, char **argv) {
              png, out, W, H, out);
     if (system(cmd) != 0) fprintf(stderr, "area_light_chart: gnuplot failed (CSV written)\n");
     else printf("wrote %s.csv, %s-cost.csv, %s\n", out, out, png);
-    free(img), free(ref), free(quarter), free(t_rect), free(t_point);
+    free(img), free(ref), free(quarter), free(t_rect), free(t_point), free(t_shadow);
     return 0;
 }

@@ -7,7 +7,9 @@
 // row spotlight_shadow_view_base + v is view v:
 //   texels 0..3 world → clip matrix columns, 4 (layer, near, far, texel size at depth 1 or
 //   absolute), 5 (eye position, 1 = orthographic), 6 (view axis, light size: radius in m or
-//   tan of the angular radius).
+//   tan of the angular radius), 7 (provided views: split_near, split_far, blend, -).
+// A light row's texel 0 .w = 1: its views come from a view provider (cascades, picked by
+// camera depth).
 // Biases, all in texels of the map at the receiver (world size tw): the lookup point moves
 // normal_offset·tw along the normal and (bias_constant + bias_slope·tanθ)·tw towards the
 // light; with receiver_plane every tap compares against the receiver's tangent plane at that
@@ -144,19 +146,9 @@ float spotlight_shadow_poisson(float layer, vec3 sc, vec2 g, float radius, int t
     return sum / float(taps);
 }
 
-float spotlight_shadow_visibility(int i, SlLight L, SlSurface s, vec3 l) {
-#if !SPOTLIGHT_SHADOW_SHADOWS
-    return 1.0;
-#else
-    vec4 info = texelFetch(spotlight_shadow_table, ivec2(0, i), 0);
-    int count = int(info.y + 0.5);
-    if (count <= 0) return 1.0;
-    int v = int(info.x + 0.5);
-    if (count == 6) { // point light: the cube face of the major axis
-        vec3 d = s.position - texelFetch(spotlight_shadow_table, ivec2(1, i), 0).xyz;
-        vec3 a = abs(d);
-        v += a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5);
-    }
+#if SPOTLIGHT_SHADOW_SHADOWS
+// Visibility of s through view v (bias, then the filter).
+float spotlight_shadow_view_visibility(int v, SlSurface s, vec3 l) {
     SpotlightShadowView V = spotlight_shadow_view(v);
     vec3 n = s.geometric_normal;
     if (dot(n, l) < 0.0) n = -n; // offsets go to the lit side
@@ -228,5 +220,37 @@ float spotlight_shadow_visibility(int i, SlLight L, SlSurface s, vec3 l) {
       // sampled on the light (the frames are averaged by the core)
     return spotlight_shadow_compare(layer, sc, vec2(0.0), g);
 #endif
+}
+#endif
+
+float spotlight_shadow_visibility(int i, SlLight L, SlSurface s, vec3 l) {
+#if !SPOTLIGHT_SHADOW_SHADOWS
+    return 1.0;
+#else
+    vec4 info = texelFetch(spotlight_shadow_table, ivec2(0, i), 0);
+    int count = int(info.y + 0.5);
+    if (count <= 0) return 1.0;
+    int v = int(info.x + 0.5);
+    if (info.w > 0.5) { // views supplied by a view provider (cascades): picked by camera depth;
+        // texel 7 of a view row = (split_near, split_far, blend); over the last `blend` metres
+        // before split_far the visibility fades into the next view's, so the image is continuous
+        // at the split (sdk ext/shadow_maps.h, revision 2)
+        float z = -(sl_view * vec4(s.position, 1.0)).z;
+        for (int k = 0; k < count; ++k) {
+            vec4 sel = texelFetch(spotlight_shadow_table, ivec2(7, spotlight_shadow_view_base + v + k), 0);
+            if (z >= sel.y) continue;
+            float vis = spotlight_shadow_view_visibility(v + k, s, l);
+            float t = sel.z > 0.0 ? (z - (sel.y - sel.z)) / sel.z : -1.0;
+            if (t > 0.0 && k + 1 < count) vis = mix(vis, spotlight_shadow_view_visibility(v + k + 1, s, l), t);
+            return vis;
+        }
+        return 1.0; // beyond the last split: not covered
+    }
+    if (count == 6) { // point light: the cube face of the major axis
+        vec3 d = s.position - texelFetch(spotlight_shadow_table, ivec2(1, i), 0).xyz;
+        vec3 a = abs(d);
+        v += a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5);
+    }
+    return spotlight_shadow_view_visibility(v, s, l);
 #endif
 }

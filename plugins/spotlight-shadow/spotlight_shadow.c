@@ -28,6 +28,9 @@ typedef struct view_rec {
     mat4 view, proj, vp;
     float near_plane, far_plane, texel_world, size;
     vec3 pos, axis;
+    int count;                            /* views of its light (point: 6; cascades: 1..8) */
+    bool provided;                        /* from a view provider (extension revision 2) */
+    float split_near, split_far, blend;   /* camera-depth interval it serves (provided views) */
 } view_rec;
 
 typedef struct ss {
@@ -40,6 +43,7 @@ typedef struct ss {
     int view_count, view_cap;
     uint64_t version;
     sl_ext_shadow_maps ext;
+    sl_shadow_view_provider provider;     /* installed by another plugin (cascades); views == NULL: none */
 } ss;
 
 /* ------------------------------------------------------------------ parameters ------- */
@@ -233,6 +237,14 @@ static void ortho_view(view_rec *v, const sl_frame *f, const vec3 dir, int size)
     glm_vec3_copy((float *)dir, v->axis);
 }
 
+/* Views another plugin supplies for directional light i (extension revision 2); 0 = none. */
+static int provided_views(ss *s, const sl_frame *f, int i, int size, sl_shadow_view *out) {
+    if (!s->provider.views) return 0;
+    for (int k = 0; k < SL_SHADOW_MAX_VIEWS_PER_LIGHT; k++) out[k] = (sl_shadow_view){.struct_size = sizeof *out};
+    int n = s->provider.views(s->provider.user, f, i, size, out, SL_SHADOW_MAX_VIEWS_PER_LIGHT);
+    return n < 0 ? 0 : n > SL_SHADOW_MAX_VIEWS_PER_LIGHT ? SL_SHADOW_MAX_VIEWS_PER_LIGHT : n;
+}
+
 /* Builds the views of every shadowed light for this frame (reference: from a point sampled
  * on the light, index accumulate_index of accumulate_count). */
 static void build_views(ss *s, const sl_frame *f, int size, bool reference) {
@@ -263,6 +275,7 @@ static void build_views(ss *s, const sl_frame *f, int size, bool reference) {
             perspective_view(v, f, pos, dir, half_angle, size);
             v->kind = kind;
             v->size = radius;
+            v->count = 1;
         } else if (kind == KIND_DIRECTIONAL) {
             float t = tanf(glm_rad(L->params[0]));
             if (reference) {
@@ -270,10 +283,36 @@ static void build_views(ss *s, const sl_frame *f, int size, bool reference) {
                 glm_vec3_muladds(t2, t * jy, dir);
                 glm_vec3_normalize(dir);
             }
-            view_rec *v = push_view(s);
-            ortho_view(v, f, dir, size);
-            v->kind = kind;
-            v->size = t;
+            sl_shadow_view pv[SL_SHADOW_MAX_VIEWS_PER_LIGHT];
+            int np = reference ? 0 : provided_views(s, f, i, size, pv);
+            for (int k = 0; k < np; k++) { /* cascades: one layer per view, face = view */
+                view_rec *v = push_view(s);
+                memcpy(v->view, pv[k].view, 64);
+                memcpy(v->proj, pv[k].proj, 64);
+                glm_mat4_mul(v->proj, v->view, v->vp);
+                mat4 inv;
+                glm_mat4_inv(v->view, inv);
+                glm_vec3_copy(inv[3], v->pos);
+                glm_vec3_copy(dir, v->axis);
+                v->near_plane = pv[k].near_plane;
+                v->far_plane = pv[k].far_plane;
+                v->texel_world = pv[k].texel_world;
+                v->split_near = pv[k].split_near;
+                v->split_far = pv[k].split_far;
+                v->blend = pv[k].blend;
+                v->provided = true;
+                v->face = k;
+                v->count = np;
+                v->kind = kind;
+                v->size = t;
+            }
+            if (np == 0) {
+                view_rec *v = push_view(s);
+                ortho_view(v, f, dir, size);
+                v->kind = kind;
+                v->size = t;
+                v->count = 1;
+            }
         } else {
             float radius = L->params[0];
             if (reference && count > 1) { /* a point on the sphere (Fibonacci sphere) */
@@ -291,9 +330,10 @@ static void build_views(ss *s, const sl_frame *f, int size, bool reference) {
                 v->kind = kind;
                 v->face = face;
                 v->size = radius;
+                v->count = 6;
             }
         }
-        for (int j = s->view_count - (kind == KIND_POINT ? 6 : 1); j < s->view_count; j++) {
+        for (int j = s->view_count - s->views[s->view_count - 1].count; j < s->view_count; j++) {
             s->views[j].light = i;
             s->views[j].buffer_index = L->index;
         }
@@ -332,8 +372,9 @@ static void upload_table(ss *s) {
         float *light_row = t + (size_t)w->buffer_index * TABLE_W * 4;
         if (w->face == 0) {
             light_row[0] = (float)v;
-            light_row[1] = w->kind == KIND_POINT ? 6.0f : 1.0f;
+            light_row[1] = (float)w->count;
             light_row[2] = (float)w->kind;
+            light_row[3] = w->provided ? 1.0f : 0.0f; /* pick the view by camera depth */
             memcpy(light_row + 4, w->pos, 12);
         }
         float *row = t + (size_t)(nbuf + v) * TABLE_W * 4;
@@ -346,6 +387,9 @@ static void upload_table(ss *s) {
         row[23] = w->kind == KIND_DIRECTIONAL ? 1.0f : 0.0f;
         memcpy(row + 24, w->axis, 12);
         row[27] = w->size;
+        row[28] = w->split_near;
+        row[29] = w->split_far;
+        row[30] = w->blend;
     }
     if (!s->table_tex || rows > s->table_rows) {
         if (s->table_tex) glDeleteTextures(1, &s->table_tex);
@@ -396,6 +440,19 @@ static uint64_t pass_signature(void *user, const sl_frame *f) {
         h = fnv(L->position, sizeof L->position, h);
         h = fnv(L->direction, sizeof L->direction, h);
         h = fnv(L->params, sizeof L->params, h);
+        if (kind == KIND_DIRECTIONAL && param(s, "filter").i != FILTER_REFERENCE) {
+            /* views another plugin supplies (cascades follow the camera): re-render when one moves */
+            sl_shadow_view pv[SL_SHADOW_MAX_VIEWS_PER_LIGHT];
+            int np = provided_views(s, f, i, param(s, "map_size").i, pv);
+            h = fnv(&np, sizeof np, h);
+            for (int k = 0; k < np; k++) {
+                h = fnv(pv[k].view, sizeof pv[k].view, h);
+                h = fnv(pv[k].proj, sizeof pv[k].proj, h);
+                float sel[6] = {pv[k].near_plane, pv[k].far_plane, pv[k].texel_world, pv[k].split_near,
+                                pv[k].split_far, pv[k].blend};
+                h = fnv(sel, sizeof sel, h);
+            }
+        }
     }
     h = fnv(f->scene_min, sizeof f->scene_min, h);
     h = fnv(f->scene_max, sizeof f->scene_max, h);
@@ -477,7 +534,8 @@ static bool ext_get(void *ctx, int i, sl_shadow_map *out) {
         .struct_size = sizeof m, .light = v->light, .buffer_index = v->buffer_index, .face = v->face,
         .texture = s->tex, .layer = i, .size = s->tex_size,
         .projection = v->kind == KIND_DIRECTIONAL ? SL_SHADOW_ORTHOGRAPHIC : SL_SHADOW_PERSPECTIVE,
-        .near_plane = v->near_plane, .far_plane = v->far_plane, .texel_world = v->texel_world, .light_size = v->size};
+        .near_plane = v->near_plane, .far_plane = v->far_plane, .texel_world = v->texel_world, .light_size = v->size,
+        .split_near = v->split_near, .split_far = v->split_far, .blend = v->blend};
     memcpy(m.view, v->view, 64);
     memcpy(m.proj, v->proj, 64);
     memcpy(m.view_proj, v->vp, 64);
@@ -498,9 +556,23 @@ static bool ext_find(void *ctx, int light, int face, sl_shadow_map *out) {
 
 static uint64_t ext_version(void *ctx) { return ((ss *)ctx)->version; }
 
+static bool ext_set_view_provider(void *ctx, const sl_shadow_view_provider *p) {
+    ss *s = ctx;
+    if (!p) {
+        s->provider = (sl_shadow_view_provider){0};
+        return true;
+    }
+    if (s->provider.views) return false;
+    sl_shadow_view_provider copy = {0};
+    memcpy(&copy, p, p->struct_size && p->struct_size < sizeof copy ? p->struct_size : sizeof copy);
+    s->provider = copy;
+    return true;
+}
+
+/* Revision 2 appends to revision 1's struct: both ids get the same table. */
 static const void *get_extension(void *user, const char *id) {
     ss *s = user;
-    return !strcmp(id, SL_EXT_SHADOW_MAPS) ? &s->ext : NULL;
+    return !strcmp(id, SL_EXT_SHADOW_MAPS) || !strcmp(id, SL_EXT_SHADOW_MAPS_2) ? &s->ext : NULL;
 }
 
 /* ------------------------------------------------------------------ lifecycle --------- */
@@ -511,7 +583,8 @@ static sl_status ss_create(const sl_host *host, void **user) {
     *user = s;
     s->host = host;
     s->ext = (sl_ext_shadow_maps){.struct_size = sizeof s->ext, .ctx = s, .count = ext_count, .get = ext_get,
-                                  .find = ext_find, .version = ext_version};
+                                  .find = ext_find, .version = ext_version,
+                                  .set_view_provider = ext_set_view_provider};
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
     for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)

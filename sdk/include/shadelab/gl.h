@@ -77,6 +77,7 @@
     X(PFNGLDRAWARRAYSPROC, glDrawArrays) X(PFNGLDRAWELEMENTSPROC, glDrawElements) \
     X(PFNGLDRAWARRAYSINSTANCEDPROC, glDrawArraysInstanced) \
     X(PFNGLDRAWELEMENTSINSTANCEDPROC, glDrawElementsInstanced) \
+    X(PFNGLPATCHPARAMETERIPROC, glPatchParameteri) /* ABI 1.7: DISPLACEMENT patches */ \
     X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute) X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier) \
     /* framebuffers */ \
     X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers) X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers) \

@@ -87,6 +87,7 @@
 #define glDrawElements sl_glDrawElements
 #define glDrawArraysInstanced sl_glDrawArraysInstanced
 #define glDrawElementsInstanced sl_glDrawElementsInstanced
+#define glPatchParameteri sl_glPatchParameteri
 #define glDispatchCompute sl_glDispatchCompute
 #define glMemoryBarrier sl_glMemoryBarrier
 #define glGenFramebuffers sl_glGenFramebuffers

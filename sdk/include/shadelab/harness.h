@@ -44,6 +44,9 @@ bool sl_harness_get(sl_harness *h, const char *id, char *text, size_t text_size)
 /* Pins the frame index of the next render (sl_time = index × the fixed frame time; a render
  * advances it by one), so that a frame after live changes compares with a fresh start. */
 void sl_harness_set_frame(sl_harness *h, uint64_t frame_index);
+/* ABI 1.7: puts the camera at `position` looking at `target` (world space, up = +Y; lens and
+ * clip planes kept), as a scene camera with those keys would; false when they coincide. */
+bool sl_harness_set_camera(sl_harness *h, const float position[3], const float target[3]);
 /* Ids of the plugins that loaded (not the core), in load order; returns how many there are. */
 int sl_harness_plugins(sl_harness *h, const char **ids, int max);
 /* A plugin's global parameters (not "enabled"), as declared; returns how many there are. */

@@ -131,6 +131,25 @@ typedef struct sl_draw_scene_desc {
     const char *model_override;
     /* ABI 1.2, any mode: draw only materials carrying this material key (NULL = all). */
     const char *only_materials_with;
+    /* ABI 1.7, SL_DRAW_MATERIALS: a GLSL file of the calling plugin (relative to its resource
+     * directory) holding main() and its own outputs, composed into each material's program in
+     * place of the core's forward main. Everything the forward fragment stage has is declared
+     * before it: SlSurface sl_surface_from_varyings(), sl_run_surface_hooks(s),
+     * sl_shade_surface(s), sl_direct_lighting(s), sl_shading_model(s, l, E), sl_lights[] and the
+     * material's uniforms (a G-buffer writer, a deferred lighting pass). With `fragment`,
+     * model_override may be NULL (the material's own model) and the program defines
+     * SL_CUSTOM_MAIN. NULL = the core's main. */
+    const char *fragment;
+    /* ABI 1.7, SL_DRAW_MATERIALS with `fragment`: instead of its meshes, draw one full-screen
+     * triangle per material (sl:fullscreen.vert, v_uv in [0,1]; SL_FULLSCREEN_MATERIAL defined,
+     * sl_surface_from_varyings absent: the fragment builds the SlSurface itself, e.g. from a
+     * G-buffer) with the material's program and uniforms bound; `uniform int
+     * sl_material_index` holds the material's index. The triangle lies at window depth
+     * (index + 1) / 1024 and the depth test stays as the pass set it (glDisable(GL_DEPTH_TEST)
+     * for none): a pass that wrote (material + 1) / 1024 per pixel into a depth output and sets
+     * glDepthFunc(GL_EQUAL) shades each material's pixels only (the others are rejected before
+     * the fragment shader runs). Culling is off. */
+    bool fullscreen;
 } sl_draw_scene_desc;
 
 #ifdef __cplusplus

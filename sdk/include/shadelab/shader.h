@@ -78,6 +78,54 @@
  *                                                                it. Compiled in only when an
  *                                                                enabled light casts shadows;
  *                                                                one provider (the first enabled)
+ *   LIGHT_LOOP       vec3 FN(SlSurface s)                        ABI 1.7: replaces the core's
+ *                                                                iteration over sl_lights in
+ *                                                                the forward programs (not in
+ *                                                                model_override programs): the
+ *                                                                direct lighting is FN(s). FN
+ *                                                                picks the lights (a culled list
+ *                                                                per tile or cluster) and adds
+ *                                                                vec3 sl_light_radiance(int i,
+ *                                                                SlSurface s), generated in these
+ *                                                                programs: light sl_lights[i]
+ *                                                                through its LIGHT chunk, the
+ *                                                                SHADOW hook and the material's
+ *                                                                model (or the DEBUG_VIEW_LIGHT
+ *                                                                view), exactly as the core's
+ *                                                                loop. One provider (the
+ *                                                                first enabled); absent, the
+ *                                                                programs are unchanged
+ *   DISPLACEMENT     float FN(SlVertex v)                        ABI 1.7: height along the
+ *                                                                object-space normal at a
+ *                                                                tessellated vertex (v after the
+ *                                                                VERTEX hooks, interpolated over
+ *                                                                the triangle), in object-space
+ *                                                                units; see "Displacement" below
+ *
+ * Displacement (ABI 1.7). A material that gets a DISPLACEMENT chunk (gated like VERTEX hooks:
+ * when_material_has, when_model; when_node_tag is refused) is drawn as GL_PATCHES of 3 vertices
+ * through a tessellation stage in every program of the material (forward, depth-only shadow
+ * maps, SL_DRAW_MATERIALS passes; not SL_DRAW_PROGRAM), so displaced geometry casts and receives
+ * its own shadows. Programs of other materials are byte-for-byte those without the hook.
+ *   - the tessellation control stage gives each triangle edge a level computed from that edge's
+ *     two world-space endpoints only, in a canonical order, so the two triangles sharing an edge
+ *     agree and the surface has no cracks (as long as they share the vertex data: a hard edge
+ *     with split normals opens, as with any displacement along the normal);
+ *   - `tess_level` names a function  float LEVEL(vec3 a, vec3 b)  (world space; the host passes
+ *     the endpoints in a canonical order) returning the wanted level of one edge; NULL = edges
+ *     of about 8 pixels. The host takes the maximum over the material's DISPLACEMENT chunks,
+ *     clamps to [1, min(gl_MaxTessGenLevel, 48)] (llvmpipe breaks patches of level 64); inner
+ *     level = the largest outer one.
+ *     Helper (sl:tess.glsl, in every tessellation stage):
+ *       float sl_tess_screen_level(vec3 a, vec3 b, float target_px)
+ *     the edge's length in pixels seen from the frame's camera (not the pass's view: shadow maps
+ *     tessellate exactly as the camera view does, so caster and receiver are the same surface),
+ *     over target_px;
+ *   - the evaluation stage sums every chunk's height h and moves the vertex to
+ *     p + h·n (n the interpolated unit normal); the shading normal is that of the displaced
+ *     surface, normalize(n - ∇h), with ∇h the surface gradient of h from finite differences over
+ *     the patch (Mikkelsen 2020, "Surface gradient based bump mapping"); depth-only programs
+ *     skip it. SlSurface.object_position stays the rest pose.
  */
 #ifndef SHADELAB_SHADER_H
 #define SHADELAB_SHADER_H
@@ -96,7 +144,9 @@ typedef enum sl_hook {
     SL_HOOK_DEBUG_VIEW,
     SL_HOOK_DEBUG_VIEW_LIGHT,
     SL_HOOK_LIBRARY,
-    SL_HOOK_SHADOW          /* ABI 1.1 (shadow maps); an older host refuses the chunk */
+    SL_HOOK_SHADOW,         /* ABI 1.1 (shadow maps); an older host refuses the chunk */
+    SL_HOOK_LIGHT_LOOP,     /* ABI 1.7 (light culling); an older host refuses the chunk */
+    SL_HOOK_DISPLACEMENT    /* ABI 1.7 (tessellation, see above); an older host refuses it */
 } sl_hook;
 
 typedef struct sl_shader_chunk_desc {
@@ -122,6 +172,9 @@ typedef struct sl_shader_chunk_desc {
      * their vertices. NULL = every node. Combines with when_material_has and when_model. The
      * core selects per draw with a uniform (one branch per vertex, no extra program). */
     const char *when_node_tag;
+    /* ABI 1.7, DISPLACEMENT only: the chunk's edge tessellation level function
+     * float LEVEL(vec3 a, vec3 b) (see "Displacement" above); NULL = about 8-pixel edges. */
+    const char *tess_level;
 } sl_shader_chunk_desc;
 
 typedef enum sl_chunk_flags {
