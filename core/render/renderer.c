@@ -385,7 +385,7 @@ void sl_renderer_destroy(sl_app *app) {
     for (int i = 0; r->meshes && i < app->scene.mesh_count; i++) {
         gpu_mesh *g = &r->meshes[i];
         glDeleteVertexArrays(1, &g->vao);
-        glDeleteBuffers(4, g->vbo);
+        glDeleteBuffers(5, g->vbo);
         glDeleteBuffers(1, &g->ibo);
     }
     free(r->meshes);

@@ -7,13 +7,15 @@
 #include "scene/scene.h"
 
 #include <cjson/cJSON.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* Extensions the import renders as their authors meant (the rest: warned or refused). */
-static const char *const understood[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+static const char *const understood[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                        "KHR_texture_transform", "KHR_materials_ior", "KHR_materials_unlit"};
 
 static bool is_understood(const char *name) {
     for (size_t i = 0; i < sizeof understood / sizeof *understood; i++)
@@ -88,7 +90,7 @@ bool sl_gltf_check_extensions(const void *json, const char *path, char *err, siz
 }
 
 /* Material extensions assimp 5.2 does not expose, for glTF material `index` (assimp keeps the
- * file's material order): KHR_materials_emissive_strength. */
+ * file's material order): KHR_materials_emissive_strength, KHR_materials_ior, KHR_materials_unlit. */
 void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inputs) {
     const cJSON *mats = cJSON_GetObjectItemCaseSensitive(json, "materials");
     const cJSON *mat = cJSON_IsArray(mats) ? cJSON_GetArrayItem(mats, (int)index) : NULL;
@@ -97,4 +99,68 @@ void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inp
                                                        "emissiveStrength");
     if (cJSON_IsNumber(es) && es->valuedouble >= 0 && es->valuedouble <= 1e4)
         sl_prop_set_number(inputs, "emissive_strength", (float)es->valuedouble, 0);
+    /* KHR_materials_ior: 1 or more, or exactly 0 (F0 = 1); default 1.5 */
+    const cJSON *ior = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_ior"), "ior");
+    if (cJSON_IsNumber(ior) && (ior->valuedouble == 0 || (ior->valuedouble >= 1 && ior->valuedouble <= 10)))
+        sl_prop_set_number(inputs, "ior", (float)ior->valuedouble, 0);
+    else if (ior)
+        SL_WARN("material %u: KHR_materials_ior.ior must be 0 or in [1, 10]: ignored (1.5)", index);
+    if (cJSON_IsObject(cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_unlit")))
+        sl_prop_set_bool(inputs, "unlit", true, 0);
+}
+
+/* A number member, or fallback when absent or not a finite number. */
+static float number_or(const cJSON *obj, const char *key, float fallback) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    return cJSON_IsNumber(n) && isfinite(n->valuedouble) && fabs(n->valuedouble) < 1e6 ? (float)n->valuedouble : fallback;
+}
+
+/* Each textureInfo's UV set (texCoord) and KHR_texture_transform (offset, rotation, scale and its
+ * texCoord override; the extension's defaults 0, 0, 1), for glTF material `index`, as the
+ * material's uv_maps keyed by the standard input the texture feeds. Slots read with UV set 0
+ * untransformed get none. A texCoord beyond 1 is read as 0 (*unsupported_texcoord set). */
+void sl_gltf_uv_mappings(const void *json, unsigned index, sl_material *m, bool *unsupported_texcoord) {
+    const cJSON *mats = cJSON_GetObjectItemCaseSensitive(json, "materials");
+    const cJSON *mat = cJSON_IsArray(mats) ? cJSON_GetArrayItem(mats, (int)index) : NULL;
+    if (!cJSON_IsObject(mat)) return;
+    const cJSON *pbr = cJSON_GetObjectItemCaseSensitive(mat, "pbrMetallicRoughness");
+    const struct { const cJSON *info; const char *input; } slots[] = {
+        {cJSON_GetObjectItemCaseSensitive(pbr, "baseColorTexture"), "base_color_texture"},
+        {cJSON_GetObjectItemCaseSensitive(pbr, "metallicRoughnessTexture"), "metallic_roughness_texture"},
+        {cJSON_GetObjectItemCaseSensitive(mat, "normalTexture"), "normal_texture"},
+        {cJSON_GetObjectItemCaseSensitive(mat, "occlusionTexture"), "occlusion_texture"},
+        {cJSON_GetObjectItemCaseSensitive(mat, "emissiveTexture"), "emissive_texture"},
+    };
+    for (size_t k = 0; k < sizeof slots / sizeof *slots; k++) {
+        const cJSON *info = slots[k].info;
+        if (!cJSON_IsObject(info)) continue;
+        sl_uv_mapping map = {.texcoord = (int)number_or(info, "texCoord", 0), .scale = {1, 1}};
+        const cJSON *tt = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(info, "extensions"),
+                                                          "KHR_texture_transform");
+        bool transformed = false;
+        if (cJSON_IsObject(tt)) {
+            const cJSON *off = cJSON_GetObjectItemCaseSensitive(tt, "offset");
+            const cJSON *scale = cJSON_GetObjectItemCaseSensitive(tt, "scale");
+            for (int c = 0; c < 2; c++) {
+                const cJSON *o = cJSON_GetArrayItem(off, c), *s = cJSON_GetArrayItem(scale, c);
+                if (cJSON_IsArray(off) && cJSON_IsNumber(o) && isfinite(o->valuedouble)) map.offset[c] = (float)o->valuedouble;
+                if (cJSON_IsArray(scale) && cJSON_IsNumber(s) && isfinite(s->valuedouble)) map.scale[c] = (float)s->valuedouble;
+            }
+            map.rotation = number_or(tt, "rotation", 0);
+            map.texcoord = (int)number_or(tt, "texCoord", (float)map.texcoord); /* overrides textureInfo's */
+            transformed = map.offset[0] != 0 || map.offset[1] != 0 || map.rotation != 0 || map.scale[0] != 1 ||
+                          map.scale[1] != 1;
+        }
+        if (map.texcoord < 0 || map.texcoord > 1) {
+            if (unsupported_texcoord) *unsupported_texcoord = true;
+            map.texcoord = 0;
+        }
+        if (map.texcoord == 0 && !transformed) continue;
+        sl_uv_mapping *grown = realloc(m->uv_maps, sizeof *grown * (size_t)(m->uv_map_count + 1));
+        if (!grown) return;
+        m->uv_maps = grown;
+        map.input = strdup(slots[k].input);
+        if (!map.input) return;
+        m->uv_maps[m->uv_map_count++] = map;
+    }
 }

@@ -134,6 +134,7 @@ void sl_mesh_free(sl_mesh_data *m) {
     free(m->normals);
     free(m->tangents);
     free(m->uvs);
+    free(m->uvs1);
     free(m->indices);
     memset(m, 0, sizeof *m);
 }
@@ -343,6 +344,8 @@ void sl_scene_free(sl_scene *scene) {
         sl_prop_list_free(&scene->materials[i].props);
         sl_prop_list_free(&scene->materials[i].inputs);
         free(scene->materials[i].source);
+        for (int k = 0; k < scene->materials[i].uv_map_count; k++) free(scene->materials[i].uv_maps[k].input);
+        free(scene->materials[i].uv_maps);
     }
     free(scene->materials);
     for (int i = 0; i < scene->mesh_count; i++) {

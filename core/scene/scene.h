@@ -20,7 +20,20 @@ typedef struct sl_mesh_data {
     float *uvs;         /* 2 */
     uint32_t *indices;  /* 3 per triangle */
     float bounds_min[3], bounds_max[3];
+    float *uvs1;        /* 2, or NULL: a second UV set (glTF TEXCOORD_1), same convention as uvs;
+                           drawn only for materials with a texture on it (SL_MAT_USES_UV1) */
 } sl_mesh_data;
+
+/* How one texture slot of a material reads its UVs (glTF 2.0 textureInfo.texCoord and
+ * KHR_texture_transform): uv' = T(offset) R(rotation) S(scale) (uv of set `texcoord`, 1), with
+ * R = [cos sin; −sin cos] (the extension's matrices, v = 0 at the image top as in glTF). Keyed by
+ * the standard material input ("base_color_texture"); the composer applies it to the key that
+ * takes that input. */
+typedef struct sl_uv_mapping {
+    char *input;
+    int texcoord;           /* 0 or 1 */
+    float offset[2], rotation, scale[2];
+} sl_uv_mapping;
 
 /* A raw key/value read from the scene file for materials, lights and parameter assignments.
  * Numbers and arrays are kept as floats; the parameter store interprets them per schema. */
@@ -48,6 +61,8 @@ typedef struct sl_material {
      * (messages name it; NULL for materials the scene file defines). */
     sl_prop_list inputs;
     char *source;
+    sl_uv_mapping *uv_maps; /* texture slots not read with UV set 0 untransformed (imports) */
+    int uv_map_count;
 } sl_material;
 
 typedef struct sl_mesh {

@@ -43,6 +43,7 @@ void *sl_gltf_read_json(const char *path);
 void sl_gltf_free_json(void *json);
 bool sl_gltf_check_extensions(const void *json, const char *path, char *err, size_t err_size);
 void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inputs);
+void sl_gltf_uv_mappings(const void *json, unsigned index, sl_material *m, bool *unsupported_texcoord);
 
 typedef struct importer {
     sl_scene *scene;
@@ -175,7 +176,7 @@ static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiText
     if (aiGetMaterialTexture(mat, type, 0, &p, NULL, &uv, NULL, NULL, modes, NULL) != aiReturn_SUCCESS)
         return false;
     if (p.length == 0) return false;
-    if (uv != 0) im->unsupported |= UNSUPPORTED_TEXCOORD1;
+    if (uv != 0 && !im->is_gltf) im->unsupported |= UNSUPPORTED_TEXCOORD1; /* glTF's: sl_gltf_uv_mappings */
     if (p.data[0] == '*' || im->ai->mNumTextures) {
         char name[1200];
         if (embedded_texture(im, p.data, name, sizeof name)) {
@@ -251,8 +252,7 @@ static int material_for(importer *im, unsigned i) {
         /* assimp 5.2's glTF importer files it under UNKNOWN (AI_MATKEY_GLTF_…_METALLICROUGHNESS_TEXTURE) */
         if (texture_path(im, mat, aiTextureType_UNKNOWN, tex, sizeof tex) ||
             texture_path(im, mat, aiTextureType_DIFFUSE_ROUGHNESS, tex, sizeof tex)) {
-            sl_prop_set_string(in, "metallic_roughness_texture", tex, 0);
-            im->unsupported |= UNSUPPORTED_METAL_CHANNEL; /* ggx's roughness_map reads green only */
+            sl_prop_set_string(in, "metallic_roughness_texture", tex, 0); /* B = metal, G = rough */
         }
     }
     if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) {
@@ -272,7 +272,12 @@ static int material_for(importer *im, unsigned i) {
         if (found && strength != 1.0f) sl_prop_set_number(in, "emissive_strength", strength, 0);
     }
     if (texture_path(im, mat, aiTextureType_EMISSIVE, tex, sizeof tex)) sl_prop_set_string(in, "emissive_texture", tex, 0);
-    if (im->gltf) sl_gltf_material_inputs(im->gltf, i, in);
+    if (im->gltf) {
+        sl_gltf_material_inputs(im->gltf, i, in);
+        bool texcoord2 = false; /* texCoord and KHR_texture_transform per texture slot */
+        sl_gltf_uv_mappings(im->gltf, i, &im->scene->materials[mi], &texcoord2);
+        if (texcoord2) im->unsupported |= UNSUPPORTED_TEXCOORD1;
+    }
     if (!sl_prop_find(in, "opacity")) {
         float opacity = material_float(mat, AI_MATKEY_OPACITY, 1.0f, &found);
         if (found && opacity < 1.0f && opacity >= 0.0f) sl_prop_set_number(in, "opacity", opacity, 0);
@@ -324,6 +329,13 @@ static int import_mesh(importer *im, unsigned index) {
         if (am->mTextureCoords[0]) {
             d.uvs[2 * v] = am->mTextureCoords[0][v].x;
             d.uvs[2 * v + 1] = 1.0f - am->mTextureCoords[0][v].y; /* bottom-left → top-left origin */
+        }
+    }
+    if (am->mTextureCoords[1]) { /* glTF TEXCOORD_1: kept only where the file has it */
+        d.uvs1 = malloc(sizeof(float) * 2 * am->mNumVertices);
+        for (unsigned v = 0; d.uvs1 && v < am->mNumVertices; v++) {
+            d.uvs1[2 * v] = am->mTextureCoords[1][v].x;
+            d.uvs1[2 * v + 1] = 1.0f - am->mTextureCoords[1][v].y;
         }
     }
     uint32_t *ix = d.indices;
@@ -502,8 +514,8 @@ static void warn_unsupported(importer *im) {
     }
     if (im->ai->mNumAnimations) im->unsupported |= UNSUPPORTED_ANIMATION;
     static const char *const what[] = {
-        "texCoord 1 (textures sample UV set 0)",
-        "the metal (blue) channel of metallicRoughnessTexture (metallicFactor alone applies)",
+        "texCoord beyond 1 (those textures sample UV set 0)",
+        "(unused)",
         "(unused)",
         "alphaMode BLEND (rendered opaque)",
         "(unused)",
@@ -644,6 +656,9 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     struct aiPropertyStore *store = aiCreatePropertyStore();
     if (store) /* drop the point and line primitives SortByPType splits off */
         aiSetImportPropertyInteger(store, AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    /* FindInvalidData drops a UV set whose values are all equal, which renumbers the sets after it:
+     * glTF textures name their set (texCoord), so the sets stay as the file has them */
+    if (store && im.is_gltf) aiSetImportPropertyInteger(store, AI_CONFIG_PP_FID_IGNORE_TEXTURECOORDS, 1);
     /* Only what assimp must do. Normals a file lacks and every tangent frame come from the
      * project's own code (sl_mesh_generate_tangents: area-weighted normals over the indexed
      * triangles, Lengyel tangents), linear in the mesh: assimp's GenSmoothNormals and
