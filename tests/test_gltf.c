@@ -48,6 +48,12 @@ static const char *g_pbr = pbr_default;
  * (0.3, 0.8) everywhere, so a texture that reads the wrong set shows a single colour.
  * g_tt: the KHR_texture_transform the closed form applies (offset, rotation, scale). */
 static int g_uv1 = 0;
+/* g_anim: the quad node carries the animation of test_animation (its data after the PNG) */
+static int g_anim = 0, g_anim_step = 0;
+static const float anim_t0[3] = {0, 1, 2}, anim_tr[9] = {0, 0, 0, 0.5f, 0, 0, 0.5f, 0.5f, 0};
+static const float anim_t1[2] = {0, 2}, anim_rot[8] = {0, 0, 0, 1, 0, 0, 0.70710678f, 0.70710678f};
+/* CUBICSPLINE keys: in-tangent, value, out-tangent */
+static const float anim_sc[18] = {0, 0, 0, 1, 1, 1, 0.5f, 0, 0, 0, 0.25f, 0, 1.5f, 0.5f, 1, 0, 0, 0};
 static struct { bool on; double offset[2], rotation, scale[2]; } g_tt;
 
 /* the fixture's sampler (glTF JSON) and UV range; the closed form follows them */
@@ -114,6 +120,10 @@ static void geometry(buf *bin, const buf *png) {
     put(bin, png->d, png->n);
     pad(bin, 0);
     if (g_uv1) put(bin, uv, sizeof uv); /* TEXCOORD_1, bufferView 5 */
+    if (g_anim) { /* bufferViews 5..9 */
+        put(bin, anim_t0, sizeof anim_t0), put(bin, anim_tr, sizeof anim_tr), put(bin, anim_t1, sizeof anim_t1);
+        put(bin, anim_rot, sizeof anim_rot), put(bin, anim_sc, sizeof anim_sc);
+    }
 }
 
 /* The glTF JSON. buffer_uri / image_uri NULL: the GLB layout (buffer 0 is the binary chunk, the
@@ -124,9 +134,25 @@ static char *gltf_json(size_t bin_len, size_t png_len, const char *buffer_uri, c
     char *j = malloc(need), buffer[64], image[128];
     if (buffer_uri) snprintf(buffer, sizeof buffer, ", \"uri\": \"%%s\"");
     snprintf(image, sizeof image, "%s", image_uri ? "{\"uri\": \"%s\"}" : "{\"bufferView\": 4, \"mimeType\": \"image/png\"}");
-    char *tmpl = malloc(need), uv1_view[128] = "";
+    char *tmpl = malloc(need), uv1_view[640] = "";
     if (g_uv1) /* after the PNG, padded to 4 bytes */
         snprintf(uv1_view, sizeof uv1_view, ", {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": 32}", 140 + (png_len + 3) / 4 * 4);
+    char anim_views[600] = "", anim_json[1200] = "";
+    if (g_anim) {
+        size_t o = 140 + (png_len + 3) / 4 * 4;
+        snprintf(anim_views, sizeof anim_views,
+                 ", {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": 12}, {\"buffer\": 0, \"byteOffset\": %zu, "
+                 "\"byteLength\": 36}, {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": 8}, {\"buffer\": 0, "
+                 "\"byteOffset\": %zu, \"byteLength\": 32}, {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": 72}",
+                 o, o + 12, o + 48, o + 56, o + 88);
+        snprintf(anim_json, sizeof anim_json,
+                 ", {\"bufferView\": 5, \"componentType\": 5126, \"count\": 3, \"type\": \"SCALAR\", \"min\": [0], \"max\": [2]}"
+                 ", {\"bufferView\": 6, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\"}"
+                 ", {\"bufferView\": 7, \"componentType\": 5126, \"count\": 2, \"type\": \"SCALAR\", \"min\": [0], \"max\": [2]}"
+                 ", {\"bufferView\": 8, \"componentType\": 5126, \"count\": 2, \"type\": \"VEC4\"}"
+                 ", {\"bufferView\": 9, \"componentType\": 5126, \"count\": 6, \"type\": \"VEC3\"}");
+        snprintf(uv1_view, sizeof uv1_view, "%s", anim_views);
+    }
     const char *uv1_accessor = ", {\"bufferView\": 5, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC2\"}";
     snprintf(tmpl, need,
              "{\"asset\": {\"version\": \"2.0\", \"generator\": \"shadelab test_gltf\"}%s,\n"
@@ -149,7 +175,7 @@ static char *gltf_json(size_t bin_len, size_t png_len, const char *buffer_uri, c
              "{\"bufferView\": 2, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC2\"}, {\"bufferView\": 3, "
              "\"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"}%s]}\n",
              extra ? extra : "", g_uv1 ? ", \"TEXCOORD_1\": 4" : "", g_pbr, material_extra ? material_extra : "", g_sampler,
-             image, bin_len, buffer_uri ? buffer : "", png_len, uv1_view, g_uv1 ? uv1_accessor : "");
+             image, bin_len, buffer_uri ? buffer : "", png_len, uv1_view, g_uv1 ? uv1_accessor : anim_json);
     /* the data: URIs go in last (they may hold '%') */
     char *out = malloc(need);
     if (buffer_uri && image_uri) snprintf(out, need, tmpl, image_uri, buffer_uri);
@@ -779,6 +805,104 @@ static void test_unlit(void) {
     free(img);
 }
 
+/* Node TRS animation (glTF 2.0 §3.11, appendix C): the quad node's translation (LINEAR, or STEP,
+ * keys at 0, 1, 2 s), rotation (LINEAR = slerp from identity to 90° about z over 2 s) and scale
+ * (CUBICSPLINE, 2 keys with tangents), sampled at the keys, between them and past the end
+ * (looping over 2 s); the node's world matrix must be T R S of the spec's formulas:
+ * lerp, q(s) = (0, 0, sin 45°s, cos 45°s) and the Hermite p(s) = (2s³ − 3s² + 1) v0 +
+ * td (s³ − 2s² + s) b0 + (−2s³ + 3s²) v1 + td (s³ − s²) a1. Then the renderer at frame 60
+ * (t = 1 s) shows the quad where the animation put it. */
+static void check_animation(int step) {
+    char path[4200];
+    g_anim = 1, g_anim_step = step;
+    char extra[1200];
+    snprintf(extra, sizeof extra,
+             ", \"animations\": [{\"name\": \"move\", \"samplers\": [{\"input\": 4, \"output\": 5, \"interpolation\": \"%s\"}, "
+             "{\"input\": 6, \"output\": 7}, {\"input\": 6, \"output\": 8, \"interpolation\": \"CUBICSPLINE\"}], "
+             "\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": \"translation\"}}, {\"sampler\": 1, "
+             "\"target\": {\"node\": 0, \"path\": \"rotation\"}}, {\"sampler\": 2, \"target\": {\"node\": 0, \"path\": \"scale\"}}]}]",
+             step ? "STEP" : "LINEAR");
+    snprintf(path, sizeof path, "%s/animated%d.glb", sl_test_dir(), step);
+    CHECK(write_glb(path, NULL, extra));
+    g_anim = 0;
+    sl_scene s = {0};
+    sl_log_capture(logbuf, sizeof logbuf);
+    bool ok = sl_scene_load_file(&s, path, NULL, err, sizeof err);
+    sl_log_capture(NULL, 0);
+    CHECK_MSG(ok, "%s", err);
+    CHECK(!strstr(logbuf, "animation"));
+    int quad = -1;
+    for (int i = 0; i < s.node_count; i++)
+        if (strlen(s.nodes[i].name) >= 5 && !strcmp(s.nodes[i].name + strlen(s.nodes[i].name) - 5, "/quad")) quad = i;
+    CHECK_MSG(ok && quad >= 0 && s.anim_channel_count == 3, "animated node found: %d, channels %d", quad, s.anim_channel_count);
+    const double times[] = {0, 0.5, 1, 1.5, 2, 2.5, 0.25};
+    double worst = 0;
+    for (int k = 0; ok && quad >= 0 && k < (int)(sizeof times / sizeof *times); k++) {
+        double t = times[k], tl = fmod(t, 2.0); /* loops over the 2 s the animation lasts (t = 2 is t = 0 again) */
+        double T[3], S[3], ang = M_PI / 4 * fmin(tl, 2) / 2; /* half the rotation angle */
+        int key = tl < 1 ? 0 : tl < 2 ? 1 : 2;
+        double f = key < 2 ? tl - key : 0;
+        for (int c = 0; c < 3; c++) {
+            double a = anim_tr[key * 3 + c], b = key < 2 ? anim_tr[(key + 1) * 3 + c] : a;
+            T[c] = step ? a : a + f * (b - a);
+            double s1 = tl / 2, td = 2, s2 = s1 * s1, s3 = s2 * s1;
+            S[c] = (2 * s3 - 3 * s2 + 1) * anim_sc[3 + c] + td * (s3 - 2 * s2 + s1) * anim_sc[6 + c] +
+                   (-2 * s3 + 3 * s2) * anim_sc[12 + c] + td * (s3 - s2) * anim_sc[9 + c];
+        }
+        double cz = cos(2 * ang), sz = sin(2 * ang); /* rotation about z by 2·ang */
+        double want[16] = {cz * S[0], sz * S[0], 0, 0, -sz * S[1], cz * S[1], 0, 0, 0, 0, S[2], 0, T[0], T[1], T[2], 1};
+        sl_scene_animate(&s, t);
+        double e = 0;
+        for (int i = 0; i < 16; i++) e = fmax(e, fabs(s.nodes[quad].world[i] - want[i]));
+        worst = fmax(worst, e);
+        CHECK_MSG(e < 1e-5, "animation (%s) at t = %g: world matrix off by %g", step ? "STEP" : "LINEAR", t, e);
+    }
+    printf("animation (translation %s, rotation slerp, scale CUBICSPLINE): world matrices within %.2g of the spec's "
+           "formulas at 7 times\n", step ? "STEP" : "LINEAR", worst);
+    sl_scene_free(&s);
+    if (step) return;
+    /* rendered at t = 1 s: translation (0.5, 0, 0), 45°, scale p(½) = (1.375, 0.6875, 1) */
+    const char *settings[] = {"core.anisotropy=1", NULL};
+    char json[9000]; /* inside a scene file: no sky behind the quad */
+    snprintf(json, sizeof json, "{\"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}]}", path);
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                         .scene_json = json, .settings = settings,
+                                                         .debug_view = "diffuse-texture"},
+                                      err, sizeof err);
+    CHECK_MSG(h, "%s", err);
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    if (h) {
+        sl_harness_set_frame(h, 60);
+        CHECK(sl_harness_render(h, img));
+        /* the quad's world corners: (x, y) → T + R(45°) diag(1.375, 0.6875) (x, y); a pixel is
+         * covered when its centre maps back inside [−1, 1]² */
+        int wrong = 0;
+        double c = cos(M_PI / 4), sn = sin(M_PI / 4);
+        for (int j = 0; j < H; j++)
+            for (int i = 0; i < W; i++) {
+                double x = -1 + 2 * (i + 0.5) / W - 0.5, y = 1 - 2 * (j + 0.5) / H;
+                double lx = (c * x + sn * y) / 1.375, ly = (-sn * x + c * y) / 0.6875;
+                double margin = fmin(1 - fabs(lx), 1 - fabs(ly));
+                if (fabs(margin) < 0.06) continue; /* edge pixels */
+                bool covered = margin > 0, lit = img[(j * W + i) * 4] + img[(j * W + i) * 4 + 1] + img[(j * W + i) * 4 + 2] > 0.01;
+                wrong += covered != lit;
+            }
+        if (wrong) {
+            for (int j = 0; j < H; j += 4, putchar('\n'))
+                for (int i = 0; i < W; i += 2) putchar(img[(j * W + i) * 4] + img[(j * W + i) * 4 + 1] > 0.01 ? '#' : '.');
+            { char png[4200]; snprintf(png, sizeof png, "%s/animated.png", sl_test_dir()); sl_harness_save(h, png, err, sizeof err); }
+        }
+        CHECK_MSG(wrong == 0, "animated quad at t = 1 s: %d pixels covered where they should not be, or not covered", wrong);
+        printf("animation rendered at t = 1 s: coverage matches the animated quad at every non-edge pixel\n");
+        sl_harness_destroy(h);
+    }
+    free(img);
+}
+static void test_animation(void) {
+    check_animation(0);
+    check_animation(1);
+}
+
 int main(void) {
     test_open_direct();
     test_data_uri();
@@ -794,5 +918,6 @@ int main(void) {
     test_texture_transform();
     test_ior();
     test_unlit();
+    test_animation();
     return check_result();
 }

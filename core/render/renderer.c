@@ -77,6 +77,8 @@ static void refresh(sl_app *app) {
     bool lights_changed = r->seen_lights_version != app->lights_version;
     if (lights_changed || (sl_gpu_lights_animated(app) && r->seen_light_time != app->time)) sl_gpu_pack_lights(app);
     r->seen_light_time = app->time;
+    /* node TRS animations (glTF): the nodes posed at this frame's time */
+    if (app->scene.anim_channel_count) sl_scene_animate(&app->scene, app->time);
     if (recompose) {
         /* a new debug view changes every program's output without any other version moving */
         if ((r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
@@ -118,6 +120,7 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     bool animated = false;
     for (int i = 0; i < app->plugins.chunk_count && !animated; i++)
         animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(&app->plugins, app->plugins.chunks[i].owner);
+    animated = animated || app->scene.anim_channel_count > 0; /* animated nodes move geometry too */
     f->geometry_version = animated ? app->frame_index + 1 : 0;
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
     /* + programs reloaded or a new debug view: what a pass shows may change */

@@ -44,6 +44,10 @@ void sl_gltf_free_json(void *json);
 bool sl_gltf_check_extensions(const void *json, const char *path, char *err, size_t err_size);
 void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inputs);
 void sl_gltf_uv_mappings(const void *json, unsigned index, sl_material *m, bool *unsupported_texcoord);
+bool sl_gltf_import_animations(const void *json, const char *path, sl_scene *scene, const int *node_map, int node_count);
+int sl_gltf_node_count(const void *json);
+int sl_gltf_scene_roots(const void *json, int *roots, int max);
+int sl_gltf_node_children(const void *json, int node, int *children, int max, const char **name);
 
 typedef struct importer {
     sl_scene *scene;
@@ -413,6 +417,37 @@ static const float *node_world(importer *im, const struct aiString *name) {
     return identity;
 }
 
+/* glTF node gn is the ai node an (assimp 5.2 keeps the file's hierarchy and child order): records
+ * an's scene node for it and walks the children in step; a name or child count that differs
+ * stops the walk there (those nodes stay unmapped). */
+static void map_gltf_nodes(importer *im, int gn, const struct aiNode *an, int *map, int count, int depth) {
+    int children[256];
+    const char *name = NULL;
+    int nc = sl_gltf_node_children(im->gltf, gn, children, 256, &name);
+    if (gn < 0 || gn >= count || depth > SL_SCENE_MAX_DEPTH || (name && strcmp(name, an->mName.data))) return;
+    for (int i = 0; i < im->node_count; i++)
+        if (im->ai_nodes[i] == an) map[gn] = im->scene_nodes[i];
+    if (nc != (int)an->mNumChildren) return;
+    for (int k = 0; k < nc; k++) map_gltf_nodes(im, children[k], an->mChildren[k], map, count, depth + 1);
+}
+
+/* Node TRS animations of a glTF file (its first animation), read from the JSON. */
+static bool import_animations(importer *im) {
+    int count = sl_gltf_node_count(im->gltf), roots[256];
+    if (count <= 0) return false;
+    int *map = malloc(sizeof(int) * (size_t)count);
+    if (!map) return false;
+    for (int i = 0; i < count; i++) map[i] = -1;
+    int nr = sl_gltf_scene_roots(im->gltf, roots, 256);
+    const struct aiNode *root = im->ai->mRootNode;
+    if (nr == 1) map_gltf_nodes(im, roots[0], root, map, count, 0);
+    else if (nr > 1 && (int)root->mNumChildren == nr) /* several roots: under assimp's "ROOT" */
+        for (int k = 0; k < nr; k++) map_gltf_nodes(im, roots[k], root->mChildren[k], map, count, 1);
+    bool played = sl_gltf_import_animations(im->gltf, im->path, im->scene, map, count);
+    free(map);
+    return played;
+}
+
 /* ---- lights and cameras ------------------------------------------------------------------- */
 
 static bool import_lights(importer *im) {
@@ -512,7 +547,7 @@ static void warn_unsupported(importer *im) {
         if (im->ai->mMeshes[i]->mNumBones) im->unsupported |= UNSUPPORTED_SKIN;
         if (im->ai->mMeshes[i]->mNumAnimMeshes) im->unsupported |= UNSUPPORTED_MORPH;
     }
-    if (im->ai->mNumAnimations) im->unsupported |= UNSUPPORTED_ANIMATION;
+    if (im->ai->mNumAnimations && !(im->gltf && import_animations(im))) im->unsupported |= UNSUPPORTED_ANIMATION;
     static const char *const what[] = {
         "texCoord beyond 1 (those textures sample UV set 0)",
         "(unused)",
@@ -521,7 +556,7 @@ static void warn_unsupported(importer *im) {
         "(unused)",
         "skins (the bind pose is shown)",
         "morph targets (the base shape is shown)",
-        "animations (the first frame's pose is shown)",
+        "animations (the rest pose is shown)",
     };
     char list[1024] = "";
     size_t u = 0;
