@@ -903,6 +903,47 @@ static void test_animation(void) {
     check_animation(1);
 }
 
+/* alphaMode MASK cuts shadows out too: the masked quad (alphas 0.2, 0.8 / 0.549, 0.4, cutoff 0.5)
+ * over a grey Lambert ground 1 m behind it, a shadow-casting directional light along the view
+ * (spotlight-shadow's shadow maps, hard filter): through the two cut-out texels the camera sees
+ * the ground lit, k_d/π E = 0.5/π · 2 (an uncut shadow map would leave it black). */
+static void test_mask_shadow(void) {
+    char path[4200], json[9000];
+    g_sampler = "{\"magFilter\": 9728, \"minFilter\": 9728}";
+    g_nearest = 1, g_alpha = 1;
+    snprintf(path, sizeof path, "%s/mask_shadow.glb", sl_test_dir());
+    CHECK(write_glb(path, ", \"alphaMode\": \"MASK\", \"alphaCutoff\": 0.5", NULL));
+    g_nearest = 0, g_alpha = 0;
+    g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"spotlight-shadow\"], \"materials\": [{\"name\": \"ground\", \"base_color\": [0.5, 0.5, 0.5]}],\n"
+             " \"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}, {\"name\": \"ground\", \"translate\": [0, 0, -1], "
+             "\"rotate\": [90, 0, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 6}, \"material\": \"ground\"}],\n"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 2, "
+             "\"cast_shadows\": true}]}",
+             path);
+    const char *settings[] = {"core.anisotropy=1", "spotlight-shadow.filter=hard", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                         .scene_json = json, .settings = settings},
+                                      err, sizeof err);
+    CHECK_MSG(h, "%s", err);
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    if (h && sl_harness_render(h, img)) {
+        double worst = 0, want = 0.5 / M_PI * 2;
+        for (int j = 0; j < H; j++)
+            for (int i = 0; i < W; i++) {
+                int tx = i * 2 / W, ty = j * 2 / H, di = i % (W / 2), dj = j % (H / 2);
+                if (alphas[ty][tx] / 255.0 >= 0.5 || di < 3 || di > W / 2 - 4 || dj < 3 || dj > H / 2 - 4) continue;
+                for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(img[(j * W + i) * 4 + c] - want));
+            }
+        CHECK_MSG(worst < 2e-3, "MASK shadows: the ground seen through cut-out texels is off by %.4f from lit (%.4f)", worst,
+                  want);
+        printf("alphaMode MASK in shadow maps: the ground behind the cut-out texels is lit within %.5f of k_d/pi E\n", worst);
+    }
+    free(img);
+    if (h) sl_harness_destroy(h);
+}
+
 int main(void) {
     test_open_direct();
     test_data_uri();
@@ -919,5 +960,6 @@ int main(void) {
     test_ior();
     test_unlit();
     test_animation();
+    test_mask_shadow();
     return check_result();
 }

@@ -311,6 +311,13 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     sl_sb_append(&p->fs.text, "#define SL_FRAGMENT_STAGE 1\n");
     ok = ok && sl_source_include(&p->fs, "sl:common.glsl", err, n);
     if (kind == SL_VARIANT_DEPTH) {
+        /* glTF alphaMode MASK: what the colour pass cuts out casts no shadow either, in every depth
+         * pass (shadow maps); other materials' depth programs stay empty */
+        if (material_has(app, m, "alpha_cutoff")) {
+            sl_source_generated(&p->fs, uni.s ? uni.s : "");
+            sl_source_generated(&p->fs, uvf.s ? uvf.s : "");
+            ok = ok && sl_source_include(&p->fs, "sl:material.glsl", err, n);
+        }
         ok = ok && sl_source_include(&p->fs, "sl:depth.frag", err, n);
     } else {
         sl_strbuf decl = {0};
