@@ -18,7 +18,15 @@
  *  - occlusion: a directional light's image is unchanged; the environment's is scaled by ao.
  *  - samplers: UVs beyond [0, 1] under the file's wrap modes and filters, per the GL closed form.
  *  - mask: alphaMode MASK cuts out exactly the texels below alphaCutoff.
- *  - double_sided: a back face is culled unless the material is doubleSided. */
+ *  - double_sided: a back face is culled unless the material is doubleSided.
+ *  - metal_channel: the metallic-roughness map's B = metal, G = rough against the glTF BRDF in C
+ *    (directional light) and the split sum's limits (uniform environment).
+ *  - texcoord1, texture_transform: the second UV set and KHR_texture_transform (with its
+ *    texCoord override) move texels where the closed form puts them.
+ *  - ior, unlit: KHR_materials_ior's F0 and KHR_materials_unlit's base colour, closed forms.
+ *  - animation: node TRS channels (LINEAR/STEP/CUBICSPLINE, slerp) against the spec formulas,
+ *    and the rendered quad at t = 1 s.
+ *  - mask_shadow: MASK cut-outs let light through shadow maps too. */
 #include "check.h"
 #include "image/image.h"
 #include "log.h"
