@@ -40,3 +40,20 @@ float sl_coverage(SlSurface s) {
     return a;
 }
 #endif
+
+// Before ABI 1.7 these took the UV (s.uv): kept for code written then (UV set 0, untransformed
+// slots only; the SlSurface forms honour texCoord and KHR_texture_transform).
+vec3 sl_base_color(vec2 uv) {
+    SlSurface s;
+    s.uv = uv;
+    s.uv1 = uv;
+    return sl_base_color(s);
+}
+#ifdef SL_MAT_HAS_ALPHA_CUTOFF
+float sl_coverage(vec2 uv) {
+    SlSurface s;
+    s.uv = uv;
+    s.uv1 = uv;
+    return sl_coverage(s);
+}
+#endif
