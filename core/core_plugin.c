@@ -46,6 +46,10 @@ static sl_status core_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_param_desc), .id = "double_sided", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
          .group = "material", .material_input = "double_sided",
          .description = "glTF doubleSided: back faces are drawn (shaded with the flipped normal) instead of culled."},
+        {.struct_size = sizeof(sl_param_desc), .id = "unlit", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
+         .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "material", .material_input = "unlit",
+         .description = "KHR_materials_unlit: the surface shows its base colour (base_color x base_color_map) as "
+                        "radiance, no lighting."},
         {.struct_size = sizeof(sl_param_desc), .id = "occlusion_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL,
          .flags = SL_PARAM_LINEAR_DATA, .group = "material", .material_input = "occlusion_texture",
          .description = "Ambient occlusion in the red channel (linear, glTF occlusionTexture): scales the ambient and "
@@ -113,7 +117,7 @@ static sl_status core_create(const sl_host *host, void **user) {
 /* the standard material inputs of imported assets the core's keys take */
 static const char *const core_inputs[] = {"base_color", "base_color_texture", "emissive", "emissive_texture",
                                           "emissive_strength", "occlusion_texture", "occlusion_strength", "opacity",
-                                          "alpha_cutoff", "double_sided", NULL};
+                                          "alpha_cutoff", "double_sided", "unlit", NULL};
 
 const sl_plugin_desc sl_core_plugin = {
     SL_PLUGIN_HEADER,

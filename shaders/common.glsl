@@ -31,6 +31,11 @@ struct SlSurface {
                            // it; 0 by default): a model's gloss map filtered at the normal's level
     vec3 object_position;  // ABI 1.6: object-space position before VERTEX hooks (rest pose),
                            // interpolated: object-space regions stay on a moving surface
+    float metallic;        // ABI 1.7: glTF metalness in [0, 1] (0 by default): metallicFactor ×
+                           // the metallic-roughness texture's blue channel (ggx fills it)
+    vec2 uv1;              // ABI 1.7: the mesh's second UV set (glTF TEXCOORD_1); uv where the
+                           // material has no texture on it. Material textures are read at
+                           // sl_uv_<key>(s): their UV set and KHR_texture_transform
 };
 
 // One light as packed by the core (std430, 80 bytes).

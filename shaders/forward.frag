@@ -8,6 +8,9 @@ in vec3 v_normal;
 in vec4 v_tangent;
 in vec2 v_uv;
 in vec3 v_object_pos;
+#ifdef SL_MAT_USES_UV1
+in vec2 v_uv1;
+#endif
 #endif
 
 #ifndef SL_CUSTOM_MAIN
@@ -43,7 +46,13 @@ SlSurface sl_surface_from_varyings() {
     s.tangent = t / tlen;
     s.bitangent = cross(n, s.tangent) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
     s.uv = v_uv;
-    s.base_color = sl_base_color(v_uv);
+#ifdef SL_MAT_USES_UV1
+    s.uv1 = v_uv1;
+#else
+    s.uv1 = v_uv;
+#endif
+    s.metallic = 0.0;
+    s.base_color = sl_base_color(s);
     s.alpha = 1.0;
     s.specular = 1.0;
     s.ao = 1.0;
@@ -58,7 +67,7 @@ SlSurface sl_surface_from_varyings() {
 void main() {
     SlSurface s = sl_surface_from_varyings();
 #ifdef SL_MAT_HAS_ALPHA_CUTOFF
-    if (sl_coverage(s.uv) < sl_mat_alpha_cutoff) discard; // glTF alphaMode MASK
+    if (sl_coverage(s) < sl_mat_alpha_cutoff) discard; // glTF alphaMode MASK
 #endif
     sl_run_surface_hooks(s);
     // Radiance beyond what the colour target holds (65504 in RGBA16F) would become Inf there:

@@ -4,6 +4,10 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec4 a_tangent;
 layout(location = 3) in vec2 a_uv;
+#ifdef SL_MAT_USES_UV1 // a texture of the material reads the second UV set (glTF texCoord 1)
+layout(location = 4) in vec2 a_uv1;
+out vec2 v_uv1;
+#endif
 
 out vec3 v_world_pos;
 out vec3 v_normal;
@@ -34,6 +38,9 @@ void main() {
     v_normal = sl_normal_matrix * v.normal;
     v_tangent = vec4(mat3(sl_model) * v.tangent.xyz, v.tangent.w);
     v_uv = v.uv;
+#ifdef SL_MAT_USES_UV1
+    v_uv1 = a_uv1;
+#endif
     v_object_pos = a_position;
     gl_Position = sl_uv_space != 0 ? vec4(v.uv * 2.0 - 1.0, 0.0, 1.0) : sl_view_proj * world;
 #ifdef SL_MOTION_VECTORS

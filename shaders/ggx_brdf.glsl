@@ -61,6 +61,16 @@ float ggx_f0_from_eta(float eta) {
     float r = (1.0 - eta) / (1.0 + eta);
     return r * r;
 }
+// glTF 2.0 metallic-roughness: the dielectric F0, 0.04 (ior 1.5), or ((ior − 1)/(ior + 1))² for a
+// material carrying ior (KHR_materials_ior; ggx's key, whose uniform comes with SL_MAT_HAS_IOR).
+#ifdef SL_MAT_HAS_IOR
+float ggx_gltf_dielectric_f0() {
+    float r = (sl_mat_ior - 1.0) / (sl_mat_ior + 1.0);
+    return r * r;
+}
+#else
+float ggx_gltf_dielectric_f0() { return 0.04; }
+#endif
 vec3 ggx_fresnel_schlick(float c, vec3 f0) {
     float m = clamp(1.0 - abs(c), 0.0, 1.0);
     float m2 = m * m;

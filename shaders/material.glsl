@@ -2,13 +2,14 @@
 // follows the UV layout (unmirrored UVs are front-facing there), not the surface or the view.
 uniform int sl_uv_space;
 // The core's material inputs: base_color (linear RGB) and base_color_map (sRGB texture).
+// Textures are read at sl_uv_<key>(s) (generated per material: the slot's UV set and transform).
 // A map without an explicit base_color is used as is (factor 1, as in glTF).
-vec3 sl_base_color(vec2 uv) {
+vec3 sl_base_color(SlSurface s) {
 #if defined(SL_MAT_HAS_BASE_COLOR_MAP)
 #if defined(SL_MAT_HAS_BASE_COLOR)
-    return sl_mat_base_color * texture(sl_mat_base_color_map, uv).rgb;
+    return sl_mat_base_color * texture(sl_mat_base_color_map, sl_uv_base_color_map(s)).rgb;
 #else
-    return texture(sl_mat_base_color_map, uv).rgb;
+    return texture(sl_mat_base_color_map, sl_uv_base_color_map(s)).rgb;
 #endif
 #else
     return sl_mat_base_color;
@@ -19,10 +20,10 @@ vec3 sl_base_color(vec2 uv) {
 // radiance (forward.c calls it only for materials carrying "emissive"; glTF's factor defaults to
 // 0, so a texture alone emits nothing).
 #ifdef SL_MAT_HAS_EMISSIVE
-vec3 sl_emission(vec2 uv) {
+vec3 sl_emission(SlSurface s) {
     vec3 e = sl_mat_emissive * sl_mat_emissive_strength;
 #ifdef SL_MAT_HAS_EMISSIVE_MAP
-    e *= texture(sl_mat_emissive_map, uv).rgb;
+    e *= texture(sl_mat_emissive_map, sl_uv_emissive_map(s)).rgb;
 #endif
     return e;
 }
@@ -31,11 +32,28 @@ vec3 sl_emission(vec2 uv) {
 // glTF 2.0 alphaMode MASK (materials carrying "alpha_cutoff"): the coverage the cut-off tests,
 // opacity (baseColorFactor.a) times the base colour texture's alpha.
 #ifdef SL_MAT_HAS_ALPHA_CUTOFF
-float sl_coverage(vec2 uv) {
+float sl_coverage(SlSurface s) {
     float a = sl_mat_opacity;
 #ifdef SL_MAT_HAS_BASE_COLOR_MAP
-    a *= texture(sl_mat_base_color_map, uv).a;
+    a *= texture(sl_mat_base_color_map, sl_uv_base_color_map(s)).a;
 #endif
     return a;
+}
+#endif
+
+// Before ABI 1.7 these took the UV (s.uv): kept for code written then (UV set 0, untransformed
+// slots only; the SlSurface forms honour texCoord and KHR_texture_transform).
+vec3 sl_base_color(vec2 uv) {
+    SlSurface s;
+    s.uv = uv;
+    s.uv1 = uv;
+    return sl_base_color(s);
+}
+#ifdef SL_MAT_HAS_ALPHA_CUTOFF
+float sl_coverage(vec2 uv) {
+    SlSurface s;
+    s.uv = uv;
+    s.uv1 = uv;
+    return sl_coverage(s);
 }
 #endif

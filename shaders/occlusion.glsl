@@ -4,6 +4,6 @@
 // on s.ao, which only the ambient and environment terms read, so direct light is unaffected.
 #ifdef SL_MAT_HAS_OCCLUSION_MAP
 void sl_surface_occlusion(inout SlSurface s) {
-    s.ao *= 1.0 + sl_mat_occlusion_strength * (texture(sl_mat_occlusion_map, s.uv).r - 1.0);
+    s.ao *= 1.0 + sl_mat_occlusion_strength * (texture(sl_mat_occlusion_map, sl_uv_occlusion_map(s)).r - 1.0);
 }
 #endif

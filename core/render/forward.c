@@ -3,6 +3,7 @@
 #include "state.h"
 #include "log.h"
 #include <ctype.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -137,6 +138,29 @@ static bool compose_tessellation(sl_plugins *P, sl_program *p, const char *pre, 
     return ok;
 }
 
+/* vec2 sl_uv_<key>(SlSurface s): where the material's texture `q` is read. s.uv unless the
+ * material maps the slot otherwise (sl_uv_mapping: glTF texCoord 1, KHR_texture_transform
+ * uv' = T(offset) R(rotation) S(scale) uv, R = [cos sin; −sin cos]), as constants: a transform
+ * costs a few multiply-adds, none when absent. Returns whether it reads UV set 1. */
+static bool uv_function(sl_strbuf *b, const sl_material *mat, const sl_param *q) {
+    const sl_uv_mapping *map = NULL;
+    for (int k = 0; q->desc.material_input && k < mat->uv_map_count; k++)
+        if (!strcmp(mat->uv_maps[k].input, q->desc.material_input)) map = &mat->uv_maps[k];
+    if (!map) {
+        sl_sb_printf(b, "vec2 sl_uv_%s(SlSurface s) { return s.uv; }\n", q->full_id);
+        return false;
+    }
+    double c = cos(map->rotation), sn = sin(map->rotation);
+    sl_sb_printf(b,
+                 "vec2 sl_uv_%s(SlSurface s) { // %s: UV set %d, offset (%g, %g), rotation %g, scale (%g, %g)\n"
+                 "    vec2 t = s.uv%s;\n"
+                 "    return vec2(%.9g * t.x + %.9g * t.y + %.9g, %.9g * t.x + %.9g * t.y + %.9g);\n}\n",
+                 q->full_id, map->input, map->texcoord, map->offset[0], map->offset[1], map->rotation, map->scale[0],
+                 map->scale[1], map->texcoord == 1 ? "1" : "", map->scale[0] * c, map->scale[1] * sn, map->offset[0],
+                 -map->scale[0] * sn, map->scale[1] * c, map->offset[1]);
+    return map->texcoord == 1;
+}
+
 bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *model_override, sl_forward_variant *out,
                         sl_program ***cache, int *cache_count, char *err, size_t n) {
     return sl_forward_compose_custom(app, m, kind, model_override, NULL, false, out, cache, cache_count, err, n);
@@ -248,7 +272,8 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         /* a view that replaces the whole output (not a per-light one): passes adding light skip it */
         if (view->d.hook == SL_HOOK_DEBUG_VIEW) sl_sb_append(&pre, "#define SL_DEBUG_VIEW_REPLACES_OUTPUT 1\n");
     }
-    sl_strbuf uni = {0};
+    sl_strbuf uni = {0}, uvf = {0};
+    bool uses_uv1 = false;
     out->texture_count = 0;
     for (int i = 0; i < app->params.count; i++) {
         const sl_param *q = &app->params.items[i];
@@ -263,6 +288,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
                 if (v->present && out->texture_count < 16) {
                     sl_sb_printf(&uni, "layout(binding = %d) uniform sampler2D sl_mat_%s;\n", out->texture_count, q->full_id);
                     out->texture_params[out->texture_count++] = i;
+                    uses_uv1 |= uv_function(&uvf, mat, q);
                 }
             } else if (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE) {
                 char macro[200];
@@ -283,6 +309,8 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
             }
         }
     }
+
+    if (uses_uv1) sl_sb_append(&pre, "#define SL_MAT_USES_UV1 1\n");
 
     sl_program *p = calloc(1, sizeof *p);
     bool ok = true;
@@ -332,10 +360,18 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     sl_sb_append(&p->fs.text, "#define SL_FRAGMENT_STAGE 1\n");
     ok = ok && sl_source_include(&p->fs, "sl:common.glsl", err, n);
     if (kind == SL_VARIANT_DEPTH) {
+        /* glTF alphaMode MASK: what the colour pass cuts out casts no shadow either, in every depth
+         * pass (shadow maps); other materials' depth programs stay empty */
+        if (material_has(app, m, "alpha_cutoff")) {
+            sl_source_generated(&p->fs, uni.s ? uni.s : "");
+            sl_source_generated(&p->fs, uvf.s ? uvf.s : "");
+            ok = ok && sl_source_include(&p->fs, "sl:material.glsl", err, n);
+        }
         ok = ok && sl_source_include(&p->fs, "sl:depth.frag", err, n);
     } else {
         sl_strbuf decl = {0};
         sl_sb_append(&decl, uni.s ? uni.s : "");
+        sl_sb_append(&decl, uvf.s ? uvf.s : "");
         sl_sb_append(&decl, "layout(std430, binding = 0) readonly buffer SlLightBuffer { SlLight sl_lights[]; };\n"
                             "uniform vec3 sl_ambient_irradiance; // π × constant environment radiance\n"
                             "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E); // the material's model (ABI 1.6)\n");
@@ -406,6 +442,8 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         } else if (view) {
             sl_sb_append(&gen, "    return sl_direct_lighting(s);\n}\n");
         } else {
+            /* KHR_materials_unlit (the core's key "unlit"): the base colour as radiance */
+            sl_sb_append(&gen, "#if defined(SL_MAT_UNLIT) && SL_MAT_UNLIT\n    return s.base_color;\n#endif\n");
             sl_sb_append(&gen, "    vec3 Lo = sl_direct_lighting(s);\n");
             /* An override model (SL_DRAW_MATERIALS) owns its whole output: no AMBIENT hooks. A
              * MODEL_AMBIENT always runs (it may carry more than ambient light, e.g. sss), with
@@ -417,7 +455,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
             else if (!hooks)
                 sl_sb_append(&gen, "    Lo += s.base_color * SL_INV_PI * sl_ambient_irradiance * s.ao;\n");
             /* glTF emission (shaders/material.glsl), whatever the model */
-            sl_sb_append(&gen, "#ifdef SL_MAT_HAS_EMISSIVE\n    Lo += sl_emission(s.uv);\n#endif\n");
+            sl_sb_append(&gen, "#ifdef SL_MAT_HAS_EMISSIVE\n    Lo += sl_emission(s);\n#endif\n");
             sl_sb_append(&gen, "    return Lo;\n}\n");
         }
         sl_source_generated(&p->fs, gen.s);
@@ -427,6 +465,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     sl_sb_free(&gen);
     sl_sb_free(&pre);
     sl_sb_free(&uni);
+    sl_sb_free(&uvf);
 
     char label[512];
     snprintf(label, sizeof label, "material \"%s\" (%s%s)", mat->name, kind == SL_VARIANT_DEPTH ? "depth, " : "", model);

@@ -79,6 +79,8 @@ static void refresh(sl_app *app) {
     bool lights_changed = r->seen_lights_version != app->lights_version;
     if (lights_changed || (sl_gpu_lights_animated(app) && r->seen_light_time != app->time)) sl_gpu_pack_lights(app);
     r->seen_light_time = app->time;
+    /* node TRS animations (glTF): the nodes posed at this frame's time */
+    if (app->scene.anim_channel_count) sl_scene_animate(&app->scene, app->time);
     if (recompose) {
         /* a new debug view changes every program's output without any other version moving */
         if ((r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
@@ -120,6 +122,7 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     bool animated = false;
     for (int i = 0; i < app->plugins.chunk_count && !animated; i++)
         animated = app->plugins.chunks[i].d.hook == SL_HOOK_VERTEX && sl_plugin_enabled(&app->plugins, app->plugins.chunks[i].owner);
+    animated = animated || app->scene.anim_channel_count > 0; /* animated nodes move geometry too */
     f->geometry_version = animated ? app->frame_index + 1 : 0;
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
     /* + programs reloaded or a new debug view: what a pass shows may change */
@@ -387,7 +390,7 @@ void sl_renderer_destroy(sl_app *app) {
     for (int i = 0; r->meshes && i < app->scene.mesh_count; i++) {
         gpu_mesh *g = &r->meshes[i];
         glDeleteVertexArrays(1, &g->vao);
-        glDeleteBuffers(4, g->vbo);
+        glDeleteBuffers(5, g->vbo);
         glDeleteBuffers(1, &g->ibo);
     }
     free(r->meshes);

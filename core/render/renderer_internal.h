@@ -10,7 +10,7 @@
 #include "state.h"
 #include "render/forward.h"
 
-typedef struct gpu_mesh { unsigned vao, vbo[4], ibo; int index_count; } gpu_mesh;
+typedef struct gpu_mesh { unsigned vao, vbo[5], ibo; int index_count; } gpu_mesh;
 typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 
 /* model: NULL = the material's own; fragment (ABI 1.7): a plugin's main, resolved path */

@@ -14,7 +14,7 @@
 
 void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
     glCreateVertexArrays(1, &g->vao);
-    glCreateBuffers(4, g->vbo);
+    glCreateBuffers(m->uvs1 ? 5 : 4, g->vbo);
     glCreateBuffers(1, &g->ibo);
     const float *arrays[4] = {m->positions, m->normals, m->tangents, m->uvs};
     const int comps[4] = {3, 3, 4, 2};
@@ -33,6 +33,15 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
         glVertexArrayAttribFormat(g->vao, a, comps[a], GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(g->vao, a, a);
         glEnableVertexArrayAttrib(g->vao, a);
+    }
+    /* the second UV set (location 4) only where the mesh has one; programs read it only for
+     * materials with a texture on it (SL_MAT_USES_UV1), elsewhere the attribute stays off */
+    if (m->uvs1 && m->vertex_count > 0) {
+        glNamedBufferData(g->vbo[4], (size_t)m->vertex_count * 2 * sizeof(float), m->uvs1, GL_STATIC_DRAW);
+        glVertexArrayVertexBuffer(g->vao, 4, g->vbo[4], 0, 2 * sizeof(float));
+        glVertexArrayAttribFormat(g->vao, 4, 2, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(g->vao, 4, 4);
+        glEnableVertexArrayAttrib(g->vao, 4);
     }
     static const uint32_t no_indices[1];
     glNamedBufferData(g->ibo, m->index_count ? (size_t)m->index_count * 4 : 4, m->index_count ? m->indices : no_indices,

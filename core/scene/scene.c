@@ -134,6 +134,7 @@ void sl_mesh_free(sl_mesh_data *m) {
     free(m->normals);
     free(m->tangents);
     free(m->uvs);
+    free(m->uvs1);
     free(m->indices);
     memset(m, 0, sizeof *m);
 }
@@ -335,6 +336,12 @@ void sl_scene_free(sl_scene *scene) {
     free(scene->images);
     for (int i = 0; i < scene->sampler_count; i++) free(scene->samplers[i].texture);
     free(scene->samplers);
+    for (int i = 0; i < scene->anim_channel_count; i++) {
+        free(scene->anim_channels[i].times);
+        free(scene->anim_channels[i].values);
+    }
+    free(scene->anim_channels);
+    free(scene->anim_nodes);
     free(scene->path);
     free(scene->dir);
     for (int i = 0; i < scene->material_count; i++) {
@@ -343,6 +350,8 @@ void sl_scene_free(sl_scene *scene) {
         sl_prop_list_free(&scene->materials[i].props);
         sl_prop_list_free(&scene->materials[i].inputs);
         free(scene->materials[i].source);
+        for (int k = 0; k < scene->materials[i].uv_map_count; k++) free(scene->materials[i].uv_maps[k].input);
+        free(scene->materials[i].uv_maps);
     }
     free(scene->materials);
     for (int i = 0; i < scene->mesh_count; i++) {
@@ -506,4 +515,88 @@ char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const c
                      dirs[1] || unusable ? "" : " (no data directory set: --data DIR or SHADELAB_DATA)");
     }
     return NULL;
+}
+
+/* ---- node TRS animation (glTF 2.0 §3.11 and appendix C, "Animation interpolation") ---- */
+
+void sl_anim_sample(const sl_anim_channel *c, double t, float out[4]) {
+    int comps = c->path == SL_ANIM_ROTATION ? 4 : 3, n = c->key_count;
+    int stride = c->interpolation == SL_ANIM_CUBICSPLINE ? 3 * comps : comps;
+    int vo = c->interpolation == SL_ANIM_CUBICSPLINE ? comps : 0; /* the value within a key */
+    if (n <= 0) return;
+    if (t <= c->times[0] || n == 1) {
+        memcpy(out, c->values + vo, sizeof(float) * (size_t)comps);
+    } else if (t >= c->times[n - 1]) {
+        memcpy(out, c->values + (size_t)(n - 1) * stride + vo, sizeof(float) * (size_t)comps);
+    } else {
+        int k = 0, hi = n - 1; /* the key interval [k, k + 1] holding t (binary search) */
+        while (hi - k > 1) {
+            int mid = (k + hi) / 2;
+            if (c->times[mid] <= t) k = mid;
+            else hi = mid;
+        }
+        double td = c->times[k + 1] - c->times[k], s = td > 0 ? (t - c->times[k]) / td : 0;
+        const float *a = c->values + (size_t)k * stride, *b = c->values + (size_t)(k + 1) * stride;
+        if (c->interpolation == SL_ANIM_STEP) {
+            memcpy(out, a, sizeof(float) * (size_t)comps);
+        } else if (c->interpolation == SL_ANIM_CUBICSPLINE) {
+            /* p(s) = (2s³ − 3s² + 1) v_k + td (s³ − 2s² + s) b_k + (−2s³ + 3s²) v_k+1 + td (s³ − s²) a_k+1,
+             * keys stored as (in-tangent a, value v, out-tangent b) */
+            double s2 = s * s, s3 = s2 * s;
+            for (int i = 0; i < comps; i++)
+                out[i] = (float)((2 * s3 - 3 * s2 + 1) * a[comps + i] + td * (s3 - 2 * s2 + s) * a[2 * comps + i] +
+                                 (-2 * s3 + 3 * s2) * b[comps + i] + td * (s3 - s2) * b[i]);
+        } else if (c->path == SL_ANIM_ROTATION) {
+            /* spherical linear interpolation along the shorter arc */
+            double d = 0, q1[4];
+            for (int i = 0; i < 4; i++) d += (double)a[i] * b[i];
+            double sign = d < 0 ? -1 : 1;
+            d = fabs(d);
+            for (int i = 0; i < 4; i++) q1[i] = sign * b[i];
+            double wa = 1 - s, wb = s;
+            if (d < 0.9999995) {
+                double th = acos(d), st = sin(th);
+                wa = sin((1 - s) * th) / st, wb = sin(s * th) / st;
+            }
+            for (int i = 0; i < 4; i++) out[i] = (float)(wa * a[i] + wb * q1[i]);
+        } else {
+            for (int i = 0; i < comps; i++) out[i] = (float)(a[i] + s * (b[i] - a[i]));
+        }
+    }
+    if (c->path == SL_ANIM_ROTATION) { /* unit quaternion (cubic splines and lerps leave the sphere) */
+        double l = sqrt((double)out[0] * out[0] + (double)out[1] * out[1] + (double)out[2] * out[2] + (double)out[3] * out[3]);
+        if (l > 1e-12 && isfinite(l)) for (int i = 0; i < 4; i++) out[i] = (float)(out[i] / l);
+        else out[0] = out[1] = out[2] = 0, out[3] = 1;
+    }
+}
+
+void sl_scene_animate(sl_scene *scene, double t) {
+    if (!scene->anim_channel_count) return;
+    double d = scene->anim_duration;
+    if (d > 0 && isfinite(t)) t = fmod(t, d) + (fmod(t, d) < 0 ? d : 0);
+    for (int a = 0; a < scene->anim_node_count; a++) {
+        const sl_anim_node *an = &scene->anim_nodes[a];
+        float T[3], R[4], S[3];
+        memcpy(T, an->t, sizeof T), memcpy(R, an->r, sizeof R), memcpy(S, an->s, sizeof S);
+        for (int i = 0; i < scene->anim_channel_count; i++) {
+            const sl_anim_channel *c = &scene->anim_channels[i];
+            if (c->node != an->node) continue;
+            float v[4];
+            sl_anim_sample(c, t, v);
+            if (c->path == SL_ANIM_TRANSLATION) memcpy(T, v, sizeof T);
+            else if (c->path == SL_ANIM_ROTATION) memcpy(R, v, sizeof R);
+            else memcpy(S, v, sizeof S);
+        }
+        /* local = T · R · S, column-major; R from the unit quaternion (x, y, z, w) */
+        float x = R[0], y = R[1], z = R[2], w = R[3], *m = scene->nodes[an->node].local;
+        float r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w),
+                      2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                      2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)};
+        for (int col = 0; col < 3; col++) {
+            for (int row = 0; row < 3; row++) m[col * 4 + row] = r[col * 3 + row] * S[col];
+            m[col * 4 + 3] = 0;
+        }
+        m[12] = T[0], m[13] = T[1], m[14] = T[2], m[15] = 1;
+    }
+    sl_scene_update_transforms(scene);
 }

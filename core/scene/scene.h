@@ -20,7 +20,20 @@ typedef struct sl_mesh_data {
     float *uvs;         /* 2 */
     uint32_t *indices;  /* 3 per triangle */
     float bounds_min[3], bounds_max[3];
+    float *uvs1;        /* 2, or NULL: a second UV set (glTF TEXCOORD_1), same convention as uvs;
+                           drawn only for materials with a texture on it (SL_MAT_USES_UV1) */
 } sl_mesh_data;
+
+/* How one texture slot of a material reads its UVs (glTF 2.0 textureInfo.texCoord and
+ * KHR_texture_transform): uv' = T(offset) R(rotation) S(scale) (uv of set `texcoord`, 1), with
+ * R = [cos sin; −sin cos] (the extension's matrices, v = 0 at the image top as in glTF). Keyed by
+ * the standard material input ("base_color_texture"); the composer applies it to the key that
+ * takes that input. */
+typedef struct sl_uv_mapping {
+    char *input;
+    int texcoord;           /* 0 or 1 */
+    float offset[2], rotation, scale[2];
+} sl_uv_mapping;
 
 /* A raw key/value read from the scene file for materials, lights and parameter assignments.
  * Numbers and arrays are kept as floats; the parameter store interprets them per schema. */
@@ -48,6 +61,8 @@ typedef struct sl_material {
      * (messages name it; NULL for materials the scene file defines). */
     sl_prop_list inputs;
     char *source;
+    sl_uv_mapping *uv_maps; /* texture slots not read with UV set 0 untransformed (imports) */
+    int uv_map_count;
 } sl_material;
 
 typedef struct sl_mesh {
@@ -145,7 +160,31 @@ typedef struct sl_scene {
     bool from_model;
     /* glTF samplers of imported textures, by texture value (see sl_texture_sampler) */
     struct sl_texture_sampler *samplers; int sampler_count;
+    /* Node TRS animation (glTF animations; sl_scene_animate): channels and the animated nodes'
+     * rest TRS; played looping over anim_duration seconds */
+    struct sl_anim_channel *anim_channels; int anim_channel_count;
+    struct sl_anim_node *anim_nodes; int anim_node_count;
+    float anim_duration;
 } sl_scene;
+
+/* One animation channel (glTF 2.0 §3.11): a node's translation (path 0, 3 values), rotation
+ * (1, a quaternion x y z w) or scale (2, 3 values), keyed at increasing times; CUBICSPLINE keys
+ * hold in-tangent, value, out-tangent. */
+enum { SL_ANIM_TRANSLATION, SL_ANIM_ROTATION, SL_ANIM_SCALE };
+enum { SL_ANIM_LINEAR, SL_ANIM_STEP, SL_ANIM_CUBICSPLINE };
+typedef struct sl_anim_channel {
+    int node, path, interpolation, key_count;
+    float *times;   /* key_count */
+    float *values;  /* key_count × components (× 3 for CUBICSPLINE) */
+} sl_anim_channel;
+typedef struct sl_anim_node { int node; float t[3], r[4], s[3]; } sl_anim_node;
+
+/* The animated value of a channel at time t (seconds; clamped to its keys) per the glTF 2.0
+ * specification's appendix C: STEP holds the key, LINEAR lerps (rotation: slerp), CUBICSPLINE is
+ * the cubic Hermite spline with the keys' tangents scaled by the key interval. out: 3 or 4 floats. */
+void sl_anim_sample(const sl_anim_channel *c, double t, float out[4]);
+/* Poses the animated nodes at time t (looping over anim_duration) and updates world transforms. */
+void sl_scene_animate(sl_scene *scene, double t);
 
 /* How an imported texture is sampled (glTF 2.0 "samplers", whose values are OpenGL's enums):
  * wrap_s/wrap_t GL_REPEAT, GL_CLAMP_TO_EDGE or GL_MIRRORED_REPEAT; mag/min filters GL_NEAREST,

@@ -43,6 +43,11 @@ void *sl_gltf_read_json(const char *path);
 void sl_gltf_free_json(void *json);
 bool sl_gltf_check_extensions(const void *json, const char *path, char *err, size_t err_size);
 void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inputs);
+void sl_gltf_uv_mappings(const void *json, unsigned index, sl_material *m, bool *unsupported_texcoord);
+bool sl_gltf_import_animations(const void *json, const char *path, sl_scene *scene, const int *node_map, int node_count);
+int sl_gltf_node_count(const void *json);
+int sl_gltf_scene_roots(const void *json, int *roots, int max);
+int sl_gltf_node_children(const void *json, int node, int *children, int max, const char **name);
 
 typedef struct importer {
     sl_scene *scene;
@@ -175,7 +180,7 @@ static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiText
     if (aiGetMaterialTexture(mat, type, 0, &p, NULL, &uv, NULL, NULL, modes, NULL) != aiReturn_SUCCESS)
         return false;
     if (p.length == 0) return false;
-    if (uv != 0) im->unsupported |= UNSUPPORTED_TEXCOORD1;
+    if (uv != 0 && !im->is_gltf) im->unsupported |= UNSUPPORTED_TEXCOORD1; /* glTF's: sl_gltf_uv_mappings */
     if (p.data[0] == '*' || im->ai->mNumTextures) {
         char name[1200];
         if (embedded_texture(im, p.data, name, sizeof name)) {
@@ -251,8 +256,7 @@ static int material_for(importer *im, unsigned i) {
         /* assimp 5.2's glTF importer files it under UNKNOWN (AI_MATKEY_GLTF_…_METALLICROUGHNESS_TEXTURE) */
         if (texture_path(im, mat, aiTextureType_UNKNOWN, tex, sizeof tex) ||
             texture_path(im, mat, aiTextureType_DIFFUSE_ROUGHNESS, tex, sizeof tex)) {
-            sl_prop_set_string(in, "metallic_roughness_texture", tex, 0);
-            im->unsupported |= UNSUPPORTED_METAL_CHANNEL; /* ggx's roughness_map reads green only */
+            sl_prop_set_string(in, "metallic_roughness_texture", tex, 0); /* B = metal, G = rough */
         }
     }
     if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) {
@@ -272,7 +276,12 @@ static int material_for(importer *im, unsigned i) {
         if (found && strength != 1.0f) sl_prop_set_number(in, "emissive_strength", strength, 0);
     }
     if (texture_path(im, mat, aiTextureType_EMISSIVE, tex, sizeof tex)) sl_prop_set_string(in, "emissive_texture", tex, 0);
-    if (im->gltf) sl_gltf_material_inputs(im->gltf, i, in);
+    if (im->gltf) {
+        sl_gltf_material_inputs(im->gltf, i, in);
+        bool texcoord2 = false; /* texCoord and KHR_texture_transform per texture slot */
+        sl_gltf_uv_mappings(im->gltf, i, &im->scene->materials[mi], &texcoord2);
+        if (texcoord2) im->unsupported |= UNSUPPORTED_TEXCOORD1;
+    }
     if (!sl_prop_find(in, "opacity")) {
         float opacity = material_float(mat, AI_MATKEY_OPACITY, 1.0f, &found);
         if (found && opacity < 1.0f && opacity >= 0.0f) sl_prop_set_number(in, "opacity", opacity, 0);
@@ -324,6 +333,13 @@ static int import_mesh(importer *im, unsigned index) {
         if (am->mTextureCoords[0]) {
             d.uvs[2 * v] = am->mTextureCoords[0][v].x;
             d.uvs[2 * v + 1] = 1.0f - am->mTextureCoords[0][v].y; /* bottom-left → top-left origin */
+        }
+    }
+    if (am->mTextureCoords[1]) { /* glTF TEXCOORD_1: kept only where the file has it */
+        d.uvs1 = malloc(sizeof(float) * 2 * am->mNumVertices);
+        for (unsigned v = 0; d.uvs1 && v < am->mNumVertices; v++) {
+            d.uvs1[2 * v] = am->mTextureCoords[1][v].x;
+            d.uvs1[2 * v + 1] = 1.0f - am->mTextureCoords[1][v].y;
         }
     }
     uint32_t *ix = d.indices;
@@ -399,6 +415,37 @@ static const float *node_world(importer *im, const struct aiString *name) {
         if (strcmp(im->ai_nodes[i]->mName.data, name->data) == 0)
             return im->scene->nodes[im->scene_nodes[i]].world;
     return identity;
+}
+
+/* glTF node gn is the ai node an (assimp 5.2 keeps the file's hierarchy and child order): records
+ * an's scene node for it and walks the children in step; a name or child count that differs
+ * stops the walk there (those nodes stay unmapped). */
+static void map_gltf_nodes(importer *im, int gn, const struct aiNode *an, int *map, int count, int depth) {
+    int children[256];
+    const char *name = NULL;
+    int nc = sl_gltf_node_children(im->gltf, gn, children, 256, &name);
+    if (gn < 0 || gn >= count || depth > SL_SCENE_MAX_DEPTH || (name && strcmp(name, an->mName.data))) return;
+    for (int i = 0; i < im->node_count; i++)
+        if (im->ai_nodes[i] == an) map[gn] = im->scene_nodes[i];
+    if (nc != (int)an->mNumChildren) return;
+    for (int k = 0; k < nc; k++) map_gltf_nodes(im, children[k], an->mChildren[k], map, count, depth + 1);
+}
+
+/* Node TRS animations of a glTF file (its first animation), read from the JSON. */
+static bool import_animations(importer *im) {
+    int count = sl_gltf_node_count(im->gltf), roots[256];
+    if (count <= 0) return false;
+    int *map = malloc(sizeof(int) * (size_t)count);
+    if (!map) return false;
+    for (int i = 0; i < count; i++) map[i] = -1;
+    int nr = sl_gltf_scene_roots(im->gltf, roots, 256);
+    const struct aiNode *root = im->ai->mRootNode;
+    if (nr == 1) map_gltf_nodes(im, roots[0], root, map, count, 0);
+    else if (nr > 1 && (int)root->mNumChildren == nr) /* several roots: under assimp's "ROOT" */
+        for (int k = 0; k < nr; k++) map_gltf_nodes(im, roots[k], root->mChildren[k], map, count, 1);
+    bool played = sl_gltf_import_animations(im->gltf, im->path, im->scene, map, count);
+    free(map);
+    return played;
 }
 
 /* ---- lights and cameras ------------------------------------------------------------------- */
@@ -500,16 +547,16 @@ static void warn_unsupported(importer *im) {
         if (im->ai->mMeshes[i]->mNumBones) im->unsupported |= UNSUPPORTED_SKIN;
         if (im->ai->mMeshes[i]->mNumAnimMeshes) im->unsupported |= UNSUPPORTED_MORPH;
     }
-    if (im->ai->mNumAnimations) im->unsupported |= UNSUPPORTED_ANIMATION;
+    if (im->ai->mNumAnimations && !(im->gltf && import_animations(im))) im->unsupported |= UNSUPPORTED_ANIMATION;
     static const char *const what[] = {
-        "texCoord 1 (textures sample UV set 0)",
-        "the metal (blue) channel of metallicRoughnessTexture (metallicFactor alone applies)",
+        "texCoord beyond 1 (those textures sample UV set 0)",
+        "(unused)",
         "(unused)",
         "alphaMode BLEND (rendered opaque)",
         "(unused)",
         "skins (the bind pose is shown)",
         "morph targets (the base shape is shown)",
-        "animations (the first frame's pose is shown)",
+        "animations (the rest pose is shown)",
     };
     char list[1024] = "";
     size_t u = 0;
@@ -644,6 +691,9 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     struct aiPropertyStore *store = aiCreatePropertyStore();
     if (store) /* drop the point and line primitives SortByPType splits off */
         aiSetImportPropertyInteger(store, AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    /* FindInvalidData drops a UV set whose values are all equal, which renumbers the sets after it:
+     * glTF textures name their set (texCoord), so the sets stay as the file has them */
+    if (store && im.is_gltf) aiSetImportPropertyInteger(store, AI_CONFIG_PP_FID_IGNORE_TEXTURECOORDS, 1);
     /* Only what assimp must do. Normals a file lacks and every tangent frame come from the
      * project's own code (sl_mesh_generate_tangents: area-weighted normals over the indexed
      * triangles, Lengyel tangents), linear in the mesh: assimp's GenSmoothNormals and

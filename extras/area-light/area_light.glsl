@@ -207,7 +207,7 @@ vec3 area_light_reference(SlLight L, SlSurface s, vec3 c, vec3 nl, vec3 ex, vec3
 // metallic-roughness.
 vec3 area_light_f0(SlSurface s) {
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    return mix(vec3(0.04), s.base_color, sl_mat_metallic);
+    return mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic);
 #else
     float r = (1.0 - sl_mat_eta) / (1.0 + sl_mat_eta);
     return vec3(r * r);
@@ -249,7 +249,7 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
 #endif
     if (ndv <= 0.0) fs = vec3(0.0);      // the model's masking: no specular facing away
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    vec3 kd = (1.0 - f0) * (1.0 - sl_mat_metallic); // (1 − F) approximated by (1 − F0)
+    vec3 kd = (1.0 - f0) * (1.0 - s.metallic); // (1 − F) approximated by (1 − F0)
 #else
     vec3 kd = vec3(1.0);
 #endif

@@ -20,6 +20,8 @@ void main() {
                                         : normalize(cross(vec3(1.0, 0.0, 0.0), s.normal));
     s.bitangent = cross(s.normal, s.tangent);
     s.uv = vec2(0.0);
+    s.uv1 = vec2(0.0);
+    s.metallic = g3.a;
     s.base_color = g2.rgb;
     s.alpha = g2.a;
     s.specular = g3.r;

@@ -3,7 +3,7 @@
 //   g0 RGBA32F  world position xyz (exact), material index + 1 (0: nothing drawn)
 //   g1 RGBA16F  shading normal xyz (half floats, ~1e-3 relative), ao
 //   g2 RGBA16F  base colour rgb (linear), alpha (GGX α)
-//   g3 RGBA16F  specular, opacity, lod_bias, 0
+//   g3 RGBA16F  specular, opacity, lod_bias, metallic (SlSurface.metallic, ABI 1.7)
 // Not stored (README "G-buffer"): uv, tangent frame, geometric normal, object position.
 layout(location = 0) out vec4 many_lights_g0;
 layout(location = 1) out vec4 many_lights_g1;
@@ -14,11 +14,11 @@ uniform int many_lights_material;
 void main() {
     SlSurface s = sl_surface_from_varyings();
 #ifdef SL_MAT_HAS_ALPHA_CUTOFF
-    if (sl_coverage(s.uv) < sl_mat_alpha_cutoff) discard;
+    if (sl_coverage(s) < sl_mat_alpha_cutoff) discard;
 #endif
     sl_run_surface_hooks(s);
     many_lights_g0 = vec4(s.position, float(many_lights_material + 1));
     many_lights_g1 = vec4(s.normal, s.ao);
     many_lights_g2 = vec4(s.base_color, s.alpha);
-    many_lights_g3 = vec4(s.specular, s.opacity, s.lod_bias, 0.0);
+    many_lights_g3 = vec4(s.specular, s.opacity, s.lod_bias, s.metallic);
 }

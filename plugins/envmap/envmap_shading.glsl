@@ -187,7 +187,7 @@ vec3 envmap_ggx_split_sum(SlSurface s) {
     vec3 abc = envmap_brdf(mu, alpha);
     vec2 ab = abc.xy;
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    vec3 f0 = mix(vec3(0.04), s.base_color, sl_mat_metallic);
+    vec3 f0 = mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic);
     float ks = 1.0;
     // The diffuse weight: glTF 2.0 appendix B (as ggx's direct light and the reference below)
     // weights the diffuse lobe by 1 − F(v·h) per light direction; over the cosine lobe that is
@@ -195,7 +195,7 @@ vec3 envmap_ggx_split_sum(SlSurface s) {
     // Karis 2013 splits the specular. (1 − F(n·v)) instead — Schlick at the view angle — goes to
     // 0 at the rim where the true weight stays ≈ 0.93: dielectric spheres were 4 % too dark on
     // average and 60 % at μ = 0.1 (measured, bench/terms.sh).
-    vec3 kd = (1.0 - f0) * (1.0 - abc.z) * (1.0 - sl_mat_metallic) * s.base_color;
+    vec3 kd = (1.0 - f0) * (1.0 - abc.z) * (1.0 - s.metallic) * s.base_color;
 #else
     // exact dielectric Fresnel is approximated by Schlick with the same F0 (a split-sum error)
     vec3 f0 = vec3(ggx_f0_from_eta(sl_mat_eta));
@@ -251,7 +251,7 @@ vec3 envmap_ggx_reference(SlSurface s) {
         vec3 l = t * lc.x + b * lc.y + n * lc.z;
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
         vec3 h = normalize(l + v);
-        vec3 kd = (1.0 - ggx_fresnel(dot(l, h), s)) * (1.0 - sl_mat_metallic) * s.base_color;
+        vec3 kd = (1.0 - ggx_fresnel(dot(l, h), s)) * (1.0 - s.metallic) * s.base_color;
 #else
         vec3 kd = s.base_color;
 #endif

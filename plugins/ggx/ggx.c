@@ -31,7 +31,9 @@ static const sl_param_desc params[] = {
       .max = 1, .step = 0.01f, .group = "ggx", .material_input = "roughness",
       .description = "Perceptual roughness (glTF): α = roughness²."),
     P(.id = "roughness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
-      .group = "ggx", .material_input = "metallic_roughness_texture", .description = "Roughness in the green channel (glTF layout), times roughness when given."),
+      .group = "ggx", .material_input = "metallic_roughness_texture",
+      .description = "Roughness in the green channel (glTF layout), times roughness when given; with fresnel = "
+                     "metallic-roughness, metalness in the blue channel, times metallic."),
     P(.id = "specular", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1}}, .min = 0,
       .max = 1, .step = 0.01f, .group = "ggx", .description = "k_s, the weight of the specular term."),
     P(.id = "specular_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
@@ -42,6 +44,10 @@ static const sl_param_desc params[] = {
     P(.id = "fresnel", .type = SL_PARAM_ENUM, .scope = SL_SCOPE_MATERIAL, .enum_values = fresnel_modes,
       .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "ggx", .material_input = "brdf",
       .description = "exact dielectric Fresnel, Schlick, or glTF metallic-roughness (F0 = mix(0.04, base, metallic))."),
+    P(.id = "ior", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1.5f}}, .min = 0,
+      .max = 10, .step = 0.01f, .group = "ggx", .material_input = "ior",
+      .description = "fresnel = metallic-roughness: the dielectric's index of refraction (KHR_materials_ior), "
+                     "F0 = ((ior - 1)/(ior + 1))^2; 0.04 without it."),
     P(.id = "metallic", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "ggx", .material_input = "metallic", .description = "Metalness for fresnel = metallic-roughness."),
 };
@@ -57,6 +63,8 @@ static const sl_shader_chunk_desc chunks[] = {
       .when_material_has = "roughness", .order = 1),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_roughness_map",
       .when_material_has = "roughness_map", .order = 2),
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_metallic",
+      .when_material_has = "metallic", .order = 1),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_specular",
       .when_material_has = "specular"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_specular_map",
@@ -94,7 +102,7 @@ static sl_status ggx_create(const sl_host *host, void **user) {
 
 /* The glTF metallic-roughness BRDF (fresnel = metallic-roughness) and its inputs: imported
  * glTF materials load this plugin (the host reads this list without calling create). */
-static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metallic_roughness_texture", NULL};
+static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metallic_roughness_texture", "ior", NULL};
 
 static const sl_plugin_desc ggx_desc = {
     SL_PLUGIN_HEADER,

@@ -19,7 +19,7 @@ vec3 ggx_fresnel(float l_dot_h, SlSurface s) {
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_SCHLICK
     return ggx_fresnel_schlick(l_dot_h, vec3(ggx_f0_from_eta(sl_mat_eta)));
 #elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    return ggx_fresnel_schlick(l_dot_h, mix(vec3(0.04), s.base_color, sl_mat_metallic));
+    return ggx_fresnel_schlick(l_dot_h, mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic));
 #else
     return vec3(ggx_fresnel_exact(l_dot_h, sl_mat_eta));
 #endif
@@ -36,7 +36,7 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
     dg = 0.0;
 #endif
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    vec3 diffuse = (1.0 - F) * (1.0 - sl_mat_metallic) * s.base_color * SL_INV_PI;
+    vec3 diffuse = (1.0 - F) * (1.0 - s.metallic) * s.base_color * SL_INV_PI;
     return (diffuse + F * dg) * E * n_dot_l;
 #else
     return (s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;

@@ -6,16 +6,25 @@ void ggx_surface_alpha(inout SlSurface s) { s.alpha = sl_mat_alpha; }
 #ifdef SL_MAT_HAS_ROUGHNESS
 void ggx_surface_roughness(inout SlSurface s) { s.alpha = sl_mat_roughness * sl_mat_roughness; }
 #endif
+#ifdef SL_MAT_HAS_METALLIC
+// glTF metallicFactor (SlSurface.metallic, ABI 1.7; the metallic-roughness Fresnel reads it).
+void ggx_surface_metallic(inout SlSurface s) { s.metallic = sl_mat_metallic; }
+#endif
 #ifdef SL_MAT_HAS_ROUGHNESS_MAP
 // Perceptual roughness in the map's green channel (glTF metallic-roughness layout), times
-// the roughness factor when given; α = roughness².
+// the roughness factor when given; α = roughness². With fresnel = metallic-roughness the blue
+// channel is the metalness, times the metallic factor (glTF 2.0 §3.9.2; metallic runs first).
 void ggx_surface_roughness_map(inout SlSurface s) {
+    vec4 mr = texture(sl_mat_roughness_map, sl_uv_roughness_map(s));
 #ifdef SL_MAT_HAS_ROUGHNESS
-    float r = sl_mat_roughness * texture(sl_mat_roughness_map, s.uv).g;
+    float r = sl_mat_roughness * mr.g;
 #else
-    float r = texture(sl_mat_roughness_map, s.uv).g;
+    float r = mr.g;
 #endif
     s.alpha = r * r;
+#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+    s.metallic *= mr.b;
+#endif
 }
 #endif
 #ifdef SL_MAT_HAS_SPECULAR
@@ -25,9 +34,9 @@ void ggx_surface_specular(inout SlSurface s) { s.specular = sl_mat_specular; }
 // k_s from the red channel of a (linear) specular map, times the specular factor when given.
 void ggx_surface_specular_map(inout SlSurface s) {
 #ifdef SL_MAT_HAS_SPECULAR
-    s.specular = sl_mat_specular * texture(sl_mat_specular_map, s.uv).r;
+    s.specular = sl_mat_specular * texture(sl_mat_specular_map, sl_uv_specular_map(s)).r;
 #else
-    s.specular = texture(sl_mat_specular_map, s.uv).r;
+    s.specular = texture(sl_mat_specular_map, sl_uv_specular_map(s)).r;
 #endif
 }
 #endif
@@ -40,7 +49,7 @@ void ggx_surface_specular_map(inout SlSurface s) {
 // |N̄| = 1 and α is unchanged. Runs after the material inputs and the normal-map plugin's hook (order 20).
 void ggx_surface_specular_aa(inout SlSurface s) {
 #if GGX_SPECULAR_AA
-    vec3 avg = texture(sl_mat_normal_map, s.uv).xyz * 2.0 - 1.0;
+    vec3 avg = texture(sl_mat_normal_map, sl_uv_normal_map(s)).xyz * 2.0 - 1.0;
     float len = clamp(length(avg), 1e-3, 1.0);
     float variance = (1.0 - len) / len;
     s.alpha = sqrt(min(s.alpha * s.alpha + variance, 1.0));

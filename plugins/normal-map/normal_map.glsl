@@ -26,9 +26,9 @@ bool nm_front_facing() { return gl_FrontFacing || sl_uv_space != 0; }
 
 vec3 nm_mapped_normal(SlSurface s) {
 #if SL_MAT_NORMAL_SPACE == SL_MAT_NORMAL_SPACE_OBJECT
-    vec3 texel = texture(sl_mat_normal_map, nm_object_uv(s.uv), normal_map_lod_bias).rgb;
+    vec3 texel = texture(sl_mat_normal_map, nm_object_uv(sl_uv_normal_map(s)), normal_map_lod_bias).rgb;
 #else
-    vec3 texel = texture(sl_mat_normal_map, s.uv, normal_map_lod_bias).rgb;
+    vec3 texel = texture(sl_mat_normal_map, sl_uv_normal_map(s), normal_map_lod_bias).rgb;
 #endif
     float k = normal_map_strength * sl_mat_normal_strength;
 #if SL_MAT_NORMAL_SPACE == SL_MAT_NORMAL_SPACE_OBJECT
@@ -76,7 +76,7 @@ void nm_surface(inout SlSurface s) {
 // the map's own colours); (0.5, 0.5, 1), the flat tangent-space texel, where there is no map.
 vec3 nm_debug_texture(SlSurface s) {
 #if defined(SL_MAT_HAS_NORMAL_MAP)
-    return nm_srgb_decode(texture(sl_mat_normal_map, s.uv, normal_map_lod_bias).rgb);
+    return nm_srgb_decode(texture(sl_mat_normal_map, sl_uv_normal_map(s), normal_map_lod_bias).rgb);
 #else
     return nm_srgb_decode(vec3(0.5, 0.5, 1.0));
 #endif

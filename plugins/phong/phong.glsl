@@ -51,7 +51,7 @@ vec3 phong_model_blinn_gloss_ambient(SlSurface s, vec3 Ea) {
 // Toksvig texture instead (same UVs, same size as the normal map, so the same mip level).
 void phong_surface(inout SlSurface s) {
     float bias = s.lod_bias; // gloss follows the normal map's mip level (set by normal-map; SDK contract)
-    vec4 prop = texture(sl_mat_property_map, s.uv, bias);
+    vec4 prop = texture(sl_mat_property_map, sl_uv_property_map(s), bias);
 #if defined(PHONG_TOKSVIG)
     vec2 t = texture(phong_toksvig, s.uv, bias).rg;
     float p0 = phong_power_from_gloss(phong_gloss_map ? prop.r : sl_mat_gloss);
@@ -60,7 +60,7 @@ void phong_surface(inout SlSurface s) {
     // Never taken (sl_frame_index ≥ 0), but keeps both material samplers active wherever the
     // Toksvig texture is (e.g. the effective-gloss view, which uses neither map otherwise):
     // phong.c finds the core's textures through these uniforms to build the Toksvig texture.
-    if (sl_frame_index < 0) p += texture(sl_mat_normal_map, s.uv).r + prop.g;
+    if (sl_frame_index < 0) p += texture(sl_mat_normal_map, sl_uv_normal_map(s)).r + prop.g;
 #else
     float p = phong_power_from_gloss(phong_gloss_map ? prop.r : sl_mat_gloss);
 #endif

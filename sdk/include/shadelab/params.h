@@ -96,12 +96,14 @@ typedef struct sl_param_desc {
  *   emissive                  colour: emissiveFactor; emissive_texture: texture (sRGB)
  *   emissive_strength, ior    floats (KHR_materials_emissive_strength, KHR_materials_ior)
  *   alpha_cutoff              float: alphaMode MASK's alphaCutoff (absent: not masked)
- *   double_sided              bool: glTF doubleSided (back faces drawn, not culled) */
+ *   double_sided              bool: glTF doubleSided (back faces drawn, not culled)
+ *   unlit                     bool (ABI 1.7): KHR_materials_unlit (the base colour, unlit)
+ * ior (KHR_materials_ior) is the dielectric's index of refraction: glTF's F0 = ((ior − 1)/(ior + 1))². */
 #define SL_MATERIAL_INPUT_NAMES                                                                       \
     "brdf", "base_color", "base_color_texture", "opacity", "metallic", "roughness",                   \
         "metallic_roughness_texture", "normal_texture", "normal_scale", "occlusion_texture",          \
         "occlusion_strength", "emissive", "emissive_texture", "emissive_strength", "ior", "alpha_cutoff", \
-        "double_sided"
+        "double_sided", "unlit"
 
 #ifdef __cplusplus
 }
