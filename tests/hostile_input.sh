@@ -48,7 +48,7 @@ run() {
 run scene_zero    fail "/dev/zero: is not a regular file (a device)" --scene /dev/zero --output keep.png
 run scene_random  fail "/dev/urandom: is not a regular file (a device)" --scene /dev/urandom --output keep.png
 run scene_fifo    fail "fifo: is not a regular file (a FIFO)" --scene fifo --output keep.png
-run texture_fifo  any  "'fifo' cannot be read" --scene tex_fifo.json --output tex.png
+run texture_fifo  any  "tex_fifo.json:1: material 'm' \"base_color_map\": texture fifo: 'fifo' cannot be read" --scene tex_fifo.json --output tex.png
 run texture_bomb  any  "image is 16384x16384 (from its header)" --scene tex_bomb.json --output tex.png
 run env_bomb      any  "16384x16384 with 3 channels (from its header)" --scene env_bomb.json --output env.png
 run mesh_fifo     fail "mesh file 'fifo' cannot be read" --scene mesh_fifo.json --output keep.png
@@ -96,6 +96,7 @@ run gltf_buffer_fifo fail "fifo: is not a regular file (a FIFO)" --scene buffer_
 run gltf_image_fifo  any  "texture '$T/fifo' (fifo) cannot be read: is not a regular file (a FIFO)" --scene image_fifo.gltf --output p.png
 run gltf_image_dev   any  "(zero_link.png) cannot be read: is not a regular file (a device)" --scene image_device.gltf --output p.png
 run obj_mtl_fifo     any  "fifo: is not a regular file (a FIFO)" --scene mtl_fifo.obj --output p.png
+grep -qF "image_fifo.gltf: material 'image_fifo/material0' (base_color_map): texture" gltf_image_fifo.log || fail "gltf_image_fifo: the texture error does not name the asset and the material"
 [ "$(grep -c 'is not a regular file' obj_mtl_fifo.log)" = 1 ] || fail "obj_mtl_fifo: the refusal is not said exactly once"
 if [ -n "$CUBE" ]; then
   printf 'previous output' > keep.exr
