@@ -314,17 +314,21 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
         for (int k = 0; k < mat->props.count; k++) {
             const sl_prop *p = &mat->props.items[k];
             sl_mat_value *v = sl_app_material_value(app, m, p->key);
+            /* where the key was given: the scene line, or the asset an imported material came from */
+            char at[1100];
+            if (p->line > 0 || !mat->source) snprintf(at, sizeof at, "%.1000s:%d", s->path, p->line);
+            else snprintf(at, sizeof at, "%.1000s", mat->source);
             if (!v) {
                 const char *near = sl_params_nearest(&app->params, SL_SCOPE_MATERIAL, p->key);
-                SL_WARN("%s:%d: material \"%s\": no loaded plugin declares key \"%s\"%s%s%s (ignored; see --dump-params)",
-                        s->path, p->line, mat->name, p->key, near ? "; did you mean \"" : "", near ? near : "",
+                SL_WARN("%s: material \"%s\": no loaded plugin declares key \"%s\"%s%s%s (ignored; see --dump-params)",
+                        at, mat->name, p->key, near ? "; did you mean \"" : "", near ? near : "",
                         near ? "\"?" : "");
                 continue;
             }
             char text[1024], why[1024];
             prop_text(p, text, sizeof text);
             if (!set_material_value(app, m, v, text, why, sizeof why)) {
-                snprintf(err, n, "%s:%d: material \"%s\": %s", s->path, p->line, mat->name, why);
+                snprintf(err, n, "%s: material \"%s\": %s", at, mat->name, why);
                 return false;
             }
         }

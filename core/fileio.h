@@ -2,16 +2,15 @@
  * tool and the tests, and the one check every reader of an untrusted path uses. */
 #ifndef SL_FILEIO_H
 #define SL_FILEIO_H
+#include <shadelab/input.h>
 #include <stddef.h>
 
 /* The most sl_read_file reads (scene JSON, shader sources, tables): 256 MiB. */
 #define SL_READ_FILE_MAX_BYTES (256u << 20)
 
-/* Why `path` cannot be read as an input file — missing, a directory, not a regular file (FIFO,
- * device, socket), unreadable — written into buf and returned; NULL when it is a readable regular
- * file. Never opens the path, so a FIFO cannot block it. Call it before handing a path to a
- * library (OpenImageIO, assimp) that would open it. */
-const char *sl_input_file_problem(const char *path, char *buf, size_t buf_size);
+/* sl_input_file_problem (why a path cannot be read as an input file, without opening it) and
+ * sl_open_input_file (open only a regular file, without blocking) are the SDK's
+ * <shadelab/input.h>: one implementation for the core, the plugins and the tools. */
 
 /* The whole file as a malloc'd, NUL-terminated buffer; *len (when given) gets the number of
  * bytes read. Only regular files are read (a FIFO or device is refused without blocking), at most

@@ -6,6 +6,7 @@
 #include "turntable.h"
 #include "viewer.h"
 #include <cjson/cJSON.h>
+#include <shadelab/input.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <errno.h>
@@ -69,36 +70,8 @@ static int die(const char *msg) {
     return 1;
 }
 
-/* One strict reader for every number on the command line: the whole text is a number within
- * [lo, hi] (no trailing characters, no overflow wrapping, no NaN). */
-static bool parse_long(const char *s, long lo, long hi, long *out) {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || errno == ERANGE || v < lo || v > hi) return false;
-    *out = v;
-    return true;
-}
-
-static bool parse_double(const char *s, double lo, double hi, double *out) {
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end || errno == ERANGE || !isfinite(v) || v < lo || v > hi) return false;
-    *out = v;
-    return true;
-}
-
-static bool parse_size(const char *s, int *w, int *h) {
-    const char *x = strchr(s, 'x');
-    char left[32];
-    long lw, lh;
-    if (!x || x - s >= (long)sizeof left) return false;
-    snprintf(left, sizeof left, "%.*s", (int)(x - s), s);
-    if (!parse_long(left, 1, 16384, &lw) || !parse_long(x + 1, 1, 16384, &lh)) return false;
-    *w = (int)lw, *h = (int)lh;
-    return true;
-}
+/* Every number on the command line goes through the SDK's strict readers (<shadelab/input.h>:
+ * the whole text, within range, finite, no overflow), as the tools' do. */
 
 /* --output names a video (encoded by ffmpeg from the turntable's PNG frames). */
 static bool is_video(const char *path) {
@@ -123,12 +96,12 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
         } else if (!strcmp(a, "--size")) {
             const char *v = NEXT();
             if (!v) return 1;
-            if (!parse_size(v, &c->opt.width, &c->opt.height)) { snprintf(err, n, "--size %s: expected WxH, 1..16384 each", v); return 1; }
+            if (!sl_parse_size(v, 16384, &c->opt.width, &c->opt.height)) { snprintf(err, n, "--size %s: expected WxH, 1..16384 each", v); return 1; }
         } else if (!strcmp(a, "--frames")) {
             const char *v = NEXT();
             if (!v) return 1;
             long f;
-            if (!parse_long(v, 1, 1000000, &f)) { snprintf(err, n, "--frames %s: expected a whole number 1..1000000", v); return 1; }
+            if (!sl_parse_long(v, 1, 1000000, &f)) { snprintf(err, n, "--frames %s: expected a whole number 1..1000000", v); return 1; }
             c->frames = (int)f;
         } else if (!strcmp(a, "--output")) { if (!(c->output = NEXT())) return 1; }
         else if (!strcmp(a, "--turntable")) {
@@ -152,7 +125,7 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
             const char *v = NEXT();
             if (!v) return 1;
             long k;
-            if (!parse_long(v, 1, 1000000, &k)) { snprintf(err, n, "--accumulate %s: expected a whole number 1..1000000", v); return 1; }
+            if (!sl_parse_long(v, 1, 1000000, &k)) { snprintf(err, n, "--accumulate %s: expected a whole number 1..1000000", v); return 1; }
             c->opt.accumulate = (int)k;
         } else if (!strcmp(a, "--reference")) { if (!(c->reference = NEXT())) return 1; }
         else if (!strcmp(a, "--auto-quality")) { if (!(c->auto_quality = NEXT())) return 1; }
@@ -161,7 +134,7 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
         else if (!strcmp(a, "--time")) {
             const char *v = NEXT();
             if (!v) return 1;
-            if (!parse_double(v, -1e9, 1e9, &c->start_time)) { snprintf(err, n, "--time %s: expected seconds, a finite number within +-1e9", v); return 1; }
+            if (!sl_parse_double(v, -1e9, 1e9, &c->start_time)) { snprintf(err, n, "--time %s: expected seconds, a finite number within +-1e9", v); return 1; }
         }
         else if (!strcmp(a, "--strict")) c->opt.strict = true;
         else if (!strcmp(a, "--list-plugins")) c->list_plugins = true;

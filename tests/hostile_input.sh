@@ -8,10 +8,15 @@
 # --time nan/abc, --accumulate 2abc / 1e9) and --stats to an unwritable path (errno named).
 # Also: coordinates beyond float32's useful range (a node at 1e38, an OBJ vertex at 1e38) and a
 # node matrix that collapses it (all zero), and shadelab-bench --reference-scale 1000.
-#      usage: hostile_input.sh SHADELAB [SHADELAB-BENCH]
+# Files assimp opens itself: a glTF whose buffer or image is a FIFO or a device, an OBJ whose
+# mtllib is a FIFO. shadelab-cube (given): special files as IN (/dev/zero, a symlink to
+# /dev/random, a FIFO, a directory), procedural specs the core refuses (checker:0, negative
+# colours, sky with nan/inf fields) and bad numbers (--size -5, --lod-bias nan, --samples 2abc).
+#      usage: hostile_input.sh SHADELAB [SHADELAB-BENCH [SHADELAB-CUBE]]
 set -uo pipefail
 SL=$(realpath "$1")
 BENCH=${2:+$(realpath "$2")}
+CUBE=${3:+$(realpath "$3")}
 T=$(mktemp -d "${TMPDIR:-/tmp}/shadelab-hostile.XXXXXX")
 trap 'rm -rf "$T"' EXIT
 cd "$T"
@@ -43,7 +48,7 @@ run() {
 run scene_zero    fail "/dev/zero: is not a regular file (a device)" --scene /dev/zero --output keep.png
 run scene_random  fail "/dev/urandom: is not a regular file (a device)" --scene /dev/urandom --output keep.png
 run scene_fifo    fail "fifo: is not a regular file (a FIFO)" --scene fifo --output keep.png
-run texture_fifo  any  "'fifo' cannot be read" --scene tex_fifo.json --output tex.png
+run texture_fifo  any  "tex_fifo.json:1: material 'm' \"base_color_map\": texture fifo: 'fifo' cannot be read" --scene tex_fifo.json --output tex.png
 run texture_bomb  any  "image is 16384x16384 (from its header)" --scene tex_bomb.json --output tex.png
 run env_bomb      any  "16384x16384 with 3 channels (from its header)" --scene env_bomb.json --output env.png
 run mesh_fifo     fail "mesh file 'fifo' cannot be read" --scene mesh_fifo.json --output keep.png
@@ -78,6 +83,49 @@ echo "{\"materials\": [{\"name\": \"m\"}], \"nodes\": [{\"mesh\": {\"file\": \"f
 run far_node      fail "\"translate\" 1e+38 is beyond 1e+07" --scene far_node.json --output keep.png
 run zero_matrix   fail "collapses the node to a line or a point" --scene zero_matrix.json --output keep.png
 run far_mesh      fail "reaches 1e+38 from the origin" --scene far_mesh.json --output keep.png
+# model files whose parts assimp opens: every open goes through the one regular-file check
+buf='"buffers": [{"byteLength": 60, "uri": "BUF"}], "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}, {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]'
+gltf() { echo "{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0, \"TEXCOORD_0\": 1}, \"material\": 0}]}], \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}], \"textures\": [{\"source\": 0}], \"images\": [{\"uri\": \"$2\"}], ${buf/BUF/$1}}"; }
+b64='data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/'
+ln -s /dev/zero zero_link.png
+gltf fifo tex.png > buffer_fifo.gltf
+gltf "$b64" fifo > image_fifo.gltf
+gltf "$b64" zero_link.png > image_device.gltf
+printf 'mtllib fifo\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n' > mtl_fifo.obj
+run gltf_buffer_fifo fail "fifo: is not a regular file (a FIFO)" --scene buffer_fifo.gltf --output keep.png
+run gltf_image_fifo  any  "texture '$T/fifo' (fifo) cannot be read: is not a regular file (a FIFO)" --scene image_fifo.gltf --output p.png
+run gltf_image_dev   any  "(zero_link.png) cannot be read: is not a regular file (a device)" --scene image_device.gltf --output p.png
+run obj_mtl_fifo     any  "fifo: is not a regular file (a FIFO)" --scene mtl_fifo.obj --output p.png
+grep -qF "image_fifo.gltf: material 'image_fifo/material0' (base_color_map): texture" gltf_image_fifo.log || fail "gltf_image_fifo: the texture error does not name the asset and the material"
+[ "$(grep -c 'is not a regular file' obj_mtl_fifo.log)" = 1 ] || fail "obj_mtl_fifo: the refusal is not said exactly once"
+if [ -n "$CUBE" ]; then
+  printf 'previous output' > keep.exr
+  ln -s /dev/random random_link.exr
+  mkdir adir
+  cube() {
+    local name=$1 needle=$2; shift 2
+    local t0=$SECONDS
+    timeout 20 "$CUBE" "$@" -q > "$name.log" 2>&1
+    local rc=$?
+    printf '%-14s rc=%-3d %2ds  %s\n' "$name" $rc $((SECONDS - t0)) "$(grep -m1 -F -- "$needle" "$name.log" | cut -c1-150)"
+    [ $rc -eq 124 ] && { fail "$name: still running after 20 s"; return; }
+    [ $rc -ge 126 ] && { fail "$name: crashed or did not start (rc $rc)"; return; }
+    [ $rc -eq 0 ] && fail "$name: exit 0 on bad input"
+    grep -qF -- "$needle" "$name.log" || { cat "$name.log"; fail "$name: no message containing '$needle'"; }
+  }
+  cube cube_zero     "/dev/zero: is not a regular file (a device)" /dev/zero --convert keep.exr --size 8
+  cube cube_random   "random_link.exr: is not a regular file (a device)" random_link.exr --convert keep.exr --size 8
+  cube cube_fifo     "fifo: is not a regular file (a FIFO)" fifo --ggx keep.exr --size 8
+  cube cube_dir      "adir: is a directory" adir --convert keep.exr --size 8
+  cube cube_size     "--size -5: expected a whole number 1..8192" sky --ggx keep.exr --size -5
+  cube cube_samples  "--samples 2abc: expected a whole number 1..1048576" sky --ggx keep.exr --samples 2abc
+  cube cube_bias     "--lod-bias nan: expected a finite number -2..4" sky --ggx keep.exr --lod-bias nan
+  cube cube_sky      "ELEVATION (degrees) 'nan' must be a finite number in -90..90" sky:nan:inf:-5 --convert keep.exr --size 8
+  cube cube_sky_sun  "SUN_IRRADIANCE (W/m²) '-5' must be a finite number in 0..1000" sky:10:20:-5 --convert keep.exr --size 8
+  cube cube_negative "colour '-1,-1,-1' has a component that is negative or not finite" constant:-1,-1,-1 --convert keep.exr --size 8
+  cube cube_checker  "N '0' must be a whole number from 1 to the size" checker:0:1,1,1:0,0,0 --convert keep.exr --size 8
+  [ "$(cat keep.exr)" = "previous output" ] || fail "shadelab-cube: a failed run overwrote the existing output file"
+fi
 if [ -n "$BENCH" ]; then
   t0=$SECONDS
   timeout 30 "$BENCH" --plugin core --reference-scale 1000 --out bench_out > bench.log 2>&1; rc=$?

@@ -4,6 +4,7 @@
 #include <shadelab/harness.h>
 #include <shadelab/ext/shadow_maps.h>
 #include <shadelab/ext/environment.h>
+#include <shadelab/input.h>
 int main() {
     sl_plugin_desc d{};
     d.dependencies = nullptr;

@@ -139,6 +139,12 @@ static const char *host_environment(const sl_host *h, float o[5]) {
     memcpy(o, e->color, 3 * sizeof(float)), o[3] = e->intensity, o[4] = e->yaw_deg;
     return e->map;
 }
+static float *host_procedural_image(const sl_host *h, const char *spec, int size, char *err, size_t n) {
+    (void)h;
+    sl_image img;
+    if (!sl_image_procedural(&img, spec, size, err, n)) return NULL;
+    return img.pixels; /* RGBA, size x size: the plugin frees it */
+}
 void sl_host_set_gl_app(sl_app *app) { g_gl_app = app; }
 
 sl_host *sl_host_make(sl_app *app, int index) {
@@ -179,6 +185,7 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->set_still_frames = host_set_still_frames;
     h->environment = host_environment;
     h->shader_dir = host_shader_dir;
+    h->procedural_image = host_procedural_image;
     return &impl->host;
 }
 

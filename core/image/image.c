@@ -4,6 +4,7 @@
 #define SL_IMAGE_INTERNAL
 #include "image/image.h"
 #include "log.h"
+#include <shadelab/input.h>
 
 #include <ctype.h>
 #include <errno.h>
@@ -161,8 +162,10 @@ bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) 
         set_err(err, err_size, "%s: is a directory, not an image file", path);
         return false;
     }
-    if (!S_ISREG(st.st_mode)) { /* a FIFO or device could block or never end */
-        set_err(err, err_size, "%s: not a regular file", path);
+    if (!S_ISREG(st.st_mode)) { /* a FIFO or device could block or never end: never opened */
+        char why[128];
+        if (!sl_input_file_problem(path, why, sizeof why)) snprintf(why, sizeof why, "is not a regular file");
+        set_err(err, err_size, "%s: %s", path, why);
         return false;
     }
     if (st.st_size == 0) {

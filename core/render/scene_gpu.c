@@ -65,7 +65,8 @@ void sl_gpu_apply_anisotropy(sl_app *app) {
     for (int i = 0; i < r->texture_count; i++) glTextureParameterf(r->textures[i].id, GL_TEXTURE_MAX_ANISOTROPY, (float)a);
 }
 
-static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bool clamp) {
+/* `where` names the scene line, material and key (or the asset file) for the messages. */
+static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bool clamp, const char *where) {
     sl_renderer *r = R(app);
     char key[2100];
     snprintf(key, sizeof key, "%s|%d|%d", spec, linear_data, clamp);
@@ -94,14 +95,14 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         /* policy for texture files: finite, >= 0 and at most SL_MAX_RADIANCE, with one warning */
         long nonfinite = 0, negative = 0, over = 0;
         if (ok && img.source_float && sl_image_sanitize(&img, (float)SL_MAX_RADIANCE, &nonfinite, &negative, &over))
-            SL_WARN("texture %s: replaced %ld NaN/Inf, %ld negative and %ld over-%g samples (NaN, -Inf and "
-                    "negatives by 0; +Inf and large values by %g)", spec, nonfinite, negative, over, SL_MAX_RADIANCE,
+            SL_WARN("%s: texture %s: replaced %ld NaN/Inf, %ld negative and %ld over-%g samples (NaN, -Inf and "
+                    "negatives by 0; +Inf and large values by %g)", where, spec, nonfinite, negative, over, SL_MAX_RADIANCE,
                     SL_MAX_RADIANCE);
     }
     unsigned tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
     if (!ok) {
-        SL_ERROR("texture %s: %s (using a magenta placeholder)", spec, err);
+        SL_ERROR("%s: texture %s: %s (using a magenta placeholder)", where, spec, err);
         float magenta[4] = {1, 0, 1, 1};
         glTextureStorage2D(tex, 1, GL_RGBA8, 1, 1);
         glTextureSubImage2D(tex, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, magenta);
@@ -226,9 +227,25 @@ void sl_gpu_compose_all(sl_app *app) {
         for (int t = 0; t < mr->forward.texture_count; t++) {
             const sl_param *q = &app->params.items[mr->forward.texture_params[t]];
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
-            mr->textures[t] = v && v->str ? load_texture(app, v->str, q->desc.flags & SL_PARAM_LINEAR_DATA,
-                                                         q->desc.flags & SL_PARAM_CLAMP_TO_EDGE)
-                                          : 0;
+            if (!v || !v->str) {
+                mr->textures[t] = 0;
+                continue;
+            }
+            /* messages name where the texture was given: the scene line and material and key, or
+             * the asset file an imported material came from */
+            const sl_material *sm = &app->scene.materials[m];
+            const sl_prop *given = sl_prop_find(&sm->props, q->desc.id);
+            if (!given) given = sl_prop_find(&sm->props, q->full_id);
+            char where[1400];
+            if (sm->source && !given)
+                snprintf(where, sizeof where, "%.600s: material '%.300s' (%s)", sm->source, sm->name, q->desc.id);
+            else if (given && given->line > 0)
+                snprintf(where, sizeof where, "%.600s:%d: material '%.300s' \"%s\"", app->scene.path ? app->scene.path : "scene",
+                         given->line, sm->name, q->desc.id);
+            else
+                snprintf(where, sizeof where, "material '%.300s' \"%s\"", sm->name, q->desc.id);
+            mr->textures[t] = load_texture(app, v->str, q->desc.flags & SL_PARAM_LINEAR_DATA,
+                                           q->desc.flags & SL_PARAM_CLAMP_TO_EDGE, where);
         }
     }
 }

@@ -15,6 +15,7 @@
  * Names are made unique with a "#2", "#3"… suffix where needed. */
 #include "log.h"
 #include "scene/scene.h"
+#include <shadelab/input.h>
 
 #include <assimp/cfileio.h>
 #include <assimp/cimport.h>
@@ -193,8 +194,12 @@ static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiText
     if (!strncmp(p.data, "data:", 5)) return false; /* a data: URI assimp did not decode */
     if (p.data[0] == '/') snprintf(out, size, "%s", p.data);
     else snprintf(out, size, "%s/%s", im->dir, p.data);
-    struct stat st;
-    if (stat(out, &st) != 0) SL_WARN("%s: texture '%s' not found (%s)", im->path, out, p.data);
+    char why[160]; /* the one pre-check (<shadelab/input.h>): a FIFO or device is named, never opened */
+    errno = 0;
+    if (sl_input_file_problem(out, why, sizeof why)) {
+        if (errno == ENOENT) SL_WARN("%s: texture '%s' not found (%s)", im->path, out, p.data);
+        else SL_WARN("%s: texture '%s' (%s) cannot be read: %s", im->path, out, p.data, why);
+    }
     if (im->is_gltf) record_sampler(im, mat, type, modes, out);
     return true;
 }
@@ -585,7 +590,14 @@ static bool sniff_gltf(const char *path) {
  * assimp picks its glTF reader by the extension, so the file is offered to it under an alias
  * beside it ("<path>.glb"), which this file system maps back; every other file (a .gltf's
  * buffers and images, relative to the same directory) opens as named. */
-typedef struct alias_io { char alias[4200]; const char *real; } alias_io;
+/* assimp's file access (every file it opens): a glTF by content under an alias, and the special
+ * files it was refused, each warned about once (assimp asks for a file several times) */
+typedef struct alias_io {
+    char alias[4200];
+    const char *real;
+    struct { dev_t dev; ino_t ino; } refused[8];
+    int refused_count;
+} alias_io;
 
 static size_t io_read(struct aiFile *f, char *buf, size_t size, size_t count) {
     return fread(buf, size, count, (FILE *)f->UserData);
@@ -605,9 +617,26 @@ static enum aiReturn io_seek(struct aiFile *f, size_t offset, enum aiOrigin orig
 }
 static void io_flush(struct aiFile *f) { (void)f; }
 static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode) {
-    const alias_io *a = (const alias_io *)io->UserData;
-    FILE *fp = fopen(!strcmp(name, a->alias) ? a->real : name, mode);
-    if (!fp) return NULL;
+    alias_io *a = (alias_io *)io->UserData;
+    const char *path = !strcmp(name, a->alias) ? a->real : name;
+    if (strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+')) return NULL; /* an importer only reads */
+    /* every file assimp opens (the model, a glTF's buffers and images, an OBJ's .mtl) is
+     * refused unless regular, without blocking on a FIFO (<shadelab/input.h>) */
+    char why[600];
+    int fd = sl_open_input_file(path, why, sizeof why);
+    FILE *fp = fd >= 0 ? fdopen(fd, "rb") : NULL;
+    if (!fp) {
+        struct stat st;
+        bool seen = false;
+        if (fd >= 0) close(fd);
+        else if (errno == EINVAL && stat(path, &st) == 0) {
+            for (int i = 0; i < a->refused_count; i++)
+                seen |= a->refused[i].dev == st.st_dev && a->refused[i].ino == st.st_ino;
+            if (!seen && a->refused_count < 8) a->refused[a->refused_count].dev = st.st_dev, a->refused[a->refused_count++].ino = st.st_ino;
+            if (!seen) SL_WARN("%s", why);
+        }
+        return NULL;
+    }
     struct aiFile *f = calloc(1, sizeof *f);
     if (!f) {
         fclose(fp);
@@ -725,7 +754,7 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     if (large) SL_INFO("%s: importing %.1f MB with assimp…", path, fst.st_size / 1048576.0);
-    im.ai = aiImportFileExWithProperties(aliased ? alias.alias : path, flags, aliased ? &io : NULL, store);
+    im.ai = aiImportFileExWithProperties(aliased ? alias.alias : path, flags, &io, store);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     unsigned long long tris = 0;
     for (unsigned i = 0; im.ai && i < im.ai->mNumMeshes; i++) tris += im.ai->mMeshes[i]->mNumFaces;

@@ -6,6 +6,7 @@
  * Monte Carlo integration with the exact BRDF. See README.md; the shared implementation (also
  * used by tools/cube) is the library envmap_prefilter, include/envmap/prefilter.h and io.h. */
 #include <shadelab/shadelab.h>
+#include <shadelab/input.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include "envmap/io.h"
@@ -74,11 +75,11 @@ static const sl_param_desc params[] = {
       .description = "Keep prefiltered cubes on disk ($SHADELAB_CACHE, else ~/.cache/shadelab), keyed by input and parameters."),
     P(.id = "seamless", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "prefilter",
       .description = "GL_TEXTURE_CUBE_MAP_SEAMLESS: filter across cube face edges (off shows the seams)."),
-    P(.id = "sun_elevation", .type = SL_PARAM_FLOAT, .default_value = {.f = {35}}, .min = -90, .max = 90, .unit = "deg",
+    P(.id = "sun_elevation", .type = SL_PARAM_FLOAT, .default_value = {.f = {35}}, .min = -EM_SKY_ELEVATION_MAX, .max = EM_SKY_ELEVATION_MAX, .unit = "deg",
       .group = "sky", .description = "Procedural sky (used when the scene gives no environment): sun elevation."),
-    P(.id = "sun_azimuth", .type = SL_PARAM_FLOAT, .default_value = {.f = {60}}, .min = -360, .max = 360, .unit = "deg",
+    P(.id = "sun_azimuth", .type = SL_PARAM_FLOAT, .default_value = {.f = {60}}, .min = -EM_SKY_AZIMUTH_MAX, .max = EM_SKY_AZIMUTH_MAX, .unit = "deg",
       .group = "sky", .description = "Procedural sky: sun azimuth, 0 towards +Z, 90 towards +X."),
-    P(.id = "sun_irradiance", .type = SL_PARAM_FLOAT, .default_value = {.f = {3}}, .min = 0, .max = 1000, .unit = "W/m2",
+    P(.id = "sun_irradiance", .type = SL_PARAM_FLOAT, .default_value = {.f = {3}}, .min = 0, .max = EM_SKY_IRRADIANCE_MAX, .unit = "W/m2",
       .group = "sky", .description = "Procedural sky: irradiance of the sun disk (1.5 deg radius) at normal incidence; 0 = no sun."),
 };
 
@@ -201,8 +202,12 @@ static unsigned cache_load(envmap *e, uint64_t key, int size, int levels, char *
     char dir[2048];
     if (!cache_dir(e, dir, sizeof dir)) return 0;
     snprintf(path, n, "%s/spec-%016llx.bin", dir, (unsigned long long)key);
-    FILE *f = fopen(path, "rb");
-    if (!f) return 0;
+    int fd = sl_open_input_file(path, NULL, 0); /* a regular file only: never blocks on a FIFO */
+    FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
+    if (!f) {
+        if (fd >= 0) close(fd);
+        return 0;
+    }
     cache_header h;
     unsigned tex = 0;
     if (fread(&h, sizeof h, 1, f) == 1 && !memcmp(h.magic, "SLENVC1", 8) && h.key == key && h.size == size &&
@@ -284,6 +289,16 @@ static void upload_source(envmap *e, em_env *env, const char *name) {
     }
 }
 
+/* The core's procedural textures (host ABI 1.7): envmap parses no texture spec of its own. */
+static float *core_pattern(void *user, const char *spec, int size, char *err, size_t n) {
+    const sl_host *h = user;
+    if (h->struct_size < offsetof(sl_host, procedural_image) + sizeof h->procedural_image || !h->procedural_image) {
+        snprintf(err, n, "procedural environment '%s': this host has no procedural textures (needs the SDK ABI 1.7)", spec);
+        return NULL;
+    }
+    return h->procedural_image(h, spec, size, err, n);
+}
+
 static void load_source(envmap *e, const char *map, const float env[5]) {
     free_derived(e);
     delete_tex(&e->src_tex);
@@ -298,7 +313,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     const char *name = map ? map : "procedural sky";
     if (map && em_is_procedural(map)) {
         loaded.kind = EM_ENV_LATLONG;
-        ok = em_procedural(map, &loaded.latlong, &e->constant, err, sizeof err);
+        ok = em_procedural(map, core_pattern, (void *)e->host, &loaded.latlong, &e->constant, err, sizeof err);
         if (ok) em_sanitize(loaded.latlong.px, (size_t)loaded.latlong.w * loaded.latlong.h, &loaded.stats);
     } else if (map) {
         ok = em_env_load(map, &loaded, err, sizeof err);
@@ -310,7 +325,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
         char spec[128];
         snprintf(spec, sizeof spec, "constant:%g,%g,%g", env[0], env[1], env[2]);
         loaded.kind = EM_ENV_LATLONG;
-        ok = em_procedural(spec, &loaded.latlong, &e->constant, err, sizeof err);
+        ok = em_procedural(spec, core_pattern, (void *)e->host, &loaded.latlong, &e->constant, err, sizeof err);
         e->bg_is_clear = ok;
         name = "constant environment";
     }

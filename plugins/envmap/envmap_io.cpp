@@ -2,6 +2,7 @@
 // module). Reads any format OIIO reads as float RGBA; writes half-float EXR and 8-bit PNG with
 // a description tag (the RGBE8 marker). Every exception becomes an error message.
 #include "envmap/io.h"
+#include <shadelab/input.h>     /* sl_input_file_problem: the core's check */
 #include <shadelab/shadelab.h> /* SL_IMAGE_MAX_PIXELS */
 
 #include <OpenImageIO/imageio.h>
@@ -26,6 +27,13 @@ static void set_err(char *err, size_t n, const std::string &msg) {
 extern "C" bool em_io_load(const char *path, em_image *out, em_io_info *info, char *err, size_t n) {
     std::memset(out, 0, sizeof *out);
     std::memset(info, 0, sizeof *info);
+    // OpenImageIO opens the path itself: a FIFO would block it, a device (/dev/zero, a symlink
+    // to one) never ends. Only regular files are handed over, as the core's loader does.
+    char why[160];
+    if (sl_input_file_problem(path, why, sizeof why)) {
+        std::snprintf(err, n, "%s: %s; refusing to read it", path, why);
+        return false;
+    }
     try {
         ImageSpec config;
         config.attribute("oiio:UnassociatedAlpha", 1); // RGBE keeps its exponent in alpha

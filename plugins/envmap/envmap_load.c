@@ -1,6 +1,7 @@
 /* Environment files: format and layout detection, RGBE8 and sRGB decoding, precomputed chains,
  * sanitising. Shared by the plugin and shadelab-cube (include/envmap/io.h). */
 #include "envmap/io.h"
+#include <shadelab/input.h>
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -18,9 +19,10 @@ void em_env_free(em_env *e) {
     memset(e, 0, sizeof *e);
 }
 
+/* a readable regular file (the SDK's check; never opens it) */
 static bool exists(const char *p) {
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
+    char why[160];
+    return !sl_input_file_problem(p, why, sizeof why);
 }
 
 static float srgb_decode(float x) {
@@ -255,48 +257,68 @@ bool em_is_procedural(const char *s) {
            !strncmp(s, "grid:", 5) || !strcmp(s, "sky") || !strncmp(s, "sky:", 4);
 }
 
-bool em_procedural(const char *spec, em_image *img, bool *constant, char *err, size_t n) {
-    float a[3] = {0}, b[3] = {0};
-    int cells = 0;
-    int w = 512, h = 256;
+/* One field of "sky:E:A:I": a finite number within [lo, hi], or the message naming it. */
+static bool sky_field(const char *spec, const char *text, size_t len, const char *what, double lo, double hi, float *out,
+                      char *err, size_t n) {
+    char buf[64];
+    double v;
+    snprintf(buf, sizeof buf, "%.*s", (int)(len < sizeof buf - 1 ? len : sizeof buf - 1), text);
+    if (len >= sizeof buf || !sl_parse_double(buf, lo, hi, &v)) {
+        snprintf(err, n, "procedural environment '%s': %s '%.*s' must be a finite number in %g..%g: expected "
+                         "sky[:ELEVATION[:AZIMUTH[:SUN_IRRADIANCE]]]", spec, what, (int)(len > 40 ? 40 : len), text, lo, hi);
+        return false;
+    }
+    *out = (float)v;
+    return true;
+}
+
+bool em_procedural(const char *spec, em_pattern_fn pattern, void *user, em_image *img, bool *constant, char *err,
+                   size_t n) {
+    memset(img, 0, sizeof *img);
     *constant = false;
     if (!strcmp(spec, "sky") || !strncmp(spec, "sky:", 4)) {
         em_sky sky;
         em_sky_default(&sky);
-        if (spec[3] == ':' && sscanf(spec + 4, "%f:%f:%f", &sky.sun_elevation_deg, &sky.sun_azimuth_deg, &sky.sun_irradiance) < 1) {
-            snprintf(err, n, "procedural environment '%s': expected sky or sky:ELEVATION[:AZIMUTH[:SUN_IRRADIANCE]]", spec);
-            return false;
+        static const char *what[3] = {"ELEVATION (degrees)", "AZIMUTH (degrees)", "SUN_IRRADIANCE (W/m²)"};
+        const double lo[3] = {-EM_SKY_ELEVATION_MAX, -EM_SKY_AZIMUTH_MAX, 0};
+        const double hi[3] = {EM_SKY_ELEVATION_MAX, EM_SKY_AZIMUTH_MAX, EM_SKY_IRRADIANCE_MAX};
+        float *field[3] = {&sky.sun_elevation_deg, &sky.sun_azimuth_deg, &sky.sun_irradiance};
+        const char *p = spec[3] == ':' ? spec + 4 : NULL;
+        for (int k = 0; p; k++) {
+            const char *colon = strchr(p, ':');
+            size_t len = colon ? (size_t)(colon - p) : strlen(p);
+            if (k == 3) {
+                snprintf(err, n, "procedural environment '%s': too many fields: expected "
+                                 "sky[:ELEVATION[:AZIMUTH[:SUN_IRRADIANCE]]]", spec);
+                return false;
+            }
+            if (!sky_field(spec, p, len, what[k], lo[k], hi[k], field[k], err, n)) return false;
+            p = colon ? colon + 1 : NULL;
         }
         em_sky_latlong(&sky, 1024, 512, img);
         return true;
     }
-    if (sscanf(spec, "constant:%f,%f,%f", &a[0], &a[1], &a[2]) == 3) {
-        *constant = true;
-        w = 8, h = 4;
-    } else if (!strcmp(spec, "uv") || !strcmp(spec, "gradient")) {
-    } else if (sscanf(spec, "checker:%d:%f,%f,%f:%f,%f,%f", &cells, &a[0], &a[1], &a[2], &b[0], &b[1], &b[2]) == 7 ||
-               sscanf(spec, "grid:%d:%f,%f,%f:%f,%f,%f", &cells, &a[0], &a[1], &a[2], &b[0], &b[1], &b[2]) == 7) {
-        cells = cells < 1 ? 1 : cells > 128 ? 128 : cells; /* a cell at least 2 texels tall */
-    } else {
-        snprintf(err, n, "procedural environment '%s': expected constant:r,g,b, uv, gradient, checker:N:r,g,b:r,g,b or "
-                         "grid:N:r,g,b:r,g,b, sky[:elevation:azimuth:irradiance]", spec);
+    if (!pattern) {
+        snprintf(err, n, "procedural environment '%s': no procedural texture reader given", spec);
+        return false;
+    }
+    /* the core's square pattern at the lat-long's width, rows averaged in pairs to the 2:1 height:
+     * exact for the linear ramps (uv, gradient), a box filter across checker and grid edges */
+    bool is_constant = !strncmp(spec, "constant:", 9);
+    int w = is_constant ? 8 : 512, h = w / 2;
+    float *sq = pattern(user, spec, w, err, n);
+    if (!sq) return false;
+    img->px = malloc((size_t)w * h * 4 * sizeof(float));
+    if (!img->px) {
+        free(sq);
+        snprintf(err, n, "procedural environment '%s': out of memory", spec);
         return false;
     }
     img->w = w, img->h = h;
-    img->px = malloc((size_t)w * h * 4 * sizeof(float));
-    bool grid = !strncmp(spec, "grid:", 5);
-    int line = cells && w / (16 * cells) > 1 ? w / (16 * cells) : 1;
     for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            float *p = img->px + ((size_t)y * w + x) * 4;
-            const float *c = a;
-            float tmp[3];
-            if (!strcmp(spec, "uv")) tmp[0] = (x + 0.5f) / w, tmp[1] = (y + 0.5f) / h, tmp[2] = 0, c = tmp;
-            else if (!strcmp(spec, "gradient")) tmp[0] = x / (w - 1.0f), tmp[1] = y / (h - 1.0f), tmp[2] = 0, c = tmp;
-            else if (cells && !grid) c = ((x * cells / w) + (y * cells / h)) % 2 ? b : a;
-            else if (cells) c = (x % (w / cells) < line || y % (h / cells) < line) ? a : b;
-            p[0] = c[0], p[1] = c[1], p[2] = c[2], p[3] = 1;
-        }
+        for (int i = 0; i < w * 4; i++)
+            img->px[(size_t)y * w * 4 + i] = 0.5f * (sq[(size_t)(2 * y) * w * 4 + i] + sq[(size_t)(2 * y + 1) * w * 4 + i]);
+    free(sq);
+    *constant = is_constant;
     return true;
 }
-

@@ -1,5 +1,6 @@
 /* shadelab-bench: error versus time for a plugin's quality knobs (docs/benchmarks.md). */
 #include "bench.h"
+#include <shadelab/input.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -73,7 +74,7 @@ int main(int argc, char **argv) {
         else if (!strcmp(a, "--size")) {
             const char *v = NEXT();
             NEED(v);
-            if (sscanf(v, "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384) {
+            if (!sl_parse_size(v, 16384, &o.width, &o.height)) {
                 snprintf(err, sizeof err, "--size %s: expected WxH, 1..16384 each", v);
                 return die(err);
             }
@@ -87,11 +88,10 @@ int main(int argc, char **argv) {
                    !strcmp(a, "--reference-scale") || !strcmp(a, "--rounds")) {
             const char *v = NEXT();
             NEED(v);
-            char *end;
-            long x = strtol(v, &end, 10);
+            long x;
             bool frames = !strcmp(a, "--frames"), warm = !strcmp(a, "--warmup");
-            if (*end || x < (warm ? 0 : 1) || x > 1000000) {
-                snprintf(err, sizeof err, "%s %s: expected a whole number >= %d", a, v, warm ? 0 : 1);
+            if (!sl_parse_long(v, warm ? 0 : 1, 1000000, &x)) {
+                snprintf(err, sizeof err, "%s %s: expected a whole number %d..1000000", a, v, warm ? 0 : 1);
                 return die(err);
             }
             if (frames) o.frames = (int)x;

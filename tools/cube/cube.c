@@ -4,6 +4,7 @@
 #include "envmap/prefilter.h"
 #include "toolkit.h"
 #include <shadelab/gl.h>
+#include <shadelab/input.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdio.h>
@@ -85,6 +86,24 @@ static unsigned load_program(void *user, const char *fragment, const char *defin
     return id;
 }
 
+/* The core's procedural textures (the toolkit's sl_image_procedural): the parser scenes use. */
+static float *core_pattern(void *user, const char *spec, int size, char *err, size_t n) {
+    (void)user;
+    sl_image img;
+    return sl_image_procedural(&img, spec, size, err, n) ? img.pixels : NULL;
+}
+
+/* A whole number option within [lo, hi] (the SDK's strict reader): false after saying why. */
+static bool int_arg(const char *opt, const char *v, long lo, long hi, int *out) {
+    long x;
+    if (!sl_parse_long(v, lo, hi, &x)) {
+        fprintf(stderr, "shadelab-cube: %s %s: expected a whole number %ld..%ld\n", opt, v, lo, hi);
+        return false;
+    }
+    *out = (int)x;
+    return true;
+}
+
 static int fail(const char *fmt, const char *a) {
     fprintf(stderr, "shadelab-cube: ");
     fprintf(stderr, fmt, a);
@@ -104,11 +123,20 @@ int main(int argc, char **argv) {
         else if ((!strcmp(a, "--ggx") || !strcmp(a, "--lambertian") || !strcmp(a, "--convert") || !strcmp(a, "--brdf-lut")) && has) {
             if (mode) return fail("%s: only one of --ggx, --lambertian, --convert, --brdf-lut", a);
             mode = a + 2, out = argv[++i];
-        } else if (!strcmp(a, "--size") && has) size = atoi(argv[++i]);
-        else if (!strcmp(a, "--samples") && has) samples = atoi(argv[++i]);
-        else if (!strcmp(a, "--levels") && has) levels = atoi(argv[++i]);
-        else if (!strcmp(a, "--lod-bias") && has) bias = (float)atof(argv[++i]);
-        else if (!strcmp(a, "--backend") && has) backend = argv[++i];
+        } else if (!strcmp(a, "--size") && has) {
+            if (!int_arg(a, argv[++i], 1, 8192, &size)) return 2;
+        } else if (!strcmp(a, "--samples") && has) {
+            if (!int_arg(a, argv[++i], 1, 1 << 20, &samples)) return 2;
+        } else if (!strcmp(a, "--levels") && has) {
+            if (!int_arg(a, argv[++i], 1, 16, &levels)) return 2;
+        } else if (!strcmp(a, "--lod-bias") && has) {
+            double b;
+            if (!sl_parse_double(argv[++i], -2, 4, &b)) { /* the envmap.lod_bias parameter's range */
+                fprintf(stderr, "shadelab-cube: --lod-bias %s: expected a finite number -2..4\n", argv[i]);
+                return 2;
+            }
+            bias = (float)b;
+        } else if (!strcmp(a, "--backend") && has) backend = argv[++i];
         else if (a[0] == '-') { fprintf(stderr, "shadelab-cube: unknown option or missing value: %s\n\n%s", a, usage); return 2; }
         else if (!in) in = a;
         else { fprintf(stderr, "shadelab-cube: more than one input (%s)\n\n%s", a, usage); return 2; }
@@ -116,8 +144,8 @@ int main(int argc, char **argv) {
     bool lut = mode && !strcmp(mode, "brdf-lut");
     if (!mode || (!lut && !in) || (lut && in)) { fprintf(stderr, "%s", usage); return 2; }
     if (size < 0) size = lut ? 64 : !strcmp(mode, "lambertian") ? 32 : 256;
-    if (size < (lut ? 2 : 1) || size > 8192 || samples < 1 || samples > 1 << 20 || levels < 1 || levels > 16) {
-        fprintf(stderr, "shadelab-cube: --size 1..8192 (LUT 2..8192), --samples 1..1048576, --levels 1..16\n");
+    if (size < (lut ? 2 : 1)) {
+        fprintf(stderr, "shadelab-cube: --size %d: the --brdf-lut table needs a whole number 2..8192\n", size);
         return 2;
     }
     const char *ext = strrchr(out, '.');
@@ -130,7 +158,7 @@ int main(int argc, char **argv) {
     if (in && em_is_procedural(in)) {
         bool constant;
         env.kind = EM_ENV_LATLONG;
-        if (!em_procedural(in, &env.latlong, &constant, err, sizeof err)) return fail("%s", err);
+        if (!em_procedural(in, core_pattern, NULL, &env.latlong, &constant, err, sizeof err)) return fail("%s", err);
         snprintf(env.how, sizeof env.how, "procedural %dx%d lat-long", env.latlong.w, env.latlong.h);
     } else if (in && !em_env_load(in, &env, err, sizeof err)) {
         return fail("%s", err);

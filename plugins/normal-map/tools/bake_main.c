@@ -1,6 +1,7 @@
 /* shadelab-bake-normals: tangent-space → object-space normal maps for a mesh, procedural maps,
  * and a green-convention check. --help (or -h) prints the usage. */
 #include "nm_tools.h"
+#include <shadelab/input.h>
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,16 +46,25 @@ int main(int argc, char **argv) {
         ARG("--scene", scene_path) ARG("--material", material) ARG("--out", out) ARG("--map", map)
         ARG("--data", data) ARG("--generate", gen) ARG("--generate-property", gen_prop) ARG("--detect-green", detect)
 #undef ARG
-        if (!strcmp(a, "--size") && v) {
-            if (sscanf(v, "%dx%d", &W, &H) != 2) W = H = atoi(v);
+        if (!strcmp(a, "--size") && v) { /* WxH, or N for NxN: whole numbers 1..16384 (<shadelab/input.h>) */
+            long k;
+            if (sl_parse_long(v, 1, 16384, &k)) W = H = (int)k;
+            else if (!sl_parse_size(v, 16384, &W, &H)) { fprintf(stderr, "--size %s: expected N or WxH, 1..16384 each\n", v); return 2; }
             i++;
         } else if (!strcmp(a, "--green") && v) {
             if (!strcmp(v, "opengl")) o.green_sign = 1;
             else if (!strcmp(v, "directx")) o.green_sign = -1;
             else { fprintf(stderr, "--green %s: expected opengl or directx\n", v); return 2; }
             i++;
-        } else if (!strcmp(a, "--strength") && v) o.strength = (float)atof(v), i++;
-        else if (!strcmp(a, "--dilate") && v) o.dilate = atoi(v), i++;
+        } else if (!strcmp(a, "--strength") && v) {
+            double k;
+            if (!sl_parse_double(v, 0, 100, &k)) { fprintf(stderr, "--strength %s: expected a finite number 0..100\n", v); return 2; }
+            o.strength = (float)k, i++;
+        } else if (!strcmp(a, "--dilate") && v) {
+            long k;
+            if (!sl_parse_long(v, 0, 4096, &k)) { fprintf(stderr, "--dilate %s: expected a whole number 0..4096\n", v); return 2; }
+            o.dilate = (int)k, i++;
+        }
         else { fprintf(stderr, "unknown argument %s\n\n%s", a, usage); return 2; }
     }
     char err[4096];

@@ -125,6 +125,14 @@ struct sl_host {
      * headless render without --frames renders the largest count asked for, all at --time; the
      * window renders continuously anyway. Cleared at the start of every frame: ask each frame. */
     void (*set_still_frames)(const sl_host *host, int frames);
+    /* ABI 1.7, any time: a procedural texture spec ("checker:8:1,1,1:0,0,0", "constant:r,g,b",
+     * "uv", "gradient", "grid:N:r,g,b:r,g,b", the normal-map kinds; scenes/README.md) rendered by
+     * the core's one parser, the one materials use: size x size linear RGBA floats, row 0 at the
+     * top (size 1..16384). Returns a malloc'd array the plugin free()s, or NULL with a message in
+     * err naming the spec, what is wrong and the valid form or range ("checker:0:…": N must be a
+     * whole number from 1 to the size). A plugin that takes such specs from users parses them
+     * here, so the same text is accepted or refused everywhere. */
+    float *(*procedural_image)(const sl_host *host, const char *spec, int size, char *err, size_t err_size);
 };
 
 #ifdef __cplusplus

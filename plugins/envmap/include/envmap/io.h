@@ -49,11 +49,17 @@ void em_env_free(em_env *e);
  * (shadelab-cube output) or an X.1.ext chain. 8-bit sRGB files are decoded to linear. NaN, Inf
  * and negative values are replaced (counted in e->stats; the caller warns once). */
 bool em_env_load(const char *path, em_env *e, char *err, size_t n);
-/* Procedural environments as lat-long images: the core's texture specs ("constant:r,g,b",
- * "uv", "gradient", "checker:N:r,g,b:r,g,b", "grid:N:…"; *constant set for the first) and
- * "sky[:elevation[:azimuth[:sun irradiance]]]" (em_sky, 1024×512). */
+/* Procedural environments as lat-long images. The core's texture specs ("constant:r,g,b", "uv",
+ * "gradient", "checker:N:r,g,b:r,g,b", "grid:N:…") are parsed and rendered by the core's one
+ * parser, reached through `pattern` (the plugin: host->procedural_image; shadelab-cube: the
+ * toolkit's sl_image_procedural), so a spec the core refuses ("checker:0:…", "constant:-1,…") is
+ * refused here with the core's message; *constant is set for "constant:". envmap's own
+ * "sky[:elevation[:azimuth[:sun irradiance]]]" (em_sky, 1024×512) is read strictly: each field
+ * a finite number within EM_SKY_* (the envmap.sun_* parameters' ranges). */
+typedef float *(*em_pattern_fn)(void *user, const char *spec, int size, char *err, size_t n);
 bool em_is_procedural(const char *spec);
-bool em_procedural(const char *spec, em_image *img, bool *constant, char *err, size_t n);
+bool em_procedural(const char *spec, em_pattern_fn pattern, void *user, em_image *img, bool *constant, char *err,
+                   size_t n);
 /* Writes six faces as a horizontal cross: .exr (half) or .png (RGBE8, tagged). */
 bool em_write_cube(const char *path, float *const faces[6], int size, char *err, size_t n);
 /* "out.exr" + level 3 → "out.3.exr" */

@@ -96,6 +96,10 @@ void em_sh9_diffuse_coefficients(const double sh[9][3], float out[9][3]);
 
 /* ---------------------------------------------------------------- procedural sky */
 
+/* The sky's ranges: the envmap.sun_* parameters and "sky:E:A:I" specs alike. */
+#define EM_SKY_ELEVATION_MAX 90.0  /* degrees, -90..90 */
+#define EM_SKY_AZIMUTH_MAX 360.0   /* degrees, -360..360 */
+#define EM_SKY_IRRADIANCE_MAX 1000.0 /* W/m², 0..1000 */
 typedef struct em_sky {
     float sun_elevation_deg, sun_azimuth_deg; /* azimuth as φ: 0 = +Z, 90 = +X */
     float sun_irradiance;                     /* E of the sun disk at normal incidence */
