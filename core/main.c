@@ -108,7 +108,7 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
             const char *v = NEXT();
             if (!v) return 1;
             long t;
-            if (!parse_long(v, 1, 100000, &t)) { snprintf(err, n, "--turntable %s: expected a whole number of frames 1..100000", v); return 1; }
+            if (!sl_parse_long(v, 1, 100000, &t)) { snprintf(err, n, "--turntable %s: expected a whole number of frames 1..100000", v); return 1; }
             c->turntable = (int)t;
         }
         else if (!strcmp(a, "--stats")) { if (!(c->stats = NEXT())) return 1; }
