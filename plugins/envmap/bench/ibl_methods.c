@@ -9,7 +9,7 @@
  * Output: CSV on stdout, one row per (environment, material, α, method).
  * Usage: envmap_bench_methods [--size N] [--frames N] [--reference-frames N] [--env PATH|sky]...
  * (plugins/envmap/bench/methods.sh runs it and draws the charts). */
-#include <shadelab/harness.h>
+#include "ibl_sphere.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,44 +35,6 @@ static const char *methods[][2] = {
 };
 enum { NM = sizeof methods / sizeof *methods, NA = sizeof alphas / sizeof *alphas };
 
-static sl_harness *make(const char *env, const char *mat, int size, int accumulate, const char *const *extra) {
-    char json[4096], err[4096], envjson[1200];
-    char sun[64] = "";
-    if (!strncmp(env, "sky", 3)) { /* "sky" or "sky:E", E the sun's irradiance (0: no sun) */
-        snprintf(envjson, sizeof envjson, "{}");
-        if (env[3] == ':') snprintf(sun, sizeof sun, "envmap.sun_irradiance=%s", env + 4);
-    }
-    else snprintf(envjson, sizeof envjson, "{\"map\": \"%s\"}", env);
-    snprintf(json, sizeof json,
-             "{\"plugins\": [\"envmap\"],\n"
-             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3.1], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
-             " \"materials\": [{\"name\": \"m\", %s, \"alpha\": 0.2}],\n"
-             " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
-             " \"environment\": %s}",
-             mat, envjson);
-    const char *settings[16];
-    int n = 0;
-    settings[n++] = "envmap.background=false";
-    if (sun[0]) settings[n++] = sun;
-    for (const char *const *s = extra; s && *s; s++) settings[n++] = *s;
-    settings[n] = NULL;
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
-                                                          .scene_json = json, .settings = settings, .float32 = true,
-                                                          .strict = true, .accumulate = accumulate},
-                                      err, sizeof err);
-    if (!h) fprintf(stderr, "harness: %s\n", err);
-    return h;
-}
-static bool set(sl_harness *h, const char *text) {
-    char buf[256], err[512];
-    snprintf(buf, sizeof buf, "%s", text);
-    for (char *tok = strtok(buf, " "); tok; tok = strtok(NULL, " "))
-        if (!sl_harness_set(h, tok, err, sizeof err)) {
-            fprintf(stderr, "%s: %s\n", tok, err);
-            return false;
-        }
-    return true;
-}
 /* relative RMS and relative mean difference over the sphere's pixels (alpha channel of the reference
  * is not a coverage mask: the sphere is where the reference is non-zero, background off) */
 static void compare(const float *x, const float *ref, const unsigned char *mask, int n, double *rel_rms, double *rel_mean) {
@@ -115,12 +77,12 @@ int main(int argc, char **argv) {
             /* one harness at a time (one GL context per process): the references of every α,
              * the single-frame methods, then fis N = 32 accumulated as long as the reference */
             char buf[128];
-            sl_harness *h = make(envs[e], materials[m][1], size, ref_frames, NULL);
-            if (!h || !set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
+            sl_harness *h = ibl_sphere(envs[e], materials[m][1], size, ref_frames);
+            if (!h || !ibl_set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
             for (int a = 0; a < NA; a++) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
                 double t0 = now_ms();
-                if (!set(h, buf) || !sl_harness_render(h, ref + (size_t)a * n * 4)) return 1;
+                if (!ibl_set(h, buf) || !sl_harness_render(h, ref + (size_t)a * n * 4)) return 1;
                 printf("%s,%s,%.2f,reference,%.2f,0,0\n", envname, materials[m][0], alphas[a], (now_ms() - t0) / ref_frames);
                 for (int i = 0; i < n; i++) {
                     const float *r = ref + ((size_t)a * n + i) * 4;
@@ -128,13 +90,13 @@ int main(int argc, char **argv) {
                 }
             }
             sl_harness_destroy(h);
-            h = make(envs[e], materials[m][1], size, 1, NULL);
+            h = ibl_sphere(envs[e], materials[m][1], size, 1);
             if (!h) return 1;
             for (int a = 0; a < NA; a++) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
-                if (!set(h, buf)) return 1;
+                if (!ibl_set(h, buf)) return 1;
                 for (int k = 0; k < NM; k++) {
-                    if (!set(h, methods[k][1])) return 1;
+                    if (!ibl_set(h, methods[k][1])) return 1;
                     double best = 1e30;
                     sl_harness_render(h, img); /* compile, prefilter */
                     for (int f = 0; f < frames; f++) {
@@ -150,12 +112,12 @@ int main(int argc, char **argv) {
                 }
             }
             sl_harness_destroy(h);
-            h = make(envs[e], materials[m][1], size, ref_frames, NULL);
+            h = ibl_sphere(envs[e], materials[m][1], size, ref_frames);
             /* the highest setting: fis N = 32 and the convolved irradiance (SH is band-limited) */
-            if (!h || !set(h, "envmap.specular=fis envmap.fis_samples=32 envmap.irradiance=convolved")) return 1;
+            if (!h || !ibl_set(h, "envmap.specular=fis envmap.fis_samples=32 envmap.irradiance=convolved")) return 1;
             for (int a = 0; a < NA; a++) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
-                if (!set(h, buf) || !sl_harness_render(h, img)) return 1;
+                if (!ibl_set(h, buf) || !sl_harness_render(h, img)) return 1;
                 double rr, rm;
                 compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
                 printf("%s,%s,%.2f,fis32-accumulated,0,%.5f,%+.5f\n", envname, materials[m][0], alphas[a], rr, rm);

@@ -15,7 +15,7 @@
  * --sweep: instead of the terms, the whole sphere ("all") for each labelled group of settings
  * (applied after --set), against one reference per environment and material (bench/levels.sh).
  * (plugins/envmap/bench/terms.sh runs it.) */
-#include <shadelab/harness.h>
+#include "ibl_sphere.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,39 +29,6 @@ static const char *materials[3][2] = {
 static const double alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
 enum { NA = sizeof alphas / sizeof *alphas, NB = 3 };
 
-static sl_harness *make(const char *env, const char *mat, int size, int accumulate) {
-    char json[4096], err[4096], envjson[1200];
-    char sun[64] = "";
-    if (!strncmp(env, "sky", 3)) {
-        snprintf(envjson, sizeof envjson, "{}");
-        if (env[3] == ':') snprintf(sun, sizeof sun, "envmap.sun_irradiance=%s", env + 4);
-    }
-    else snprintf(envjson, sizeof envjson, "{\"map\": \"%s\"}", env);
-    snprintf(json, sizeof json,
-             "{\"plugins\": [\"envmap\"],\n"
-             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3.1], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
-             " \"materials\": [{\"name\": \"m\", %s, \"alpha\": 0.2}],\n"
-             " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
-             " \"environment\": %s}",
-             mat, envjson);
-    const char *settings[4] = {"envmap.background=false", sun[0] ? sun : NULL, NULL, NULL};
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
-                                                          .scene_json = json, .settings = settings, .float32 = true,
-                                                          .strict = true, .accumulate = accumulate},
-                                      err, sizeof err);
-    if (!h) fprintf(stderr, "harness: %s\n", err);
-    return h;
-}
-static bool set(sl_harness *h, const char *text) {
-    char buf[256], err[512];
-    snprintf(buf, sizeof buf, "%s", text);
-    for (char *tok = strtok(buf, " "); tok; tok = strtok(NULL, " "))
-        if (!sl_harness_set(h, tok, err, sizeof err)) {
-            fprintf(stderr, "%s: %s\n", tok, err);
-            return false;
-        }
-    return true;
-}
 /* μ = n·v of pixel i's sphere point (camera at (0, 0, 3.1) looking at the unit sphere, 40°), −1 off it */
 static double pixel_mu(int i, int size) {
     double t = tan(20 * M_PI / 180);
@@ -128,26 +95,26 @@ int main(int argc, char **argv) {
             if (only && strcmp(only, materials[m][0])) continue;
             bool lambert = m == 2;
             int na = lambert ? 1 : NA;
-            sl_harness *h = make(envs[e], materials[m][1], size, ref_frames);
-            if (!h || !set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
+            sl_harness *h = ibl_sphere(envs[e], materials[m][1], size, ref_frames);
+            if (!h || !ibl_set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
             for (int a = 0; a < na; a++) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
-                if (!set(h, buf) || !sl_harness_render(h, refF + a * img)) return 1;
+                if (!ibl_set(h, buf) || !sl_harness_render(h, refF + a * img)) return 1;
                 if (m == 0) memset(refD + a * img, 0, img * 4); /* metal: no diffuse */
-                else if (!lambert && (!set(h, "ggx.zero_specular=true") || !sl_harness_render(h, refD + a * img) ||
-                                      !set(h, "ggx.zero_specular=false")))
+                else if (!lambert && (!ibl_set(h, "ggx.zero_specular=true") || !sl_harness_render(h, refD + a * img) ||
+                                      !ibl_set(h, "ggx.zero_specular=false")))
                     return 1;
             }
             sl_harness_destroy(h);
             for (int i = 0; i < n; i++) mask[i] = refF[i * 4] + refF[i * 4 + 1] + refF[i * 4 + 2] > 0 && pixel_mu(i, size) > 0;
-            h = make(envs[e], materials[m][1], size, 1);
+            h = ibl_sphere(envs[e], materials[m][1], size, 1);
             snprintf(buf, sizeof buf, "envmap.specular=%s %s", spec, extra);
-            if (!h || !set(h, buf)) return 1;
+            if (!h || !ibl_set(h, buf)) return 1;
             if (lambert) {
                 const char *irr[2] = {"sh", "convolved"};
                 for (int k = 0; k < 2; k++) {
                     snprintf(buf, sizeof buf, "envmap.irradiance=%s", irr[k]);
-                    if (!set(h, buf) || !sl_harness_render(h, x)) return 1;
+                    if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
                     row(envname, "lambert", 0, "irradiance", irr[k], x, NULL, refF, NULL, mask, size);
                 }
             }
@@ -158,20 +125,20 @@ int main(int argc, char **argv) {
                 if (next) *next++ = 0;
                 else next = item + strlen(item);
                 char *eq = strchr(item, '=');
-                if (!eq || !set(h, eq + 1)) return 1;
+                if (!eq || !ibl_set(h, eq + 1)) return 1;
                 *eq = 0;
                 for (int a = 0; a < na; a++) {
                     snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
-                    if (!set(h, buf) || !sl_harness_render(h, x)) return 1;
+                    if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
                     row(envname, materials[m][0], alphas[a], "all", item, x, NULL, refF + a * img, NULL, mask, size);
                 }
             }
             for (int a = 0; a < na && !lambert && !sweep; a++) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
-                if (!set(h, buf) || !sl_harness_render(h, x)) return 1;
+                if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
                 row(envname, materials[m][0], alphas[a], "all", spec, x, NULL, refF + a * img, NULL, mask, size);
                 if (m == 0) continue; /* metal: all specular */
-                if (!set(h, "ggx.zero_specular=true") || !sl_harness_render(h, xd) || !set(h, "ggx.zero_specular=false")) return 1;
+                if (!ibl_set(h, "ggx.zero_specular=true") || !sl_harness_render(h, xd) || !ibl_set(h, "ggx.zero_specular=false")) return 1;
                 row(envname, materials[m][0], alphas[a], "diffuse", spec, xd, NULL, refD + a * img, NULL, mask, size);
                 row(envname, materials[m][0], alphas[a], "specular", spec, x, xd, refF + a * img, refD + a * img, mask, size);
             }

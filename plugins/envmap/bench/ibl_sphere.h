@@ -1,0 +1,46 @@
+/* The envmap benches' shared scene (ibl_methods.c, ibl_terms.c): one GGX or Lambert unit sphere
+ * seen from (0, 0, 3.1) with a 40° lens, lit only by the environment `env` ("sky", "sky:E" with
+ * E the procedural sun's irradiance, or an image path), background off, float32 read-back. */
+#ifndef ENVMAP_BENCH_IBL_SPHERE_H
+#define ENVMAP_BENCH_IBL_SPHERE_H
+#include <shadelab/harness.h>
+#include <stdio.h>
+#include <string.h>
+
+/* `mat`: the material's JSON keys */
+static sl_harness *ibl_sphere(const char *env, const char *mat, int size, int accumulate) {
+    char json[4096], err[4096], envjson[1200];
+    char sun[64] = "";
+    if (!strncmp(env, "sky", 3)) {
+        snprintf(envjson, sizeof envjson, "{}");
+        if (env[3] == ':') snprintf(sun, sizeof sun, "envmap.sun_irradiance=%s", env + 4);
+    }
+    else snprintf(envjson, sizeof envjson, "{\"map\": \"%s\"}", env);
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"envmap\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3.1], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
+             " \"materials\": [{\"name\": \"m\", %s, \"alpha\": 0.2}],\n"
+             " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
+             " \"environment\": %s}",
+             mat, envjson);
+    const char *settings[] = {"envmap.background=false", sun[0] ? sun : NULL, NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
+                                                          .scene_json = json, .settings = settings, .float32 = true,
+                                                          .strict = true, .accumulate = accumulate},
+                                      err, sizeof err);
+    if (!h) fprintf(stderr, "harness: %s\n", err);
+    return h;
+}
+
+/* applies space-separated "id=value" settings; false (with the message on stderr) at the first refused */
+static bool ibl_set(sl_harness *h, const char *text) {
+    char buf[256], err[512];
+    snprintf(buf, sizeof buf, "%s", text);
+    for (char *tok = strtok(buf, " "); tok; tok = strtok(NULL, " "))
+        if (!sl_harness_set(h, tok, err, sizeof err)) {
+            fprintf(stderr, "%s: %s\n", tok, err);
+            return false;
+        }
+    return true;
+}
+#endif
