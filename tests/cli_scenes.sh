@@ -4,16 +4,8 @@
 set -u
 exe=$1 scenes=$2 out=$3
 mkdir -p "$out"
-fail=0 pass=0
-check() { if "$@"; then pass=$((pass+1)); else echo "FAILED: $*"; fail=$((fail+1)); fi; }
-expect_error() { # expect_error FRAGMENT ARGS...
-    local frag=$1; shift
-    local msg
-    msg=$("$exe" --headless --size 16x16 --output "$out/err.png" "$@" 2>&1)
-    local rc=$?
-    if [ $rc -ne 0 ] && grep -qF -- "$frag" <<<"$msg"; then pass=$((pass+1)); else
-        echo "FAILED: '$*' gave rc=$rc: $msg (expected '$frag')"; fail=$((fail+1)); fi
-}
+. "$(dirname "$0")/cli_check.sh"
+expect_error_args=(--output "$out/err.png")
 
 check "$exe" --headless --size 64x48 --output "$out/default.png"
 check test -s "$out/default.png"

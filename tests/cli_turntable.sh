@@ -9,16 +9,7 @@
 set -u
 exe=$1 imgdiff=$2 out=$3
 mkdir -p "$out"
-fail=0 pass=0
-check() { if "$@"; then pass=$((pass+1)); else echo "FAILED: $*"; fail=$((fail+1)); fi; }
-expect_error() { # expect_error FRAGMENT ARGS...
-    local frag=$1; shift
-    local msg
-    msg=$("$exe" --headless --size 16x16 "$@" 2>&1)
-    local rc=$?
-    if [ $rc -ne 0 ] && grep -qF -- "$frag" <<<"$msg"; then pass=$((pass+1)); else
-        echo "FAILED: '$*' gave rc=$rc: $msg (expected '$frag')"; fail=$((fail+1)); fi
-}
+. "$(dirname "$0")/cli_check.sh"
 # tone mapping's dither is noise that changes with the frame index (within one 8-bit code
 # value): off here, so that equal cameras give equal images
 size="64x36 --set tonemap.dither=false"
