@@ -27,6 +27,19 @@ bool sl_plugin_available(const char *id) {
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
+/* The entries of plugin directory `path` (not hidden, names shorter than 64), sorted: the same
+ * order, so the same choices, on every machine. Returns the count; the caller frees each name. */
+static int sorted_entries(const char *path, char *names[256]) {
+    DIR *dir = opendir(path);
+    if (!dir) return 0;
+    int count = 0;
+    for (struct dirent *e; (e = readdir(dir)) && count < 256;)
+        if (e->d_name[0] != '.' && strlen(e->d_name) < 64) names[count++] = strdup(e->d_name);
+    closedir(dir);
+    qsort(names, count, sizeof *names, cmp_str);
+    return count;
+}
+
 /* Does the descriptor of the plugin file declare `input`? The library is opened lazily and
  * closed again: nothing of it runs but its entry function. */
 static bool declares(const char *path, const char *input) {
@@ -58,14 +71,8 @@ int sl_plugin_defaults(unsigned bits, char ids[][64], int max) {
     char dirs[16][1024];
     int nd = sl_plugin_search_dirs(dirs, 16), found = 0;
     for (int i = 0; i < nd; i++) {
-        DIR *dir = opendir(dirs[i]);
-        if (!dir) continue;
         char *names[256];
-        int count = 0;
-        for (struct dirent *e; (e = readdir(dir)) && count < 256;)
-            if (e->d_name[0] != '.' && strlen(e->d_name) < 64) names[count++] = strdup(e->d_name);
-        closedir(dir);
-        qsort(names, count, sizeof *names, cmp_str); /* the same order on every machine */
+        int count = sorted_entries(dirs[i], names);
         for (int k = 0; k < count; k++) {
             char path[2200];
             bool seen = false; /* an id found in an earlier directory wins */
@@ -83,14 +90,8 @@ bool sl_plugin_for_input(const char *input, char *id, size_t n) {
     char dirs[16][1024];
     int nd = sl_plugin_search_dirs(dirs, 16);
     for (int i = 0; i < nd; i++) {
-        DIR *dir = opendir(dirs[i]);
-        if (!dir) continue;
         char *names[256];
-        int count = 0;
-        for (struct dirent *e; (e = readdir(dir)) && count < 256;)
-            if (e->d_name[0] != '.') names[count++] = strdup(e->d_name);
-        closedir(dir);
-        qsort(names, count, sizeof *names, cmp_str); /* the same choice on every machine */
+        int count = sorted_entries(dirs[i], names);
         bool found = false;
         for (int k = 0; k < count; k++) {
             char path[2200];
