@@ -97,6 +97,14 @@ typedef struct sl_node {
  * 12 per triangle on the CPU, the same again on the GPU. 10 M triangles import in well under a
  * minute (tools/import/bench_import.sh). */
 #define SL_IMPORT_MAX_TRIANGLES 32000000
+/* The project's OBJ reader (core/scene/obj_reader.c) refuses, naming the file and line: a logical
+ * line ("\\" continuations joined) over SL_OBJ_MAX_LINE bytes, a file over SL_OBJ_MAX_FILE_BYTES,
+ * more than SL_OBJ_MAX_ELEMENTS "v", "vt" or "vn" lines (each), more than SL_IMPORT_MAX_TRIANGLES
+ * triangles, more than 2^26 distinct vertices in one mesh. Its memory is the output meshes, the
+ * file's v/vt/vn lists and one vertex hash table (8 bytes per 2 vertices of the mesh being read). */
+#define SL_OBJ_MAX_LINE (1u << 20)
+#define SL_OBJ_MAX_FILE_BYTES (4ull << 30)
+#define SL_OBJ_MAX_ELEMENTS (1u << 26)
 #define SL_SCENE_WARN_EXTENT 1e5
 
 typedef enum sl_light_animation { SL_ANIMATE_NONE, SL_ANIMATE_ORBIT, SL_ANIMATE_WOBBLE } sl_light_animation;
@@ -209,7 +217,7 @@ typedef struct sl_scene_load_opts {
 /* Loads a JSON scene file (format: scenes/README.md). On failure returns false and writes a
  * message naming the file, line and column and the cause into err. Warnings (unknown keys with
  * the nearest valid key) go to stderr through sl_log. Meshes referenced by file go through
- * assimp. On success *scene is overwritten (it must not hold a scene: free it first or pass a
+ * sl_scene_import_file. On success *scene is overwritten (it must not hold a scene: free it first or pass a
  * zeroed one); on failure *scene is left untouched, so a viewer can keep the scene it has.
  * opts may be NULL; a NULL data_dir falls back to the SHADELAB_DATA environment variable. */
 bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_opts *opts,
@@ -244,12 +252,17 @@ bool sl_mesh_torus(sl_mesh_data *m, float major_radius, float minor_radius, int 
 /* The Utah teapot from Newell's 32 bicubic Bezier patches, tessellated per patch
  * (tessellation² quads each), Y up, standing on y = 0, height `size`. */
 bool sl_mesh_teapot(sl_mesh_data *m, float size, int tessellation);
-/* Loads every mesh in a glTF/OBJ/… file through assimp, appending meshes, materials, lights
- * and cameras to the scene under a new node, child of parent_node (−1: a root). path is used
+/* Loads every mesh in a glTF/OBJ/… file, appending meshes, materials, lights and cameras to the
+ * scene under a new node, child of parent_node (−1: a root): a file named *.obj through the
+ * project's own OBJ reader (sl_scene_import_obj), everything else through assimp. path is used
  * as given (resolve it first). Needs the parent's world matrix (sl_scene_update_transforms)
  * to place lights and cameras. On failure err says why ("path: assimp could not import it:
  * …") and the scene may hold part of the file (a loader then discards the whole scene). */
 bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
+/* The two readers behind it, the same contract (tests compare them on the same OBJ files): the
+ * project's streaming OBJ reader (errors "path:line: cause"), and assimp for any format. */
+bool sl_scene_import_obj(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
+bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
 /* A model file (glTF, GLB, OBJ… anything assimp reads) as a whole scene: one root node named
  * after the file holding its contents, from_model set (the app adds a default environment and
  * tone mapping and frames the camera). sl_scene_load_file calls it when the file's content is
