@@ -55,7 +55,7 @@
 typedef struct line_reader {
     const char *path;
     int fd;
-    char *buf;           /* OBJ_CHUNK + SL_OBJ_MAX_LINE bytes */
+    char *buf;           /* OBJ_CHUNK + SL_OBJ_MAX_LINE bytes (a small file: its size + 8 KiB) */
     size_t cap, start, end;
     bool eof;
     unsigned long long read_bytes, max_bytes;
@@ -104,6 +104,12 @@ static int physical_line(line_reader *r, char **out, size_t *len) {
         }
         memmove(r->buf, s, avail);
         r->start = 0, r->end = avail;
+        if (r->cap - 1 - r->end < 4096 && r->cap < OBJ_CHUNK + SL_OBJ_MAX_LINE + 2) {
+            /* sized for a small file, which is longer than it said: the full buffer */
+            char *b = realloc(r->buf, OBJ_CHUNK + SL_OBJ_MAX_LINE + 2);
+            if (!b) return reader_fail(r, "out of memory"), -1;
+            r->buf = b, r->cap = OBJ_CHUNK + SL_OBJ_MAX_LINE + 2;
+        }
         size_t room = r->cap - 1 - r->end;
         ssize_t got;
         do got = read(r->fd, r->buf + r->end, room);
@@ -127,6 +133,7 @@ static int next_line(line_reader *r, char **out, size_t *len) {
         return got;
     }
     r->joined_len = 0;
+    if (!r->joined && !(r->joined = malloc(SL_OBJ_MAX_LINE + 2))) return reader_fail(r, "out of memory"), -1;
     for (;;) {
         bool more = n && s[n - 1] == '\\';
         if (more) s[n - 1] = ' ';
@@ -154,7 +161,8 @@ static bool reader_open(line_reader *r, const char *path, unsigned long long max
         return false;
     }
     struct stat st;
-    if (fstat(r->fd, &st) == 0 && (unsigned long long)st.st_size > max_bytes) {
+    bool known = fstat(r->fd, &st) == 0;
+    if (known && (unsigned long long)st.st_size > max_bytes) {
         if (err && err_size)
             snprintf(err, err_size, "%s: %llu bytes, over the limit of %llu bytes for this kind of file: refused", path,
                      (unsigned long long)st.st_size, max_bytes);
@@ -162,10 +170,11 @@ static bool reader_open(line_reader *r, const char *path, unsigned long long max
         r->fd = -1;
         return false;
     }
+    /* a small file gets a buffer its size (it grows to the full one if the file does) */
     r->cap = OBJ_CHUNK + SL_OBJ_MAX_LINE + 2;
+    if (known && (unsigned long long)st.st_size + 8192 < r->cap) r->cap = (size_t)st.st_size + 8192;
     r->buf = malloc(r->cap);
-    r->joined = malloc(SL_OBJ_MAX_LINE + 2);
-    if (!r->buf || !r->joined) {
+    if (!r->buf) {
         if (err && err_size) snprintf(err, err_size, "%s: out of memory", path);
         free(r->buf), free(r->joined), close(r->fd);
         r->buf = r->joined = NULL, r->fd = -1;
@@ -886,6 +895,11 @@ static bool build_scene(obj_state *s, int parent) {
             if (mi < 0 || !sl_scene_node_add_mesh(sc, node, mi)) return oom(s);
         }
     }
+    if (sc->mesh_count == first_mesh) {
+        if (s->err && s->err_size)
+            snprintf(s->err, s->err_size, "%s: no mesh left to draw: in every mesh all vertices are one point", s->path);
+        return false;
+    }
     return true;
 }
 
@@ -933,14 +947,13 @@ static bool read_statement(obj_state *s, char *line) {
     if (KW("usemtl")) {
         char *name = rest_of_line(p);
         if (!name) return oom(s);
-        if (!*name) free(name), name = NULL; /* "usemtl" alone: assimp's DefaultMaterial */
-        if (same(name, s->material)) return free(name), true;
+        if (!*name || same(name, s->material)) return free(name), true; /* "usemtl" alone: ignored, as assimp does */
         free(s->material);
         s->material = name;
         if (s->open_mesh >= 0) { /* a run of faces ends: the next mesh is named after the material */
             if (!close_mesh(s)) return false;
             free(s->next_mesh_name);
-            if (!(s->next_mesh_name = strdup(name ? name : "DefaultMaterial"))) return oom(s);
+            if (!(s->next_mesh_name = strdup(name))) return oom(s);
         }
         return true;
     }
