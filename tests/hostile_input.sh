@@ -9,9 +9,9 @@
 # Also: coordinates beyond float32's useful range (a node at 1e38, an OBJ vertex at 1e38) and a
 # node matrix that collapses it (all zero), and shadelab-bench --reference-scale 1000.
 # Files a model reader opens itself: a glTF whose buffer or image is a FIFO or a device, an OBJ whose
-# mtllib is a FIFO. OBJ through the project's reader: a huge, a negative out-of-range index, a NaN
-# and a missing coordinate, binary data, an over-long line (each "file:line: cause"); a 5000-gon
-# continued over lines loads and renders. shadelab-cube (given): special files as IN (/dev/zero,
+# mtllib is a FIFO. OBJ through the project's reader: a huge index, a NaN, binary data (each
+# "file:line: cause"; test_obj_reader has the rest of the family); a 5000-gon continued over
+# lines loads and renders. shadelab-cube (given): special files as IN (/dev/zero,
 # a symlink to /dev/random, a FIFO, a directory), procedural specs the core refuses (checker:0, negative
 # colours, sky with nan/inf fields) and bad numbers (--size -5, --lod-bias nan, --samples 2abc).
 #      usage: hostile_input.sh SHADELAB [SHADELAB-BENCH [SHADELAB-CUBE]]
@@ -103,22 +103,16 @@ grep -qF "image_fifo.gltf: material 'image_fifo/material0' (base_color_map): tex
 # OBJ files through the project's own reader (core/scene/obj_reader.c): file:line: cause
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n' > huge_index.obj
 printf 'v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n' > nan_vertex.obj
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n' > neg_index.obj
-printf 'v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n' > short_vertex.obj
 printf 'v 0 0 0\n\x7fELF\x02\x01\x01\x00\x00garbage\n' > binary.obj
-{ printf '#'; head -c 1100000 /dev/zero | tr '\0' x; printf '\nv 0 0 0\n'; } > long_line.obj
 # a 5000-gon (fan-triangulated), its face continued over lines with "\", a material from the MTL
 awk 'BEGIN { print "mtllib fan.mtl"; for (i = 0; i < 5000; i++) printf "v %.6f %.6f 0\n", cos(6.2831853 * i / 5000), sin(6.2831853 * i / 5000);
              print "usemtl red"; printf "f"; for (i = 1; i <= 5000; i++) printf " %d%s", i, (i % 1000 == 0 && i < 5000) ? " \\\n" : ""; print "" }' > fan.obj
 printf 'newmtl red\nKd 1 0 0\n' > fan.mtl
 run obj_huge_index   fail "huge_index.obj:4: face: vertex index beyond 2^31" --scene huge_index.obj --output keep.png
 run obj_nan_vertex   fail "nan_vertex.obj:2: 'v': nan is not a finite float" --scene nan_vertex.obj --output keep.png
-run obj_neg_index    fail "neg_index.obj:4: face: vertex index -7 reaches before the first" --scene neg_index.obj --output keep.png
-run obj_short_vertex fail "short_vertex.obj:2: 'v' has 2 of its 3 coordinates" --scene short_vertex.obj --output keep.png
 run obj_binary       fail "binary.obj:2: binary data (a NUL byte)" --scene binary.obj --output keep.png
-run obj_long_line    fail "long_line.obj:1: line longer than 1048576 bytes" --scene long_line.obj --output keep.png
 run obj_fan          any  "wrote fan.png" --scene fan.obj --output fan.png
-grep -q "error" fan.log && fail "obj_fan: an error loading a 5000-gon"
+grep -qi "error" obj_fan.log && fail "obj_fan: an error loading a 5000-gon"
 if [ -n "$CUBE" ]; then
   printf 'previous output' > keep.exr
   ln -s /dev/random random_link.exr
