@@ -263,7 +263,7 @@ bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, ch
  * project's streaming OBJ reader (errors "path:line: cause"), and assimp for any format. */
 bool sl_scene_import_obj(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
 bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
-/* A model file (glTF, GLB, OBJ… anything assimp reads) as a whole scene: one root node named
+/* A model file (glTF, GLB, OBJ… anything sl_scene_import_file reads) as a whole scene: one root node named
  * after the file holding its contents, from_model set (the app adds a default environment and
  * tone mapping and frames the camera). sl_scene_load_file calls it when the file's content is
  * not a shadelab scene. On failure *scene is untouched. */

@@ -695,7 +695,7 @@ bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t er
 
 
 /* OBJ by name goes to the project's own reader (core/scene/obj_reader.c: streamed, bounded,
- * linear; assimp's took 738 s and 5.9 GB for 10 M triangles). */
+ * linear; assimp's took 330-740 s and 5.8 GB for 10 M triangles, the reader 33 s and 0.5 GB). */
 bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
     const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
     if (dot && (!slash || dot > slash) && !strcasecmp(dot, ".obj"))
