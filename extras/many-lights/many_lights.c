@@ -21,7 +21,7 @@ enum { ML_BRUTE, ML_DEFERRED, ML_TILED, ML_CLUSTERED };
 
 typedef struct ml {
     const sl_host *host;
-    unsigned buf[3];         /* r2, cells, index */
+    unsigned buf[3];         /* list spheres, cells, index */
     unsigned vao;            /* empty: the deferred pass's own full-screen triangle */
     sl_program *copy;
     int unit_prepass, unit_g[4], unit_color;
@@ -29,15 +29,19 @@ typedef struct ml {
     bool in_deferred;        /* inside the deferred lighting pass */
     bool prepass_ok;         /* the froxel pre-pass ran this frame */
     /* per frame */
-    int n, nglobal;
+    int n, nglobal, nranged, all_cell;
     float *r2;
+    float (*wpos)[3];        /* world positions (the per-pixel range test's centres) */
     uint32_t *global;
-    float (*vpos)[3];        /* view-space centres (x, y, d) */
+    float (*vpos)[3];        /* view-space centres (x, y, d) of the range spheres */
+    float (*cull)[4];        /* view-space sphere (x, y, d, radius) culled against cells: the range
+                                sphere, or for a spot the bounding sphere of its lit cone sector */
     int gx, gy, gz, tile;
     float near_d, slope;
     uint32_t *cells;         /* 2 per cell */
     uint32_t *pairs; size_t pair_count, pair_cap; /* (cell, light) hits */
     uint32_t *index; size_t index_cap;
+    float (*sph)[4]; size_t sph_cap;  /* per index entry: (world position, range²) */
     float *depth; size_t depth_cap;
     uint64_t frame_index;
 } ml;
@@ -61,6 +65,9 @@ static const sl_param_desc params[] = {
       .unit = "px", .group = "many-lights", .description = "clustered: froxel footprint in pixels."),
     P(.id = "cluster_slices", .type = SL_PARAM_INT, .default_value = {.i = 24}, .min = 1, .max = 128, .step = 1,
       .group = "many-lights", .description = "clustered: depth slices, exponential in view distance."),
+    P(.id = "spot_cone", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "many-lights",
+      .description = "tiled, clustered: a spot is listed only in cells that also meet the bounding sphere of its "
+                     "lit cone sector (off: its range sphere only). The image is the same either way."),
     P(.id = "prepass", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "many-lights",
       .description = "clustered: depth pre-pass; fragments behind it skip their light loop."),
 };
@@ -97,18 +104,34 @@ static void prepare_lights(ml *m, const sl_frame *f) {
     m->r2 = realloc(m->r2, (n ? n : 1) * sizeof *m->r2);
     m->global = realloc(m->global, (n ? n : 1) * sizeof *m->global);
     m->vpos = realloc(m->vpos, (n ? n : 1) * sizeof *m->vpos);
+    m->wpos = realloc(m->wpos, (n ? n : 1) * sizeof *m->wpos);
+    m->cull = realloc(m->cull, (n ? n : 1) * sizeof *m->cull);
     for (int i = 0; i < n; i++) m->r2[i] = -1;
     ml_view v = view_of(f);
+    bool cone = m->host->get_param(m->host, ML_ID ".spot_cone").b;
     for (int i = 0; i < count; i++) {
         if (!L[i].enabled || L[i].index < 0) continue;
-        bool ranged = eps > 0 && (!strcmp(L[i].type, "point") || !strcmp(L[i].type, "spot"));
+        int j = L[i].index;
+        bool spot = !strcmp(L[i].type, "spot"), ranged = eps > 0 && (spot || !strcmp(L[i].type, "point"));
         float r = ranged ? ml_range(L[i].color, eps) : -1;
-        m->r2[L[i].index] = ranged ? r * r : -1;
-        ml_to_view(&v, L[i].position, m->vpos[L[i].index]);
+        m->r2[j] = ranged ? r * r : -1;
+        memcpy(m->wpos[j], L[i].position, sizeof m->wpos[j]);
+        ml_to_view(&v, L[i].position, m->vpos[j]);
+        memcpy(m->cull[j], m->vpos[j], sizeof m->vpos[j]);
+        m->cull[j][3] = r;
+        float c[3], R;
+        /* a spot lights nothing beyond the reach of its fall-off (docs: sdk conventions, "Spot
+         * lights"; packed keys params[0] = cone_angle°, inner°, falloff 0 linear / 1 gltf) */
+        if (ranged && cone && spot && ml_spot_sphere(L[i].position, L[i].direction, r,
+                                                     ml_spot_reach(L[i].params[0], L[i].params[2]), c, &R)) {
+            ml_to_view(&v, c, m->cull[j]);
+            m->cull[j][3] = R;
+        }
     }
-    m->nglobal = 0;
+    m->nglobal = m->nranged = 0;
     for (int i = 0; i < n; i++)
         if (m->r2[i] < 0) m->global[m->nglobal++] = (uint32_t)i;
+        else m->nranged++;
 }
 
 static void add_pair(ml *m, uint32_t cell, uint32_t light) {
@@ -126,20 +149,53 @@ static int slice_of(const ml *m, float d) {
     return k < 0 ? 0 : k >= m->gz ? m->gz - 1 : k;
 }
 
+/* Index and sphere arrays: [lights without range | the cells' lists | every ranged light (cell
+ * all_cell = ncell)], in ascending light order within each list (a counting sort of the
+ * (cell, light) hits, found light by light), each entry with its light's (world position,
+ * range²) beside it so that the shader's per-entry range test reads one vec4 (many_lights.glsl).
+ * Brute force and deferred have no cells (ncell = 0): their one list is every ranged light. */
+static void finish_lists(ml *m, int ncell) {
+    m->cells = realloc(m->cells, 2 * ((size_t)ncell + 1) * sizeof *m->cells);
+    memset(m->cells, 0, 2 * ((size_t)ncell + 1) * sizeof *m->cells);
+    for (size_t p = 0; p < m->pair_count; p++) m->cells[2 * m->pairs[2 * p] + 1]++;
+    m->cells[2 * ncell + 1] = (uint32_t)m->nranged;
+    uint32_t at = (uint32_t)m->nglobal;
+    for (int c = 0; c <= ncell; c++) m->cells[2 * c] = at, at += m->cells[2 * c + 1];
+    if (at > m->index_cap) m->index_cap = at, m->index = realloc(m->index, at * sizeof *m->index);
+    if (at > m->sph_cap) m->sph_cap = at, m->sph = realloc(m->sph, at * sizeof *m->sph);
+    memcpy(m->index, m->global, m->nglobal * sizeof *m->index);
+    uint32_t *fill = calloc((size_t)ncell + 1, sizeof *fill);
+    for (size_t p = 0; p < m->pair_count; p++) {
+        uint32_t c = m->pairs[2 * p];
+        m->index[m->cells[2 * c] + fill[c]++] = m->pairs[2 * p + 1];
+    }
+    for (int i = 0; i < m->n; i++)
+        if (m->r2[i] >= 0) m->index[m->cells[2 * ncell] + fill[ncell]++] = (uint32_t)i;
+    free(fill);
+    for (uint32_t k = 0; k < at; k++) {
+        uint32_t i = m->index[k];
+        m->sph[k][0] = m->wpos[i][0], m->sph[k][1] = m->wpos[i][1], m->sph[k][2] = m->wpos[i][2];
+        m->sph[k][3] = m->r2[i];
+    }
+    m->all_cell = ncell;
+    upload(m->buf[0], m->sph, at * sizeof *m->sph);
+    upload(m->buf[1], m->cells, 2 * ((size_t)ncell + 1) * sizeof *m->cells);
+    upload(m->buf[2], m->index, at * sizeof *m->index);
+}
+
 /* Light lists per cell: froxels (dmin = NULL) or tiles with depth bounds dmin/dmax per tile
- * (dmin > dmax: empty tile). Lists come out in ascending light order (counting sort of the hits,
- * found light by light). */
+ * (dmin > dmax: empty tile). A light is listed in a cell whose view-space box meets both its
+ * range sphere and its culling sphere (a spot's cone sector bound, prepare_lights). */
 static void build_cells(ml *m, const ml_view *v, float far_d, const float *dmin, const float *dmax) {
-    int ncell = m->gx * m->gy * m->gz, T = m->tile;
-    m->cells = realloc(m->cells, 2 * (size_t)ncell * sizeof *m->cells);
+    int T = m->tile;
     m->pair_count = 0;
     for (int i = 0; i < m->n; i++) {
         if (m->r2[i] < 0) continue;
-        const float *c = m->vpos[i];
-        float r = sqrtf(m->r2[i]);
+        const float *c = m->vpos[i], *q = m->cull[i];
+        float r = sqrtf(m->r2[i]), R = q[3];
         int tx0 = 0, tx1 = m->gx - 1, ty0 = 0, ty1 = m->gy - 1;
         float x0, x1, y0, y1;
-        if (ml_sphere_rect(v, c, r, 1e-4f, &x0, &x1, &y0, &y1)) {
+        if (ml_sphere_rect(v, q, R, 1e-4f, &x0, &x1, &y0, &y1)) {
             if (x1 < 0 || y1 < 0 || x0 > v->width || y0 > v->height) continue;
             tx0 = x0 < 0 ? 0 : (int)(x0 / T), tx1 = (int)(x1 / T);
             ty0 = y0 < 0 ? 0 : (int)(y0 / T), ty1 = (int)(y1 / T);
@@ -148,8 +204,8 @@ static void build_cells(ml *m, const ml_view *v, float far_d, const float *dmin,
         }
         int k0 = 0, k1 = m->gz - 1;
         if (!dmin) {
-            if (c[2] + r < 0) continue; /* wholly behind the camera */
-            k0 = slice_of(m, c[2] - r), k1 = slice_of(m, c[2] + r);
+            if (q[2] + R < 0) continue; /* wholly behind the camera */
+            k0 = slice_of(m, q[2] - R), k1 = slice_of(m, q[2] + R);
         }
         for (int k = k0; k <= k1; k++) {
             float d0 = 0, d1 = far_d;
@@ -168,25 +224,11 @@ static void build_cells(ml *m, const ml_view *v, float far_d, const float *dmin,
                     float px1 = (tx + 1) * T > v->width ? v->width : (tx + 1) * T;
                     float py1 = (ty + 1) * T > v->height ? v->height : (ty + 1) * T;
                     ml_cell_box(v, (float)(tx * T), px1, (float)(ty * T), py1, d0, d1, lo, hi);
-                    if (ml_sphere_box(c, r, lo, hi)) add_pair(m, (uint32_t)cell, (uint32_t)i);
+                    if (ml_sphere_box(q, R, lo, hi) && ml_sphere_box(c, r, lo, hi)) add_pair(m, (uint32_t)cell, (uint32_t)i);
                 }
         }
     }
-    /* counting sort by cell (stable: light order kept) behind the lights without range */
-    memset(m->cells, 0, 2 * (size_t)ncell * sizeof *m->cells);
-    for (size_t p = 0; p < m->pair_count; p++) m->cells[2 * m->pairs[2 * p] + 1]++;
-    uint32_t at = (uint32_t)m->nglobal;
-    for (int c = 0; c < ncell; c++) m->cells[2 * c] = at, at += m->cells[2 * c + 1];
-    if (at > m->index_cap) m->index_cap = at, m->index = realloc(m->index, at * sizeof *m->index);
-    memcpy(m->index, m->global, m->nglobal * sizeof *m->index);
-    uint32_t *fill = calloc(ncell ? ncell : 1, sizeof *fill);
-    for (size_t p = 0; p < m->pair_count; p++) {
-        uint32_t c = m->pairs[2 * p];
-        m->index[m->cells[2 * c] + fill[c]++] = m->pairs[2 * p + 1];
-    }
-    free(fill);
-    upload(m->buf[1], m->cells, 2 * (size_t)ncell * sizeof *m->cells);
-    upload(m->buf[2], m->index, at * sizeof *m->index);
+    finish_lists(m, m->gx * m->gy * m->gz);
 }
 
 /* view distance range of the scene bounds: the froxels' near and far */
@@ -207,13 +249,11 @@ static void ml_begin_frame(void *user, const sl_frame *f) {
     ml *m = user;
     m->prepass_ok = false;
     prepare_lights(m, f);
-    upload(m->buf[0], m->r2, m->n * sizeof *m->r2);
     int method = method_of(m);
-    if (method == ML_BRUTE || method == ML_DEFERRED) { /* no lists: only the lights without range */
+    if (method == ML_BRUTE || method == ML_DEFERRED) { /* no cells: the one list of every ranged light */
         m->gx = m->gy = m->gz = 1, m->tile = 1 << 20;
-        uint32_t cell[2] = {(uint32_t)m->nglobal, 0};
-        upload(m->buf[1], cell, sizeof cell);
-        upload(m->buf[2], m->global, m->nglobal * sizeof *m->global);
+        m->pair_count = 0;
+        finish_lists(m, 0);
     }
 }
 
@@ -340,7 +380,7 @@ static void ml_bind(void *user, unsigned prog, int material, const sl_frame *f) 
     if (method == ML_DEFERRED || method == ML_TILED) mode = m->in_deferred ? (method == ML_TILED ? 3 : 1) : 0;
     glUniform1i(glGetUniformLocation(prog, "many_lights_mode"), mode);
     glUniform1i(glGetUniformLocation(prog, "many_lights_global"), m->nglobal);
-    glUniform1i(glGetUniformLocation(prog, "many_lights_count"), m->n);
+    glUniform1i(glGetUniformLocation(prog, "many_lights_all"), m->all_cell);
     glUniform2i(glGetUniformLocation(prog, "many_lights_grid"), m->gx, m->gy);
     glUniform2i(glGetUniformLocation(prog, "many_lights_grid_zt"), m->gz, m->tile);
     glUniform2f(glGetUniformLocation(prog, "many_lights_slices"), m->near_d, m->slope);
@@ -434,7 +474,8 @@ static void ml_deactivate(void *user) {
 static void ml_destroy(void *user) {
     ml *m = user;
     if (!m) return;
-    free(m->r2), free(m->global), free(m->vpos), free(m->cells), free(m->pairs), free(m->index), free(m->depth);
+    free(m->r2), free(m->global), free(m->vpos), free(m->wpos), free(m->cull), free(m->cells), free(m->pairs);
+    free(m->index), free(m->sph), free(m->depth);
     free(m);
 }
 

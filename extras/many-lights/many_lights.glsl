@@ -1,18 +1,20 @@
 // many-lights: the light loop of the forward programs (LIGHT_LOOP hook, ABI 1.7) and the
 // "many-lights-count" debug view. The lights stay in the core's storage buffer sl_lights; this
-// plugin adds three (bindings 3-5) filled by its C side every frame (ml_cull.h):
-//   many_lights_r2[i]     range² of light i (ε cut-off, README "Range"); < 0: no range (directional,
-//                         area and other types: always evaluated, listed first in many_lights_index)
+// plugin adds three (bindings 3-5) filled by its C side every frame (many_lights.c, ml_cull.h):
+//   many_lights_index[]   [0, many_lights_global): the lights without range (directional, area and
+//                         other types: always evaluated); then each cell's list, then the list of
+//                         every light with a range (cell many_lights_all); each list in ascending
+//                         light order (the brute-force loop's order)
+//   many_lights_sphere[k] beside many_lights_index[k]: its light's (world position, range²) (ε
+//                         cut-off, README "Range"), so the range test reads one vec4 per entry
 //   many_lights_cells[c]  (first, count) of cell c's list in many_lights_index
-//   many_lights_index[]   [0, many_lights_global): the lights without range; then the cell lists,
-//                         each in ascending light order (the brute-force loop's order)
-layout(std430, binding = 3) readonly buffer ManyLightsRange { float many_lights_r2[]; };
+layout(std430, binding = 3) readonly buffer ManyLightsSpheres { vec4 many_lights_sphere[]; };
 layout(std430, binding = 4) readonly buffer ManyLightsCells { uvec2 many_lights_cells[]; };
 layout(std430, binding = 5) readonly buffer ManyLightsIndex { uint many_lights_index[]; };
 uniform int many_lights_mode;    // 0: no direct light here (deferred methods' forward pass), 1: every
                                  // light with the cut-off, 2: froxel lists, 3: tile lists
 uniform int many_lights_global;  // lights without range at the start of many_lights_index
-uniform int many_lights_count;   // lights in sl_lights
+uniform int many_lights_all;     // the cell listing every light with a range (mode 1, count view)
 uniform ivec2 many_lights_grid;  // cells along x, y
 uniform ivec2 many_lights_grid_zt; // cells along z (slices), tile size in pixels
 uniform vec2 many_lights_slices; // froxels: near distance, S / log(far / near)
@@ -31,9 +33,15 @@ int many_lights_cell(SlSurface s) {
 }
 
 // The cut-off, the same in every method: inside the range the light is exact, beyond it nothing.
-bool many_lights_in_range(int i, SlSurface s) {
-    vec3 d = sl_lights[i].position.xyz - s.position;
-    return dot(d, d) < many_lights_r2[i];
+bool many_lights_in_range(uint k, SlSurface s) {
+    vec4 b = many_lights_sphere[k];
+    vec3 d = b.xyz - s.position;
+    return dot(d, d) < b.w;
+}
+
+// the list this fragment walks: its froxel or tile, or every ranged light (brute force, deferred)
+uvec2 many_lights_list(SlSurface s) {
+    return many_lights_cells[many_lights_mode >= 2 ? many_lights_cell(s) : many_lights_all];
 }
 
 vec3 many_lights_loop(SlSurface s) {
@@ -43,28 +51,28 @@ vec3 many_lights_loop(SlSurface s) {
     if (many_lights_use_prepass != 0 &&
         gl_FragCoord.z > texelFetch(many_lights_prepass_depth, ivec2(gl_FragCoord.xy), 0).r + 1e-6) return Lo;
     for (int k = 0; k < many_lights_global; ++k) Lo += sl_light_radiance(int(many_lights_index[k]), s);
-    if (many_lights_mode == 1) {
-        for (int i = 0; i < many_lights_count; ++i)
-            if (many_lights_r2[i] >= 0.0 && many_lights_in_range(i, s)) Lo += sl_light_radiance(i, s);
-    } else {
-        uvec2 c = many_lights_cells[many_lights_cell(s)];
-        for (uint k = c.x; k < c.x + c.y; ++k) {
-            int i = int(many_lights_index[k]);
-            if (many_lights_in_range(i, s)) Lo += sl_light_radiance(i, s);
-        }
+    // Compacted loop: each invocation skips ahead to its next light within range (one vec4 read
+    // and a dot product) before evaluating one, so the costly sl_light_radiance runs once per light
+    // in range, not once per listed light. A SIMD machine that runs both sides of a branch under
+    // a mask (llvmpipe does) would otherwise pay sl_light_radiance for every listed light; here it
+    // pays for the largest in-range count among the lanes. Same lights in the same ascending
+    // order: the sum is bit for bit the simple loop's.
+    uvec2 c = many_lights_list(s);
+    uint k = c.x, end = c.x + c.y;
+    for (;;) {
+        while (k < end && !many_lights_in_range(k, s)) ++k;
+        if (k >= end) break;
+        Lo += sl_light_radiance(int(many_lights_index[k]), s);
+        ++k;
     }
     return Lo;
 }
 
-// Debug view: (lights in this pixel's list, lights within range here, ranged lights in the scene)
+// Debug view: (lights in this pixel's list, lights within range here, lights with a range)
 vec3 many_lights_count_view(SlSurface s) {
-    int inrange = 0, listed = 0, ranged = 0;
-    for (int i = 0; i < many_lights_count; ++i)
-        if (many_lights_r2[i] >= 0.0) {
-            ranged++;
-            if (many_lights_in_range(i, s)) inrange++;
-        }
-    if (many_lights_mode >= 2) listed = int(many_lights_cells[many_lights_cell(s)].y);
-    else listed = ranged;
-    return vec3(float(listed), float(inrange), float(ranged));
+    uvec2 all = many_lights_cells[many_lights_all];
+    int inrange = 0;
+    for (uint k = all.x; k < all.x + all.y; ++k)
+        if (many_lights_in_range(k, s)) inrange++;
+    return vec3(float(many_lights_list(s).y), float(inrange), float(all.y));
 }

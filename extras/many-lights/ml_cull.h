@@ -30,6 +30,30 @@ static inline float ml_range(const float color[3], float epsilon) {
     return I > 0 && epsilon > 0 ? sqrtf(I / epsilon) : 0;
 }
 
+/* Half-angle (radians) beyond which a spot's fall-off is exactly 0 (sdk/docs/conventions.md,
+ * "Spot lights"): `linear` reaches 1.1·cone_angle, `gltf` the outer cone; 1° more for the
+ * shader's float angle. cone_deg = cone_angle in degrees, mode 0 linear / 1 gltf. */
+static inline float ml_spot_reach(float cone_deg, float mode) {
+    float a = (mode > 0.5f ? cone_deg : 1.1f * cone_deg) + 1.0f;
+    return a * 3.14159265f / 180;
+}
+
+/* Bounding sphere of a spot's lit region: its range sphere (apex p, radius r) cut by the cone of
+ * half-angle a about the unit axis (B. Wronski 2017, "Cull that cone!"). The sector is convex for
+ * a < 90°, so the farthest points from a centre on the axis are the apex and the cap's rim:
+ *   a ≤ 45°: centre p + axis·r/(2 cos a), radius r/(2 cos a) (apex and rim equidistant);
+ *   a > 45°: centre p + axis·r cos a, radius r sin a (the rim's circle; it holds the apex).
+ * False for a ≥ 90° (the range sphere is as tight). */
+static inline bool ml_spot_sphere(const float p[3], const float axis[3], float r, float a, float c[3], float *R) {
+    if (!(a < 1.5707f) || !(r > 0)) return false;
+    float l = sqrtf(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    if (!(l > 0)) return false;
+    float t = a <= 0.7853982f ? r / (2 * cosf(a)) : r * cosf(a);
+    *R = (a <= 0.7853982f ? t : r * sinf(a)) * 1.0001f + 1e-5f;
+    for (int i = 0; i < 3; i++) c[i] = p[i] + axis[i] / l * t;
+    return *R < r;
+}
+
 /* world → view (x, y, d = -z) */
 static inline void ml_to_view(const ml_view *v, const float p[3], float out[3]) {
     const float *m = v->view;

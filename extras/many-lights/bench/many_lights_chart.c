@@ -3,25 +3,38 @@
  * the head model, with N animated point lights (every 8th a spot) spread over the scene. Writes
  * PREFIX.csv and PREFIX.png (gnuplot). Not a test: it prints figures.
  *
- *   many_lights_chart [--size 1280x720] [--frames 5] [--max-brute 256] [--head PATH.obj]
+ *   many_lights_chart [--size 1280x720] [--frames 5] [--max-brute 256] [--head PATH.obj|.glb]
  *     (--max-brute: brute force and plain deferred, both every light at every pixel, only up to it)
- *                     [--counts 1,4,16,...] [--out bench/many-lights-ms]
- *   many_lights_chart --write-scene N PATH      the N-light spheres scene as JSON
+ *                     [--counts 1,4,16,...] [--methods brute,deferred,tiled,clustered]
+ *                     [--set plugin.param=value ...] [--out bench/many-lights-ms]
+ *                     [--lists]   (also the mean list length and in-range count per pixel)
+ *   many_lights_chart --write-scene N PATH [--head MESH]   the N-light scene as JSON
  *
- * Timing: wall clock of sl_harness_render (render + glFinish + read-back of the float image,
- * the same overhead for every method), median of --frames after one warm-up frame; lights
- * animate (each frame is a new time step). */
+ * Timing: wall clock and CPU time of the whole process (getrusage: every llvmpipe thread) of
+ * sl_harness_render (render + glFinish + read-back of the float image, the same overhead for
+ * every method), medians of --frames after one warm-up frame; lights animate (each frame is a
+ * new time step). The chart plots the CPU time, which a machine shared with other work moves
+ * much less than the wall clock; the CSV has both. */
 #include <shadelab/harness.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/resource.h>
 
 static double now_ms(void) {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+/* CPU time of the whole process (every llvmpipe thread), ms: on a machine shared with other
+ * work this moves much less than the wall clock */
+static double cpu_ms(void) {
+    struct rusage u;
+    getrusage(RUSAGE_SELF, &u);
+    return (u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
 }
 static int cmpd(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -69,11 +82,13 @@ static char *scene(int n, const char *head) {
 }
 
 int main(int argc, char **argv) {
-    int W = 1280, H = 720, frames = 5, max_brute = 256;
+    int W = 1280, H = 720, frames = 5, max_brute = 256, nset = 0;
+    bool lists = false;
     const char *out = "many-lights-ms", *head = NULL, *counts_s = "1,4,16,64,256,1024,2048,4096";
+    const char *methods_s = "brute,deferred,tiled,clustered", *extra[16];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--write-scene") && i + 2 < argc) {
-            char *s = scene(atoi(argv[i + 1]), NULL);
+            char *s = scene(atoi(argv[i + 1]), i + 3 < argc && !strcmp(argv[i + 3], "--head") && i + 4 < argc ? argv[i + 4] : NULL);
             FILE *f = fopen(argv[i + 2], "w");
             if (!f) return 1;
             fputs(s, f);
@@ -86,7 +101,10 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--max-brute") && i + 1 < argc) max_brute = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--head") && i + 1 < argc) head = argv[++i];
         else if (!strcmp(argv[i], "--counts") && i + 1 < argc) counts_s = argv[++i];
+        else if (!strcmp(argv[i], "--methods") && i + 1 < argc) methods_s = argv[++i];
+        else if (!strcmp(argv[i], "--set") && i + 1 < argc && nset < 15) extra[nset++] = argv[++i];
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
+        else if (!strcmp(argv[i], "--lists")) lists = true;
         else { fprintf(stderr, "unknown argument %s\n", argv[i]); return 2; }
     }
     if (frames < 1 || frames > 100 || W < 16 || H < 16 || W > 4096 || H > 4096) { fprintf(stderr, "bad size/frames\n"); return 2; }
@@ -98,24 +116,34 @@ int main(int argc, char **argv) {
         p++;
     }
     static const char *const methods[] = {"brute", "deferred", "tiled", "clustered"};
+    bool run[4];
+    for (int m = 0; m < 4; m++) {
+        const char *p = strstr(methods_s, methods[m]);
+        run[m] = p && (p == methods_s || p[-1] == ',') && (p[strlen(methods[m])] == ',' || !p[strlen(methods[m])]);
+    }
     char csv[1024], png[1024];
     snprintf(csv, sizeof csv, "%s.csv", out);
     snprintf(png, sizeof png, "%s.png", out);
     FILE *f = fopen(csv, "w");
     if (!f) { fprintf(stderr, "cannot write %s\n", csv); return 1; }
-    fprintf(f, "lights,brute_ms,deferred_ms,tiled_ms,clustered_ms\n");
+    fprintf(f, "lights,brute_ms,deferred_ms,tiled_ms,clustered_ms,brute_cpu_ms,deferred_cpu_ms,tiled_cpu_ms,clustered_cpu_ms\n");
     float *img = malloc(sizeof(float) * W * H * 4);
+    double best_cpu[32], best_wall[32];
     for (int c = 0; c < nc; c++) {
         int n = counts[c];
+        best_cpu[c] = best_wall[c] = INFINITY;
         if (n < 1 || n > 4096) continue;
         char *json = scene(n, head);
-        fprintf(f, "%d", n);
+        double wall[4] = {NAN, NAN, NAN, NAN}, cpu[4] = {NAN, NAN, NAN, NAN};
         printf("%5d lights:", n);
         for (int m = 0; m < 4; m++) {
-            if (m <= 1 && n > max_brute) { /* brute and plain deferred: every light at every pixel */ fprintf(f, ","); printf("  %s -", methods[m]); continue; }
+            if (!run[m]) continue;
+            if (m <= 1 && n > max_brute) { /* brute and plain deferred: every light at every pixel */ printf("  %s -", methods[m]); continue; }
             char set[96], err[4096];
             snprintf(set, sizeof set, "many-lights.method=%s", methods[m]);
-            const char *settings[] = {set, NULL};
+            const char *settings[18] = {set};
+            for (int k = 0; k < nset; k++) settings[1 + k] = extra[k];
+            settings[1 + nset] = NULL;
             const char *plugins[] = {MANY_LIGHTS_PLUGIN, "ggx", "spotlight-shadow", NULL};
             sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W,
                                                                  .height = H, .scene_json = json, .plugins = plugins,
@@ -125,17 +153,36 @@ int main(int argc, char **argv) {
             char v[64];
             if (sl_harness_get(h, "aa.enabled", v, sizeof v)) sl_harness_set(h, "aa.enabled=false", err, sizeof err);
             sl_harness_render(h, img); /* warm-up: compiles */
-            double t[100];
+            double t[100], u[100];
             for (int k = 0; k < frames; k++) {
-                double t0 = now_ms();
+                double t0 = now_ms(), u0 = cpu_ms();
                 sl_harness_render(h, img);
-                t[k] = now_ms() - t0;
+                t[k] = now_ms() - t0, u[k] = cpu_ms() - u0;
             }
             qsort(t, frames, sizeof *t, cmpd);
-            fprintf(f, ",%.2f", t[frames / 2]);
-            printf("  %s %.1f", methods[m], t[frames / 2]);
+            qsort(u, frames, sizeof *u, cmpd);
+            wall[m] = t[frames / 2], cpu[m] = u[frames / 2];
+            if (cpu[m] < best_cpu[c]) best_cpu[c] = cpu[m];
+            if (wall[m] < best_wall[c]) best_wall[c] = wall[m];
+            printf("  %s %.0f (cpu %.0f)", methods[m], wall[m], cpu[m]);
+            if (lists && m >= 2 && sl_harness_set_debug_view(h, "many-lights-count", err, sizeof err)) {
+                /* the count view: r = lights in the pixel's list, g = lights within range there,
+                 * b = lights with a range (= n on the scene's surfaces) */
+                sl_harness_render(h, img);
+                double listed = 0, inrange = 0;
+                long px = 0;
+                for (long p = 0; p < (long)W * H; p++)
+                    if (fabsf(img[4 * p + 2] - n) < 0.5f) listed += img[4 * p], inrange += img[4 * p + 1], px++;
+                if (px) printf(" [per pixel: %.1f listed, %.1f in range]", listed / px, inrange / px);
+            }
             fflush(stdout);
             sl_harness_destroy(h);
+        }
+        fprintf(f, "%d", n);
+        for (int m = 0; m < 8; m++) {
+            double x = m < 4 ? wall[m] : cpu[m - 4];
+            if (isnan(x)) fprintf(f, ",");
+            else fprintf(f, ",%.2f", x);
         }
         fprintf(f, "\n");
         printf(" ms\n");
@@ -144,12 +191,16 @@ int main(int argc, char **argv) {
     }
     fclose(f);
     free(img);
+    for (int c = 0; c < nc; c++) /* the target: the best method's frame against the best one-light frame */
+        if (counts[c] > 1 && counts[0] == 1 && isfinite(best_cpu[c]) && isfinite(best_cpu[0]))
+            printf("%d lights / 1 light, best methods: %.1fx CPU time, %.1fx wall clock\n", counts[c],
+                   best_cpu[c] / best_cpu[0], best_wall[c] / best_wall[0]);
     char cmd[4096];
     snprintf(cmd, sizeof cmd,
              "gnuplot -e \"set terminal pngcairo size 800,480 font ',10'; set output '%s'; set datafile separator ',';"
-             " set logscale xy; set xlabel 'lights'; set ylabel 'ms per frame (%dx%d, llvmpipe)'; set key top left; set grid;"
-             " plot '%s' using 1:2 skip 1 with linespoints title 'brute force', '' using 1:3 skip 1 with linespoints title 'deferred',"
-             " '' using 1:4 skip 1 with linespoints title 'tiled deferred', '' using 1:5 skip 1 with linespoints title 'clustered forward'\"",
+             " set logscale xy; set xlabel 'lights'; set ylabel 'CPU ms per frame (%dx%d, llvmpipe, all threads)'; set key top left; set grid;"
+             " plot '%s' using 1:6 skip 1 with linespoints title 'brute force', '' using 1:7 skip 1 with linespoints title 'deferred',"
+             " '' using 1:8 skip 1 with linespoints title 'tiled deferred', '' using 1:9 skip 1 with linespoints title 'clustered forward'\"",
              png, W, H, csv);
     if (system(cmd) != 0) printf("gnuplot failed: %s only\n", csv);
     else printf("wrote %s, %s\n", csv, png);

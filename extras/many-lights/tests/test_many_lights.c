@@ -135,9 +135,27 @@ static float ground_d(float px, float py) {
     if (tmin <= tmax) return -1;
     return fabsf(hit[0]) < 7 && fabsf(hit[2]) < 7 ? t : -1;
 }
-/* lights whose range sphere meets the view-space box of pixels [x0,x1]×[y0,y1], distances [d0,d1] */
-static int count_cell(float x0, float x1, float y0, float y1, float d0, float d1, uint64_t frame_unused) {
-    (void)frame_unused;
+/* A sphere holding the part of a spot's range sphere (apex p, radius r) that its cone lights:
+ * the test scene's spots have cone_angle 50° with the linear fall-off, zero from 1.1·50° = 55° on
+ * (conventions); with a = 56° > 45° the rim circle of the cap, centre p + r·cos(a)·axis and radius
+ * r·sin(a), holds the apex (r·cos a < r·sin a) and the whole cap. */
+static void spot_bound(const float *p, float r, float *c, float *R) {
+    float axis[3] = {0.2f, -1, 0.1f}, a = 56 * (float)M_PI / 180;
+    norm(axis);
+    for (int k = 0; k < 3; k++) c[k] = p[k] + r * cosf(a) * axis[k];
+    *R = r * sinf(a);
+}
+static float box_dist2(const float *c, const float *lo, const float *hi) {
+    float s2 = 0;
+    for (int k = 0; k < 3; k++) {
+        float e = c[k] < lo[k] ? lo[k] - c[k] : c[k] > hi[k] ? c[k] - hi[k] : 0;
+        s2 += e * e;
+    }
+    return s2;
+}
+/* lights whose range sphere meets the view-space box of pixels [x0,x1]×[y0,y1], distances
+ * [d0,d1]; cone: a spot's cone bound (spot_bound) must meet it as well */
+static int count_cell(float x0, float x1, float y0, float y1, float d0, float d1, bool cone) {
     float lo[3] = {INFINITY, INFINITY, d0}, hi[3] = {-INFINITY, -INFINITY, d1};
     float xs[2] = {(2 * x0 / W - 1) * tan_y * aspect, (2 * x1 / W - 1) * tan_y * aspect};
     float ys[2] = {(2 * y0 / H - 1) * tan_y, (2 * y1 / H - 1) * tan_y}, ds[2] = {d0, d1};
@@ -152,9 +170,12 @@ static int count_cell(float x0, float x1, float y0, float y1, float d0, float d1
         to_view(lights[i].pos, c);
         float I = fmaxf(lights[i].color[0], fmaxf(lights[i].color[1], lights[i].color[2])) * lights[i].I;
         float r2 = I / EPS;
-        for (int k = 0; k < 3; k++) {
-            float e = c[k] < lo[k] ? lo[k] - c[k] : c[k] > hi[k] ? c[k] - hi[k] : 0;
-            s2 += e * e;
+        s2 = box_dist2(c, lo, hi);
+        if (cone && lights[i].spot && s2 <= r2) {
+            float w[3], v[3], R;
+            spot_bound(lights[i].pos, sqrtf(r2), w, &R);
+            to_view(w, v);
+            s2 = box_dist2(v, lo, hi) <= R * R ? s2 : INFINITY;
         }
         n += s2 <= r2;
     }
@@ -205,11 +226,16 @@ int main(void) {
     printf("epsilon 0.01 vs no cut-off: max |diff| %.4f\n", dcut);
     CHECK(dcut > 1e-4, "the cut-off changes nothing (%.2e)", dcut);
 
-    /* 2. culling culls: lights per cell against the count made here */
+    /* 2. culling culls: lights per cell against the count made here, spots culled by their range
+     * sphere only (spot_cone off: then every light within range of the pixel must be listed), and
+     * by their cone as well (on, the default; the images above were made with it) */
+    int cone_fewer = 0;
+    char e2[256];
+    for (int cone = 0; cone < 2; cone++) {
+    set(h, cone ? "many-lights.spot_cone=true" : "many-lights.spot_cone=false");
     set(h, "many-lights.method=clustered");
     set(h, "many-lights.cluster_tile=16");
     set(h, "many-lights.cluster_slices=16");
-    char e2[256];
     if (!sl_harness_set_debug_view(h, "many-lights-count", e2, sizeof e2)) { printf("debug view: %s\n", e2); return 1; }
     render(h, 0, img);
     /* froxel near/far from the scene bounds [-7,0,-7]..[7,2,7] (ml_cull.h) */
@@ -230,12 +256,13 @@ int main(void) {
         k = k < 0 ? 0 : k > S - 1 ? S - 1 : k;
         float d0 = k == 0 ? 0 : nd * powf(dmax / nd, k / S), d1 = k == S - 1 ? dmax : nd * powf(dmax / nd, (k + 1) / S);
         int tx = x / (int)T, ty = y / (int)T;
-        int want = count_cell(tx * T, fminf((tx + 1) * T, W), ty * T, fminf((ty + 1) * T, H), d0, d1, 0);
+        int want = count_cell(tx * T, fminf((tx + 1) * T, W), ty * T, fminf((ty + 1) * T, H), d0, d1, cone);
+        cone_fewer += cone && want < count_cell(tx * T, fminf((tx + 1) * T, W), ty * T, fminf((ty + 1) * T, H), d0, d1, 0);
         const float *px = img + 4 * ((size_t)(H - 1 - y) * W + x);
-        printf("froxel (%d,%d,%d) at pixel (%d,%d): %g lights listed, %d counted here, %g within range, %g ranged\n", tx, ty,
-               k, x, y, px[0], want, px[1], px[2]);
+        printf("spot_cone %d: froxel (%d,%d,%d) at pixel (%d,%d): %g lights listed, %d counted here, %g within range, %g ranged\n",
+               cone, tx, ty, k, x, y, px[0], want, px[1], px[2]);
         CHECK((int)px[0] == want, "froxel (%d,%d,%d): %g listed, %d expected", tx, ty, k, px[0], want);
-        CHECK(px[1] <= px[0], "froxel (%d,%d,%d): a light within range is not listed", tx, ty, k);
+        CHECK(cone || px[1] <= px[0], "froxel (%d,%d,%d): a light within range is not listed", tx, ty, k);
         checked++, culled += px[0] < NL;
     }
     CHECK(checked >= 5 && culled == checked, "froxels checked %d, culled %d", checked, culled);
@@ -256,15 +283,17 @@ int main(void) {
             }
         if (!ground) continue;
         /* no object over the tile either: the ground's colour count must match at every pixel */
-        int want = count_cell(tx * 16, fminf(tx * 16 + 16, W), ty * 16, fminf(ty * 16 + 16, H), lo, hi, 0);
+        int want = count_cell(tx * 16, fminf(tx * 16 + 16, W), ty * 16, fminf(ty * 16 + 16, H), lo, hi, cone);
         const float *px = img + 4 * ((size_t)(H - 1 - (ty * 16 + 8)) * W + tx * 16 + 8);
-        printf("tile (%d,%d) depth %.3f..%.3f: %g lights listed, %d counted here, %g within range\n", tx, ty, lo, hi, px[0],
+        printf("spot_cone %d: tile (%d,%d) depth %.3f..%.3f: %g lights listed, %d counted here, %g within range\n", cone, tx, ty, lo, hi, px[0],
                want, px[1]);
         CHECK((int)px[0] == want && px[0] < NL, "tile (%d,%d): %g listed, %d expected", tx, ty, px[0], want);
         checked++;
     }
     CHECK(checked >= 3, "tiles checked %d", checked);
     sl_harness_set_debug_view(h, NULL, e2, sizeof e2);
+    }
+    CHECK(cone_fewer > 0, "the spot cones cull nothing at the probed froxels");
 
     /* stability: a light on the surface, one behind the camera straddling the near plane (no
      * screen rectangle: every tile), a black light (range 0); epsilon tiny (huge ranges) and 1
