@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include "ml_cull.h"
 
 #define ML_ID "many-lights"
@@ -87,6 +88,13 @@ static ml_view view_of(const sl_frame *f) {
     return v;
 }
 
+/* CPU time of this thread, ms: the culling's cost, logged at debug level (viewer -v) */
+static double thread_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
 static void upload(unsigned b, const void *data, size_t bytes) {
     static const uint32_t zero[2] = {0, 0};
     glNamedBufferData(b, bytes ? bytes : sizeof zero, bytes ? data : zero, GL_DYNAMIC_DRAW);
@@ -153,25 +161,36 @@ static int slice_of(const ml *m, float d) {
  * all_cell = ncell)], in ascending light order within each list (a counting sort of the
  * (cell, light) hits, found light by light), each entry with its light's (world position,
  * range²) beside it so that the shader's per-entry range test reads one vec4 (many_lights.glsl).
- * Brute force and deferred have no cells (ncell = 0): their one list is every ranged light. */
-static void finish_lists(ml *m, int ncell) {
-    m->cells = realloc(m->cells, 2 * ((size_t)ncell + 1) * sizeof *m->cells);
-    memset(m->cells, 0, 2 * ((size_t)ncell + 1) * sizeof *m->cells);
-    for (size_t p = 0; p < m->pair_count; p++) m->cells[2 * m->pairs[2 * p] + 1]++;
-    m->cells[2 * ncell + 1] = (uint32_t)m->nranged;
+ * Cells are (first, count, d_lo, d_hi): the view-distance interval the list was culled for; a
+ * fragment outside it (a cell no sample fell in, a surface the pre-pass did not draw) walks the
+ * list of every ranged light instead. Brute force and deferred have no cells (ncell = 0). */
+static void finish_lists(ml *m, int ncell, const float *dmin, const float *dmax) {
+    size_t nc = (size_t)ncell + 1;
+    m->cells = realloc(m->cells, 4 * nc * sizeof *m->cells);
+    memset(m->cells, 0, 4 * nc * sizeof *m->cells);
+    for (size_t p = 0; p < m->pair_count; p++) m->cells[4 * m->pairs[2 * p] + 1]++;
+    m->cells[4 * ncell + 1] = (uint32_t)m->nranged;
     uint32_t at = (uint32_t)m->nglobal;
-    for (int c = 0; c <= ncell; c++) m->cells[2 * c] = at, at += m->cells[2 * c + 1];
+    for (int c = 0; c <= ncell; c++) m->cells[4 * c] = at, at += m->cells[4 * c + 1];
     if (at > m->index_cap) m->index_cap = at, m->index = realloc(m->index, at * sizeof *m->index);
     if (at > m->sph_cap) m->sph_cap = at, m->sph = realloc(m->sph, at * sizeof *m->sph);
     memcpy(m->index, m->global, m->nglobal * sizeof *m->index);
-    uint32_t *fill = calloc((size_t)ncell + 1, sizeof *fill);
+    uint32_t *fill = calloc(nc, sizeof *fill);
     for (size_t p = 0; p < m->pair_count; p++) {
         uint32_t c = m->pairs[2 * p];
-        m->index[m->cells[2 * c] + fill[c]++] = m->pairs[2 * p + 1];
+        m->index[m->cells[4 * c] + fill[c]++] = m->pairs[2 * p + 1];
     }
     for (int i = 0; i < m->n; i++)
-        if (m->r2[i] >= 0) m->index[m->cells[2 * ncell] + fill[ncell]++] = (uint32_t)i;
+        if (m->r2[i] >= 0) m->index[m->cells[4 * ncell] + fill[ncell]++] = (uint32_t)i;
     free(fill);
+    const float lo = 0, hi = INFINITY;
+    for (int c = 0; c <= ncell; c++) {
+        bool bounded = dmin && c < ncell;
+        if (bounded && dmin[c] > dmax[c]) /* no sample: every ranged light (never an opaque fragment's) */
+            m->cells[4 * c] = m->cells[4 * ncell], m->cells[4 * c + 1] = m->cells[4 * ncell + 1], bounded = false;
+        memcpy(&m->cells[4 * c + 2], bounded ? &dmin[c] : &lo, 4);
+        memcpy(&m->cells[4 * c + 3], bounded ? &dmax[c] : &hi, 4);
+    }
     for (uint32_t k = 0; k < at; k++) {
         uint32_t i = m->index[k];
         m->sph[k][0] = m->wpos[i][0], m->sph[k][1] = m->wpos[i][1], m->sph[k][2] = m->wpos[i][2];
@@ -179,13 +198,15 @@ static void finish_lists(ml *m, int ncell) {
     }
     m->all_cell = ncell;
     upload(m->buf[0], m->sph, at * sizeof *m->sph);
-    upload(m->buf[1], m->cells, 2 * ((size_t)ncell + 1) * sizeof *m->cells);
+    upload(m->buf[1], m->cells, 4 * nc * sizeof *m->cells);
     upload(m->buf[2], m->index, at * sizeof *m->index);
 }
 
-/* Light lists per cell: froxels (dmin = NULL) or tiles with depth bounds dmin/dmax per tile
- * (dmin > dmax: empty tile). A light is listed in a cell whose view-space box meets both its
- * range sphere and its culling sphere (a spot's cone sector bound, prepare_lights). */
+/* Light lists per cell: tiles (gz = 1) or froxels (gz slices), each cell's box spanning the
+ * view distances [dmin, dmax] of the samples in it when given (the G-buffer's or the pre-pass's
+ * depth; dmin > dmax: no sample, not culled), else its whole slice. A light is listed in a cell
+ * whose view-space box meets both its range sphere and its culling sphere (a spot's cone sector
+ * bound, prepare_lights). */
 static void build_cells(ml *m, const ml_view *v, float far_d, const float *dmin, const float *dmax) {
     int T = m->tile;
     m->pair_count = 0;
@@ -193,6 +214,7 @@ static void build_cells(ml *m, const ml_view *v, float far_d, const float *dmin,
         if (m->r2[i] < 0) continue;
         const float *c = m->vpos[i], *q = m->cull[i];
         float r = sqrtf(m->r2[i]), R = q[3];
+        if (q[2] + R < 0) continue; /* wholly behind the camera */
         int tx0 = 0, tx1 = m->gx - 1, ty0 = 0, ty1 = m->gy - 1;
         float x0, x1, y0, y1;
         if (ml_sphere_rect(v, q, R, 1e-4f, &x0, &x1, &y0, &y1)) {
@@ -203,13 +225,10 @@ static void build_cells(ml *m, const ml_view *v, float far_d, const float *dmin,
             if (ty1 >= m->gy) ty1 = m->gy - 1;
         }
         int k0 = 0, k1 = m->gz - 1;
-        if (!dmin) {
-            if (q[2] + R < 0) continue; /* wholly behind the camera */
-            k0 = slice_of(m, q[2] - R), k1 = slice_of(m, q[2] + R);
-        }
+        if (m->gz > 1) k0 = slice_of(m, q[2] - R), k1 = slice_of(m, q[2] + R);
         for (int k = k0; k <= k1; k++) {
             float d0 = 0, d1 = far_d;
-            if (!dmin) {
+            if (m->gz > 1) {
                 d0 = k == 0 ? 0 : m->near_d * expf(k / m->slope);
                 d1 = k == m->gz - 1 ? far_d : m->near_d * expf((k + 1) / m->slope);
             }
@@ -228,7 +247,37 @@ static void build_cells(ml *m, const ml_view *v, float far_d, const float *dmin,
                 }
         }
     }
-    finish_lists(m, m->gx * m->gy * m->gz);
+    finish_lists(m, m->gx * m->gy * m->gz, dmin, dmax);
+}
+
+/* the view-distance bounds of the samples of each cell from a depth texture (G-buffer or
+ * pre-pass), widened by a relative 1e-4 (depth-buffer precision; a fragment outside its cell's
+ * bounds falls back to every ranged light, so slack costs time, never a light) */
+static float *depth_bounds(ml *m, const ml_view *v, unsigned tex) {
+    int W = v->width, H = v->height, nt = m->gx * m->gy * m->gz, layer = m->gx * m->gy;
+    size_t px = (size_t)W * H;
+    if (px > m->depth_cap) m->depth_cap = px, m->depth = realloc(m->depth, px * sizeof *m->depth);
+    glGetTextureImage(tex, 0, GL_DEPTH_COMPONENT, GL_FLOAT, (int)(px * sizeof *m->depth), m->depth);
+    float *b = malloc(2 * (size_t)nt * sizeof *b);
+    for (int t = 0; t < nt; t++) b[t] = INFINITY, b[nt + t] = -INFINITY;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float z = m->depth[(size_t)y * W + x];
+            if (z >= 1.0f) continue;
+            float dd = ml_depth_to_d(v, z);
+            int t = (y / m->tile) * m->gx + x / m->tile;
+            if (m->gz > 1) t += slice_of(m, dd) * layer;
+            if (dd < b[t]) b[t] = dd;
+            if (dd > b[nt + t]) b[nt + t] = dd;
+        }
+    for (int t = 0; t < nt; t++)
+        if (b[t] <= b[nt + t]) b[t] *= 1 - 1e-4f, b[nt + t] *= 1 + 1e-4f;
+    return b;
+}
+
+static void log_lists(ml *m, const char *what, double t0, double t1, double t2) {
+    m->host->log(m->host, SL_LOG_DEBUG, "%s: %d x %d x %d cells, %zu list entries; CPU %.1f ms (depth bounds %.1f, lists %.1f)",
+                 what, m->gx, m->gy, m->gz, m->pair_count, t2 - t0, t1 - t0, t2 - t1);
 }
 
 /* view distance range of the scene bounds: the froxels' near and far */
@@ -253,7 +302,7 @@ static void ml_begin_frame(void *user, const sl_frame *f) {
     if (method == ML_BRUTE || method == ML_DEFERRED) { /* no cells: the one list of every ranged light */
         m->gx = m->gy = m->gz = 1, m->tile = 1 << 20;
         m->pair_count = 0;
-        finish_lists(m, 0);
+        finish_lists(m, 0, NULL, NULL);
     }
 }
 
@@ -281,7 +330,7 @@ static void clustered_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     float far_d;
     scene_depth_range(f, &v, &m->near_d, &far_d);
     m->slope = m->gz / logf(far_d / m->near_d);
-    if (iparam(m, "prepass")) {
+    if (m->host->get_param(m->host, ML_ID ".prepass").b) { /* (a bool: .b; reading .i here was 0, no pre-pass, before) */
         h->bind_outputs(h, ctx, 0);
         glDepthMask(GL_TRUE);
         glClearDepth(1.0);
@@ -293,7 +342,14 @@ static void clustered_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         m->tex_prepass = h->pass_texture(h, ctx, ML_ID ".depth");
         m->prepass_ok = true;
     }
-    build_cells(m, &v, far_d, NULL, NULL);
+    double t0 = thread_ms();
+    /* the samples' depth bounds per froxel (Olsson et al. 2012: only occupied clusters are culled) */
+    float *bounds = m->prepass_ok ? depth_bounds(m, &v, m->tex_prepass) : NULL;
+    int nt = m->gx * m->gy * m->gz;
+    double t1 = thread_ms();
+    build_cells(m, &v, far_d, bounds, bounds ? bounds + nt : NULL);
+    free(bounds);
+    log_lists(m, "froxels", t0, t1, thread_ms());
 }
 
 /* deferred and tiled: the G-buffer; tiled: the tiles' depth bounds and lists */
@@ -314,26 +370,13 @@ static void gbuffer_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     int W = f->width, H = f->height;
     m->tile = iparam(m, "tile_size");
     m->gx = (W + m->tile - 1) / m->tile, m->gy = (H + m->tile - 1) / m->tile, m->gz = 1;
-    size_t px = (size_t)W * H;
-    if (px > m->depth_cap) m->depth_cap = px, m->depth = realloc(m->depth, px * sizeof *m->depth);
-    glGetTextureImage(h->pass_texture(h, ctx, ML_ID ".gdepth"), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                      (int)(px * sizeof *m->depth), m->depth);
+    double t0 = thread_ms();
+    float *bounds = depth_bounds(m, &v, h->pass_texture(h, ctx, ML_ID ".gdepth"));
     int nt = m->gx * m->gy;
-    float *bounds = malloc(2 * (size_t)nt * sizeof *bounds);
-    for (int t = 0; t < nt; t++) bounds[t] = INFINITY, bounds[nt + t] = -INFINITY;
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            float z = m->depth[(size_t)y * W + x];
-            if (z >= 1.0f) continue;
-            int t = (y / m->tile) * m->gx + x / m->tile;
-            float dd = ml_depth_to_d(&v, z);
-            if (dd < bounds[t]) bounds[t] = dd;
-            if (dd > bounds[nt + t]) bounds[nt + t] = dd;
-        }
-    for (int t = 0; t < nt; t++) /* the G-buffer's positions against the depth: float slack */
-        if (bounds[t] <= bounds[nt + t]) bounds[t] *= 1 - 1e-5f, bounds[nt + t] *= 1 + 1e-5f;
+    double t1 = thread_ms();
     build_cells(m, &v, 0, bounds, bounds + nt);
     free(bounds);
+    log_lists(m, "tiles", t0, t1, thread_ms());
 }
 
 static void deferred_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {

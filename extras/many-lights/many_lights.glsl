@@ -7,9 +7,11 @@
 //                         light order (the brute-force loop's order)
 //   many_lights_sphere[k] beside many_lights_index[k]: its light's (world position, range²) (ε
 //                         cut-off, README "Range"), so the range test reads one vec4 per entry
-//   many_lights_cells[c]  (first, count) of cell c's list in many_lights_index
+//   many_lights_cells[c]  (first, count) of cell c's list in many_lights_index, and the view
+//                         distances [lo, hi] (float bits) it was culled for: a fragment outside
+//                         them walks the list of every ranged light instead
 layout(std430, binding = 3) readonly buffer ManyLightsSpheres { vec4 many_lights_sphere[]; };
-layout(std430, binding = 4) readonly buffer ManyLightsCells { uvec2 many_lights_cells[]; };
+layout(std430, binding = 4) readonly buffer ManyLightsCells { uvec4 many_lights_cells[]; };
 layout(std430, binding = 5) readonly buffer ManyLightsIndex { uint many_lights_index[]; };
 uniform int many_lights_mode;    // 0: no direct light here (deferred methods' forward pass), 1: every
                                  // light with the cut-off, 2: froxel lists, 3: tile lists
@@ -21,15 +23,19 @@ uniform vec2 many_lights_slices; // froxels: near distance, S / log(far / near)
 uniform int many_lights_use_prepass;   // froxels: skip fragments behind the depth pre-pass
 uniform sampler2D many_lights_prepass_depth;
 
-int many_lights_cell(SlSurface s) {
+// the list this fragment walks: its froxel's or tile's, or every ranged light (brute force,
+// deferred; a fragment outside the distances its cell was culled for)
+uvec2 many_lights_list(SlSurface s) {
+    uvec4 all = many_lights_cells[many_lights_all];
+    if (many_lights_mode < 2) return all.xy;
     ivec2 t = min(ivec2(gl_FragCoord.xy) / many_lights_grid_zt.y, many_lights_grid - 1);
+    float d = -(sl_view * vec4(s.position, 1.0)).z;
     int k = 0;
-    if (many_lights_mode == 2) {
-        float d = -(sl_view * vec4(s.position, 1.0)).z;
+    if (many_lights_mode == 2)
         k = clamp(int(floor(log(max(d, 1e-30) / many_lights_slices.x) * many_lights_slices.y)), 0,
                   many_lights_grid_zt.x - 1);
-    }
-    return (k * many_lights_grid.y + t.y) * many_lights_grid.x + t.x;
+    uvec4 c = many_lights_cells[(k * many_lights_grid.y + t.y) * many_lights_grid.x + t.x];
+    return d >= uintBitsToFloat(c.z) && d <= uintBitsToFloat(c.w) ? c.xy : all.xy;
 }
 
 // The cut-off, the same in every method: inside the range the light is exact, beyond it nothing.
@@ -37,11 +43,6 @@ bool many_lights_in_range(uint k, SlSurface s) {
     vec4 b = many_lights_sphere[k];
     vec3 d = b.xyz - s.position;
     return dot(d, d) < b.w;
-}
-
-// the list this fragment walks: its froxel or tile, or every ranged light (brute force, deferred)
-uvec2 many_lights_list(SlSurface s) {
-    return many_lights_cells[many_lights_mode >= 2 ? many_lights_cell(s) : many_lights_all];
 }
 
 vec3 many_lights_loop(SlSurface s) {
@@ -70,7 +71,7 @@ vec3 many_lights_loop(SlSurface s) {
 
 // Debug view: (lights in this pixel's list, lights within range here, lights with a range)
 vec3 many_lights_count_view(SlSurface s) {
-    uvec2 all = many_lights_cells[many_lights_all];
+    uvec2 all = many_lights_cells[many_lights_all].xy;
     int inrange = 0;
     for (uint k = all.x; k < all.x + all.y; ++k)
         if (many_lights_in_range(k, s)) inrange++;

@@ -12,9 +12,10 @@
  *
  * Timing: wall clock and CPU time of the whole process (getrusage: every llvmpipe thread) of
  * sl_harness_render (render + glFinish + read-back of the float image, the same overhead for
- * every method), medians of --frames after one warm-up frame; lights animate (each frame is a
- * new time step). The chart plots the CPU time, which a machine shared with other work moves
- * much less than the wall clock; the CSV has both. */
+ * every method) over --frames after one warm-up frame: the median wall clock and the smallest
+ * CPU time (the frame least disturbed by other work); lights animate (each frame is a new time
+ * step). The chart plots the CPU time, which a machine shared with other work moves much less
+ * than the wall clock; the CSV has both. */
 #include <shadelab/harness.h>
 #include <math.h>
 #include <stdbool.h>
@@ -161,7 +162,7 @@ int main(int argc, char **argv) {
             }
             qsort(t, frames, sizeof *t, cmpd);
             qsort(u, frames, sizeof *u, cmpd);
-            wall[m] = t[frames / 2], cpu[m] = u[frames / 2];
+            wall[m] = t[frames / 2], cpu[m] = u[0]; /* CPU: the least disturbed frame */
             if (cpu[m] < best_cpu[c]) best_cpu[c] = cpu[m];
             if (wall[m] < best_wall[c]) best_wall[c] = wall[m];
             printf("  %s %.0f (cpu %.0f)", methods[m], wall[m], cpu[m]);

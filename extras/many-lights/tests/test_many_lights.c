@@ -254,8 +254,22 @@ int main(void) {
         if (d < 0) continue;
         int k = (int)floorf(logf(d / nd) * S / logf(dmax / nd));
         k = k < 0 ? 0 : k > S - 1 ? S - 1 : k;
-        float d0 = k == 0 ? 0 : nd * powf(dmax / nd, k / S), d1 = k == S - 1 ? dmax : nd * powf(dmax / nd, (k + 1) / S);
         int tx = x / (int)T, ty = y / (int)T;
+        /* the froxel is culled for the distances of the samples in it (the pre-pass's), widened
+         * by 1e-4: here the ground's under the tile's pixels in slice k; a tile with an object
+         * pixel is left out */
+        float d0 = INFINITY, d1 = 0;
+        bool ground = true;
+        for (int py = ty * (int)T; py < (ty + 1) * (int)T && py < H; py++)
+            for (int qx = tx * (int)T; qx < (tx + 1) * (int)T && qx < W; qx++) {
+                float e = ground_d(qx + 0.5f, py + 0.5f);
+                ground &= e > 0;
+                int ke = e > 0 ? (int)floorf(logf(e / nd) * S / logf(dmax / nd)) : -1;
+                ke = ke < 0 ? 0 : ke > S - 1 ? S - 1 : ke;
+                if (e > 0 && ke == k) d0 = fminf(d0, e), d1 = fmaxf(d1, e);
+            }
+        if (!ground) continue;
+        d0 *= 1 - 1e-4f, d1 *= 1 + 1e-4f;
         int want = count_cell(tx * T, fminf((tx + 1) * T, W), ty * T, fminf((ty + 1) * T, H), d0, d1, cone);
         cone_fewer += cone && want < count_cell(tx * T, fminf((tx + 1) * T, W), ty * T, fminf((ty + 1) * T, H), d0, d1, 0);
         const float *px = img + 4 * ((size_t)(H - 1 - y) * W + x);
