@@ -62,7 +62,7 @@ static const sl_param_desc params[] = {
                      "(r = sqrt(I_max/epsilon)); 0 = no cut-off (infinite range)."),
     P(.id = "tile_size", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 4, .max = 128, .step = 4,
       .unit = "px", .group = "many-lights", .description = "tiled: tile size in pixels."),
-    P(.id = "cluster_tile", .type = SL_PARAM_INT, .default_value = {.i = 32}, .min = 4, .max = 256, .step = 4,
+    P(.id = "cluster_tile", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 4, .max = 256, .step = 4,
       .unit = "px", .group = "many-lights", .description = "clustered: froxel footprint in pixels."),
     P(.id = "cluster_slices", .type = SL_PARAM_INT, .default_value = {.i = 24}, .min = 1, .max = 128, .step = 1,
       .group = "many-lights", .description = "clustered: depth slices, exponential in view distance."),

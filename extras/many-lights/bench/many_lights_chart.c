@@ -57,7 +57,7 @@ static char *scene(int n, const char *head) {
         "    {\"name\": \"yellow\", \"base_color\": [0.9, 0.75, 0.2]}, {\"name\": \"white\", \"base_color\": [0.8, 0.8, 0.8]} ],\n"
         "  \"nodes\": [ {\"name\": \"ground\", \"mesh\": {\"primitive\": \"plane\", \"size\": 14}, \"material\": \"ground\"}");
     if (head)
-        k += snprintf(b + k, cap - k, ",\n    {\"name\": \"head\", \"translate\": [0, 0.9, 0], \"mesh\": {\"file\": \"%s\"}, \"material\": \"white\"}", head);
+        k += snprintf(b + k, cap - k, ",\n    {\"name\": \"head\", \"translate\": [0, 1.0, 0], \"scale\": 0.25, \"mesh\": {\"file\": \"%s\"}, \"material\": \"white\"}", head);
     else
         k += snprintf(b + k, cap - k,
             ",\n    {\"name\": \"a\", \"translate\": [-2.4, 0.7, 0], \"mesh\": {\"primitive\": \"sphere\", \"radius\": 0.7}, \"material\": \"red\"},\n"
