@@ -8,6 +8,7 @@
  *                     [--counts 1,4,16,...] [--methods brute,deferred,tiled,clustered]
  *                     [--set plugin.param=value ...] [--out bench/many-lights-ms]
  *                     [--lists]   (also the mean list length and in-range count per pixel)
+ *                     [--plugin PATH.so]   (another build of the plugin: profiling variants)
  *   many_lights_chart --write-scene N PATH [--head MESH]   the N-light scene as JSON
  *
  * Timing: wall clock and CPU time of the whole process (getrusage: every llvmpipe thread) of
@@ -85,6 +86,7 @@ static char *scene(int n, const char *head) {
 int main(int argc, char **argv) {
     int W = 1280, H = 720, frames = 5, max_brute = 256, nset = 0;
     bool lists = false;
+    const char *plugin = MANY_LIGHTS_PLUGIN;
     const char *out = "many-lights-ms", *head = NULL, *counts_s = "1,4,16,64,256,1024,2048,4096";
     const char *methods_s = "brute,deferred,tiled,clustered", *extra[16];
     for (int i = 1; i < argc; i++) {
@@ -106,6 +108,7 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--set") && i + 1 < argc && nset < 15) extra[nset++] = argv[++i];
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
         else if (!strcmp(argv[i], "--lists")) lists = true;
+        else if (!strcmp(argv[i], "--plugin") && i + 1 < argc) plugin = argv[++i];
         else { fprintf(stderr, "unknown argument %s\n", argv[i]); return 2; }
     }
     if (frames < 1 || frames > 100 || W < 16 || H < 16 || W > 4096 || H > 4096) { fprintf(stderr, "bad size/frames\n"); return 2; }
@@ -145,7 +148,7 @@ int main(int argc, char **argv) {
             const char *settings[18] = {set};
             for (int k = 0; k < nset; k++) settings[1 + k] = extra[k];
             settings[1 + nset] = NULL;
-            const char *plugins[] = {MANY_LIGHTS_PLUGIN, "ggx", "spotlight-shadow", NULL};
+            const char *plugins[] = {plugin, "ggx", "spotlight-shadow", NULL};
             sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W,
                                                                  .height = H, .scene_json = json, .plugins = plugins,
                                                                  .settings = settings, .strict = true},
