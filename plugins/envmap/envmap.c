@@ -27,6 +27,7 @@
 static const char *const modes[] = {"split-sum", "reference", NULL};
 static const char *const speculars[] = {"mirror", "dominant", "fis", NULL};
 static const char *const irradiance_methods[] = {"sh", "convolved", NULL};
+static const char *const level_maps[] = {"sqrt", "log", NULL}; /* em_level_map's order */
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
 static const sl_param_desc params[] = {
@@ -63,6 +64,10 @@ static const sl_param_desc params[] = {
       .flags = SL_PARAM_QUALITY_KNOB,
       .description = "Roughness levels of the specular chain (level m: roughness m/(count-1)); at most log2(cube_size), "
                      "so that the roughest level keeps 2x2 texels a face (bench/levels.sh)."),
+    P(.id = "level_map", .type = SL_PARAM_ENUM, .enum_values = level_maps, .group = "prefilter",
+      .flags = SL_PARAM_QUALITY_KNOB,
+      .description = "Roughness of the chain's levels: sqrt: level m for perceptual roughness m/(count-1) (lod = "
+                     "sqrt(alpha)(count-1)); log: alpha halves from level to level (bench/levels.sh)."),
     P(.id = "lut_size", .type = SL_PARAM_INT, .default_value = {.i = 64}, .min = 8, .max = 512, .group = "prefilter",
       .flags = SL_PARAM_QUALITY_KNOB, .unit = "px", .description = "Size of the RGBA16F environment-BRDF table."),
     P(.id = "lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = -2, .max = 4, .step = 0.25f,
@@ -384,8 +389,9 @@ static void ensure_spec(envmap *e) {
     if (levels > em_max_levels(size) - 1) levels = em_max_levels(size) - 1;
     if (levels < 2) levels = 2;
     float bias = param(e, "lod_bias").f[0];
+    int map = param(e, "level_map").i;
     uint64_t key = e->src_hash ^ e->glsl_hash;
-    int ints[3] = {size, samples, levels};
+    int ints[4] = {size, samples, levels, map};
     key = em_hash(ints, sizeof ints, key);
     key = em_hash(&bias, sizeof bias, key);
     if (e->spec && e->spec_key == key) return;
@@ -400,7 +406,7 @@ static void ensure_spec(envmap *e) {
         ensure_base(e);
         refresh_programs(e);
         e->progress_start = e->progress_last = now_s();
-        e->spec = em_prefilter_ggx(&e->gpu, e->base, size, levels, samples, bias);
+        e->spec = em_prefilter_ggx_map(&e->gpu, e->base, size, levels, samples, bias, (em_level_map)map);
         glFinish();
         double t = now_s() - e->progress_start;
         if (t > 1.0)
@@ -527,6 +533,8 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     }
     if (l_sh >= 0) glUniform3fv(l_sh, 9, &e->sh[0][0]);
     glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
+    /* a precomputed chain (shadelab-cube --ggx) is always the sqrt mapping */
+    glUniform1i(glGetUniformLocation(prog, "envmap_level_map"), e->spec_from_chain ? 0 : param(e, "level_map").i);
 }
 
 /* ---------------------------------------------------------------- background pass */

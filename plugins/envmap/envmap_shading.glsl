@@ -54,8 +54,19 @@ vec3 envmap_diffuse(vec3 n) { // E(n)/π: the outgoing radiance of a white Lambe
     return e * envmap_scale;
 }
 
+// The chain's level for α (em_alpha_lod's twin, <envmap/prefilter.h>): envmap_level_map 0 =
+// level m for perceptual roughness m/L (L = the last level), 1 = α halving per level from 1.
+uniform int envmap_level_map;
+float envmap_spec_lod(float alpha) {
+    float top = envmap_spec_lod_max;
+    if (envmap_level_map == 1) {
+        float a1 = exp2(1.0 - top);
+        return alpha >= a1 ? top + log2(alpha) : alpha / a1;
+    }
+    return sqrt(alpha) * top;
+}
 vec3 envmap_specular(vec3 r, float alpha) {
-    return textureLod(envmap_spec, envmap_rot * r, sqrt(alpha) * envmap_spec_lod_max).rgb * envmap_scale;
+    return textureLod(envmap_spec, envmap_rot * r, envmap_spec_lod(alpha)).rgb * envmap_scale;
 }
 
 // The direction the prefiltered chain is looked up along. The split sum's n = v = r lobe sits on

@@ -188,7 +188,28 @@ static int ggx_table(float *out, int samples, double alpha, int base_size, float
     return k;
 }
 
+double em_level_alpha(int level, int levels, em_level_map map) {
+    if (level <= 0 || levels < 2) return 0;
+    if (map == EM_LEVEL_MAP_LOG) return ldexp(1.0, level - (levels - 1));
+    double r = (double)level / (levels - 1);
+    return r * r;
+}
+
+double em_alpha_lod(double alpha, int levels, em_level_map map) {
+    double top = levels - 1;
+    if (map == EM_LEVEL_MAP_LOG) {
+        double a1 = em_level_alpha(1, levels, map);
+        return alpha >= a1 ? top + log2(alpha) : alpha / a1;
+    }
+    return sqrt(alpha) * top;
+}
+
 unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias) {
+    return em_prefilter_ggx_map(g, base, size, levels, samples, lod_bias, EM_LEVEL_MAP_SQRT);
+}
+
+unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias,
+                              em_level_map map) {
     int max_levels = em_max_levels(size);
     if (levels > max_levels) levels = max_levels;
     if (levels < 1) levels = 1;
@@ -223,8 +244,8 @@ unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int sa
     for (int l = 1; l < levels; l++) {
         int s = size >> l;
         if (s < 1) s = 1;
-        double r = (double)l / (levels - 1);
-        int count = ggx_table(table, samples, r * r < 2e-3 ? 2e-3 : r * r, size, lod_bias, max_levels - 1);
+        double a = em_level_alpha(l, levels, map);
+        int count = ggx_table(table, samples, a < 2e-3 ? 2e-3 : a, size, lod_bias, max_levels - 1);
         glTextureSubImage2D(tex, 0, 0, 0, 1024, rows, GL_RGBA, GL_FLOAT, table);
         U1I(p, "envmap_count", count);
         U1F(p, "envmap_size", (float)s);
@@ -261,6 +282,58 @@ unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src
         U1I(p, "envmap_face", f);
         draw_into(g, t, 0, f, out_size, out_size);
     }
+    return t;
+}
+
+/* One cube level resampled to another face size with the conversion pass (bilinear, seamless
+ * when the caller enabled it; a K×K box of such reads when shrinking). */
+static unsigned resample_cube(em_gpu *g, unsigned src, int src_size, int out_size) {
+    unsigned t = new_cube(out_size, 1);
+    unsigned p = g->prog_to_cube;
+    glUseProgram(p);
+    bind_input(g, p, src, true);
+    U1I(p, "envmap_in_is_cube", 1);
+    glProgramUniform2f(p, glGetUniformLocation(p, "envmap_in_size"), (float)src_size, (float)src_size);
+    U1F(p, "envmap_size", (float)out_size);
+    U1I(p, "envmap_subsamples", out_size >= src_size ? 1 : 4);
+    for (int f = 0; f < 6; f++) {
+        U1I(p, "envmap_face", f);
+        draw_into(g, t, 0, f, out_size, out_size);
+    }
+    return t;
+}
+
+unsigned em_irradiance_cube(em_gpu *g, unsigned base, int base_size, int src_size, int out_size,
+                            em_irradiance_method method) {
+    if (method == EM_IRRADIANCE_DIRECT || (method == EM_IRRADIANCE_CONVOLVED && out_size <= EM_IRRADIANCE_GRID))
+        return em_convolve_irradiance(g, base, base_size, src_size, out_size);
+    if (method == EM_IRRADIANCE_CONVOLVED) {
+        unsigned grid = em_convolve_irradiance(g, base, base_size, src_size, EM_IRRADIANCE_GRID);
+        unsigned t = resample_cube(g, grid, EM_IRRADIANCE_GRID, out_size);
+        glDeleteTextures(1, &grid);
+        return t;
+    }
+    /* SH: project level 0 (exact texel solid angles; O(base_size²)), evaluate per output texel */
+    float *faces = em_read_cube(base, 0, base_size);
+    double sh[9][3];
+    em_sh9_project(faces, base_size, sh);
+    free(faces);
+    size_t n = (size_t)out_size * out_size;
+    float *out = malloc(6 * n * 4 * sizeof(float));
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < out_size; y++)
+            for (int x = 0; x < out_size; x++) {
+                double d[3], e[3];
+                em_cube_dir(f, (x + 0.5) / out_size, (y + 0.5) / out_size, d);
+                em_sh9_diffuse(sh, d, e);
+                float *px = out + ((size_t)f * n + (size_t)y * out_size + x) * 4;
+                for (int c = 0; c < 3; c++) px[c] = e[c] > 0 ? (e[c] < EM_HALF_MAX ? (float)e[c] : EM_HALF_MAX) : 0.0f;
+                px[3] = 1;
+            }
+    float *fp[6];
+    for (int f = 0; f < 6; f++) fp[f] = out + (size_t)f * n * 4;
+    unsigned t = em_upload_cube(fp, out_size, 1);
+    free(out);
     return t;
 }
 

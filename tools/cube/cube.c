@@ -35,6 +35,9 @@ static const char *usage =
     "  --samples N       GGX samples per texel (default 1024; --brdf-lut too)\n"
     "  --levels N        roughness levels of --ggx (default 6, at most log2(size)+1)\n"
     "  --lod-bias B      bias of the PDF-chosen source mip level (default 1)\n"
+    "  --irradiance M    --lambertian method: convolved (default: the exact cosine sum on a 32^2\n"
+    "                    grid, resampled), sh (9 spherical-harmonic coefficients) or direct\n"
+    "                    (the exact sum at every output texel: the slow reference)\n"
     "  --backend B       headless (default: EGL on a GPU, else OSMesa), osmesa or egl\n"
     "  -q, --quiet       no progress bar\n"
     "  -h, --help        this text\n"
@@ -115,6 +118,7 @@ int main(int argc, char **argv) {
     const char *in = NULL, *out = NULL, *mode = NULL, *backend = "headless";
     int size = -1, samples = 1024, levels = 6;
     float bias = 1;
+    em_irradiance_method irr_method = EM_IRRADIANCE_CONVOLVED;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         bool has = i + 1 < argc;
@@ -136,6 +140,15 @@ int main(int argc, char **argv) {
                 return 2;
             }
             bias = (float)b;
+        } else if (!strcmp(a, "--irradiance") && has) {
+            const char *m = argv[++i];
+            if (!strcmp(m, "convolved")) irr_method = EM_IRRADIANCE_CONVOLVED;
+            else if (!strcmp(m, "sh")) irr_method = EM_IRRADIANCE_SH;
+            else if (!strcmp(m, "direct")) irr_method = EM_IRRADIANCE_DIRECT;
+            else {
+                fprintf(stderr, "shadelab-cube: --irradiance %s: expected convolved, sh or direct\n", m);
+                return 2;
+            }
         } else if (!strcmp(a, "--backend") && has) backend = argv[++i];
         else if (a[0] == '-') { fprintf(stderr, "shadelab-cube: unknown option or missing value: %s\n\n%s", a, usage); return 2; }
         else if (!in) in = a;
@@ -218,13 +231,14 @@ int main(int argc, char **argv) {
             else fprintf(stderr, "wrote %s (%d² faces) in %.2f s\n", out, size, now_s() - t_start);
             free(f);
         } else if (lambert) {
-            unsigned irr = em_convolve_irradiance(&g, base, base_size, 32, size);
+            static const char *how[] = {"direct cosine sum over a 32² mip at every texel",
+                                        "cosine sum over a 32² mip on a 32² grid, resampled", "9 SH coefficients"};
+            unsigned irr = em_irradiance_cube(&g, base, base_size, 32, size, irr_method);
             float *f = em_read_cube(irr, 0, size);
             float *faces[6];
             for (int k = 0; k < 6; k++) faces[k] = f + (size_t)k * size * size * 4;
             if (!em_write_cube(out, faces, size, err, sizeof err)) rc = fail("%s", err);
-            else fprintf(stderr, "wrote %s (%d² faces, cosine convolution of a 32² mip) in %.2f s\n", out, size,
-                         now_s() - t_start);
+            else fprintf(stderr, "wrote %s (%d² faces, %s) in %.2f s\n", out, size, how[irr_method], now_s() - t_start);
             free(f);
         } else {
             if (levels > em_max_levels(size)) levels = em_max_levels(size);

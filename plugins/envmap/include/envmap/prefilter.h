@@ -151,9 +151,35 @@ unsigned em_make_base_cube(em_gpu *g, unsigned src, bool src_is_cube, int src_w,
  * per texel (n = v = r), each sample read from the base cube at the mip level given by its PDF
  * (Křivánek & Colbert 2008) plus lod_bias. Level 0 is the base cube itself. */
 unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias);
+/* Roughness ↔ level of the chain (issue 16 item 4). EM_LEVEL_MAP_SQRT: level m is for perceptual
+ * roughness m/(levels−1), looked up at lod = √α·(levels−1) (em_prefilter_ggx, shadelab-cube's
+ * files). EM_LEVEL_MAP_LOG: α halves from level to level, α_m = 2^(m−(levels−1)) for m ≥ 1,
+ * lod = (levels−1) + log2 α above α_1 and α/α_1 below it (between the mirror and level 1): the
+ * lobe's width doubles as the mip's texel does, and neighbouring levels differ by the same
+ * ratio everywhere (SQRT's levels 1 and 2 differ by 4×, its last two by 1.4×). */
+typedef enum em_level_map { EM_LEVEL_MAP_SQRT = 0, EM_LEVEL_MAP_LOG = 1 } em_level_map;
+double em_level_alpha(int level, int levels, em_level_map map); /* α prefiltered into `level` (0 at level 0) */
+double em_alpha_lod(double alpha, int levels, em_level_map map); /* the lookup's lod (the GLSL's twin) */
+unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias,
+                              em_level_map map);
 /* Diffuse irradiance cube (out_size², one level): E(n)/π by summing every texel of the base
  * cube's mip of face size src_size (exact cosine-weighted Riemann sum, no noise). */
 unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src_size, int out_size);
+/* Diffuse irradiance cube E(n)/π of any face size in O(out_size²) (issue 18 item 6), one of:
+ *   EM_IRRADIANCE_DIRECT     em_convolve_irradiance at out_size² (every output texel sums all
+ *                            6·src_size² source texels: O(out² · src²), the reference);
+ *   EM_IRRADIANCE_CONVOLVED  the same exact sum at min(out_size, 32)² only, then bilinearly
+ *                            (seamlessly) resampled to out_size²: E/π is smooth (the cosine
+ *                            kernel is a low-pass filter), so the interpolation error is small;
+ *   EM_IRRADIANCE_SH         the 9-coefficient projection of the base cube's level 0
+ *                            (em_sh9_project) evaluated per texel on the CPU (Ramamoorthi &
+ *                            Hanrahan 2001), clamped at 0 as the plugin's `irradiance=sh`.
+ * src_size as em_convolve_irradiance's; the result is a one-level RGBA16F cube. The tool's
+ * README charts the time and the error of each against DIRECT. */
+typedef enum em_irradiance_method { EM_IRRADIANCE_DIRECT, EM_IRRADIANCE_CONVOLVED, EM_IRRADIANCE_SH } em_irradiance_method;
+#define EM_IRRADIANCE_GRID 32 /* the face size CONVOLVED integrates at */
+unsigned em_irradiance_cube(em_gpu *g, unsigned base, int base_size, int src_size, int out_size,
+                            em_irradiance_method method);
 /* Environment-BRDF LUT (RGBA16F, size²): x = n·v, y = perceptual roughness r (α = r²), at
  * texel centres x_i = i/(size−1): R, G = (A, B) with ∫ f_s cos = F0·A + B (Schlick), VNDF
  * sampled with `samples` samples and the ggx plugin's separable Smith G; B = the diffuse weight
