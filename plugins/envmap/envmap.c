@@ -534,7 +534,9 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     if (l_sh >= 0) glUniform3fv(l_sh, 9, &e->sh[0][0]);
     glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
     /* a precomputed chain (shadelab-cube --ggx) is always the sqrt mapping */
-    glUniform1i(glGetUniformLocation(prog, "envmap_level_map"), e->spec_from_chain ? 0 : param(e, "level_map").i);
+    glUniform1i(glGetUniformLocation(prog, "envmap_spec_map"), e->spec_from_chain ? 0 : param(e, "level_map").i);
+    /* fis: the footprint of a sample is the share of every accumulated frame's samples */
+    glUniform1f(glGetUniformLocation(prog, "envmap_accumulated"), (float)(f && f->accumulate_count > 1 ? f->accumulate_count : 1));
 }
 
 /* ---------------------------------------------------------------- background pass */

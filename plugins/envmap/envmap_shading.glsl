@@ -54,12 +54,12 @@ vec3 envmap_diffuse(vec3 n) { // E(n)/π: the outgoing radiance of a white Lambe
     return e * envmap_scale;
 }
 
-// The chain's level for α (em_alpha_lod's twin, <envmap/prefilter.h>): envmap_level_map 0 =
+// The chain's level for α (em_alpha_lod's twin, <envmap/prefilter.h>): envmap_spec_map 0 =
 // level m for perceptual roughness m/L (L = the last level), 1 = α halving per level from 1.
-uniform int envmap_level_map;
+uniform int envmap_spec_map; // = the level_map parameter; 0 for a shadelab-cube chain
 float envmap_spec_lod(float alpha) {
     float top = envmap_spec_lod_max;
-    if (envmap_level_map == 1) {
+    if (envmap_spec_map == 1) {
         float a1 = exp2(1.0 - top);
         return alpha >= a1 ? top + log2(alpha) : alpha / a1;
     }
@@ -151,7 +151,8 @@ float envmap_specular_occlusion(float n_dot_v, float ao, float alpha) {
 // Filtered importance sampling (Křivánek & Colbert 2007, GPU Gems 3 ch. 20): envmap_fis_samples
 // GGX visible-normal samples (Heitz 2018) of the real lobe for this n and v, each read from the
 // base cube at the mip level whose texel solid angle matches the sample's share of the lobe,
-// Ω_s = 1/(N·pdf(l)), lod = ½ log2(Ω_s/Ω_texel) + envmap.fis_lod_bias (K&C: +1; see the README). The weights are the BRDF's f·cos/pdf =
+// Ω_s = 1/(N·F·pdf(l)) with F the frames of an accumulated render (1 otherwise), lod = ½ log2(Ω_s/Ω_texel)
+// + envmap.fis_lod_bias (K&C: +1; see the README). The weights are the BRDF's f·cos/pdf =
 // F(v·h)·G(v,l)/G1(v), per channel (Schlick with f0, as the reference): the normalised sum is
 // the lobe's F-weighted mean radiance, which multiplies the environment BRDF (F0·A + B) = the
 // weights' expectation — a ratio estimator that converges to the reference's ∫ L f cos. (With
@@ -160,6 +161,7 @@ float envmap_specular_occlusion(float n_dot_v, float ao, float alpha) {
 // In a uniform environment it is exactly the LUT's value (the furnace holds for any N); the per-pixel sequence is rotated per
 // pixel and continued over accumulated frames (sl_frame_index), so accumulating converges to
 // the filtered integral — whose remaining bias (the mips' box filter) the bench charts.
+uniform float envmap_accumulated; // frames averaged into this render (1 when not accumulating)
 vec3 envmap_fis_radiance(SlSurface s, float alpha, vec3 r, vec3 f0) {
     vec3 n = s.normal, v = s.view;
     vec3 t, b;
@@ -181,7 +183,10 @@ vec3 envmap_fis_radiance(SlSurface s, float alpha, vec3 r, vec3 f0) {
         vec3 w = ggx_fresnel_schlick(dot(l, h), f0) * (ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v);
         // pdf(l) = G1(v) D(h) / (4 n·v) for visible-normal sampling
         float pdf = g1v * ggx_D(hl.z, alpha) / (4.0 * vl.z);
-        float lod = clamp(0.5 * log2(1.0 / (float(count) * max(pdf, 1e-20) * texel)) + envmap_fis_lod_bias, 0.0, lod_max);
+        // the estimate's samples are all frames' (the R2 points continue across an accumulated
+        // render): K&C's footprint with N·frames, so accumulating also shrinks the blur
+        float lod = clamp(0.5 * log2(1.0 / (float(count) * envmap_accumulated * max(pdf, 1e-20) * texel)) +
+                              envmap_fis_lod_bias, 0.0, lod_max);
         // light from under the geometric surface (normal maps) is blocked (the weight stays)
         sum += w * envmap_above(l, s.geometric_normal) * textureLod(envmap_base, envmap_rot * l, lod).rgb;
         wsum += w;

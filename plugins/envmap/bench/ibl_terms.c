@@ -9,7 +9,7 @@
  *   env,material,alpha,term,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5
  * rel_rms = √(mean |x − ref|²) / mean ref over the sphere's pixels (all three channels), each
  * term against the reference's same term.
- * Usage: envmap_bench_terms [--size N] [--reference-frames N] [--specular METHOD] [--set "ID=V ..."]
+ * Usage: envmap_bench_terms [--size N] [--reference-frames N] [--accumulate N] [--specular METHOD] [--set "ID=V ..."]
  *                           [--material metal|dielectric|lambert] [--env PATH|sky[:E]]...
  *                           [--sweep "LABEL=ID=V ID=V;LABEL=…"]
  * --sweep: instead of the terms, the whole sphere ("all") for each labelled group of settings
@@ -65,12 +65,13 @@ static void row(const char *env, const char *mat, double alpha, const char *term
 }
 
 int main(int argc, char **argv) {
-    int size = 48, ref_frames = 32;
+    int size = 48, ref_frames = 32, accumulate = 1;
     const char *envs[8], *spec = "dominant", *extra = "", *only = NULL, *sweep = NULL;
     int ne = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--size") && i + 1 < argc) size = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--reference-frames") && i + 1 < argc) ref_frames = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--accumulate") && i + 1 < argc) accumulate = atoi(argv[++i]); /* frames per method render */
         else if (!strcmp(argv[i], "--specular") && i + 1 < argc) spec = argv[++i];
         else if (!strcmp(argv[i], "--set") && i + 1 < argc) extra = argv[++i];     /* more settings of the method */
         else if (!strcmp(argv[i], "--material") && i + 1 < argc) only = argv[++i]; /* metal, dielectric or lambert */
@@ -107,7 +108,7 @@ int main(int argc, char **argv) {
             }
             sl_harness_destroy(h);
             for (int i = 0; i < n; i++) mask[i] = refF[i * 4] + refF[i * 4 + 1] + refF[i * 4 + 2] > 0 && pixel_mu(i, size) > 0;
-            h = ibl_sphere(envs[e], materials[m][1], size, 1);
+            h = ibl_sphere(envs[e], materials[m][1], size, accumulate > 1 ? accumulate : 1);
             snprintf(buf, sizeof buf, "envmap.specular=%s %s", spec, extra);
             if (!h || !ibl_set(h, buf)) return 1;
             if (lambert) {

@@ -7,7 +7,8 @@
 # Debian's blender-data is installed. Seconds are the tool's own "in X s" (the whole run: source
 # upload, base cube, prefilter, read-back), best of RUNS (default 2).
 # Usage: tools/cube/bench/prefilter_time.sh [BUILD_DIR] [OUT_DIR]
-#   PLOT_ONLY=1 redraws the chart from OUT_DIR/prefilter-time.csv.
+#   PLOT_ONLY=1 redraws the chart from OUT_DIR/prefilter-time.csv; TIMES_ONLY=1 skips the error
+#   part (its figures do not depend on the load) and keeps irradiance-error.csv.
 # Writes OUT_DIR/prefilter-time.csv (mode,size,seconds), irradiance-error.csv
 # (env,size,method,rel_rms,max_rel) and prefilter-time.png.
 set -euo pipefail
@@ -43,6 +44,8 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
     echo "ggx,$s,$(best sky --ggx "$tmp/g.exr" --size "$s")" >> "$out/prefilter-time.csv"
     cat "$out/prefilter-time.csv" | tail -4 >&2
   done
+fi
+if [ "${PLOT_ONLY:-0}" != 1 ] && [ "${TIMES_ONLY:-0}" != 1 ]; then
   echo "env,size,method,rel_rms,max_rel" > "$out/irradiance-error.csv"
   envs=(sky)
   hdr=$(ls /usr/share/blender/*/datafiles/studiolights/world/courtyard.exr /usr/share/blender/datafiles/studiolights/world/courtyard.exr 2>/dev/null | head -1 || true)
