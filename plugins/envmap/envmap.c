@@ -62,12 +62,13 @@ static const sl_param_desc params[] = {
       .flags = SL_PARAM_QUALITY_KNOB, .description = "GGX importance samples per texel of the specular prefilter."),
     P(.id = "mip_count", .type = SL_PARAM_INT, .default_value = {.i = 7}, .min = 2, .max = 12, .group = "prefilter",
       .flags = SL_PARAM_QUALITY_KNOB,
-      .description = "Roughness levels of the specular chain (level m: roughness m/(count-1)); at most log2(cube_size), "
+      .description = "Roughness levels of the specular chain (level_map=sqrt: level m for roughness m/(count-1)); "
+                     "at most log2(cube_size), "
                      "so that the roughest level keeps 2x2 texels a face (bench/levels.sh)."),
     P(.id = "level_map", .type = SL_PARAM_ENUM, .enum_values = level_maps, .group = "prefilter",
       .flags = SL_PARAM_QUALITY_KNOB,
       .description = "Roughness of the chain's levels: sqrt: level m for perceptual roughness m/(count-1) (lod = "
-                     "sqrt(alpha)(count-1)); log: alpha halves from level to level (bench/levels.sh)."),
+                     "sqrt(alpha)(count-1)); log: alpha halves from level to level (measured worse: bench/level_map.sh)."),
     P(.id = "lut_size", .type = SL_PARAM_INT, .default_value = {.i = 64}, .min = 8, .max = 512, .group = "prefilter",
       .flags = SL_PARAM_QUALITY_KNOB, .unit = "px", .description = "Size of the RGBA16F environment-BRDF table."),
     P(.id = "lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = -2, .max = 4, .step = 0.25f,
