@@ -81,6 +81,112 @@ static uint64_t input_versions(sl_renderer *r, graph_pass *g) {
     return h;
 }
 
+/* ------------------------------------------------------------ declared dependencies ---- */
+/* A pass's sl_pass_desc.depends (pass.h, ABI 1.8) turns into one key per frame: the hash of the
+ * current state of each thing it declared. The pass is skipped while the key is the one it had
+ * when the pass last ran and its outputs persist (see outputs_persist). */
+
+static uint64_t hash_globals(sl_app *app, const char *owner, uint64_t h) {
+    for (int i = 0; i < app->params.count; i++) {
+        const sl_param *q = &app->params.items[i];
+        if (q->desc.scope != SL_SCOPE_GLOBAL || strcmp(q->owner, owner)) continue;
+        h = sl_hash64(&q->value.b, sizeof q->value.b, h);
+        h = sl_hash64(&q->value.i, sizeof q->value.i, h);
+        h = sl_hash64(q->value.f, sizeof q->value.f, h);
+        if (q->value.s) h = sl_hash64(q->value.s, strlen(q->value.s), h);
+    }
+    return h;
+}
+
+/* Whether plugin `owner`'s parameters can reach the material programs: it adds shader chunks or
+ * binds uniforms (the core's do). */
+static bool reaches_materials(sl_app *app, int owner) {
+    if (owner <= 0 || app->plugins.items[owner]->bind) return true;
+    for (int i = 0; i < app->plugins.chunk_count; i++)
+        if (app->plugins.chunks[i].owner == owner) return true;
+    return false;
+}
+
+static uint64_t depends_key(sl_app *app, graph_pass *g) {
+    sl_renderer *r = R(app);
+    const sl_frame *f = &r->frame;
+    uint32_t dep = g->d->depends;
+    uint64_t h = sl_hash64(&dep, sizeof dep, 0);
+    if (dep & SL_DEPENDS_LIGHTS) {
+        h = sl_hash64(&f->lights_version, sizeof f->lights_version, h);
+        /* a pass after the shadow stage sees the shadow maps through the material programs */
+        if (g->d->stage >= SL_STAGE_PREPASS) h = sl_hash64(&r->shadow_runs, sizeof r->shadow_runs, h);
+    }
+    if (dep & SL_DEPENDS_GEOMETRY) {
+        h = sl_hash64(&f->geometry_version, sizeof f->geometry_version, h);
+        h = sl_hash64(f->scene_min, sizeof f->scene_min, h);
+        h = sl_hash64(f->scene_max, sizeof f->scene_max, h);
+    }
+    if (dep & SL_DEPENDS_CAMERA) {
+        h = sl_hash64(&f->camera_version, sizeof f->camera_version, h);
+        h = sl_hash64(f->view, sizeof f->view, h);
+        h = sl_hash64(f->proj, sizeof f->proj, h);
+        h = sl_hash64(&f->width, sizeof f->width, h);
+        h = sl_hash64(&f->height, sizeof f->height, h);
+    }
+    if (dep & SL_DEPENDS_MATERIALS) {
+        uint64_t v[3] = {app->materials_version, app->params.recompile_version, r->programs_version};
+        h = sl_hash64(v, sizeof v, h);
+        for (int p = 0; p < app->plugins.count; p++)
+            if (reaches_materials(app, p)) h = hash_globals(app, app->plugins.items[p]->id, h);
+    }
+    if (dep & SL_DEPENDS_OWN_PARAMS) h = hash_globals(app, g->owner >= 0 ? app->plugins.items[g->owner]->id : "core", h);
+    if (dep & SL_DEPENDS_PARAMS) h = sl_hash64(&f->edits_version, sizeof f->edits_version, h);
+    if (dep & SL_DEPENDS_TIME) h = sl_hash64(&f->time, sizeof f->time, h);
+    if (dep & SL_DEPENDS_INPUTS) {
+        for (const char *const *in = g->d->inputs; in && *in; in++) {
+            resource *e = sl_graph_find(r, *in);
+            if (e) h = sl_hash64(&e->version, sizeof e->version, h);
+        }
+    }
+    return h;
+}
+
+/* A skipped pass's outputs must still hold what it wrote: no other pass of the graph writes them
+ * (a pass that writes "color" in place, or after the forward pass, runs every frame). Targets are
+ * re-made when the graph is planned, which also clears has_run. */
+static bool outputs_persist(sl_renderer *r, graph_pass *g) {
+    for (int k = 0; k < g->d->output_count; k++)
+        for (int j = 0; j < r->pass_count; j++) {
+            graph_pass *o = &r->passes[j];
+            if (o == g || o->broken) continue;
+            for (int m = 0; m < o->d->output_count; m++)
+                if (!strcmp(o->d->outputs[m].name, g->d->outputs[k].name)) return false;
+        }
+    return true;
+}
+
+/* Whether the pass can be skipped this frame: its signature (if any) and its declaration (if any)
+ * both say that nothing it depends on changed. Undeclared passes without a signature, and
+ * SL_DEPENDS_EVERY_FRAME ones, always run. */
+static bool unchanged(sl_app *app, graph_pass *g) {
+    sl_renderer *r = R(app);
+    uint32_t dep = g->d->depends;
+    if ((dep & SL_DEPENDS_EVERY_FRAME) || (!dep && !g->d->signature)) return false;
+    bool same = g->has_run;
+    if (g->d->signature) {
+        uint64_t sig = g->d->signature(g->d->user, &r->frame) ^ input_versions(r, g);
+        same = same && sig == g->last_signature;
+        g->last_signature = sig;
+    }
+    if (dep) {
+        uint64_t key = depends_key(app, g);
+        same = same && key == g->last_depends && outputs_persist(r, g);
+        g->last_depends = key;
+    } else {
+        /* a signature alone (ABI < 1.8): any edit re-runs it, as re-planning on every parameter
+         * change did before plans were kept */
+        same = same && r->frame.params_version == g->last_depends;
+        g->last_depends = r->frame.params_version;
+    }
+    return same;
+}
+
 /* Runs passes with index in [begin, end), timing each. */
 void sl_graph_run_range(sl_app *app, int begin, int end) {
     sl_renderer *r = R(app);
@@ -98,11 +204,7 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
         }
         if (g->broken) continue;
         if (g->d->is_active && !g->d->is_active(g->d->user, &r->frame)) continue;
-        if (g->d->signature) {
-            uint64_t sig = g->d->signature(g->d->user, &r->frame) ^ input_versions(r, g);
-            if (g->has_run && sig == g->last_signature) continue;
-            g->last_signature = sig;
-        }
+        if (unchanged(app, g)) continue; /* its declared inputs and its signature did not move */
         double t0 = 0;
         if (r->finish_timing) { glFinish(); t0 = sl_now_ms(); }
         else glBeginQuery(GL_TIME_ELAPSED, r->queries[i & 63]);
@@ -116,6 +218,7 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
             ms = ns * 1e-6;
         }
         g->has_run = true;
+        if (g->d->stage < SL_STAGE_PREPASS) r->shadow_runs++; /* SL_DEPENDS_LIGHTS of later passes */
         g->last_ms = ms;
         if (st) { st->ms += ms; st->ran = true; }
     }

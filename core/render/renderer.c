@@ -73,6 +73,26 @@ static bool any_source_changed(sl_renderer *r) {
 
 /* ------------------------------------------------------------------ frame ----------- */
 
+/* What the graph's plan is made of besides the size: which plugins are on and the core's
+ * settings (core.ssaa). A parameter change that leaves it alone keeps the plan, its targets and
+ * what they hold, so passes whose declared dependencies did not move stay skipped (pass.h,
+ * sl_depends). */
+static uint64_t plan_key(sl_app *app) {
+    uint64_t h = 0;
+    for (int i = 0; i < app->plugins.count; i++) {
+        bool on = sl_plugin_enabled(&app->plugins, i);
+        h = sl_hash64(&on, sizeof on, h);
+    }
+    for (int i = 0; i < app->params.count; i++) {
+        const sl_param *q = &app->params.items[i];
+        if (q->desc.scope != SL_SCOPE_GLOBAL || strcmp(q->owner, "core")) continue;
+        h = sl_hash64(&q->value.b, sizeof q->value.b, h);
+        h = sl_hash64(&q->value.i, sizeof q->value.i, h);
+        h = sl_hash64(q->value.f, sizeof q->value.f, h);
+    }
+    return h;
+}
+
 static void refresh(sl_app *app) {
     sl_renderer *r = R(app);
     bool recompose = sl_renderer_compose_pending(app); /* before the lights' version is marked seen */
@@ -95,7 +115,9 @@ static void refresh(sl_app *app) {
     r->seen_lights_version = app->lights_version;
     if (r->seen_param_version != app->params.version) {
         /* enabling/disabling a plugin changes the pass list */
-        r->plan_dirty = true;
+        uint64_t key = plan_key(app);
+        if (key != r->plan_key) r->plan_dirty = true;
+        r->plan_key = key;
         r->seen_param_version = app->params.version;
         sl_gpu_apply_anisotropy(app);
     }
@@ -365,6 +387,7 @@ bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
     r->seen_recompile = app->params.recompile_version;
     r->seen_materials = app->materials_version;
     r->seen_param_version = app->params.version;
+    r->plan_key = plan_key(app);
     r->seen_debug_view = app->debug_view ? strdup(app->debug_view) : NULL;
     for (int m = 0; m < s->material_count; m++)
         if (!r->materials[m].forward.program) {

@@ -38,6 +38,7 @@ typedef struct graph_pass {
     bool core_forward, core_display, core_resolve;
     unsigned fbo;
     uint64_t last_signature; bool has_run;
+    uint64_t last_depends; /* key of sl_pass_desc.depends when it last ran (graph_run.c) */
     double last_ms;       /* time of the last run (for --explain when skipped since) */
     bool broken;          /* disabled at plan time (message given) */
 } graph_pass;
@@ -60,12 +61,14 @@ typedef struct sl_renderer {
     resource *res; int res_count;
     graph_pass *passes; int pass_count;
     bool plan_dirty;
+    uint64_t plan_key;       /* plugins on/off and core settings the plan was made with (renderer.c) */
     int width, height;
     uint64_t seen_recompile, seen_materials, seen_lights_version, seen_param_version;
     double seen_light_time;   /* app->time of the packed lights (animated lights repack) */
     uint64_t lights_packed;   /* bumps each time the lights are packed */
     char *seen_debug_view;
     bool finish_timing;
+    uint64_t shadow_runs;     /* runs of passes before SL_STAGE_PREPASS (SL_DEPENDS_LIGHTS) */
     unsigned queries[64];
     sl_frame frame;
     /* temporal antialiasing (ABI 1.6): the jitter plugins asked for this frame, the frames a still

@@ -447,7 +447,8 @@ static sl_status al_create(const sl_host *host, void **user) {
         return SL_ERR_FAILED;
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = "area-light-visibility", .stage = SL_STAGE_SHADOW,
                                .execute = al_shadow_execute, .is_active = al_shadow_active,
-                               .signature = al_shadow_signature, .user = a};
+                               .signature = al_shadow_signature, .user = a,
+                               .depends = SL_DEPENDS_LIGHTS | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
     const sl_reference_desc ref = {
         .struct_size = sizeof ref, .settings = AL_ID ".method=reference " AL_ID ".reference_visibility=true " AL_ID ".reference_samples=4",

@@ -475,12 +475,14 @@ static sl_status ml_create(const sl_host *host, void **user) {
                                                {.name = ML_ID ".matdepth", .format = SL_FORMAT_DEPTH32F}};
     const sl_pass_desc passes[] = {
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-clusters", .stage = SL_STAGE_PREPASS + 50,
-         .outputs = depth_out, .output_count = 1, .execute = clustered_execute, .is_active = clustered_active, .user = m},
+         .outputs = depth_out, .output_count = 1, .execute = clustered_execute, .is_active = clustered_active, .user = m,
+         .depends = SL_DEPENDS_CAMERA | SL_DEPENDS_GEOMETRY | SL_DEPENDS_LIGHTS | SL_DEPENDS_MATERIALS},
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-gbuffer", .stage = SL_STAGE_PREPASS + 50,
-         .outputs = gbuf_out, .output_count = 5, .execute = gbuffer_execute, .is_active = gbuffer_active, .user = m},
+         .outputs = gbuf_out, .output_count = 5, .execute = gbuffer_execute, .is_active = gbuffer_active, .user = m,
+         .depends = SL_DEPENDS_CAMERA | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS},
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-deferred", .stage = SL_STAGE_OPAQUE + 50,
          .inputs = deferred_in, .outputs = color_out, .output_count = 2, .execute = deferred_execute,
-         .is_active = gbuffer_active, .user = m},
+         .is_active = gbuffer_active, .user = m, .depends = SL_DEPENDS_EVERY_FRAME}, /* writes "color" */
     };
     for (size_t i = 0; i < sizeof passes / sizeof *passes; i++)
         if (host->add_pass(host, &passes[i]) != SL_OK) return SL_ERR_FAILED;

@@ -149,7 +149,8 @@ static sl_status rf_create(const sl_host *host, void **user) {
     };
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = "refraction-back", .stage = SL_STAGE_PREPASS + 50,
                                .outputs = outputs, .output_count = 2, .execute = back_execute,
-                               .is_active = back_active, .user = r};
+                               .is_active = back_active, .user = r,
+                               .depends = SL_DEPENDS_CAMERA | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
     if ((r->unit_env = host->reserve_texture_unit(host)) < 0 || (r->unit_back = host->reserve_texture_unit(host)) < 0)
         return SL_ERR_FAILED;

@@ -612,7 +612,8 @@ static sl_status envmap_create(const sl_host *host, void **user) {
         if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc bg = {.struct_size = sizeof bg, .name = "envmap-background", .stage = SL_STAGE_OPAQUE,
                              .inputs = bg_inputs, .outputs = bg_outputs, .output_count = 1,
-                             .execute = background_execute, .is_active = background_active, .user = e};
+                             .execute = background_execute, .is_active = background_active, .user = e,
+                             .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_CAMERA | SL_DEPENDS_OWN_PARAMS};
     if (host->add_pass(host, &bg) != SL_OK) return SL_ERR_FAILED;
     static const sl_reference_desc ref = {
         .struct_size = sizeof ref, .settings = "envmap.mode=reference envmap.reference_samples=64",

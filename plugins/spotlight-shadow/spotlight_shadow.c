@@ -592,7 +592,9 @@ static sl_status ss_create(const sl_host *host, void **user) {
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
         if (host->add_key(host, &keys[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = "shadow-maps", .stage = SL_STAGE_SHADOW,
-                               .execute = pass_execute, .is_active = pass_active, .signature = pass_signature, .user = s};
+                               .execute = pass_execute, .is_active = pass_active, .signature = pass_signature, .user = s,
+                               /* not the camera: provided views (cascades) are in the signature */
+                               .depends = SL_DEPENDS_LIGHTS | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
     if (host->set_bind_callback(host, bind_program, s) != SL_OK) return SL_ERR_FAILED;
     static const sl_reference_desc reference = {

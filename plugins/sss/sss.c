@@ -322,8 +322,9 @@ static uint64_t stretch_signature(void *user, const sl_frame *f) {
     sss *s = user;
     ensure_ts(s); /* (re)made textures must be filled: their generation is part of the signature */
     uint64_t h = 1469598103934665603ull;
-    uint64_t v[4] = {f->geometry_version, f->params_version, (uint64_t)param(s, "ts_size").i, (uint64_t)s->ts_generation};
-    for (int i = 0; i < 4; i++) h = (h ^ v[i]) * 1099511628211ull;
+    (void)f; /* geometry and parameters: the pass's declared depends (ABI 1.8) */
+    uint64_t v[2] = {(uint64_t)param(s, "ts_size").i, (uint64_t)s->ts_generation};
+    for (int i = 0; i < 2; i++) h = (h ^ v[i]) * 1099511628211ull;
     return h;
 }
 
@@ -337,17 +338,17 @@ static void stretch_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
 }
 
 /* Texture space 2 and 3 change only when the irradiance in UV space can: geometry, lights (their
- * packing changes with every edit and every animated frame, and with them the shadow maps),
- * parameters and material values, or re-made textures. Not with the camera: UV-space lighting has
+ * packing changes with every edit and every animated frame) and the shadow maps, what the material
+ * programs see (material values, the parameters of plugins with chunks), or re-made textures. Not with the camera: UV-space lighting has
  * no viewer (normal maps do not bend toward one there). A still head then costs the two passes
  * once instead of every frame. */
 static uint64_t irradiance_signature(void *user, const sl_frame *f) {
     sss *s = user;
     ensure_ts(s);
     uint64_t h = 1469598103934665603ull;
-    uint64_t v[5] = {f->geometry_version, f->params_version, f->lights_version, (uint64_t)param(s, "ts_size").i,
-                     (uint64_t)s->ts_generation};
-    for (int i = 0; i < 5; i++) h = (h ^ v[i]) * 1099511628211ull;
+    (void)f; /* geometry, lights (and shadow maps) and parameters: the passes' declared depends (ABI 1.8) */
+    uint64_t v[2] = {(uint64_t)param(s, "ts_size").i, (uint64_t)s->ts_generation};
+    for (int i = 0; i < 2; i++) h = (h ^ v[i]) * 1099511628211ull;
     return h;
 }
 
@@ -555,15 +556,20 @@ static sl_status sss_create(const sl_host *host, void **user) {
         if (host->add_key(host, &keys[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc passes[] = {
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-stretch", .stage = SL_STAGE_PREPASS, .execute = stretch_execute,
-         .is_active = ts_active, .signature = stretch_signature, .user = s},
+         .is_active = ts_active, .signature = stretch_signature, .user = s,
+         .depends = SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS},
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-irradiance", .stage = SL_STAGE_PREPASS,
-         .execute = irradiance_execute, .is_active = ts_active, .signature = irradiance_signature, .user = s},
+         .execute = irradiance_execute, .is_active = ts_active, .signature = irradiance_signature, .user = s,
+         .depends = SL_DEPENDS_LIGHTS | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS}, /* not the camera */
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-ts-blur", .stage = SL_STAGE_PREPASS, .execute = ts_blur_execute,
-         .is_active = ts_active, .signature = irradiance_signature, .user = s},
+         .is_active = ts_active, .signature = irradiance_signature, .user = s,
+         .depends = SL_DEPENDS_LIGHTS | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS},
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-ss-diffuse", .stage = SL_STAGE_PREPASS,
-         .execute = ss_diffuse_execute, .is_active = ss_active, .user = s},
+         .execute = ss_diffuse_execute, .is_active = ss_active, .user = s,
+         .depends = SL_DEPENDS_CAMERA | SL_DEPENDS_LIGHTS | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS},
         {.struct_size = sizeof(sl_pass_desc), .name = "sss-ss-blur", .stage = SL_STAGE_PREPASS, .execute = ss_blur_execute,
-         .is_active = ss_active, .user = s},
+         .is_active = ss_active, .user = s,
+         .depends = SL_DEPENDS_CAMERA | SL_DEPENDS_LIGHTS | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS},
     };
     for (size_t i = 0; i < sizeof passes / sizeof *passes; i++)
         if (host->add_pass(host, &passes[i]) != SL_OK) return SL_ERR_FAILED;

@@ -73,7 +73,8 @@ static sl_status create(const sl_host *host, void **user) {
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = "tonemap", .stage = SL_STAGE_TONEMAP, .inputs = inputs,
-                               .outputs = outputs, .output_count = 1, .execute = execute, .is_active = active, .user = t};
+                               .outputs = outputs, .output_count = 1, .execute = execute, .is_active = active, .user = t,
+                               .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
     static const sl_key_desc keys[] = {
         {.struct_size = sizeof(sl_key_desc), .key = "O", .param = "operator", .description = "next tone-mapping operator"},

@@ -75,7 +75,8 @@ static sl_status example_create(const sl_host *host, void **user) {
     static const sl_target_desc outputs[] = {{.name = "color", .format = SL_FORMAT_RGBA16F}};
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = EXAMPLE_ID "-vignette", .stage = SL_STAGE_POST,
                                .inputs = inputs, .outputs = outputs, .output_count = 1,
-                               .execute = vignette_execute, .is_active = vignette_active, .user = e};
+                               .execute = vignette_execute, .is_active = vignette_active, .user = e,
+                               .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS}; /* ABI 1.8 */
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
 
     const sl_key_desc keys[] = {

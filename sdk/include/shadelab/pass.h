@@ -1,7 +1,7 @@
 /* Render graph passes. A pass declares the named resources it reads and writes; the core
  * orders passes by stage, checks that every input is produced earlier, allocates the targets
- * (and re-allocates them on resize), times each pass and skips passes that are inactive or
- * whose signature did not change since they last ran.
+ * (and re-allocates them on resize), times each pass and skips passes that are inactive, whose
+ * declared dependencies (sl_depends, ABI 1.8) or whose signature did not change since they last ran.
  *
  * Resources the core provides:
  *   "color"  RGBA16F (RGBA32F with --float), viewport size: linear HDR radiance. Written by the
@@ -86,6 +86,34 @@ typedef struct sl_frame {
 
 typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() */
 
+/* ABI 1.8: what a pass's result depends on (sl_pass_desc.depends, a bitwise or). 0, the value a
+ * plugin built against an older ABI gets, means "not declared": the pass runs every frame. With a
+ * declaration the core skips the pass while none of the declared things changed since it last
+ * ran, provided its outputs persist: it has run since the graph was last planned (a plugin
+ * switched on or off, a resize, a core setting) and no other pass writes any of its outputs (a
+ * pass writing "color" in place runs every frame whatever it declares). A pass that also has a
+ * `signature` runs when either its declaration or its signature says so (a signature covers what
+ * the categories cannot: textures of the plugin's own that it re-made). */
+typedef enum sl_depends {
+    SL_DEPENDS_LIGHTS = 1u << 0,    /* light values and their animation, and whatever a shadow-stage
+                                       pass (stage < SL_STAGE_PREPASS) ran for since (shadow maps,
+                                       cascades following the camera) */
+    SL_DEPENDS_GEOMETRY = 1u << 1,  /* meshes, node animation, active VERTEX/DISPLACEMENT hooks,
+                                       the scene's bounds */
+    SL_DEPENDS_CAMERA = 1u << 2,    /* view and projection (jitter included), viewport size */
+    SL_DEPENDS_MATERIALS = 1u << 3, /* what the material programs see: material values, composed
+                                       programs (recompiles, hot reloads, the debug view) and the
+                                       global parameters of the core and of every plugin that adds
+                                       shader chunks or a bind callback */
+    SL_DEPENDS_OWN_PARAMS = 1u << 4, /* the owning plugin's global parameters */
+    SL_DEPENDS_PARAMS = 1u << 5,    /* any edit: every parameter, material and light value, programs
+                                       (sl_frame.edits_version) */
+    SL_DEPENDS_TIME = 1u << 6,      /* sl_frame.time (every frame while the viewer's clock runs) */
+    SL_DEPENDS_INPUTS = 1u << 7,    /* a graph resource it lists in `inputs` was written since */
+    SL_DEPENDS_EVERY_FRAME = 1u << 8 /* runs every frame (a history, an accumulation): the same as 0,
+                                       but says that the pass was audited */
+} sl_depends;
+
 typedef struct sl_pass_desc {
     uint32_t struct_size;           /* sizeof(sl_pass_desc) */
     const char *name;               /* unique pass name; shown in timings ("shadow-maps") */
@@ -99,9 +127,13 @@ typedef struct sl_pass_desc {
      * light in the scene). Its outputs keep their last contents. */
     bool (*is_active)(void *user, const sl_frame *frame);
     /* Optional: when it returns the value it returned last time the pass ran (and nothing was
-     * resized), the pass is skipped and its outputs are reused. */
+     * resized), the pass is skipped and its outputs are reused (with `depends` set, only when
+     * that declaration does not ask for a run either). */
     uint64_t (*signature)(void *user, const sl_frame *frame);
     void *user;
+    /* ABI 1.8: sl_depends bits (above); 0 = not declared, run every frame. Not tracked: sl_time
+     * read by a surface (not VERTEX) hook in the material programs a pass draws with. */
+    uint32_t depends;
 } sl_pass_desc;
 
 /* host->draw_scene: draw every visible mesh of the scene with a view. */
