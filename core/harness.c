@@ -151,8 +151,11 @@ void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out) {
     const sl_frame_stats *st = sl_renderer_stats(&h->app);
     if (!st) return;
     out->draw_calls = st->draw_calls;
-    for (int i = 0; i < st->pass_count; i++)
+    for (int i = 0; i < st->pass_count; i++) {
         if (st->passes[i].ran && out->pass_count < 64) out->passes[out->pass_count++] = intern_pass_name(st->passes[i].name);
+        if ((st->passes[i].ran || st->passes[i].reused) && out->effect_count < 64)
+            out->in_effect[out->effect_count++] = intern_pass_name(st->passes[i].name);
+    }
     out->program_count = st->program_count;
     memcpy(out->program_hashes, st->program_hashes, sizeof out->program_hashes);
 }

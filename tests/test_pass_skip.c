@@ -35,6 +35,17 @@ static unsigned ran(sl_harness *h) {
     return m;
 }
 
+/* which tp-deps passes are in effect (ran, or skipped with their outputs still this frame's) */
+static unsigned in_effect(sl_harness *h) {
+    sl_harness_structure s;
+    sl_harness_structure_of(h, &s);
+    unsigned m = 0;
+    for (int i = 0; i < s.effect_count; i++)
+        for (int p = 0; p < NP; p++)
+            if (!strcmp(s.in_effect[i], NAMES[p])) m |= B(p);
+    return m;
+}
+
 static void expect(const char *what, unsigned got, unsigned want) {
     char line[512] = "";
     for (int p = 0; p < NP; p++)
@@ -75,6 +86,7 @@ static void test_counts(void) {
         unsigned m = frame_at(h, 0);
         for (int p = 0; p < NP; p++) total[p] += (m >> p) & 1;
         expect("nothing changed", m, ALWAYS);
+        CHECK_MSG(in_effect(h) == ALL, "a skipped pass is not listed in effect (harness structure)");
     }
     printf("over 5 unchanged frames:");
     for (int p = 0; p < NP; p++) printf(" %s %u", NAMES[p] + 5, total[p]);

@@ -75,9 +75,11 @@ static void capture(sl_harness *h, frame *f) {
     sl_harness_structure s;
     sl_harness_structure_of(h, &s);
     f->draw_calls = s.draw_calls;
-    f->pass_count = s.pass_count;
+    /* the passes in effect: a live change may skip a pass whose inputs did not change (pass.h,
+     * sl_depends) that a fresh start runs; both use its output */
+    f->pass_count = s.effect_count;
     f->program_count = s.program_count;
-    for (int i = 0; i < s.pass_count; i++) snprintf(f->passes[i], sizeof f->passes[i], "%s", s.passes[i]);
+    for (int i = 0; i < s.effect_count; i++) snprintf(f->passes[i], sizeof f->passes[i], "%s", s.in_effect[i]);
     memcpy(f->hashes, s.program_hashes, sizeof f->hashes);
 }
 
@@ -87,7 +89,7 @@ static long nonfinite(const frame *f) { return sl_harness_count_nonfinite(f->px,
 static bool same_frame(const frame *a, const frame *b, char *why, size_t n) {
     if (!a->ok || !b->ok) return snprintf(why, n, "a render failed"), false;
     if (a->pass_count != b->pass_count) {
-        snprintf(why, n, "%d passes ran live, %d in the fresh start", a->pass_count, b->pass_count);
+        snprintf(why, n, "%d passes in effect live, %d in the fresh start", a->pass_count, b->pass_count);
         return false;
     }
     for (int i = 0; i < a->pass_count; i++)

@@ -200,11 +200,14 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
             st->name = g->d->name;
             st->owner = g->owner >= 0 ? app->plugins.items[g->owner]->id : "core";
             st->ms = 0;
-            st->ran = false;
+            st->ran = st->reused = false;
         }
         if (g->broken) continue;
         if (g->d->is_active && !g->d->is_active(g->d->user, &r->frame)) continue;
-        if (unchanged(app, g)) continue; /* its declared inputs and its signature did not move */
+        if (unchanged(app, g)) { /* its declared inputs and its signature did not move */
+            if (st) st->reused = true;
+            continue;
+        }
         double t0 = 0;
         if (r->finish_timing) { glFinish(); t0 = sl_now_ms(); }
         else glBeginQuery(GL_TIME_ELAPSED, r->queries[i & 63]);

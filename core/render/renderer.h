@@ -30,7 +30,10 @@ void sl_renderer_present(struct sl_app *app);
 bool sl_renderer_read(struct sl_app *app, const char *resource, float *rgba);
 
 /* Statistics of the last frame, for --stats, --explain and the structural tests. */
-typedef struct sl_pass_stat { const char *name; const char *owner; double ms; bool ran; } sl_pass_stat;
+typedef struct sl_pass_stat {
+    const char *name; const char *owner; double ms; bool ran;
+    bool reused; /* skipped: nothing it declared (or its signature) changed, its outputs are this frame's */
+} sl_pass_stat;
 typedef struct sl_frame_stats {
     sl_pass_stat passes[64]; int pass_count;
     double frame_ms;

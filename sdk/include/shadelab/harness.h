@@ -69,9 +69,14 @@ typedef struct sl_harness_structure {
                                         destroyed: compare structures of different harnesses) */
     int program_count;
     uint64_t program_hashes[256];    /* one per material, in material order */
+    /* ABI 1.8: the passes whose outputs this frame uses, in order: those that ran and those
+     * skipped because nothing they depend on changed (pass.h, sl_depends). A live change and a
+     * fresh start have the same passes in effect, though the live frame may run fewer. */
+    int effect_count;
+    const char *in_effect[64];
 } sl_harness_structure;
 void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out);
-/* Same draw calls, passes (names, in order) and program hashes. */
+/* Same draw calls, passes (names, in order; those that ran) and program hashes. */
 bool sl_harness_structure_equal(const sl_harness_structure *a, const sl_harness_structure *b);
 
 /* Image comparison on linear floats (RGB channels). */
