@@ -151,6 +151,7 @@ void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out) {
     const sl_frame_stats *st = sl_renderer_stats(&h->app);
     if (!st) return;
     out->draw_calls = st->draw_calls;
+    out->effect_draw_calls = st->draw_calls + st->reused_draw_calls;
     for (int i = 0; i < st->pass_count; i++) {
         if (st->passes[i].ran && out->pass_count < 64) out->passes[out->pass_count++] = intern_pass_name(st->passes[i].name);
         if ((st->passes[i].ran || st->passes[i].reused) && out->effect_count < 64)

@@ -74,7 +74,7 @@ static void capture(sl_harness *h, frame *f) {
     f->ok = sl_harness_render(h, NULL) && sl_harness_read_display(h, f->px);
     sl_harness_structure s;
     sl_harness_structure_of(h, &s);
-    f->draw_calls = s.draw_calls;
+    f->draw_calls = s.effect_draw_calls;
     /* the passes in effect: a live change may skip a pass whose inputs did not change (pass.h,
      * sl_depends) that a fresh start runs; both use its output */
     f->pass_count = s.effect_count;

@@ -206,12 +206,15 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
         if (g->d->is_active && !g->d->is_active(g->d->user, &r->frame)) continue;
         if (unchanged(app, g)) { /* its declared inputs and its signature did not move */
             if (st) st->reused = true;
+            r->stats.reused_draw_calls += g->last_draws;
             continue;
         }
         double t0 = 0;
         if (r->finish_timing) { glFinish(); t0 = sl_now_ms(); }
         else glBeginQuery(GL_TIME_ELAPSED, r->queries[i & 63]);
+        int draws_before = r->stats.draw_calls;
         run_pass(app, g, i);
+        g->last_draws = r->stats.draw_calls - draws_before;
         double ms;
         if (r->finish_timing) { glFinish(); ms = sl_now_ms() - t0; }
         else {

@@ -198,7 +198,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     refresh(app);
     double t0 = sl_now_ms();
     r->stats.pass_count = 0;
-    r->stats.draw_calls = 0;
+    r->stats.draw_calls = r->stats.reused_draw_calls = 0;
     r->stats.timing_mode = r->finish_timing ? "glfinish" : "timer-query";
     r->jitter_req[0] = r->jitter_req[1] = 0;
     r->still_frames = 0;

@@ -38,6 +38,7 @@ typedef struct sl_frame_stats {
     sl_pass_stat passes[64]; int pass_count;
     double frame_ms;
     int draw_calls;
+    int reused_draw_calls;       /* those of the passes skipped as unchanged, when they last ran */
     int program_count;
     uint64_t program_hashes[256]; /* hash of each composed program in use, sorted */
     const char *timing_mode;     /* "glfinish" or "timer-query" */

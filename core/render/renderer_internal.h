@@ -39,6 +39,7 @@ typedef struct graph_pass {
     unsigned fbo;
     uint64_t last_signature; bool has_run;
     uint64_t last_depends; /* key of sl_pass_desc.depends when it last ran (graph_run.c) */
+    int last_draws;        /* draw calls of its last run (a skipped pass's are still in effect) */
     double last_ms;       /* time of the last run (for --explain when skipped since) */
     bool broken;          /* disabled at plan time (message given) */
 } graph_pass;

@@ -74,6 +74,8 @@ typedef struct sl_harness_structure {
      * fresh start have the same passes in effect, though the live frame may run fewer. */
     int effect_count;
     const char *in_effect[64];
+    int effect_draw_calls;           /* ABI 1.8: draw calls of the passes in effect (a skipped
+                                        pass's from its last run) */
 } sl_harness_structure;
 void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out);
 /* Same draw calls, passes (names, in order; those that ran) and program hashes. */
