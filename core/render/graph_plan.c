@@ -64,7 +64,8 @@ void sl_graph_plan(sl_app *app) {
         forward_outputs[0].name = "forward.ssaa";
         forward_outputs[0].scale = forward_outputs[1].scale = forward_outputs[2].scale = (float)r->ssaa;
     }
-    display_pass.user = r;
+    r->display_desc = display_pass; /* its own copy: is_active reads this renderer (harnesses coexist) */
+    r->display_desc.user = r;
     r->color_final = true;
     int total = app->plugins.pass_count + 3;
     r->passes = calloc(total, sizeof *r->passes);
@@ -75,7 +76,7 @@ void sl_graph_plan(sl_app *app) {
         if (!sl_plugin_enabled(&app->plugins, reg->owner)) continue; /* disabled plugins cost nothing */
         r->passes[r->pass_count++] = (graph_pass){.d = &reg->d, .owner = reg->owner};
     }
-    r->passes[r->pass_count++] = (graph_pass){.d = &display_pass, .owner = -1, .core_display = true};
+    r->passes[r->pass_count++] = (graph_pass){.d = &r->display_desc, .owner = -1, .core_display = true};
     /* stable sort by stage (insertion sort keeps registration order) */
     for (int i = 1; i < r->pass_count; i++)
         for (int j = i; j > 0 && cmp_stage(&r->passes[j - 1], &r->passes[j]) > 0; j--) {

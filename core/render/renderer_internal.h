@@ -71,6 +71,7 @@ typedef struct sl_renderer {
     bool timing;          /* this frame's passes are timed (--bench, --stats, the panel asked) */
     bool timing_next;     /* sl_renderer_request_timing: time the next frame */
     bool color_final;     /* "color" holds the frame's final linear colour (no pass wrote display) */
+    sl_pass_desc display_desc; /* the core's display pass (graph_plan.c), active while color_final */
     unsigned queries[64];
     sl_frame frame;
     /* temporal antialiasing (ABI 1.6): the jitter plugins asked for this frame, the frames a still
