@@ -57,6 +57,7 @@ bool sl_harness_set_debug_view(sl_harness *h, const char *v, char *err, size_t n
 
 bool sl_harness_render(sl_harness *h, float *rgba) {
     h->app.time = h->app.frame_index * h->app.opt.fixed_dt;
+    h->app.opt.keep_color = rgba != NULL; /* else the last pass may write "display" directly */
     return sl_app_render_frame(&h->app) && (!rgba || sl_app_read_color(&h->app, rgba));
 }
 

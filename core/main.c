@@ -151,6 +151,11 @@ static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
 #undef NEXT
     }
     if (c->headless && c->opt.backend == SL_BACKEND_AUTO) c->opt.backend = SL_BACKEND_HEADLESS;
+    /* pass timings (glFinish on CPU rasterisers) only where they are printed */
+    c->opt.timings = c->bench || c->stats || c->explain;
+    /* an EXR is the final linear "color": no pass writes the display encoding on the fly */
+    const char *ext = c->output ? strrchr(c->output, '.') : NULL;
+    c->opt.keep_color = ext && (!strcasecmp(ext, ".exr") || !strcasecmp(ext, ".hdr"));
     if (c->turntable && c->frames > 0) { snprintf(err, n, "--turntable renders its own frames (each a still); leave out --frames"); return 1; }
     if (c->output && is_video(c->output) && !c->turntable) {
         snprintf(err, n, "--output %s: a video is written by --turntable N (a still is .png or .exr)", c->output);

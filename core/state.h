@@ -27,6 +27,10 @@ typedef struct sl_app_options {
     bool no_default_plugins;     /* do not load the plugins declared SL_PLUGIN_DEFAULT_EVERY_SCENE (aa) */
     bool float32;                /* RGBA32F colour target instead of RGBA16F */
     bool finish_timing;          /* force glFinish timing (default on CPU rasterisers) */
+    bool timings;                /* time every pass of every frame (--bench, --stats, --explain, benchmarks);
+                                    otherwise only frames after sl_renderer_request_timing (the panel) */
+    bool keep_color;             /* "color" must hold the final linear image after each frame (EXR
+                                    output, readers of sl_app_read_color): no display-on-write */
     int accumulate;              /* frames averaged per output frame (references), >= 1 */
     double fixed_dt;             /* seconds per frame for sl_time in headless runs */
 } sl_app_options;

@@ -280,8 +280,13 @@ static void save_screenshot(viewer *v) {
     /* A screenshot is a still, as a headless render without --frames is: the frames a plugin's
      * still needs (TAA's history, plugins/aa) rendered at this time, so P gives the image the
      * window settles on, even right after a change. */
+    /* The window's frames may write the display encoding on the fly and keep no final linear
+     * "color" (graph_plan.c): the screenshot's frames keep it for the EXR. */
+    bool keep = v->app->opt.keep_color;
+    v->app->opt.keep_color = true;
     int still = sl_renderer_still_frames(v->app);
-    for (int k = 0; still > 1 && k < still; k++) sl_app_render_frame(v->app);
+    for (int k = 0; k < (still > 1 ? still : 1); k++) sl_app_render_frame(v->app);
+    v->app->opt.keep_color = keep;
     if (sl_app_save(v->app, png, err, sizeof err)) fprintf(stderr, "saved %s (display-encoded)\n", png);
     else fprintf(stderr, "screenshot: %s\n", err);
     if (sl_app_save(v->app, exr, err, sizeof err)) fprintf(stderr, "saved %s (linear HDR)\n", exr);

@@ -46,6 +46,7 @@ static void write_file(const char *dir, const char *name, const char *text) {
 #define H 32
 static float img[W * H * 4];
 static void render(sl_app *app, float *out) {
+    app->opt.keep_color = true; /* the final linear "color" is read */
     CHECK(sl_app_render_frame(app));
     CHECK(sl_app_read_color(app, out));
 }

@@ -38,14 +38,15 @@ step "installed viewer renders like the build tree's"
 "$BUILD/shadelab" --headless --size 160x90 --output "$T/build.png" 2>/dev/null
 "$IMGDIFF" "$T/installed.png" "$T/build.png" --same 0
 # ... and it really uses the installed shaders (not the source tree's): change the installed
-# display transform, expect a different image, then restore it
-DISPLAY_FRAG=$PFX/share/shadelab/shaders/display.frag
-cp "$DISPLAY_FRAG" "$T/display.frag.orig"
-sed -i 's/o_color = vec4(sl_srgb_encode(c), 1.0);/o_color = vec4(1.0 - sl_srgb_encode(c), 1.0);/' "$DISPLAY_FRAG"
-grep -q "1.0 - sl_srgb_encode" "$DISPLAY_FRAG" || fail "could not patch the installed display.frag (changed?)"
+# forward shader's output (every frame runs it; the display pass does not always run, ABI 1.8
+# display_on_write), expect a different image, then restore it
+FORWARD_FRAG=$PFX/share/shadelab/shaders/forward.frag
+cp "$FORWARD_FRAG" "$T/forward.frag.orig"
+sed -i 's/o_color = vec4(mix(c, /o_color = vec4(4.0 - mix(c, /' "$FORWARD_FRAG"
+grep -q "o_color = vec4(4.0 - mix(c, " "$FORWARD_FRAG" || fail "could not patch the installed forward.frag (changed?)"
 "$VIEWER" --headless --size 160x90 --output "$T/patched.png" 2>/dev/null
 "$IMGDIFF" "$T/patched.png" "$T/build.png" --differ 0.2
-cp "$T/display.frag.orig" "$DISPLAY_FRAG"
+cp "$T/forward.frag.orig" "$FORWARD_FRAG"
 
 step "pkg-config: compile the example with \$(pkg-config --cflags shadelab) only"
 export PKG_CONFIG_PATH=$(dirname "$(compgen -G "$PFX/lib*/pkgconfig/shadelab.pc")")

@@ -185,7 +185,7 @@ int main(void) {
             " \"nodes\": [{\"name\": \"l\", \"translate\": [-1, 0, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 2}, \"rotate\": [90, 0, 0], \"material\": \"marked\"},\n"
             "           {\"name\": \"r\", \"translate\": [1, 0, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 2}, \"rotate\": [90, 0, 0], \"material\": \"plain\"}],\n"
             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 1}]}\n";
-        sl_app_options o = {.scene_text = two, .backend = SL_BACKEND_OSMESA, .width = 32, .height = 16};
+        sl_app_options o = {.scene_text = two, .backend = SL_BACKEND_OSMESA, .width = 32, .height = 16, .keep_color = true};
         o.plugins[o.plugin_count++] = "tp-good";
         o.settings[o.setting_count++] = "tp-good.override_pass=true";
         o.settings[o.setting_count++] = "tp-good.tint=1,1,1";
@@ -211,7 +211,7 @@ int main(void) {
             " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"plane\", \"size\": 10}, \"rotate\": [90, 0, 0], \"material\": \"m\"},\n"
             "           {\"name\": \"u\", \"translate\": [0, 0, -20], \"mesh\": {\"primitive\": \"cube\"}, \"material\": \"t\"}],\n"
             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 1}]}\n";
-        sl_app_options o = {.scene_text = shared, .backend = SL_BACKEND_OSMESA, .width = 16, .height = 16};
+        sl_app_options o = {.scene_text = shared, .backend = SL_BACKEND_OSMESA, .width = 16, .height = 16, .keep_color = true};
         o.plugins[o.plugin_count++] = "tp-good";
         o.plugins[o.plugin_count++] = "tp-other";
         sl_app a;

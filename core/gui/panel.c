@@ -319,6 +319,7 @@ static void section_view(sl_panel *p, sl_panel_actions *act) {
 static void section_timing(sl_panel *p, double dt) {
     sl_app *app = p->app;
     const sl_frame_stats *st = sl_renderer_stats(app);
+    sl_renderer_request_timing(app); /* pass times only while this view is open */
     if (dt > 1e-4) p->interval_avg = p->interval_avg > 0 ? 0.9 * p->interval_avg + 0.1 * dt : dt;
     sl_ui_text("%s  %dx%d  %.1f fps", app->backend.name, app->backend.width, app->backend.height,
                p->interval_avg > 0 ? 1.0 / p->interval_avg : 0.0);

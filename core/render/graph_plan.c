@@ -16,12 +16,20 @@ static sl_target_desc forward_outputs[3];
 static const char *resolve_inputs[] = {"forward.ssaa", NULL};
 static sl_target_desc resolve_outputs[1];
 static sl_pass_desc resolve_pass = {.struct_size = sizeof(sl_pass_desc), .name = "ssaa-resolve", .stage = SL_STAGE_OPAQUE,
-                                    .inputs = resolve_inputs, .outputs = resolve_outputs, .output_count = 1};
+                                    .inputs = resolve_inputs, .outputs = resolve_outputs, .output_count = 1,
+                                    .display_on_write = true};
 static const char *display_inputs[] = {"color", NULL};
 static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
-                                    .outputs = forward_outputs, .output_count = 2}; /* 3 with "motion" */
+                                    .outputs = forward_outputs, .output_count = 2, /* 3 with "motion" */
+                                    .display_on_write = true};
+/* The separate display pass runs only on frames where no pass wrote "display" on the fly. */
+static bool display_active(void *user, const sl_frame *f) {
+    (void)f;
+    return ((sl_renderer *)user)->color_final;
+}
 static sl_pass_desc display_pass = {.struct_size = sizeof(sl_pass_desc), .name = "display", .stage = SL_STAGE_DISPLAY,
-                                    .inputs = display_inputs, .outputs = &core_display, .output_count = 1};
+                                    .inputs = display_inputs, .outputs = &core_display, .output_count = 1,
+                                    .is_active = display_active};
 
 static int cmp_stage(const void *a, const void *b) {
     const graph_pass *x = a, *y = b;
@@ -56,6 +64,9 @@ void sl_graph_plan(sl_app *app) {
         forward_outputs[0].name = "forward.ssaa";
         forward_outputs[0].scale = forward_outputs[1].scale = forward_outputs[2].scale = (float)r->ssaa;
     }
+    r->display_desc = display_pass; /* its own copy: is_active reads this renderer (harnesses coexist) */
+    r->display_desc.user = r;
+    r->color_final = true;
     int total = app->plugins.pass_count + 3;
     r->passes = calloc(total, sizeof *r->passes);
     r->passes[r->pass_count++] = (graph_pass){.d = &forward_pass, .owner = -1, .core_forward = true};
@@ -65,7 +76,7 @@ void sl_graph_plan(sl_app *app) {
         if (!sl_plugin_enabled(&app->plugins, reg->owner)) continue; /* disabled plugins cost nothing */
         r->passes[r->pass_count++] = (graph_pass){.d = &reg->d, .owner = reg->owner};
     }
-    r->passes[r->pass_count++] = (graph_pass){.d = &display_pass, .owner = -1, .core_display = true};
+    r->passes[r->pass_count++] = (graph_pass){.d = &r->display_desc, .owner = -1, .core_display = true};
     /* stable sort by stage (insertion sort keeps registration order) */
     for (int i = 1; i < r->pass_count; i++)
         for (int j = i; j > 0 && cmp_stage(&r->passes[j - 1], &r->passes[j]) > 0; j--) {
@@ -94,3 +105,44 @@ void sl_graph_plan(sl_app *app) {
     r->plan_dirty = false;
 }
 
+
+static bool writes(const graph_pass *g, const char *name) {
+    for (int k = 0; k < g->d->output_count; k++)
+        if (!strcmp(g->d->outputs[k].name, name)) return true;
+    return false;
+}
+
+/* The display encoding on the fly (sl_pass_desc.display_on_write, ABI 1.8). "color" is built by a
+ * chain of writers: the last pass that reads and writes it (ping-pong: it samples the previous
+ * contents and writes the other texture) or, when none does, the first pass that writes it,
+ * followed by passes that only draw on top of it (envmap's background). When every pass of that
+ * final chain writes through bind_outputs only and nothing after its start reads "color", the
+ * chain's "color" attachment becomes the sRGB view of "display": the same draws, clamped and
+ * encoded by the blending hardware, and the core's display pass is skipped. "color" then keeps
+ * the input of the chain (e.g. the linear colour before tone mapping), not the final image:
+ * keep_color (EXR output, tests and benchmarks reading "color") turns this off. */
+void sl_graph_route_display(sl_app *app, int first, bool keep_color) {
+    sl_renderer *r = R(app);
+    int start = -1, last_reader = -1;
+    bool *runs = calloc(r->pass_count + 1, sizeof *runs);
+    for (int i = 0; i < r->pass_count; i++) {
+        graph_pass *g = &r->passes[i];
+        if (g->core_display || g->broken) continue;
+        runs[i] = !g->d->is_active || g->d->is_active(g->d->user, &r->frame);
+        if (!runs[i]) continue;
+        bool w = writes(g, "color"), rd = sl_graph_lists(g->d->inputs, "color");
+        if (w && (rd || start < 0)) start = i;
+        else if (rd) last_reader = i;
+    }
+    bool ok = !keep_color && start >= first && last_reader < start;
+    for (int i = start; ok && i >= 0 && i < r->pass_count; i++)
+        if (runs[i] && writes(&r->passes[i], "color") && !r->passes[i].d->display_on_write) ok = false;
+    for (int i = 0; i < r->pass_count; i++) {
+        graph_pass *g = &r->passes[i];
+        bool to = ok && runs[i] && i >= start && writes(g, "color");
+        if (to != g->to_display) g->has_run = false; /* its last output went to the other target */
+        g->to_display = to;
+    }
+    r->color_final = !ok;
+    free(runs);
+}

@@ -63,10 +63,16 @@ static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
     r->current = NULL;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(0);
+    if (g->to_display) { /* it wrote "display" through the sRGB view instead of "color" (graph_plan.c) */
+        glDisable(GL_FRAMEBUFFER_SRGB);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        resource *d = sl_graph_find(r, "display");
+        if (d) d->version++;
+    }
     /* writes: ping-ponged targets flip, versions bump */
     for (int k = 0; k < g->d->output_count; k++) {
         resource *e = sl_graph_find(r, g->d->outputs[k].name);
-        if (!e) continue;
+        if (!e || (g->to_display && !strcmp(e->name, "color"))) continue;
         if (e->tex[1] && sl_graph_lists(g->d->inputs, e->name)) e->current = 1 - e->current;
         e->version++;
     }
@@ -210,13 +216,16 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
             continue;
         }
         double t0 = 0;
-        if (r->finish_timing) { glFinish(); t0 = sl_now_ms(); }
+        /* timed only when asked (--bench, --stats, the panel's timing view): glFinish serialises */
+        if (!r->timing) {}
+        else if (r->finish_timing) { glFinish(); t0 = sl_now_ms(); }
         else glBeginQuery(GL_TIME_ELAPSED, r->queries[i & 63]);
         int draws_before = r->stats.draw_calls;
         run_pass(app, g, i);
         g->last_draws = r->stats.draw_calls - draws_before;
-        double ms;
-        if (r->finish_timing) { glFinish(); ms = sl_now_ms() - t0; }
+        double ms = 0;
+        if (!r->timing) {}
+        else if (r->finish_timing) { glFinish(); ms = sl_now_ms() - t0; }
         else {
             glEndQuery(GL_TIME_ELAPSED);
             GLuint64 ns = 0;

@@ -43,6 +43,7 @@ static unsigned make_target(const sl_target_desc *d, int w, int h) {
 
 void sl_graph_free(sl_renderer *r) {
     for (int i = 0; i < r->res_count; i++) {
+        if (r->res[i].srgb_view) glDeleteTextures(1, &r->res[i].srgb_view);
         glDeleteTextures(r->res[i].tex[1] ? 2 : 1, r->res[i].tex);
         free(r->res[i].name);
     }
@@ -92,7 +93,24 @@ unsigned sl_renderer_pass_texture(sl_app *app, sl_pass_ctx *ctx, const char *nam
     return e->tex[e->current];
 }
 
+/* "display" seen as sRGB (a view of the same RGBA8 storage, GL 4.3 texture views): writes through
+ * it with GL_FRAMEBUFFER_SRGB enabled are clamped and encoded (IEC 61966-2-1) by the hardware,
+ * while readers of "display" keep seeing the RGBA8 code values. Alpha starts at 1 and is
+ * masked off while a pass writes through it, as the display pass writes alpha 1. */
+static unsigned display_view(sl_renderer *r) {
+    resource *d = sl_graph_find(r, "display");
+    if (!d) return 0;
+    if (!d->srgb_view) {
+        glGenTextures(1, &d->srgb_view);
+        glTextureView(d->srgb_view, GL_TEXTURE_2D, d->tex[0], GL_SRGB8_ALPHA8, 0, 1, 0, 1);
+        static const float opaque[4] = {0, 0, 0, 1};
+        glClearTexImage(d->tex[0], 0, GL_RGBA, GL_FLOAT, opaque);
+    }
+    return d->srgb_view;
+}
+
 static unsigned output_texture(sl_pass_ctx *ctx, resource *e) {
+    if (ctx->pass->to_display && !strcmp(e->name, "color")) return 0; /* bind_outputs: the display view */
     if (e->tex[1] && sl_graph_lists(ctx->pass->d->inputs, e->name)) return e->tex[1 - e->current];
     return e->tex[e->current];
 }
@@ -102,12 +120,13 @@ sl_status sl_renderer_bind_outputs(sl_app *app, sl_pass_ctx *ctx, int layer) {
     graph_pass *g = ctx->pass;
     if (!g->fbo) glCreateFramebuffers(1, &g->fbo);
     GLenum bufs[8];
-    int nc = 0, w = 0, h = 0;
+    int nc = 0, w = 0, h = 0, display_slot = -1;
     for (int k = 0; k < g->d->output_count && k < 8; k++) {
         const sl_target_desc *o = &g->d->outputs[k];
         resource *e = sl_graph_find(r, o->name);
         unsigned tex = output_texture(ctx, e);
         bool depth = o->format == SL_FORMAT_DEPTH32F;
+        if (!tex && g->to_display) tex = display_view(r), display_slot = nc;
         GLenum att = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0 + nc;
         if (o->layers > 1) glNamedFramebufferTextureLayer(g->fbo, att, tex, 0, layer);
         else glNamedFramebufferTexture(g->fbo, att, tex, 0);
@@ -124,6 +143,10 @@ sl_status sl_renderer_bind_outputs(sl_app *app, sl_pass_ctx *ctx, int layer) {
     }
     glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
     glViewport(0, 0, w, h);
+    if (display_slot >= 0) { /* undone after the pass (graph_run.c) */
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        glColorMaski(display_slot, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+    }
     return SL_OK;
 }
 

@@ -199,7 +199,9 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     double t0 = sl_now_ms();
     r->stats.pass_count = 0;
     r->stats.draw_calls = r->stats.reused_draw_calls = 0;
-    r->stats.timing_mode = r->finish_timing ? "glfinish" : "timer-query";
+    r->timing = app->opt.timings || r->timing_next;
+    r->timing_next = false;
+    r->stats.timing_mode = !r->timing ? "off" : r->finish_timing ? "glfinish" : "timer-query";
     r->jitter_req[0] = r->jitter_req[1] = 0;
     r->still_frames = 0;
     fill_frame(app, 0, 1);
@@ -212,6 +214,8 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     for (int i = 0; i < r->pass_count; i++)
         if (r->passes[i].d->stage >= SL_STAGE_POST) { post_begin = i; break; }
     int count = app->opt.accumulate > 1 ? app->opt.accumulate : 1;
+    /* which passes write "display" directly this frame (accumulated frames: only post passes) */
+    sl_graph_route_display(app, count > 1 ? post_begin : 0, app->opt.keep_color);
     if (count == 1) {
         sl_graph_run_range(app, 0, r->pass_count);
     } else {
@@ -296,12 +300,21 @@ bool sl_renderer_read(sl_app *app, const char *name, float *rgba) {
     sl_renderer *r = R(app);
     resource *e = r ? sl_graph_find(r, name) : NULL;
     if (!e) return false;
+    if (!strcmp(name, "color") && !r->color_final) {
+        SL_ERROR("the last frame wrote \"display\" directly and kept no final \"color\" (set keep_color before "
+                 "rendering to read the linear image)");
+        return false;
+    }
     size_t row = (size_t)e->w * 4;
     float *tmp = malloc(row * e->h * sizeof(float));
     glGetTextureImage(e->tex[e->current], 0, GL_RGBA, GL_FLOAT, (int)(row * e->h * sizeof(float)), tmp);
     for (int y = 0; y < e->h; y++) memcpy(rgba + row * y, tmp + row * (e->h - 1 - y), row * sizeof(float));
     free(tmp);
     return true;
+}
+
+void sl_renderer_request_timing(sl_app *app) {
+    if (R(app)) R(app)->timing_next = true;
 }
 
 void sl_renderer_invalidate(sl_app *app) {

@@ -16,6 +16,8 @@ void sl_renderer_destroy(struct sl_app *app);
 bool sl_renderer_frame(struct sl_app *app, int accumulate_index, int accumulate_count);
 /* Marks materials/lights/params dirty after a change (recompiles lazily). */
 void sl_renderer_invalidate(struct sl_app *app);
+/* Times every pass of the next frame (the panel's timing view); app->opt.timings times them all. */
+void sl_renderer_request_timing(struct sl_app *app);
 void sl_renderer_resize(struct sl_app *app, int w, int h);
 /* Re-reads every shader file and rebuilds programs; keeps the last good program on error. */
 int sl_renderer_reload_shaders(struct sl_app *app);
@@ -41,7 +43,7 @@ typedef struct sl_frame_stats {
     int reused_draw_calls;       /* those of the passes skipped as unchanged, when they last ran */
     int program_count;
     uint64_t program_hashes[256]; /* hash of each composed program in use, sorted */
-    const char *timing_mode;     /* "glfinish" or "timer-query" */
+    const char *timing_mode;     /* "glfinish", "timer-query", or "off" (not asked: pass ms are 0) */
 } sl_frame_stats;
 const sl_frame_stats *sl_renderer_stats(struct sl_app *app);
 /* Per material: the composed program's hash and which chunks it includes (for --explain). */

@@ -30,6 +30,7 @@ typedef struct resource {
     int current;          /* which of tex[] holds the latest contents */
     int w, h;
     uint64_t version;     /* bumps each time a pass writes it */
+    unsigned srgb_view;   /* "display": an sRGB view of tex[0] for passes writing it on the fly */
 } resource;
 
 typedef struct graph_pass {
@@ -42,6 +43,7 @@ typedef struct graph_pass {
     int last_draws;        /* draw calls of its last run (a skipped pass's are still in effect) */
     double last_ms;       /* time of the last run (for --explain when skipped since) */
     bool broken;          /* disabled at plan time (message given) */
+    bool to_display;      /* this frame its "color" output is the sRGB "display" (display_on_write) */
 } graph_pass;
 
 struct sl_pass_ctx { graph_pass *pass; int out_slot[8]; int in_slot[16]; };
@@ -68,7 +70,11 @@ typedef struct sl_renderer {
     double seen_light_time;   /* app->time of the packed lights (animated lights repack) */
     uint64_t lights_packed;   /* bumps each time the lights are packed */
     char *seen_debug_view;
-    bool finish_timing;
+    bool finish_timing;   /* when timing: glFinish around each pass (CPU rasterisers) */
+    bool timing;          /* this frame's passes are timed (--bench, --stats, the panel asked) */
+    bool timing_next;     /* sl_renderer_request_timing: time the next frame */
+    bool color_final;     /* "color" holds the frame's final linear colour (no pass wrote display) */
+    sl_pass_desc display_desc; /* the core's display pass (graph_plan.c), active while color_final */
     uint64_t shadow_runs;     /* runs of passes before SL_STAGE_PREPASS (SL_DEPENDS_LIGHTS) */
     unsigned queries[64];
     sl_frame frame;
@@ -105,6 +111,10 @@ bool sl_graph_lists(const char *const *list, const char *name);
 
 /* graph_plan.c: orders passes, checks inputs, allocates targets */
 void sl_graph_plan(sl_app *app);
+/* graph_plan.c: per frame, which passes write "display" directly (display_on_write at the end of
+ * the "color" chain); the core's display pass runs only when none does. [first, end) are the
+ * passes that may (accumulated frames: the post passes only). */
+void sl_graph_route_display(sl_app *app, int first, bool keep_color);
 
 /* graph_run.c: runs passes [begin, end), timing each */
 void sl_graph_run_range(sl_app *app, int begin, int end);

@@ -291,12 +291,13 @@ static sl_status create(const sl_host *host, void **user) {
     const sl_pass_desc fxaa = {.struct_size = sizeof fxaa, .name = "aa-fxaa", .stage = AA_STAGE_FXAA,
                                .inputs = fxaa_inputs, .outputs = color_out, .output_count = 1,
                                .execute = fxaa_execute, .is_active = fxaa_active, .user = a,
-                               .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS};
+                               .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS, .display_on_write = true};
     if (host->add_pass(host, &fxaa) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc taa = {.struct_size = sizeof taa, .name = "aa-taa", .stage = AA_STAGE_TAA,
                               .inputs = taa_inputs, .outputs = color_out, .output_count = 1,
                               .execute = taa_execute, .is_active = taa_active, .user = a,
-                              .depends = SL_DEPENDS_EVERY_FRAME}; /* its history moves every frame */
+                              .depends = SL_DEPENDS_EVERY_FRAME, /* its history moves every frame */
+                              .display_on_write = true};
     if (host->add_pass(host, &taa) != SL_OK) return SL_ERR_FAILED;
     static const sl_key_desc key = {.struct_size = sizeof(sl_key_desc), .key = "X", .param = "method",
                                     .description = "next antialiasing method (none, taa, fxaa)"};

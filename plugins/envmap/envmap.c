@@ -100,7 +100,8 @@ typedef struct envmap {
     const sl_host *host;
     int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut, unit_base; /* unit_cube = unit_2d + 1 (em_gpu) */
     em_gpu gpu;
-    sl_program *progs[5], *bg_prog;
+    sl_program *progs[5], *bg_prog, *bg_in_place_prog;
+    unsigned empty_vao; /* the in-place background's full-screen triangle */
     char glsl_dir[2048];
     uint64_t glsl_hash;
     /* the source */
@@ -565,17 +566,30 @@ static bool invert4(const float m[16], float out[16]) {
     return true;
 }
 
+static bool background_shown(envmap *e) { return e->have_src && !e->bg_is_clear && param(e, "background").b; }
+static bool core_supersampled(envmap *e) { return e->host->get_param(e->host, "core.ssaa").i > 1; }
+
+/* Without supersampling the background is drawn inside the opaque pass's targets, where depth is
+ * still the cleared 1.0 (glDepthRange(1, 1) puts the triangle there, GL_EQUAL keeps only those
+ * pixels, so covered ones are rejected before shading): no full-screen copy of "color". */
 static bool background_active(void *user, const sl_frame *f) {
-    envmap *e = user;
-    return e->have_src && !e->bg_is_clear && param(e, "background").b;
+    (void)f;
+    return background_shown(user) && !core_supersampled(user);
+}
+/* With core.ssaa > 1 "depth" is k× larger than "color": the full-screen pass that composites the
+ * sky in proportion to each pixel's background samples (envmap_background.frag). */
+static bool background_ssaa_active(void *user, const sl_frame *f) {
+    (void)f;
+    return background_shown(user) && core_supersampled(user);
 }
 
 static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     envmap *e = user;
     const sl_host *h = e->host;
-    unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth");
+    bool in_place = !core_supersampled(e);
+    unsigned color = in_place ? 0 : h->pass_texture(h, ctx, "color"), depth = in_place ? 0 : h->pass_texture(h, ctx, "depth");
     if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
-    unsigned prog = h->program_id(h, e->bg_prog);
+    unsigned prog = h->program_id(h, in_place ? e->bg_in_place_prog : e->bg_prog);
     if (!prog) return;
     glUseProgram(prog);
     /* the lighting units are free during this pass (bind() sets them again per material) */
@@ -590,13 +604,32 @@ static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
     glUniform2f(glGetUniformLocation(prog, "envmap_viewport"), (float)f->width, (float)f->height);
     glUniform1f(glGetUniformLocation(prog, "envmap_pixel_angle"), 2.0f / (f->proj[5] * (float)f->height));
     glUniform3fv(glGetUniformLocation(prog, "envmap_clear"), 1, e->clear);
-    h->draw_fullscreen(h, ctx);
+    if (!in_place) {
+        h->draw_fullscreen(h, ctx);
+        return;
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    glDepthRange(1.0, 1.0);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glBindVertexArray(e->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDepthRange(0.0, 1.0);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
 }
 
 /* ---------------------------------------------------------------- lifecycle */
 
 static const char *const bg_inputs[] = {"color", "depth", NULL};
 static const sl_target_desc bg_outputs[] = {{.name = "color", .format = SL_FORMAT_RGBA16F}};
+/* in place: draws on "color" tested against "depth" (attached, not written), reads neither */
+static const sl_target_desc bg_in_place_outputs[] = {{.name = "color", .format = SL_FORMAT_RGBA16F},
+                                                     {.name = "depth", .format = SL_FORMAT_DEPTH32F}};
 
 static sl_status envmap_create(const sl_host *host, void **user) {
     if (host->struct_size < offsetof(sl_host, environment) + sizeof host->environment || !host->environment) {
@@ -611,10 +644,17 @@ static sl_status envmap_create(const sl_host *host, void **user) {
     for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
         if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc bg = {.struct_size = sizeof bg, .name = "envmap-background", .stage = SL_STAGE_OPAQUE,
-                             .inputs = bg_inputs, .outputs = bg_outputs, .output_count = 1,
-                             .execute = background_execute, .is_active = background_active, .user = e,
-                             .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_CAMERA | SL_DEPENDS_OWN_PARAMS};
+                             .outputs = bg_in_place_outputs, .output_count = 2, .execute = background_execute,
+                             .is_active = background_active, .user = e,
+                             .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_CAMERA | SL_DEPENDS_OWN_PARAMS,
+                             .display_on_write = true};
     if (host->add_pass(host, &bg) != SL_OK) return SL_ERR_FAILED;
+    const sl_pass_desc bg_ssaa = {.struct_size = sizeof bg_ssaa, .name = "envmap-background-ssaa", .stage = SL_STAGE_OPAQUE,
+                                  .inputs = bg_inputs, .outputs = bg_outputs, .output_count = 1,
+                                  .execute = background_execute, .is_active = background_ssaa_active, .user = e,
+                                  .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_CAMERA | SL_DEPENDS_OWN_PARAMS,
+                                  .display_on_write = true};
+    if (host->add_pass(host, &bg_ssaa) != SL_OK) return SL_ERR_FAILED;
     static const sl_reference_desc ref = {
         .struct_size = sizeof ref, .settings = "envmap.mode=reference envmap.reference_samples=64",
         .accumulate_frames = 64,
@@ -660,6 +700,12 @@ static sl_status envmap_activate(void *user) {
                                                                     .vertex = "sl:fullscreen.vert",
                                                                     .fragment = "envmap_background.frag"});
     if (!e->host->program_id(e->host, e->bg_prog)) return SL_ERR_GL;
+    e->bg_in_place_prog = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                             .vertex = "sl:fullscreen.vert",
+                                                                             .fragment = "envmap_background.frag",
+                                                                             .defines = "ENVMAP_IN_PLACE 1"});
+    if (!e->host->program_id(e->host, e->bg_in_place_prog)) return SL_ERR_GL;
+    glCreateVertexArrays(1, &e->empty_vao);
     e->glsl_hash = em_glsl_hash(e->glsl_dir, e->host->shader_dir(e->host));
     /* 1×1 stand-ins so every sampler always has a texture of its own type on its own unit */
     static const float black[4] = {0, 0, 0, 1};
@@ -680,6 +726,8 @@ static void envmap_deactivate(void *user) {
     delete_tex(&e->lut);
     delete_tex(&e->dummy_2d);
     delete_tex(&e->dummy_cube);
+    if (e->empty_vao) glDeleteVertexArrays(1, &e->empty_vao);
+    e->empty_vao = 0;
     em_gpu_free(&e->gpu);
     free(e->src_key);
     e->src_key = NULL;

@@ -1,5 +1,6 @@
 // The environment as background: after the forward pass, pixels the geometry did not cover
-// (depth still at the cleared 1.0) show the source map along the view ray. With SSAA the depth
+// (depth still at the cleared 1.0) show the source map along the view ray. ENVMAP_IN_PLACE: drawn
+// into the forward pass's targets with a depth test that only those pixels pass (envmap.c). With SSAA the depth
 // is k× larger than "color": a pixel whose k×k samples are partly background had the core's
 // constant clear colour resolved into it, which is swapped for the sky in proportion.
 #include "envmap_common.glsl"
@@ -18,6 +19,7 @@ uniform float envmap_pixel_angle; // radians per pixel at the centre of the view
 layout(location = 0) out vec4 o_color;
 
 void main() {
+#ifndef ENVMAP_IN_PLACE
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 c = texelFetch(envmap_color, p, 0);
     int k = max(textureSize(envmap_depth, 0).x / max(textureSize(envmap_color, 0).x, 1), 1);
@@ -28,6 +30,7 @@ void main() {
         o_color = c;
         return;
     }
+#endif
     vec2 ndc = gl_FragCoord.xy / envmap_viewport * 2.0 - 1.0;
     vec4 a = envmap_inv_view_proj * vec4(ndc, -1.0, 1.0), b = envmap_inv_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
@@ -40,6 +43,11 @@ void main() {
         sky = textureLod(envmap_src2d, envmap_dir_latlong(d), lod).rgb;
     }
     sky *= envmap_scale;
+#ifdef ENVMAP_IN_PLACE
+    o_color = vec4(sky, 1.0); // only background pixels reach here (the depth test, envmap.c)
+    return;
+#else
     float f = float(background) / float(k * k);
     o_color = vec4(f >= 1.0 ? sky : c.rgb + f * (sky - envmap_clear), c.a);
+#endif
 }

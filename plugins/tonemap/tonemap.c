@@ -1,6 +1,7 @@
 /* tonemap: a post pass on the linear HDR buffer (exposure ×2^E, then linear, Reinhard, extended
  * Reinhard, ACES fitted, AgX or Khronos PBR Neutral), optional dithering and a false-colour
- * exposure view. The core's display pass (clamp + sRGB encoding) runs after it. The operators
+ * exposure view. The core's display encoding (clamp + sRGB) follows it: on the fly as it writes
+ * when it is the last pass (display_on_write), else the core's display pass. The operators
  * are tonemap_ops.glsl; shadelab-tonemap-curves plots them. See README.md. */
 #include <shadelab/shadelab.h>
 #define SL_GL_IMPLEMENTATION
@@ -74,7 +75,8 @@ static sl_status create(const sl_host *host, void **user) {
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = "tonemap", .stage = SL_STAGE_TONEMAP, .inputs = inputs,
                                .outputs = outputs, .output_count = 1, .execute = execute, .is_active = active, .user = t,
-                               .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS};
+                               .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS,
+                               .display_on_write = true /* ABI 1.8: as the last pass it writes the display */};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
     static const sl_key_desc keys[] = {
         {.struct_size = sizeof(sl_key_desc), .key = "O", .param = "operator", .description = "next tone-mapping operator"},

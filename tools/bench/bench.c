@@ -153,6 +153,8 @@ static bool open_app(const sl_bench_options *o, const char *settings, int accumu
     opt.float32 = o->float32;
     opt.accumulate = accumulate > 1 ? accumulate : 1;
     opt.strict = true; /* measure exactly the plugins asked for, or stop */
+    opt.timings = true;    /* per-pass times are the point */
+    opt.keep_color = true; /* the error metrics read the linear "color" */
     if (o->plugin && strcmp(o->plugin, "core")) opt.plugins[opt.plugin_count++] = o->plugin;
     for (int i = 0; i < o->plugin_count && opt.plugin_count < 64; i++) opt.plugins[opt.plugin_count++] = o->plugins[i];
     char *base_text = NULL;

@@ -28,6 +28,10 @@
 #define glReadBuffer sl_glReadBuffer
 #define glDrawBuffer sl_glDrawBuffer
 #define glDrawBuffers sl_glDrawBuffers
+#define glColorMaski sl_glColorMaski
+#define glDepthRange sl_glDepthRange
+#define glTextureView sl_glTextureView
+#define glClearTexImage sl_glClearTexImage
 #define glGenTextures sl_glGenTextures
 #define glDeleteTextures sl_glDeleteTextures
 #define glBindTexture sl_glBindTexture

@@ -55,7 +55,10 @@ int sl_harness_plugin_params(sl_harness *h, const char *plugin, const sl_param_d
 int sl_harness_plugin_keys(sl_harness *h, const char *plugin, const sl_key_desc **out, int max);
 /* The debug views a plugin offers (names); returns how many there are. */
 int sl_harness_plugin_debug_views(sl_harness *h, const char *plugin, const char **names, int max);
-/* Renders one frame; writes linear HDR RGBA (width*height*4 floats, top row first). */
+/* Renders one frame; writes linear HDR RGBA (width*height*4 floats, top row first). With rgba
+ * NULL (ABI 1.8) the final linear colour is not kept: the last passes may write the display
+ * encoding themselves (sl_pass_desc.display_on_write) and the core's display pass is skipped;
+ * sl_harness_read_display gives the same image within 1/255. */
 bool sl_harness_render(sl_harness *h, float *rgba);
 /* The display-encoded image of the last render (sRGB, [0,1]). */
 bool sl_harness_read_display(sl_harness *h, float *rgba);

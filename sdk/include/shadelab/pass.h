@@ -15,7 +15,9 @@
  *            and VERTEX hooks (evaluated at the previous frame's sl_time too); background
  *            pixels (nothing drawn) hold 0. Same size as "depth".
  * After the last POST pass the core's display pass clamps to [0,1] and applies the sRGB
- * encoding (a tone-mapping plugin runs before it, at stage POST).
+ * encoding (a tone-mapping plugin runs before it, at stage POST). ABI 1.8: when the last
+ * writers of "color" are declared display_on_write, they write "display" directly instead
+ * (see sl_pass_desc) and no display pass runs; with no post pass that is the forward pass.
  */
 #ifndef SHADELAB_PASS_H
 #define SHADELAB_PASS_H
@@ -134,6 +136,15 @@ typedef struct sl_pass_desc {
     /* ABI 1.8: sl_depends bits (above); 0 = not declared, run every frame. Not tracked: sl_time
      * read by a surface (not VERTEX) hook in the material programs a pass draws with. */
     uint32_t depends;
+    /* ABI 1.8: the pass writes its "color" output only through the framebuffer host->bind_outputs
+     * binds (draws, clears, blits into it; no image stores, texture copies or reads of that
+     * output). When such passes end the frame's chain of "color" writers (nothing after them
+     * reads "color"), the core binds its 8-bit "display" target there instead, with the clamp and
+     * sRGB encoding applied on write (GL_FRAMEBUFFER_SRGB on an sRGB view), and its separate
+     * display pass does not run: one full-screen pass less. The pass does nothing differently;
+     * its "color" input, if any, is still the linear colour before it. false (the default, and
+     * every plugin built before 1.8): the core's display pass runs after it. */
+    bool display_on_write;
 } sl_pass_desc;
 
 /* host->draw_scene: draw every visible mesh of the scene with a view. */

@@ -1,0 +1,4 @@
+# Fewer fixed full-screen passes (issue 18 item 3): the display encoding written on the fly by the
+# last passes (display_on_write) against the display pass and a CPU sRGB encoding.
+sl_add_test(display_on_write SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_display_on_write.c TIMEOUT 120)
+target_compile_definitions(test_display_on_write PRIVATE SL_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
