@@ -1,5 +1,6 @@
 /* Start-up profile and Mesa's shader cache location: see startup.h. */
 #include "startup.h"
+#include "log.h"
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -14,6 +15,7 @@ static sl_startup_phase phases[MAX_PHASES];
 static int phase_count;
 static bool started, ended;
 static struct { double wall, cpu, main_cpu; } last;
+static double begin_wall;
 
 static double clock_ms(clockid_t id) {
     struct timespec ts;
@@ -32,6 +34,7 @@ void sl_startup_begin(void) {
     started = true;
     ended = false;
     now(&last.wall, &last.cpu, &last.main_cpu);
+    begin_wall = last.wall;
 }
 
 void sl_startup_mark(const char *fmt, ...) {
@@ -49,6 +52,9 @@ void sl_startup_mark(const char *fmt, ...) {
         p = &phases[MAX_PHASES - 1];
         snprintf(p->name, sizeof p->name, "(more phases)");
     }
+    /* progress (stderr): a phase that took over a second is named as it ends */
+    if (w - last.wall > 1000)
+        SL_INFO("start-up: %s took %.1f s (%.1f s since start)", p->name, (w - last.wall) / 1e3, (w - begin_wall) / 1e3);
     p->wall_ms += w - last.wall;
     p->cpu_ms += c - last.cpu;
     p->main_cpu_ms += m - last.main_cpu;

@@ -260,6 +260,8 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
     if (tcs) glDeleteShader(tcs);
     if (tes) glDeleteShader(tes);
     sl_startup_note_glsl(sl_startup_thread_cpu_ms() - cpu0, sl_startup_wall_ms() - wall0);
+    SL_DEBUG("built program %s (%zu + %zu bytes of GLSL) in %.1f ms CPU", p->label ? p->label : "?", p->vs.text.len,
+             p->fs.text.len, sl_startup_thread_cpu_ms() - cpu0);
     free(p->error);
     p->error = NULL;
     if (!prog) {

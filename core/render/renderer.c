@@ -363,6 +363,9 @@ bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
     r->materials = calloc(s->material_count + 1, sizeof *r->materials);
     sl_gpu_pack_lights(app);
     r->seen_lights_version = app->lights_version;
+    /* known before the first composition, so that the plan does not compose every material
+     * again with motion vectors (a second GLSL compile of each program at start-up) */
+    r->motion = sl_graph_wants_motion(app);
     sl_gpu_compose_all(app);
     r->seen_recompile = app->params.recompile_version;
     r->seen_materials = app->materials_version;

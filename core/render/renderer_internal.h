@@ -101,6 +101,8 @@ bool sl_graph_lists(const char *const *list, const char *name);
 
 /* graph_plan.c: orders passes, checks inputs, allocates targets */
 void sl_graph_plan(sl_app *app);
+/* An enabled pass reads "motion": the forward programs compute it (SL_MOTION_VECTORS). */
+bool sl_graph_wants_motion(sl_app *app);
 
 /* graph_run.c: runs passes [begin, end), timing each */
 void sl_graph_run_range(sl_app *app, int begin, int end);
