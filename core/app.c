@@ -577,6 +577,9 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
 
 bool sl_app_render_frame(sl_app *app) {
     bool ok = sl_renderer_frame(app, 0, app->opt.accumulate);
+    /* the start-up profile covers the first two frames (main.c ends and prints it after them
+     * for a headless run; the window's loop stops recording here, after a third) */
+    if (app->frame_index >= 3 && sl_startup_recording()) sl_startup_end();
     /* after the first frame every plugin has had its chance to read the environment */
     const sl_environment *env = &app->scene.environment;
     if (app->frame_index == 1 && env->map && !app->environment_read)
