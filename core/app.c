@@ -3,6 +3,7 @@
 #include "host/host.h"
 #include "image/image.h"
 #include "log.h"
+#include "startup.h"
 #include "render/composer.h"
 #include "render/renderer.h"
 #include <shadelab/gl.h>
@@ -457,6 +458,7 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     if (!ok) return false;
     app->scene_loaded = true;
     sl_scene_update_transforms(&app->scene);
+    sl_startup_mark("scene file (JSON, meshes)");
 
     /* plugins: the core first, then the command line, then the scene's names */
     app->plugins.params = &app->params;
@@ -473,6 +475,7 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     model_defaults(app);
     load_plugins_for_inputs(app);
     sl_plugins_create_all(&app->plugins);
+    sl_startup_mark("plugins loaded and created");
     if (!app->plugins.items[0]->ok) {
         snprintf(err, n, "the core failed to register its shaders (see above)");
         return false;
@@ -529,8 +532,13 @@ static bool is_cpu_renderer(const char *renderer) {
 }
 
 bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
+    char cache[4096];
+    sl_startup_shader_cache(cache, sizeof cache); /* before the context: Mesa reads it then */
+    if (*cache) SL_DEBUG("Mesa shader cache: %s", cache);
+    sl_startup_mark("parameters, camera, shader cache dir");
     if (!sl_backend_create(&app->backend, app->opt.backend, app->opt.width, app->opt.height, "shadelab", err, n))
         return false;
+    sl_startup_mark("GL context (%s)", app->backend.name);
     app->gl_ready = true;
     const char *missing = NULL;
     if (!sl_gl_load(app->backend.get_proc_address, &missing)) {
@@ -542,6 +550,7 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
     SL_DEBUG("backend %s: %s, OpenGL %s", app->backend.name, renderer, glGetString(GL_VERSION));
     sl_host_set_gl_app(app);
     if (!sl_renderer_create(app, err, n)) return false;
+    sl_startup_mark("renderer (core programs)");
     for (int i = 1; i < app->plugins.count; i++) {
         sl_plugin_rec *r = app->plugins.items[i];
         if (!r->ok) continue;
@@ -559,12 +568,18 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
             }
         }
         r->active = true;
+        sl_startup_mark("activate %s", r->id);
     }
-    return sl_renderer_load_scene(app, err, n);
+    bool ok = sl_renderer_load_scene(app, err, n);
+    sl_startup_mark("scene to GL (textures, meshes, material programs)");
+    return ok;
 }
 
 bool sl_app_render_frame(sl_app *app) {
     bool ok = sl_renderer_frame(app, 0, app->opt.accumulate);
+    /* the start-up profile covers the first two frames (main.c ends and prints it after them
+     * for a headless run; the window's loop stops recording here, after a third) */
+    if (app->frame_index >= 3 && sl_startup_recording()) sl_startup_end();
     /* after the first frame every plugin has had its chance to read the environment */
     const sl_environment *env = &app->scene.environment;
     if (app->frame_index == 1 && env->map && !app->environment_read)

@@ -3,6 +3,7 @@
 #include "quality/autoquality.h" /* --auto-quality (shadelab_quality) */
 #include "log.h"
 #include "render/renderer.h"
+#include "startup.h"
 #include "turntable.h"
 #include "viewer.h"
 #include <cjson/cJSON.h>
@@ -210,6 +211,43 @@ static double peak_rss_mib(void) {
     return getrusage(RUSAGE_SELF, &ru) == 0 ? ru.ru_maxrss / 1024.0 : 0;
 }
 
+/* The start-up profile (startup.h): phases to the end of the second frame, and the GLSL front
+ * end's total (glCompileShader + glLinkProgram; llvmpipe's code generation is not in it, it runs
+ * at a program's first draw, inside the first frame's passes). */
+static void add_startup(cJSON *root) {
+    const sl_startup_phase *ph;
+    int n = sl_startup_phases(&ph);
+    cJSON *a = cJSON_AddArrayToObject(root, "startup_phases");
+    for (int i = 0; i < n; i++) {
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddStringToObject(p, "phase", ph[i].name);
+        cJSON_AddNumberToObject(p, "wall_ms", ph[i].wall_ms);
+        cJSON_AddNumberToObject(p, "cpu_ms", ph[i].cpu_ms);
+        cJSON_AddNumberToObject(p, "main_thread_cpu_ms", ph[i].main_cpu_ms);
+        cJSON_AddItemToArray(a, p);
+    }
+    double cpu, wall;
+    int progs;
+    sl_startup_glsl_total(&cpu, &wall, &progs);
+    cJSON *g = cJSON_AddObjectToObject(root, "glsl_front_end");
+    cJSON_AddNumberToObject(g, "programs_built", progs);
+    cJSON_AddNumberToObject(g, "main_thread_cpu_ms", cpu);
+    cJSON_AddNumberToObject(g, "wall_ms", wall);
+    cJSON_AddStringToObject(g, "mesa_shader_cache_dir", getenv("MESA_SHADER_CACHE_DIR") ? getenv("MESA_SHADER_CACHE_DIR") : "");
+}
+
+static void log_startup(void) {
+    const sl_startup_phase *ph;
+    int n = sl_startup_phases(&ph);
+    double w = 0, c = 0, m = 0;
+    SL_DEBUG("start-up profile (wall, CPU of all threads, CPU of this thread = GL front end and shader compiles):");
+    for (int i = 0; i < n; i++) {
+        w += ph[i].wall_ms, c += ph[i].cpu_ms, m += ph[i].main_cpu_ms;
+        SL_DEBUG("  %-52s %8.1f ms %8.1f ms %8.1f ms", ph[i].name, ph[i].wall_ms, ph[i].cpu_ms, ph[i].main_cpu_ms);
+    }
+    SL_DEBUG("  %-52s %8.1f ms %8.1f ms %8.1f ms", "total", w, c, m);
+}
+
 static bool write_stats(const char *path, sl_app *app, recorder *rec, double first_frame_ms, int warmup) {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "backend", app->backend.name);
@@ -222,6 +260,7 @@ static bool write_stats(const char *path, sl_app *app, recorder *rec, double fir
     cJSON_AddNumberToObject(root, "warmup_frames_excluded", warmup);
     cJSON_AddNumberToObject(root, "startup_to_first_frame_ms", first_frame_ms);
     cJSON_AddNumberToObject(root, "peak_rss_mib", peak_rss_mib());
+    add_startup(root);
     double med, mean, mn;
     int skip = rec->frames > warmup ? warmup : 0;
     summarise(rec->frame + skip, rec->frames - skip, &med, &mean, &mn);
@@ -392,6 +431,7 @@ static int run_turntable(sl_app *app, const cli *c, const char *ffmpeg, recorder
             app->time = c->start_time;
             sl_app_render_frame(app);
             if (k == 0 && f == 0) *first_ms = now_ms() - start;
+            if (sl_startup_recording()) { sl_startup_mark("frame 0: outside the passes"); sl_startup_end(); log_startup(); }
             record(rec, sl_renderer_stats(app));
             int still = sl_renderer_still_frames(app);
             if (f + 1 >= (still > 1 && k > 0 ? still + 1 : still)) break;
@@ -426,11 +466,13 @@ static int run_turntable(sl_app *app, const cli *c, const char *ffmpeg, recorder
 
 int main(int argc, char **argv) {
     double start = now_ms();
+    sl_startup_begin();
     cli c;
     char err[16384] = "";
     int pr = parse_args(argc, argv, &c, err, sizeof err);
     if (pr == 2) return 0;
     if (pr) return die(err);
+    sl_startup_mark("command line");
     char ffmpeg[4096] = "";
     if (c.turntable && c.output && is_video(c.output) && !find_in_path("ffmpeg", ffmpeg, sizeof ffmpeg)) {
         snprintf(err, sizeof err, "--output %s: encoding a video needs ffmpeg, which is not installed (it is optional: "
@@ -518,6 +560,14 @@ int main(int argc, char **argv) {
             app.time = c.start_time + (c.frames < 0 ? 0 : f * app.opt.fixed_dt);
             sl_app_render_frame(&app);
             if (f == 0) first_frame_ms = now_ms() - start;
+            if (sl_startup_recording()) {
+                sl_startup_mark("frame %d: outside the passes", f);
+                /* the first two frames: the second shows what the first paid once */
+                if (f == 1 || !(f + 1 < frames || (c.frames < 0 && f + 1 < sl_renderer_still_frames(&app)))) {
+                    sl_startup_end();
+                    log_startup();
+                }
+            }
             record(&rec, sl_renderer_stats(&app));
             if (app.backend.has_window) { glfwPollEvents(); sl_backend_swap(&app.backend); }
             if (frames > 1 && now_ms() - last_report > 2000) {

@@ -1,6 +1,7 @@
 #include "render/composer.h"
 #include "fileio.h"
 #include "log.h"
+#include "startup.h"
 #include <shadelab/gl.h>
 #include <errno.h>
 #include <libgen.h>
@@ -227,6 +228,7 @@ static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size
 
 bool sl_program_build(sl_program *p, char *err, size_t n) {
     char log[8192] = "";
+    double cpu0 = sl_startup_thread_cpu_ms(), wall0 = sl_startup_wall_ms();
     unsigned vs = compile_stage(GL_VERTEX_SHADER, &p->vs, log, sizeof log);
     unsigned fs = vs ? compile_stage(GL_FRAGMENT_SHADER, &p->fs, log, sizeof log) : 0;
     /* tessellation stages (DISPLACEMENT hooks, shader.h ABI 1.7) only when composed */
@@ -257,6 +259,9 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
     if (fs) glDeleteShader(fs);
     if (tcs) glDeleteShader(tcs);
     if (tes) glDeleteShader(tes);
+    sl_startup_note_glsl(sl_startup_thread_cpu_ms() - cpu0, sl_startup_wall_ms() - wall0);
+    SL_DEBUG("built program %s (%zu + %zu bytes of GLSL) in %.1f ms CPU", p->label ? p->label : "?", p->vs.text.len,
+             p->fs.text.len, sl_startup_thread_cpu_ms() - cpu0);
     free(p->error);
     p->error = NULL;
     if (!prog) {

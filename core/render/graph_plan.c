@@ -38,6 +38,14 @@ static int cmp_stage(const void *a, const void *b) {
 }
 
 /* Orders passes, checks inputs, allocates targets. */
+bool sl_graph_wants_motion(sl_app *app) {
+    for (int i = 0; i < app->plugins.pass_count; i++)
+        if (sl_plugin_enabled(&app->plugins, app->plugins.passes[i].owner) &&
+            sl_graph_lists(app->plugins.passes[i].d.inputs, "motion"))
+            return true;
+    return false;
+}
+
 void sl_graph_plan(sl_app *app) {
     sl_renderer *r = R(app);
     sl_graph_free(r);
@@ -49,10 +57,7 @@ void sl_graph_plan(sl_app *app) {
     forward_outputs[1] = core_depth;
     /* "motion" (pass.h, ABI 1.6) only while an enabled plugin's pass reads it: the forward
      * programs then compute it (SL_MOTION_VECTORS), so they are recomposed when that changes */
-    bool motion = false;
-    for (int i = 0; i < app->plugins.pass_count && !motion; i++)
-        motion = sl_plugin_enabled(&app->plugins, app->plugins.passes[i].owner) &&
-                 sl_graph_lists(app->plugins.passes[i].d.inputs, "motion");
+    bool motion = sl_graph_wants_motion(app);
     forward_outputs[2] = core_motion;
     forward_pass.output_count = motion ? 3 : 2;
     if (motion != r->motion) {

@@ -2,6 +2,7 @@
  * See renderer_internal.h. */
 #include "render/renderer_internal.h"
 #include "log.h"
+#include "startup.h"
 #include <shadelab/gl.h>
 #include <stdlib.h>
 #include <string.h>
@@ -232,6 +233,7 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
             glGetQueryObjectui64v(r->queries[i & 63], GL_QUERY_RESULT, &ns);
             ms = ns * 1e-6;
         }
+        if (sl_startup_recording()) sl_startup_mark("frame %d: %s", (int)app->frame_index, g->d->name);
         g->has_run = true;
         if (g->d->stage < SL_STAGE_PREPASS) r->shadow_runs++; /* SL_DEPENDS_LIGHTS of later passes */
         g->last_ms = ms;

@@ -2,6 +2,7 @@
  * See renderer.h (its interface) and renderer_internal.h (how its files divide the work). */
 #include "render/renderer_internal.h"
 #include "log.h"
+#include "startup.h"
 #include <shadelab/gl.h>
 #include <stdlib.h>
 #include <string.h>
@@ -209,6 +210,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         sl_plugin_rec *pr = app->plugins.items[i];
         if (pr->active && pr->desc.begin_frame && sl_plugin_enabled(&app->plugins, i)) pr->desc.begin_frame(pr->user, &r->frame);
     }
+    if (sl_startup_recording()) sl_startup_mark("frame %d: plugins' begin_frame", (int)app->frame_index);
     apply_jitter(r);
     int post_begin = r->pass_count;
     for (int i = 0; i < r->pass_count; i++)
@@ -396,6 +398,9 @@ bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
     r->materials = calloc(s->material_count + 1, sizeof *r->materials);
     sl_gpu_pack_lights(app);
     r->seen_lights_version = app->lights_version;
+    /* known before the first composition, so that the plan does not compose every material
+     * again with motion vectors (a second GLSL compile of each program at start-up) */
+    r->motion = sl_graph_wants_motion(app);
     sl_gpu_compose_all(app);
     r->seen_recompile = app->params.recompile_version;
     r->seen_materials = app->materials_version;

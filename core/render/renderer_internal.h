@@ -115,6 +115,8 @@ void sl_graph_plan(sl_app *app);
  * the "color" chain); the core's display pass runs only when none does. [first, end) are the
  * passes that may (accumulated frames: the post passes only). */
 void sl_graph_route_display(sl_app *app, int first, bool keep_color);
+/* An enabled pass reads "motion": the forward programs compute it (SL_MOTION_VECTORS). */
+bool sl_graph_wants_motion(sl_app *app);
 
 /* graph_run.c: runs passes [begin, end), timing each */
 void sl_graph_run_range(sl_app *app, int begin, int end);

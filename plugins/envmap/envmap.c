@@ -121,6 +121,10 @@ typedef struct envmap {
     float sh[9][3];
     bool sh_valid;
     double progress_start, progress_last;
+    /* a prefiltered chain issued without waiting, written to the disk cache later (store_pending) */
+    bool store_pending;
+    uint64_t store_key;
+    int store_size, store_levels;
 } envmap;
 
 static double now_s(void) {
@@ -266,7 +270,16 @@ static void cache_store(envmap *e, uint64_t key, unsigned tex, int size, int lev
 
 /* ---------------------------------------------------------------- the source */
 
+/* The chain issued by ensure_spec without waiting is finished by the next frame (or at
+ * deactivate): read it back into the disk cache then. */
+static void store_pending(envmap *e) {
+    if (!e->store_pending) return;
+    e->store_pending = false;
+    if (e->spec && e->spec_key == e->store_key) cache_store(e, e->store_key, e->spec, e->store_size, e->store_levels);
+}
+
 static void free_derived(envmap *e) {
+    e->store_pending = false;
     delete_tex(&e->base);
     delete_tex(&e->spec); /* ours, also when it came from a precomputed chain */
     e->spec_from_chain = false;
@@ -397,6 +410,7 @@ static void ensure_spec(envmap *e) {
     key = em_hash(ints, sizeof ints, key);
     key = em_hash(&bias, sizeof bias, key);
     if (e->spec && e->spec_key == key) return;
+    e->store_pending = false;
     delete_tex(&e->spec);
     char path[2400] = "";
     e->spec = cache_load(e, key, size, levels, path, sizeof path);
@@ -407,14 +421,21 @@ static void ensure_spec(envmap *e) {
                      levels, samples);
         ensure_base(e);
         refresh_programs(e);
-        e->progress_start = e->progress_last = now_s();
+        /* Issued without waiting (issue 18 item 5: start-up): on llvmpipe the rasteriser threads
+         * prefilter while this thread goes on composing, compiling and drawing the frame (draws
+         * that sample the chain come after it in the GL command stream, so they see it done).
+         * No per-face progress here, which would wait for each face; the disk cache is written
+         * at the next frame or at deactivate, when the work is finished (store_pending). */
+        if ((double)size * size * samples >= 256.0 * 256 * 64)
+            e->host->log(e->host, SL_LOG_INFO, "prefiltering the GGX chain (%d² cube, %d levels, %d samples) "
+                         "alongside the first frame", size, levels, samples);
+        em_progress_fn report = e->gpu.progress;
+        e->gpu.progress = NULL;
         e->spec = em_prefilter_ggx_map(&e->gpu, e->base, size, levels, samples, bias, (em_level_map)map);
-        glFinish();
-        double t = now_s() - e->progress_start;
-        if (t > 1.0)
-            e->host->log(e->host, SL_LOG_INFO, "prefiltered a %d² cube (%d levels, %d samples) in %.1f s", size, levels,
-                         samples, t);
-        cache_store(e, key, e->spec, size, levels);
+        e->gpu.progress = report;
+        e->store_pending = true;
+        e->store_key = key;
+        e->store_size = size, e->store_levels = levels;
     }
     e->spec_levels = levels;
     e->spec_key = key;
@@ -460,6 +481,7 @@ static void ensure_lut(envmap *e) {
 
 static void envmap_begin_frame(void *user, const sl_frame *f) {
     envmap *e = user;
+    store_pending(e);
     float env[5];
     const char *map = e->host->environment(e->host, env);
     char key[4400];
@@ -721,6 +743,7 @@ static sl_status envmap_activate(void *user) {
 
 static void envmap_deactivate(void *user) {
     envmap *e = user;
+    store_pending(e);
     free_derived(e);
     delete_tex(&e->src_tex);
     delete_tex(&e->lut);

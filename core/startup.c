@@ -1,0 +1,119 @@
+/* Start-up profile and Mesa's shader cache location: see startup.h. */
+#include "startup.h"
+#include "log.h"
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#define MAX_PHASES 64
+
+static sl_startup_phase phases[MAX_PHASES];
+static int phase_count;
+static bool started, ended;
+static struct { double wall, cpu, main_cpu; } last;
+static double begin_wall;
+
+static double clock_ms(clockid_t id) {
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void now(double *wall, double *cpu, double *main_cpu) {
+    *wall = clock_ms(CLOCK_MONOTONIC);
+    *cpu = clock_ms(CLOCK_PROCESS_CPUTIME_ID);
+    *main_cpu = clock_ms(CLOCK_THREAD_CPUTIME_ID);
+}
+
+void sl_startup_begin(void) {
+    phase_count = 0;
+    started = true;
+    ended = false;
+    now(&last.wall, &last.cpu, &last.main_cpu);
+    begin_wall = last.wall;
+}
+
+void sl_startup_mark(const char *fmt, ...) {
+    if (!started || ended) return;
+    double w, c, m;
+    now(&w, &c, &m);
+    sl_startup_phase *p;
+    if (phase_count < MAX_PHASES) {
+        p = &phases[phase_count++];
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(p->name, sizeof p->name, fmt, ap);
+        va_end(ap);
+    } else {
+        p = &phases[MAX_PHASES - 1];
+        snprintf(p->name, sizeof p->name, "(more phases)");
+    }
+    /* progress (stderr): a phase that took over a second is named as it ends */
+    if (w - last.wall > 1000)
+        SL_INFO("start-up: %s took %.1f s (%.1f s since start)", p->name, (w - last.wall) / 1e3, (w - begin_wall) / 1e3);
+    p->wall_ms += w - last.wall;
+    p->cpu_ms += c - last.cpu;
+    p->main_cpu_ms += m - last.main_cpu;
+    last.wall = w, last.cpu = c, last.main_cpu = m;
+}
+
+static double glsl_cpu, glsl_wall;
+static int glsl_programs;
+
+void sl_startup_note_glsl(double main_cpu_ms, double wall_ms) {
+    glsl_cpu += main_cpu_ms;
+    glsl_wall += wall_ms;
+    glsl_programs++;
+}
+
+void sl_startup_glsl_total(double *main_cpu_ms, double *wall_ms, int *programs) {
+    *main_cpu_ms = glsl_cpu;
+    *wall_ms = glsl_wall;
+    *programs = glsl_programs;
+}
+
+double sl_startup_thread_cpu_ms(void) { return clock_ms(CLOCK_THREAD_CPUTIME_ID); }
+double sl_startup_wall_ms(void) { return clock_ms(CLOCK_MONOTONIC); }
+
+void sl_startup_end(void) { ended = true; }
+bool sl_startup_recording(void) { return started && !ended; }
+
+int sl_startup_phases(const sl_startup_phase **out) {
+    *out = phases;
+    return phase_count;
+}
+
+static void mkdir_p(const char *path) {
+    char tmp[4096];
+    snprintf(tmp, sizeof tmp, "%s", path);
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') { *p = 0; mkdir(tmp, 0755); *p = '/'; }
+    mkdir(tmp, 0755);
+}
+
+static bool set_env(const char *name) { const char *v = getenv(name); return v && *v; }
+
+void sl_startup_shader_cache(char *dir, size_t n) {
+    dir[0] = 0;
+    /* the user's choice wins: a directory of theirs, or the cache switched off */
+    if (set_env("MESA_SHADER_CACHE_DIR") || set_env("MESA_GLSL_CACHE_DIR") || set_env("MESA_SHADER_CACHE_DISABLE") ||
+        set_env("MESA_GLSL_CACHE_DISABLE"))
+        return;
+    const char *c = getenv("SHADELAB_CACHE"), *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    char d[4096];
+    if (c && *c) snprintf(d, sizeof d, "%s/mesa", c);
+    else if (x && *x) snprintf(d, sizeof d, "%s/shadelab/mesa", x);
+    else if (home && *home) snprintf(d, sizeof d, "%s/.cache/shadelab/mesa", home);
+    else return;
+    mkdir_p(d);
+    struct stat st;
+    if (stat(d, &st) != 0 || !S_ISDIR(st.st_mode)) return; /* Mesa falls back to its own default */
+    /* Mesa 22 reads MESA_SHADER_CACHE_DIR; releases before 21 read MESA_GLSL_CACHE_DIR */
+    setenv("MESA_SHADER_CACHE_DIR", d, 1);
+    setenv("MESA_GLSL_CACHE_DIR", d, 1);
+    snprintf(dir, n, "%s", d);
+}

@@ -1,0 +1,103 @@
+#!/bin/sh
+# Start-up benchmark (issue 18 item 5, issue 19's cold start): time to a complete first frame.
+#
+#   tools/bench/startup.sh [BUILD_DIR] [ROUNDS]      (defaults: build, 3)
+#
+# Per round, interleaved, each run printed with the 1-minute load average before it:
+#   head cold   tools/bench/startup/head_ibl.json (sss + envmap with an HDR + tonemap + ggx)
+#               with an empty Mesa shader cache and an empty shadelab cache (fresh temp dirs)
+#   head warm   the same command again on those caches (what a second start costs)
+#   default     the built-in default scene, cold (fresh caches)
+#   basic       scenes/basic.json, cold (fresh caches)
+# Each run is one `shadelab --headless --size 1280x720 --frames 1 --output F.png --stats F.json`:
+# "wall" is the whole process (start to PNG written), "CPU" its user + system time (all threads),
+# "first" the viewer's own start-up-to-first-frame figure. The head scene needs the data
+# directory (../shared/assets, or SHADELAB_DATA) and Debian's blender-data; without them its rows
+# are skipped. The OS file cache is warm for every run but the first (the files were read
+# before); "cold" here means the shader and prefilter caches, which is what the user controls.
+#
+# Then, once: the head scene's first frame against its converged image (aa and tonemap's dither
+# off, so that frames do not differ by TAA's jitter or the dither's per-frame noise: frame 1 of a
+# cold start vs frame 3 of the same caches), must be within 1/255
+# (idiff, when OpenImageIO's tools are installed): the first frame shows nothing unfinished.
+#
+# A benchmark, not a test: it prints figures and asserts nothing.
+set -u
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+BUILD=${1:-$ROOT/build}
+ROUNDS=${2:-3}
+SIZE=${SIZE:-1280x720}
+BIN=$BUILD/shadelab
+[ -x "$BIN" ] || { echo "startup.sh: no $BIN (build first, or pass the build dir)" >&2; exit 1; }
+DATA=${SHADELAB_DATA:-$ROOT/../shared/assets}
+HEAD=$ROOT/tools/bench/startup/head_ibl.json
+HDR=/usr/share/blender/datafiles/studiolights/world/courtyard.exr
+have_head=1
+[ -f "$DATA/head/LeePerrySmith.glb" ] || { echo "# no data dir ($DATA/head): head rows skipped"; have_head=0; }
+[ -f "$HDR" ] || { echo "# no $HDR (apt-get install blender-data): head rows skipped"; have_head=0; }
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+unset MESA_SHADER_CACHE_DISABLE MESA_GLSL_CACHE_DISABLE
+
+load() { cut -d' ' -f1 /proc/loadavg; }
+
+# run NAME CACHE_DIR ARGS... : one start; appends "name wall cpu first load" to $TMP/rows
+run() {
+    name=$1 cache=$2
+    shift 2
+    l=$(load)
+    out=$TMP/$name.$$.png
+    if MESA_SHADER_CACHE_DIR=$cache/mesa SHADELAB_CACHE=$cache /usr/bin/time -f "%e %U %S" -o "$TMP/time" \
+        "$BIN" --headless --size "$SIZE" --frames 1 --output "$out" --stats "$TMP/stats.json" -q "$@" >/dev/null 2>"$TMP/err"; then
+        set -- $(cat "$TMP/time")
+        wall=$1 cpu=$(echo "$2 + $3" | bc)
+        first=$(sed -n 's/.*"startup_to_first_frame_ms":[[:space:]]*\([0-9.]*\).*/\1/p' "$TMP/stats.json")
+        first=$(printf '%.2f' "$(echo "$first / 1000" | bc -l)")
+        printf '%-12s %8s %8s %8s %6s\n' "$name" "$wall" "$cpu" "$first" "$l" | tee -a "$TMP/rows"
+    else
+        echo "$name: failed: $(tail -3 "$TMP/err")"
+    fi
+}
+
+fresh() { d=$(mktemp -d "$TMP/cache.XXXX"); mkdir -p "$d/mesa"; echo "$d"; }
+
+echo "# shadelab start-up, $SIZE, OSMesa/llvmpipe, $(nproc) cores; seconds; load = 1-min load average before the run"
+printf '%-12s %8s %8s %8s %6s\n' run wall CPU first load
+for r in $(seq "$ROUNDS"); do
+    if [ $have_head = 1 ]; then
+        c=$(fresh)
+        run head-cold "$c" --data "$DATA" --scene "$HEAD"
+        run head-warm "$c" --data "$DATA" --scene "$HEAD"
+    fi
+    run default "$(fresh)"
+    run basic "$(fresh)" --scene "$ROOT/scenes/basic.json"
+done
+
+echo "# medians over $ROUNDS rounds (wall, CPU, first frame) and the default/basic ratio"
+med() { sort -n | awk '{a[NR]=$1} END {if (NR == 0) print "-"; else if (NR % 2) print a[(NR+1)/2]; else printf "%.2f\n", (a[NR/2]+a[NR/2+1])/2}'; }
+for name in head-cold head-warm default basic; do
+    grep -q "^$name " "$TMP/rows" 2>/dev/null || continue
+    w=$(awk -v n=$name '$1 == n {print $2}' "$TMP/rows" | med)
+    c=$(awk -v n=$name '$1 == n {print $3}' "$TMP/rows" | med)
+    f=$(awk -v n=$name '$1 == n {print $4}' "$TMP/rows" | med)
+    printf '%-12s %8s %8s %8s\n' "$name" "$w" "$c" "$f"
+    eval "w_$(echo $name | tr - _)=$w c_$(echo $name | tr - _)=$c f_$(echo $name | tr - _)=$f"
+done
+if [ -n "${w_default:-}" ] && [ -n "${w_basic:-}" ]; then
+    printf 'default/basic: wall %.2fx, CPU %.2fx, first frame %.2fx\n' "$(echo "$w_default / $w_basic" | bc -l)" \
+        "$(echo "$c_default / $c_basic" | bc -l)" "$(echo "$f_default / $f_basic" | bc -l)"
+fi
+
+if [ $have_head = 1 ] && [ "${COMPLETE:-1}" = 1 ]; then
+    c=$(fresh)
+    MESA_SHADER_CACHE_DIR=$c/mesa SHADELAB_CACHE=$c "$BIN" --headless --size "$SIZE" --data "$DATA" --scene "$HEAD" \
+        --set aa.enabled=false --set tonemap.dither=false --frames 1 --output "$TMP/first.png" -q 2>/dev/null
+    MESA_SHADER_CACHE_DIR=$c/mesa SHADELAB_CACHE=$c "$BIN" --headless --size "$SIZE" --data "$DATA" --scene "$HEAD" \
+        --set aa.enabled=false --set tonemap.dither=false --frames 3 --output "$TMP/converged.png" -q 2>/dev/null
+    if command -v idiff >/dev/null; then
+        echo "# head scene, aa and dither off: cold first frame vs frame 3 (converged), threshold 1/255:"
+        idiff -fail 0.003922 -warn 0.003922 "$TMP/first.png" "$TMP/converged.png" | grep -E "Mean|Max|PASS|FAIL|WARN"
+    else
+        echo "# idiff (openimageio-tools) not installed: first-frame completeness not checked"
+    fi
+fi
