@@ -78,17 +78,28 @@ vec3 ggx_fresnel_schlick(float c, vec3 f0) {
 }
 
 // f_s = F·D·G / (4 |n·l| |n·v|) without F (callers multiply their Fresnel): D·G/(4|n·l||n·v|).
-// Guards: returns 0 when the light or the viewer is below the shading normal (n·l ≤ 0 or
-// n·v ≤ 0, e.g. normal-mapped normals facing away); |n·l|, |n·v| ≥ 1e-4 in the denominator,
-// where G₁ → 0 already makes the product small.
+// Returns 0 when the light or the viewer is below the shading normal (n·l ≤ 0 or n·v ≤ 0, e.g.
+// normal-mapped normals facing away). This is the per-light hot path of the light loop, so it
+// is written with the divisions cancelled (issue 18): with c = n·x, Smith's
+// G₁ = 2/(1 + √(1 + α² tan²θ)) = 2c / (c + √(α² + (1 − α²) c²)), hence
+// G₁(l) G₁(v) / (4 c_l c_v) = 1 / ((c_l + √(α² + (1 − α²) c_l²)) (c_v + √(α² + (1 − α²) c_v²))),
+// finite at grazing angles without a guard (the same closed form as ggx_D · ggx_G1 · ggx_G1 /
+// (4 n·l n·v), checked by the ggx tests). Above the normal on both sides, h = (l + v)/|l + v|
+// has n·h > 0, l·h = v·h > 0, so ggx_G1's sign test (χ⁺) and ggx_D's n·h ≤ 0 case cannot occur.
 float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     float n_dot_l = dot(n, l), n_dot_v = dot(n, v);
     vec3 hv = l + v;
-    float len = length(hv);
-    h = len > 1e-8 ? hv / len : n;
+    float len2 = dot(hv, hv);
+    h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     alpha = max(alpha, GGX_MIN_ALPHA);
+#ifdef GGX_G1_HALF_VECTOR
     float D = ggx_D(dot(n, h), alpha);
     float G = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha);
     return D * G / (4.0 * max(n_dot_l, 1e-4) * max(n_dot_v, 1e-4));
+#else
+    float a2 = alpha * alpha, b = 1.0 - a2;
+    float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
+    return ggx_D(dot(n, h), alpha) / ((cl + sqrt(a2 + b * cl * cl)) * (cv + sqrt(a2 + b * cv * cv)));
+#endif
 }

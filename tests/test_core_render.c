@@ -292,7 +292,62 @@ static void test_radiance_light(void) {
     sl_harness_destroy(h);
 }
 
+/* Issue 18: programs specialise on the set of light types, not on which lights are on. Switching
+ * off the only point light (or every light) live must keep every program (same hashes: the
+ * program cache is keyed by them, so nothing compiles) and give the frame of a fresh start with
+ * the light off; switching it back gives the first frame again. Fails with programs composed
+ * from the enabled lights' types (the point loop would drop out: a new hash). */
+static void test_light_toggle_keeps_programs(void) {
+    static float fresh_img[W * H * 4];
+    const char *scene = PLANE_SCENE("{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -0.5, -0.8660254], \"intensity\": 2},"
+                                    "{\"name\": \"bulb\", \"type\": \"point\", \"position\": [1, 2, 0], \"intensity\": 10}", "");
+    sl_harness *h = make(scene, NULL);
+    CHECK(h != NULL);
+    if (!h) return;
+    char err[512];
+    sl_harness_structure s0, s1, s2;
+    sl_compare c;
+    CHECK(sl_harness_render(h, img));
+    sl_harness_structure_of(h, &s0);
+    CHECK(s0.program_count >= 1);
+    /* every light off: black (no environment), the same programs */
+    CHECK(sl_harness_set(h, "light.sun.enabled=false", err, sizeof err));
+    CHECK(sl_harness_set(h, "light.bulb.enabled=false", err, sizeof err));
+    CHECK(sl_harness_render(h, img2));
+    sl_harness_structure_of(h, &s1);
+    CHECK_MSG(sl_harness_structure_equal(&s0, &s1), "switching the lights off changed the programs");
+    double sum = 0;
+    for (int i = 0; i < W * H * 4; i += 4) sum += img2[i] + img2[i + 1] + img2[i + 2];
+    CHECK_NEAR(sum, 0, 1e-6);
+    /* back on: the first frame again */
+    CHECK(sl_harness_set(h, "light.sun.enabled=true", err, sizeof err));
+    CHECK(sl_harness_set(h, "light.bulb.enabled=true", err, sizeof err));
+    CHECK(sl_harness_render(h, img2));
+    sl_harness_compare(img, img2, W, H, 1e-6, &c);
+    CHECK_MSG(c.max_abs == 0, "lights back on: max difference %g", c.max_abs);
+    /* the only point light off */
+    CHECK(sl_harness_set(h, "light.bulb.enabled=false", err, sizeof err));
+    CHECK(sl_harness_render(h, img2));
+    sl_harness_structure_of(h, &s1);
+    CHECK_MSG(sl_harness_structure_equal(&s0, &s1), "switching the point light off changed the programs");
+    sl_harness_compare(img, img2, W, H, 1e-3, &c);
+    CHECK_MSG(c.pixels_over > W * H / 4, "the point light lights nothing (%ld pixels differ)", c.pixels_over);
+    sl_harness_destroy(h);
+    /* a fresh start with it off: the same programs and frame */
+    const char *off[] = {"light.bulb.enabled=false", NULL};
+    sl_harness *f = make(scene, off);
+    CHECK(f != NULL);
+    if (!f) return;
+    CHECK(sl_harness_render(f, fresh_img));
+    sl_harness_structure_of(f, &s2);
+    CHECK(sl_harness_structure_equal(&s1, &s2));
+    sl_harness_compare(img2, fresh_img, W, H, 1e-6, &c);
+    CHECK_MSG(c.max_abs == 0, "live toggle vs fresh start: max difference %g", c.max_abs);
+    sl_harness_destroy(f);
+}
+
 int main(void) {
+    test_light_toggle_keeps_programs();
     test_light_animation();
     test_directional();
     test_point_light();

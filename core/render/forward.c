@@ -16,11 +16,14 @@ void sl_glsl_ident(const char *in, char *out, size_t n, bool upper) {
     out[i] = 0;
 }
 
+/* The light types the forward programs specialise on: the SET of types of the scene's lights,
+ * enabled or not (issue 18). A type with no enabled light keeps its loop and gets an empty range,
+ * so toggling or adding a light of a present type changes only the light buffer and the range
+ * uniforms, never a program; only a light of a new type composes new programs. */
 int sl_forward_light_types(sl_app *app, const char **types, int max) {
     int n = 0;
     for (int i = 0; i < app->scene.light_count; i++) {
         const sl_light *L = &app->scene.lights[i];
-        if (!L->enabled) continue;
         bool seen = false;
         for (int k = 0; k < n; k++) seen |= !strcmp(types[k], L->type);
         if (!seen && n < max) types[n++] = L->type;
@@ -196,10 +199,11 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     int ntypes = sl_forward_light_types(app, types, 32);
     const sl_chunk_reg *light_chunks[32] = {0};
     for (int t = 0; t < ntypes; t++) light_chunks[t] = find_named(app, SL_HOOK_LIGHT, types[t]);
-    /* SHADOW hook (shader.h): only when an enabled light casts shadows; the first provider */
+    /* SHADOW hook (shader.h): only when a light casts shadows, enabled or not (like the types
+     * above: toggling a light recompiles nothing); the first provider */
     const sl_chunk_reg *shadow = NULL;
     for (int i = 0; i < app->scene.light_count && !shadow; i++)
-        for (int c = 0; c < P->chunk_count && !shadow && app->scene.lights[i].enabled && app->scene.lights[i].cast_shadows; c++)
+        for (int c = 0; c < P->chunk_count && !shadow && app->scene.lights[i].cast_shadows; c++)
             if (P->chunks[c].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(&app->plugins, P->chunks[c].owner)) shadow = &P->chunks[c];
     /* LIGHT_LOOP hook (ABI 1.7, shader.h): the forward programs' light iteration; the first provider */
     const sl_chunk_reg *loop = NULL;
@@ -404,31 +408,45 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         sl_sb_append(&gen, "void sl_run_surface_hooks(inout SlSurface s) {\n");
         for (int i = 0; i < ns; i++) sl_sb_printf(&gen, "    %s(s);\n", surface_hooks[i]->d.function);
         sl_sb_append(&gen, "}\n");
-        /* the light loop, one loop per light type present */
+        /* The light loop: one loop per light type present (the lights are packed by type,
+         * core/render/scene_gpu.c), so no light branches on its type; each light's packed record
+         * is read from the buffer once. */
         const char *per_light = view && view->d.hook == SL_HOOK_DEBUG_VIEW_LIGHT ? view->d.function : model_chunk->d.function;
-        /* With a LIGHT_LOOP hook the same per-type code evaluates one light by index instead */
+        /* With a LIGHT_LOOP hook the same per-type code evaluates one light by index instead:
+         * the type is the range holding i, tested in turn (else-if); with a single type in the
+         * buffer there is nothing to test. */
+        int evaluated = 0;
+        for (int t = 0; t < ntypes; t++)
+            evaluated += light_chunks[t] && !(view && (light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE));
+        bool untested = loop && ntypes == 1 && evaluated == 1;
         if (loop) sl_sb_append(&gen, "vec3 sl_light_radiance(int i, SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
         else sl_sb_append(&gen, "vec3 sl_direct_lighting(SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
-        const char *range = loop ? "    if (i >= sl_lights_%s.x && i < sl_lights_%s.y)" : "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i)";
+        const char *range = untested ? "    /* %s: every light in the buffer */%.0s"
+                            : loop   ? "    if (i >= sl_lights_%s.x && i < sl_lights_%s.y)"
+                                     : "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i)";
+        int emitted = 0;
         for (int t = 0; t < ntypes; t++) {
             if (!light_chunks[t]) continue; /* warned at load: no plugin provides this light type */
             char id[128];
             sl_glsl_ident(types[t], id, sizeof id, false);
-            if (light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE) {
-                /* the light integrates the model itself (area lights): radiance, no l/E pair, so
-                 * no shadow hook and nothing in per-light debug views (shader.h) */
-                if (view) continue;
-                sl_sb_printf(&gen, range, id, id);
-                sl_sb_printf(&gen, " Lo += %s(sl_lights[i], s);\n", light_chunks[t]->d.function);
+            bool radiance = light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE;
+            /* a light that integrates the model itself (area lights): radiance, no l/E pair, so
+             * no shadow hook and nothing in per-light debug views (shader.h) */
+            if (radiance && view) continue;
+            if (loop && emitted++) sl_sb_append(&gen, "    else\n");
+            sl_sb_printf(&gen, range, id, id);
+            if (radiance) {
+                sl_sb_printf(&gen, " {\n        SlLight L = sl_lights[i];\n        Lo += %s(L, s);\n    }\n",
+                             light_chunks[t]->d.function);
                 continue;
             }
             char vis[256] = "E";
-            if (shadow) snprintf(vis, sizeof vis, "E * %s(i, sl_lights[i], s, l)", shadow->d.function);
-            sl_sb_printf(&gen, range, id, id);
+            if (shadow) snprintf(vis, sizeof vis, "E * %s(i, L, s, l)", shadow->d.function);
             sl_sb_printf(&gen,
                          " {\n"
+                         "        SlLight L = sl_lights[i];\n"
                          "        vec3 l, E;\n"
-                         "        if (%s(sl_lights[i], s, l, E)) Lo += %s(s, l, %s);\n"
+                         "        if (%s(L, s, l, E)) Lo += %s(s, l, %s);\n"
                          "    }\n",
                          light_chunks[t]->d.function, per_light, vis);
         }

@@ -78,8 +78,10 @@
  *                                                                visibility in [0,1] of light
  *                                                                sl_lights[i] (any type) at s;
  *                                                                the light loop multiplies E by
- *                                                                it. Compiled in only when an
- *                                                                enabled light casts shadows;
+ *                                                                it. Compiled in only when a
+ *                                                                light casts shadows (enabled
+ *                                                                or not: toggling recompiles
+ *                                                                nothing);
  *                                                                one provider (the first enabled)
  *   LIGHT_LOOP       vec3 FN(SlSurface s)                        ABI 1.7: replaces the core's
  *                                                                iteration over sl_lights in
