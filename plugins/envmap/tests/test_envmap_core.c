@@ -540,7 +540,7 @@ static void irr_expect(int which, const disk *k, const double n[3], double e[3],
         double rho = acos(k->cos_r), th = acos(fmax(-1, fmin(1, dot3(n, k->dir))));
         if (th <= M_PI / 2 - rho - 0.02) e[0] = k->bg + (k->L - k->bg) * sin(rho) * sin(rho) * cos(th);
         else if (th >= M_PI / 2 + rho + 0.02) e[0] = k->bg;
-        else *valid = false;
+        else *valid = false, e[0] = 0; /* the penumbra band: not compared */
         e[1] = e[2] = e[0];
     }
 }
