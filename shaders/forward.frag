@@ -68,11 +68,12 @@ SlSurface sl_surface_from_varyings() {
 // attachment: the fragment tests the opaque depth itself, which holds sl_blend_ssaa² samples per
 // pixel (core.ssaa), and weighs its coverage by the share of them it is in front of (the
 // blended surface is shaded once per pixel; the opaque edges behind keep their supersampling).
-// sl_blend_ssaa is 0 in programs no forward-blend pass bound (override variants of draw_scene).
+// sl_blend_ssaa is 0 in other passes (a plugin's draw_scene): the fragment is then written opaque
+// (alpha 1) under that pass's own depth test, as before blending existed (sss keeps chart coverage
+// in its targets' alpha).
 uniform sampler2D sl_blend_depth;
 uniform int sl_blend_ssaa;
 float sl_blend_visible() {
-    if (sl_blend_ssaa <= 0) return 1.0; // drawn by another pass (a plugin's draw_scene): its own depth test
     int k = sl_blend_ssaa, front = 0;
     ivec2 p = ivec2(gl_FragCoord.xy) * k;
     for (int j = 0; j < k; j++)
@@ -90,8 +91,10 @@ void main() {
     float alpha = 1.0;
 #ifdef SL_ALPHA_BLENDED
     // glTF alphaMode BLEND: the pass blends alpha·c + (1 − alpha)·behind (alpha kept in the target)
-    alpha = clamp(sl_coverage(s), 0.0, 1.0) * sl_blend_visible();
-    if (alpha <= 0.0) discard;
+    if (sl_blend_ssaa > 0) {
+        alpha = clamp(sl_coverage(s), 0.0, 1.0) * sl_blend_visible();
+        if (alpha <= 0.0) discard;
+    }
 #endif
     sl_run_surface_hooks(s);
     // Radiance beyond what the colour target holds (65504 in RGBA16F) would become Inf there:

@@ -341,10 +341,11 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
 /* ------------------------------------------------------------------ drawing --------- */
 
 /* The forward-blend pass's own uniforms (forward.frag, SL_MAT_ALPHA_BLEND): "depth" holds
- * ssaa × ssaa samples per pixel of "color"; the fragment tests them itself. */
-static void blend_uniforms(sl_app *app, unsigned prog) {
+ * ssaa × ssaa samples per pixel of "color"; the fragment tests them itself. 0 outside that pass:
+ * the material's fragments are written opaque (alpha 1), as before blending existed. */
+static void blend_uniforms(sl_app *app, unsigned prog, bool blend_pass) {
     glUniform1i(glGetUniformLocation(prog, "sl_blend_depth"), SL_BLEND_DEPTH_UNIT);
-    glUniform1i(glGetUniformLocation(prog, "sl_blend_ssaa"), R(app)->ssaa);
+    glUniform1i(glGetUniformLocation(prog, "sl_blend_ssaa"), blend_pass ? R(app)->ssaa : 0);
 }
 
 /* The material's program with its shading model replaced (SL_DRAW_MATERIALS). */
@@ -498,7 +499,9 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                                        : &r->materials[m].forward;
                 prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
                 if (prog) glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
-                if (prog && set == SL_GPU_DRAW_BLENDED) blend_uniforms(app, prog);
+                /* a blended material's program blends only in the forward-blend pass; a plugin's
+                 * draw (the same program when the sources match) sees it opaque */
+                if (prog && sl_gpu_material_blended(app, m)) blend_uniforms(app, prog, set == SL_GPU_DRAW_BLENDED);
             }
         }
         if (!prog) continue;
