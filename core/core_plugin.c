@@ -38,11 +38,17 @@ static sl_status core_create(const sl_host *host, void **user) {
          .description = "Multiplier of the emission (KHR_materials_emissive_strength)."},
         {.struct_size = sizeof(sl_param_desc), .id = "opacity", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {1}}, .min = 0, .max = 1, .group = "material", .material_input = "opacity",
-         .description = "Coverage factor (glTF baseColorFactor.a), times base_color_map's alpha; read by alpha_cutoff."},
+         .description = "Coverage factor (glTF baseColorFactor.a), times base_color_map's alpha; read by alpha_cutoff "
+                        "and alpha_blend."},
         {.struct_size = sizeof(sl_param_desc), .id = "alpha_cutoff", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {0.5f}}, .min = 0, .max = 1, .group = "material", .material_input = "alpha_cutoff",
          .description = "glTF alphaMode MASK: fragments whose coverage (opacity x base_color_map alpha) is below it "
                         "are cut out; materials without the key are opaque."},
+        {.struct_size = sizeof(sl_param_desc), .id = "alpha_blend", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
+         .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "material", .material_input = "alpha_blend",
+         .description = "glTF alphaMode BLEND: drawn after the opaque materials, back to front, over what is behind by "
+                        "its coverage a (opacity x base_color_map alpha): a c + (1 - a) behind, no depth writes; its "
+                        "shadows are dithered to let 1 - a of the light through."},
         {.struct_size = sizeof(sl_param_desc), .id = "double_sided", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
          .group = "material", .material_input = "double_sided",
          .description = "glTF doubleSided: back faces are drawn (shaded with the flipped normal) instead of culled."},
@@ -117,7 +123,7 @@ static sl_status core_create(const sl_host *host, void **user) {
 /* the standard material inputs of imported assets the core's keys take */
 static const char *const core_inputs[] = {"base_color", "base_color_texture", "emissive", "emissive_texture",
                                           "emissive_strength", "occlusion_texture", "occlusion_strength", "opacity",
-                                          "alpha_cutoff", "double_sided", "unlit", NULL};
+                                          "alpha_cutoff", "alpha_blend", "double_sided", "unlit", NULL};
 
 const sl_plugin_desc sl_core_plugin = {
     SL_PLUGIN_HEADER,

@@ -63,18 +63,45 @@ SlSurface sl_surface_from_varyings() {
 }
 #endif
 
+#if defined(SL_ALPHA_BLENDED) && !defined(SL_CUSTOM_MAIN) && !defined(SL_FULLSCREEN_MATERIAL)
+// glTF alphaMode BLEND, drawn by the core's forward-blend pass over the opaque image with no depth
+// attachment: the fragment tests the opaque depth itself, which holds sl_blend_ssaa² samples per
+// pixel (core.ssaa), and weighs its coverage by the share of them it is in front of (the
+// blended surface is shaded once per pixel; the opaque edges behind keep their supersampling).
+// sl_blend_ssaa is 0 in other passes (a plugin's draw_scene): the fragment is then written opaque
+// (alpha 1) under that pass's own depth test, as before blending existed (sss keeps chart coverage
+// in its targets' alpha).
+uniform sampler2D sl_blend_depth;
+uniform int sl_blend_ssaa;
+float sl_blend_visible() {
+    int k = sl_blend_ssaa, front = 0;
+    ivec2 p = ivec2(gl_FragCoord.xy) * k;
+    for (int j = 0; j < k; j++)
+        for (int i = 0; i < k; i++) front += gl_FragCoord.z < texelFetch(sl_blend_depth, p + ivec2(i, j), 0).r ? 1 : 0;
+    return float(front) / float(k * k);
+}
+#endif
+
 #ifndef SL_CUSTOM_MAIN
 void main() {
     SlSurface s = sl_surface_from_varyings();
 #ifdef SL_MAT_HAS_ALPHA_CUTOFF
     if (sl_coverage(s) < sl_mat_alpha_cutoff) discard; // glTF alphaMode MASK
 #endif
+    float alpha = 1.0;
+#ifdef SL_ALPHA_BLENDED
+    // glTF alphaMode BLEND: the pass blends alpha·c + (1 − alpha)·behind (alpha kept in the target)
+    if (sl_blend_ssaa > 0) {
+        alpha = clamp(sl_coverage(s), 0.0, 1.0) * sl_blend_visible();
+        if (alpha <= 0.0) discard;
+    }
+#endif
     sl_run_surface_hooks(s);
     // Radiance beyond what the colour target holds (65504 in RGBA16F) would become Inf there:
     // clamp to it (SL_MAX_RADIANCE, scene.h). An explicit comparison, not min(): NaN compares
     // false and stays NaN, so a shading bug is not painted white (the stability tests look for it).
     vec3 c = sl_shade_surface(s);
-    o_color = vec4(mix(c, vec3(SL_MAX_RADIANCE), greaterThan(c, vec3(SL_MAX_RADIANCE))), 1.0);
+    o_color = vec4(mix(c, vec3(SL_MAX_RADIANCE), greaterThan(c, vec3(SL_MAX_RADIANCE))), alpha);
 #ifdef SL_MOTION_VECTORS
     o_motion = 0.5 * (v_clip_now.xy / v_clip_now.w - v_clip_prev.xy / v_clip_prev.w);
 #endif

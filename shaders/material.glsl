@@ -29,9 +29,13 @@ vec3 sl_emission(SlSurface s) {
 }
 #endif
 
-// glTF 2.0 alphaMode MASK (materials carrying "alpha_cutoff"): the coverage the cut-off tests,
-// opacity (baseColorFactor.a) times the base colour texture's alpha.
-#ifdef SL_MAT_HAS_ALPHA_CUTOFF
+// glTF 2.0 alphaMode MASK (materials carrying "alpha_cutoff") and BLEND (alpha_blend): the
+// coverage the cut-off tests and the blend weighs by, opacity (baseColorFactor.a) times the base
+// colour texture's alpha.
+#if defined(SL_MAT_ALPHA_BLEND) && SL_MAT_ALPHA_BLEND
+#define SL_ALPHA_BLENDED 1
+#endif
+#if defined(SL_MAT_HAS_ALPHA_CUTOFF) || defined(SL_ALPHA_BLENDED)
 float sl_coverage(SlSurface s) {
     float a = sl_mat_opacity;
 #ifdef SL_MAT_HAS_BASE_COLOR_MAP
@@ -49,7 +53,7 @@ vec3 sl_base_color(vec2 uv) {
     s.uv1 = uv;
     return sl_base_color(s);
 }
-#ifdef SL_MAT_HAS_ALPHA_CUTOFF
+#if defined(SL_MAT_HAS_ALPHA_CUTOFF) || defined(SL_ALPHA_BLENDED)
 float sl_coverage(vec2 uv) {
     SlSurface s;
     s.uv = uv;

@@ -3,3 +3,10 @@
 # (tests/test_gltf_models.c, tests/data/gltf_models.tsv).
 sl_add_test(gltf SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf.c LABELS scene gltf TIMEOUT 120)
 sl_add_test(gltf_models SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_models.c LABELS scene gltf TIMEOUT 120)
+# glTF alphaMode BLEND (order, background, envmap, ssaa, TAA, shadows) and animated nodes' motion
+# vectors (tests/test_gltf_blend.c); tp-motion shows the core's "motion" as colour.
+sl_add_test_plugin(tp-motion DIR ${PROJECT_BINARY_DIR}/tests/plugins PREFIX tp_
+                   SOURCES ${CMAKE_CURRENT_LIST_DIR}/plugins/tp_motion.c GLSL plugins/tp_motion.frag)
+sl_add_test(gltf_blend SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_blend.c LABELS scene gltf TIMEOUT 120)
+target_compile_definitions(test_gltf_blend PRIVATE TP_MOTION_PATH="${PROJECT_BINARY_DIR}/tests/plugins/tp-motion/tp-motion.so")
+add_dependencies(test_gltf_blend tp_tp-motion plugin_aa plugin_envmap plugin_ggx plugin_spotlight-shadow)

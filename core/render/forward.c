@@ -365,8 +365,9 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     ok = ok && sl_source_include(&p->fs, "sl:common.glsl", err, n);
     if (kind == SL_VARIANT_DEPTH) {
         /* glTF alphaMode MASK: what the colour pass cuts out casts no shadow either, in every depth
-         * pass (shadow maps); other materials' depth programs stay empty */
-        if (material_has(app, m, "alpha_cutoff")) {
+         * pass (shadow maps); BLEND: a dither keeps the coverage's share of texels (depth.frag);
+         * other materials' depth programs stay empty */
+        if (material_has(app, m, "alpha_cutoff") || sl_gpu_material_blended(app, m)) {
             sl_source_generated(&p->fs, uni.s ? uni.s : "");
             sl_source_generated(&p->fs, uvf.s ? uvf.s : "");
             ok = ok && sl_source_include(&p->fs, "sl:material.glsl", err, n);

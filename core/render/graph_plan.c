@@ -18,6 +18,14 @@ static sl_target_desc resolve_outputs[1];
 static sl_pass_desc resolve_pass = {.struct_size = sizeof(sl_pass_desc), .name = "ssaa-resolve", .stage = SL_STAGE_OPAQUE,
                                     .inputs = resolve_inputs, .outputs = resolve_outputs, .output_count = 1,
                                     .display_on_write = true};
+/* glTF alphaMode BLEND: the blended materials over everything opaque (the forward pass, envmap's
+ * background, deferred lighting), back to front; only while a material is blended. Not
+ * display_on_write: blending over the clamped display image would differ from blending in linear
+ * HDR, so with a blended material the display pass encodes "color" as before. */
+static const char *blend_inputs[] = {"depth", NULL};
+static sl_target_desc blend_outputs[1];
+static sl_pass_desc blend_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward-blend", .stage = SL_STAGE_BLEND,
+                                  .inputs = blend_inputs, .outputs = blend_outputs, .output_count = 1};
 static const char *display_inputs[] = {"color", NULL};
 static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
                                     .outputs = forward_outputs, .output_count = 2, /* 3 with "motion" */
@@ -65,6 +73,9 @@ void sl_graph_plan(sl_app *app) {
         sl_gpu_compose_all(app);
     }
     resolve_outputs[0] = forward_outputs[0];
+    /* "color" drawn over, not read: its latest texture is bound, no ping-pong */
+    blend_outputs[0] = forward_outputs[0];
+    r->blend_planned = sl_gpu_scene_has_blended(app);
     if (r->ssaa > 1) {
         forward_outputs[0].name = "forward.ssaa";
         forward_outputs[0].scale = forward_outputs[1].scale = forward_outputs[2].scale = (float)r->ssaa;
@@ -72,10 +83,11 @@ void sl_graph_plan(sl_app *app) {
     r->display_desc = display_pass; /* its own copy: is_active reads this renderer (harnesses coexist) */
     r->display_desc.user = r;
     r->color_final = true;
-    int total = app->plugins.pass_count + 3;
+    int total = app->plugins.pass_count + 4;
     r->passes = calloc(total, sizeof *r->passes);
     r->passes[r->pass_count++] = (graph_pass){.d = &forward_pass, .owner = -1, .core_forward = true};
     if (r->ssaa > 1) r->passes[r->pass_count++] = (graph_pass){.d = &resolve_pass, .owner = -1, .core_resolve = true};
+    if (r->blend_planned) r->passes[r->pass_count++] = (graph_pass){.d = &blend_pass, .owner = -1, .core_blend = true};
     for (int i = 0; i < app->plugins.pass_count; i++) {
         sl_pass_reg *reg = &app->plugins.passes[i];
         if (!sl_plugin_enabled(&app->plugins, reg->owner)) continue; /* disabled plugins cost nothing */

@@ -27,7 +27,28 @@ static void run_forward(sl_app *app, sl_pass_ctx *ctx) {
     sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
     memcpy(d.view, r->frame.view, sizeof d.view);
     memcpy(d.proj, r->frame.proj, sizeof d.proj);
-    sl_gpu_draw_meshes(app, &d, false, NULL);
+    sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_OPAQUE);
+}
+
+/* glTF alphaMode BLEND: the blended materials over the opaque image, back to front (scene_gpu.c),
+ * colour = alpha·c + (1 − alpha)·dst with the target's alpha kept, no depth writes. The fragment
+ * tests "depth" itself (forward.frag): it holds ssaa² samples per pixel of "color" here. */
+static void run_blend(sl_app *app, sl_pass_ctx *ctx) {
+    sl_renderer *r = R(app);
+    if (sl_renderer_bind_outputs(app, ctx, 0) != SL_OK) return;
+    glBindTextureUnit(SL_BLEND_DEPTH_UNIT, sl_renderer_pass_texture(app, ctx, "depth"));
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE); /* the target's alpha stays as the opaque pass left it */
+    glDepthMask(GL_FALSE);
+    sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
+    memcpy(d.view, r->frame.view, sizeof d.view);
+    memcpy(d.proj, r->frame.proj, sizeof d.proj);
+    sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_BLENDED);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_BLEND);
+    glBindTextureUnit(SL_BLEND_DEPTH_UNIT, 0);
 }
 
 static void run_display(sl_app *app, sl_pass_ctx *ctx) {
@@ -60,6 +81,7 @@ static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
     if (g->core_forward) run_forward(app, &ctx);
     else if (g->core_display) run_display(app, &ctx);
     else if (g->core_resolve) run_resolve(app, &ctx);
+    else if (g->core_blend) run_blend(app, &ctx);
     else g->d->execute(g->d->user, &ctx, &r->frame);
     r->current = NULL;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

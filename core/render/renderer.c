@@ -114,6 +114,8 @@ static void refresh(sl_app *app) {
         r->seen_materials = app->materials_version;
     }
     r->seen_lights_version = app->lights_version;
+    /* a material became blended or stopped being (alpha_blend): the forward-blend pass comes or goes */
+    if (sl_gpu_scene_has_blended(app) != r->blend_planned) r->plan_dirty = true;
     if (r->seen_param_version != app->params.version) {
         /* enabling/disabling a plugin changes the pass list */
         uint64_t key = plan_key(app);
@@ -270,6 +272,14 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     memcpy(r->prev_view_proj, r->frame.view_proj, sizeof r->prev_view_proj);
     memcpy(r->prev_unjittered_vp, r->frame.unjittered_view_proj, sizeof r->prev_unjittered_vp);
     r->prev_time = r->frame.time;
+    /* each node's world matrix this frame: the previous model matrix of the next frame's motion
+     * vectors (glTF node animations move nodes) */
+    if (r->prev_world_count != app->scene.node_count) {
+        free(r->prev_world);
+        r->prev_world = calloc(app->scene.node_count + 1, sizeof *r->prev_world);
+        r->prev_world_count = app->scene.node_count;
+    }
+    for (int i = 0; i < app->scene.node_count; i++) memcpy(r->prev_world[i], app->scene.nodes[i].world, sizeof r->prev_world[i]);
     r->have_prev = true;
     app->frame_index++;
     sl_renderer_present(app);
@@ -459,6 +469,7 @@ void sl_renderer_destroy(sl_app *app) {
     if (r->light_buffer) glDeleteBuffers(1, &r->light_buffer);
     glDeleteQueries(64, r->queries);
     free(r->lights);
+    free(r->prev_world);
     free(r->seen_debug_view);
     free(r);
     app->renderer = NULL;

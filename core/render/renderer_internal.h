@@ -10,7 +10,8 @@
 #include "state.h"
 #include "render/forward.h"
 
-typedef struct gpu_mesh { unsigned vao, vbo[5], ibo; int index_count; } gpu_mesh;
+/* center: the object-space bounds' centre (blended draws sort on its view depth) */
+typedef struct gpu_mesh { unsigned vao, vbo[5], ibo; int index_count; float center[3]; } gpu_mesh;
 typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 
 /* model: NULL = the material's own; fragment (ABI 1.7): a plugin's main, resolved path */
@@ -36,7 +37,7 @@ typedef struct resource {
 typedef struct graph_pass {
     const sl_pass_desc *d;
     int owner;            /* plugin index; -1 = core pass */
-    bool core_forward, core_display, core_resolve;
+    bool core_forward, core_display, core_resolve, core_blend;
     unsigned fbo;
     uint64_t last_signature; bool has_run;
     uint64_t last_depends; /* key of sl_pass_desc.depends when it last ran (graph_run.c) */
@@ -87,6 +88,8 @@ typedef struct sl_renderer {
     bool have_prev;
     float prev_view_proj[16], prev_unjittered_vp[16];
     double prev_time;
+    float (*prev_world)[16]; int prev_world_count; /* each node's world matrix last frame (motion) */
+    bool blend_planned;       /* the plan holds the "forward-blend" pass (a blended material exists) */
     sl_frame_stats stats;
     unsigned display_fbo;
     /* the pass being executed, for draw_scene */
@@ -101,7 +104,15 @@ void sl_gpu_apply_anisotropy(sl_app *app);   /* core.anisotropy onto every mater
 bool sl_gpu_lights_animated(sl_app *app);
 void sl_gpu_pack_lights(sl_app *app);        /* the light buffer and sl_host.lights, at app->time */
 void sl_gpu_compose_all(sl_app *app);        /* every material's programs and textures */
-void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom);
+/* Which materials a draw takes: every one (blended ones last, back to front: plugins' draw_scene),
+ * the opaque and masked ones (the forward pass) or the blended ones (the forward-blend pass). */
+typedef enum sl_gpu_draw_set { SL_GPU_DRAW_ALL, SL_GPU_DRAW_OPAQUE, SL_GPU_DRAW_BLENDED } sl_gpu_draw_set;
+void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom, sl_gpu_draw_set set);
+/* glTF alphaMode BLEND: the material carries alpha_blend = true; whether any material does */
+bool sl_gpu_material_blended(sl_app *app, int m);
+bool sl_gpu_scene_has_blended(sl_app *app);
+/* the texture unit of "depth" in the forward-blend pass (above the units plugins reserve, 16..63) */
+#define SL_BLEND_DEPTH_UNIT 64
 
 /* graph_targets.c */
 resource *sl_graph_find(sl_renderer *r, const char *name);

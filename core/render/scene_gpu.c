@@ -48,6 +48,14 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
                       GL_STATIC_DRAW);
     glVertexArrayElementBuffer(g->vao, g->ibo);
     g->index_count = m->index_count;
+    float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int v = 0; m->positions && v < m->vertex_count; v++)
+        for (int c = 0; c < 3; c++) {
+            float x = m->positions[v * 3 + c];
+            if (v == 0 || x < lo[c]) lo[c] = x;
+            if (v == 0 || x > hi[c]) hi[c] = x;
+        }
+    for (int c = 0; c < 3; c++) g->center[c] = 0.5f * (lo[c] + hi[c]);
 }
 
 /* ------------------------------------------------------------------ textures -------- */
@@ -332,6 +340,14 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
 
 /* ------------------------------------------------------------------ drawing --------- */
 
+/* The forward-blend pass's own uniforms (forward.frag, SL_MAT_ALPHA_BLEND): "depth" holds
+ * ssaa × ssaa samples per pixel of "color"; the fragment tests them itself. 0 outside that pass:
+ * the material's fragments are written opaque (alpha 1), as before blending existed. */
+static void blend_uniforms(sl_app *app, unsigned prog, bool blend_pass) {
+    glUniform1i(glGetUniformLocation(prog, "sl_blend_depth"), SL_BLEND_DEPTH_UNIT);
+    glUniform1i(glGetUniformLocation(prog, "sl_blend_ssaa"), blend_pass ? R(app)->ssaa : 0);
+}
+
 /* The material's program with its shading model replaced (SL_DRAW_MATERIALS). */
 static bool same_name(const char *a, const char *b) { return a == b || (a && b && !strcmp(a, b)); }
 
@@ -377,7 +393,74 @@ static void draw_materials_fullscreen(sl_app *app, const sl_draw_scene_desc *d, 
     glBindVertexArray(0);
 }
 
-void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom) {
+/* glTF alphaMode BLEND (the core's material key alpha_blend): drawn after the opaque materials,
+ * back to front, blended, without depth writes (the core's "forward-blend" pass). */
+bool sl_gpu_material_blended(sl_app *app, int m) {
+    const sl_mat_value *v = sl_app_material_value(app, m, "alpha_blend");
+    return v && v->v.b;
+}
+
+bool sl_gpu_scene_has_blended(sl_app *app) {
+    for (int m = 0; m < app->scene.material_count; m++)
+        if (sl_gpu_material_blended(app, m)) return true;
+    return false;
+}
+
+/* One draw: a mesh of a node. `depth`: view-space distance of the mesh's bounds centre (blended
+ * draws sort on it, farthest first); `order`: its place in the scene (ties keep it). */
+typedef struct draw_item { int m, node, k, order; float depth; } draw_item;
+
+static int cmp_back_to_front(const void *a, const void *b) {
+    const draw_item *x = a, *y = b;
+    if (x->depth != y->depth) return x->depth > y->depth ? -1 : 1;
+    return x->order - y->order;
+}
+
+/* The draws of a frame: opaque (and masked) materials first, in material order (one program
+ * bind each), then blended ones sorted back to front by the view depth of each draw's bounds
+ * centre (the usual viewer approach: per draw, not per triangle; intersecting or interleaved
+ * blended surfaces are approximate). */
+static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set set, draw_item **out) {
+    sl_renderer *r = R(app);
+    sl_scene *s = &app->scene;
+    int cap = 0;
+    for (int ni = 0; ni < s->node_count; ni++) cap += s->nodes[ni].mesh_count;
+    draw_item *items = malloc((cap + 1) * sizeof *items);
+    int n = 0, order = 0;
+    for (int pass = 0; pass < 2; pass++) { /* 0: opaque, 1: blended */
+        int first = n;
+        for (int m = 0; m < s->material_count; m++) {
+            bool blended = sl_gpu_material_blended(app, m);
+            if (blended != (pass == 1)) continue;
+            if ((set == SL_GPU_DRAW_OPAQUE && blended) || (set == SL_GPU_DRAW_BLENDED && !blended)) continue;
+            if (d->shadow_casters_only && !s->materials[m].cast_shadows) continue;
+            if (d->only_materials_with) {
+                sl_mat_value *v = sl_app_material_value(app, m, d->only_materials_with);
+                if (!v || !v->present) continue;
+            }
+            for (int ni = 0; ni < s->node_count; ni++) {
+                const sl_node *node = &s->nodes[ni];
+                for (int k = 0; k < node->mesh_count; k++) {
+                    int mi = node->meshes[k];
+                    if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
+                    draw_item *it = &items[n++];
+                    *it = (draw_item){.m = m, .node = ni, .k = k, .order = order++};
+                    if (!blended) continue;
+                    vec4 c = {r->meshes[mi].center[0], r->meshes[mi].center[1], r->meshes[mi].center[2], 1}, w, v;
+                    glm_mat4_mulv((vec4 *)node->world, c, w);
+                    glm_mat4_mulv((vec4 *)d->view, w, v);
+                    it->depth = -v[2]; /* the camera looks down -z (conventions.md) */
+                    if (!isfinite(it->depth)) it->depth = 0; /* a consistent order for qsort */
+                }
+            }
+        }
+        if (pass == 1) qsort(items + first, n - first, sizeof *items, cmp_back_to_front);
+    }
+    *out = items;
+    return n;
+}
+
+void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom, sl_gpu_draw_set set) {
     const char *model_override = d->mode == SL_DRAW_MATERIALS ? d->model_override : NULL;
     const char *fragment = d->mode == SL_DRAW_MATERIALS ? d->fragment : NULL; /* resolved (draw_scene) */
     sl_renderer *r = R(app);
@@ -392,74 +475,76 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
         set_camera_uniforms(app, custom->id, d->view, d->proj);
         glUniform1i(glGetUniformLocation(custom->id, "sl_uv_space"), d->uv_space);
     }
-    for (int m = 0; m < s->material_count; m++) {
-        if (d->shadow_casters_only && !s->materials[m].cast_shadows) continue;
-        if (d->only_materials_with) {
-            sl_mat_value *v = sl_app_material_value(app, m, d->only_materials_with);
-            if (!v || !v->present) continue;
-        }
-        unsigned prog = custom ? custom->id : 0;
-        bool bound = custom != NULL;
-        const sl_forward_variant *var = NULL;
-        /* glTF doubleSided (the core's material key double_sided): back faces are drawn, and the
-         * forward pass shades them with the flipped normal, wherever a pass culls back faces */
-        const sl_mat_value *two = d->cull == 1 ? sl_app_material_value(app, m, "double_sided") : NULL;
-        if (d->cull == 1) {
-            if (two && two->v.b) glDisable(GL_CULL_FACE);
-            else glEnable(GL_CULL_FACE);
-        }
-        for (int ni = 0; ni < s->node_count; ni++) {
-            const sl_node *node = &s->nodes[ni];
-            for (int k = 0; k < node->mesh_count; k++) {
-                int mi = node->meshes[k];
-                if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
-                if (!bound) {
-                    var = depth_only       ? &r->materials[m].depth
-                          : model_override || fragment ? override_variant_of(app, m, model_override, fragment, false)
-                                           : &r->materials[m].forward;
-                    prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
-                    glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
-                    bound = true;
-                }
-                if (!prog) continue;
-                mat4 model, inv;
-                mat3 nrm;
-                memcpy(model, node->world, sizeof model);
-                glm_mat4_inv(model, inv);
-                glm_mat4_transpose(inv);
-                glm_mat4_pick3(inv, nrm);
-                /* a mirroring transform (negative determinant) reverses the winding; in UV space
-                 * (v = 0 at the top) unmirrored UV layouts wind clockwise: make them front faces */
-                glFrontFace(d->uv_space || glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
-                glUniformMatrix4fv(glGetUniformLocation(prog, "sl_model"), 1, GL_FALSE, (float *)model);
-                /* nodes do not animate (scene.h): last frame's model matrix is this one */
-                if (r->motion) glUniformMatrix4fv(glGetUniformLocation(prog, "sl_prev_model"), 1, GL_FALSE, (float *)model);
-                glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
-                if (var && var->node_tag_count) { /* VERTEX hooks gated on node tags (when_node_tag) */
-                    int mask = 0;
-                    for (int t = 0; t < var->node_tag_count; t++)
-                        if (sl_scene_node_has_tag(s, ni, var->node_tags[t])) mask |= 1 << t;
-                    glUniform1i(glGetUniformLocation(prog, "sl_vertex_hook_mask"), mask);
-                }
-                glBindVertexArray(r->meshes[mi].vao);
-                if (var && var->program && var->program->tessellated) { /* DISPLACEMENT hooks (ABI 1.7) */
-                    /* at most SL_PATCHES_PER_DRAW patches per draw: llvmpipe (Mesa 22.3) drops and
-                     * tears the later patches of a draw that generates too many triangles
-                     * (measured: 128 patches at level 32 lose the lower half of a cylinder) */
-                    enum { SL_PATCHES_PER_DRAW = 16 };
-                    glPatchParameteri(GL_PATCH_VERTICES, 3);
-                    for (int first = 0; first < r->meshes[mi].index_count; first += 3 * SL_PATCHES_PER_DRAW) {
-                        int n = r->meshes[mi].index_count - first;
-                        glDrawElements(GL_PATCHES, n < 3 * SL_PATCHES_PER_DRAW ? n : 3 * SL_PATCHES_PER_DRAW,
-                                       GL_UNSIGNED_INT, (const void *)(sizeof(uint32_t) * (size_t)first));
-                    }
-                } else {
-                    glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
-                }
-                r->stats.draw_calls++;
+    draw_item *items = NULL;
+    int count = draw_list(app, d, set, &items);
+    int bound_m = -1;
+    unsigned prog = custom ? custom->id : 0;
+    const sl_forward_variant *var = NULL;
+    for (int i = 0; i < count; i++) {
+        int m = items[i].m, ni = items[i].node;
+        const sl_node *node = &s->nodes[ni];
+        int mi = node->meshes[items[i].k];
+        if (m != bound_m) {
+            bound_m = m;
+            /* glTF doubleSided (the core's material key double_sided): back faces are drawn, and the
+             * forward pass shades them with the flipped normal, wherever a pass culls back faces */
+            const sl_mat_value *two = d->cull == 1 ? sl_app_material_value(app, m, "double_sided") : NULL;
+            if (d->cull == 1) {
+                if (two && two->v.b) glDisable(GL_CULL_FACE);
+                else glEnable(GL_CULL_FACE);
+            }
+            if (!custom) {
+                var = depth_only       ? &r->materials[m].depth
+                      : model_override || fragment ? override_variant_of(app, m, model_override, fragment, false)
+                                       : &r->materials[m].forward;
+                prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
+                if (prog) glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
+                /* a blended material's program blends only in the forward-blend pass; a plugin's
+                 * draw (the same program when the sources match) sees it opaque */
+                if (prog && sl_gpu_material_blended(app, m)) blend_uniforms(app, prog, set == SL_GPU_DRAW_BLENDED);
             }
         }
+        if (!prog) continue;
+        mat4 model, inv;
+        mat3 nrm;
+        memcpy(model, node->world, sizeof model);
+        glm_mat4_inv(model, inv);
+        glm_mat4_transpose(inv);
+        glm_mat4_pick3(inv, nrm);
+        /* a mirroring transform (negative determinant) reverses the winding; in UV space
+         * (v = 0 at the top) unmirrored UV layouts wind clockwise: make them front faces */
+        glFrontFace(d->uv_space || glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "sl_model"), 1, GL_FALSE, (float *)model);
+        /* motion vectors: the node's world matrix in the previous frame (animated nodes move) */
+        if (r->motion) {
+            const float *prev = r->have_prev && r->prev_world && ni < r->prev_world_count ? r->prev_world[ni] : (float *)model;
+            glUniformMatrix4fv(glGetUniformLocation(prog, "sl_prev_model"), 1, GL_FALSE, prev);
+        }
+        glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
+        if (var && var->node_tag_count) { /* VERTEX hooks gated on node tags (when_node_tag) */
+            int mask = 0;
+            for (int t = 0; t < var->node_tag_count; t++)
+                if (sl_scene_node_has_tag(s, ni, var->node_tags[t])) mask |= 1 << t;
+            glUniform1i(glGetUniformLocation(prog, "sl_vertex_hook_mask"), mask);
+        }
+        glBindVertexArray(r->meshes[mi].vao);
+        if (var && var->program && var->program->tessellated) { /* DISPLACEMENT hooks (ABI 1.7) */
+            /* at most SL_PATCHES_PER_DRAW patches per draw: llvmpipe (Mesa 22.3) drops and
+             * tears the later patches of a draw that generates too many triangles
+             * (measured: 128 patches at level 32 lose the lower half of a cylinder) */
+            enum { SL_PATCHES_PER_DRAW = 16 };
+            glPatchParameteri(GL_PATCH_VERTICES, 3);
+            for (int first = 0; first < r->meshes[mi].index_count; first += 3 * SL_PATCHES_PER_DRAW) {
+                int n = r->meshes[mi].index_count - first;
+                glDrawElements(GL_PATCHES, n < 3 * SL_PATCHES_PER_DRAW ? n : 3 * SL_PATCHES_PER_DRAW,
+                               GL_UNSIGNED_INT, (const void *)(sizeof(uint32_t) * (size_t)first));
+            }
+        } else {
+            glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+        }
+        r->stats.draw_calls++;
     }
+    free(items);
     glBindVertexArray(0);
     glFrontFace(GL_CCW);
 }
@@ -492,7 +577,7 @@ void sl_renderer_draw_scene(sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_d
     } else {
         d.fragment = NULL, d.fullscreen = false;
     }
-    sl_gpu_draw_meshes(app, &d, d.mode == SL_DRAW_DEPTH_ONLY, d.mode == SL_DRAW_PROGRAM ? d.program : NULL);
+    sl_gpu_draw_meshes(app, &d, d.mode == SL_DRAW_DEPTH_ONLY, d.mode == SL_DRAW_PROGRAM ? d.program : NULL, SL_GPU_DRAW_ALL);
 }
 
 void sl_renderer_draw_fullscreen(sl_app *app, sl_pass_ctx *ctx) {

@@ -74,7 +74,7 @@ enum {
     UNSUPPORTED_TEXCOORD1 = 1u << 0,
     UNSUPPORTED_METAL_CHANNEL = 1u << 1,
     UNSUPPORTED_MASK = 1u << 2,
-    UNSUPPORTED_BLEND = 1u << 3,
+    UNSUPPORTED_UNUSED_3 = 1u << 3, /* was alphaMode BLEND: blended since (alpha_blend) */
     UNSUPPORTED_DOUBLE_SIDED = 1u << 4,
     UNSUPPORTED_SKIN = 1u << 5,
     UNSUPPORTED_MORPH = 1u << 6,
@@ -296,7 +296,8 @@ static int material_for(importer *im, unsigned i) {
         if (!strcmp(mode.data, "MASK")) /* cut out by the core (alpha_cutoff; glTF default 0.5) */
             sl_prop_set_number(in, "alpha_cutoff",
                                fminf(fmaxf(material_float(mat, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f, NULL), 0.0f), 1.0f), 0);
-        if (!strcmp(mode.data, "BLEND")) im->unsupported |= UNSUPPORTED_BLEND;
+        if (!strcmp(mode.data, "BLEND")) /* sorted and blended by the core (alpha_blend) */
+            sl_prop_set_bool(in, "alpha_blend", true, 0);
     }
     int two_sided = 0;
     unsigned n = 1;
@@ -557,7 +558,7 @@ static void warn_unsupported(importer *im) {
         "texCoord beyond 1 (those textures sample UV set 0)",
         "(unused)",
         "(unused)",
-        "alphaMode BLEND (rendered opaque)",
+        "(unused)",
         "(unused)",
         "skins (the bind pose is shown)",
         "morph targets (the base shape is shown)",

@@ -279,8 +279,9 @@ static const sl_target_desc color_out[] = {{.name = "color", .format = SL_FORMAT
  * on the image as it will be seen (Lottes: after everything but the UI). */
 #define AA_STAGE_FXAA (SL_STAGE_DISPLAY_REFERRED + 10)
 /* TAA runs on linear HDR radiance right after the opaque passes (the forward pass, envmap's
- * background) and before every post effect, which then sees a stable image. */
-#define AA_STAGE_TAA (SL_STAGE_OPAQUE + 50)
+ * background) and the blended materials (the core's forward-blend pass, SL_STAGE_BLEND), and
+ * before every post effect, which then sees a stable image. */
+#define AA_STAGE_TAA (SL_STAGE_BLEND + 10)
 
 static sl_status create(const sl_host *host, void **user) {
     aa *a = calloc(1, sizeof *a);

@@ -34,6 +34,8 @@ typedef enum sl_stage {
     SL_STAGE_SHADOW = 100,   /* light-space passes (shadow maps): spotlight-shadow */
     SL_STAGE_PREPASS = 200,  /* anything the forward pass samples (texture-space lighting): sss */
     SL_STAGE_OPAQUE = 300,   /* the core's forward pass; plugins may add passes after it (envmap's background) */
+    SL_STAGE_BLEND = 380,    /* ABI 1.8 name: the core's "forward-blend" pass (materials with alpha_blend,
+                                glTF alphaMode BLEND), over every opaque pass; temporal methods after it */
     SL_STAGE_POST = 400,     /* full-screen passes on linear HDR "color" (bloom, blurs) */
     SL_STAGE_TONEMAP = 450,  /* ABI 1.5 name: HDR → display-referred colour (tonemap's pass) */
     SL_STAGE_DISPLAY_REFERRED = 460, /* ABI 1.5 name: passes on tone-mapped colour (vignette, grain) */
