@@ -70,15 +70,7 @@ static float g_uv_lo = 0, g_uv_hi = 1;
 static int g_wrap[2] = {10497, 10497}, g_nearest = 0, g_alpha = 0, g_back = 0;
 static const unsigned char alphas[2][2] = {{51, 204}, {140, 102}}; /* 0.2, 0.8 / 0.549, 0.4 */
 
-typedef struct buf { unsigned char *d; size_t n, cap; } buf;
-static void put(buf *b, const void *p, size_t n) {
-    if (b->n + n > b->cap) {
-        b->cap = (b->n + n) * 2 + 64;
-        b->d = realloc(b->d, b->cap);
-    }
-    memcpy(b->d + b->n, p, n);
-    b->n += n;
-}
+#include "byte_buffer.h"
 static void pad(buf *b, unsigned char with) {
     while (b->n % 4) put(b, &with, 1);
 }

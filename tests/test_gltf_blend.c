@@ -36,15 +36,7 @@ static char err[8192];
 typedef struct quad { float pos[3], half[2]; int material; } quad;
 typedef struct mat { const char *name; float rgba[4]; bool blend, unlit; } mat;
 
-typedef struct buf { unsigned char *d; size_t n, cap; } buf;
-static void put(buf *b, const void *p, size_t n) {
-    if (b->n + n > b->cap) {
-        b->cap = (b->n + n) * 2 + 64;
-        b->d = realloc(b->d, b->cap);
-    }
-    memcpy(b->d + b->n, p, n);
-    b->n += n;
-}
+#include "byte_buffer.h"
 
 static char *base64(const unsigned char *d, size_t n) {
     static const char t[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
