@@ -377,8 +377,12 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         sl_strbuf decl = {0};
         sl_sb_append(&decl, uni.s ? uni.s : "");
         sl_sb_append(&decl, uvf.s ? uvf.s : "");
-        sl_sb_append(&decl, "layout(std430, binding = 0) readonly buffer SlLightBuffer { SlLight sl_lights[]; };\n"
-                            "uniform vec3 sl_ambient_irradiance; // π × constant environment radiance\n"
+        if (sl_gpu_lights_in_uniform_block(app))
+            sl_sb_printf(&decl, "layout(std140, binding = 0) uniform SlLightBlock { SlLight sl_lights[%d]; };\n",
+                         sl_gpu_light_block_capacity());
+        else
+            sl_sb_append(&decl, "layout(std430, binding = 0) readonly buffer SlLightBuffer { SlLight sl_lights[]; };\n");
+        sl_sb_append(&decl, "uniform vec3 sl_ambient_irradiance; // π × constant environment radiance\n"
                             "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E); // the material's model (ABI 1.6)\n");
         for (int t = 0; t < ntypes; t++) {
             char id[128];

@@ -96,7 +96,8 @@ unsigned sl_renderer_pass_texture(sl_app *app, sl_pass_ctx *ctx, const char *nam
 /* "display" seen as sRGB (a view of the same RGBA8 storage, GL 4.3 texture views): writes through
  * it with GL_FRAMEBUFFER_SRGB enabled are clamped and encoded (IEC 61966-2-1) by the hardware,
  * while readers of "display" keep seeing the RGBA8 code values. Alpha starts at 1 and is
- * masked off while a pass writes through it, as the display pass writes alpha 1. */
+ * masked off while a plugin's pass writes through it, as the display pass writes alpha 1 (the
+ * core's own passes write alpha 1 themselves: see sl_renderer_bind_outputs). */
 static unsigned display_view(sl_renderer *r) {
     resource *d = sl_graph_find(r, "display");
     if (!d) return 0;
@@ -145,7 +146,12 @@ sl_status sl_renderer_bind_outputs(sl_app *app, sl_pass_ctx *ctx, int layer) {
     glViewport(0, 0, w, h);
     if (display_slot >= 0) { /* undone after the pass (graph_run.c) */
         glEnable(GL_FRAMEBUFFER_SRGB);
-        glColorMaski(display_slot, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+        /* The core's forward and resolve passes write alpha 1 (opaque materials, an opaque clear):
+         * no mask for them. A colour mask costs llvmpipe a read-modify-write of every pixel the
+         * pass touches and turns the forward pass's clear into a masked full-screen write (3-4 ns
+         * a pixel: the forward pass of scenes/ratio_sphere.json at 1080p, 15.6 -> 8.3 CPU ms with
+         * a flat shader; docs/design-notes.md, "The light loop"). */
+        if (!g->core_forward && !g->core_resolve) glColorMaski(display_slot, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
     }
     return SL_OK;
 }

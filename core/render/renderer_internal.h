@@ -103,6 +103,11 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m);
 void sl_gpu_apply_anisotropy(sl_app *app);   /* core.anisotropy onto every material texture */
 bool sl_gpu_lights_animated(sl_app *app);
 void sl_gpu_pack_lights(sl_app *app);        /* the light buffer and sl_host.lights, at app->time */
+/* Lights a uniform block holds (SlLight records in GL_MAX_UNIFORM_BLOCK_SIZE, at most 64 KiB). */
+int sl_gpu_light_block_capacity(void);
+/* The forward programs read sl_lights[] from a uniform block when every light of the scene fits
+ * (enabled or not, so a toggle never changes it), else from a storage buffer. */
+bool sl_gpu_lights_in_uniform_block(sl_app *app);
 void sl_gpu_compose_all(sl_app *app);        /* every material's programs and textures */
 /* Which materials a draw takes: every one (blended ones last, back to front: plugins' draw_scene),
  * the opaque and masked ones (the forward pass) or the blended ones (the forward-blend pass). */

@@ -169,6 +169,26 @@ static void light_radiant(const sl_light *L, float out[3]) {
     for (int c = 0; c < 3; c++) out[c] = L->color[c] * L->intensity;
 }
 
+typedef struct { float position[4], direction[4], color[4], params[8]; } gpu_light; /* SlLight (std140 = std430) */
+
+/* A uniform block or a storage buffer for sl_lights[]: llvmpipe reads a uniform block markedly
+ * faster (per light, 1920x1080, scenes/ratio_sphere.json: 16 lights 79.4 -> 64.9 CPU ms a frame,
+ * 64 lights 287 -> 250; docs/design-notes.md "The light loop"), but one holds only
+ * GL_MAX_UNIFORM_BLOCK_SIZE bytes (64 KiB: 819 lights); more lights use a storage buffer
+ * (the many-lights extra's thousands). */
+int sl_gpu_light_block_capacity(void) {
+    static int cap;
+    if (!cap) {
+        GLint bytes = 0;
+        glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &bytes);
+        if (bytes > 65536) bytes = 65536;
+        cap = bytes >= (GLint)sizeof(gpu_light) ? bytes / (int)sizeof(gpu_light) : -1;
+    }
+    return cap;
+}
+
+bool sl_gpu_lights_in_uniform_block(sl_app *app) { return app->scene.light_count <= sl_gpu_light_block_capacity(); }
+
 /* The light buffer and the lights plugins see (sl_host.lights), at app->time. */
 void sl_gpu_pack_lights(sl_app *app) {
     sl_renderer *r = R(app);
@@ -178,7 +198,6 @@ void sl_gpu_pack_lights(sl_app *app) {
     r->lights = calloc(s->light_count + 1, sizeof *r->lights);
     r->light_count = s->light_count;
     r->ntypes = sl_forward_light_types(app, r->types, 32);
-    typedef struct { float position[4], direction[4], color[4], params[8]; } gpu_light;
     gpu_light *buf = calloc(s->light_count + 1, sizeof *buf);
     int k = 0;
     for (int t = 0; t < r->ntypes; t++) {
@@ -209,7 +228,10 @@ void sl_gpu_pack_lights(sl_app *app) {
         if (!L->enabled) info->index = -1;
     }
     if (!r->light_buffer) glCreateBuffers(1, &r->light_buffer);
-    glNamedBufferData(r->light_buffer, (k ? k : 1) * sizeof(gpu_light), buf, GL_DYNAMIC_DRAW);
+    /* a uniform block is read as its declared size: the buffer holds the whole capacity */
+    int records = sl_gpu_lights_in_uniform_block(app) ? sl_gpu_light_block_capacity() : (k ? k : 1);
+    glNamedBufferData(r->light_buffer, (size_t)records * sizeof(gpu_light), NULL, GL_DYNAMIC_DRAW);
+    if (k) glNamedBufferSubData(r->light_buffer, 0, (size_t)k * sizeof(gpu_light), buf);
     free(buf);
 }
 
@@ -305,7 +327,7 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
         snprintf(name, sizeof name, "sl_lights_%s", id);
         glUniform2i(glGetUniformLocation(prog, name), r->type_range[t][0], r->type_range[t][1]);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r->light_buffer);
+    glBindBufferBase(sl_gpu_lights_in_uniform_block(app) ? GL_UNIFORM_BUFFER : GL_SHADER_STORAGE_BUFFER, 0, r->light_buffer);
     if (var->program->tessellated) {
         /* levels from the frame's camera in every pass (shaders/tess.glsl): shadow maps tessellate
          * as the view does; proj[1][1] × height / 2 = pixels per unit at unit distance */
