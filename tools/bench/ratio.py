@@ -80,7 +80,7 @@ def frames_for(w, h, n, quick):
     """Enough frames for a stable median, few enough that the whole table takes minutes: the
     baseline costs about 25 ns per pixel-light at 720p on this machine's llvmpipe."""
     est_ms = 2.0 + w * h * 0.15 * n * 2.5e-5 + w * h * 4e-5
-    f = int(max(5, min(30, 1500.0 / (3.0 * est_ms))))
+    f = int(max(8, min(60, 4000.0 / (3.0 * est_ms))))
     return max(3, f // 2) if quick else f
 
 
