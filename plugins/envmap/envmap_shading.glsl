@@ -153,16 +153,21 @@ float envmap_specular_occlusion(float n_dot_v, float ao, float alpha) {
 // base cube at the mip level whose texel solid angle matches the sample's share of the lobe,
 // Ω_s = 1/(N·F·pdf(l)) with F the frames of an accumulated render (1 otherwise), lod = ½ log2(Ω_s/Ω_texel)
 // + envmap.fis_lod_bias (K&C: +1; see the README). The weights are the BRDF's f·cos/pdf =
-// F(v·h)·G(v,l)/G1(v), per channel (Schlick with f0, as the reference): the normalised sum is
-// the lobe's F-weighted mean radiance, which multiplies the environment BRDF (F0·A + B) = the
-// weights' expectation — a ratio estimator that converges to the reference's ∫ L f cos. (With
-// F left out of the weights, as in the split sum, a dielectric's F0 = 0.04 lobe missed the
-// grazing half-vectors' Fresnel rise: courtyard dielectric −3 to −5 % at N = 32 accumulated.)
-// In a uniform environment it is exactly the LUT's value (the furnace holds for any N); the per-pixel sequence is rotated per
-// pixel and continued over accumulated frames (sl_frame_index), so accumulating converges to
-// the filtered integral — whose remaining bias (the mips' box filter) the bench charts.
+// F(v·h)·G(v,l)/G1(v), per channel (Schlick with f0, as the reference), whose expectation is the
+// environment BRDF (F0·A + B) = `albedo`. The estimate is Monte Carlo with a control variate
+// (e.g. Owen, "Monte Carlo theory, methods and examples", ch. 8.9): c = the prefiltered chain
+// along the dominant direction, and
+//     albedo·c + (1/N) Σ w_i (L_i − c),
+// unbiased for any c (E[w] = albedo), exact in a uniform environment for any N (L_i = c), and
+// with the split sum's answer as its noise-free part. Until issue 16's last round it was the
+// ratio Σ w L / Σ w × albedo, which is exact in the furnace too but biased by O(1/N) in every
+// frame, a bias accumulating frames does not remove: courtyard metal α = 1, N = 32 × 32 frames,
+// −1.4 % on the sphere mean, N = 16 × 64 frames −4.4 % (measured against the C quadrature,
+// bench/ibl_rim.c). The per-pixel sequence is rotated per pixel and continued over accumulated
+// frames (sl_frame_index), so accumulating converges to the filtered integral — whose remaining
+// bias (the mips' box filter) the bench charts. Returns the specular radiance (albedo included).
 uniform float envmap_accumulated; // frames averaged into this render (1 when not accumulating)
-vec3 envmap_fis_radiance(SlSurface s, float alpha, vec3 r, vec3 f0) {
+vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo) {
     vec3 n = s.normal, v = s.view;
     vec3 t, b;
     envmap_frame(n, t, b);
@@ -173,12 +178,17 @@ vec3 envmap_fis_radiance(SlSurface s, float alpha, vec3 r, vec3 f0) {
     float g1v = envmap_smith_g1(vl.z, alpha);
     float texel = 4.0 * ENVMAP_PI / (6.0 * envmap_base_size * envmap_base_size);
     float lod_max = log2(envmap_base_size);
-    vec3 sum = vec3(0.0), wsum = vec3(0.0);
+    // the control variate: the split sum's prefiltered radiance along the dominant direction
+    // (Lagarde & de Rousiers 2014 §4.9.3, as specular=dominant), horizon-faded as it is there
+    float sd = clamp(1.0 - alpha, 0.0, 1.0);
+    vec3 d = normalize(mix(n, r, sd * (sqrt(sd) + alpha)));
+    vec3 c = textureLod(envmap_spec, envmap_rot * d, envmap_spec_lod(alpha)).rgb * envmap_horizon(d, s.geometric_normal);
+    vec3 sum = vec3(0.0);
     for (int i = 0; i < count; i++) {
         vec2 xi = fract(envmap_r2(uint(sl_frame_index) * uint(count) + uint(i)) + rot);
         vec3 hl = envmap_sample_vndf(vl, alpha, xi);
         vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
-        if (ll.z <= 0.0) continue;
+        if (ll.z <= 0.0) continue; // weight 0 (G1(l) = 0): contributes 0 to the mean
         vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
         vec3 w = ggx_fresnel_schlick(dot(l, h), f0) * (ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v);
         // pdf(l) = G1(v) D(h) / (4 n·v) for visible-normal sampling
@@ -188,11 +198,14 @@ vec3 envmap_fis_radiance(SlSurface s, float alpha, vec3 r, vec3 f0) {
         float lod = clamp(0.5 * log2(1.0 / (float(count) * envmap_accumulated * max(pdf, 1e-20) * texel)) +
                               envmap_fis_lod_bias, 0.0, lod_max);
         // light from under the geometric surface (normal maps) is blocked (the weight stays)
-        sum += w * envmap_above(l, s.geometric_normal) * textureLod(envmap_base, envmap_rot * l, lod).rgb;
-        wsum += w;
+        sum += w * (envmap_above(l, s.geometric_normal) * textureLod(envmap_base, envmap_rot * l, lod).rgb - c);
     }
-    float wmax = max(wsum.x, max(wsum.y, wsum.z));
-    return wmax > 0.0 ? sum / max(wsum, vec3(1e-20)) * envmap_scale : envmap_specular(r, alpha);
+    // A frame's estimate dips below 0 where its few samples read darker than c with large
+    // weights. A single frame (shown, or fed to TAA) is clamped at 0; an accumulated render is
+    // not: the clamp would bias its mean upwards (band test, N = 1 × 64 frames, α = 1: +7 %),
+    // and the mean of the frames is what converges to the (non-negative) integral.
+    vec3 est = albedo * c + sum / float(count);
+    return (envmap_accumulated > 1.0 ? est : max(est, vec3(0.0))) * envmap_scale;
 }
 #endif
 
@@ -226,13 +239,15 @@ vec3 envmap_ggx_split_sum(SlSurface s) {
     // as in the reference below and in ggx's direct term (ggx leaves such normals unbent)
     float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS
-    vec3 radiance = envmap_fis_radiance(s, alpha, r, f0);
+    // fis estimates the single-scattering specular itself (albedo f0·A + B inside); multiscatter
+    // scales it as it scales the split sum's
+    vec3 specular = envmap_fis_specular(s, alpha, r, f0, f0 * ab.x + ab.y) * (spec / max(f0 * ab.x + ab.y, vec3(1e-6)));
 #else
     vec3 d = envmap_lookup_dir(n, r, alpha);
-    vec3 radiance = envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
+    vec3 specular = spec * envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
 #endif
     visible *= envmap_specular_occlusion(mu, s.ao, alpha);
-    return kd * envmap_diffuse(n) * s.ao + ks * envmap_zero_specular() * visible * spec * radiance;
+    return kd * envmap_diffuse(n) * s.ao + ks * envmap_zero_specular() * visible * specular;
 }
 
 // Monte Carlo with the exact BRDF: specular by GGX visible-normal sampling (f·cos/pdf =

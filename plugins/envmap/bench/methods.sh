@@ -12,7 +12,7 @@ root=$(cd "$here/../../.." && pwd)
 build=${1:-$root/build}
 out=${2:-$here}
 size=${3:-48}
-refs=${4:-32}
+refs=${4:-128}  # 128 × 64 spp: at 32 frames the reference's own noise (0.023–0.048 vs the C quadrature on courtyard metal, bench/ibl_rim.c) is the size of the 0.03 target
 # courtyard.exr (max/mean radiance ≈ 90) rather than forest.exr (≈ 2000: a sun the reference's
 # BRDF sampling needs far more than 2048 spp to resolve per pixel), and the sky without its sun
 envs=(--env sky:0)
