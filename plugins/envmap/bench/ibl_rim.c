@@ -160,13 +160,13 @@ static void taps(const double n[3], const double v[3], double a, int K, int spre
 }
 
 enum { M_LBAR, M_MIRROR, M_DOM, M_DOM_FLAT, M_T2, M_T3, M_T4, M_T8, M_S2, M_S3, M_S4, M_S8, M_GL_REF, M_GL_REF128, M_GL_DOM,
-       M_GL_MIRROR, M_GL_FIS, M_GL_FIS_NOMIP, M_GL_FIS16, M_GL_S4, M_GL_S8, M_GL_S16, NM };
+       M_GL_MIRROR, M_GL_FIS, M_GL_FIS_NOMIP, M_GL_FIS16, M_GL_S4, M_GL_S8, M_GL_S16, M_GL_FIS128, NM };
 enum { NCPU = M_GL_REF };
 static const char *mname[NM] = {"ideal-P=lobe-mean", "karis-mirror", "karis-dominant", "flat-dominant",
                                 "taps2", "taps3", "taps4", "taps8", "taps2-s", "taps3-s", "taps4-s", "taps8-s",
                                 "gl-reference", "gl-reference-128", "gl-dominant", "gl-mirror", "gl-fis32-acc32",
                                 "gl-fis32-acc32-lodbias-3", "gl-fis16-acc64", "gl-fis4-acc16", "gl-fis8-acc16",
-                                "gl-fis16-acc16"};
+                                "gl-fis16-acc16", "gl-fis32-acc128"};
 static const int tapk[8] = {2, 3, 4, 8, 2, 3, 4, 8};
 
 int main(int argc, char **argv) {
@@ -206,10 +206,11 @@ int main(int argc, char **argv) {
                              "envmap.specular=dominant", "envmap.specular=mirror",
                              "envmap.specular=fis envmap.fis_samples=32", "envmap.specular=fis envmap.fis_samples=32 envmap.fis_lod_bias=-3",
                              "envmap.specular=fis envmap.fis_samples=16", "envmap.specular=fis envmap.fis_samples=4",
-                             "envmap.specular=fis envmap.fis_samples=8", "envmap.specular=fis envmap.fis_samples=16"};
+                             "envmap.specular=fis envmap.fis_samples=8", "envmap.specular=fis envmap.fis_samples=16",
+                             "envmap.specular=fis envmap.fis_samples=32"};
     /* (the last three: fis N over 16 frames, what the viewer's 16-frame TAA still would average
      * if fis's sequence advanced with it — it does not: sl_frame_index is the --accumulate index) */
-    const int glacc[NG] = {32, 128, 1, 1, 32, 32, 64, 16, 16, 16};
+    const int glacc[NG] = {32, 128, 1, 1, 32, 32, 64, 16, 16, 16, 128};
     const char *envname = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
     printf("env,alpha,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5,sqerr_share_mu<0.25,share_0.25-0.5,share>0.5\n");
     for (int a = 0; a < NA; a++) {

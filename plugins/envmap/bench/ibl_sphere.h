@@ -1,6 +1,10 @@
 /* The envmap benches' shared scene (ibl_methods.c, ibl_terms.c): one GGX or Lambert unit sphere
  * seen from (0, 0, 3.1) with a 40° lens, lit only by the environment `env` ("sky", "sky:E" with
- * E the procedural sun's irradiance, or an image path), background off, float32 read-back. */
+ * E the procedural sun's irradiance, or an image path), background off, aa off, float32 read-back.
+ * aa off: the aa plugin (loaded by default) jitters the frames of an accumulated render, so a
+ * reference or accumulated fis render was a pixel-box average while single-frame methods sample
+ * the pixel centre — a mismatch that added 0.02–0.08 to every single-frame row (sky metal
+ * dominant α = 0.05: 0.080 with aa, 0.057 without). */
 #ifndef ENVMAP_BENCH_IBL_SPHERE_H
 #define ENVMAP_BENCH_IBL_SPHERE_H
 #include <shadelab/harness.h>
@@ -23,7 +27,7 @@ static sl_harness *ibl_sphere(const char *env, const char *mat, int size, int ac
              " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
              " \"environment\": %s}",
              mat, envjson);
-    const char *settings[] = {"envmap.background=false", sun[0] ? sun : NULL, NULL};
+    const char *settings[] = {"envmap.background=false", "aa.enabled=false", sun[0] ? sun : NULL, NULL};
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
                                                           .scene_json = json, .settings = settings, .float32 = true,
                                                           .strict = true, .accumulate = accumulate},
