@@ -13,9 +13,10 @@
  * and the mean ratio method/T in n·v bins. An integral is a midpoint rule over the half-vector's
  * D(h)(n·h) CDF (u) × azimuth (NU × NPHI points), as tests/ibl_quadrature.c, so a "P" differs from T
  * only by what the method assumes, not by noise or the plugin's prefilter/mips.
- * --gl: also renders the plugin's reference (32 × 64 spp) and specular=dominant/mirror through the
- * harness at the same pixels, and compares each with T (is the reference right at the rim? is
- * the GL prefilter the ideal P?).
+ * --gl: also renders, through the harness at the same pixels (aa off), the plugin's reference
+ * (32 and 128 frames × 64 spp), specular=mirror/dominant and fis accumulated, and compares each
+ * with T (is the reference right at the rim? is the GL prefilter the ideal P? what is left of fis?).
+ * bench/rim.sh runs it.
  * Usage: envmap_bench_rim --env PATH [--size N] [--nu N] [--nphi N] [--gl]
  * Output: CSV rows env,alpha,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5 */
 #include "ibl_sphere.h"
