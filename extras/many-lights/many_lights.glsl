@@ -52,19 +52,26 @@ vec3 many_lights_loop(SlSurface s) {
     if (many_lights_use_prepass != 0 &&
         gl_FragCoord.z > texelFetch(many_lights_prepass_depth, ivec2(gl_FragCoord.xy), 0).r + 1e-6) return Lo;
     for (int k = 0; k < many_lights_global; ++k) Lo += sl_light_radiance(int(many_lights_index[k]), s);
-    // Compacted loop: each invocation skips ahead to its next light within range (one vec4 read
-    // and a dot product) before evaluating one, so the costly sl_light_radiance runs once per light
-    // in range, not once per listed light. A SIMD machine that runs both sides of a branch under
-    // a mask (llvmpipe does) would otherwise pay sl_light_radiance for every listed light; here it
-    // pays for the largest in-range count among the lanes. Same lights in the same ascending
-    // order: the sum is bit for bit the simple loop's.
+    // Compacted loop: the list is walked in chunks of 32 entries; a first pass over a chunk makes
+    // a bit mask of the entries within range (one vec4 read and a dot product each, the same trip
+    // count for every invocation sharing the list), then sl_light_radiance runs once per set bit,
+    // lowest first. A SIMD machine that runs both sides of a branch under a lane mask (llvmpipe)
+    // would otherwise pay sl_light_radiance for every listed light; here it pays, per chunk, for
+    // the largest in-range count among the lanes. (The earlier form, each invocation skipping ahead
+    // to its next light in range inside a nested loop, measured 7 % slower at 1024 lights: its
+    // inner loop ran as long as the largest gap among the lanes, once per evaluated light.) Same
+    // lights in the same ascending order: the sum is bit for bit the simple loop's.
     uvec2 c = many_lights_list(s);
-    uint k = c.x, end = c.x + c.y;
-    for (;;) {
-        while (k < end && !many_lights_in_range(k, s)) ++k;
-        if (k >= end) break;
-        Lo += sl_light_radiance(int(many_lights_index[k]), s);
-        ++k;
+    uint end = c.x + c.y;
+    for (uint base = c.x; base < end; base += 32u) {
+        uint n = min(32u, end - base), mask = 0u;
+        for (uint j = 0u; j < n; ++j)
+            if (many_lights_in_range(base + j, s)) mask |= 1u << j;
+        while (mask != 0u) {
+            int j = findLSB(mask);
+            mask &= mask - 1u;
+            Lo += sl_light_radiance(int(many_lights_index[base + uint(j)]), s);
+        }
     }
     return Lo;
 }

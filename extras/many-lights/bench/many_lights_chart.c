@@ -10,13 +10,24 @@
  *                     [--lists]   (also the mean list length and in-range count per pixel)
  *                     [--plugin PATH.so]   (another build of the plugin: profiling variants)
  *   many_lights_chart --write-scene N PATH [--head MESH]   the N-light scene as JSON
+ *   many_lights_chart --interleave R [--counts 1,1024] [--methods ...] [--plugin-b PATH.so] ...
+ *     the target's ratio measured interleaved (below): one harness per (count, method[, plugin]),
+ *     all created first, then R rounds each rendering one frame of every harness in turn
  *
  * Timing: wall clock and CPU time of the whole process (getrusage: every llvmpipe thread) of
  * sl_harness_render (render + glFinish + read-back of the float image, the same overhead for
  * every method) over --frames after one warm-up frame: the median wall clock and the smallest
  * CPU time (the frame least disturbed by other work); lights animate (each frame is a new time
  * step). The chart plots the CPU time, which a machine shared with other work moves much less
- * than the wall clock; the CSV has both. */
+ * than the wall clock; the CSV has both.
+ *
+ * --interleave: on a shared machine the CPU time of a frame moves with other work too (up to 2×
+ * between runs minutes apart, more for long frames than short ones), so the ratio of two figures
+ * taken at different moments is not robust. This mode renders the one-light and the N-light
+ * frames alternately in the same rounds: per round, the cheapest one-light frame and the cheapest
+ * N-light frame (over the methods) give one ratio; it prints the median and the range of the
+ * per-round ratios and each configuration's median and smallest CPU ms. With --plugin-b every
+ * configuration runs with a second build of the plugin as well (A/B of a change, same rounds). */
 #include <shadelab/harness.h>
 #include <math.h>
 #include <stdbool.h>
@@ -25,6 +36,8 @@
 #include <string.h>
 #include <time.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 static double now_ms(void) {
     struct timespec t;
@@ -83,10 +96,106 @@ static char *scene(int n, const char *head) {
     return b;
 }
 
+/* --interleave (header comment): R rounds over every (count, method, plugin) configuration, each
+ * in its own process (the harness's GL context is per process): the parent asks each child in
+ * turn for one frame over a pipe, so only one renders at any time */
+static int interleave(int rounds, int W, int H, const int *counts, int nc, const bool run[4], int max_brute,
+                      const char *head, const char *const *extra, int nset, const char *plug_a, const char *plug_b) {
+    static const char *const methods[] = {"brute", "deferred", "tiled", "clustered"};
+    enum { MAXC = 32 };
+    struct cfg { int count, method, plugin, to, from; pid_t pid; double cpu[100], wall[100]; } *cf = calloc(MAXC, sizeof *cf);
+    int n = 0;
+    for (int c = 0; c < nc; c++)
+        for (int m = 0; m < 4; m++)
+            for (int pb = 0; pb < (plug_b ? 2 : 1); pb++) {
+                if (!run[m] || (m <= 1 && counts[c] > max_brute) || n >= MAXC) continue;
+                int down[2], up[2];
+                if (pipe(down) || pipe(up)) return 1;
+                fflush(stdout), fflush(stderr);
+                pid_t pid = fork();
+                if (pid < 0) return 1;
+                if (pid == 0) { /* child: one harness, one frame per request */
+                    close(down[1]), close(up[0]);
+                    for (int i = 0; i < n; i++) close(cf[i].to), close(cf[i].from); /* the other children's pipes */
+                    char *json = scene(counts[c], head);
+                    char set[96], err[4096];
+                    snprintf(set, sizeof set, "many-lights.method=%s", methods[m]);
+                    const char *settings[18] = {set};
+                    for (int k = 0; k < nset; k++) settings[1 + k] = extra[k];
+                    settings[1 + nset] = NULL;
+                    const char *plugins[] = {pb ? plug_b : plug_a, "ggx", "spotlight-shadow", NULL};
+                    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W,
+                                                                         .height = H, .scene_json = json, .plugins = plugins,
+                                                                         .settings = settings, .strict = true},
+                                                      err, sizeof err);
+                    if (!h) { fprintf(stderr, "%s\n", err); _exit(1); }
+                    char v[64];
+                    if (sl_harness_get(h, "aa.enabled", v, sizeof v)) sl_harness_set(h, "aa.enabled=false", err, sizeof err);
+                    float *img = malloc(sizeof(float) * W * H * 4);
+                    sl_harness_render(h, img); /* warm-up: compiles */
+                    char cmd;
+                    double res[2] = {0, 0};
+                    if (write(up[1], res, sizeof res) != sizeof res) _exit(1); /* ready */
+                    while (read(down[0], &cmd, 1) == 1 && cmd == 'r') {
+                        double t0 = now_ms(), u0 = cpu_ms();
+                        sl_harness_render(h, img);
+                        res[0] = cpu_ms() - u0, res[1] = now_ms() - t0;
+                        if (write(up[1], res, sizeof res) != sizeof res) break;
+                    }
+                    sl_harness_destroy(h);
+                    _exit(0);
+                }
+                close(down[0]), close(up[1]);
+                double ready[2];
+                if (read(up[0], ready, sizeof ready) != sizeof ready) { fprintf(stderr, "a configuration failed to start\n"); return 1; }
+                cf[n++] = (struct cfg){.count = counts[c], .method = m, .plugin = pb, .to = down[1], .from = up[0], .pid = pid};
+            }
+    double ratio[2][100];
+    for (int r = 0; r < rounds; r++) {
+        double best[2][2] = {{INFINITY, INFINITY}, {INFINITY, INFINITY}}; /* [plugin][first count / last count] */
+        for (int i = 0; i < n; i++) {
+            double res[2];
+            if (write(cf[i].to, "r", 1) != 1 || read(cf[i].from, res, sizeof res) != sizeof res) { fprintf(stderr, "a configuration died\n"); return 1; }
+            cf[i].cpu[r] = res[0], cf[i].wall[r] = res[1];
+            int slot = cf[i].count == counts[0] ? 0 : cf[i].count == counts[nc - 1] ? 1 : -1;
+            if (slot >= 0 && res[0] < best[cf[i].plugin][slot]) best[cf[i].plugin][slot] = res[0];
+        }
+        for (int pb = 0; pb < 2; pb++) ratio[pb][r] = best[pb][1] / best[pb][0];
+    }
+    for (int i = 0; i < n; i++) { /* 'q': stop */
+        if (write(cf[i].to, "q", 1) != 1) fprintf(stderr, "a configuration died\n");
+        close(cf[i].to), close(cf[i].from), waitpid(cf[i].pid, NULL, 0);
+    }
+    printf("interleaved, %d rounds, %dx%d; CPU ms per frame (median, smallest), wall ms (median)\n", rounds, W, H);
+    double med[MAXC];
+    for (int i = 0; i < n; i++) {
+        double u[100], t[100];
+        memcpy(u, cf[i].cpu, rounds * sizeof *u), memcpy(t, cf[i].wall, rounds * sizeof *t);
+        qsort(u, rounds, sizeof *u, cmpd), qsort(t, rounds, sizeof *t, cmpd);
+        med[i] = u[rounds / 2];
+        printf("  %5d lights %-9s %s  cpu %7.1f  min %7.1f  wall %7.1f\n", cf[i].count, methods[cf[i].method],
+               cf[i].plugin ? "B" : "A", u[rounds / 2], u[0], t[rounds / 2]);
+    }
+    for (int pb = 0; pb < (plug_b ? 2 : 1); pb++) {
+        qsort(ratio[pb], rounds, sizeof **ratio, cmpd);
+        printf("%d lights / %d light%s (plugin %s), cheapest method of each per round: median %.2fx CPU time, range %.2f-%.2fx\n",
+               counts[nc - 1], counts[0], counts[0] == 1 ? "" : "s", pb ? "B" : "A", ratio[pb][rounds / 2],
+               ratio[pb][0], ratio[pb][rounds - 1]);
+    }
+    for (int i = 0; i < n; i++)
+        if (plug_b && cf[i].plugin == 0)
+            for (int j = 0; j < n; j++)
+                if (cf[j].plugin == 1 && cf[j].count == cf[i].count && cf[j].method == cf[i].method)
+                    printf("  B / A %5d lights %-9s %.3f (medians)\n", cf[i].count, methods[cf[i].method], med[j] / med[i]);
+    free(cf);
+    return 0;
+}
+
 int main(int argc, char **argv) {
     int W = 1280, H = 720, frames = 5, max_brute = 256, nset = 0;
     bool lists = false;
-    const char *plugin = MANY_LIGHTS_PLUGIN;
+    const char *plugin = MANY_LIGHTS_PLUGIN, *plugin_b = NULL;
+    int rounds = 0;
     const char *out = "many-lights-ms", *head = NULL, *counts_s = "1,4,16,64,256,1024,2048,4096";
     const char *methods_s = "brute,deferred,tiled,clustered", *extra[16];
     for (int i = 1; i < argc; i++) {
@@ -109,6 +218,8 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
         else if (!strcmp(argv[i], "--lists")) lists = true;
         else if (!strcmp(argv[i], "--plugin") && i + 1 < argc) plugin = argv[++i];
+        else if (!strcmp(argv[i], "--plugin-b") && i + 1 < argc) plugin_b = argv[++i];
+        else if (!strcmp(argv[i], "--interleave") && i + 1 < argc) rounds = atoi(argv[++i]);
         else { fprintf(stderr, "unknown argument %s\n", argv[i]); return 2; }
     }
     if (frames < 1 || frames > 100 || W < 16 || H < 16 || W > 4096 || H > 4096) { fprintf(stderr, "bad size/frames\n"); return 2; }
@@ -124,6 +235,10 @@ int main(int argc, char **argv) {
     for (int m = 0; m < 4; m++) {
         const char *p = strstr(methods_s, methods[m]);
         run[m] = p && (p == methods_s || p[-1] == ',') && (p[strlen(methods[m])] == ',' || !p[strlen(methods[m])]);
+    }
+    if (rounds) {
+        if (rounds < 1 || rounds > 100 || nc < 2) { fprintf(stderr, "--interleave: 1-100 rounds and two or more counts\n"); return 2; }
+        return interleave(rounds, W, H, counts, nc, run, max_brute, head, extra, nset, plugin, plugin_b);
     }
     char csv[1024], png[1024];
     snprintf(csv, sizeof csv, "%s.csv", out);
