@@ -62,3 +62,9 @@ sl_add_test(turntable SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_turntable.c)
 add_test(NAME cli_turntable COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_turntable
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_turntable.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff> @TMP@)
 set_tests_properties(cli_turntable PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 600)
+
+# Lazy program creation (issue 19's cold start): programs of passes that never run are not
+# compiled; those that do run are (the -v list of programs built).
+add_test(NAME cli_lazy_programs COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_lazy_programs
+         ${CMAKE_CURRENT_SOURCE_DIR}/cli_lazy_programs.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
+set_tests_properties(cli_lazy_programs PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 120)

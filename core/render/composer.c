@@ -316,6 +316,34 @@ sl_program *sl_program_from_files(const char *dir, const char *vs, const char *f
     return p;
 }
 
+sl_program *sl_program_from_files_deferred(const char *dir, const char *vs, const char *fs, const char *defines,
+                                           char *err, size_t n) {
+    sl_program *p = calloc(1, sizeof *p);
+    p->vs_path = strdup(vs);
+    p->fs_path = strdup(fs);
+    p->defines = defines ? strdup(defines) : NULL;
+    char label[1024];
+    snprintf(label, sizeof label, "%s + %s", vs, fs);
+    p->label = strdup(label);
+    if (!compose_files(p, dir, err, n)) {
+        free(p->error);
+        p->error = strdup(err);
+        return p; /* id 0, not deferred: a reload that finds the files compiles it */
+    }
+    p->deferred = true;
+    return p;
+}
+
+unsigned sl_program_id(sl_program *p) {
+    if (!p) return 0;
+    if (p->deferred) {
+        p->deferred = false;
+        char err[16384] = "";
+        if (!sl_program_build(p, err, sizeof err)) SL_ERROR("%s", err);
+    }
+    return p->id;
+}
+
 bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t n) {
     sl_program tmp = *p;
     memset(&tmp.vs, 0, sizeof tmp.vs);
@@ -332,6 +360,9 @@ bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t 
     p->vs = tmp.vs;
     p->fs = tmp.fs;
     p->hash = tmp.hash;
+    free(p->error);
+    p->error = NULL;
+    if (p->deferred) return true; /* never used yet: compiles at its first use, from these files */
     return sl_program_build(p, err, n);
 }
 

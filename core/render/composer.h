@@ -43,6 +43,8 @@ struct sl_program {
     bool composed;          /* forward material program (rebuilt by the material code) */
     bool stale;             /* its files changed (hot reload): not reused from the cache */
     bool tessellated;       /* has tcs/tes: draw GL_PATCHES of 3 vertices */
+    bool deferred;          /* sources read, not compiled yet: built at the first sl_program_id()
+                               (lazy creation: a program whose pass never runs costs no compile) */
 };
 
 /* Compiles and links; on failure keeps any previous id and stores the mapped error. */
@@ -50,6 +52,14 @@ bool sl_program_build(sl_program *p, char *err, size_t n);
 /* Loads a stand-alone program from files (relative to dir; "sl:" = core shader dir). */
 sl_program *sl_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
                                   char *err, size_t n);
+/* The same, but only reads and composes the sources (a missing file fails here, with id 0 and
+ * the error in err): the GLSL compile and link wait for the first sl_program_id(). */
+sl_program *sl_program_from_files_deferred(const char *dir, const char *vs, const char *fs, const char *defines,
+                                           char *err, size_t n);
+/* The GL id, compiling a deferred program first (once: a failure is logged as an error and
+ * the program stays 0 until a reload fixes its files). NULL gives 0. */
+unsigned sl_program_id(sl_program *p);
+/* Re-reads the files; a deferred program is only recomposed (it compiles when first used). */
 bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t n);
 bool sl_source_changed(const sl_source *s);
 void sl_program_free(sl_program *p);

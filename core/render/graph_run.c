@@ -54,7 +54,7 @@ static void run_blend(sl_app *app, sl_pass_ctx *ctx) {
 static void run_display(sl_app *app, sl_pass_ctx *ctx) {
     sl_renderer *r = R(app);
     sl_renderer_bind_outputs(app, ctx, 0);
-    unsigned prog = r->display_prog->id;
+    unsigned prog = sl_program_id(r->display_prog);
     if (!prog) return;
     glUseProgram(prog);
     glBindTextureUnit(0, sl_renderer_pass_texture(app, ctx, "color"));
@@ -65,7 +65,7 @@ static void run_display(sl_app *app, sl_pass_ctx *ctx) {
 static void run_resolve(sl_app *app, sl_pass_ctx *ctx) {
     sl_renderer *r = R(app);
     sl_renderer_bind_outputs(app, ctx, 0);
-    unsigned prog = r->resolve_prog->id;
+    unsigned prog = sl_program_id(r->resolve_prog);
     if (!prog) return;
     glUseProgram(prog);
     glBindTextureUnit(0, sl_renderer_pass_texture(app, ctx, "forward.ssaa"));

@@ -21,15 +21,19 @@ sl_program *sl_renderer_load_program(sl_app *app, int owner, const sl_program_de
     }
     char err[16384] = "";
     const char *dir = owner >= 0 ? app->plugins.items[owner]->resource_dir : sl_shader_dir();
-    sl_program *p = sl_program_from_files(dir, d.vertex, d.fragment, d.defines, err, sizeof err);
-    if (!p->id) SL_ERROR("%s", err);
+    /* Lazy creation (docs/design-notes.md): the files are read now (a missing one is an error
+     * here), the GLSL compiles at the program's first program_id(), i.e. when a pass that uses it
+     * first runs. On llvmpipe a compile costs real CPU, and many programs never run (fxaa while
+     * TAA is chosen, a plugin's variant for a mode not in use). */
+    sl_program *p = sl_program_from_files_deferred(dir, d.vertex, d.fragment, d.defines, err, sizeof err);
+    if (!p->deferred && !p->id) SL_ERROR("%s", err);
     p->owner = owner;
     r->programs = realloc(r->programs, (r->program_count + 1) * sizeof *r->programs);
     r->programs[r->program_count++] = p;
     return p;
 }
 
-unsigned sl_renderer_program_id(sl_program *p) { return p ? p->id : 0; }
+unsigned sl_renderer_program_id(sl_program *p) { return sl_program_id(p); }
 
 int sl_renderer_reload_shaders(sl_app *app) {
     sl_renderer *r = R(app);
@@ -239,12 +243,13 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
             glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, mean->tex[1 - mean->current], 0);
             glBindFramebuffer(GL_FRAMEBUFFER, fbo);
             glViewport(0, 0, mean->w, mean->h);
-            glUseProgram(r->accum_prog->id);
+            unsigned accum = sl_program_id(r->accum_prog);
+            glUseProgram(accum);
             glBindTextureUnit(0, color->tex[color->current]);
             glBindTextureUnit(1, mean->tex[mean->current]);
-            glUniform1i(glGetUniformLocation(r->accum_prog->id, "sl_color"), 0);
-            glUniform1i(glGetUniformLocation(r->accum_prog->id, "sl_previous_mean"), 1);
-            glUniform1f(glGetUniformLocation(r->accum_prog->id, "sl_weight"), 1.0f / (k + 1));
+            glUniform1i(glGetUniformLocation(accum, "sl_color"), 0);
+            glUniform1i(glGetUniformLocation(accum, "sl_previous_mean"), 1);
+            glUniform1f(glGetUniformLocation(accum, "sl_weight"), 1.0f / (k + 1));
             sl_renderer_draw_fullscreen(app, NULL);
             mean->current = 1 - mean->current;
         }
@@ -384,12 +389,14 @@ bool sl_renderer_create(sl_app *app, char *err, size_t n) {
     r->finish_timing = app->opt.finish_timing || !app->backend.is_gpu;
     glGenQueries(64, r->queries);
     glCreateVertexArrays(1, &r->empty_vao);
-    r->display_prog = sl_program_from_files(NULL, "sl:fullscreen.vert", "sl:display.frag", NULL, err, n);
-    if (!r->display_prog->id) return false;
-    r->accum_prog = sl_program_from_files(NULL, "sl:fullscreen.vert", "sl:accumulate.frag", NULL, err, n);
-    if (!r->accum_prog->id) return false;
-    r->resolve_prog = sl_program_from_files(NULL, "sl:fullscreen.vert", "sl:resolve.frag", NULL, err, n);
-    if (!r->resolve_prog->id) return false;
+    /* created lazily like every stand-alone program: most frames never display to a window,
+     * accumulate or resolve supersampling */
+    r->display_prog = sl_program_from_files_deferred(NULL, "sl:fullscreen.vert", "sl:display.frag", NULL, err, n);
+    if (!r->display_prog->deferred) return false;
+    r->accum_prog = sl_program_from_files_deferred(NULL, "sl:fullscreen.vert", "sl:accumulate.frag", NULL, err, n);
+    if (!r->accum_prog->deferred) return false;
+    r->resolve_prog = sl_program_from_files_deferred(NULL, "sl:fullscreen.vert", "sl:resolve.frag", NULL, err, n);
+    if (!r->resolve_prog->deferred) return false;
     /* the core's own programs hot-reload like plugin programs */
     r->programs = malloc(3 * sizeof *r->programs);
     r->programs[0] = r->display_prog;

@@ -492,7 +492,7 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
     if (d->cull == 0) glDisable(GL_CULL_FACE);
     else { glEnable(GL_CULL_FACE); glCullFace(d->cull == 2 ? GL_FRONT : GL_BACK); }
     if (custom) {
-        if (!custom->id) return;
+        if (!sl_program_id(custom)) return; /* a deferred program compiles at its first draw */
         glUseProgram(custom->id);
         set_camera_uniforms(app, custom->id, d->view, d->proj);
         glUniform1i(glGetUniformLocation(custom->id, "sl_uv_space"), d->uv_space);

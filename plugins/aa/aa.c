@@ -332,7 +332,10 @@ static sl_status activate(void *user) {
     glSamplerParameteri(a->sampler_linear, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glSamplerParameteri(a->sampler_linear, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(a->sampler_linear, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return a->host->program_id(a->host, a->fxaa) && a->host->program_id(a->host, a->taa) ? SL_OK : SL_ERR_GL;
+    /* Not compiled here: the host compiles each program at its first program_id() (in the pass
+     * that uses it), so the mode not in use (fxaa while TAA runs) costs no compile. A missing
+     * file is already an error (load_program returns a program that never gets an id). */
+    return a->fxaa && a->taa ? SL_OK : SL_ERR_GL;
 }
 
 static void deactivate(void *user) {

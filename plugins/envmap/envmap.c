@@ -721,12 +721,12 @@ static sl_status envmap_activate(void *user) {
     e->bg_prog = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                     .vertex = "sl:fullscreen.vert",
                                                                     .fragment = "envmap_background.frag"});
-    if (!e->host->program_id(e->host, e->bg_prog)) return SL_ERR_GL;
+    if (!e->bg_prog) return SL_ERR_GL; /* compiled at its first program_id() (lazy) */
     e->bg_in_place_prog = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                              .vertex = "sl:fullscreen.vert",
                                                                              .fragment = "envmap_background.frag",
                                                                              .defines = "ENVMAP_IN_PLACE 1"});
-    if (!e->host->program_id(e->host, e->bg_in_place_prog)) return SL_ERR_GL;
+    if (!e->bg_in_place_prog) return SL_ERR_GL;
     glCreateVertexArrays(1, &e->empty_vao);
     e->glsl_hash = em_glsl_hash(e->glsl_dir, e->host->shader_dir(e->host));
     /* 1×1 stand-ins so every sampler always has a texture of its own type on its own unit */
