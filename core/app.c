@@ -577,6 +577,27 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
 
 bool sl_app_render_frame(sl_app *app) {
     bool ok = sl_renderer_frame(app, 0, app->opt.accumulate);
+    /* Plugins' programs compile at their first use (lazy creation, docs/design-notes.md). One
+     * that fails disables its plugin, as a failing activate() does, and the frame is rendered
+     * again without it, so no image shows a pass that drew nothing; --strict makes it fatal. */
+    char why[4096];
+    for (int k, tries = 0; (k = sl_renderer_failed_plugin(app, why, sizeof why)) >= 0 && tries < 64; tries++) {
+        sl_plugin_rec *r = app->plugins.items[k];
+        r->ok = false;
+        free(r->disabled_reason);
+        r->disabled_reason = strdup("a program failed to compile");
+        SL_ERROR("plugin %s disabled: %s", r->id, why);
+        /* as switching it off: its passes leave the plan, its GLSL chunks the materials */
+        app->params.version++;
+        app->params.recompile_version++;
+        sl_renderer_invalidate(app);
+        if (app->opt.strict && !app->strict_failure) {
+            char msg[4200];
+            snprintf(msg, sizeof msg, "--strict: plugin %s: a program failed to compile", r->id);
+            app->strict_failure = strdup(msg);
+        }
+        ok = sl_renderer_frame(app, 0, app->opt.accumulate);
+    }
     /* the start-up profile covers the first two frames (main.c ends and prints it after them
      * for a headless run; the window's loop stops recording here, after a third) */
     if (app->frame_index >= 3 && sl_startup_recording()) sl_startup_end();
@@ -612,6 +633,8 @@ void sl_app_resize(sl_app *app, int w, int h) {
 }
 
 void sl_app_shutdown(sl_app *app) {
+    free(app->strict_failure);
+    app->strict_failure = NULL;
     if (app->gl_ready) {
         for (int i = app->plugins.count - 1; i >= 1; i--) {
             sl_plugin_rec *r = app->plugins.items[i];

@@ -590,6 +590,7 @@ int main(int argc, char **argv) {
         for (int i = 0; i < rec.count; i++) free(rec.s[i].ms);
         free(rec.frame);
     }
+    if (!rc && app.strict_failure) rc = die(app.strict_failure);
     sl_app_shutdown(&app);
     free(ref_copy);
     return rc;

@@ -61,6 +61,7 @@ typedef struct sl_app {
     double time;
     uint64_t frame_index;
     bool environment_read;       /* a plugin asked for the scene's environment (sl_host.environment) */
+    char *strict_failure;        /* --strict: why the run must fail (a plugin's program did not compile) */
 } sl_app;
 
 /* A material's value for a key, or NULL when the key is not in the schema. */

@@ -26,5 +26,22 @@ msg=$("$exe" --headless -v --size 32x18 --scene "$scenes/basic.json" --set core.
 check test $? -eq 0
 check built "$msg" sl:resolve.frag
 check built "$msg" sl:accumulate.frag
+# A plugin program that fails its first (lazy) compile disables the plugin, as a failing
+# activate() does: the image equals the one with the plugin switched off (the frame is rendered
+# again without it), and --strict makes the run fail. A copy of aa with taa.frag broken.
+broken="$out/broken-plugins/aa"
+mkdir -p "$broken"
+cp -L "$(dirname "$exe")/plugins/aa/aa.so" "$broken/"
+cp "$scenes/../plugins/aa/"*.frag "$broken/"
+printf '\nvoid sl_broken() { no_such_function(); }\n' >> "$broken/taa.frag"
+msg=$(SHADELAB_PLUGIN_PATH="$out/broken-plugins" "$exe" --headless --size 32x18 --scene "$scenes/basic.json" --output "$out/broken.png" 2>&1)
+check test $? -eq 0
+check grep -qF "plugin aa disabled" <<<"$msg"
+check grep -qF "taa.frag" <<<"$msg"
+"$exe" --headless -q --size 32x18 --scene "$scenes/basic.json" --set aa.enabled=false --output "$out/aa-off.png"
+check cmp -s "$out/broken.png" "$out/aa-off.png"
+msg=$(SHADELAB_PLUGIN_PATH="$out/broken-plugins" "$exe" --headless --strict --size 32x18 --scene "$scenes/basic.json" --output "$out/broken-strict.png" 2>&1)
+check test $? -ne 0
+check grep -qF -- "--strict: plugin aa" <<<"$msg"
 echo "cli_lazy_programs: $pass passed, $fail failed"
 [ $fail -eq 0 ]

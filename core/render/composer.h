@@ -43,6 +43,7 @@ struct sl_program {
     bool composed;          /* forward material program (rebuilt by the material code) */
     bool stale;             /* its files changed (hot reload): not reused from the cache */
     bool tessellated;       /* has tcs/tes: draw GL_PATCHES of 3 vertices */
+    bool failure_reported;  /* a failed first compile was handled (sl_renderer_failed_plugin) */
     bool deferred;          /* sources read, not compiled yet: built at the first sl_program_id()
                                (lazy creation: a program whose pass never runs costs no compile) */
 };

@@ -35,6 +35,18 @@ sl_program *sl_renderer_load_program(sl_app *app, int owner, const sl_program_de
 
 unsigned sl_renderer_program_id(sl_program *p) { return sl_program_id(p); }
 
+int sl_renderer_failed_plugin(sl_app *app, char *err, size_t n) {
+    sl_renderer *r = R(app);
+    for (int i = 0; r && i < r->program_count; i++) {
+        sl_program *p = r->programs[i];
+        if (p->owner < 1 || p->id || p->deferred || !p->error || p->failure_reported) continue;
+        p->failure_reported = true;
+        snprintf(err, n, "%s", p->error);
+        return p->owner;
+    }
+    return -1;
+}
+
 int sl_renderer_reload_shaders(sl_app *app) {
     sl_renderer *r = R(app);
     int failures = 0;
