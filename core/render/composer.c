@@ -301,21 +301,6 @@ static bool compose_files(sl_program *p, const char *dir, char *err, size_t n) {
     return true;
 }
 
-sl_program *sl_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
-                                  char *err, size_t n) {
-    sl_program *p = calloc(1, sizeof *p);
-    p->vs_path = strdup(vs);
-    p->fs_path = strdup(fs);
-    p->defines = defines ? strdup(defines) : NULL;
-    char label[1024];
-    snprintf(label, sizeof label, "%s + %s", vs, fs);
-    p->label = strdup(label);
-    if (!compose_files(p, dir, err, n) || !sl_program_build(p, err, n)) {
-        return p; /* id 0; error kept; a later reload may fix it */
-    }
-    return p;
-}
-
 sl_program *sl_program_from_files_deferred(const char *dir, const char *vs, const char *fs, const char *defines,
                                            char *err, size_t n) {
     sl_program *p = calloc(1, sizeof *p);
@@ -331,6 +316,16 @@ sl_program *sl_program_from_files_deferred(const char *dir, const char *vs, cons
         return p; /* id 0, not deferred: a reload that finds the files compiles it */
     }
     p->deferred = true;
+    return p;
+}
+
+sl_program *sl_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
+                                  char *err, size_t n) {
+    sl_program *p = sl_program_from_files_deferred(dir, vs, fs, defines, err, n);
+    if (p->deferred) { /* compiled now; id 0 and the error kept on failure: a later reload may fix it */
+        p->deferred = false;
+        sl_program_build(p, err, n);
+    }
     return p;
 }
 
