@@ -204,6 +204,10 @@ double em_alpha_lod(double alpha, int levels, em_level_map map) {
     return sqrt(alpha) * top;
 }
 
+/* One cube drawn into level 0 of dst at out_size (the conversion pass: bilinear, seamless when the
+ * caller enabled it; a box of such reads when shrinking). */
+static void convert_cube_into(em_gpu *g, unsigned src, int src_size, unsigned dst, int out_size);
+
 unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias) {
     return em_prefilter_ggx_map(g, base, size, levels, samples, lod_bias, EM_LEVEL_MAP_SQRT);
 }
@@ -215,21 +219,11 @@ unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, in
     if (levels < 1) levels = 1;
     unsigned t = new_cube(size, levels);
     /* level 0 (roughness 0): the base cube itself */
-    unsigned p = g->prog_to_cube;
-    glUseProgram(p);
-    bind_input(g, p, base, true);
-    U1I(p, "envmap_in_is_cube", 1);
-    glProgramUniform2f(p, glGetUniformLocation(p, "envmap_in_size"), (float)size, (float)size);
-    U1F(p, "envmap_size", (float)size);
-    U1I(p, "envmap_subsamples", 1);
-    for (int f = 0; f < 6; f++) {
-        U1I(p, "envmap_face", f);
-        draw_into(g, t, 0, f, size, size);
-    }
+    convert_cube_into(g, base, size, t, size);
     /* work per level ∝ texels × samples: progress in those units */
     double total = 0, done = 0;
     for (int l = 1; l < levels; l++) total += 6.0 * (size >> l) * (size >> l);
-    p = g->prog_ggx;
+    unsigned p = g->prog_ggx;
     glUseProgram(p);
     bind_input(g, p, base, true);
     int rows = (samples + 1023) / 1024;
@@ -285,10 +279,7 @@ unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src
     return t;
 }
 
-/* One cube level resampled to another face size with the conversion pass (bilinear, seamless
- * when the caller enabled it; a K×K box of such reads when shrinking). */
-static unsigned resample_cube(em_gpu *g, unsigned src, int src_size, int out_size) {
-    unsigned t = new_cube(out_size, 1);
+static void convert_cube_into(em_gpu *g, unsigned src, int src_size, unsigned dst, int out_size) {
     unsigned p = g->prog_to_cube;
     glUseProgram(p);
     bind_input(g, p, src, true);
@@ -298,8 +289,14 @@ static unsigned resample_cube(em_gpu *g, unsigned src, int src_size, int out_siz
     U1I(p, "envmap_subsamples", out_size >= src_size ? 1 : 4);
     for (int f = 0; f < 6; f++) {
         U1I(p, "envmap_face", f);
-        draw_into(g, t, 0, f, out_size, out_size);
+        draw_into(g, dst, 0, f, out_size, out_size);
     }
+}
+
+/* One cube level resampled to another face size (convert_cube_into). */
+static unsigned resample_cube(em_gpu *g, unsigned src, int src_size, int out_size) {
+    unsigned t = new_cube(out_size, 1);
+    convert_cube_into(g, src, src_size, t, out_size);
     return t;
 }
 

@@ -9,11 +9,10 @@
 # Writes OUT_DIR/fis-accumulated.csv (the columns of levels.csv).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 out=${2:-$here}
 envs=(sky:0)
-hdr=$(ls /usr/share/blender/*/datafiles/studiolights/world/courtyard.exr /usr/share/blender/datafiles/studiolights/world/courtyard.exr 2>/dev/null | head -1 || true)
+hdr=$(blender_hdr courtyard)
 [ -n "$hdr" ] && envs=("$hdr" sky:0)
 sweep="old=envmap.specular=fis envmap.fis_samples=32 envmap.irradiance=convolved envmap.fis_lod_bias=1.5;new=envmap.fis_lod_bias=-1"
 export SHADELAB_CACHE=${SHADELAB_CACHE:-$(mktemp -d)}

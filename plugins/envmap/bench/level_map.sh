@@ -9,13 +9,12 @@
 # Writes OUT_DIR/level-map.csv (the columns of levels.csv). ≈ 25 min on 2 loaded cores.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 out=${2:-$here}
 size=${3:-48}
 refs=${4:-16}
 envs=(--env sky:0)
-hdr=$(ls /usr/share/blender/*/datafiles/studiolights/world/courtyard.exr /usr/share/blender/datafiles/studiolights/world/courtyard.exr 2>/dev/null | head -1 || true)
+hdr=$(blender_hdr courtyard)
 [ -n "$hdr" ] && envs=(--env "$hdr" --env sky:0)
 # the settings of a sweep item stay set for the next one: each item names everything it changes
 sweep="sqrt7=envmap.level_map=sqrt envmap.mip_count=7;log7=envmap.level_map=log envmap.mip_count=7"

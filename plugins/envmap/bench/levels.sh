@@ -10,13 +10,12 @@
 # levels.png (rel. RMS vs level count per alpha, one line per cube size and environment).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 out=${2:-$here}
 size=${3:-48}
 refs=${4:-16}
 envs=(--env sky:0)
-hdr=$(ls /usr/share/blender/*/datafiles/studiolights/world/${HDR:-courtyard}.exr /usr/share/blender/datafiles/studiolights/world/${HDR:-courtyard}.exr 2>/dev/null | head -1 || true)
+hdr=$(blender_hdr "${HDR:-courtyard}")
 [ -n "$hdr" ] && envs=(--env "$hdr" --env sky:0)
 sweep=""
 for c in 128 256 512; do

@@ -8,15 +8,14 @@
 # Usage: plugins/envmap/bench/methods.sh [BUILD_DIR] [OUT_DIR] [SIZE] [REFERENCE_FRAMES]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 out=${2:-$here}
 size=${3:-48}
 refs=${4:-128}  # 128 × 64 spp: at 32 frames the reference's own noise (0.023–0.048 vs the C quadrature on courtyard metal, bench/ibl_rim.c) is the size of the 0.03 target
 # courtyard.exr (max/mean radiance ≈ 90) rather than forest.exr (≈ 2000: a sun the reference's
 # BRDF sampling needs far more than 2048 spp to resolve per pixel), and the sky without its sun
 envs=(--env sky:0)
-hdr=$(ls /usr/share/blender/*/datafiles/studiolights/world/${HDR:-courtyard}.exr /usr/share/blender/datafiles/studiolights/world/${HDR:-courtyard}.exr 2>/dev/null | head -1 || true)
+hdr=$(blender_hdr "${HDR:-courtyard}")
 [ -n "$hdr" ] && envs=(--env "$hdr" --env sky:0)
 if [ "${PLOT_ONLY:-0}" != 1 ]; then   # PLOT_ONLY=1: redraw from an existing methods.csv
   SHADELAB_PLUGIN_PATH="$build/plugins" "$build/plugins/envmap/envmap_bench_methods" --size "$size" --frames 5 \

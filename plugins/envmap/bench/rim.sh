@@ -9,10 +9,9 @@
 # Usage: plugins/envmap/bench/rim.sh [BUILD_DIR] [OUT_DIR]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 out=${2:-$here}
-hdr=$(ls /usr/share/blender/*/datafiles/studiolights/world/courtyard.exr /usr/share/blender/datafiles/studiolights/world/courtyard.exr 2>/dev/null | head -1 || true)
+hdr=$(blender_hdr courtyard)
 [ -n "$hdr" ] || { echo "courtyard.exr (Debian blender-data) not installed: nothing to measure"; exit 0; }
 export SHADELAB_CACHE=${SHADELAB_CACHE:-$(mktemp -d)}
 bin="$build/plugins/envmap/envmap_bench_rim"

@@ -5,8 +5,7 @@
 # Usage: plugins/envmap/bench/run.sh [BUILD_DIR] [OUT_DIR]     (about 15 minutes on 2 cores)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 out=${2:-$here}
 bench=$build/shadelab-bench
 settings=(

@@ -5,8 +5,7 @@
 # Usage: plugins/envmap/bench/summarize.sh [BUILD_DIR] [DIR]   (DIR holds ibl-r*.csv)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 dir=${2:-$here}
 env="checker:12:1.6,1.5,1.3:0.04,0.05,0.07"   # scenes/ibl_bench.json's environment
 tmp=$(mktemp -d)

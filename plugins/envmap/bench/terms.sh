@@ -7,14 +7,13 @@
 # Writes OUT_DIR/terms.csv; MORE ARGS go to envmap_bench_terms (e.g. --set "envmap.specular=fis").
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../../.." && pwd)
-build=${1:-$root/build}
+. "$here/common.sh"
 out=${2:-$here}
 size=${3:-48}
 refs=${4:-32}
 shift $(( $# < 4 ? $# : 4 )); [ "${1:-}" = -- ] && shift
 envs=(--env sky:0)
-hdr=$(ls /usr/share/blender/*/datafiles/studiolights/world/${HDR:-courtyard}.exr /usr/share/blender/datafiles/studiolights/world/${HDR:-courtyard}.exr 2>/dev/null | head -1 || true)
+hdr=$(blender_hdr "${HDR:-courtyard}")
 [ -n "$hdr" ] && envs=(--env sky:0 --env "$hdr")
 export SHADELAB_CACHE=${SHADELAB_CACHE:-$(mktemp -d)}
 SHADELAB_PLUGIN_PATH="$build/plugins" "$build/plugins/envmap/envmap_bench_terms" --size "$size" --reference-frames "$refs" \
