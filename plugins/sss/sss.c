@@ -111,11 +111,15 @@ static const sl_key_desc keys[] = {
 typedef struct sss {
     const sl_host *host;
     int unit_diffuse, unit_lut, unit_shadow;
-    sl_program *ts_prog, *dilate_prog, *ss_prog;
+    sl_program *ts_prog, *ts_interior_prog, *dilate_prog, *ss_prog;
     unsigned dummy2d, dummy_array;
     /* texture space: stretch, irradiance, tmp, chain A, chain B, sums 0 and 1 */
     int ts_size, ts_generation, ts_result;
     unsigned ts_tex[7], ts_fbo[7];
+    /* interior classification (ts_classify): per-direction depth (u, v), the empty VAO of the
+     * split draws, CPU scratch for the read-back coverage and stretch */
+    unsigned ts_class[2], ts_vao;
+    float *ts_scratch;
     /* screen space: diffuse, depth, tmp, out */
     int ss_w, ss_h;
     unsigned ss_tex[4], ss_fbo[3];
@@ -175,6 +179,10 @@ static unsigned make_fbo(unsigned color0, unsigned color1, unsigned depth) {
 static void free_ts(sss *s) {
     glDeleteFramebuffers(7, s->ts_fbo);
     glDeleteTextures(7, s->ts_tex);
+    glDeleteTextures(2, s->ts_class);
+    memset(s->ts_class, 0, sizeof s->ts_class);
+    free(s->ts_scratch);
+    s->ts_scratch = NULL;
     memset(s->ts_fbo, 0, sizeof s->ts_fbo);
     memset(s->ts_tex, 0, sizeof s->ts_tex);
     s->ts_size = 0;
@@ -205,11 +213,14 @@ static void ensure_ts(sss *s) {
     /* the running sum in float: six roundings to half would cost the 1e-3 normalisation */
     s->ts_tex[TS_SUM0] = make_tex(size, size, GL_RGBA32F, true);
     s->ts_tex[TS_SUM1] = make_tex(size, size, GL_RGBA32F, true);
+    /* the interior classification of the blurs along u and along v (ts_classify) */
+    s->ts_class[0] = make_tex(size, size, GL_DEPTH_COMPONENT32F, false);
+    s->ts_class[1] = make_tex(size, size, GL_DEPTH_COMPONENT32F, false);
     s->ts_fbo[0] = make_fbo(s->ts_tex[TS_STRETCH], 0, 0);
     s->ts_fbo[1] = make_fbo(s->ts_tex[TS_IRR], 0, 0);
-    s->ts_fbo[2] = make_fbo(s->ts_tex[TS_TMP], 0, 0);
-    s->ts_fbo[3] = make_fbo(s->ts_tex[TS_A], s->ts_tex[TS_SUM0], 0);
-    s->ts_fbo[4] = make_fbo(s->ts_tex[TS_B], s->ts_tex[TS_SUM1], 0);
+    s->ts_fbo[2] = make_fbo(s->ts_tex[TS_TMP], 0, s->ts_class[0]);
+    s->ts_fbo[3] = make_fbo(s->ts_tex[TS_A], s->ts_tex[TS_SUM0], s->ts_class[1]);
+    s->ts_fbo[4] = make_fbo(s->ts_tex[TS_B], s->ts_tex[TS_SUM1], s->ts_class[1]);
     s->ts_fbo[5] = make_fbo(s->ts_tex[TS_SUM0], 0, 0);
     s->ts_fbo[6] = make_fbo(s->ts_tex[TS_SUM1], 0, 0);
     static const float zero[4] = {0, 0, 0, 0};
@@ -363,22 +374,151 @@ static void irradiance_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
     draw_materials(s, ctx, f, "sss-irradiance", true);
 }
 
+/* Interior texels of the blurs (the split draw below). A texel is interior for the blur along
+ * u (v) when every texel its taps can read is fully covered: the 7 (ts_taps) taps reach 3σ
+ * texels, σ = σ_mm / (mm per texel at the centre), and a tap at offset o reads the texels
+ * ⌊o⌋ and ⌊o⌋ + 1, so all texels within 3σ + 1 must be covered: 3σ_mm < (D − 2.5)·mm_per_texel,
+ * D the distance in texels to the nearest texel that is not fully covered (alpha < 1; outside
+ * the texture counts as uncovered) along that axis, the 0.5 a margin. That bound goes into a depth
+ * texture per direction as (D − 2.5)·mm_per_texel / TS_CLASS_MM (clamped to [0, 1]); uncovered
+ * texels get 1 (the interior program writes them 0, as the full one does); partly covered ones
+ * and those without stretch 0 (always the full program). A blur step then draws the interior
+ * program where 3σ_mm / TS_CLASS_MM < depth (GL_LESS) and the full one elsewhere (GL_GEQUAL): a
+ * partition, with early depth testing before any shading. Coverage is read back from the
+ * irradiance (what the blurs see), the stretch from its map: once per execution of the blurs
+ * (they run only when lighting or geometry changed). */
+#define TS_CLASS_MM 64.0f
+
+static float half_to_float(uint16_t h) {
+    int e = (h >> 10) & 31, m = h & 1023;
+    float v = e == 0 ? ldexpf((float)m, -24) : e == 31 ? INFINITY : ldexpf((float)(m | 1024), e - 25);
+    return h & 0x8000 ? -v : v;
+}
+
+static bool ts_classify(sss *s) {
+    int n = s->ts_size;
+    size_t texels = (size_t)n * n;
+    if (!s->ts_scratch) s->ts_scratch = malloc(texels * 4 * sizeof(float));
+    if (!s->ts_scratch) return false;
+    /* scratch: [0, 2n²) the stretch (u, v); [2n², 3n²) depth out; the coverage as bytes after it */
+    float *stretch = s->ts_scratch, *depth = s->ts_scratch + 2 * texels;
+    unsigned char *full = (unsigned char *)(s->ts_scratch + 3 * texels);
+    /* read back as stored (half floats: a copy, no conversion in the driver) */
+    uint16_t *irr = malloc(texels * 4 * sizeof(uint16_t));
+    if (!irr) return false;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(s->ts_tex[TS_IRR], 0, GL_RGBA, GL_HALF_FLOAT, (GLsizei)(texels * 4 * sizeof(uint16_t)), irr);
+    /* 1: fully covered (alpha exactly 1), 2: uncovered (all zero, as cleared), 0: anything else */
+    for (size_t i = 0; i < texels; i++) {
+        const uint16_t *t = irr + i * 4;
+        full[i] = t[3] == 0x3C00 ? 1 : !((t[0] | t[1] | t[2] | t[3]) & 0x7FFF) ? 2 : 0;
+    }
+    glGetTextureImage(s->ts_tex[TS_STRETCH], 0, GL_RG, GL_HALF_FLOAT, (GLsizei)(texels * 2 * sizeof(uint16_t)), irr);
+    static float *lut; /* every half float's value */
+    if (!lut && (lut = malloc(65536 * sizeof(float))))
+        for (int v = 0; v < 65536; v++) lut[v] = half_to_float((uint16_t)v);
+    if (!lut) {
+        free(irr);
+        return false;
+    }
+    for (size_t i = 0; i < 2 * texels; i++) stretch[i] = lut[irr[i]];
+    free(irr);
+    int *run = calloc((size_t)n, sizeof(int)); /* along v: one running count per column */
+    if (!run) return false;
+    for (int axis = 0; axis < 2; axis++) {
+        /* depth[i] = distance to the previous texel not fully covered (the border counts as one),
+         * then, backwards, the smaller of that and the distance to the next one: D (1 = the texel
+         * itself is the last covered one). Along u a row at a time, along v all columns at once
+         * (row by row, cache-friendly). */
+        if (axis == 0) {
+            for (int y = 0; y < n; y++) {
+                int d = 0;
+                for (int x = 0; x < n; x++) {
+                    size_t i = (size_t)y * n + x;
+                    d = full[i] == 1 ? d + 1 : 0;
+                    depth[i] = (float)d;
+                }
+                d = 0;
+                for (int x = n - 1; x >= 0; x--) {
+                    size_t i = (size_t)y * n + x;
+                    d = full[i] == 1 ? d + 1 : 0;
+                    depth[i] = fminf(depth[i], (float)d);
+                }
+            }
+        } else {
+            memset(run, 0, (size_t)n * sizeof(int));
+            for (int y = 0; y < n; y++)
+                for (int x = 0; x < n; x++) {
+                    size_t i = (size_t)y * n + x;
+                    run[x] = full[i] == 1 ? run[x] + 1 : 0;
+                    depth[i] = (float)run[x];
+                }
+            memset(run, 0, (size_t)n * sizeof(int));
+            for (int y = n - 1; y >= 0; y--)
+                for (int x = 0; x < n; x++) {
+                    size_t i = (size_t)y * n + x;
+                    run[x] = full[i] == 1 ? run[x] + 1 : 0;
+                    depth[i] = fminf(depth[i], (float)run[x]);
+                }
+        }
+        for (size_t i = 0; i < texels; i++) {
+            float mpt = stretch[i * 2 + axis];
+            depth[i] = full[i] == 2 ? 1.0f
+                     : full[i] == 0 || !(mpt > 0) ? 0.0f
+                     : fminf(fmaxf((depth[i] - 2.5f) * mpt / TS_CLASS_MM, 0.0f), 1.0f);
+        }
+        glTextureSubImage2D(s->ts_class[axis], 0, 0, 0, n, n, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
+    }
+    free(run);
+    return true;
+}
+
+/* One blur step split in two draws (see ts_classify): interior texels with `fast`, the others with
+ * `full`; both programs hold the same uniforms. */
+static void ts_split_draw(sss *s, unsigned fast, unsigned full, float sigma_mm) {
+    double z = fmin(3.0 * sigma_mm / TS_CLASS_MM, 1.0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glDepthRange(z, z); /* the full-screen triangle's depth, whatever its NDC z */
+    glBindVertexArray(s->ts_vao);
+    glUseProgram(fast);
+    glDepthFunc(GL_LESS);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glUseProgram(full);
+    glDepthFunc(GL_GEQUAL);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDepthRange(0, 1);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
+}
+
 /* Texture space 3: the chain of separable blurs, each v pass adding wᵢ·blurᵢ to the sum. */
 static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     sss *s = user;
     const sl_host *h = s->host;
     unsigned prog = h->program_id(h, s->ts_prog);
     if (!prog) return;
+    unsigned fast = h->program_id(h, s->ts_interior_prog);
     ensure_ts(s);
+    if (fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
+    if (fast && (!s->ts_vao || !ts_classify(s))) fast = 0; /* then the full program everywhere */
+    unsigned progs[2] = {prog, fast};
+#define U(p, name) glGetUniformLocation(p, name)
+#define EACH for (int k = 0; k < 2; k++) if (progs[k])
+    EACH {
+        unsigned p = progs[k];
+        glProgramUniform1i(p, U(p, "sss_src"), 0);
+        glProgramUniform1i(p, U(p, "sss_stretch_map"), 1);
+        glProgramUniform1i(p, U(p, "sss_sum_in"), 2);
+        glProgramUniform1i(p, U(p, "sss_taps"), s->key_ts_taps);
+        glProgramUniform1fv(p, U(p, "sss_offsets"), s->key_ts_taps, s->ts_offsets);
+        glProgramUniform1fv(p, U(p, "sss_weights"), s->key_ts_taps, s->ts_weights);
+        glProgramUniform1f(p, U(p, "sss_max_texels"), s->ts_size / 8.0f);
+    }
     glUseProgram(prog);
-#define U(name) glGetUniformLocation(prog, name)
-    glUniform1i(U("sss_src"), 0);
-    glUniform1i(U("sss_stretch_map"), 1);
-    glUniform1i(U("sss_sum_in"), 2);
-    glUniform1i(U("sss_taps"), s->key_ts_taps);
-    glUniform1fv(U("sss_offsets"), s->key_ts_taps, s->ts_offsets);
-    glUniform1fv(U("sss_weights"), s->key_ts_taps, s->ts_weights);
-    glUniform1f(U("sss_max_texels"), s->ts_size / 8.0f);
     glBindTextureUnit(1, s->ts_tex[TS_STRETCH]);
     glViewport(0, 0, s->ts_size, s->ts_size);
     unsigned src = s->ts_tex[TS_IRR];
@@ -386,25 +526,31 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     for (int g = 0; g < s->gauss.n; g++) {
         float sigma = (float)sqrt(fmax(s->gauss.variance[g] - previous, 0.0));
         previous = s->gauss.variance[g];
-        glUniform1f(U("sss_sigma_mm"), sigma);
+        EACH glProgramUniform1f(progs[k], U(progs[k], "sss_sigma_mm"), sigma);
         /* along u into tmp */
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[2]);
         glBindTextureUnit(0, src);
-        glUniform2f(U("sss_dir"), 1, 0);
-        h->draw_fullscreen(h, ctx);
+        EACH glProgramUniform2f(progs[k], U(progs[k], "sss_dir"), 1, 0);
+        if (fast) ts_split_draw(s, fast, prog, sigma);
+        else h->draw_fullscreen(h, ctx);
         /* along v into the chain (A, B alternating) and the sum (0, 1 alternating) */
         bool even = g % 2 == 0;
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[even ? 3 : 4]);
         glBindTextureUnit(0, s->ts_tex[TS_TMP]);
         glBindTextureUnit(2, s->ts_tex[even ? TS_SUM1 : TS_SUM0]);
-        glUniform2f(U("sss_dir"), 0, 1);
-        glUniform3f(U("sss_acc_weight"), (float)s->gauss.weight[g][0], (float)s->gauss.weight[g][1],
-                    (float)s->gauss.weight[g][2]);
-        glUniform1i(U("sss_first"), g == 0);
-        h->draw_fullscreen(h, ctx);
+        EACH {
+            unsigned p = progs[k];
+            glProgramUniform2f(p, U(p, "sss_dir"), 0, 1);
+            glProgramUniform3f(p, U(p, "sss_acc_weight"), (float)s->gauss.weight[g][0], (float)s->gauss.weight[g][1],
+                               (float)s->gauss.weight[g][2]);
+            glProgramUniform1i(p, U(p, "sss_first"), g == 0);
+        }
+        if (fast) ts_split_draw(s, fast, prog, sigma);
+        else h->draw_fullscreen(h, ctx);
         src = s->ts_tex[even ? TS_A : TS_B];
         s->ts_result = even ? TS_SUM0 : TS_SUM1;
     }
+#undef EACH
 #undef U
     /* one texel of linear extrapolation beyond the chart edges, into the other sum texture */
     unsigned dilate = h->program_id(h, s->dilate_prog);
@@ -593,11 +739,14 @@ static sl_status sss_activate(void *user) {
     if (!sl_gl_load(h->gl_get_proc_address, NULL)) return SL_ERR_GL;
     s->ts_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                         .vertex = "sl:fullscreen.vert", .fragment = "sss_ts_blur.frag"});
+    s->ts_interior_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                 .vertex = "sl:fullscreen.vert", .fragment = "sss_ts_blur.frag",
+                                                                 .defines = "SSS_TS_INTERIOR"});
     s->dilate_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                             .vertex = "sl:fullscreen.vert", .fragment = "sss_ts_dilate.frag"});
     s->ss_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                         .vertex = "sl:fullscreen.vert", .fragment = "sss_ss_blur.frag"});
-    if (!s->ts_prog || !s->dilate_prog || !s->ss_prog) return SL_ERR_GL;
+    if (!s->ts_prog || !s->ts_interior_prog || !s->dilate_prog || !s->ss_prog) return SL_ERR_GL;
     static const float zero[4] = {0, 0, 0, 0};
     glCreateTextures(GL_TEXTURE_2D, 1, &s->dummy2d);
     glTextureStorage2D(s->dummy2d, 1, GL_RGBA16F, 1, 1);
@@ -615,6 +764,8 @@ static void sss_deactivate(void *user) {
     sss *s = user;
     free_ts(s);
     free_ss(s);
+    if (s->ts_vao) glDeleteVertexArrays(1, &s->ts_vao);
+    s->ts_vao = 0;
     unsigned t[4] = {s->kernel_tex, s->lut_tex, s->dummy2d, s->dummy_array};
     glDeleteTextures(4, t);
     s->kernel_tex = s->lut_tex = s->dummy2d = s->dummy_array = 0;

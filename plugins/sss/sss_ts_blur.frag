@@ -15,6 +15,12 @@
 // clamped at 0. A pair with neither tap on the chart drops out and the weights are
 // renormalised, so a uniformly lit chart stays uniform up to its edges.
 //
+// Interior texels (SSS_TS_INTERIOR, a second program): where every texel the taps can read is
+// covered (the plugin classifies texels per direction from the coverage and the stretch map and
+// selects them with the depth test, sss.c: ts_classify), the taps are the hardware's linear
+// filtering alone, the branches above never taken — the same sums without their cost (llvmpipe
+// runs both sides of a branch). Uncovered texels take this path too: ×c0.a makes them 0.
+//
 // Stretch correction: sss_stretch_map holds the surface length of one texel along u and v in
 // millimetres of the profile (the "sss-stretch" pass), so σ in texels = σ_mm / (mm per texel).
 #include "sss_lib.glsl"
@@ -62,6 +68,27 @@ bool sss_tap(ivec2 p, vec2 uv, float t, out vec3 v) {
     return true;
 }
 
+#ifdef SSS_TS_INTERIOR
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec2 size = vec2(textureSize(sss_src, 0));
+    vec4 c0 = texelFetch(sss_src, p, 0);
+    // uncovered texels have no stretch: any finite σ (the result is multiplied by c0.a = 0)
+    float mm_per_texel = max(dot(texelFetch(sss_stretch_map, p, 0).xy, sss_dir), 1e-20);
+    float sigma = min(sss_sigma_mm / mm_per_texel, sss_max_texels);
+    vec2 uv = (vec2(p) + 0.5) / size;
+    vec2 texel = sss_dir / size;
+    int half_taps = sss_taps / 2;
+    float wc = sss_weights[half_taps];
+    vec3 sum = wc * c0.rgb; // covered: alpha 1
+    float wsum = wc;
+    for (int t = 1; t <= half_taps; ++t) {
+        float w = sss_weights[half_taps + t], o = sss_offsets[half_taps + t] * sigma;
+        sum += w * (texture(sss_src, uv - o * texel).rgb + texture(sss_src, uv + o * texel).rgb);
+        wsum += 2.0 * w;
+    }
+    vec4 result = vec4(sum / wsum, 1.0) * c0.a;
+#else
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec2 size = vec2(textureSize(sss_src, 0));
@@ -89,6 +116,7 @@ void main() {
         }
         result = vec4(sum / wsum, 1.0) * c0.a;
     }
+#endif
     o_blur = result;
     // the sum's alpha is the coverage (from the first Gaussian on)
     vec4 before = sss_first != 0 ? vec4(0.0, 0.0, 0.0, result.a) : texelFetch(sss_sum_in, p, 0);
