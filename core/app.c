@@ -1,3 +1,4 @@
+#include "render/texture_prefetch.h"
 #include "app.h"
 #include "core_plugin.h"
 #include "host/host.h"
@@ -532,6 +533,7 @@ static bool is_cpu_renderer(const char *renderer) {
 }
 
 bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
+    sl_texture_prefetch_start(app); /* decoding the material textures while the context is made */
     char cache[4096];
     sl_startup_shader_cache(cache, sizeof cache); /* before the context: Mesa reads it then */
     if (*cache) SL_DEBUG("Mesa shader cache: %s", cache);
@@ -633,6 +635,7 @@ void sl_app_resize(sl_app *app, int w, int h) {
 }
 
 void sl_app_shutdown(sl_app *app) {
+    sl_texture_prefetch_finish(app);
     free(app->strict_failure);
     app->strict_failure = NULL;
     if (app->gl_ready) {

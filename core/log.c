@@ -1,4 +1,5 @@
 #include "log.h"
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -27,7 +28,11 @@ void sl_log_capture(char *buf, size_t size) {
 
 int sl_log_count(sl_log_level level) { return counts[level]; }
 
+/* one message at a time: textures are decoded on a worker thread (render/texture_prefetch.c) */
+static pthread_mutex_t log_lock = PTHREAD_MUTEX_INITIALIZER;
+
 void sl_logv(sl_log_level level, const char *prefix, const char *fmt, va_list ap) {
+    pthread_mutex_lock(&log_lock);
     counts[level]++;
     static const char *names[] = {"debug", "info", "warning", "error"};
     char msg[4096];
@@ -48,6 +53,7 @@ void sl_logv(sl_log_level level, const char *prefix, const char *fmt, va_list ap
         else problems_dropped++;
     }
     if (level >= sl_log_threshold) fputs(line, stderr);
+    pthread_mutex_unlock(&log_lock);
 }
 
 void sl_log(sl_log_level level, const char *fmt, ...) {

@@ -872,6 +872,58 @@ static void remove_tmpdir(void) {
     rmdir(tmpdir);
 }
 
+/* sl_image_mip_rgba8 (the CPU mip chain of 8-bit textures, issue 18 item 5) against the box filter
+ * computed here with the transfer functions in double: sRGB channels averaged in linear light and
+ * encoded to the nearest code, alpha and linear images averaged as codes; odd sides drop their last
+ * texel; 1-wide images average pairs along the other axis only. */
+static int srgb_code_of_linear(double v) {
+    double e = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+    return (int)floor(e * 255.0 + 0.5);
+}
+static double srgb_linear_of_code(int k) {
+    double x = k / 255.0;
+    return x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4);
+}
+static void test_mip_rgba8(void) {
+    /* 5x3 → 2x1: texel (x, y) of level 1 averages (2x..2x+1, 2y..2y+1); the 5th column and the
+     * 3rd row drop out */
+    enum { W = 5, H = 3 };
+    unsigned char src[W * H * 4], dst[2 * 1 * 4];
+    for (int i = 0; i < W * H * 4; i++) src[i] = (unsigned char)((i * 97 + 13) % 256);
+    for (int srgb = 0; srgb < 2; srgb++) {
+        memset(dst, 0xAB, sizeof dst);
+        sl_image_mip_rgba8(src, W, H, dst, srgb);
+        int bad = 0;
+        for (int x = 0; x < 2; x++)
+            for (int c = 0; c < 4; c++) {
+                double lin = 0;
+                int codes = 0;
+                for (int j = 0; j < 2; j++)
+                    for (int i = 0; i < 2; i++) {
+                        int k = src[((j * W) + 2 * x + i) * 4 + c];
+                        lin += srgb_linear_of_code(k), codes += k;
+                    }
+                int want = srgb && c < 3 ? srgb_code_of_linear(lin / 4) : (codes + 2) / 4;
+                if (dst[x * 4 + c] != want) {
+                    bad++;
+                    fprintf(stderr, "mip rgba8 (srgb %d): texel %d channel %d = %d, expected %d\n", srgb, x, c,
+                            dst[x * 4 + c], want);
+                }
+            }
+        CHECK(bad == 0);
+    }
+    /* black and white: linear mean 0.5 → code 188 in sRGB (not the codes' mean 128) */
+    unsigned char bw[2 * 2 * 4] = {0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255, 255, 255, 255, 255}, one[4];
+    sl_image_mip_rgba8(bw, 2, 2, one, true);
+    CHECK(one[0] == 188 && one[1] == 188 && one[2] == 188 && one[3] == 255);
+    sl_image_mip_rgba8(bw, 2, 2, one, false);
+    CHECK(one[0] == 128 && one[3] == 255);
+    /* 1x4 → 1x2: pairs along v only */
+    unsigned char col[1 * 4 * 4] = {10, 20, 30, 40, 12, 22, 32, 42, 100, 0, 0, 0, 200, 0, 0, 0}, col2[1 * 2 * 4];
+    sl_image_mip_rgba8(col, 1, 4, col2, false);
+    CHECK(col2[0] == 11 && col2[1] == 21 && col2[3] == 41 && col2[4] == 150 && col2[5] == 0);
+}
+
 int main(void) {
     crc_init();
     const char *base = getenv("TMPDIR");
@@ -892,6 +944,7 @@ int main(void) {
     test_procedural_errors();
     test_procedural_normals();
     test_conversions();
+    test_mip_rgba8();
     remove_tmpdir();
     return check_result();
 }

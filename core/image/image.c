@@ -8,6 +8,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <pthread.h>
 #include <float.h>
 #include <math.h>
 #include <stdarg.h>
@@ -91,6 +92,50 @@ void sl_image_flip_rows_raw(void *data, size_t row_bytes, int height) {
 void sl_image_flip_rows(float *pixels, int width, int height, int channels) {
     if (width <= 0 || channels <= 0) return;
     sl_image_flip_rows_raw(pixels, (size_t)width * (size_t)channels * sizeof(float), height);
+}
+
+static float mip_decode[256];
+static float mip_mid[256]; /* linear value halfway (in code space) between codes k-1 and k */
+static void mip_tables(void) {
+    for (int k = 0; k < 256; k++) {
+        mip_decode[k] = sl_srgb_decode((float)k / 255.0f);
+        mip_mid[k] = k ? sl_srgb_decode(((float)k - 0.5f) / 255.0f) : 0.0f;
+    }
+}
+
+void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *dst, bool srgb) {
+    static pthread_once_t once = PTHREAD_ONCE_INIT;
+    pthread_once(&once, mip_tables);
+    const float *decode = mip_decode, *mid = mip_mid;
+    int w2 = w > 1 ? w / 2 : 1, h2 = h > 1 ? h / 2 : 1;
+    int sx = w > 1 ? 2 : 1, sy = h > 1 ? 2 : 1, n = sx * sy;
+    for (int y = 0; y < h2; y++)
+        for (int x = 0; x < w2; x++) {
+            const unsigned char *t[4];
+            int k = 0;
+            for (int j = 0; j < sy; j++)
+                for (int i = 0; i < sx; i++) t[k++] = src + (((size_t)(y * sy + j) * w) + (size_t)(x * sx + i)) * 4;
+            unsigned char *d = dst + ((size_t)y * w2 + x) * 4;
+            for (int c = 0; c < 4; c++) {
+                if (srgb && c < 3) {
+                    float v = 0;
+                    for (int q = 0; q < n; q++) v += decode[t[q][c]];
+                    v /= (float)n;
+                    /* the nearest code in encoded space: the largest k with mid[k] <= v */
+                    int lo = 0, hi = 255;
+                    while (lo < hi) {
+                        int m = (lo + hi + 1) / 2;
+                        if (mid[m] <= v) lo = m;
+                        else hi = m - 1;
+                    }
+                    d[c] = (unsigned char)lo;
+                } else {
+                    int v = 0;
+                    for (int q = 0; q < n; q++) v += t[q][c];
+                    d[c] = (unsigned char)((v + n / 2) / n);
+                }
+            }
+        }
 }
 
 static unsigned char to_byte(float v) {

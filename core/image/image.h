@@ -135,6 +135,15 @@ void sl_image_compare(const float *a, const float *b, int width, int height, int
 float sl_srgb_encode(float linear);
 float sl_srgb_decode(float encoded);
 
+/* The next mip level of an RGBA8 image (w×h → max(1, w/2)×max(1, h/2), row-major): each texel the
+ * mean of its 2×2 source block (a 1-texel-wide or -high side averages its 2 or 1 texels; the last
+ * row and column of an odd side are left out, as a 2×2 box does). With srgb, RGB is averaged in
+ * linear light (IEC 61966-2-1 decode, mean, encode rounded to the nearest code) and alpha linearly;
+ * otherwise every channel as stored, rounded to nearest. What glGenerateMipmap computes (a box
+ * filter, sRGB-correct), on the CPU: llvmpipe compiles a blit shader per format for it, ~60-180 ms
+ * per format at start-up (issue 18 item 5). */
+void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *dst, bool srgb);
+
 /* Reverses the row order in place (GL reads bottom-up; files are top-down). */
 void sl_image_flip_rows(float *pixels, int width, int height, int channels);
 /* The same for any pixel layout: `height` rows of `row_bytes` bytes each. */

@@ -1,5 +1,6 @@
 /* The frame loop, change tracking, programs, statistics and lifecycle of the renderer.
  * See renderer.h (its interface) and renderer_internal.h (how its files divide the work). */
+#include "render/texture_prefetch.h"
 #include "render/renderer_internal.h"
 #include "log.h"
 #include "startup.h"
@@ -431,6 +432,7 @@ bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
      * again with motion vectors (a second GLSL compile of each program at start-up) */
     r->motion = sl_graph_wants_motion(app);
     sl_gpu_compose_all(app);
+    sl_texture_prefetch_finish(app); /* every texture the scene uses is loaded: join, free the rest */
     r->seen_recompile = app->params.recompile_version;
     r->seen_materials = app->materials_version;
     r->seen_param_version = app->params.version;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "image/image.h"
+#include "render/texture_prefetch.h"
 #include "render/composer.h"
 #include <cglm/cglm.h>
 #include <math.h>
@@ -73,6 +74,37 @@ void sl_gpu_apply_anisotropy(sl_app *app) {
     for (int i = 0; i < r->texture_count; i++) glTextureParameterf(r->textures[i].id, GL_TEXTURE_MAX_ANISOTROPY, (float)a);
 }
 
+/* 8-bit files: every level as bytes, the mip chain made on the CPU (sl_image_mip_rgba8, a box
+ * filter, sRGB-correct for sRGB storage) — what glGenerateTextureMipmap makes, without llvmpipe
+ * compiling a blit shader per format at start-up (60-180 ms each, issue 18 item 5) and without
+ * the driver converting float to bytes. False (nothing uploaded) for other images or without memory. */
+static bool upload_rgba8_mipmapped(unsigned tex, const sl_image *img, int levels, bool srgb) {
+    if (img->source_bits != 8 || img->source_float) return false;
+    size_t n = (size_t)img->width * img->height * 4;
+    unsigned char *a = malloc(n), *b = malloc(n); /* levels shrink: either holds any */
+    if (!a || !b) {
+        free(a), free(b);
+        return false;
+    }
+    for (size_t i = 0; i < n; i++) { /* the file's codes: k/255 exactly, back to k */
+        float v = img->pixels[i];
+        a[i] = !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (unsigned char)(v * 255.0f + 0.5f);
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    int w = img->width, h = img->height;
+    for (int l = 0; l < levels; l++) {
+        glTextureSubImage2D(tex, l, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, a);
+        if (l + 1 == levels) break;
+        sl_image_mip_rgba8(a, w, h, b, srgb);
+        w = w > 1 ? w / 2 : 1, h = h > 1 ? h / 2 : 1;
+        unsigned char *t = a;
+        a = b, b = t;
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    free(a), free(b);
+    return true;
+}
+
 /* `where` names the scene line, material and key (or the asset file) for the messages. */
 static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bool clamp, const char *where) {
     sl_renderer *r = R(app);
@@ -89,7 +121,9 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         /* procedural colours are linear already */
     } else {
         const sl_embedded_image *e = sl_scene_find_image(&app->scene, spec); /* a .glb's own images */
-        if (e) {
+        if (sl_texture_prefetch_take(app, spec, &img, &ok, err, sizeof err)) {
+            /* decoded on the worker thread (texture_prefetch.h) */
+        } else if (e) {
             ok = sl_image_load_memory(&img, e->data, e->size, e->name, err, sizeof err);
         } else {
             char *path = sl_scene_resolve_path(&app->scene, app->opt.data_dir, spec, err, sizeof err);
@@ -122,8 +156,10 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         glTextureStorage2D(tex, levels, fmt, img.width, img.height);
         /* UV convention (scenes/README.md): v = 0 is the TOP row of the image, as in glTF. GL's
          * t = 0 is the first row uploaded, so rows go up top first, as the image stores them. */
-        glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.pixels);
-        glGenerateTextureMipmap(tex);
+        if (!upload_rgba8_mipmapped(tex, &img, levels, srgb_storage)) {
+            glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.pixels);
+            glGenerateTextureMipmap(tex);
+        }
         glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(tex, GL_TEXTURE_WRAP_S, clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
