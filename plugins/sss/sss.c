@@ -113,7 +113,7 @@ typedef struct sss {
     int unit_diffuse, unit_lut, unit_shadow;
     sl_program *ts_prog, *ts_interior_prog, *dilate_prog, *ss_prog;
     unsigned dummy2d, dummy_array;
-    /* texture space: stretch, irradiance, tmp, chain A, chain B, sums 0 and 1 */
+    /* texture space: stretch, irradiance, tmp, the chain, sums 0 and 1 (slot 4 unused) */
     int ts_size, ts_generation, ts_result;
     unsigned ts_tex[7], ts_fbo[7];
     /* interior classification (ts_classify): per-direction depth (u, v), the empty VAO of the
@@ -209,7 +209,8 @@ static void ensure_ts(sss *s) {
     s->ts_tex[TS_IRR] = make_tex(size, size, GL_RGBA16F, true);
     s->ts_tex[TS_TMP] = make_tex(size, size, GL_RGBA16F, true);
     s->ts_tex[TS_A] = make_tex(size, size, GL_RGBA16F, true);
-    s->ts_tex[TS_B] = make_tex(size, size, GL_RGBA16F, true);
+    /* one chain texture: a step's u pass reads it into tmp, its v pass writes it back (separate
+     * draws); a second one (ping-pong) only cost 8 MB of page faults at start-up */
     /* the running sum in float: six roundings to half would cost the 1e-3 normalisation */
     s->ts_tex[TS_SUM0] = make_tex(size, size, GL_RGBA32F, true);
     s->ts_tex[TS_SUM1] = make_tex(size, size, GL_RGBA32F, true);
@@ -220,7 +221,7 @@ static void ensure_ts(sss *s) {
     s->ts_fbo[1] = make_fbo(s->ts_tex[TS_IRR], 0, 0);
     s->ts_fbo[2] = make_fbo(s->ts_tex[TS_TMP], 0, s->ts_class[0]);
     s->ts_fbo[3] = make_fbo(s->ts_tex[TS_A], s->ts_tex[TS_SUM0], s->ts_class[1]);
-    s->ts_fbo[4] = make_fbo(s->ts_tex[TS_B], s->ts_tex[TS_SUM1], s->ts_class[1]);
+    s->ts_fbo[4] = make_fbo(s->ts_tex[TS_A], s->ts_tex[TS_SUM1], s->ts_class[1]);
     s->ts_fbo[5] = make_fbo(s->ts_tex[TS_SUM0], 0, 0);
     s->ts_fbo[6] = make_fbo(s->ts_tex[TS_SUM1], 0, 0);
     static const float zero[4] = {0, 0, 0, 0};
@@ -533,7 +534,7 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         EACH glProgramUniform2f(progs[k], U(progs[k], "sss_dir"), 1, 0);
         if (fast) ts_split_draw(s, fast, prog, sigma);
         else h->draw_fullscreen(h, ctx);
-        /* along v into the chain (A, B alternating) and the sum (0, 1 alternating) */
+        /* along v back into the chain and into the sum (0, 1 alternating) */
         bool even = g % 2 == 0;
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[even ? 3 : 4]);
         glBindTextureUnit(0, s->ts_tex[TS_TMP]);
@@ -547,7 +548,7 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         }
         if (fast) ts_split_draw(s, fast, prog, sigma);
         else h->draw_fullscreen(h, ctx);
-        src = s->ts_tex[even ? TS_A : TS_B];
+        src = s->ts_tex[TS_A];
         s->ts_result = even ? TS_SUM0 : TS_SUM1;
     }
 #undef EACH
