@@ -2,7 +2,6 @@
  * activates the plugins and compiles (issue 18 item 5: the head scene's three 1024² JPEGs took
  * 150-350 ms of decoding on the main thread before the first frame). See texture_prefetch.h. */
 #include "render/texture_prefetch.h"
-#include "app.h"
 #include "state.h"
 #include "scene/scene.h"
 #include <pthread.h>
