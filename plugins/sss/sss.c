@@ -378,10 +378,12 @@ static void irradiance_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
 /* Interior texels of the blurs (the split draw below). A texel is interior for the blur along
  * u (v) when every texel its taps can read is fully covered: the 7 (ts_taps) taps reach 3σ
  * texels, σ = σ_mm / (mm per texel at the centre), and a tap at offset o reads the texels
- * ⌊o⌋ and ⌊o⌋ + 1, so all texels within 3σ + 1 must be covered: 3σ_mm < (D − 2.5)·mm_per_texel,
- * D the distance in texels to the nearest texel that is not fully covered (alpha < 1; outside
- * the texture counts as uncovered) along that axis, the 0.5 a margin. That bound goes into a depth
- * texture per direction as (D − 2.5)·mm_per_texel / TS_CLASS_MM (clamped to [0, 1]); uncovered
+ * ⌊o⌋ and ⌊o⌋ + 1. With D the distance in texels to the nearest texel that is not fully covered
+ * (alpha < 1; outside the texture counts as uncovered) along that axis, the texels up to D − 1
+ * are covered, and o < D − 1 keeps ⌊o⌋ + 1 ≤ D − 1: interior when 3σ_mm < (D − 1)·mm_per_texel.
+ * (D − 1.5) is used, half a texel for rounding (test_sss_render "interior": a margin of 1
+ * still equals the full program, 0 does not). That bound goes into a depth
+ * texture per direction as (D − 1.5)·mm_per_texel / TS_CLASS_MM (clamped to [0, 1]); uncovered
  * texels get 1 (the interior program writes them 0, as the full one does); partly covered ones
  * and those without stretch 0 (always the full program). A blur step then draws the interior
  * program where 3σ_mm / TS_CLASS_MM < depth (GL_LESS) and the full one elsewhere (GL_GEQUAL): a
@@ -466,7 +468,7 @@ static bool ts_classify(sss *s) {
             float mpt = stretch[i * 2 + axis];
             depth[i] = full[i] == 2 ? 1.0f
                      : full[i] == 0 || !(mpt > 0) ? 0.0f
-                     : fminf(fmaxf((depth[i] - 2.5f) * mpt / TS_CLASS_MM, 0.0f), 1.0f);
+                     : fminf(fmaxf((depth[i] - 1.5f) * mpt / TS_CLASS_MM, 0.0f), 1.0f);
         }
         glTextureSubImage2D(s->ts_class[axis], 0, 0, 0, n, n, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
     }
@@ -505,6 +507,8 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     unsigned fast = h->program_id(h, s->ts_interior_prog);
     ensure_ts(s);
     if (fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
+    /* SHADELAB_SSS_FULL_BLUR=1: the full program on every texel (the tests compare the two; A/B timing) */
+    if (fast && getenv("SHADELAB_SSS_FULL_BLUR")) fast = 0;
     if (fast && (!s->ts_vao || !ts_classify(s))) fast = 0; /* then the full program everywhere */
     unsigned progs[2] = {prog, fast};
 #define U(p, name) glGetUniformLocation(p, name)
