@@ -413,47 +413,82 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         sl_sb_append(&gen, "void sl_run_surface_hooks(inout SlSurface s) {\n");
         for (int i = 0; i < ns; i++) sl_sb_printf(&gen, "    %s(s);\n", surface_hooks[i]->d.function);
         sl_sb_append(&gen, "}\n");
-        /* The light loop: one loop per light type present (the lights are packed by type,
-         * core/render/scene_gpu.c), so no light branches on its type; each light's packed record
-         * is read from the buffer once. */
+        /* The light loop (the lights are packed by type, contiguous in the order of types[],
+         * core/render/scene_gpu.c; each light's record is read from the buffer once). The light
+         * types with an l/E pair share ONE loop over their ranges and ONE evaluation of the model
+         * and the shadow hook per light: the type, found by range (else-if), only computes l and
+         * E. Mesa inlines every call, so a loop per type was a copy of the model and of the
+         * shadow filter per type: on llvmpipe the copies were a third of the forward programs'
+         * compile time (issue 19). Radiance types (area lights) keep a loop each. */
         const char *per_light = view && view->d.hook == SL_HOOK_DEBUG_VIEW_LIGHT ? view->d.function : model_chunk->d.function;
-        /* With a LIGHT_LOOP hook the same per-type code evaluates one light by index instead:
-         * the type is the range holding i, tested in turn (else-if); with a single type in the
-         * buffer there is nothing to test. */
-        int evaluated = 0;
-        for (int t = 0; t < ntypes; t++)
-            evaluated += light_chunks[t] && !(view && (light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE));
-        bool untested = loop && ntypes == 1 && evaluated == 1;
-        if (loop) sl_sb_append(&gen, "vec3 sl_light_radiance(int i, SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
-        else sl_sb_append(&gen, "vec3 sl_direct_lighting(SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
-        const char *range = untested ? "    /* %s: every light in the buffer */%.0s"
-                            : loop   ? "    if (i >= sl_lights_%s.x && i < sl_lights_%s.y)"
-                                     : "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i)";
-        int emitted = 0;
+        int lit_types[32], radiance_types[32], nlit = 0, nrad = 0;
         for (int t = 0; t < ntypes; t++) {
             if (!light_chunks[t]) continue; /* warned at load: no plugin provides this light type */
-            char id[128];
-            sl_glsl_ident(types[t], id, sizeof id, false);
-            bool radiance = light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE;
             /* a light that integrates the model itself (area lights): radiance, no l/E pair, so
              * no shadow hook and nothing in per-light debug views (shader.h) */
-            if (radiance && view) continue;
-            if (loop && emitted++) sl_sb_append(&gen, "    else\n");
-            sl_sb_printf(&gen, range, id, id);
-            if (radiance) {
-                sl_sb_printf(&gen, " {\n        SlLight L = sl_lights[i];\n        Lo += %s(L, s);\n    }\n",
-                             light_chunks[t]->d.function);
-                continue;
+            if (light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE) {
+                if (!view) radiance_types[nrad++] = t;
+            } else {
+                lit_types[nlit++] = t;
             }
-            char vis[256] = "E";
-            if (shadow) snprintf(vis, sizeof vis, "E * %s(i, L, s, l)", shadow->d.function);
-            sl_sb_printf(&gen,
-                         " {\n"
-                         "        SlLight L = sl_lights[i];\n"
-                         "        vec3 l, E;\n"
-                         "        if (%s(L, s, l, E)) Lo += %s(s, l, %s);\n"
-                         "    }\n",
-                         light_chunks[t]->d.function, per_light, vis);
+        }
+        char vis[256] = "E";
+        if (shadow) snprintf(vis, sizeof vis, "E * %s(i, L, s, l)", shadow->d.function);
+        if (loop) {
+            /* With a LIGHT_LOOP hook the same code evaluates one light by index: the type is the
+             * range holding i, tested in turn; with a single type in the buffer nothing is tested. */
+            bool untested = ntypes == 1 && nlit + nrad == 1;
+            sl_sb_append(&gen, "vec3 sl_light_radiance(int i, SlSurface s) {\n    vec3 Lo = vec3(0.0);\n"
+                               "    SlLight L = sl_lights[i];\n");
+            if (nlit) sl_sb_append(&gen, "    vec3 l = vec3(0.0), E = vec3(0.0);\n    bool lit = false;\n");
+            int emitted = 0;
+            for (int t = 0; t < ntypes; t++) {
+                bool is_lit = false, is_rad = false;
+                for (int k = 0; k < nlit; k++) is_lit |= lit_types[k] == t;
+                for (int k = 0; k < nrad; k++) is_rad |= radiance_types[k] == t;
+                if (!is_lit && !is_rad) continue;
+                char id[128];
+                sl_glsl_ident(types[t], id, sizeof id, false);
+                if (untested) sl_sb_printf(&gen, "    /* %s: every light in the buffer */\n    ", id);
+                else sl_sb_printf(&gen, "    %sif (i >= sl_lights_%s.x && i < sl_lights_%s.y) ", emitted++ ? "else " : "", id, id);
+                if (is_rad) sl_sb_printf(&gen, "Lo += %s(L, s);\n", light_chunks[t]->d.function);
+                else sl_sb_printf(&gen, "lit = %s(L, s, l, E);\n", light_chunks[t]->d.function);
+            }
+            if (nlit) sl_sb_printf(&gen, "    if (lit) Lo += %s(s, l, %s);\n", per_light, vis);
+        } else {
+            sl_sb_append(&gen, "vec3 sl_direct_lighting(SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
+            /* in the order of types[] (the order of the sums): radiance loops, and the shared
+             * loop where the first type with an l/E pair is */
+            for (int t = 0; t < ntypes; t++) {
+                char id[128];
+                sl_glsl_ident(types[t], id, sizeof id, false);
+                for (int k = 0; k < nrad; k++)
+                    if (radiance_types[k] == t)
+                        sl_sb_printf(&gen,
+                                     "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) {\n"
+                                     "        SlLight L = sl_lights[i];\n        Lo += %s(L, s);\n    }\n",
+                                     id, id, light_chunks[t]->d.function);
+                if (!nlit || lit_types[0] != t) continue;
+                char last[128];
+                sl_glsl_ident(types[lit_types[nlit - 1]], last, sizeof last, false);
+                sl_sb_printf(&gen,
+                             "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) {\n"
+                             "        SlLight L = sl_lights[i];\n",
+                             id, last);
+                if (nlit == 1) {
+                    sl_sb_printf(&gen, "        vec3 l, E;\n        if (%s(L, s, l, E)) Lo += %s(s, l, %s);\n    }\n",
+                                 light_chunks[t]->d.function, per_light, vis);
+                    continue;
+                }
+                sl_sb_append(&gen, "        vec3 l = vec3(0.0), E = vec3(0.0);\n        bool lit = false;\n");
+                for (int k = 0; k < nlit; k++) {
+                    char tid[128];
+                    sl_glsl_ident(types[lit_types[k]], tid, sizeof tid, false);
+                    sl_sb_printf(&gen, "        %sif (i >= sl_lights_%s.x && i < sl_lights_%s.y) lit = %s(L, s, l, E);\n",
+                                 k ? "else " : "", tid, tid, light_chunks[lit_types[k]]->d.function);
+                }
+                sl_sb_printf(&gen, "        if (lit) Lo += %s(s, l, %s);\n    }\n", per_light, vis);
+            }
         }
         sl_sb_append(&gen, "    return Lo;\n}\n");
         if (loop) sl_sb_printf(&gen, "vec3 sl_direct_lighting(SlSurface s) { return %s(s); }\n", loop->d.function);

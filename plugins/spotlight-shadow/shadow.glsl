@@ -231,26 +231,36 @@ float spotlight_shadow_visibility(int i, SlLight L, SlSurface s, vec3 l) {
     int count = int(info.y + 0.5);
     if (count <= 0) return 1.0;
     int v = int(info.x + 0.5);
+    // The views to filter: n (0, 1 or 2) from v on, the second mixed in by t. One call site of
+    // spotlight_shadow_view_visibility, in a loop the compiler does not unroll (n is not a
+    // constant): Mesa inlines every call, and each copy of the filter was ~60 ms of llvmpipe's
+    // compile per forward program (issue 19).
+    int n = 1;
+    float t = 0.0;
     if (info.w > 0.5) { // views supplied by a view provider (cascades): picked by camera depth;
         // texel 7 of a view row = (split_near, split_far, blend); over the last `blend` metres
         // before split_far the visibility fades into the next view's, so the image is continuous
         // at the split (sdk ext/shadow_maps.h, revision 2)
         float z = -(sl_view * vec4(s.position, 1.0)).z;
+        n = 0; // beyond the last split: not covered
         for (int k = 0; k < count; ++k) {
             vec4 sel = texelFetch(spotlight_shadow_table, ivec2(7, spotlight_shadow_view_base + v + k), 0);
             if (z >= sel.y) continue;
-            float vis = spotlight_shadow_view_visibility(v + k, s, l);
-            float t = sel.z > 0.0 ? (z - (sel.y - sel.z)) / sel.z : -1.0;
-            if (t > 0.0 && k + 1 < count) vis = mix(vis, spotlight_shadow_view_visibility(v + k + 1, s, l), t);
-            return vis;
+            t = sel.z > 0.0 ? (z - (sel.y - sel.z)) / sel.z : -1.0;
+            n = t > 0.0 && k + 1 < count ? 2 : 1;
+            v += k;
+            break;
         }
-        return 1.0; // beyond the last split: not covered
-    }
-    if (count == 6) { // point light: the cube face of the major axis
+    } else if (count == 6) { // point light: the cube face of the major axis
         vec3 d = s.position - texelFetch(spotlight_shadow_table, ivec2(1, i), 0).xyz;
         vec3 a = abs(d);
         v += a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5);
     }
-    return spotlight_shadow_view_visibility(v, s, l);
+    float vis = 1.0;
+    for (int j = 0; j < n; ++j) {
+        float x = spotlight_shadow_view_visibility(v + j, s, l);
+        vis = j == 0 ? x : mix(vis, x, t);
+    }
+    return vis;
 #endif
 }
