@@ -256,14 +256,23 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     }
 #undef ADD
 
+    /* A depth program that reads nothing of its material (no alpha cut-out or blend dither, no
+     * VERTEX or DISPLACEMENT hook) is the same text for every such material: no material or
+     * model defines, uniforms or textures, so they share one program (one compile less per
+     * material in the shadow maps; on llvmpipe each costs tens of ms at its first draw). */
+    bool bare_depth = kind == SL_VARIANT_DEPTH && !nv && !nd && !material_has(app, m, "alpha_cutoff") &&
+                      !sl_gpu_material_blended(app, m);
+
     /* ---- common prelude: defines and uniforms for the owners involved ---- */
     sl_strbuf pre = {0};
     sl_sb_append(&pre, "#version 450 core\n");
     /* what the colour target holds: the forward pass clamps its output to it (scene.h) */
     sl_sb_printf(&pre, "#define SL_MAX_RADIANCE %.9g\n", app->opt.float32 ? 3.0e38 : SL_MAX_RADIANCE);
     char model_id[128]; /* SL_MODEL_<NAME>: lets a chunk shared by several models specialise */
-    sl_glsl_ident(model, model_id, sizeof model_id, true), sl_sb_printf(&pre, "#define SL_MODEL_%s 1\n", model_id);
-    if (model_chunk->d.flags & SL_CHUNK_MASKS_FACING_AWAY) sl_sb_append(&pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");
+    sl_glsl_ident(model, model_id, sizeof model_id, true);
+    if (!bare_depth) sl_sb_printf(&pre, "#define SL_MODEL_%s 1\n", model_id);
+    if ((model_chunk->d.flags & SL_CHUNK_MASKS_FACING_AWAY) && !bare_depth)
+        sl_sb_append(&pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");
     /* "motion" (pass.h) is read by an enabled pass: the forward program writes it (location 1) */
     bool motion = kind == SL_VARIANT_FORWARD && !model_override && !fragment && app->renderer && R(app)->motion;
     if (fragment) sl_sb_append(&pre, "#define SL_CUSTOM_MAIN 1\n"); /* a plugin's main (draw_scene fragment, ABI 1.7) */
@@ -284,7 +293,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         if (!(owners & declarers_of(P, q))) continue;
         char id[160], up[160];
         if (q->desc.scope == SL_SCOPE_MATERIAL) {
-            sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
+            sl_mat_value *v = bare_depth ? NULL : sl_app_material_value(app, m, q->full_id);
             if (!v) continue;
             sl_glsl_ident(q->full_id, up, sizeof up, true);
             if (v->present) sl_sb_printf(&pre, "#define SL_MAT_HAS_%s 1\n", up);

@@ -323,33 +323,168 @@ void em_sky_radiance(const em_sky *s, const double d[3], double out[3]) {
     }
 }
 
+/* The sky of one texel centre with the row's terms precomputed: em_sky_radiance's expressions,
+ * in the same order (the same doubles), without the sun disk (the caller sub-samples texels near
+ * it through em_sky_radiance). */
+typedef struct {
+    double y, sky[3]; /* per row: the direction's y and the gradient */
+    bool halo_on;
+} sky_row;
+
+static void sky_row_init(double y, sky_row *r) {
+    static const double zenith[3] = {0.16, 0.30, 0.72}, horizon[3] = {0.70, 0.78, 0.92}, ground[3] = {0.10, 0.09, 0.08};
+    r->y = y;
+    r->halo_on = y > -0.05;
+    for (int c = 0; c < 3; c++) {
+        if (y >= 0) {
+            double t = pow(1 - y, 4);
+            r->sky[c] = zenith[c] * (1 - t) + horizon[c] * t;
+        } else {
+            double t = exp(y * 25);
+            r->sky[c] = ground[c] * (1 - t) + horizon[c] * 0.6 * t;
+        }
+    }
+}
+
 void em_sky_latlong(const em_sky *s, int w, int h, em_image *out) {
+    static const double halo_col[3] = {1.0, 0.9, 0.75};
     out->w = w;
     out->h = h;
     out->px = malloc((size_t)w * h * 4 * sizeof(float));
     double sd[3];
     sun_dir(s, sd);
     double r = s->sun_radius_deg * M_PI / 180, texel = M_PI / h;
-    for (int y = 0; y < h; y++)
+    /* em_latlong_dir's sines and cosines, per column and per row (start-up, issue 19: a third of
+     * the time it took when every texel called em_latlong_dir and em_sky_radiance; same values) */
+    double *sin_phi = malloc(2 * (size_t)w * sizeof(double)), *cos_phi = sin_phi + w;
+    for (int x = 0; x < w; x++) {
+        double phi = 2 * M_PI * ((x + 0.5) / w);
+        sin_phi[x] = sin(phi), cos_phi[x] = cos(phi);
+    }
+    for (int y = 0; y < h; y++) {
+        double theta = M_PI * ((y + 0.5) / h), st = sin(theta), ct = cos(theta);
+        sky_row row;
+        sky_row_init(ct, &row);
         for (int x = 0; x < w; x++) {
-            double d[3], c[3] = {0, 0, 0};
-            em_latlong_dir((x + 0.5) / w, (y + 0.5) / h, d);
+            double d[3] = {-st * sin_phi[x], ct, st * cos_phi[x]}, c[3] = {0, 0, 0};
             double cs = d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2];
             double angle = acos(cs < -1 ? -1 : cs > 1 ? 1 : cs);
             /* near the sun disk: 8×8 sub-samples so the disk's energy does not depend on
              * where it falls on the texel grid */
             int k = angle < r + 3 * texel / fmax(sin((y + 0.5) / h * M_PI), 0.05) ? 8 : 1;
-            for (int j = 0; j < k; j++)
-                for (int i = 0; i < k; i++) {
-                    double e[3], v[3];
-                    em_latlong_dir((x + (i + 0.5) / k) / w, (y + (j + 0.5) / k) / h, e);
-                    em_sky_radiance(s, e, v);
-                    for (int q = 0; q < 3; q++) c[q] += v[q] / (k * k);
-                }
+            if (k == 1) {
+                double halo = (row.halo_on ? 1.0 : 0.0) * (0.6 * exp(-angle * 8) + 0.15 * exp(-angle * 1.5));
+                /* (the disk is inside the sub-sampled ring: none here) */
+                for (int q = 0; q < 3; q++) c[q] = row.sky[q] + halo * halo_col[q];
+            } else {
+                for (int j = 0; j < k; j++)
+                    for (int i = 0; i < k; i++) {
+                        double e[3], v[3];
+                        em_latlong_dir((x + (i + 0.5) / k) / w, (y + (j + 0.5) / k) / h, e);
+                        em_sky_radiance(s, e, v);
+                        for (int q = 0; q < 3; q++) c[q] += v[q] / (k * k);
+                    }
+            }
             float *p = out->px + ((size_t)y * w + x) * 4;
             for (int q = 0; q < 3; q++) p[q] = (float)fmin(c[q], EM_HALF_MAX);
             p[3] = 1;
         }
+    }
+    free(sin_phi);
+}
+
+/* ---------------------------------------------------------------- lat-long → base cube on the CPU */
+
+void em_latlong_mips(const em_image *img, em_image *levels, int max_levels, int *count) {
+    int n = 0, w = img->w, h = img->h;
+    levels[n++] = (em_image){w, h, img->px}; /* level 0 is the image itself (not copied) */
+    while ((w > 1 || h > 1) && n < max_levels) {
+        const em_image *a = &levels[n - 1];
+        int nw = w > 1 ? w / 2 : 1, nh = h > 1 ? h / 2 : 1;
+        em_image b = {nw, nh, malloc((size_t)nw * nh * 4 * sizeof(float))};
+        /* a 2×2 (or 2×1) box: what glGenerateMipmap's linear blit gives for power-of-two sizes */
+        for (int y = 0; y < nh; y++)
+            for (int x = 0; x < nw; x++) {
+                int x0 = w > 1 ? 2 * x : x, x1 = w > 1 ? 2 * x + 1 : x, y0 = h > 1 ? 2 * y : y, y1 = h > 1 ? 2 * y + 1 : y;
+                const float *p00 = a->px + ((size_t)y0 * w + x0) * 4, *p01 = a->px + ((size_t)y0 * w + x1) * 4;
+                const float *p10 = a->px + ((size_t)y1 * w + x0) * 4, *p11 = a->px + ((size_t)y1 * w + x1) * 4;
+                float *q = b.px + ((size_t)y * nw + x) * 4;
+                for (int c = 0; c < 4; c++) q[c] = 0.25f * (p00[c] + p01[c] + p10[c] + p11[c]);
+            }
+        levels[n++] = b;
+        w = nw, h = nh;
+    }
+    *count = n;
+}
+
+/* Bilinear lookup of level L at (u, v): u wraps (GL_REPEAT), v clamps to the edge. */
+static void latlong_bilinear(const em_image *L, double u, double v, double out[3]) {
+    double x = u * L->w - 0.5, y = v * L->h - 0.5;
+    double fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
+    int x0 = (int)fx, y0 = (int)fy;
+    int xs[2] = {((x0 % L->w) + L->w) % L->w, (((x0 + 1) % L->w) + L->w) % L->w};
+    int ys[2] = {y0 < 0 ? 0 : y0 >= L->h ? L->h - 1 : y0, y0 + 1 < 0 ? 0 : y0 + 1 >= L->h ? L->h - 1 : y0 + 1};
+    double wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay};
+    out[0] = out[1] = out[2] = 0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            const float *p = L->px + ((size_t)ys[j] * L->w + xs[i]) * 4;
+            double wgt = wx[i] * wy[j];
+            for (int c = 0; c < 3; c++) out[c] += wgt * p[c];
+        }
+}
+
+/* envmap_to_cube.frag and envmap_downsample.frag for a lat-long source, on the CPU: level 0 texel
+ * = the mean of K×K sub-samples, each a trilinear lookup (GL_LINEAR_MIPMAP_LINEAR; lod ≤ 0
+ * magnifies) at the level whose texel solid angle matches the sub-sample's; level l = the
+ * solid-angle-weighted mean of its 2×2 texels in level l − 1. */
+void em_latlong_to_cube_levels(const em_image *mips, int mip_count, int size, int levels, float **out) {
+    const int K = 4;
+    const double texel_v = M_PI / mips[0].h;
+    for (int l = 0; l < levels; l++) out[l] = malloc((size_t)6 * (size >> l) * (size >> l) * 4 * sizeof(float));
+    for (int f = 0; f < 6; f++)
+        for (int y = 0; y < size; y++)
+            for (int x = 0; x < size; x++) {
+                double sum[3] = {0, 0, 0};
+                for (int j = 0; j < K; j++)
+                    for (int i = 0; i < K; i++) {
+                        double s = (x + (i + 0.5) / K) / size, t = (y + (j + 0.5) / K) / size, d[3], u, v;
+                        em_cube_dir(f, s, t, d);
+                        double a = 2 * s - 1, b = 2 * t - 1, r2 = 1 + a * a + b * b;
+                        double omega = (4.0 / ((double)size * K * size * K)) / (r2 * sqrt(r2));
+                        em_dir_latlong(d, &u, &v);
+                        double omega_src = (2 * M_PI / mips[0].w) * texel_v * fmax(sin(v * M_PI), 1e-6);
+                        double lod = fmin(0.5 * log2(omega / omega_src), log2(sqrt(omega) / texel_v));
+                        lod = fmin(fmax(lod, 0.0), mip_count - 1);
+                        int l0 = (int)floor(lod), l1 = l0 + 1 < mip_count ? l0 + 1 : l0;
+                        double fr = lod - l0, c0[3], c1[3];
+                        latlong_bilinear(&mips[l0], u, v, c0);
+                        if (fr > 0) latlong_bilinear(&mips[l1], u, v, c1);
+                        else c1[0] = c1[1] = c1[2] = 0;
+                        for (int c = 0; c < 3; c++) sum[c] += c0[c] * (1 - fr) + c1[c] * fr;
+                    }
+                float *q = out[0] + (((size_t)f * size + y) * size + x) * 4;
+                for (int c = 0; c < 3; c++) q[c] = (float)fmin(sum[c] / (K * K), EM_HALF_MAX);
+                q[3] = 1;
+            }
+    for (int l = 1; l < levels; l++) {
+        int s = size >> l, fine = 2 * s;
+        for (int f = 0; f < 6; f++)
+            for (int y = 0; y < s; y++)
+                for (int x = 0; x < s; x++) {
+                    double sum[3] = {0, 0, 0}, weight = 0;
+                    for (int j = 0; j < 2; j++)
+                        for (int i = 0; i < 2; i++) {
+                            const float *p = out[l - 1] + (((size_t)f * fine + 2 * y + j) * fine + 2 * x + i) * 4;
+                            double o = em_texel_solid_angle(fine, 2 * x + i, 2 * y + j);
+                            for (int c = 0; c < 3; c++) sum[c] += p[c] * o;
+                            weight += o;
+                        }
+                    float *q = out[l] + (((size_t)f * s + y) * s + x) * 4;
+                    for (int c = 0; c < 3; c++) q[c] = (float)(sum[c] / weight);
+                    q[3] = 1;
+                }
+    }
 }
 
 /* ---------------------------------------------------------------- hashing */

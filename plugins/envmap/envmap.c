@@ -309,6 +309,38 @@ static void upload_source(envmap *e, em_env *env, const char *name) {
     }
 }
 
+/* The procedural sky, set up without a GPU program (start-up, issue 19): on llvmpipe each program
+ * costs tens of ms of compile at its first draw, and the sky is at hand on the CPU. The lat-long
+ * (for the background) gets its box mips from here instead of glGenerateMipmap, and the base cube
+ * (what the prefilter and SH read) is em_make_base_cube's conversion done on the CPU at the
+ * current cube size; a later cube_size change converts on the GPU from the uploaded lat-long. */
+static int eff_cube_size(envmap *e);
+static void upload_sky(envmap *e, em_env *env) {
+    em_image mips[16];
+    int n = 0;
+    em_latlong_mips(&env->latlong, mips, 16, &n);
+    e->kind = EM_ENV_LATLONG;
+    glCreateTextures(GL_TEXTURE_2D, 1, &e->src_tex);
+    glTextureStorage2D(e->src_tex, n, GL_RGBA16F, mips[0].w, mips[0].h);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (int l = 0; l < n; l++) glTextureSubImage2D(e->src_tex, l, 0, 0, mips[l].w, mips[l].h, GL_RGBA, GL_FLOAT, mips[l].px);
+    glTextureParameteri(e->src_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(e->src_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(e->src_tex, GL_TEXTURE_WRAP_S, GL_REPEAT); /* u wraps around the sphere */
+    glTextureParameteri(e->src_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(e->src_tex, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    e->src_w = mips[0].w, e->src_h = mips[0].h;
+    e->src_hash = em_hash(mips[0].px, (size_t)e->src_w * e->src_h * 4 * sizeof(float), 1); /* as upload_source */
+    int size = eff_cube_size(e), levels = em_max_levels(size);
+    float *faces[16] = {0};
+    em_latlong_to_cube_levels(mips, n, size, levels, faces);
+    e->base = em_upload_cube_levels(faces, size, levels);
+    e->base_size = size;
+    e->base_key = em_hash(&size, sizeof size, e->src_hash); /* ensure_base's key: it keeps this cube */
+    for (int l = 0; l < levels; l++) free(faces[l]);
+    for (int l = 1; l < n; l++) free(mips[l].px);
+}
+
 /* The core's procedural textures (host ABI 1.7): envmap parses no texture spec of its own. */
 static float *core_pattern(void *user, const char *spec, int size, char *err, size_t n) {
     const sl_host *h = user;
@@ -329,7 +361,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     for (int c = 0; c < 3; c++) e->clear[c] = env[c] * env[3];
     char err[4096] = "";
     em_env loaded = {0};
-    bool ok = false;
+    bool ok = false, is_sky = false;
     const char *name = map ? map : "procedural sky";
     if (map && em_is_procedural(map)) {
         loaded.kind = EM_ENV_LATLONG;
@@ -359,6 +391,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
         loaded.kind = EM_ENV_LATLONG;
         em_sky_latlong(&sky, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
         name = "procedural sky";
+        is_sky = true;
     }
     const em_sanitize_stats *s = &loaded.stats;
     if (s->nan + s->inf + s->negative)
@@ -368,7 +401,8 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     if (s->clamped)
         e->host->log(e->host, SL_LOG_INFO, "%s: %ld values above 65504 (largest %g) clamped to the half-float limit",
                      name, s->clamped, s->max_value);
-    upload_source(e, &loaded, name);
+    if (is_sky) upload_sky(e, &loaded);
+    else upload_source(e, &loaded, name);
     em_env_free(&loaded);
     e->have_src = true;
 }

@@ -109,6 +109,13 @@ void em_sky_default(em_sky *s);
 void em_sky_radiance(const em_sky *s, const double d[3], double out[3]);
 /* Renders the sky as a lat-long image (the sun disk supersampled). */
 void em_sky_latlong(const em_sky *s, int w, int h, em_image *out);
+/* The procedural sky's set-up on the CPU (issue 19: no GPU programs to compile before the first
+ * frame). em_latlong_mips: levels[0] = img (shared), then 2×2 box mips down to 1×1 (at most
+ * max_levels; free levels 1..count−1's px). em_latlong_to_cube_levels: envmap_to_cube.frag's
+ * conversion (4×4 trilinear sub-samples) and envmap_downsample.frag's solid-angle-weighted mips,
+ * `levels` levels of size² faces; out[l] = 6 faces of level l, RGBA (malloc'd). */
+void em_latlong_mips(const em_image *img, em_image *levels, int max_levels, int *count);
+void em_latlong_to_cube_levels(const em_image *mips, int mip_count, int size, int levels, float **out);
 
 /* ---------------------------------------------------------------- hashing */
 
