@@ -175,11 +175,20 @@ static void delete_tex(unsigned *t) {
     *t = 0;
 }
 
-/* The host may rebuild programs (hot reload): refresh the ids before every use. */
-static void refresh_programs(envmap *e) {
+/* em_gpu_init's programs, in its order (e->progs, refresh_programs' mask bits) */
+enum { PROG_TO_CUBE = 1, PROG_GGX = 2, PROG_IRRADIANCE = 4, PROG_LUT = 8, PROG_DOWNSAMPLE = 16 };
+/* em_gpu's ids until refresh_programs sets them: em_gpu_init only needs them non-zero */
+#define LAZY_PROGRAM_ID (~0u)
+
+/* The host may rebuild programs (hot reload): refresh the ids before every use, those of the
+ * programs the step uses only. Each compiles at its first program_id() (lazy, as every plugin
+ * program: the procedural sky's set-up needs no conversion, downsampling or irradiance program,
+ * issue 19); one that fails to compile disables the plugin as a failing activate() did. */
+static void refresh_programs(envmap *e, unsigned which) {
     unsigned *ids[5] = {&e->gpu.prog_to_cube, &e->gpu.prog_ggx, &e->gpu.prog_irradiance, &e->gpu.prog_lut,
                         &e->gpu.prog_downsample};
-    for (int i = 0; i < 5; i++) *ids[i] = e->host->program_id(e->host, e->progs[i]);
+    for (int i = 0; i < 5; i++)
+        if (which & (1u << i)) *ids[i] = e->host->program_id(e->host, e->progs[i]);
 }
 
 static void progress(void *user, double fraction, const char *what) {
@@ -421,7 +430,7 @@ static void ensure_base(envmap *e) {
     uint64_t key = em_hash(&size, sizeof size, e->src_hash);
     if (e->base && e->base_key == key) return;
     delete_tex(&e->base);
-    refresh_programs(e);
+    refresh_programs(e, PROG_TO_CUBE | PROG_DOWNSAMPLE);
     e->base = em_make_base_cube(&e->gpu, e->src_tex, e->kind == EM_ENV_CUBE, e->src_w, e->src_h, size);
     e->base_size = size;
     e->base_key = key;
@@ -454,7 +463,7 @@ static void ensure_spec(envmap *e) {
         e->host->log(e->host, SL_LOG_DEBUG, "prefiltering the specular chain: %d² cube, %d levels, %d samples", size,
                      levels, samples);
         ensure_base(e);
-        refresh_programs(e);
+        refresh_programs(e, PROG_GGX | PROG_TO_CUBE); /* level 0 is a copy (convert_cube_into) */
         /* Issued without waiting (issue 18 item 5: start-up): on llvmpipe the rasteriser threads
          * prefilter while this thread goes on composing, compiling and drawing the frame (draws
          * that sample the chain come after it in the GL command stream, so they see it done).
@@ -484,7 +493,7 @@ static void ensure_irradiance(envmap *e) {
     if ((conv ? e->irr != 0 : e->sh_valid) && e->irr_key == key) return;
     if (conv) {
         delete_tex(&e->irr);
-        refresh_programs(e);
+        refresh_programs(e, PROG_IRRADIANCE);
         int out = e->base_size < 32 ? e->base_size : 32;
         e->irr = em_convolve_irradiance(&e->gpu, e->base, e->base_size, 16, out);
     } else {
@@ -506,7 +515,7 @@ static void ensure_lut(envmap *e) {
     int size = param(e, "lut_size").i;
     if (e->lut && e->lut_size == size) return;
     delete_tex(&e->lut);
-    refresh_programs(e);
+    refresh_programs(e, PROG_LUT);
     e->lut = em_brdf_lut(&e->gpu, size, LUT_SAMPLES);
     e->lut_size = size;
 }
@@ -736,7 +745,7 @@ static unsigned load_for_gpu(void *user, const char *fragment, const char *defin
                                     .fragment = fragment, .defines = defines});
     for (int i = 0; i < 5; i++)
         if (!e->progs[i]) { e->progs[i] = p; break; }
-    return e->host->program_id(e->host, p);
+    return p ? LAZY_PROGRAM_ID : 0; /* compiled when a step first needs it (refresh_programs) */
 }
 
 static sl_status envmap_activate(void *user) {

@@ -280,6 +280,10 @@ unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src
 }
 
 static void convert_cube_into(em_gpu *g, unsigned src, int src_size, unsigned dst, int out_size) {
+    if (out_size == src_size) { /* the pass would read texel centres exactly: a copy, no program to run */
+        glCopyImageSubData(src, GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, dst, GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, out_size, out_size, 6);
+        return;
+    }
     unsigned p = g->prog_to_cube;
     glUseProgram(p);
     bind_input(g, p, src, true);

@@ -55,6 +55,7 @@
 #define glGenerateTextureMipmap sl_glGenerateTextureMipmap
 #define glBindTextureUnit sl_glBindTextureUnit
 #define glGetTextureImage sl_glGetTextureImage
+#define glCopyImageSubData sl_glCopyImageSubData
 #define glGetTextureLevelParameteriv sl_glGetTextureLevelParameteriv
 #define glCreateSamplers sl_glCreateSamplers
 #define glDeleteSamplers sl_glDeleteSamplers
