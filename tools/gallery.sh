@@ -78,7 +78,7 @@ for dir in "$root"/plugins/*/; do
                --debug-view final-normal ;;
     phong) render plugin-phong "phong — the gloss-map assignment: normalised Blinn-Phong, gloss and AO maps" \
                --scene scenes/gloss_ao.json ;;
-    spotlight-shadow) render plugin-spotlight-shadow "spotlight-shadow — the shadowed sun and spot alone (the sky's light off)" \
+    spotlight-shadow) render plugin-spotlight-shadow "spotlight-shadow — the shadowed sun and the spot light alone (the sky's light off)" \
                --set envmap.enabled=false ;;
     sss)   render plugin-sss "sss — subsurface scattering on the procedural skin stand-in" --scene scenes/skin_standin.json ;;
     tonemap) render plugin-tonemap "tonemap — false colour: exposure in stops around middle grey" --set tonemap.false_color=true ;;
