@@ -52,6 +52,7 @@ uniform mat4 sl_proj;
 uniform mat4 sl_view_proj;
 uniform vec3 sl_camera_pos;
 uniform int sl_frame_index;
+uniform int sl_sample_index, sl_sample_count; // ABI 1.9: sl_frame.sample_index/count
 uniform vec2 sl_viewport_size;
 uniform mat4 sl_model;
 uniform mat3 sl_normal_matrix;

@@ -195,6 +195,31 @@ static void apply_jitter(sl_renderer *r) {
     f->jitter[1] = r->jitter_req[1];
 }
 
+/* ABI 1.9, sl_frame.sample_index: counts the frames since the view or an edit last changed (what
+ * a TAA still averages: consecutive frames with the same camera, geometry, lights, edits and
+ * size; the jitter is not part of it, it is applied after). Called once per frame, before the
+ * plugins' begin_frame. */
+static void still_count(sl_renderer *r) {
+    const sl_frame *f = &r->frame;
+    uint64_t v[] = {f->camera_version, f->geometry_version, f->lights_version, f->edits_version,
+                    (uint64_t)f->width << 32 | (uint32_t)f->height};
+    uint64_t key = sl_hash64(v, sizeof v, 0);
+    key = sl_hash64(f->view, sizeof f->view, key);
+    key = sl_hash64(f->proj, sizeof f->proj, key);
+    bool same = r->still_valid && key == r->still_key && r->still_last_frame + 1 == r->frames_run;
+    r->still_run = same && r->still_run < (1 << 30) ? r->still_run + 1 : 0;
+    r->still_key = key;
+    r->still_last_frame = r->frames_run;
+    r->still_valid = true;
+}
+
+/* The sample fields of sub-frame acc_index of acc_count, once the plugins asked for their still. */
+static void fill_sample(sl_renderer *r, int acc_index, int acc_count) {
+    int still = r->still_frames > 1 ? r->still_frames : 1;
+    r->frame.sample_count = still * acc_count;
+    r->frame.sample_index = (r->still_run % still) * acc_count + acc_index;
+}
+
 void sl_renderer_set_jitter(sl_app *app, float x, float y) {
     sl_renderer *r = R(app);
     if (!r || !(x == x) || !(y == y)) return;
@@ -225,16 +250,20 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     r->jitter_req[0] = r->jitter_req[1] = 0;
     r->still_frames = 0;
     fill_frame(app, 0, 1);
+    r->frames_run++;
+    still_count(r);
+    r->frame.sample_index = 0, r->frame.sample_count = 1; /* set once the plugins asked (below) */
     for (int i = 1; i < app->plugins.count; i++) {
         sl_plugin_rec *pr = app->plugins.items[i];
         if (pr->active && pr->desc.begin_frame && sl_plugin_enabled(&app->plugins, i)) pr->desc.begin_frame(pr->user, &r->frame);
     }
     if (sl_startup_recording()) sl_startup_mark("frame %d: plugins' begin_frame", (int)app->frame_index);
     apply_jitter(r);
+    int count = app->opt.accumulate > 1 ? app->opt.accumulate : 1;
+    fill_sample(r, 0, count);
     int post_begin = r->pass_count;
     for (int i = 0; i < r->pass_count; i++)
         if (r->passes[i].d->stage >= SL_STAGE_POST) { post_begin = i; break; }
-    int count = app->opt.accumulate > 1 ? app->opt.accumulate : 1;
     /* which passes write "display" directly this frame (accumulated frames: only post passes) */
     sl_graph_route_display(app, count > 1 ? post_begin : 0, app->opt.keep_color);
     if (count == 1) {
@@ -250,6 +279,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         glCreateFramebuffers(1, &fbo);
         for (int k = 0; k < count; k++) {
             fill_frame(app, k, count);
+            fill_sample(r, k, count);
             apply_jitter(r);
             for (int i = 0; i < post_begin; i++) r->passes[i].has_run = false; /* sub-frames differ */
             sl_graph_run_range(app, 0, post_begin);
@@ -277,6 +307,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         color->version++;
         fill_frame(app, 0, 1);
+        fill_sample(r, 0, 1);
         apply_jitter(r);
         sl_graph_run_range(app, post_begin, r->pass_count);
     }

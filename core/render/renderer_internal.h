@@ -84,6 +84,10 @@ typedef struct sl_renderer {
     float jitter_req[2];
     uint64_t programs_version; /* bumps on a hot reload or a new debug view (in params_version) */
     int still_frames;
+    /* ABI 1.9 sample index: frames since the view or an edit last changed, and what it compares */
+    int still_run;
+    uint64_t still_key, still_last_frame, frames_run;
+    bool still_valid;
     bool motion;
     bool have_prev;
     float prev_view_proj[16], prev_unjittered_vp[16];

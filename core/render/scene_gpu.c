@@ -338,6 +338,8 @@ static void set_camera_uniforms(sl_app *app, unsigned prog, const float *view, c
     glUniform3fv(glGetUniformLocation(prog, "sl_camera_pos"), 1, r->frame.camera_pos);
     glUniform1f(glGetUniformLocation(prog, "sl_time"), (float)r->frame.time);
     glUniform1i(glGetUniformLocation(prog, "sl_frame_index"), r->frame.accumulate_index);
+    glUniform1i(glGetUniformLocation(prog, "sl_sample_index"), r->frame.sample_index);
+    glUniform1i(glGetUniformLocation(prog, "sl_sample_count"), r->frame.sample_count);
     glUniform2f(glGetUniformLocation(prog, "sl_viewport_size"), (float)r->frame.width, (float)r->frame.height);
     if (r->motion) { /* SL_MOTION_VECTORS programs (forward.vert) */
         glUniformMatrix4fv(glGetUniformLocation(prog, "sl_unjittered_view_proj"), 1, GL_FALSE, r->frame.unjittered_view_proj);

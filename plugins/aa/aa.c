@@ -242,7 +242,10 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
     glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
     glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
-    glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b);
+    /* a still (nothing moved: the history is this pixel's own earlier frames) is the exact mean:
+     * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
+     * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %) */
+    glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b && a->still < 0);
     glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b);
     glUniform1i(glGetUniformLocation(p, "aa_history_valid"), valid);
     glUniform1i(glGetUniformLocation(p, "aa_copy"), 0);

@@ -12,6 +12,7 @@
 #include "envmap/io.h"
 #include "envmap/prefilter.h"
 #include <errno.h>
+#include <stddef.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,7 +26,7 @@
 #define CONSTANT_CUBE 8 /* a constant environment prefilters to itself: no need for a big cube */
 
 static const char *const modes[] = {"split-sum", "reference", NULL};
-static const char *const speculars[] = {"mirror", "dominant", "fis", NULL};
+static const char *const speculars[] = {"mirror", "dominant", "fis", "hybrid", NULL};
 static const char *const irradiance_methods[] = {"sh", "convolved", NULL};
 static const char *const level_maps[] = {"sqrt", "log", NULL}; /* em_level_map's order */
 
@@ -38,17 +39,23 @@ static const sl_param_desc params[] = {
     P(.id = "mode", .type = SL_PARAM_ENUM, .enum_values = modes, .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "lighting",
       .description = "split-sum: prefiltered image-based lighting (envmap.specular says how); reference: Monte Carlo "
                      "integration of the source with the exact BRDF (accumulate frames)."),
-    P(.id = "specular", .type = SL_PARAM_ENUM, .enum_values = speculars, .default_value = {.i = 1},
+    P(.id = "specular", .type = SL_PARAM_ENUM, .enum_values = speculars, .default_value = {.i = 3},
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
       .description = "ggx's environment specular in split-sum mode: mirror: the prefiltered chain along the mirror "
                      "direction (Karis 2013); dominant: along GGX's dominant, off-specular direction (Lagarde & de "
                      "Rousiers 2014); fis: filtered importance sampling, fis_samples GGX visible-normal samples per "
-                     "pixel from the base cube's mips (Krivanek & Colbert 2007), times the environment BRDF."),
-    P(.id = "fis_samples", .type = SL_PARAM_INT, .default_value = {.i = 8}, .min = 1, .max = 32, .group = "lighting",
+                     "pixel from the base cube's mips (Krivanek & Colbert 2007), times the environment BRDF; hybrid "
+                     "(default): fis below hybrid_alpha, dominant above; fis's sequence continues over a TAA still's "
+                     "frames, so a view at rest converges (bench/still.sh)."),
+    P(.id = "fis_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 32, .group = "lighting",
       .flags = SL_PARAM_QUALITY_KNOB,
-      .description = "Samples per pixel of specular=fis (1, 2, 4, 8, 16, 32: error falls with cost; accumulated frames "
-                     "continue the sequence)."),
-    P(.id = "fis_lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {-1}}, .min = -3, .max = 3, .step = 0.25f,
+      .description = "Samples per pixel of specular=fis and hybrid (1, 2, 4, 8, 16, 32: error falls with cost; the "
+                     "frames of a TAA still and of an accumulated render continue the sequence)."),
+    P(.id = "hybrid_alpha", .type = SL_PARAM_FLOAT, .default_value = {.f = {1.1f}}, .min = 0, .max = 2, .step = 0.05f,
+      .group = "lighting",
+      .description = "specular=hybrid: GGX alpha from which the dominant lookup alone is used; fis's samples below "
+                     "hybrid_alpha - 0.25, fading between."),
+    P(.id = "fis_lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {0}}, .min = -3, .max = 3, .step = 0.25f,
       .group = "lighting",
       .description = "Bias added to specular=fis's per-sample mip level (1/2 log2 of the sample's solid angle over the base "
                      "texel's); Krivanek & Colbert use +1, chosen here from the measured error."),
@@ -602,8 +609,15 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
     /* a precomputed chain (shadelab-cube --ggx) is always the sqrt mapping */
     glUniform1i(glGetUniformLocation(prog, "envmap_spec_map"), e->spec_from_chain ? 0 : param(e, "level_map").i);
-    /* fis: the footprint of a sample is the share of every accumulated frame's samples */
-    glUniform1f(glGetUniformLocation(prog, "envmap_accumulated"), (float)(f && f->accumulate_count > 1 ? f->accumulate_count : 1));
+    /* fis: the footprint of a sample is the share of every averaged frame's samples (ABI 1.9:
+     * a TAA still's frames too) */
+    int averaged = f ? f->accumulate_count : 1;
+    if (f && f->struct_size >= offsetof(sl_frame, sample_count) + sizeof f->sample_count) {
+        averaged = f->sample_count;
+        /* a still's first frame is also what a frame in motion shows (sample 0): its own footprint */
+        if (f->sample_index == 0 && f->accumulate_count <= 1) averaged = 1;
+    }
+    glUniform1f(glGetUniformLocation(prog, "envmap_accumulated"), (float)(averaged > 1 ? averaged : 1));
 }
 
 /* ---------------------------------------------------------------- background pass */

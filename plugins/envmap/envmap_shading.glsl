@@ -21,7 +21,7 @@ uniform vec3 envmap_sh[9];        // SH irradiance (E/π), coefficients × Â_l/
 uniform sampler2D envmap_lut;     // environment BRDF (A, B), envmap_lut_size² (the parameter's uniform)
 uniform mat3 envmap_rot;          // world → map: R_y(−yaw)
 uniform float envmap_scale;       // the scene environment's intensity
-#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 uniform samplerCube envmap_base;  // the base cube with its solid-angle-weighted mips (specular=fis reads it)
 uniform float envmap_base_size;   // its face size
 #endif
@@ -90,11 +90,11 @@ vec3 envmap_brdf(float mu, float alpha) {
     return texture(envmap_lut, (x * (n - 1.0) + 0.5) / n).rgb;
 }
 
-// Per-sample random numbers for the reference: an R2 sequence continued across accumulated
-// frames (sl_frame_index), rotated per pixel.
+// Per-sample random numbers for the reference: an R2 sequence continued across the frames that
+// are averaged (sl_sample_index, ABI 1.9: accumulated frames and a TAA still's), rotated per pixel.
 vec2 envmap_xi(uint i, vec2 rot) {
     uint k = uint(envmap_reference_samples);
-    return fract(envmap_r2(uint(sl_frame_index) * k + i) + rot);
+    return fract(envmap_r2(uint(sl_sample_index) * k + i) + rot);
 }
 
 vec3 envmap_lambert_reference(SlSurface s) {
@@ -147,11 +147,12 @@ float envmap_specular_occlusion(float n_dot_v, float ao, float alpha) {
     return clamp(pow(max(n_dot_v + ao, 0.0), exp2(-16.0 * alpha - 1.0)) - 1.0 + ao, 0.0, 1.0);
 }
 
-#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 // Filtered importance sampling (Křivánek & Colbert 2007, GPU Gems 3 ch. 20): envmap_fis_samples
 // GGX visible-normal samples (Heitz 2018) of the real lobe for this n and v, each read from the
 // base cube at the mip level whose texel solid angle matches the sample's share of the lobe,
-// Ω_s = 1/(N·F·pdf(l)) with F the frames of an accumulated render (1 otherwise), lod = ½ log2(Ω_s/Ω_texel)
+// Ω_s = 1/(N·F·pdf(l)) with F the frames averaged into the image shown (sl_sample_count: a TAA
+// still's frames × accumulated frames; 1 when nothing averages), lod = ½ log2(Ω_s/Ω_texel)
 // + envmap.fis_lod_bias (K&C: +1; see the README). The weights are the BRDF's f·cos/pdf =
 // F(v·h)·G(v,l)/G1(v), per channel (Schlick with f0, as the reference), whose expectation is the
 // environment BRDF (F0·A + B) = `albedo`. The estimate is Monte Carlo with a control variate
@@ -163,11 +164,13 @@ float envmap_specular_occlusion(float n_dot_v, float ao, float alpha) {
 // ratio Σ w L / Σ w × albedo, which is exact in the furnace too but biased by O(1/N) in every
 // frame, a bias accumulating frames does not remove: courtyard metal α = 1, N = 32 × 32 frames,
 // −1.4 % on the sphere mean, N = 16 × 64 frames −4.4 % (measured against the C quadrature,
-// bench/ibl_rim.c). The per-pixel sequence is rotated per pixel and continued over accumulated
-// frames (sl_frame_index), so accumulating converges to the filtered integral — whose remaining
-// bias (the mips' box filter) the bench charts. Returns the specular radiance (albedo included).
-uniform float envmap_accumulated; // frames averaged into this render (1 when not accumulating)
-vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo) {
+// bench/ibl_rim.c). The per-pixel sequence is rotated per pixel and continued over the averaged
+// frames (sl_sample_index), so accumulating converges to the filtered integral — whose remaining
+// bias (the mips' box filter) the bench charts. `beta` scales the Monte Carlo correction:
+// 1 = fis, 0 = the control variate alone (= specular=dominant, no sample taken); specular=hybrid
+// fades it out towards rough α (envmap_hybrid_beta). Returns the specular radiance (albedo included).
+uniform float envmap_accumulated; // frames averaged into the image shown (sl_sample_count)
+vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo, float beta) {
     vec3 n = s.normal, v = s.view;
     vec3 t, b;
     envmap_frame(n, t, b);
@@ -184,8 +187,9 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo)
     vec3 d = normalize(mix(n, r, sd * (sqrt(sd) + alpha)));
     vec3 c = textureLod(envmap_spec, envmap_rot * d, envmap_spec_lod(alpha)).rgb * envmap_horizon(d, s.geometric_normal);
     vec3 sum = vec3(0.0);
+    if (beta <= 0.0) count = 0; // the split sum alone: no sample (uniform per material unless α is mapped)
     for (int i = 0; i < count; i++) {
-        vec2 xi = fract(envmap_r2(uint(sl_frame_index) * uint(count) + uint(i)) + rot);
+        vec2 xi = fract(envmap_r2(uint(sl_sample_index) * uint(count) + uint(i)) + rot);
         vec3 hl = envmap_sample_vndf(vl, alpha, xi);
         vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
         if (ll.z <= 0.0) continue; // weight 0 (G1(l) = 0): contributes 0 to the mean
@@ -204,9 +208,17 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo)
     // weights. A single frame (shown, or fed to TAA) is clamped at 0; an accumulated render is
     // not: the clamp would bias its mean upwards (band test, N = 1 × 64 frames, α = 1: +7 %),
     // and the mean of the frames is what converges to the (non-negative) integral.
-    vec3 est = albedo * c + sum / float(count);
+    vec3 est = albedo * c + beta * sum / float(max(count, 1));
     return (envmap_accumulated > 1.0 ? est : max(est, vec3(0.0))) * envmap_scale;
 }
+#endif
+
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
+// specular=hybrid: fis's correction at full weight up to α = hybrid_alpha − 0.25, fading linearly
+// to none at hybrid_alpha (dominant alone above, where its lobe error is below fis's noise:
+// bench/methods.sh). A material's α is one value unless a roughness map varies it, so the
+// sample loop's branch is coherent across a draw.
+float envmap_hybrid_beta(float alpha) { return clamp((envmap_hybrid_alpha - alpha) / 0.25, 0.0, 1.0); }
 #endif
 
 vec3 envmap_ggx_split_sum(SlSurface s) {
@@ -238,10 +250,15 @@ vec3 envmap_ggx_split_sum(SlSurface s) {
     // a (normal-mapped) normal facing away from the viewer is masked, G1(v) = 0: no specular,
     // as in the reference below and in ggx's direct term (ggx leaves such normals unbent)
     float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
-#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
+    float beta = envmap_hybrid_beta(alpha);
+#else
+    float beta = 1.0;
+#endif
     // fis estimates the single-scattering specular itself (albedo f0·A + B inside); multiscatter
     // scales it as it scales the split sum's
-    vec3 specular = envmap_fis_specular(s, alpha, r, f0, f0 * ab.x + ab.y) * (spec / max(f0 * ab.x + ab.y, vec3(1e-6)));
+    vec3 specular = envmap_fis_specular(s, alpha, r, f0, f0 * ab.x + ab.y, beta) * (spec / max(f0 * ab.x + ab.y, vec3(1e-6)));
 #else
     vec3 d = envmap_lookup_dir(n, r, alpha);
     vec3 specular = spec * envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);

@@ -115,9 +115,11 @@ static void prefilter(const double d[3], double a, int cosw, double P[3]) {
     for (int k = 0; k < 3; k++) P[k] = w > 0 ? sum[k] / w : 0;
 }
 static int size = 48;
-static int pixel(int i, double n[3], double v[3]) { /* row 0 = top, as the harness reads back */
+/* pixel i's ray in a frame jittered by (jx, jy) pixels (x right, y up: sl_frame.jitter moves the
+ * projection, so the pixel sees the scene at its centre − the jitter) */
+static int pixel_at(int i, double jx, double jy, double n[3], double v[3]) { /* row 0 = top, as the harness reads back */
     double tn = tan(20 * PI / 180);
-    double d[3] = {(2 * ((i % size) + 0.5) / size - 1) * tn, (1 - 2 * ((i / size) + 0.5) / size) * tn, -1};
+    double d[3] = {(2 * ((i % size) + 0.5 - jx) / size - 1) * tn, (1 - 2 * ((i / size) + 0.5 + jy) / size) * tn, -1};
     norm(d);
     double o[3] = {0, 0, 3.1}, bb = dot(o, d), c = dot(o, o) - 1, disc = bb * bb - c;
     if (disc <= 0) return 0;
@@ -125,6 +127,81 @@ static int pixel(int i, double n[3], double v[3]) { /* row 0 = top, as the harne
     for (int k = 0; k < 3; k++) n[k] = o[k] + s * d[k], v[k] = -d[k];
     norm(n);
     return dot(n, v) > 0;
+}
+static int pixel(int i, double n[3], double v[3]) { return pixel_at(i, 0, 0, n, v); }
+static double halton(unsigned i, unsigned b) {
+    double f = 1, r = 0;
+    for (; i > 0; i /= b) f /= b, r += f * (i % b);
+    return r;
+}
+
+/* --still: what the viewer shows at rest. T averaged over the aa plugin's TAA still (taa_frames
+ * Halton (2, 3) jitter points a pixel, frame 0 at the centre; a ray that misses counts 0, as the
+ * background-free render), compared with the plugin's GL stills (aa on, its defaults): its
+ * reference (64·R spp a frame), the default specular, dominant, fis N and hybrid N. */
+static const char *still_set[][2] = {
+    {"gl-still-reference", "envmap.mode=reference envmap.reference_samples=512"},
+    {"gl-still-default", ""},
+    {"gl-still-dominant", "envmap.specular=dominant"},
+    {"gl-still-fis8", "envmap.specular=fis envmap.fis_samples=8"},
+    {"gl-still-fis16", "envmap.specular=fis envmap.fis_samples=16"},
+    {"gl-still-hybrid8", "envmap.specular=hybrid envmap.fis_samples=8"},
+    {"gl-still-hybrid16", "envmap.specular=hybrid envmap.fis_samples=16"},
+};
+enum { NS = sizeof still_set / sizeof *still_set };
+static int run_still(const char *path, const char *mat, double only_alpha) {
+    int n = size * size;
+    float *img = malloc((size_t)n * 16);
+    double *T = malloc(sizeof(double) * 3 * n);
+    const char *envname = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    printf("env,alpha,method,rel_rms,rel_mean\n");
+    for (int a = 0; a < NA; a++) {
+        double al = alphas[a];
+        if (only_alpha >= 0 && fabs(al - only_alpha) > 1e-6) continue;
+        int frames = 16;
+        sl_harness *h = ibl_sphere_aa(path, mat, size, 1, true);
+        char v[32], buf[1024];
+        if (!h || !sl_harness_get(h, "aa.taa_frames", v, sizeof v)) return 1;
+        frames = atoi(v);
+        char reset[256] = "envmap.mode=split-sum ", val[64]; /* the defaults, restored after each method */
+        static const char *const knobs[] = {"envmap.specular", "envmap.fis_samples", "envmap.hybrid_alpha"};
+        for (int i = 0; i < 3; i++) {
+            if (!sl_harness_get(h, knobs[i], val, sizeof val)) return 1;
+            snprintf(reset + strlen(reset), sizeof reset - strlen(reset), "%s=%s ", knobs[i], val);
+        }
+        for (int i = 0; i < 3 * n; i++) T[i] = 0;
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < frames; k++) {
+                double nn[3], vv[3], t3[3], lb[3], A, B;
+                double jx = k ? halton((unsigned)k, 2) - 0.5 : 0, jy = k ? halton((unsigned)k, 3) - 0.5 : 0;
+                if (!pixel_at(i, jx, jy, nn, vv)) continue;
+                truth(nn, vv, al, t3, lb, &A, &B);
+                for (int c = 0; c < 3; c++) T[i * 3 + c] += t3[c] / frames;
+            }
+        for (int m = 0; m < NS; m++) {
+            snprintf(buf, sizeof buf, "material.m.alpha=%g %s", al, still_set[m][1]);
+            if (!ibl_set(h, buf)) return 1;
+            for (int f = 0; f < frames; f++)
+                if (!sl_harness_render(h, img)) return 1;
+            double se = 0, sx = 0, sr = 0;
+            for (int i = 0; i < n; i++) {
+                if (T[i * 3] + T[i * 3 + 1] + T[i * 3 + 2] <= 0) continue;
+                for (int c = 0; c < 3; c++) {
+                    double d = img[i * 4 + c] - T[i * 3 + c];
+                    se += d * d, sx += img[i * 4 + c], sr += T[i * 3 + c];
+                }
+            }
+            long cnt = 0;
+            for (int i = 0; i < n; i++) cnt += T[i * 3] + T[i * 3 + 1] + T[i * 3 + 2] > 0 ? 3 : 0;
+            printf("%s,%.2f,%s,%.5f,%+.5f\n", envname, al, still_set[m][0], sqrt(se / cnt) / (sr / cnt), sx / sr - 1);
+            fflush(stdout);
+            /* back to the defaults for the next one (a cut: the next still restarts) */
+            if (!ibl_set(h, reset)) return 1;
+        }
+        sl_harness_destroy(h);
+    }
+    free(img), free(T);
+    return 0;
 }
 
 /* K taps of the n = v = r prefilter along the plane of incidence (footprint assembly): half-vectors
@@ -172,7 +249,7 @@ static const int tapk[8] = {2, 3, 4, 8, 2, 3, 4, 8};
 
 int main(int argc, char **argv) {
     const char *path = NULL;
-    int gl = 0, notaps = 0;
+    int gl = 0, notaps = 0, still = 0;
     double only_alpha = -1;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--env") && i + 1 < argc) path = argv[++i];
@@ -182,6 +259,7 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--gl")) gl = 1;
         else if (!strcmp(argv[i], "--no-taps")) notaps = 1;
         else if (!strcmp(argv[i], "--alpha") && i + 1 < argc) only_alpha = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--still")) still = 1;
         else {
             fprintf(stderr, "usage: %s --env PATH [--size N] [--nu N] [--nphi N] [--gl]\n", argv[0]);
             return 2;
@@ -198,6 +276,7 @@ int main(int argc, char **argv) {
     enum { NG = NM - NCPU };
     float *img[NG] = {0};
     const char *mat = "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, \"base_color\": [0.95, 0.64, 0.54]";
+    if (still) return run_still(path, mat, only_alpha);
     /* the GL renders: the plugin's reference (32 and 128 frames × 64 spp), the one-lookup methods,
      * and the highest fis setting accumulated — as the plugin does it (footprint over N·F samples,
      * fis_lod_bias −1), with fis_lod_bias −3 (the lowest allowed: nearly every sample at the base level, little mip bias, more

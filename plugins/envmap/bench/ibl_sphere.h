@@ -11,8 +11,9 @@
 #include <stdio.h>
 #include <string.h>
 
-/* `mat`: the material's JSON keys */
-static sl_harness *ibl_sphere(const char *env, const char *mat, int size, int accumulate) {
+/* `mat`: the material's JSON keys; `aa`: leave the aa plugin on (its defaults: a TAA still of
+ * taa_frames jittered frames), as the viewer runs (bench/ibl_still.c) */
+static sl_harness *ibl_sphere_aa(const char *env, const char *mat, int size, int accumulate, bool aa) {
     char json[4096], err[4096], envjson[1200];
     char sun[64] = "";
     if (!strncmp(env, "sky", 3)) {
@@ -27,7 +28,7 @@ static sl_harness *ibl_sphere(const char *env, const char *mat, int size, int ac
              " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
              " \"environment\": %s}",
              mat, envjson);
-    const char *settings[] = {"envmap.background=false", "aa.enabled=false", sun[0] ? sun : NULL, NULL};
+    const char *settings[] = {"envmap.background=false", aa ? "aa.enabled=true" : "aa.enabled=false", sun[0] ? sun : NULL, NULL};
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
                                                           .scene_json = json, .settings = settings, .float32 = true,
                                                           .strict = true, .accumulate = accumulate},
@@ -36,9 +37,13 @@ static sl_harness *ibl_sphere(const char *env, const char *mat, int size, int ac
     return h;
 }
 
+static inline sl_harness *ibl_sphere(const char *env, const char *mat, int size, int accumulate) {
+    return ibl_sphere_aa(env, mat, size, accumulate, false);
+}
+
 /* applies space-separated "id=value" settings; false (with the message on stderr) at the first refused */
 static bool ibl_set(sl_harness *h, const char *text) {
-    char buf[256], err[512];
+    char buf[1024], err[512];
     snprintf(buf, sizeof buf, "%s", text);
     for (char *tok = strtok(buf, " "); tok; tok = strtok(NULL, " "))
         if (!sl_harness_set(h, tok, err, sizeof err)) {

@@ -40,14 +40,15 @@ static sl_harness *make(const char *map, const char *const *settings, int accumu
              " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128}, \"material\": \"m\"}],\n"
              " \"environment\": {\"map\": \"%s\"}}",
              map);
-    const char *base[24];
+    const char *base[26];
     int n = 0;
     base[n++] = "envmap.cube_size=64";
     base[n++] = "envmap.samples=256";
     base[n++] = "envmap.lut_size=64";
     base[n++] = "envmap.cache=false";
     base[n++] = "envmap.background=false";
-    for (const char *const *s = settings; s && *s && n < 23; s++) base[n++] = *s;
+    base[n++] = "aa.enabled=false"; /* pixel centres (a single frame); test_still turns it on */
+    for (const char *const *s = settings; s && *s && n < 25; s++) base[n++] = *s;
     base[n] = NULL;
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
                                                           .scene_json = json, .settings = base, .float32 = true,
@@ -102,6 +103,7 @@ static const struct method methods[] = {
     {"dominant", "envmap.specular=dominant", 1},
     {"fis N=1", "envmap.specular=fis envmap.fis_samples=1", 1},
     {"fis N=32", "envmap.specular=fis envmap.fis_samples=32", 1},
+    {"hybrid N=16", "envmap.specular=hybrid envmap.fis_samples=16", 1},
     {"reference", "envmap.mode=reference envmap.reference_samples=64", 4},
 };
 enum { NM = sizeof methods / sizeof *methods };
@@ -205,6 +207,8 @@ static double block(const float *im, int px, int py) {
     return s / 9;
 }
 
+#define STILL_BOUND 0.035     /* the default's still, α ≥ 0.2: measured 0.010–0.018 (its first frame 0.042–0.051) */
+#define STILL_BOUND_005 0.12  /* α = 0.05: measured 0.072, mostly the jitter against pixel-centre values */
 #define FIS1_BOUND 0.035 /* measured ≤ 0.027; the former ratio estimator: 0.040 (α = 0.7), 0.068 (α = 1) */
 static void test_band(void) {
     double split_rms[NA] = {0};
@@ -371,12 +375,137 @@ static void test_specular_occlusion(void) {
     }
 }
 
+/* ABI 1.9: a TAA still (the aa plugin on, its taa_frames jittered frames averaged), as the viewer
+ * shows a view at rest. Sub-pixel rays at the aa plugin's Halton (2, 3) points: frame k's jitter
+ * j_k = h_k − ½ (h_0 = ½: the centre) moves the projection by j_k pixels (x right, y up,
+ * sl_frame.jitter), so the pixel sees the scene at its centre − j_k (x right, y up), i.e. at
+ * (x + ½ − j_x, y + ½ + j_y) counted from the top left. */
+static double halton(unsigned i, unsigned b) {
+    double f = 1, r = 0;
+    for (; i > 0; i /= b) f /= b, r += f * (i % b);
+    return r;
+}
+static bool sphere_at(double fx, double fy, double n[3], double v[3]) { /* fx, fy from the top left */
+    mat4 view, proj, vp, inv;
+    glm_lookat((float *)cam.pos, (float *)cam.target, (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(cam.fov_deg), (float)W / H, 0.1f, 100.f, proj);
+    glm_mat4_mul(proj, view, vp);
+    glm_mat4_inv(vp, inv);
+    float nx = (float)(fx / W * 2 - 1), ny = (float)(1 - fy / H * 2);
+    vec4 a = {nx, ny, -1, 1}, b = {nx, ny, 1, 1}, wa, wb;
+    glm_mat4_mulv(inv, a, wa);
+    glm_mat4_mulv(inv, b, wb);
+    double o[3], d[3], l = 0;
+    for (int i = 0; i < 3; i++) o[i] = wa[i] / wa[3], d[i] = wb[i] / wb[3] - o[i], l += d[i] * d[i];
+    for (int i = 0; i < 3; i++) d[i] /= sqrt(l);
+    double bb = o[0] * d[0] + o[1] * d[1] + o[2] * d[2], c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - 1;
+    if (bb * bb - c <= 0) return false;
+    double t = -bb - sqrt(bb * bb - c);
+    l = 0;
+    for (int i = 0; i < 3; i++) n[i] = o[i] + t * d[i], v[i] = -d[i], l += n[i] * n[i];
+    for (int i = 0; i < 3; i++) n[i] /= sqrt(l);
+    return true;
+}
+static bool still(sl_harness *h, int frames, float *first) {
+    for (int f = 0; f < frames; f++)
+        if (!sl_harness_render(h, f == 0 && first ? first : img)) return false;
+    return true;
+}
+static void test_still(void) {
+    char path[512];
+    static float first[W * H * 4];
+    /* 1. furnace, the default specular (hybrid): every frame is exact (the control variate), so
+     * the still is E(μ, α) averaged over the 16 jittered points of each pixel */
+    snprintf(path, sizeof path, "%s/one.exr", dir);
+    write_latlong(path, 64, 32, one_fn);
+    const char *on[] = {"aa.enabled=true", NULL};
+    sl_harness *h = make(path, on, 1);
+    CHECK(h != NULL);
+    if (!h) return;
+    char v[32];
+    CHECK(sl_harness_get(h, "aa.taa_frames", v, sizeof v));
+    int n = atoi(v);
+    CHECK(n >= 4 && n <= 64);
+    CHECK(sl_harness_get(h, "envmap.specular", v, sizeof v) && !strcmp(v, "hybrid"));
+    for (int a = 0; a < NA; a++) {
+        set(h, "material.m.alpha=%g", alphas[a]);
+        CHECK(still(h, n, NULL));
+        double worst = 0, mean = 0, worst_centre = 0;
+        int count = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                double want = 0, nn[3], vv[3], centre = 0;
+                bool ok = true;
+                for (int k = 0; k < n && ok; k++) {
+                    double jx = k ? halton((unsigned)k, 2) - 0.5 : 0, jy = k ? halton((unsigned)k, 3) - 0.5 : 0;
+                    ok = sphere_at(x + 0.5 - jx, y + 0.5 + jy, nn, vv) && nn[0] * vv[0] + nn[1] * vv[1] + nn[2] * vv[2] > 0.2;
+                    if (ok) want += ref_albedo(nn[0] * vv[0] + nn[1] * vv[1] + nn[2] * vv[2], alphas[a]) / n;
+                    if (ok && k == 0) centre = ref_albedo(nn[0] * vv[0] + nn[1] * vv[1] + nn[2] * vv[2], alphas[a]);
+                }
+                if (!ok) continue;
+                double rel = img[(y * W + x) * 4] / want - 1;
+                worst = fmax(worst, fabs(rel));
+                worst_centre = fmax(worst_centre, fabs(img[(y * W + x) * 4] / centre - 1));
+                mean += rel, count++;
+            }
+        mean /= count;
+        printf("still furnace hybrid N=16 x%d alpha %.2f: %d pixels, max |rel. error| %.4f (vs the pixel centre %.4f), mean %+.4f\n",
+               n, alphas[a], count, worst, worst_centre, mean);
+        CHECK(count > 250);
+        CHECK_MSG(worst < 0.005, "still furnace alpha %.2f: %.4f", alphas[a], worst);
+    }
+    sl_harness_destroy(h);
+    /* 2. the band, the default: the sample sequence continues over the still's frames
+     * (sl_sample_index), so the still averages n × 16 samples; with a sequence that repeats each
+     * frame (the index stuck at 0) it would average the same samples and keep about the first
+     * frame's error (checked by that mutation: fails at every α ≥ 0.2). Block means vs the C
+     * quadrature (at pixel centres: the jitter moves a 3×3 block by < ½ pixel, which is most of
+     * what α = 0.05 has left, a sharp band edge). */
+    snprintf(path, sizeof path, "%s/band.exr", dir);
+    write_latlong(path, 256, 128, band_fn);
+    const char *dflt[] = {"aa.enabled=true", NULL};
+    const char *const *cfg[1] = {dflt};
+    const char *names[1] = {"default (hybrid)"};
+    const int nv = sizeof ibl_quadrature_values / sizeof *ibl_quadrature_values;
+    for (int m = 0; m < 1; m++) {
+        h = make(path, cfg[m], 1);
+        CHECK(h != NULL);
+        if (!h) continue;
+        for (int a = 0; a < NA; a++) {
+            set(h, "material.m.alpha=%g", alphas[a]);
+            CHECK(still(h, n, first));
+            double rms = 0, rms1 = 0;
+            int count = 0;
+            for (int i = 0; i < nv; i++) {
+                if (fabs(ibl_quadrature_values[i].alpha - alphas[a]) > 1e-9) continue;
+                double q = ibl_quadrature_values[i].value;
+                double e = block(img, ibl_quadrature_values[i].px, ibl_quadrature_values[i].py) / q - 1;
+                double e1 = block(first, ibl_quadrature_values[i].px, ibl_quadrature_values[i].py) / q - 1;
+                rms += e * e, rms1 += e1 * e1, count++;
+            }
+            rms = sqrt(rms / count), rms1 = sqrt(rms1 / count);
+            printf("still band %-16s alpha %.2f: rms %.4f over the still of %d frames, %.4f its first frame\n", names[m],
+                   alphas[a], rms, n, rms1);
+            CHECK(count == 6);
+            if (alphas[a] >= 0.2)
+                CHECK_MSG(rms < STILL_BOUND && rms < 0.6 * rms1, "default still alpha %.2f: rms %.4f, first frame %.4f", alphas[a], rms, rms1);
+            else CHECK_MSG(rms < STILL_BOUND_005, "default still alpha %.2f: rms %.4f", alphas[a], rms);
+        }
+        sl_harness_destroy(h);
+    }
+}
+
 int main(void) {
     snprintf(dir, sizeof dir, "%s", sl_test_dir());
+    if (getenv("ENVMAP_ACCURACY_ONLY") && !strcmp(getenv("ENVMAP_ACCURACY_ONLY"), "still")) { /* iterating on one part */
+        test_still();
+        return check_result();
+    }
     test_furnace();
     test_dielectric_furnace();
     test_band();
     test_horizon();
     test_specular_occlusion();
+    test_still();
     return check_result();
 }

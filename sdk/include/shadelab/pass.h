@@ -86,6 +86,17 @@ typedef struct sl_frame {
      * debug view) and never by itself: unlike lights_version it stays put while lights animate.
      * A temporal method restarts its history on it (a live change equals a fresh start). */
     uint64_t edits_version;
+    /* ABI 1.9: the frame's sample of the image being averaged, for stochastic shading (sample
+     * sequences that continue across frames). sample_count = the frames averaged into what is
+     * shown: a plugin's still (host->set_still_frames, e.g. a TAA still of n jittered frames; 1
+     * when no plugin averages) times accumulate_count. sample_index in [0, sample_count) =
+     * still × accumulate_count + accumulate_index, where still = the frames since the view and
+     * every edit last changed (camera, geometry, lights, edits, size), modulo the still's length:
+     * n consecutive unchanged frames get n distinct indices, a frame that changes anything gets
+     * 0 (so does every frame while the view moves), and with nothing averaging it is
+     * accumulate_index. GLSL: int sl_sample_index, sl_sample_count. A pass with
+     * SL_DEPENDS_CAMERA or SL_DEPENDS_MATERIALS re-runs when it moves. */
+    int sample_index, sample_count;
 } sl_frame;
 
 typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() */

@@ -22,7 +22,9 @@
  *                      its metallic-roughness Fresnel, envmap's split sum and area lights read it
  *   struct SlLight   { vec4 position; vec4 direction; vec4 color; vec4 params[2]; };
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
- *             int sl_frame_index; vec2 sl_viewport_size.
+ *             int sl_frame_index; vec2 sl_viewport_size;
+ *             int sl_sample_index, sl_sample_count (ABI 1.9: sl_frame.sample_index/count, a
+ *             sample sequence that continues across a TAA still's frames and accumulated frames).
  *   function (ABI 1.6, fragment stage of forward programs):
  *             vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E)   the material's SHADING_MODEL
  *
