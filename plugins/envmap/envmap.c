@@ -618,6 +618,12 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
         if (f->sample_index == 0 && f->accumulate_count <= 1) averaged = 1;
     }
     glUniform1f(glGetUniformLocation(prog, "envmap_accumulated"), (float)(averaged > 1 ? averaged : 1));
+    /* specular=hybrid: no sample in sample 0 of an average (a frame in motion costs one lookup),
+     * the others weigh count/(count - 1) (envmap_shading.glsl) */
+    float fis_weight = 1;
+    if (f && f->struct_size >= offsetof(sl_frame, sample_count) + sizeof f->sample_count && f->sample_count > 1)
+        fis_weight = f->sample_index == 0 ? 0.0f : (float)f->sample_count / (float)(f->sample_count - 1);
+    glUniform1f(glGetUniformLocation(prog, "envmap_fis_weight"), fis_weight);
 }
 
 /* ---------------------------------------------------------------- background pass */

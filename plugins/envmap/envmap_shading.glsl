@@ -219,6 +219,12 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo,
 // bench/methods.sh). A material's α is one value unless a roughness map varies it, so the
 // sample loop's branch is coherent across a draw.
 float envmap_hybrid_beta(float alpha) { return clamp((envmap_hybrid_alpha - alpha) / 0.25, 0.0, 1.0); }
+// The frame's share of the correction (set per frame from sl_frame.sample_index/count): when frames
+// are averaged (a TAA still, an accumulated render), sample 0 — every frame in motion and one frame
+// of each still — takes no sample (weight 0: the dominant lookup alone, its cost) and the other
+// count − 1 frames weigh count/(count − 1), so the average is still albedo·c + the mean correction
+// (unbiased); with nothing averaging, 1.
+uniform float envmap_fis_weight;
 #endif
 
 vec3 envmap_ggx_split_sum(SlSurface s) {
@@ -252,7 +258,7 @@ vec3 envmap_ggx_split_sum(SlSurface s) {
     float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
-    float beta = envmap_hybrid_beta(alpha);
+    float beta = envmap_hybrid_beta(alpha) * envmap_fis_weight;
 #else
     float beta = 1.0;
 #endif

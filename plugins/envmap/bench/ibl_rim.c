@@ -161,6 +161,10 @@ static int run_still(const char *path, const char *mat, double only_alpha) {
         int frames = 16;
         sl_harness *h = ibl_sphere_aa(path, mat, size, 1, true);
         char v[32], buf[1024];
+        if (getenv("RIM_TAA_FRAMES")) { /* a shorter still (checking the jitter mapping with 1 frame) */
+            snprintf(buf, sizeof buf, "aa.taa_frames=%s", getenv("RIM_TAA_FRAMES"));
+            if (!ibl_set(h, buf)) return 1;
+        }
         if (!h || !sl_harness_get(h, "aa.taa_frames", v, sizeof v)) return 1;
         frames = atoi(v);
         char reset[256] = "envmap.mode=split-sum ", val[64]; /* the defaults, restored after each method */
@@ -174,7 +178,8 @@ static int run_still(const char *path, const char *mat, double only_alpha) {
             for (int k = 0; k < frames; k++) {
                 double nn[3], vv[3], t3[3], lb[3], A, B;
                 double jx = k ? halton((unsigned)k, 2) - 0.5 : 0, jy = k ? halton((unsigned)k, 3) - 0.5 : 0;
-                if (!pixel_at(i, jx, jy, nn, vv)) continue;
+                double sx = getenv("RIM_SX") ? atof(getenv("RIM_SX")) : 1, sy = getenv("RIM_SY") ? atof(getenv("RIM_SY")) : 1;
+                if (!pixel_at(i, sx * jx, sy * jy, nn, vv)) continue;
                 truth(nn, vv, al, t3, lb, &A, &B);
                 for (int c = 0; c < 3; c++) T[i * 3 + c] += t3[c] / frames;
             }

@@ -51,7 +51,7 @@ awk -F, 'NR > 1 { k = $1 "|" $2 "|" $4; v[k "|" $3] = sprintf("%.3f (%+.1f %%) /
 gp() { gnuplot -e "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,760 font 'sans,9' } else { set terminal png size 1200,760 }; set termoption noenhanced; $1"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-cmd="set output '$out/still-error-vs-ms.png'; set datafile separator ','; set multiplot layout 2,3 title 'envmap specular methods as a TAA still (aa on, 16 jittered frames) vs the reference rendered as the same still, ${size}x${size}, llvmpipe'; set logscale xy; set grid; set key bottom left font ',7'; set xrange [1:100]; set yrange [0.01:3];"
+cmd="set output '$out/still-error-vs-ms.png'; set datafile separator ','; set multiplot layout 2,3 title 'envmap specular methods as a TAA still (aa on, 16 jittered frames) vs the reference rendered as the same still, ${size}x${size}, llvmpipe'; set logscale xy; set grid; set key top right font ',6' samplen 1 spacing 0.8; set xrange [1:100]; set yrange [0.002:20];"
 for a in 0.05 0.20 0.40 0.70 1.00; do
   cmd+="set title 'alpha $a'; set xlabel 'ms per frame (fastest of the still)'; set ylabel 'relative RMS';"
   for e in courtyard sky; do for m in metal dielectric; do

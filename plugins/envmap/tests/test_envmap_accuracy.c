@@ -456,9 +456,10 @@ static void test_still(void) {
     }
     sl_harness_destroy(h);
     /* 2. the band, the default: the sample sequence continues over the still's frames
-     * (sl_sample_index), so the still averages n × 16 samples; with a sequence that repeats each
-     * frame (the index stuck at 0) it would average the same samples and keep about the first
-     * frame's error (checked by that mutation: fails at every α ≥ 0.2). Block means vs the C
+     * (sl_sample_index), so the still averages (n − 1) × 16 samples of the real lobe on top of the
+     * dominant lookup, which its first frame shows alone (sample 0, as in motion); with the index
+     * stuck at 0 every frame would be that first frame and the still would keep its error
+     * (checked by that mutation: fails at every α ≥ 0.2). Block means vs the C
      * quadrature (at pixel centres: the jitter moves a 3×3 block by < ½ pixel, which is most of
      * what α = 0.05 has left, a sharp band edge). */
     snprintf(path, sizeof path, "%s/band.exr", dir);
@@ -488,7 +489,7 @@ static void test_still(void) {
                    alphas[a], rms, n, rms1);
             CHECK(count == 6);
             if (alphas[a] >= 0.2)
-                CHECK_MSG(rms < STILL_BOUND && rms < 0.6 * rms1, "default still alpha %.2f: rms %.4f, first frame %.4f", alphas[a], rms, rms1);
+                CHECK_MSG(rms < STILL_BOUND && rms < 0.8 * rms1, "default still alpha %.2f: rms %.4f, first frame %.4f", alphas[a], rms, rms1);
             else CHECK_MSG(rms < STILL_BOUND_005, "default still alpha %.2f: rms %.4f", alphas[a], rms);
         }
         sl_harness_destroy(h);
