@@ -246,7 +246,12 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
      * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
      * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %) */
     glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b && a->still < 0);
-    glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b);
+    /* nor disocclusion rejection: nothing moved, yet with the jitter a silhouette pixel's last
+     * frame may have seen the empty background (depth 1), whose reconstructed point matches
+     * nothing, and the rejection dropped the history there: the still's silhouettes were then a
+     * mean of the last frames only (envmap bench/rim.sh --still, courtyard metal alpha 0.4: the
+     * reference still 0.128 from the C quadrature with rejection, 0.028 without) */
+    glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b && a->still < 0);
     glUniform1i(glGetUniformLocation(p, "aa_history_valid"), valid);
     glUniform1i(glGetUniformLocation(p, "aa_copy"), 0);
     /* 1: the new history into our own target */
