@@ -15,7 +15,7 @@
  * only by what the method assumes, not by noise or the plugin's prefilter/mips.
  * --still: the aa plugin's TAA still (bench/rim.sh: rim-still.csv); checks: RIM_TAA_FRAMES=N (a
  * shorter still), RIM_REF_SAMPLES=N (the reference still's spp a frame), RIM_SX/RIM_SY=±1 (the
- * jitter's sign in T).
+ * jitter's sign in T), RIM_EXTRA="key=value ..." (settings added to every GL still).
  * --gl: also renders, through the harness at the same pixels (aa off), the plugin's reference
  * (32 and 128 frames × 64 spp), specular=mirror/dominant and fis accumulated, and compares each
  * with T (is the reference right at the rim? is the GL prefilter the ideal P? what is left of fis?).
@@ -187,7 +187,7 @@ static int run_still(const char *path, const char *mat, double only_alpha) {
                 for (int c = 0; c < 3; c++) T[i * 3 + c] += t3[c] / frames;
             }
         for (int m = 0; m < NS; m++) {
-            snprintf(buf, sizeof buf, "material.m.alpha=%g %s", al, still_set[m][1]);
+            snprintf(buf, sizeof buf, "material.m.alpha=%g %s %s", al, still_set[m][1], getenv("RIM_EXTRA") ? getenv("RIM_EXTRA") : "");
             if (m == 0 && getenv("RIM_REF_SAMPLES")) /* a smaller reference still (checks) */
                 snprintf(buf, sizeof buf, "material.m.alpha=%g envmap.mode=reference envmap.reference_samples=%s", al, getenv("RIM_REF_SAMPLES"));
             if (!ibl_set(h, buf)) return 1;
