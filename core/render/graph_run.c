@@ -162,7 +162,6 @@ static uint64_t depends_key(sl_app *app, graph_pass *g) {
     if (dep & SL_DEPENDS_MATERIALS) {
         uint64_t v[3] = {app->materials_version, app->params.recompile_version, r->programs_version};
         h = sl_hash64(v, sizeof v, h);
-        h = sl_hash64(&f->sample_index, sizeof f->sample_index, h);
         for (int p = 0; p < app->plugins.count; p++)
             if (reaches_materials(app, p)) h = hash_globals(app, app->plugins.items[p]->id, h);
     }

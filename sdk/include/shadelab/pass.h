@@ -95,7 +95,9 @@ typedef struct sl_frame {
      * n consecutive unchanged frames get n distinct indices, a frame that changes anything gets
      * 0 (so does every frame while the view moves), and with nothing averaging it is
      * accumulate_index. GLSL: int sl_sample_index, sl_sample_count. A pass with
-     * SL_DEPENDS_CAMERA or SL_DEPENDS_MATERIALS re-runs when it moves. */
+     * SL_DEPENDS_CAMERA re-runs when it moves; one that declares MATERIALS but not CAMERA (shadow
+     * maps, texture-space passes) keeps the result of its last run, which saw that run's index:
+     * a still does not re-run them frame after frame. */
     int sample_index, sample_count;
 } sl_frame;
 
