@@ -29,7 +29,6 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
   SHADELAB_PLUGIN_PATH="$build/plugins" "$build/plugins/envmap/envmap_bench_terms" --size "$size" \
     --reference-frames "$refs" --material metal --sweep "$sweep" "${envs[@]}" > "$out/levels.csv"
 fi
-gp() { gnuplot -e "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,700 font 'sans,9' } else { set terminal png size 1200,700 }; set termoption noenhanced; $1"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmd="set output '$out/levels.png'; set datafile separator ','; set multiplot layout 2,3 title 'envmap prefiltered chain: metal sphere rel. RMS vs the reference (${refs}x64 spp), specular=dominant, ${size}x${size}'; set logscale y; set grid; set key top right font ',7'; set xrange [4.5:10.5]; set xlabel 'mip_count (level m = roughness m/(count-1))'; set ylabel 'relative RMS';"
@@ -47,5 +46,5 @@ for a in 0.05 0.20 0.40 0.70 1.00; do
   cmd+=";"
 done
 cmd+="unset multiplot"
-gp "$cmd"
+gp 1200,700 9 "$cmd"
 echo "wrote $out/levels.csv, $out/levels.png"

@@ -24,7 +24,7 @@ fi
 # mean over the spheres per (alpha, method), and the Pareto front (no other method both faster and better)
 awk -F, 'NR > 1 && $4 != "reference" && $4 != "fis32-accumulated" { k = $3 "," $4; ms[k] += $5; e[k] += $6; n[k]++ }
   END { for (k in n) print k "," ms[k] / n[k] "," e[k] / n[k] }' "$out/methods.csv" | sort -t, -k1,1n -k3,3n > "$out/methods-mean.csv"
-awk -F, '{ a = $1; if (a != last) { best = 1e30; last = a } if ($4 < best) { best = $4; print $0 } }' "$out/methods-mean.csv" > "$out/methods-front.csv"
+pareto_front "$out/methods-mean.csv" > "$out/methods-front.csv"
 # the README's table: relative RMS (sphere mean vs the reference's, %) per sphere, method and alpha
 awk -F, 'NR > 1 { k = $1 "|" $2 "|" $4; v[k "|" $3] = sprintf("%.3f (%+.1f %%)", $6, 100 * $7)
                   if (!(($1 "|" $2) in seen)) { seen[$1 "|" $2] = 1; sph[++ns] = $1 "|" $2 } }
@@ -43,7 +43,6 @@ awk -F, 'NR > 1 { k = $1 "|" $2 "|" $4; v[k "|" $3] = sprintf("%.3f (%+.1f %%)",
       }
     }
   }' "$out/methods.csv" > "$out/methods-table.md"
-gp() { gnuplot -e "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,760 font 'sans,9' } else { set terminal png size 1200,760 }; set termoption noenhanced; $1"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmd="set output '$out/methods-error-vs-ms.png'; set datafile separator ','; set multiplot layout 2,3 title 'envmap specular methods: relative RMS per sphere vs the Monte Carlo reference (${refs}x64 spp), ${size}x${size}, llvmpipe (frame times: shared 2-core machine under load)'; set logscale xy; set grid; set key bottom left font ',7'; set xrange [1:200]; set yrange [0.003:3];"
@@ -62,5 +61,5 @@ for a in 0.05 0.20 0.40 0.70 1.00; do
   cmd+=" '< grep -E \",$a,fis32-accumulated\" $out/methods.csv' using (150):6 with points pt 3 ps 1.2 lc 8 title 'fis N=32 + irradiance=convolved, accumulated (its bias), at x = 150';"
 done
 cmd+="unset multiplot"
-gp "$cmd"
+gp 1200,760 9 "$cmd"
 echo "wrote $out/methods.csv, methods-mean.csv, methods-front.csv, methods-table.md, methods-error-vs-ms.png"

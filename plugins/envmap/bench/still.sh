@@ -29,7 +29,7 @@ fi
 # mean over the spheres per (alpha, method): ms, still error, first-frame error; the Pareto front
 awk -F, 'NR > 1 { k = $3 "," $4; ms[k] += $5; e[k] += $6; f[k] += $8; n[k]++ }
   END { for (k in n) print k "," ms[k] / n[k] "," e[k] / n[k] "," f[k] / n[k] }' "$out/still.csv" | sort -t, -k1,1n -k3,3n > "$out/still-mean.csv"
-awk -F, '{ a = $1; if (a != last) { best = 1e30; last = a } if ($4 < best) { best = $4; print $0 } }' "$out/still-mean.csv" > "$out/still-front.csv"
+pareto_front "$out/still-mean.csv" > "$out/still-front.csv"
 # the README's table: still relative RMS (mean vs the reference's, %) and the first frame's RMS
 awk -F, 'NR > 1 { k = $1 "|" $2 "|" $4; v[k "|" $3] = sprintf("%.3f (%+.1f %%) / %.2f", $6, 100 * $7, $8)
                   if (!(($1 "|" $2) in seen)) { seen[$1 "|" $2] = 1; sph[++ns] = $1 "|" $2 } }
@@ -48,7 +48,6 @@ awk -F, 'NR > 1 { k = $1 "|" $2 "|" $4; v[k "|" $3] = sprintf("%.3f (%+.1f %%) /
       }
     }
   }' "$out/still.csv" > "$out/still-table.md"
-gp() { gnuplot -e "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,760 font 'sans,9' } else { set terminal png size 1200,760 }; set termoption noenhanced; $1"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmd="set output '$out/still-error-vs-ms.png'; set datafile separator ','; set multiplot layout 2,3 title 'envmap specular methods as a TAA still (aa on, 16 jittered frames) vs the reference rendered as the same still, ${size}x${size}, llvmpipe'; set logscale xy; set grid; set key top right font ',6' samplen 1 spacing 0.8; set xrange [1:100]; set yrange [0.002:20];"
@@ -67,5 +66,5 @@ for a in 0.05 0.20 0.40 0.70 1.00; do
   cmd+=" 0.08 with lines dt 2 lc 0 title 'target 0.08';"
 done
 cmd+="unset multiplot"
-gp "$cmd"
+gp 1200,760 9 "$cmd"
 echo "wrote $out/still.csv, still-mean.csv, still-front.csv, still-table.md, still-error-vs-ms.png"

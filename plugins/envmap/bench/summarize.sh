@@ -37,7 +37,6 @@ for r in 0.1 0.3 0.6 0.9; do
   done
 done
 echo "wrote $out"
-gp() { gnuplot -e "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,520 font 'sans,10' } else { set terminal png size 900,520 }; set termoption noenhanced; $1"; }
 plot=""
 pt=(5 7 9 11)
 i=0
@@ -46,7 +45,7 @@ for r in 0.1 0.3 0.6 0.9; do
   plot+=", '< grep -E \"^$r,.*monte-carlo\" $out' using 7:4 with linespoints pt ${pt[$i]} ps 1.4 dt 2 lc $((i+1)) title 'Monte Carlo 1/4/16 spp, roughness $r'"
   i=$((i+1))
 done
-gp "set output '$dir/ibl-error-vs-ms.png'; set datafile separator ','; set logscale xy; set grid;
+gp 900,520 10 "set output '$dir/ibl-error-vs-ms.png'; set datafile separator ','; set logscale xy; set grid;
     set xlabel 'frame time, ms (fastest of 20 frames, 320x180, llvmpipe)'; set ylabel 'RMSE vs reference (8192 spp)';
     set key outside right; set title 'envmap: split sum vs Monte Carlo, per roughness (scenes/ibl_bench.json)'; plot $plot"
 plot=""
@@ -59,7 +58,7 @@ for r in 0.1 0.3 0.6 0.9; do
   fi
   i=$((i+1))
 done
-gp "set output '$dir/ibl-error-vs-prefilter.png'; set datafile separator ','; set logscale xy; set grid;
+gp 900,520 10 "set output '$dir/ibl-error-vs-prefilter.png'; set datafile separator ','; set logscale xy; set grid;
     set xlabel 'one-off prefilter time, s (shadelab-cube, llvmpipe)'; set ylabel 'RMSE vs reference (8192 spp)';
     set key outside right; set title 'envmap: split-sum error vs prefilter cost, one knob at a time'; plot $plot"
 echo "wrote $dir/ibl-error-vs-ms.png $dir/ibl-error-vs-prefilter.png"
