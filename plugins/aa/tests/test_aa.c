@@ -126,6 +126,35 @@ static void test_taa_still(void) {
     }
 }
 
+/* A still is the exact mean of its jittered frames: neither the neighbourhood clip nor the
+ * disocclusion rejection may act on it (nothing moved). With rejection on in a still, silhouette
+ * pixels of a sphere on an empty background lost their history whenever their last jittered
+ * frame's surface point was not found again in the 3x3 neighbourhood, so their still was the mean
+ * of its last frames only (found by envmap's bench/rim.sh --still against a C quadrature). */
+static void test_taa_still_exact(void) {
+    const char *json =
+        "{\"plugins\": [\"aa\"],"
+        " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3.1], \"target\": [0, 0, 0], \"fov_y\": 40}],"
+        " \"materials\": [{\"name\": \"m\", \"base_color\": [0.8, 0.8, 0.8]}],"
+        " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\"}, \"material\": \"m\"}],"
+        " \"environment\": {\"color\": [0, 0, 0], \"intensity\": 0},"
+        " \"lights\": [{\"name\": \"l\", \"type\": \"directional\", \"direction\": [-0.3, -0.4, -1], \"color\": [1, 1, 1],"
+        "               \"intensity\": 3}]}";
+    const char *s_taa[] = {"aa.method=taa", "aa.taa_frames=16", NULL};
+    const char *s_plain[] = {"aa.method=taa", "aa.taa_frames=16", "aa.taa_clamp=false", "aa.taa_reject=false", NULL};
+    static float a[W * H * 4], b[W * H * 4];
+    if (!render_still(json, s_taa, 16, a) || !render_still(json, s_plain, 16, b)) return;
+    long differ = 0;
+    double worst = 0;
+    for (int i = 0; i < W * H * 4; i++) {
+        if (i % 4 == 3) continue;
+        double d = fabs((double)a[i] - b[i]);
+        differ += d > 0, worst = d > worst ? d : worst;
+    }
+    printf("sphere still: with clip and rejection vs without, %ld channels differ (max %.4f)\n", differ, worst);
+    CHECK_MSG(differ == 0, "a still with clip and rejection on differs from the plain mean of its frames in %ld channels", differ);
+}
+
 /* A square moving right (a VERTEX hook over sl_time, aa-test-mover): behind its left edge the
  * background is uncovered. After taa_frames frames of motion, no pixel farther than 1.5 px behind
  * the edge (its position per frame in closed form) may keep any of the square: the history there
@@ -194,6 +223,7 @@ static void test_taa_ghost(void) {
 int main(void) {
     test_fxaa();
     test_taa_still();
+    test_taa_still_exact();
     test_taa_ghost();
     return check_result();
 }
