@@ -246,10 +246,10 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
      * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
      * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %) */
     glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b && a->still < 0);
-    /* nor disocclusion rejection: nothing moved, yet with the jitter a silhouette pixel's last
-     * frame may have seen the empty background (depth 1), whose reconstructed point matches
-     * nothing, and the rejection dropped the history there: the still's silhouettes were then a
-     * mean of the last frames only (envmap bench/rim.sh --still, courtyard metal alpha 0.4: the
+    /* nor disocclusion rejection: nothing moved, yet at silhouettes (where the jitter alternates
+     * between the surface and the empty background) the rejection dropped the history of some
+     * pixels (the last frame's point not found again in the 3x3 neighbourhood; which case exactly
+     * was not pinned down): their still was then a mean of the last frames only (envmap bench/rim.sh --still, courtyard metal alpha 0.4: the
      * reference still 0.128 from the C quadrature with rejection, 0.028 without) */
     glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b && a->still < 0);
     glUniform1i(glGetUniformLocation(p, "aa_history_valid"), valid);
