@@ -16,17 +16,6 @@
 #include <string.h>
 #include <time.h>
 
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-static const char *materials[2][2] = {
-    {"metal", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, \"base_color\": [0.95, 0.64, 0.54]"},
-    {"dielectric", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, \"base_color\": [0.5, 0.5, 0.5]"},
-};
-static const double alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
 static const char *methods[][2] = {
     {"mirror", "envmap.specular=mirror"}, {"dominant", "envmap.specular=dominant"},
     {"fis1", "envmap.specular=fis envmap.fis_samples=1"}, {"fis2", "envmap.specular=fis envmap.fis_samples=2"},
@@ -34,24 +23,7 @@ static const char *methods[][2] = {
     {"fis16", "envmap.specular=fis envmap.fis_samples=16"}, {"fis32", "envmap.specular=fis envmap.fis_samples=32"},
     {"hybrid8", "envmap.specular=hybrid envmap.fis_samples=8"}, {"hybrid16", "envmap.specular=hybrid envmap.fis_samples=16"},
 };
-enum { NM = sizeof methods / sizeof *methods, NA = sizeof alphas / sizeof *alphas };
-
-/* relative RMS and relative mean difference over the sphere's pixels (alpha channel of the reference
- * is not a coverage mask: the sphere is where the reference is non-zero, background off) */
-static void compare(const float *x, const float *ref, const unsigned char *mask, int n, double *rel_rms, double *rel_mean) {
-    double se = 0, sr = 0, sx = 0;
-    long count = 0;
-    for (int i = 0; i < n; i++) {
-        if (!mask[i]) continue;
-        for (int c = 0; c < 3; c++) {
-            double d = x[i * 4 + c] - ref[i * 4 + c];
-            se += d * d, sr += ref[i * 4 + c], sx += x[i * 4 + c];
-        }
-        count += 3;
-    }
-    *rel_rms = sqrt(se / count) / (sr / count);
-    *rel_mean = sx / sr - 1;
-}
+enum { NM = sizeof methods / sizeof *methods, NA = sizeof ibl_alphas / sizeof *ibl_alphas };
 
 int main(int argc, char **argv) {
     int size = 96, frames = 5, ref_frames = 64;
@@ -78,52 +50,52 @@ int main(int argc, char **argv) {
             /* one harness at a time (one GL context per process): the references of every α,
              * the single-frame methods, then fis N = 32 accumulated as long as the reference */
             char buf[128];
-            sl_harness *h = ibl_sphere(envs[e], materials[m][1], size, ref_frames);
+            sl_harness *h = ibl_sphere(envs[e], ibl_materials[m][1], size, ref_frames);
             if (!h || !ibl_set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
             for (int a = 0; a < NA; a++) {
-                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
-                double t0 = now_ms();
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
+                double t0 = ibl_now_ms();
                 if (!ibl_set(h, buf) || !sl_harness_render(h, ref + (size_t)a * n * 4)) return 1;
-                printf("%s,%s,%.2f,reference,%.2f,0,0\n", envname, materials[m][0], alphas[a], (now_ms() - t0) / ref_frames);
+                printf("%s,%s,%.2f,reference,%.2f,0,0\n", envname, ibl_materials[m][0], ibl_alphas[a], (ibl_now_ms() - t0) / ref_frames);
                 for (int i = 0; i < n; i++) {
                     const float *r = ref + ((size_t)a * n + i) * 4;
                     mask[(size_t)a * n + i] = r[0] + r[1] + r[2] > 0;
                 }
             }
             sl_harness_destroy(h);
-            h = ibl_sphere(envs[e], materials[m][1], size, 1);
+            h = ibl_sphere(envs[e], ibl_materials[m][1], size, 1);
             if (!h) return 1;
             for (int a = 0; a < NA; a++) {
-                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                 if (!ibl_set(h, buf)) return 1;
                 for (int k = 0; k < NM; k++) {
                     if (!ibl_set(h, methods[k][1])) return 1;
                     double best = 1e30;
                     sl_harness_render(h, img); /* compile, prefilter */
                     for (int f = 0; f < frames; f++) {
-                        double t = now_ms();
+                        double t = ibl_now_ms();
                         sl_harness_render(h, img);
-                        t = now_ms() - t;
+                        t = ibl_now_ms() - t;
                         if (t < best) best = t;
                     }
                     double rr, rm;
-                    compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
-                    printf("%s,%s,%.2f,%s,%.2f,%.5f,%+.5f\n", envname, materials[m][0], alphas[a], methods[k][0], best, rr, rm);
+                    ibl_compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
+                    printf("%s,%s,%.2f,%s,%.2f,%.5f,%+.5f\n", envname, ibl_materials[m][0], ibl_alphas[a], methods[k][0], best, rr, rm);
                     fflush(stdout);
                 }
             }
             sl_harness_destroy(h);
-            h = ibl_sphere(envs[e], materials[m][1], size, ref_frames);
+            h = ibl_sphere(envs[e], ibl_materials[m][1], size, ref_frames);
             /* the highest setting: fis N = 32 and the convolved irradiance (SH is band-limited) */
             /* (fis_lod_bias −1: the setting measured for this target before the default became 0 for
              * the TAA still, bench/still.sh) */
             if (!h || !ibl_set(h, "envmap.specular=fis envmap.fis_samples=32 envmap.fis_lod_bias=-1 envmap.irradiance=convolved")) return 1;
             for (int a = 0; a < NA; a++) {
-                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                 if (!ibl_set(h, buf) || !sl_harness_render(h, img)) return 1;
                 double rr, rm;
-                compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
-                printf("%s,%s,%.2f,fis32-accumulated,0,%.5f,%+.5f\n", envname, materials[m][0], alphas[a], rr, rm);
+                ibl_compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
+                printf("%s,%s,%.2f,fis32-accumulated,0,%.5f,%+.5f\n", envname, ibl_materials[m][0], ibl_alphas[a], rr, rm);
                 fflush(stdout);
             }
             sl_harness_destroy(h);

@@ -30,7 +30,6 @@
 #include <string.h>
 
 #define PI 3.14159265358979323846
-static const double alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
 static const double f0m[3] = {0.95, 0.64, 0.54}; /* the bench's metal: F0 = base colour */
 enum { NA = 5, NB = 3 };
 
@@ -159,7 +158,7 @@ static int run_still(const char *path, const char *mat, double only_alpha) {
     const char *envname = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
     printf("env,alpha,method,rel_rms,rel_mean\n");
     for (int a = 0; a < NA; a++) {
-        double al = alphas[a];
+        double al = ibl_alphas[a];
         if (only_alpha >= 0 && fabs(al - only_alpha) > 1e-6) continue;
         int frames = 16;
         sl_harness *h = ibl_sphere_aa(path, mat, size, 1, true);
@@ -304,7 +303,7 @@ int main(int argc, char **argv) {
     const char *envname = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
     printf("env,alpha,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5,sqerr_share_mu<0.25,share_0.25-0.5,share>0.5\n");
     for (int a = 0; a < NA; a++) {
-        double al = alphas[a];
+        double al = ibl_alphas[a];
         if (only_alpha >= 0 && fabs(al - only_alpha) > 1e-6) continue;
         if (gl)
             for (int k = 0; k < NG; k++) {

@@ -8,8 +8,41 @@
 #ifndef ENVMAP_BENCH_IBL_SPHERE_H
 #define ENVMAP_BENCH_IBL_SPHERE_H
 #include <shadelab/harness.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
+
+/* The benches' sphere materials (ibl_methods.c, ibl_still.c), roughnesses and clock. */
+static const char *const ibl_materials[2][2] = {
+    {"metal", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, \"base_color\": [0.95, 0.64, 0.54]"},
+    {"dielectric", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, \"base_color\": [0.5, 0.5, 0.5]"},
+};
+static const double ibl_alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
+static inline double ibl_now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+/* relative RMS and relative mean difference of x against ref over the sphere's pixels (mask: the
+ * reference's alpha channel is no coverage mask; the sphere is where the reference is non-zero,
+ * background off) */
+static inline void ibl_compare(const float *x, const float *ref, const unsigned char *mask, int n, double *rel_rms,
+                               double *rel_mean) {
+    double se = 0, sr = 0, sx = 0;
+    long count = 0;
+    for (int i = 0; i < n; i++) {
+        if (!mask[i]) continue;
+        for (int c = 0; c < 3; c++) {
+            double d = x[i * 4 + c] - ref[i * 4 + c];
+            se += d * d, sr += ref[i * 4 + c], sx += x[i * 4 + c];
+        }
+        count += 3;
+    }
+    *rel_rms = sqrt(se / count) / (sr / count);
+    *rel_mean = sx / sr - 1;
+}
 
 /* `mat`: the material's JSON keys; `aa`: leave the aa plugin on (its defaults: a TAA still of
  * taa_frames jittered frames), as the viewer runs (bench/ibl_still.c) */

@@ -21,18 +21,7 @@
 #include <string.h>
 #include <time.h>
 
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-static const char *materials[2][2] = {
-    {"metal", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, \"base_color\": [0.95, 0.64, 0.54]"},
-    {"dielectric", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, \"base_color\": [0.5, 0.5, 0.5]"},
-};
-static const double alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
-enum { NA = sizeof alphas / sizeof *alphas, MAXM = 32 };
+enum { NA = sizeof ibl_alphas / sizeof *ibl_alphas, MAXM = 32 };
 static const char *default_methods[] = {
     "mirror=envmap.specular=mirror", "dominant=envmap.specular=dominant",
     "fis4=envmap.specular=fis envmap.fis_samples=4", "fis8=envmap.specular=fis envmap.fis_samples=8",
@@ -40,28 +29,13 @@ static const char *default_methods[] = {
     "hybrid8=envmap.specular=hybrid envmap.fis_samples=8", "hybrid16=envmap.specular=hybrid envmap.fis_samples=16",
     NULL};
 
-static void compare(const float *x, const float *ref, const unsigned char *mask, int n, double *rel_rms, double *rel_mean) {
-    double se = 0, sr = 0, sx = 0;
-    long count = 0;
-    for (int i = 0; i < n; i++) {
-        if (!mask[i]) continue;
-        for (int c = 0; c < 3; c++) {
-            double d = x[i * 4 + c] - ref[i * 4 + c];
-            se += d * d, sr += ref[i * 4 + c], sx += x[i * 4 + c];
-        }
-        count += 3;
-    }
-    *rel_rms = sqrt(se / count) / (sr / count);
-    *rel_mean = sx / sr - 1;
-}
-
 /* renders a still of `frames` frames after `settings`; first = the first frame, img = the still */
 static bool still(sl_harness *h, int frames, float *first, float *img, double *best) {
     *best = 1e30;
     for (int f = 0; f < frames; f++) {
-        double t = now_ms();
+        double t = ibl_now_ms();
         if (!sl_harness_render(h, f == 0 && first ? first : img)) return false;
-        t = now_ms() - t;
+        t = ibl_now_ms() - t;
         if (f > 0 && t < *best) *best = t;
     }
     return true;
@@ -93,20 +67,20 @@ int main(int argc, char **argv) {
     printf("env,material,alpha,method,ms,still_rms,still_mean,frame_rms,frame_mean\n");
     for (int e = 0; e < ne; e++)
         for (int m = 0; m < 2; m++) {
-            if (only && strcmp(only, materials[m][0])) continue;
+            if (only && strcmp(only, ibl_materials[m][0])) continue;
             const char *envname = strrchr(envs[e], '/') ? strrchr(envs[e], '/') + 1 : envs[e];
             char buf[512];
             /* the still reference (aa on) and the pixel-centre one (aa off), one harness at a time;
              * $ENVMAP_STILL_CACHE (a directory): kept there between runs (exploring methods) */
             const char *cache = getenv("ENVMAP_STILL_CACHE");
             char cpath[1024];
-            snprintf(cpath, sizeof cpath, "%s/still-%s-%s-%d-%d.bin", cache ? cache : ".", envname, materials[m][0], size, racc);
+            snprintf(cpath, sizeof cpath, "%s/still-%s-%s-%d-%d.bin", cache ? cache : ".", envname, ibl_materials[m][0], size, racc);
             FILE *cf = cache ? fopen(cpath, "rb") : NULL;
             bool cached = cf && fread(&taa, sizeof taa, 1, cf) == 1 && fread(sref, img_bytes, NA, cf) == NA &&
                           fread(fref, img_bytes, NA, cf) == NA && fread(mask, (size_t)n, NA, cf) == NA;
             if (cf) fclose(cf);
             for (int pass = 0; pass < 2 && !cached; pass++) {
-                sl_harness *h = ibl_sphere_aa(envs[e], materials[m][1], size, pass ? racc * taa : 1, pass == 0);
+                sl_harness *h = ibl_sphere_aa(envs[e], ibl_materials[m][1], size, pass ? racc * taa : 1, pass == 0);
                 snprintf(buf, sizeof buf, "envmap.mode=reference envmap.reference_samples=%d", pass ? 64 : 64 * racc);
                 if (!h || !ibl_set(h, buf)) return 1;
                 if (pass == 0) {
@@ -115,7 +89,7 @@ int main(int argc, char **argv) {
                     taa = atoi(v); /* the aa plugin's default still */
                 }
                 for (int a = 0; a < NA; a++) {
-                    snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                    snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                     double best;
                     float *dst = (pass ? fref : sref) + (size_t)a * n * 4;
                     if (!ibl_set(h, buf) || !still(h, pass ? 1 : taa, NULL, dst, &best)) return 1;
@@ -129,7 +103,7 @@ int main(int argc, char **argv) {
                 fwrite(mask, (size_t)n, NA, cf);
                 fclose(cf);
             }
-            sl_harness *h = ibl_sphere_aa(envs[e], materials[m][1], size, 1, true);
+            sl_harness *h = ibl_sphere_aa(envs[e], ibl_materials[m][1], size, 1, true);
             if (!h) return 1;
             /* each method starts from the plugin's defaults: the settings of the one before are undone */
             static const char *const knobs[] = {"specular", "fis_samples", "fis_lod_bias", "hybrid_alpha"};
@@ -145,15 +119,15 @@ int main(int argc, char **argv) {
                     const char *eq = strchr(methods[k], '=');
                     if (!eq) return 2;
                     /* each method from the defaults: the settings of the one before are undone */
-                    snprintf(buf, sizeof buf, "material.m.alpha=%g %s%s", alphas[a], reset, eq + 1);
+                    snprintf(buf, sizeof buf, "material.m.alpha=%g %s%s", ibl_alphas[a], reset, eq + 1);
                     double best, sr, sm, fr, fm;
                     if (!ibl_set(h, buf)) return 1;
                     sl_harness_render(h, img); /* compile, prefilter: then a still from a cut */
                     if (!ibl_set(h, "envmap.yaw=1") || !ibl_set(h, "envmap.yaw=0")) return 1;
                     if (!still(h, taa, first, img, &best)) return 1;
-                    compare(img, sref + (size_t)a * n * 4, mask + (size_t)a * n, n, &sr, &sm);
-                    compare(first, fref + (size_t)a * n * 4, mask + (size_t)a * n, n, &fr, &fm);
-                    printf("%s,%s,%.2f,%.*s,%.2f,%.5f,%+.5f,%.5f,%+.5f\n", envname, materials[m][0], alphas[a],
+                    ibl_compare(img, sref + (size_t)a * n * 4, mask + (size_t)a * n, n, &sr, &sm);
+                    ibl_compare(first, fref + (size_t)a * n * 4, mask + (size_t)a * n, n, &fr, &fm);
+                    printf("%s,%s,%.2f,%.*s,%.2f,%.5f,%+.5f,%.5f,%+.5f\n", envname, ibl_materials[m][0], ibl_alphas[a],
                            (int)(eq - methods[k]), methods[k], best, sr, sm, fr, fm);
                     fflush(stdout);
                 }

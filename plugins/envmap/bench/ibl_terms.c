@@ -26,8 +26,7 @@ static const char *materials[3][2] = {
     {"dielectric", "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, \"base_color\": [0.5, 0.5, 0.5]"},
     {"lambert", "\"model\": \"lambert\", \"base_color\": [0.5, 0.5, 0.5]"},
 };
-static const double alphas[] = {0.05, 0.2, 0.4, 0.7, 1.0};
-enum { NA = sizeof alphas / sizeof *alphas, NB = 3 };
+enum { NA = sizeof ibl_alphas / sizeof *ibl_alphas, NB = 3 };
 
 /* μ = n·v of pixel i's sphere point (camera at (0, 0, 3.1) looking at the unit sphere, 40°), −1 off it */
 static double pixel_mu(int i, int size) {
@@ -99,7 +98,7 @@ int main(int argc, char **argv) {
             sl_harness *h = ibl_sphere(envs[e], materials[m][1], size, ref_frames);
             if (!h || !ibl_set(h, "envmap.mode=reference envmap.reference_samples=64")) return 1;
             for (int a = 0; a < na; a++) {
-                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                 if (!ibl_set(h, buf) || !sl_harness_render(h, refF + a * img)) return 1;
                 if (m == 0) memset(refD + a * img, 0, img * 4); /* metal: no diffuse */
                 else if (!lambert && (!ibl_set(h, "ggx.zero_specular=true") || !sl_harness_render(h, refD + a * img) ||
@@ -129,19 +128,19 @@ int main(int argc, char **argv) {
                 if (!eq || !ibl_set(h, eq + 1)) return 1;
                 *eq = 0;
                 for (int a = 0; a < na; a++) {
-                    snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                    snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                     if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
-                    row(envname, materials[m][0], alphas[a], "all", item, x, NULL, refF + a * img, NULL, mask, size);
+                    row(envname, materials[m][0], ibl_alphas[a], "all", item, x, NULL, refF + a * img, NULL, mask, size);
                 }
             }
             for (int a = 0; a < na && !lambert && !sweep; a++) {
-                snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+                snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                 if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
-                row(envname, materials[m][0], alphas[a], "all", spec, x, NULL, refF + a * img, NULL, mask, size);
+                row(envname, materials[m][0], ibl_alphas[a], "all", spec, x, NULL, refF + a * img, NULL, mask, size);
                 if (m == 0) continue; /* metal: all specular */
                 if (!ibl_set(h, "ggx.zero_specular=true") || !sl_harness_render(h, xd) || !ibl_set(h, "ggx.zero_specular=false")) return 1;
-                row(envname, materials[m][0], alphas[a], "diffuse", spec, xd, NULL, refD + a * img, NULL, mask, size);
-                row(envname, materials[m][0], alphas[a], "specular", spec, x, xd, refF + a * img, refD + a * img, mask, size);
+                row(envname, materials[m][0], ibl_alphas[a], "diffuse", spec, xd, NULL, refD + a * img, NULL, mask, size);
+                row(envname, materials[m][0], ibl_alphas[a], "specular", spec, x, xd, refF + a * img, refD + a * img, mask, size);
             }
             sl_harness_destroy(h);
         }

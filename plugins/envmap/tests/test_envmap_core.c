@@ -13,21 +13,12 @@
 #include "envmap/io.h"
 #include "envmap/prefilter.h"
 #include "ggx_ref.h"
-#include "render/composer.h"
+#include "program_loader.h"
 #include <shadelab/gl.h>
 #include <shadelab/harness.h>
 #include <stdlib.h>
 #include <string.h>
 
-static sl_program *programs[8];
-static int program_count;
-static unsigned loader(void *user, const char *frag, const char *defines) {
-    char err[16384] = "";
-    sl_program *p = sl_program_from_files(ENVMAP_GLSL_DIR, "sl:fullscreen.vert", frag, defines, err, sizeof err);
-    if (!p->id) fprintf(stderr, "%s\n", err);
-    if (program_count < 8) programs[program_count++] = p;
-    return p->id;
-}
 
 static void normalize3(double v[3]) {
     double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -677,7 +668,7 @@ int main(void) {
     test_disk(&g, EM_LEVEL_MAP_LOG);
     test_seams(&g);
     em_gpu_free(&g);
-    for (int i = 0; i < program_count; i++) sl_program_free(programs[i]);
+    free_programs();
     sl_harness_destroy(h);
     return check_result();
 }

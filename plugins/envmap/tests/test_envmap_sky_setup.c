@@ -8,22 +8,13 @@
  *     within half-float rounding; and a wrong mapping (faces swapped) shown to fail the check. */
 #include "check.h"
 #include "envmap/prefilter.h"
-#include "render/composer.h"
+#include "program_loader.h"
 #include <shadelab/gl.h>
 #include <shadelab/harness.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static sl_program *programs[8];
-static int program_count;
-static unsigned loader(void *user, const char *frag, const char *defines) {
-    char err[16384] = "";
-    sl_program *p = sl_program_from_files(ENVMAP_GLSL_DIR, "sl:fullscreen.vert", frag, defines, err, sizeof err);
-    if (!p->id) fprintf(stderr, "%s\n", err);
-    if (program_count < 8) programs[program_count++] = p;
-    return p->id;
-}
 
 static void test_latlong(void) {
     em_sky s;
@@ -142,7 +133,7 @@ int main(void) {
     test_base_cube(&g, 0);
     test_base_cube(&g, 3);
     em_gpu_free(&g);
-    for (int i = 0; i < program_count; i++) sl_program_free(programs[i]);
+    free_programs();
     sl_harness_destroy(h);
     return check_result();
 }
