@@ -52,7 +52,7 @@ run scene_random  fail "/dev/urandom: is not a regular file (a device)" --scene 
 run scene_fifo    fail "fifo: is not a regular file (a FIFO)" --scene fifo --output keep.png
 run texture_fifo  any  "tex_fifo.json:1: material 'm' \"base_color_map\": texture fifo: 'fifo' cannot be read" --scene tex_fifo.json --output tex.png
 run texture_bomb  any  "image is 16384x16384 (from its header)" --scene tex_bomb.json --output tex.png
-run env_bomb      any  "16384x16384 with 3 channels (from its header)" --scene env_bomb.json --output env.png
+run env_bomb      any  "bomb.png: image is 16384x16384 (from its header)" --scene env_bomb.json --output env.png
 run mesh_fifo     fail "mesh file 'fifo' cannot be read" --scene mesh_fifo.json --output keep.png
 run env_fifo      fail "'fifo' cannot be read" --scene env_fifo.json --output keep.png
 run plugin_upper any  'did you mean "ggx"?' --plugin GGX --output p.png

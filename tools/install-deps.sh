@@ -10,6 +10,7 @@ PKGS=(
   libegl-dev libegl1-mesa-dev libgl-dev libgles-dev mesa-common-dev libgbm-dev
   libgl1-mesa-dri         # llvmpipe/DRI drivers used by OSMesa and EGL surfaceless
   libopenimageio-dev openimageio-tools  # images in and out, image compare
+  libpng-dev              # PNG output without loading OpenImageIO (core/image/image.c)
   libcjson-dev            # JSON scenes
   libassimp-dev           # glTF / OBJ meshes
   assimp-testmodels       # test data: Debian's glTF2 sample models (ctest gltf_models), so it never skips

@@ -145,6 +145,24 @@ static float *host_procedural_image(const sl_host *h, const char *spec, int size
     if (!sl_image_procedural(&img, spec, size, err, n)) return NULL;
     return img.pixels; /* RGBA, size x size: the plugin frees it */
 }
+static bool host_read_image(const sl_host *h, const char *path, sl_image_file *out, char *err, size_t n) {
+    (void)h;
+    if (!out || out->struct_size < sizeof *out) {
+        snprintf(err, n, "%s: read_image needs an sl_image_file with struct_size set (SDK ABI 1.10)", path ? path : "?");
+        return false;
+    }
+    uint32_t size = out->struct_size;
+    memset(out, 0, sizeof *out);
+    out->struct_size = size;
+    sl_image img;
+    if (!sl_image_load(&img, path, err, n)) return false;
+    out->width = img.width, out->height = img.height, out->pixels = img.pixels; /* the plugin frees it */
+    out->bits = img.source_bits, out->channels = img.source_channels;
+    out->is_float = img.source_float, out->srgb = img.source_srgb;
+    snprintf(out->description, sizeof out->description, "%s", img.source_description);
+    snprintf(out->format, sizeof out->format, "%s", img.source_format);
+    return true;
+}
 void sl_host_set_gl_app(sl_app *app) { g_gl_app = app; }
 
 sl_host *sl_host_make(sl_app *app, int index) {
@@ -186,6 +204,7 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->environment = host_environment;
     h->shader_dir = host_shader_dir;
     h->procedural_image = host_procedural_image;
+    h->read_image = host_read_image;
     return &impl->host;
 }
 

@@ -34,6 +34,9 @@ typedef struct sl_image {
                          procedural textures. Describes the FILE: sl_image_srgb_to_linear does
                          not change it. */
     bool source_float; /* the file stores floating-point samples (half or float) */
+    int source_channels;          /* the file's channel count */
+    char source_description[128]; /* its ImageDescription metadata, "" when absent */
+    char source_format[32];       /* OIIO's reader name: "png", "openexr"… */
 } sl_image;
 
 /* Loads any format OpenImageIO reads (PNG, JPEG, HDR, EXR, TIFF…; 8/16-bit integer, half,
@@ -165,6 +168,7 @@ typedef struct sl_oiio_info {
     bool deep;              /* deep (multi-sample) image */
     char format_name[32];   /* OIIO's reader name: "png", "openexr"… */
     char colorspace[64];    /* "oiio:ColorSpace" metadata, "" when absent */
+    char description[128];  /* "ImageDescription" metadata, "" when absent */
 } sl_oiio_info;
 typedef struct sl_oiio_input sl_oiio_input;
 sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, char *err, size_t err_size);
@@ -182,6 +186,29 @@ bool sl_oiio_write(const char *path, const char *format, const unsigned char *pi
                    const char *file_type, int jpeg_quality, char *err, size_t err_size);
 /* True when some OIIO reader claims the extension (without the dot, lower case). */
 bool sl_oiio_extension_known(const char *ext);
+
+/* The adapter lives in a module of its own, shadelab-oiio.so, opened on first use
+ * (oiio_module.c): linking OpenImageIO loads ~250 shared libraries (OpenCV, DCMTK, FFmpeg,
+ * OpenVDB… through its plugins' dependencies), ≈ 0.5 s of every process start on this project's
+ * machine, while most runs read no image file and write only a PNG (libpng, image.c). The
+ * functions above forward to it; a missing module is an error naming the places looked in. It is
+ * opened on first use, not ahead on a thread: while it opens it holds the dynamic loader's lock,
+ * which Mesa's context creation and shader compiles also take (measured: the first frame came
+ * 0.4 s later with a preloading thread). */
+typedef struct sl_oiio_api {
+    unsigned struct_size;
+    sl_oiio_input *(*open)(const char *path, sl_oiio_info *info, char *err, size_t err_size);
+    sl_oiio_input *(*open_memory)(const void *data, size_t size, const char *name, sl_oiio_info *info, char *err,
+                                  size_t err_size);
+    bool (*read)(sl_oiio_input *in, int chbegin, int chend, float *out, char *err, size_t err_size);
+    void (*close)(sl_oiio_input *in);
+    bool (*write)(const char *path, const char *format, const unsigned char *pixels8, const float *pixelsf, int width,
+                  int height, int channels, const char *file_type, int jpeg_quality, char *err, size_t err_size);
+    bool (*extension_known)(const char *ext);
+} sl_oiio_api;
+/* The module's one export. */
+const sl_oiio_api *sl_oiio_module_api(void);
 #endif
+
 
 #endif

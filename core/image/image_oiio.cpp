@@ -1,5 +1,6 @@
 // The only C++ in core/image: a thin adapter over OpenImageIO behind the C functions declared
-// in image.h's SL_IMAGE_INTERNAL section. Policy (path checks, size limits, channel layout,
+// in image.h's SL_IMAGE_INTERNAL section, built as the module shadelab-oiio.so that
+// oiio_module.c opens on first use (its one export: sl_oiio_module_api). Policy (path checks, size limits, channel layout,
 // colour handling, error wording) lives in image.c; this file only talks to OIIO and turns
 // exceptions and OIIO errors into messages.
 #define SL_IMAGE_INTERNAL
@@ -67,6 +68,7 @@ static sl_oiio_input *open_any(const char *path, const void *data, size_t size, 
         copy_str(info->format_name, sizeof info->format_name, in->format_name());
         copy_str(info->colorspace, sizeof info->colorspace,
                  spec.get_string_attribute("oiio:ColorSpace"));
+        copy_str(info->description, sizeof info->description, spec.get_string_attribute("ImageDescription"));
         auto *h = new sl_oiio_input;
         h->proxy = std::move(proxy);
         h->in = std::move(in);
@@ -79,18 +81,18 @@ static sl_oiio_input *open_any(const char *path, const void *data, size_t size, 
     return nullptr;
 }
 
-extern "C" sl_oiio_input *sl_oiio_open(const char *path, sl_oiio_info *info, char *err,
+static sl_oiio_input *mod_open(const char *path, sl_oiio_info *info, char *err,
                                        size_t err_size) {
     return open_any(path, nullptr, 0, info, err, err_size);
 }
 
 // An image held in memory (an embedded glTF image): `name`'s extension picks the reader first.
-extern "C" sl_oiio_input *sl_oiio_open_memory(const void *data, size_t size, const char *name,
+static sl_oiio_input *mod_open_memory(const void *data, size_t size, const char *name,
                                               sl_oiio_info *info, char *err, size_t err_size) {
     return open_any(name, data, size, info, err, err_size);
 }
 
-extern "C" bool sl_oiio_read(sl_oiio_input *h, int chbegin, int chend, float *out, char *err,
+static bool mod_read(sl_oiio_input *h, int chbegin, int chend, float *out, char *err,
                              size_t err_size) {
     try {
         if (h->in->read_image(0, 0, chbegin, chend, TypeDesc::FLOAT, out)) {
@@ -108,7 +110,7 @@ extern "C" bool sl_oiio_read(sl_oiio_input *h, int chbegin, int chend, float *ou
     return false;
 }
 
-extern "C" void sl_oiio_close(sl_oiio_input *h) {
+static void mod_close(sl_oiio_input *h) {
     if (!h) return;
     try {
         h->in->close();
@@ -117,7 +119,7 @@ extern "C" void sl_oiio_close(sl_oiio_input *h) {
     delete h;
 }
 
-extern "C" bool sl_oiio_write(const char *path, const char *format,
+static bool mod_write(const char *path, const char *format,
                               const unsigned char *pixels8, const float *pixelsf, int width,
                               int height, int channels, const char *file_type,
                               int jpeg_quality, char *err, size_t err_size) {
@@ -164,7 +166,7 @@ extern "C" bool sl_oiio_write(const char *path, const char *format,
 }
 
 // "extension_list" reads like "tiff:tif,tiff;jpeg:jpg,jpe,jpeg;...".
-extern "C" bool sl_oiio_extension_known(const char *ext) {
+static bool mod_extension_known(const char *ext) {
     try {
         std::string list = OIIO::get_string_attribute("extension_list");
         size_t pos = 0;
@@ -186,4 +188,10 @@ extern "C" bool sl_oiio_extension_known(const char *ext) {
     } catch (...) {
     }
     return false;
+}
+
+extern "C" __attribute__((visibility("default"))) const sl_oiio_api *sl_oiio_module_api(void) {
+    static const sl_oiio_api api = {sizeof(sl_oiio_api), mod_open,  mod_open_memory,     mod_read,
+                                    mod_close,           mod_write, mod_extension_known};
+    return &api;
 }

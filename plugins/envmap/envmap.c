@@ -367,6 +367,25 @@ static float *core_pattern(void *user, const char *spec, int size, char *err, si
     return h->procedural_image(h, spec, size, err, n);
 }
 
+/* Image files through the core's loader (host ABI 1.10): the plugin links no image library. */
+static bool host_read(void *ctx, const char *path, em_image *out, em_io_info *info, char *err, size_t n) {
+    const sl_host *h = ctx;
+    memset(out, 0, sizeof *out);
+    memset(info, 0, sizeof *info);
+    if (h->struct_size < offsetof(sl_host, read_image) + sizeof h->read_image || !h->read_image) {
+        snprintf(err, n, "%s: this host cannot read image files for plugins (needs the SDK ABI 1.10)", path);
+        return false;
+    }
+    sl_image_file f = {.struct_size = sizeof f};
+    if (!h->read_image(h, path, &f, err, n)) return false;
+    out->w = f.width, out->h = f.height, out->px = f.pixels;
+    info->bits = f.bits, info->channels = f.channels, info->is_float = f.is_float;
+    snprintf(info->description, sizeof info->description, "%s", f.description);
+    snprintf(info->colorspace, sizeof info->colorspace, "%s", f.srgb ? "sRGB" : "linear");
+    snprintf(info->format, sizeof info->format, "%s", f.format);
+    return true;
+}
+
 static void load_source(envmap *e, const char *map, const float env[5]) {
     free_derived(e);
     delete_tex(&e->src_tex);
@@ -384,7 +403,8 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
         ok = em_procedural(map, core_pattern, (void *)e->host, &loaded.latlong, &e->constant, err, sizeof err);
         if (ok) em_sanitize(loaded.latlong.px, (size_t)loaded.latlong.w * loaded.latlong.h, &loaded.stats);
     } else if (map) {
-        ok = em_env_load(map, &loaded, err, sizeof err);
+        em_reader reader = {host_read, (void *)e->host};
+        ok = em_env_load(map, &reader, &loaded, err, sizeof err);
         if (ok) e->host->log(e->host, SL_LOG_INFO, "%s: %s", map, loaded.how);
     }
     if (map && !ok) e->host->log(e->host, SL_LOG_ERROR, "%s; using the procedural sky instead", err);

@@ -1,5 +1,6 @@
-// envmap's image I/O: a thin C adapter over OpenImageIO (plugins cannot use the core's image
-// module). Reads any format OIIO reads as float RGBA; writes half-float EXR and 8-bit PNG with
+// envmap's image I/O for tools and tests (library envmap_io): a thin C adapter over
+// OpenImageIO. The plugin does not link it: it reads through host->read_image (SDK 1.10), so
+// that loading envmap.so does not load OpenImageIO's ~250 libraries. Reads any format OIIO reads as float RGBA; writes half-float EXR and 8-bit PNG with
 // a description tag (the RGBE8 marker). Every exception becomes an error message.
 #include "envmap/io.h"
 #include <shadelab/input.h>     /* sl_input_file_problem: the core's check */
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <strings.h>
 #include <memory>
 #include <string>
 #include <vector>
@@ -128,4 +130,29 @@ extern "C" bool em_io_write_exr(const char *path, const float *rgba, int w, int 
 extern "C" bool em_io_write_png8(const char *path, const unsigned char *rgba, int w, int h, const char *description,
                                  char *err, size_t n) {
     return write_any(path, "png", TypeDesc::UINT8, TypeDesc::UINT8, rgba, w, h, 4, description, err, n);
+}
+
+static bool io_read(void *ctx, const char *path, em_image *out, em_io_info *info, char *err, size_t n) {
+    (void)ctx;
+    return em_io_load(path, out, info, err, n);
+}
+extern "C" const em_reader em_io_reader = {io_read, nullptr};
+
+extern "C" bool em_write_cube(const char *path, float *const faces[6], int size, char *err, size_t n) {
+    em_image cross;
+    em_faces_to_hcross(faces, size, &cross);
+    size_t len = std::strlen(path);
+    bool ok;
+    if (len > 4 && !strcasecmp(path + len - 4, ".png")) {
+        std::vector<unsigned char> b((size_t)cross.w * cross.h * 4);
+        em_rgbe_encode_image(cross.px, (size_t)cross.w * cross.h, b.data());
+        ok = em_io_write_png8(path, b.data(), cross.w, cross.h, EM_RGBE_TAG, err, n);
+    } else if (len > 4 && !strcasecmp(path + len - 4, ".exr")) {
+        ok = em_io_write_exr(path, cross.px, cross.w, cross.h, "shadelab cube (horizontal cross)", err, n);
+    } else {
+        std::snprintf(err, n, "%s: the output must be .exr (half float) or .png (RGBE8)", path);
+        ok = false;
+    }
+    em_image_free(&cross);
+    return ok;
 }

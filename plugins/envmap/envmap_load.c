@@ -46,9 +46,9 @@ void em_chain_name(const char *path, int level, char *out, size_t n) {
 }
 
 /* One image file, decoded to linear float RGBA (RGBE8 and 8/16-bit sRGB handled). */
-static bool load_linear(const char *path, em_image *img, char *how, size_t hn, char *err, size_t n) {
+static bool load_linear(const em_reader *rd, const char *path, em_image *img, char *how, size_t hn, char *err, size_t n) {
     em_io_info info;
-    if (!em_io_load(path, img, &info, err, n)) return false;
+    if (!rd->read(rd->ctx, path, img, &info, err, n)) return false;
     size_t len = strlen(path);
     bool rgbe = !strcmp(info.description, EM_RGBE_TAG) || (len > 9 && !strcasecmp(path + len - 9, ".rgbe.png"));
     size_t count = (size_t)img->w * img->h;
@@ -110,7 +110,7 @@ static int face_token(const char *path, const char **tokens) {
 }
 
 /* 0: not a face name; 1: loaded; -1: error (in err). */
-static int load_six(const char *path, em_env *e, char *err, size_t n) {
+static int load_six(const em_reader *rd, const char *path, em_env *e, char *err, size_t n) {
     static const char *sets[2][6] = {{"px", "nx", "py", "ny", "pz", "nz"}, {"posx", "negx", "posy", "negy", "posz", "negz"}};
     for (int s = 0; s < 2; s++)
         for (int f = 0; f < 6; f++) {
@@ -123,7 +123,7 @@ static int load_six(const char *path, em_env *e, char *err, size_t n) {
                 size_t tl = strlen(sets[s][f]);
                 snprintf(p, sizeof p, "%.*s%s%s", at, path, sets[s][g], path + at + tl);
                 em_image img;
-                if (!load_linear(p, &img, how, sizeof how, err, n)) return -1;
+                if (!load_linear(rd, p, &img, how, sizeof how, err, n)) return -1;
                 if (img.w != img.h || (g && img.w != e->size)) {
                     snprintf(err, n, "%s: face is %dx%d; the six faces must be equal squares", p, img.w, img.h);
                     em_image_free(&img);
@@ -145,7 +145,7 @@ static bool is_chain_head(const char *path) {
     return dot[-1] == '1' && dot[-2] == '.';
 }
 
-static bool load_chain(const char *path, em_env *e, char *err, size_t n) {
+static bool load_chain(const em_reader *rd, const char *path, em_env *e, char *err, size_t n) {
     char stem_ext[4096];
     const char *dot = strrchr(path, '.');
     snprintf(stem_ext, sizeof stem_ext, "%.*s%s", (int)(dot - path - 2), path, dot); /* X.1.exr → X.exr */
@@ -160,7 +160,7 @@ static bool load_chain(const char *path, em_env *e, char *err, size_t n) {
     for (int l = 0; l < levels; l++) {
         em_chain_name(stem_ext, l + 1, p, sizeof p);
         em_image img;
-        if (!load_linear(p, &img, how, sizeof how, err, n)) return false;
+        if (!load_linear(rd, p, &img, how, sizeof how, err, n)) return false;
         em_env lev = {0};
         if (!image_to_env(p, &img, &lev, err, n)) return false;
         if (lev.kind != EM_ENV_CUBE) {
@@ -191,19 +191,19 @@ static bool load_chain(const char *path, em_env *e, char *err, size_t n) {
     return levels > 0;
 }
 
-bool em_env_load(const char *path, em_env *e, char *err, size_t n) {
+bool em_env_load(const char *path, const em_reader *rd, em_env *e, char *err, size_t n) {
     memset(e, 0, sizeof *e);
     if (n) err[0] = 0;
     bool ok;
     int six = 0;
     if (is_chain_head(path) && exists(path)) {
-        ok = load_chain(path, e, err, n);
-    } else if ((six = load_six(path, e, err, n)) != 0) {
+        ok = load_chain(rd, path, e, err, n);
+    } else if ((six = load_six(rd, path, e, err, n)) != 0) {
         ok = six > 0;
     } else {
         em_image img;
         char how[256] = "";
-        ok = load_linear(path, &img, how, sizeof how, err, n);
+        ok = load_linear(rd, path, &img, how, sizeof how, err, n);
         em_layout l = ok ? em_detect_layout(img.w, img.h) : EM_LAYOUT_UNKNOWN;
         int w = ok ? img.w : 0, h = ok ? img.h : 0;
         ok = ok && image_to_env(path, &img, e, err, n);
@@ -228,26 +228,6 @@ bool em_env_load(const char *path, em_env *e, char *err, size_t n) {
         }
     }
     return true;
-}
-
-bool em_write_cube(const char *path, float *const faces[6], int size, char *err, size_t n) {
-    em_image cross;
-    em_faces_to_hcross(faces, size, &cross);
-    size_t len = strlen(path);
-    bool ok;
-    if (len > 4 && !strcasecmp(path + len - 4, ".png")) {
-        unsigned char *b = malloc((size_t)cross.w * cross.h * 4);
-        em_rgbe_encode_image(cross.px, (size_t)cross.w * cross.h, b);
-        ok = em_io_write_png8(path, b, cross.w, cross.h, EM_RGBE_TAG, err, n);
-        free(b);
-    } else if (len > 4 && !strcasecmp(path + len - 4, ".exr")) {
-        ok = em_io_write_exr(path, cross.px, cross.w, cross.h, "shadelab cube (horizontal cross)", err, n);
-    } else {
-        snprintf(err, n, "%s: the output must be .exr (half float) or .png (RGBE8)", path);
-        ok = false;
-    }
-    em_image_free(&cross);
-    return ok;
 }
 
 /* ---------------------------------------------------------------- procedural environments */

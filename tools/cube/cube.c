@@ -173,7 +173,7 @@ int main(int argc, char **argv) {
         env.kind = EM_ENV_LATLONG;
         if (!em_procedural(in, core_pattern, NULL, &env.latlong, &constant, err, sizeof err)) return fail("%s", err);
         snprintf(env.how, sizeof env.how, "procedural %dx%d lat-long", env.latlong.w, env.latlong.h);
-    } else if (in && !em_env_load(in, &env, err, sizeof err)) {
+    } else if (in && !em_env_load(in, &em_io_reader, &env, err, sizeof err)) {
         return fail("%s", err);
     }
     if (in) {

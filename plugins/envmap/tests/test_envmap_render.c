@@ -397,7 +397,7 @@ static void test_conventions(void) {
     snprintf(faces, sizeof faces, "%s/colour_px.exr", dir);
     em_env cube;
     char err[4096];
-    CHECK_MSG(em_env_load(cross_exr, &cube, err, sizeof err), "%s", err);
+    CHECK_MSG(em_env_load(cross_exr, &em_io_reader, &cube, err, sizeof err), "%s", err);
     static const char *names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
     for (int f = 0; f < 6; f++) {
         char p[512];

@@ -11,6 +11,21 @@ extern "C" {
 
 typedef struct sl_program sl_program; /* a compiled program owned by the host (hot-reloaded) */
 
+/* ABI 1.10: an image file as host->read_image returns it. */
+typedef struct sl_image_file {
+    uint32_t struct_size;  /* the caller sets sizeof(sl_image_file) */
+    int width, height;
+    float *pixels;         /* width*height RGBA floats as stored: integers normalised to [0,1], no
+                              colour conversion; grey → RGB, alpha 1 when absent; row 0 at the top.
+                              malloc'd: the plugin free()s it */
+    int bits;              /* bits per channel in the file (8, 16, 32) */
+    int channels;          /* the file's channel count */
+    bool is_float;         /* half or float samples */
+    bool srgb;             /* integer samples sRGB-encoded (not tagged linear); false for float */
+    char description[128]; /* the file's ImageDescription metadata, "" when absent */
+    char format[32];       /* the reader that decoded it: "png", "openexr", "hdr"… */
+} sl_image_file;
+
 typedef struct sl_key_desc {
     uint32_t struct_size;
     const char *key;          /* "1".."9", "A".."Z", "F1".."F12" */
@@ -133,6 +148,11 @@ struct sl_host {
      * whole number from 1 to the size). A plugin that takes such specs from users parses them
      * here, so the same text is accepted or refused everywhere. */
     float *(*procedural_image)(const sl_host *host, const char *spec, int size, char *err, size_t err_size);
+    /* ABI 1.10, any time: reads an image file through the core's loader (OpenImageIO, the
+     * checks every input gets: regular files only, SL_IMAGE_MAX_PIXELS from the header, damaged
+     * data refused), so a plugin links no image library of its own. out->struct_size must be
+     * set. Returns false with "PATH: cause" in err. */
+    bool (*read_image)(const sl_host *host, const char *path, sl_image_file *out, char *err, size_t err_size);
 };
 
 #ifdef __cplusplus

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# OpenImageIO is opened only when an image file is read or a format other than PNG is written
+# (core/image/image.h: its ~250 libraries cost every process start ≈ 0.5 s): the bare scene
+# rendered to a PNG, and the built-in default (envmap's sky, no file), map no libOpenImageIO; an
+# EXR output, a scene with a texture file, and envmap with an HDR file do, and their images are
+# written. Checked with the dynamic loader's own log (LD_DEBUG=files), not with timings.
+#   usage: cli_lazy_oiio.sh SHADELAB SCENES_DIR OUTDIR
+set -u
+exe=$1 scenes=$2 out=$3
+mkdir -p "$out"
+. "$(dirname "$0")/cli_check.sh"
+loads_oiio() { # the whole log first: grep -q would stop reading and SIGPIPE the run
+    local log
+    log=$(LD_DEBUG=files "$exe" --headless --size 32x18 --frames 1 "$@" 2>&1)
+    grep -q "file=libOpenImageIO" <<<"$log"
+}
+check test "$("$exe" --version)" != ""
+check eval '! loads_oiio --scene "$scenes/basic.json" --output "$out/basic.png"'
+check test -s "$out/basic.png"
+check eval '! loads_oiio --output "$out/default.png"'
+check test -s "$out/default.png"
+check loads_oiio --scene "$scenes/basic.json" --output "$out/basic.exr"
+check test -s "$out/basic.exr"
+# a texture file: the PNG just written, as a material's base colour map
+cat > "$out/textured.json" <<JSON
+{"materials": [{"name": "m", "model": "lambert", "base_color_map": "basic.png"}],
+ "nodes": [{"name": "s", "mesh": {"primitive": "sphere", "radius": 1}, "material": "m"}],
+ "lights": [{"type": "directional", "direction": [0, -1, -1], "color": [1, 1, 1]}]}
+JSON
+check loads_oiio --scene "$out/textured.json" --output "$out/textured.png"
+check test -s "$out/textured.png"
+# envmap with an image file: read through host->read_image (SDK 1.10), which opens the module
+cat > "$out/env.json" <<JSON
+{"plugins": ["ggx", "envmap"], "environment": {"map": "basic.exr"},
+ "materials": [{"name": "m", "model": "ggx", "base_color": [0.8, 0.8, 0.8], "roughness": 0.5}],
+ "nodes": [{"name": "s", "mesh": {"primitive": "sphere", "radius": 1}, "material": "m"}],
+ "lights": []}
+JSON
+check loads_oiio --scene "$out/env.json" --output "$out/env.png"
+msg=$("$exe" --headless --size 32x18 --frames 1 -v --scene "$out/env.json" --output "$out/env.png" 2>&1)
+check grep -q "OpenImageIO module: " <<<"$msg"
+check grep -q "basic.exr" <<<"$msg"
+echo "cli_lazy_oiio: $pass passed, $fail failed"
+[ $fail -eq 0 ]
