@@ -135,11 +135,6 @@ static bool mod_write(const char *path, const char *format,
         // alpha when writing formats that store straight alpha (PNG).
         spec.attribute("oiio:UnassociatedAlpha", 1);
         if (jpeg_quality > 0) spec.attribute("Compression", "jpeg:" + std::to_string(jpeg_quality));
-        // zlib level 4 instead of OpenImageIO's 6: a rendered frame with tone mapping's dither is
-        // noise in its low bits, which level 6's longer match search barely shrinks. Measured on
-        // the default scene's 1280x720 frame (oiiotool, user time over level 0): level 6 +0.25 s,
-        // 839 KB; level 4 +0.05 s, 917 KB (+9 %); level 1 1075 KB. docs/design-notes.md.
-        if (std::strcmp(format, "png") == 0) spec.attribute("png:compressionLevel", 4);
         if (std::strcmp(format, "png") == 0 || std::strcmp(format, "jpeg") == 0)
             spec.attribute("oiio:ColorSpace", "sRGB");
         else

@@ -381,7 +381,7 @@ static bool host_read(void *ctx, const char *path, em_image *out, em_io_info *in
     out->w = f.width, out->h = f.height, out->px = f.pixels;
     info->bits = f.bits, info->channels = f.channels, info->is_float = f.is_float;
     snprintf(info->description, sizeof info->description, "%s", f.description);
-    snprintf(info->colorspace, sizeof info->colorspace, "%s", f.srgb ? "sRGB" : "linear");
+    info->srgb = f.srgb;
     snprintf(info->format, sizeof info->format, "%s", f.format);
     return true;
 }

@@ -1,12 +1,14 @@
 // envmap's image I/O for tools and tests (library envmap_io): a thin C adapter over
 // OpenImageIO. The plugin does not link it: it reads through host->read_image (SDK 1.10), so
-// that loading envmap.so does not load OpenImageIO's ~250 libraries. Reads any format OIIO reads as float RGBA; writes half-float EXR and 8-bit PNG with
-// a description tag (the RGBE8 marker). Every exception becomes an error message.
+// that loading envmap.so does not load OpenImageIO's ~250 libraries. Reads any format OIIO
+// reads as float RGBA; writes half-float EXR and 8-bit PNG with a description tag (the RGBE8
+// marker). Every exception becomes an error message.
 #include "envmap/io.h"
 #include <shadelab/input.h>     /* sl_input_file_problem: the core's check */
 #include <shadelab/shadelab.h> /* SL_IMAGE_MAX_PIXELS */
 
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -58,8 +60,7 @@ extern "C" bool em_io_load(const char *path, em_image *out, em_io_info *info, ch
         info->channels = spec.nchannels;
         std::snprintf(info->description, sizeof info->description, "%s",
                       spec.get_string_attribute("ImageDescription").c_str());
-        std::snprintf(info->colorspace, sizeof info->colorspace, "%s",
-                      spec.get_string_attribute("oiio:ColorSpace").c_str());
+        info->srgb = !info->is_float && !Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
         std::snprintf(info->format, sizeof info->format, "%s", in->format_name());
         int ch = spec.nchannels < 4 ? spec.nchannels : 4;
         std::vector<float> raw((size_t)spec.width * spec.height * ch);

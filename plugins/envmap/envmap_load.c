@@ -66,7 +66,7 @@ static bool load_linear(const em_reader *rd, const char *path, em_image *img, ch
             img->px[i * 4 + 3] = 1;
         }
         snprintf(how, hn, "RGBE8 %s", info.format);
-    } else if (!info.is_float && strcasecmp(info.colorspace, "linear") != 0) {
+    } else if (info.srgb) {
         for (size_t i = 0; i < count * 4; i++)
             if (i % 4 != 3) img->px[i] = srgb_decode(img->px[i]);
         snprintf(how, hn, "%d-bit sRGB %s (decoded to linear)", info.bits, info.format);

@@ -18,7 +18,8 @@ extern "C" {
 typedef struct em_io_info {
     int bits, channels;
     bool is_float;
-    char description[128], colorspace[64], format[32];
+    bool srgb; /* integer samples sRGB-encoded: not tagged linear (oiio:ColorSpace); false for float */
+    char description[128], format[32];
 } em_io_info;
 
 /* ---- image files over OpenImageIO (envmap_io.cpp, library envmap_io) ---- */
