@@ -220,7 +220,7 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     if (a->converged && valid) { /* a converged still: the history as it is */
         if (h->bind_outputs(h, ctx, 0) == SL_OK) {
             glUseProgram(p);
-            bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_nearest);
+            bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
             glUniform1i(glGetUniformLocation(p, "aa_copy"), 1);
             h->draw_fullscreen(h, ctx);
             glBindSampler(a->unit[3], 0);
@@ -262,7 +262,7 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     /* 2: copied into "color" (alpha 1) */
     if (h->bind_outputs(h, ctx, 0) == SL_OK) {
         glUseProgram(p);
-        bind_tex(a, p, 3, "aa_history", a->history[next], a->sampler_nearest);
+        bind_tex(a, p, 3, "aa_history", a->history[next], a->sampler_linear);
         glUniform1i(glGetUniformLocation(p, "aa_copy"), 1);
         h->draw_fullscreen(h, ctx);
     }

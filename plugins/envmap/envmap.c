@@ -239,8 +239,7 @@ static unsigned cache_load(envmap *e, uint64_t key, int size, int levels, char *
     unsigned tex = 0;
     if (fread(&h, sizeof h, 1, f) == 1 && !memcmp(h.magic, "SLENVC1", 8) && h.key == key && h.size == size &&
         h.levels == levels) {
-        glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &tex);
-        glTextureStorage2D(tex, levels, GL_RGBA16F, size, size);
+        tex = em_new_cube(size, levels);
         bool ok = true;
         for (int l = 0; l < levels && ok; l++) {
             int s = size >> l > 0 ? size >> l : 1;
@@ -251,11 +250,6 @@ static unsigned cache_load(envmap *e, uint64_t key, int size, int levels, char *
             free(buf);
         }
         if (!ok) delete_tex(&tex);
-        else {
-            glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-            glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, levels - 1);
-        }
     }
     fclose(f);
     return tex;

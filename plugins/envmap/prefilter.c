@@ -49,7 +49,7 @@ static void set_filtering(unsigned t, bool mips) {
     glTextureParameteri(t, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
 }
 
-static unsigned new_cube(int size, int levels) {
+unsigned em_new_cube(int size, int levels) {
     unsigned t;
     glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &t);
     glTextureStorage2D(t, levels, GL_RGBA16F, size, size);
@@ -72,14 +72,14 @@ unsigned em_upload_latlong(const em_image *img) {
 }
 
 unsigned em_upload_cube(float *const faces[6], int size, int levels) {
-    unsigned t = new_cube(size, levels);
+    unsigned t = em_new_cube(size, levels);
     for (int f = 0; f < 6; f++) glTextureSubImage3D(t, 0, 0, 0, f, size, size, 1, GL_RGBA, GL_FLOAT, faces[f]);
     if (levels > 1) glGenerateTextureMipmap(t);
     return t;
 }
 
 unsigned em_upload_cube_levels(float *const *level_faces, int size, int levels) {
-    unsigned t = new_cube(size, levels);
+    unsigned t = em_new_cube(size, levels);
     for (int l = 0; l < levels; l++) {
         int s = size >> l;
         if (s < 1) s = 1;
@@ -144,7 +144,7 @@ static void downsample_cube(em_gpu *g, unsigned t, int size, int levels) {
 
 unsigned em_make_base_cube(em_gpu *g, unsigned src, bool src_is_cube, int src_w, int src_h, int size) {
     int levels = em_max_levels(size);
-    unsigned t = new_cube(size, levels);
+    unsigned t = em_new_cube(size, levels);
     unsigned p = g->prog_to_cube;
     glUseProgram(p);
     bind_input(g, p, src, src_is_cube);
@@ -217,7 +217,7 @@ unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, in
     int max_levels = em_max_levels(size);
     if (levels > max_levels) levels = max_levels;
     if (levels < 1) levels = 1;
-    unsigned t = new_cube(size, levels);
+    unsigned t = em_new_cube(size, levels);
     /* level 0 (roughness 0): the base cube itself */
     convert_cube_into(g, base, size, t, size);
     /* work per level ∝ texels × samples: progress in those units */
@@ -265,7 +265,7 @@ unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src
     int level = 0;
     while ((base_size >> level) > src_size) level++;
     src_size = base_size >> level;
-    unsigned t = new_cube(out_size, 1);
+    unsigned t = em_new_cube(out_size, 1);
     unsigned p = g->prog_irradiance;
     glUseProgram(p);
     bind_input(g, p, base, true);
@@ -299,7 +299,7 @@ static void convert_cube_into(em_gpu *g, unsigned src, int src_size, unsigned ds
 
 /* One cube level resampled to another face size (convert_cube_into). */
 static unsigned resample_cube(em_gpu *g, unsigned src, int src_size, int out_size) {
-    unsigned t = new_cube(out_size, 1);
+    unsigned t = em_new_cube(out_size, 1);
     convert_cube_into(g, src, src_size, t, out_size);
     return t;
 }

@@ -143,6 +143,11 @@ void em_gpu_free(em_gpu *g);
 
 /* Uploads a lat-long image as RGBA16F with a full mip chain (values already sanitised). */
 unsigned em_upload_latlong(const em_image *img);
+/* An empty RGBA16F cube of `levels` mips with the filtering and wrapping every cube here has: the
+ * prefilter's outputs and the disk cache's loads are the same texture to the GL (on llvmpipe the
+ * sampler state is part of each compiled shader variant's key: a cube loaded from the cache with
+ * other wrap modes made a warm start compile the forward programs again). */
+unsigned em_new_cube(int size, int levels);
 /* Uploads six faces (GL order, size², RGBA) as an RGBA16F cube with `levels` levels
  * (level 0 uploaded, the rest box-filtered by glGenerateMipmap). */
 unsigned em_upload_cube(float *const faces[6], int size, int levels);
