@@ -217,7 +217,7 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     /* the history continues only from the frame just before (not after the method was off, a
      * pause or a resize) */
     bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun && !a->restart;
-    if (a->converged && valid) { /* a converged still: the history as it is */
+    if (a->converged && valid) { /* a converged still: the history as it is (the copy, as below) */
         if (h->bind_outputs(h, ctx, 0) == SL_OK) {
             glUseProgram(p);
             bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
@@ -259,7 +259,10 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
     glViewport(0, 0, w, hh);
     h->draw_fullscreen(h, ctx);
-    /* 2: copied into "color" (alpha 1) */
+    /* 2: copied into "color" (alpha 1). The copy reads with texelFetch, which no filter affects;
+     * the history stays on the linear sampler so that both draws have the same sampler state: on
+     * llvmpipe the sampler state is part of a compiled variant's key, and a nearest sampler here
+     * compiled the whole TAA program a second time at the first frame (≈ 0.2 s of start-up). */
     if (h->bind_outputs(h, ctx, 0) == SL_OK) {
         glUseProgram(p);
         bind_tex(a, p, 3, "aa_history", a->history[next], a->sampler_linear);

@@ -526,6 +526,11 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     }
     glUseProgram(prog);
     glBindTextureUnit(1, s->ts_tex[TS_STRETCH]);
+    /* Unit 2 holds a sum texture in every draw, also the first pass along u (which does not read
+     * it): on llvmpipe each compiled variant's key has the state of every unit the program
+     * samples, so an empty unit there compiled the programs a third time at the first frame, and
+     * under a key that differed from run to run (no warm start found it in Mesa's disk cache). */
+    glBindTextureUnit(2, s->ts_tex[TS_SUM1]);
     glViewport(0, 0, s->ts_size, s->ts_size);
     unsigned src = s->ts_tex[TS_IRR];
     double previous = 0;
