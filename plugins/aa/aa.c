@@ -45,7 +45,7 @@ static const sl_param_desc params[] = {
 
 typedef struct aa {
     const sl_host *host;
-    sl_program *fxaa, *taa;
+    sl_program *fxaa, *taa, *taa_copy;
     int unit[5];
     unsigned sampler_linear, sampler_nearest;
     /* TAA: the history (rgb + frames in alpha) as a ping-pong pair, the last frame's depth */
@@ -200,13 +200,21 @@ static void bind_tex(aa *a, unsigned prog, int slot, const char *name, unsigned 
     glUniform1i(glGetUniformLocation(prog, name), a->unit[slot]);
 }
 
+/* taa_copy.frag from src into the framebuffer bound */
+static void copy_draw(aa *a, sl_pass_ctx *ctx, unsigned prog, unsigned src) {
+    glUseProgram(prog);
+    bind_tex(a, prog, 0, "aa_src", src, a->sampler_nearest);
+    a->host->draw_fullscreen(a->host, ctx);
+    glBindSampler(a->unit[0], 0);
+}
+
 static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     aa *a = user;
     const sl_host *h = a->host;
-    unsigned p = h->program_id(h, a->taa);
+    unsigned copy = h->program_id(h, a->taa_copy);
     unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth"),
              motion = h->pass_texture(h, ctx, "motion");
-    if (!p || !color || !depth || !motion) return;
+    if (!copy || !color || !depth || !motion) return;
     int w, hh, dw, dh, format;
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_WIDTH, &w);
@@ -217,59 +225,53 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     /* the history continues only from the frame just before (not after the method was off, a
      * pause or a resize) */
     bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun && !a->restart;
-    if (a->converged && valid) { /* a converged still: the history as it is (the copy, as below) */
-        if (h->bind_outputs(h, ctx, 0) == SL_OK) {
-            glUseProgram(p);
-            bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
-            glUniform1i(glGetUniformLocation(p, "aa_copy"), 1);
-            h->draw_fullscreen(h, ctx);
-            glBindSampler(a->unit[3], 0);
-        }
+    if (a->converged && valid) { /* a converged still: the history as it is */
+        if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy, a->history[a->current]);
         a->taa_ran_at = a->frames_begun;
         return;
     }
     float inv[16], prev_inv[16];
-    if (!invert4(f->view_proj, inv) || !invert4(f->prev_view_proj, prev_inv)) valid = false, memset(inv, 0, sizeof inv),
-                                                                               memset(prev_inv, 0, sizeof prev_inv);
+    if (!invert4(f->view_proj, inv) || !invert4(f->prev_view_proj, prev_inv)) valid = false;
     int next = 1 - a->current;
-    glUseProgram(p);
-    bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
-    bind_tex(a, p, 1, "aa_depth", depth, a->sampler_nearest);
-    bind_tex(a, p, 2, "aa_motion", motion, a->sampler_nearest);
-    bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
-    bind_tex(a, p, 4, "aa_prev_depth", a->prev_depth, a->sampler_nearest);
-    glUniformMatrix4fv(glGetUniformLocation(p, "aa_inv_view_proj"), 1, GL_FALSE, inv);
-    glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
-    glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
-    glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
-    /* a still (nothing moved: the history is this pixel's own earlier frames) is the exact mean:
-     * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
-     * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %) */
-    glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b && a->still < 0);
-    /* nor disocclusion rejection: nothing moved, yet at silhouettes (where the jitter alternates
-     * between the surface and the empty background) the rejection dropped the history of some
-     * pixels (the last frame's point not found again in the 3x3 neighbourhood; which case exactly
-     * was not pinned down): their still was then a mean of the last frames only (envmap bench/rim.sh --still, courtyard metal alpha 0.4: the
-     * reference still 0.128 from the C quadrature with rejection, 0.028 without) */
-    glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b && a->still < 0);
-    glUniform1i(glGetUniformLocation(p, "aa_history_valid"), valid);
-    glUniform1i(glGetUniformLocation(p, "aa_copy"), 0);
-    /* 1: the new history into our own target */
     glNamedFramebufferTexture(a->fbo, GL_COLOR_ATTACHMENT0, a->history[next], 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
-    glViewport(0, 0, w, hh);
-    h->draw_fullscreen(h, ctx);
-    /* 2: copied into "color" (alpha 1). The copy reads with texelFetch, which no filter affects;
-     * the history stays on the linear sampler so that both draws have the same sampler state: on
-     * llvmpipe the sampler state is part of a compiled variant's key, and a nearest sampler here
-     * compiled the whole TAA program a second time at the first frame (≈ 0.2 s of start-up). */
-    if (h->bind_outputs(h, ctx, 0) == SL_OK) {
+    unsigned p = valid ? h->program_id(h, a->taa) : 0;
+    if (!valid) {
+        /* 1: no history (a first frame, a cut, a restarted still): the frame as it is, with a
+         * history of one frame; the resolve program is not needed (nor compiled) for it */
+        glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
+        glViewport(0, 0, w, hh);
+        copy_draw(a, ctx, copy, color);
+    } else if (p) {
         glUseProgram(p);
-        bind_tex(a, p, 3, "aa_history", a->history[next], a->sampler_linear);
-        glUniform1i(glGetUniformLocation(p, "aa_copy"), 1);
+        bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
+        bind_tex(a, p, 1, "aa_depth", depth, a->sampler_nearest);
+        bind_tex(a, p, 2, "aa_motion", motion, a->sampler_nearest);
+        bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
+        bind_tex(a, p, 4, "aa_prev_depth", a->prev_depth, a->sampler_nearest);
+        glUniformMatrix4fv(glGetUniformLocation(p, "aa_inv_view_proj"), 1, GL_FALSE, inv);
+        glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
+        glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
+        glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
+        /* a still (nothing moved: the history is this pixel's own earlier frames) is the exact mean:
+         * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
+         * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %) */
+        glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b && a->still < 0);
+        /* nor disocclusion rejection: nothing moved, yet at silhouettes (where the jitter alternates
+         * between the surface and the empty background) the rejection dropped the history of some
+         * pixels (the last frame's point not found again in the 3x3 neighbourhood; which case exactly
+         * was not pinned down): their still was then a mean of the last frames only (envmap bench/rim.sh --still, courtyard metal alpha 0.4: the
+         * reference still 0.128 from the C quadrature with rejection, 0.028 without) */
+        glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b && a->still < 0);
+        /* 1: the new history into our own target */
+        glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
+        glViewport(0, 0, w, hh);
         h->draw_fullscreen(h, ctx);
+        for (int i = 0; i < 5; i++) glBindSampler(a->unit[i], 0);
+    } else {
+        return; /* the resolve failed to compile (the host reported it): the frame stays as it is */
     }
-    for (int i = 0; i < 5; i++) glBindSampler(a->unit[i], 0);
+    /* 2: the new history copied into "color" (alpha 1) */
+    if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy, a->history[next]);
     /* this frame's depth is the next frame's previous depth */
     glNamedFramebufferTexture(a->depth_fbo[0], GL_DEPTH_ATTACHMENT, depth, 0);
     glNamedFramebufferTexture(a->depth_fbo[1], GL_DEPTH_ATTACHMENT, a->prev_depth, 0);
@@ -330,6 +332,8 @@ static sl_status activate(void *user) {
                                                                   .vertex = "sl:fullscreen.vert", .fragment = "fxaa.frag"});
     a->taa = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                  .vertex = "sl:fullscreen.vert", .fragment = "taa.frag"});
+    a->taa_copy = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                      .vertex = "sl:fullscreen.vert", .fragment = "taa_copy.frag"});
     glCreateFramebuffers(1, &a->fbo);
     glCreateFramebuffers(2, a->depth_fbo);
     for (int i = 0; i < 2; i++) glNamedFramebufferDrawBuffer(a->depth_fbo[i], GL_NONE), glNamedFramebufferReadBuffer(a->depth_fbo[i], GL_NONE);
@@ -346,7 +350,7 @@ static sl_status activate(void *user) {
     /* Not compiled here: the host compiles each program at its first program_id() (in the pass
      * that uses it), so the mode not in use (fxaa while TAA runs) costs no compile. A missing
      * file is already an error (load_program returns a program that never gets an id). */
-    return a->fxaa && a->taa ? SL_OK : SL_ERR_GL;
+    return a->fxaa && a->taa && a->taa_copy ? SL_OK : SL_ERR_GL;
 }
 
 static void deactivate(void *user) {

@@ -11,8 +11,9 @@
 //     exact mean of taa_frames jittered frames, the box filter the reference computes), later
 //     frames have weight 1/taa_frames. Blended in linear radiance; Karis's luminance weighting
 //     against HDR flicker is left out because it biases the mean away from the box filter.
-// Output: rgb, and the number of frames in the history in alpha (aa_copy = 0); aa_copy = 1 copies
-// the new history into "color" with alpha 1.
+// Output: rgb, and the number of frames in the history in alpha (the new history; taa_copy.frag
+// copies it into the pass's "color" output). A frame without a history (the first, or after a cut)
+// does not run this program: taa_copy.frag copies the frame as it is into both.
 #include "sl:common.glsl"
 in vec2 v_uv;
 uniform sampler2D aa_color;       // this frame, jittered (nearest)
@@ -22,7 +23,7 @@ uniform sampler2D aa_history;     // bilinear, clamp to edge; alpha = frames in 
 uniform sampler2D aa_prev_depth;  // the last frame's depth (nearest)
 uniform mat4 aa_inv_view_proj, aa_prev_inv_view_proj;
 uniform vec3 aa_camera_pos;
-uniform int aa_frames, aa_clamp, aa_reject, aa_history_valid, aa_copy;
+uniform int aa_frames, aa_clamp, aa_reject;
 layout(location = 0) out vec4 o_color;
 
 vec3 aa_ycocg(vec3 c) {
@@ -46,17 +47,9 @@ vec3 aa_clip(vec3 h, vec3 lo, vec3 hi) {
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    if (aa_copy != 0) {
-        o_color = vec4(texelFetch(aa_history, p, 0).rgb, 1.0);
-        return;
-    }
     ivec2 size = textureSize(aa_color, 0);
     vec2 uv = (vec2(p) + 0.5) / vec2(size);
     vec3 c = texelFetch(aa_color, p, 0).rgb;
-    if (aa_history_valid == 0) { // no history: this frame as it is (NaN stays visible: stability tests)
-        o_color = vec4(c, 1.0);
-        return;
-    }
     if (any(isnan(c))) { // a shading bug stays visible, not averaged away (the next frame drops it)
         o_color = vec4(c, 0.0);
         return;
