@@ -2,8 +2,10 @@
 # Lazy program creation (issue 19's cold start, docs/design-notes.md): a stand-alone program
 # (the core's display/accumulate/resolve, a plugin's load_program) compiles when a pass first
 # asks for its id, so programs of passes that never run are never compiled. Checked on the
-# `-v` list of programs built: the bare scene with TAA builds taa.frag but not fxaa.frag nor
-# the core's display/accumulate/resolve (no window, no --accumulate, no supersampling); with
+# `-v` list of programs built: the bare scene with TAA builds, for one frame, TAA's copy program
+# only (a frame without a history is copied as it is: no resolve), for two frames taa.frag too,
+# and never fxaa.frag nor the core's display/accumulate/resolve (no window, no --accumulate, no
+# supersampling); with
 # aa.method=fxaa the other way round; with core.ssaa=2 and --accumulate 2 the resolve and accumulate programs are built. Whether a
 # lazily built program gives the same frame as one built up front is the toggle matrix's job
 # (tests/test_toggle_matrix.c switches aa's method and every plugin live).
@@ -16,12 +18,17 @@ built() { grep -F "built program" <<<"$1" | grep -qF "$2"; }
 not_built() { ! built "$@"; }
 msg=$("$exe" --headless -v --size 32x18 --scene "$scenes/basic.json" --frames 1 --output "$out/taa.png" 2>&1)
 check test $? -eq 0
+check built "$msg" taa_copy.frag
+for p in taa.frag fxaa.frag sl:display.frag sl:accumulate.frag sl:resolve.frag; do check not_built "$msg" "$p"; done
+msg=$("$exe" --headless -v --size 32x18 --scene "$scenes/basic.json" --frames 2 --output "$out/taa2.png" 2>&1)
+check test $? -eq 0
 check built "$msg" taa.frag
 for p in fxaa.frag sl:display.frag sl:accumulate.frag sl:resolve.frag; do check not_built "$msg" "$p"; done
 msg=$("$exe" --headless -v --size 32x18 --scene "$scenes/basic.json" --set aa.method=fxaa --frames 1 --output "$out/fxaa.png" 2>&1)
 check test $? -eq 0
 check built "$msg" fxaa.frag
 check not_built "$msg" taa.frag
+check not_built "$msg" taa_copy.frag
 msg=$("$exe" --headless -v --size 32x18 --scene "$scenes/basic.json" --set core.ssaa=2 --accumulate 2 --frames 1 --output "$out/ssaa.png" 2>&1)
 check test $? -eq 0
 check built "$msg" sl:resolve.frag

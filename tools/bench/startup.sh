@@ -22,6 +22,10 @@
 # (idiff, when OpenImageIO's tools are installed): the first frame shows nothing unfinished.
 #
 # HEAD_ROWS=0 skips the head scene's rows (default vs basic only: issue 19's ratio, ~4 min for 5 rounds).
+# BARE_BUILD=DIR adds a row "bare-then": the built-in default scene of the build in DIR, cold. Made by
+# tools/bench/bare_default_build.sh, it is the project as it was when issue 19 was filed (its built-in
+# default was the bare scene: the "today's bare default scene" that issue's 1.5x is measured
+# against); the ratio default/bare-then is printed per round and as medians.
 #
 # A benchmark, not a test: it prints figures and asserts nothing.
 set -u
@@ -54,7 +58,7 @@ run() {
         set -- $(cat "$TMP/time")
         wall=$1 cpu=$(echo "$2 + $3" | bc)
         first=$(sed -n 's/.*"startup_to_first_frame_ms":[[:space:]]*\([0-9.]*\).*/\1/p' "$TMP/stats.json")
-        first=$(printf '%.2f' "$(echo "$first / 1000" | bc -l)")
+        if [ -n "$first" ]; then first=$(printf '%.2f' "$(echo "$first / 1000" | bc -l)"); else first=-; fi
         printf '%-12s %8s %8s %8s %6s\n' "$name" "$wall" "$cpu" "$first" "$l" | tee -a "$TMP/rows"
     else
         echo "$name: failed: $(tail -3 "$TMP/err")"
@@ -73,6 +77,13 @@ for r in $(seq "$ROUNDS"); do
     fi
     run default "$(fresh)"
     run basic "$(fresh)" --scene "$ROOT/scenes/basic.json"
+    if [ -n "${BARE_BUILD:-}" ]; then
+        BIN_SAVED=$BIN BIN=$BARE_BUILD/shadelab
+        run bare-then "$(fresh)"
+        BIN=$BIN_SAVED
+        d=$(grep '^default ' "$TMP/rows" | tail -1) b=$(grep '^bare-then ' "$TMP/rows" | tail -1)
+        [ -n "$d" ] && [ -n "$b" ] && echo "$d $b" | awk '{printf "ratio-then   %8.2f %8.2f\n", $2/$7, $3/$8}' | tee -a "$TMP/ratios_then"
+    fi
     # this round's default/basic ratios (wall, CPU, first frame): the README reports their median
     d=$(grep '^default ' "$TMP/rows" | tail -1) b=$(grep '^basic ' "$TMP/rows" | tail -1)
     [ -n "$d" ] && [ -n "$b" ] && echo "$d $b" | awk '{printf "ratio        %8.2f %8.2f %8.2f\n", $2/$7, $3/$8, $4/$9}' | tee -a "$TMP/ratios"
@@ -80,7 +91,7 @@ done
 
 echo "# medians over $ROUNDS rounds (wall, CPU, first frame) and the default/basic ratio"
 med() { sort -n | awk '{a[NR]=$1} END {if (NR == 0) print "-"; else if (NR % 2) print a[(NR+1)/2]; else printf "%.2f\n", (a[NR/2]+a[NR/2+1])/2}'; }
-for name in head-cold head-warm default basic; do
+for name in head-cold head-warm default basic bare-then; do
     grep -q "^$name " "$TMP/rows" 2>/dev/null || continue
     w=$(awk -v n=$name '$1 == n {print $2}' "$TMP/rows" | med)
     c=$(awk -v n=$name '$1 == n {print $3}' "$TMP/rows" | med)
@@ -95,6 +106,11 @@ fi
 if [ -n "${w_default:-}" ] && [ -n "${w_basic:-}" ]; then
     printf 'default/basic, ratio of the medians: wall %.2fx, CPU %.2fx, first frame %.2fx\n' "$(echo "$w_default / $w_basic" | bc -l)" \
         "$(echo "$c_default / $c_basic" | bc -l)" "$(echo "$f_default / $f_basic" | bc -l)"
+fi
+
+if [ -s "$TMP/ratios_then" ]; then
+    printf 'default/bare-then (the built-in default when issue 19 was filed), median of the per-round ratios: wall %sx, CPU %sx\n' \
+        "$(awk '{print $2}' "$TMP/ratios_then" | med)" "$(awk '{print $3}' "$TMP/ratios_then" | med)"
 fi
 
 if [ $have_head = 1 ] && [ "${COMPLETE:-1}" = 1 ]; then
