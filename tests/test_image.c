@@ -924,6 +924,35 @@ static void test_mip_rgba8(void) {
     CHECK(col2[0] == 11 && col2[1] == 21 && col2[3] == 41 && col2[4] == 150 && col2[5] == 0);
 }
 
+/* sl_image_mip_rgbaf (the CPU mip chain of float textures: procedural, 16-bit, float files): the
+ * same box in float, every channel as stored; odd sides drop their last row and column */
+static void test_mip_rgbaf(void) {
+    enum { W = 5, H = 3 };
+    float src[W * H * 4], dst[2 * 1 * 4];
+    for (int i = 0; i < W * H * 4; i++) src[i] = (float)((i * 97 + 13) % 256) * 0.125f - 3.0f; /* exact in float */
+    sl_image_mip_rgbaf(src, W, H, dst);
+    int bad = 0;
+    for (int x = 0; x < 2; x++)
+        for (int c = 0; c < 4; c++) {
+            /* sums of four multiples of 1/8 and a quarter of them: exact, so equality is the test */
+            float want = (src[(2 * x) * 4 + c] + src[(2 * x + 1) * 4 + c] + src[(W + 2 * x) * 4 + c] +
+                          src[(W + 2 * x + 1) * 4 + c]) * 0.25f;
+            if (dst[x * 4 + c] != want) {
+                bad++;
+                fprintf(stderr, "mip rgbaf: texel %d channel %d = %g, expected %g\n", x, c, dst[x * 4 + c], want);
+            }
+        }
+    CHECK(bad == 0);
+    /* 1x4 → 1x2: pairs along v only; HDR values and negatives pass through (no clamp) */
+    float col[1 * 4 * 4] = {10, 20, 30, 40, 12, 22, 32, 42, 1000, -2, 0, 1, 3000, 2, 0, 1}, col2[1 * 2 * 4];
+    sl_image_mip_rgbaf(col, 1, 4, col2);
+    CHECK(col2[0] == 11 && col2[1] == 21 && col2[3] == 41 && col2[4] == 2000 && col2[5] == 0 && col2[7] == 1);
+    /* 1x1 stays 1x1 */
+    float px[4] = {0.5f, 0.25f, 2.0f, 1.0f}, px2[4];
+    sl_image_mip_rgbaf(px, 1, 1, px2);
+    CHECK(px2[0] == 0.5f && px2[1] == 0.25f && px2[2] == 2.0f && px2[3] == 1.0f);
+}
+
 int main(void) {
     crc_init();
     const char *base = getenv("TMPDIR");
@@ -936,6 +965,7 @@ int main(void) {
     test_png_roundtrip();
     test_exr_roundtrip();
     test_hdr_jpg();
+    test_mip_rgbaf();
     test_handmade_pngs();
     test_load_errors();
     test_write_errors();

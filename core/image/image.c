@@ -140,6 +140,22 @@ void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *d
         }
 }
 
+void sl_image_mip_rgbaf(const float *src, int w, int h, float *dst) {
+    int w2 = w > 1 ? w / 2 : 1, h2 = h > 1 ? h / 2 : 1;
+    int sx = w > 1 ? 2 : 1, sy = h > 1 ? 2 : 1;
+    float scale = 1.0f / (float)(sx * sy);
+    for (int y = 0; y < h2; y++)
+        for (int x = 0; x < w2; x++) {
+            float *d = dst + ((size_t)y * w2 + x) * 4;
+            for (int c = 0; c < 4; c++) {
+                float v = 0;
+                for (int j = 0; j < sy; j++)
+                    for (int i = 0; i < sx; i++) v += src[(((size_t)(y * sy + j) * w) + (size_t)(x * sx + i)) * 4 + c];
+                d[c] = v * scale;
+            }
+        }
+}
+
 static unsigned char to_byte(float v) {
     if (!(v > 0.0f)) return 0; /* NaN too */
     if (v >= 1.0f) return 255;

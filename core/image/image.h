@@ -146,6 +146,9 @@ float sl_srgb_decode(float encoded);
  * filter, sRGB-correct), on the CPU: llvmpipe compiles a blit shader per format for it, ~60-180 ms
  * per format at start-up (issue 18 item 5). */
 void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *dst, bool srgb);
+/* The same 2×2 box on float RGBA, every channel as stored (linear data: procedural textures,
+ * 16-bit and float files kept in float storage). */
+void sl_image_mip_rgbaf(const float *src, int w, int h, float *dst);
 
 /* Reverses the row order in place (GL reads bottom-up; files are top-down). */
 void sl_image_flip_rows(float *pixels, int width, int height, int channels);

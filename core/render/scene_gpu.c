@@ -105,6 +105,31 @@ static bool upload_rgba8_mipmapped(unsigned tex, const sl_image *img, int levels
     return true;
 }
 
+/* Other images in linear storage (procedural textures, 16-bit and float files): the same box mip
+ * chain in float on the CPU (sl_image_mip_rgbaf), for the same reason. False (nothing uploaded)
+ * without memory. */
+static bool upload_float_mipmapped(unsigned tex, const sl_image *img, int levels) {
+    int w = img->width > 1 ? img->width / 2 : 1, h = img->height > 1 ? img->height / 2 : 1;
+    float *a = malloc((size_t)w * h * 4 * sizeof(float)), *b = malloc((size_t)w * h * 4 * sizeof(float));
+    if (!a || !b) {
+        free(a), free(b);
+        return false;
+    }
+    glTextureSubImage2D(tex, 0, 0, 0, img->width, img->height, GL_RGBA, GL_FLOAT, img->pixels);
+    const float *src = img->pixels;
+    w = img->width, h = img->height;
+    for (int l = 1; l < levels; l++) {
+        sl_image_mip_rgbaf(src, w, h, a);
+        w = w > 1 ? w / 2 : 1, h = h > 1 ? h / 2 : 1;
+        glTextureSubImage2D(tex, l, 0, 0, w, h, GL_RGBA, GL_FLOAT, a);
+        float *t = a;
+        a = b, b = t;
+        src = b;
+    }
+    free(a), free(b);
+    return true;
+}
+
 /* `where` names the scene line, material and key (or the asset file) for the messages. */
 static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bool clamp, const char *where) {
     sl_renderer *r = R(app);
@@ -156,7 +181,8 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         glTextureStorage2D(tex, levels, fmt, img.width, img.height);
         /* UV convention (scenes/README.md): v = 0 is the TOP row of the image, as in glTF. GL's
          * t = 0 is the first row uploaded, so rows go up top first, as the image stores them. */
-        if (!upload_rgba8_mipmapped(tex, &img, levels, srgb_storage)) {
+        if (!upload_rgba8_mipmapped(tex, &img, levels, srgb_storage) &&
+            (srgb_storage || !upload_float_mipmapped(tex, &img, levels))) {
             glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.pixels);
             glGenerateTextureMipmap(tex);
         }

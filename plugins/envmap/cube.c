@@ -402,6 +402,7 @@ void em_latlong_mips(const em_image *img, em_image *levels, int max_levels, int 
         const em_image *a = &levels[n - 1];
         int nw = w > 1 ? w / 2 : 1, nh = h > 1 ? h / 2 : 1;
         em_image b = {nw, nh, malloc((size_t)nw * nh * 4 * sizeof(float))};
+        if (!b.px) break; /* out of memory: the levels made so far */
         /* a 2×2 (or 2×1) box: what glGenerateMipmap's linear blit gives for power-of-two sizes */
         for (int y = 0; y < nh; y++)
             for (int x = 0; x < nw; x++) {

@@ -61,11 +61,15 @@ unsigned em_new_cube(int size, int levels) {
 unsigned em_upload_latlong(const em_image *img) {
     unsigned t;
     glCreateTextures(GL_TEXTURE_2D, 1, &t);
-    int levels = em_max_levels(img->w > img->h ? img->w : img->h);
+    /* the box mips made on the CPU (em_latlong_mips), as the sky's: glGenerateMipmap compiles a
+     * blit program at every start on llvmpipe (its variants are not in Mesa's disk cache), ≈ 0.1 s */
+    em_image mips[16];
+    int levels = 0;
+    em_latlong_mips(img, mips, 16, &levels);
     glTextureStorage2D(t, levels, GL_RGBA16F, img->w, img->h);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(t, 0, 0, 0, img->w, img->h, GL_RGBA, GL_FLOAT, img->px);
-    glGenerateTextureMipmap(t);
+    for (int l = 0; l < levels; l++) glTextureSubImage2D(t, l, 0, 0, mips[l].w, mips[l].h, GL_RGBA, GL_FLOAT, mips[l].px);
+    for (int l = 1; l < levels; l++) free(mips[l].px);
     set_filtering(t, true);
     glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT); /* u wraps around the sphere */
     return t;
