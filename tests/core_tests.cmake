@@ -68,6 +68,10 @@ set_tests_properties(cli_turntable PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEO
 add_test(NAME cli_lazy_programs COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_lazy_programs
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_lazy_programs.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
 set_tests_properties(cli_lazy_programs PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 120)
+# A warm start compiles nothing the start before it compiled (Mesa's disk cache gains no entry).
+add_test(NAME cli_warm_start COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_warm_start
+         ${CMAKE_CURRENT_SOURCE_DIR}/cli_warm_start.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
+set_tests_properties(cli_warm_start PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300)
 add_test(NAME cli_lazy_oiio COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_lazy_oiio
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_lazy_oiio.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
 set_tests_properties(cli_lazy_oiio PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 120)

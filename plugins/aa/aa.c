@@ -45,7 +45,7 @@ static const sl_param_desc params[] = {
 
 typedef struct aa {
     const sl_host *host;
-    sl_program *fxaa, *taa, *taa_copy;
+    sl_program *fxaa, *taa, *taa_copy, *taa_copy_out; /* the copy into our history, into the output */
     int unit[5];
     unsigned sampler_linear, sampler_nearest;
     /* TAA: the history (rgb + frames in alpha) as a ping-pong pair, the last frame's depth */
@@ -211,10 +211,10 @@ static void copy_draw(aa *a, sl_pass_ctx *ctx, unsigned prog, unsigned src) {
 static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     aa *a = user;
     const sl_host *h = a->host;
-    unsigned copy = h->program_id(h, a->taa_copy);
+    unsigned copy = h->program_id(h, a->taa_copy), copy_out = h->program_id(h, a->taa_copy_out);
     unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth"),
              motion = h->pass_texture(h, ctx, "motion");
-    if (!copy || !color || !depth || !motion) return;
+    if (!copy || !copy_out || !color || !depth || !motion) return;
     int w, hh, dw, dh, format;
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_WIDTH, &w);
@@ -226,7 +226,7 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
      * pause or a resize) */
     bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun && !a->restart;
     if (a->converged && valid) { /* a converged still: the history as it is */
-        if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy, a->history[a->current]);
+        if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy_out, a->history[a->current]);
         a->taa_ran_at = a->frames_begun;
         return;
     }
@@ -271,7 +271,7 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         return; /* the resolve failed to compile (the host reported it): the frame stays as it is */
     }
     /* 2: the new history copied into "color" (alpha 1) */
-    if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy, a->history[next]);
+    if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy_out, a->history[next]);
     /* this frame's depth is the next frame's previous depth */
     glNamedFramebufferTexture(a->depth_fbo[0], GL_DEPTH_ATTACHMENT, depth, 0);
     glNamedFramebufferTexture(a->depth_fbo[1], GL_DEPTH_ATTACHMENT, a->prev_depth, 0);
@@ -334,6 +334,8 @@ static sl_status activate(void *user) {
                                                                  .vertex = "sl:fullscreen.vert", .fragment = "taa.frag"});
     a->taa_copy = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                       .vertex = "sl:fullscreen.vert", .fragment = "taa_copy.frag"});
+    a->taa_copy_out = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                          .vertex = "sl:fullscreen.vert", .fragment = "taa_copy.frag"});
     glCreateFramebuffers(1, &a->fbo);
     glCreateFramebuffers(2, a->depth_fbo);
     for (int i = 0; i < 2; i++) glNamedFramebufferDrawBuffer(a->depth_fbo[i], GL_NONE), glNamedFramebufferReadBuffer(a->depth_fbo[i], GL_NONE);
@@ -350,7 +352,7 @@ static sl_status activate(void *user) {
     /* Not compiled here: the host compiles each program at its first program_id() (in the pass
      * that uses it), so the mode not in use (fxaa while TAA runs) costs no compile. A missing
      * file is already an error (load_program returns a program that never gets an id). */
-    return a->fxaa && a->taa && a->taa_copy ? SL_OK : SL_ERR_GL;
+    return a->fxaa && a->taa && a->taa_copy && a->taa_copy_out ? SL_OK : SL_ERR_GL;
 }
 
 static void deactivate(void *user) {

@@ -111,7 +111,9 @@ static const sl_key_desc keys[] = {
 typedef struct sss {
     const sl_host *host;
     int unit_diffuse, unit_lut, unit_shadow;
-    sl_program *ts_prog, *ts_interior_prog, *dilate_prog, *ss_prog;
+    /* the blur's programs along u [0] and along v [1]: the same source, a program object for
+     * each pass's state (see ts_blur_execute) */
+    sl_program *ts_prog[2], *ts_interior_prog[2], *dilate_prog, *ss_prog;
     unsigned dummy2d, dummy_array;
     /* texture space: stretch, irradiance, tmp, the chain, sums 0 and 1 (slot 4 unused) */
     int ts_size, ts_generation, ts_result;
@@ -503,17 +505,23 @@ static void ts_split_draw(sss *s, unsigned fast, unsigned full, float sigma_mm) 
 static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     sss *s = user;
     const sl_host *h = s->host;
-    unsigned prog = h->program_id(h, s->ts_prog);
-    if (!prog) return;
-    unsigned fast = h->program_id(h, s->ts_interior_prog);
+    /* along u and along v: one program object per pass (the same source). The two passes draw
+     * into different targets (one colour buffer, two), and llvmpipe compiles a program once per
+     * state. With one program for both, the second state's compile missed Mesa's disk cache at
+     * the first warm start: its key is hashed over the program's IR after the first state's
+     * compile changed it, and at a warm start that first compile is a cache hit (no change). */
+    unsigned prog[2] = {h->program_id(h, s->ts_prog[0]), h->program_id(h, s->ts_prog[1])};
+    if (!prog[0] || !prog[1]) return;
+    unsigned fast[2] = {h->program_id(h, s->ts_interior_prog[0]), h->program_id(h, s->ts_interior_prog[1])};
     ensure_ts(s);
-    if (fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
+    bool use_fast = fast[0] && fast[1];
+    if (use_fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
     /* SHADELAB_SSS_FULL_BLUR=1: the full program on every texel (the tests compare the two; A/B timing) */
-    if (fast && getenv("SHADELAB_SSS_FULL_BLUR")) fast = 0;
-    if (fast && (!s->ts_vao || !ts_classify(s))) fast = 0; /* then the full program everywhere */
-    unsigned progs[2] = {prog, fast};
+    if (use_fast && getenv("SHADELAB_SSS_FULL_BLUR")) use_fast = false;
+    if (use_fast && (!s->ts_vao || !ts_classify(s))) use_fast = false; /* then the full program everywhere */
+    unsigned progs[4] = {prog[0], prog[1], use_fast ? fast[0] : 0, use_fast ? fast[1] : 0};
 #define U(p, name) glGetUniformLocation(p, name)
-#define EACH for (int k = 0; k < 2; k++) if (progs[k])
+#define EACH for (int k = 0; k < 4; k++) if (progs[k])
     EACH {
         unsigned p = progs[k];
         glProgramUniform1i(p, U(p, "sss_src"), 0);
@@ -523,8 +531,8 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         glProgramUniform1fv(p, U(p, "sss_offsets"), s->key_ts_taps, s->ts_offsets);
         glProgramUniform1fv(p, U(p, "sss_weights"), s->key_ts_taps, s->ts_weights);
         glProgramUniform1f(p, U(p, "sss_max_texels"), s->ts_size / 8.0f);
+        glProgramUniform2f(p, U(p, "sss_dir"), k % 2 == 0 ? 1.0f : 0.0f, k % 2 == 0 ? 0.0f : 1.0f);
     }
-    glUseProgram(prog);
     glBindTextureUnit(1, s->ts_tex[TS_STRETCH]);
     /* Unit 2 holds a sum texture in every draw, also the first pass along u (which does not read
      * it): on llvmpipe each compiled variant's key has the state of every unit the program
@@ -541,8 +549,8 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         /* along u into tmp */
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[2]);
         glBindTextureUnit(0, src);
-        EACH glProgramUniform2f(progs[k], U(progs[k], "sss_dir"), 1, 0);
-        if (fast) ts_split_draw(s, fast, prog, sigma);
+        glUseProgram(prog[0]);
+        if (use_fast) ts_split_draw(s, fast[0], prog[0], sigma);
         else h->draw_fullscreen(h, ctx);
         /* along v back into the chain and into the sum (0, 1 alternating) */
         bool even = g % 2 == 0;
@@ -551,12 +559,12 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         glBindTextureUnit(2, s->ts_tex[even ? TS_SUM1 : TS_SUM0]);
         EACH {
             unsigned p = progs[k];
-            glProgramUniform2f(p, U(p, "sss_dir"), 0, 1);
             glProgramUniform3f(p, U(p, "sss_acc_weight"), (float)s->gauss.weight[g][0], (float)s->gauss.weight[g][1],
                                (float)s->gauss.weight[g][2]);
             glProgramUniform1i(p, U(p, "sss_first"), g == 0);
         }
-        if (fast) ts_split_draw(s, fast, prog, sigma);
+        glUseProgram(prog[1]);
+        if (use_fast) ts_split_draw(s, fast[1], prog[1], sigma);
         else h->draw_fullscreen(h, ctx);
         src = s->ts_tex[TS_A];
         s->ts_result = even ? TS_SUM0 : TS_SUM1;
@@ -748,16 +756,21 @@ static sl_status sss_activate(void *user) {
     sss *s = user;
     const sl_host *h = s->host;
     if (!sl_gl_load(h->gl_get_proc_address, NULL)) return SL_ERR_GL;
-    s->ts_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                        .vertex = "sl:fullscreen.vert", .fragment = "sss_ts_blur.frag"});
-    s->ts_interior_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                 .vertex = "sl:fullscreen.vert", .fragment = "sss_ts_blur.frag",
-                                                                 .defines = "SSS_TS_INTERIOR"});
+    for (int d = 0; d < 2; d++) { /* along u, along v (ts_blur_execute) */
+        s->ts_prog[d] = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                               .vertex = "sl:fullscreen.vert", .fragment = "sss_ts_blur.frag"});
+        s->ts_interior_prog[d] = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                        .vertex = "sl:fullscreen.vert",
+                                                                        .fragment = "sss_ts_blur.frag",
+                                                                        .defines = "SSS_TS_INTERIOR"});
+    }
     s->dilate_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                             .vertex = "sl:fullscreen.vert", .fragment = "sss_ts_dilate.frag"});
     s->ss_prog = h->load_program(h, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                         .vertex = "sl:fullscreen.vert", .fragment = "sss_ss_blur.frag"});
-    if (!s->ts_prog || !s->ts_interior_prog || !s->dilate_prog || !s->ss_prog) return SL_ERR_GL;
+    if (!s->ts_prog[0] || !s->ts_prog[1] || !s->ts_interior_prog[0] || !s->ts_interior_prog[1] || !s->dilate_prog ||
+        !s->ss_prog)
+        return SL_ERR_GL;
     static const float zero[4] = {0, 0, 0, 0};
     glCreateTextures(GL_TEXTURE_2D, 1, &s->dummy2d);
     glTextureStorage2D(s->dummy2d, 1, GL_RGBA16F, 1, 1);
