@@ -77,8 +77,15 @@ unsigned em_upload_latlong(const em_image *img) {
 
 unsigned em_upload_cube(float *const faces[6], int size, int levels) {
     unsigned t = em_new_cube(size, levels);
-    for (int f = 0; f < 6; f++) glTextureSubImage3D(t, 0, 0, 0, f, size, size, 1, GL_RGBA, GL_FLOAT, faces[f]);
-    if (levels > 1) glGenerateTextureMipmap(t);
+    /* each face's box mips made on the CPU (em_latlong_mips on the face as an image), as
+     * em_upload_latlong's: no glGenerateMipmap blit program to compile at start-up */
+    for (int f = 0; f < 6; f++) {
+        em_image mips[16];
+        int n = 0;
+        em_latlong_mips(&(em_image){size, size, faces[f]}, mips, levels < 16 ? levels : 16, &n);
+        for (int l = 0; l < n; l++) glTextureSubImage3D(t, l, 0, 0, f, mips[l].w, mips[l].h, 1, GL_RGBA, GL_FLOAT, mips[l].px);
+        for (int l = 1; l < n; l++) free(mips[l].px);
+    }
     return t;
 }
 

@@ -149,7 +149,7 @@ unsigned em_upload_latlong(const em_image *img);
  * other wrap modes made a warm start compile the forward programs again). */
 unsigned em_new_cube(int size, int levels);
 /* Uploads six faces (GL order, size², RGBA) as an RGBA16F cube with `levels` levels
- * (level 0 uploaded, the rest box-filtered by glGenerateMipmap). */
+ * (level 0 uploaded, the rest each face's 2×2 box mips, made on the CPU). */
 unsigned em_upload_cube(float *const faces[6], int size, int levels);
 int em_max_levels(int size); /* floor(log2 size) + 1 */
 /* A size² RGBA16F cube with its full mip chain from a lat-long (src_is_cube false) or cube
