@@ -465,6 +465,7 @@ static int run_turntable(sl_app *app, const cli *c, const char *ffmpeg, recorder
 }
 
 int main(int argc, char **argv) {
+    sl_startup_huge_pages(argv);
     double start = now_ms();
     sl_startup_begin();
     cli c;

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #define MAX_PHASES 64
 
@@ -27,6 +28,26 @@ static void now(double *wall, double *cpu, double *main_cpu) {
     *wall = clock_ms(CLOCK_MONOTONIC);
     *cpu = clock_ms(CLOCK_PROCESS_CPUTIME_ID);
     *main_cpu = clock_ms(CLOCK_THREAD_CPUTIME_ID);
+}
+
+void sl_startup_huge_pages(char **argv) {
+    const char *set = getenv("GLIBC_TUNABLES");
+    if (getenv("SHADELAB_SMALL_PAGES") || (set && strstr(set, "glibc.malloc.hugetlb"))) return;
+    /* "always [madvise] never": madvise is what the tunable uses; "[never]" would make it a no-op */
+    char mode[128] = "";
+    FILE *f = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
+    if (!f) return;
+    size_t n = fread(mode, 1, sizeof mode - 1, f);
+    fclose(f);
+    mode[n] = 0;
+    if (!strstr(mode, "[always]") && !strstr(mode, "[madvise]")) return;
+    char value[4096];
+    int len = snprintf(value, sizeof value, "%s%sglibc.malloc.hugetlb=1", set ? set : "", set && *set ? ":" : "");
+    if (len < 0 || (size_t)len >= sizeof value || setenv("GLIBC_TUNABLES", value, 1) != 0) return;
+    execv("/proc/self/exe", argv);
+    /* no /proc (a chroot, a sandbox): go on with small pages, and do not pass the setting on */
+    if (set) setenv("GLIBC_TUNABLES", set, 1);
+    else unsetenv("GLIBC_TUNABLES");
 }
 
 void sl_startup_begin(void) {

@@ -13,6 +13,15 @@ typedef struct sl_startup_phase {
     double wall_ms, cpu_ms, main_cpu_ms;
 } sl_startup_phase;
 
+/* Re-executes the process once (execv of /proc/self/exe, same argv) with glibc's malloc asked to
+ * back its memory with transparent huge pages (GLIBC_TUNABLES glibc.malloc.hugetlb=1, glibc
+ * 2.35+: madvise(MADV_HUGEPAGE) on the heap and on mmap'd blocks), unless the tunable is already
+ * set, the kernel has transparent huge pages off, or SHADELAB_SMALL_PAGES is set. Call it first
+ * in main(). Why: a start-up writes ~300 MB of fresh memory (llvmpipe's textures and render
+ * targets, decoded images), and a 4 KiB page fault cost ~11 µs on the project's VM (2.8 ms/MB
+ * against 0.18 ms/MB with huge pages; docs/design-notes.md). Returns only when it did not
+ * re-execute. */
+void sl_startup_huge_pages(char **argv);
 /* Starts the clock (main() calls it first); marks before it count from the first mark. */
 void sl_startup_begin(void);
 /* Ends the current phase, naming it (printf format). Cheap; at most 64 phases are kept (the rest
