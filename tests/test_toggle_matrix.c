@@ -42,11 +42,14 @@ typedef struct frame {
 static const char *scenes_dir = SL_SCENES_DIR;
 static bool have_data;
 
-/* Settings every harness of the matrix starts with: small texture-space work for sss. */
+/* Settings every harness of the matrix starts with: small texture-space work for sss, and sss's
+ * disk cache off: a fresh start that loads the diffusion's result draws fewer calls than a live
+ * change that computes it (the same pixels: test_sss_render "cache"), and the matrix compares the
+ * computing path. */
 static int base_settings(const char **ids, int n, const char **out) {
     int k = 0;
     for (int i = 0; i < n; i++)
-        if (!strcmp(ids[i], "sss")) out[k++] = "sss.ts_size=64";
+        if (!strcmp(ids[i], "sss")) out[k++] = "sss.ts_size=64", out[k++] = "sss.cache=false";
     return k;
 }
 

@@ -22,6 +22,7 @@
 #include <shadelab/ext/shadow_maps.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
+#include "sss_cache.h"
 #include "sss_profile.h"
 #include <math.h>
 #include <stdio.h>
@@ -56,6 +57,9 @@ static const sl_param_desc params[] = {
       .step = 0.01f, .group = "wrap", .description = "Width of the scatter band (sss_color) inside the terminator."),
     P(.id = "ts_size", .type = SL_PARAM_INT, .default_value = {.i = 1024}, .min = 64, .max = 4096, .step = 64,
       .unit = "px", .flags = KNOB, .group = "texture space", .description = "Width = height of the UV-space irradiance."),
+    P(.id = "cache", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "texture space",
+      .description = "Keep the texture-space result on disk, keyed by the texels it is made from (a start with the same "
+                     "lighting loads it instead of blurring; the frame is the same)."),
     P(.id = "ts_taps", .type = SL_PARAM_INT, .default_value = {.i = 7}, .min = 3, .max = SSS_MAX_TS_TAPS, .step = 2,
       .flags = KNOB, .group = "texture space", .description = "Taps per 1D blur over ±3σ (odd; 7 = d'Eon & Luebke's)."),
     P(.id = "gaussians", .type = SL_PARAM_INT, .default_value = {.i = 6}, .min = 1, .max = 6, .flags = KNOB,
@@ -122,6 +126,11 @@ typedef struct sss {
      * split draws, CPU scratch for the read-back coverage and stretch */
     unsigned ts_class[2], ts_vao;
     float *ts_scratch;
+    /* the disk cache (sss_cache.h): code and renderer hash (activate), a result to store at the
+     * next frame (one per activation: the start-up state), loads so far */
+    uint64_t code_hash, store_key;
+    bool store_pending, stored;
+    int cache_loads;
     /* screen space: diffuse, depth, tmp, out */
     int ss_w, ss_h;
     unsigned ss_tex[4], ss_fbo[3];
@@ -287,9 +296,11 @@ static void ensure_lut(sss *s) {
 
 /* ------------------------------------------------------------------ per frame ------------- */
 
+static void ts_store_pending(sss *s);
 static void begin_frame(void *user, const sl_frame *f) {
     sss *s = user;
     const sl_host *h = s->host;
+    ts_store_pending(s);
     s->any_material = false;
     float first = 0;
     bool differ = false;
@@ -400,13 +411,25 @@ static float half_to_float(uint16_t h) {
     return h & 0x8000 ? -v : v;
 }
 
-static bool ts_classify(sss *s) {
+/* The blur's inputs read back into the scratch (coverage classes and stretch) and, when key is
+ * given, hashed there with everything else the blur and dilation read: the disk cache's key. */
+static uint64_t blur_key(sss *s, uint64_t h) {
+    int32_t v[3] = {s->ts_size, s->gauss.n, s->key_ts_taps};
+    h = sss_hash(v, sizeof v, h);
+    h = sss_hash(s->gauss.variance, sizeof(double) * (size_t)s->gauss.n, h);
+    h = sss_hash(s->gauss.weight, sizeof(double) * 3 * (size_t)s->gauss.n, h);
+    h = sss_hash(s->ts_offsets, sizeof(float) * (size_t)s->key_ts_taps, h);
+    return sss_hash(s->ts_weights, sizeof(float) * (size_t)s->key_ts_taps, h);
+}
+
+static bool ts_read_inputs(sss *s, uint64_t *key) {
     int n = s->ts_size;
     size_t texels = (size_t)n * n;
     if (!s->ts_scratch) s->ts_scratch = malloc(texels * 4 * sizeof(float));
     if (!s->ts_scratch) return false;
-    /* scratch: [0, 2n²) the stretch (u, v); [2n², 3n²) depth out; the coverage as bytes after it */
-    float *stretch = s->ts_scratch, *depth = s->ts_scratch + 2 * texels;
+    /* scratch: [0, 2n²) the stretch (u, v); [2n², 3n²) depth out (ts_classify); the coverage as
+     * bytes after it */
+    float *stretch = s->ts_scratch;
     unsigned char *full = (unsigned char *)(s->ts_scratch + 3 * texels);
     /* read back as stored (half floats: a copy, no conversion in the driver) */
     uint16_t *irr = malloc(texels * 4 * sizeof(uint16_t));
@@ -418,7 +441,9 @@ static bool ts_classify(sss *s) {
         const uint16_t *t = irr + i * 4;
         full[i] = t[3] == 0x3C00 ? 1 : !((t[0] | t[1] | t[2] | t[3]) & 0x7FFF) ? 2 : 0;
     }
+    uint64_t h = key ? sss_hash(irr, texels * 4 * sizeof(uint16_t), s->code_hash) : 0;
     glGetTextureImage(s->ts_tex[TS_STRETCH], 0, GL_RG, GL_HALF_FLOAT, (GLsizei)(texels * 2 * sizeof(uint16_t)), irr);
+    if (key) *key = blur_key(s, sss_hash(irr, texels * 2 * sizeof(uint16_t), h));
     /* every half float's value: static storage (a malloc'd table held by a static pointer leaks
      * once the plugin is unloaded: LeakSanitizer, tests/sanitize) */
     static float lut[65536];
@@ -429,6 +454,15 @@ static bool ts_classify(sss *s) {
     }
     for (size_t i = 0; i < 2 * texels; i++) stretch[i] = lut[irr[i]];
     free(irr);
+    return true;
+}
+
+/* The per-direction interior depth textures from what ts_read_inputs left in the scratch. */
+static bool ts_classify(sss *s) {
+    int n = s->ts_size;
+    size_t texels = (size_t)n * n;
+    float *stretch = s->ts_scratch, *depth = s->ts_scratch + 2 * texels;
+    unsigned char *full = (unsigned char *)(s->ts_scratch + 3 * texels);
     int *run = calloc((size_t)n, sizeof(int)); /* along v: one running count per column */
     if (!run) return false;
     for (int axis = 0; axis < 2; axis++) {
@@ -501,6 +535,38 @@ static void ts_split_draw(sss *s, unsigned fast, unsigned full, float sigma_mm) 
     glDisable(GL_DEPTH_TEST);
 }
 
+/* A cached result for key: uploaded into its sum texture, which becomes the result. */
+static bool ts_from_cache(sss *s, uint64_t key) {
+    int result = 0;
+    float *px = sss_cache_load(key, s->ts_size, &result);
+    bool ok = px && (result == TS_SUM0 || result == TS_SUM1);
+    if (ok) {
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage2D(s->ts_tex[result], 0, 0, 0, s->ts_size, s->ts_size, GL_RGBA, GL_FLOAT, px);
+        s->ts_result = result;
+        s->cache_loads++;
+        s->host->log(s->host, SL_LOG_DEBUG, "texture space: the diffusion's result from the cache (%016llx)",
+                     (unsigned long long)key);
+    }
+    free(px);
+    return ok;
+}
+
+static void ts_store_pending(sss *s) {
+    if (!s->store_pending) return;
+    s->store_pending = false;
+    if (!s->ts_tex[s->ts_result]) return;
+    size_t bytes = (size_t)s->ts_size * s->ts_size * 4 * sizeof(float);
+    float *px = malloc(bytes);
+    if (!px) return;
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(s->ts_tex[s->ts_result], 0, GL_RGBA, GL_FLOAT, (GLsizei)bytes, px);
+    char err[2600];
+    if (!sss_cache_store(s->store_key, s->ts_size, s->ts_result, px, err, sizeof err))
+        s->host->log(s->host, SL_LOG_WARN, "could not write the texture-space cache: %s", err);
+    free(px);
+}
+
 /* Texture space 3: the chain of separable blurs, each v pass adding wᵢ·blurᵢ to the sum. */
 static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     sss *s = user;
@@ -518,7 +584,12 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     if (use_fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
     /* SHADELAB_SSS_FULL_BLUR=1: the full program on every texel (the tests compare the two; A/B timing) */
     if (use_fast && getenv("SHADELAB_SSS_FULL_BLUR")) use_fast = false;
-    if (use_fast && (!s->ts_vao || !ts_classify(s))) use_fast = false; /* then the full program everywhere */
+    /* the disk cache goes with the interior path (the default; the full program's tests run without) */
+    bool caching = use_fast && param(s, "cache").b;
+    uint64_t key = 0;
+    if (use_fast && (!s->ts_vao || !ts_read_inputs(s, caching ? &key : NULL))) use_fast = caching = false;
+    if (caching && ts_from_cache(s, key)) return;
+    if (use_fast && !ts_classify(s)) use_fast = caching = false; /* then the full program everywhere */
     unsigned progs[4] = {prog[0], prog[1], use_fast ? fast[0] : 0, use_fast ? fast[1] : 0};
 #define U(p, name) glGetUniformLocation(p, name)
 #define EACH for (int k = 0; k < 4; k++) if (progs[k])
@@ -583,6 +654,12 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         s->ts_result = into1 ? TS_SUM1 : TS_SUM0;
     }
     for (int u = 0; u < 3; u++) glBindTextureUnit(u, 0);
+    /* the first result of an activation goes to the disk cache, read back at the next frame or at
+     * deactivate (not now: that would wait here for the blurs to finish) */
+    if (caching && !s->stored) {
+        s->store_pending = s->stored = true;
+        s->store_key = key;
+    }
 }
 
 /* Screen space 1: the skin's diffuse light (irradiance × pre-scatter albedo) with its depth. */
@@ -771,6 +848,16 @@ static sl_status sss_activate(void *user) {
     if (!s->ts_prog[0] || !s->ts_prog[1] || !s->ts_interior_prog[0] || !s->ts_interior_prog[1] || !s->dilate_prog ||
         !s->ss_prog)
         return SL_ERR_GL;
+    /* the cache key's code part: the blur's and dilation's GLSL, and the renderer that runs them
+     * (another rasteriser rounds differently) */
+    static const char *const glsl[] = {"sss_ts_blur.frag", "sss_ts_dilate.frag", "sss_lib.glsl", NULL};
+    static const char *const sdk_glsl[] = {"fullscreen.vert", NULL};
+    s->code_hash = sss_hash_files(h->resource_dir(h), glsl, 0x55c0de);
+    s->code_hash = sss_hash_files(h->shader_dir(h), sdk_glsl, s->code_hash);
+    for (GLenum e = GL_VENDOR; e <= GL_VERSION; e++) {
+        const char *str = (const char *)glGetString(e);
+        if (str) s->code_hash = sss_hash(str, strlen(str), s->code_hash);
+    }
     static const float zero[4] = {0, 0, 0, 0};
     glCreateTextures(GL_TEXTURE_2D, 1, &s->dummy2d);
     glTextureStorage2D(s->dummy2d, 1, GL_RGBA16F, 1, 1);
@@ -786,6 +873,8 @@ static sl_status sss_activate(void *user) {
 
 static void sss_deactivate(void *user) {
     sss *s = user;
+    ts_store_pending(s);
+    s->stored = false;
     free_ts(s);
     free_ss(s);
     if (s->ts_vao) glDeleteVertexArrays(1, &s->ts_vao);

@@ -7,10 +7,15 @@
  *   leak           screen space: light does not cross a depth discontinuity
  *   seam           texture space: no step across a UV seam facing the camera
  *   interior       texture space: the interior (branch-free) blur path equals the full program
+ *   cache          texture space: the on-disk result cache gives exactly the computed image, is
+ *                  read (a tampered file shows), misses when the lighting changed, survives a
+ *                  truncated file
  * Scenes are in millimetres (sss_radius = 1) unless stated. */
 #include "sss_test.h"
 #include "image/image.h"
 #include "test_tmp.h"
+#include <dirent.h>
+#include <unistd.h>
 
 static const char *const PLUGINS[] = {"sss", NULL};
 static const char *const METHODS[] = {"none", "wrap", "translucency", "texture-space", "screen-space", "pre-integrated"};
@@ -372,7 +377,111 @@ static void test_interior(void) {
     }
 }
 
+/* ------------------------------------------------------------------ cache ------------------ */
+/* The one ts-*.bin file in dir (its path into out); how many there are. */
+static int cache_files(const char *dir, char *out, size_t n) {
+    DIR *d = opendir(dir);
+    int count = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+        if (!strncmp(e->d_name, "ts-", 3) && strstr(e->d_name, ".bin") && !strstr(e->d_name, ".tmp")) {
+            snprintf(out, n, "%s/%s", dir, e->d_name);
+            count++;
+        }
+    if (d) closedir(d);
+    return count;
+}
+
+static bool render_once(const char *scene, const char *cache, const char *light, float *img, int n) {
+    sl_harness *h = sss_t_harness(scene, n, n, PLUGINS, (const char *[]){"sss.ts_size=256", cache, light, NULL});
+    if (!h) return false;
+    bool ok = sl_harness_render(h, img);
+    sl_harness_destroy(h); /* deactivate: the pending result is written then */
+    return ok;
+}
+
+static double max_diff(const float *a, const float *b, size_t count) {
+    double worst = 0;
+    for (size_t i = 0; i < count; i++) worst = fmax(worst, fabs((double)a[i] - b[i]));
+    return worst;
+}
+
+static void test_cache(void) {
+    const char *scene =
+        "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 30, 160], \"target\": [0, 0, 0], \"fov_y\": 35,"
+        " \"near\": 1, \"far\": 1000}],\n"
+        " \"materials\": [{\"name\": \"skin\", \"model\": \"skin\", \"base_color\": [0.7, 0.6, 0.5],"
+        " \"sss_radius\": 2, \"specular\": 0}],\n"
+        " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 40, \"segments\": 64,"
+        " \"rings\": 32}, \"material\": \"skin\"}],\n"
+        " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [-1, -0.3, -0.4],"
+        " \"intensity\": 3}]}\n";
+    enum { N = 64 };
+    const size_t count = (size_t)N * N * 4;
+    static float ref[N * N * 4], img[N * N * 4], ref2[N * N * 4];
+    char root[4200], dir[4300], file[4600];
+    snprintf(root, sizeof root, "%s/cache", sl_test_dir());
+    snprintf(dir, sizeof dir, "%s/sss", root);
+    char *saved = getenv("SHADELAB_CACHE") ? strdup(getenv("SHADELAB_CACHE")) : NULL;
+    setenv("SHADELAB_CACHE", root, 1);
+    const char *on = "sss.cache=true", *off = "sss.cache=false", *dim = "light.sun.intensity=2";
+    /* 1. computed with the cache on = computed without; one file written */
+    CHECK(render_once(scene, off, NULL, ref, N));
+    CHECK(cache_files(dir, file, sizeof file) == 0);
+    CHECK(render_once(scene, on, NULL, img, N));
+    double d1 = max_diff(img, ref, count);
+    int files = cache_files(dir, file, sizeof file);
+    printf("cache: first start (stores) vs no cache: largest difference %g; %d file(s)\n", d1, files);
+    CHECK(d1 == 0 && files == 1);
+    /* 2. loaded: the same image, bit for bit */
+    CHECK(render_once(scene, on, NULL, img, N));
+    double d2 = max_diff(img, ref, count);
+    printf("cache: second start (loads) vs no cache: largest difference %g\n", d2);
+    CHECK_MSG(d2 == 0, "the cached result differs from the computed one by %g", d2);
+    CHECK(cache_files(dir, file, sizeof file) == 1);
+    /* 3. it is read: a file whose texels were replaced shows in the image */
+    FILE *f = fopen(file, "r+b");
+    CHECK(f != NULL);
+    if (f) {
+        long header = 24; /* magic, key, size, result */
+        float fill[4] = {0.5f, 0.0f, 0.5f, 1.0f};
+        fseek(f, header, SEEK_SET);
+        for (int i = 0; i < 256 * 256; i++) fwrite(fill, sizeof fill, 1, f);
+        fclose(f);
+    }
+    CHECK(render_once(scene, on, NULL, img, N));
+    double d3 = max_diff(img, ref, count);
+    printf("cache: a tampered file's texels show: largest difference %g\n", d3);
+    CHECK_MSG(d3 > 0.05, "the cache file is not what the frame shows (%g)", d3);
+    /* 4. other lighting: no stale hit (the image of that lighting without the cache) */
+    CHECK(render_once(scene, off, dim, ref2, N));
+    CHECK(render_once(scene, on, dim, img, N));
+    double d4 = max_diff(img, ref2, count), d4b = max_diff(ref2, ref, count);
+    printf("cache: dimmer light: vs its own computed image %g (vs the first lighting %g); %d file(s)\n", d4, d4b,
+           cache_files(dir, file, sizeof file));
+    CHECK(d4 == 0 && d4b > 0.01);
+    CHECK(cache_files(dir, file, sizeof file) == 2);
+    /* 5. a truncated file: computed again, the same image */
+    if (cache_files(dir, file, sizeof file) >= 1) {
+        DIR *d = opendir(dir);
+        for (struct dirent *e; d && (e = readdir(d));)
+            if (!strncmp(e->d_name, "ts-", 3)) {
+                char p[4600];
+                snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+                CHECK(truncate(p, 1000) == 0);
+            }
+        if (d) closedir(d);
+    }
+    CHECK(render_once(scene, on, NULL, img, N));
+    double d5 = max_diff(img, ref, count);
+    printf("cache: truncated files: vs computed %g\n", d5);
+    CHECK(d5 == 0);
+    if (saved) setenv("SHADELAB_CACHE", saved, 1);
+    else unsetenv("SHADELAB_CACHE");
+    free(saved);
+}
+
 int main(void) {
+    test_cache();
     test_leak();
     test_seam();
     test_interior();
