@@ -6,6 +6,8 @@
  *   shadows off equals the unshadowed image exactly, and runs no pass;
  *   the pass runs only when something changed, and not at all without shadowed lights;
  *   the reference is soft, and PCSS is closer to it than hard shadows;
+ *   PCF with taps one texel apart (texels gathered 2×2) equals the per-tap comparisons (a step of
+ *     1 + 1e-6, the same taps within float rounding), every light type, pcf_size 3, 5 and 9;
  *   scenes/shadow_head.json (when the data directory has the head scan): finite, shadowed. */
 #include "shadow_test.h"
 
@@ -290,7 +292,34 @@ static void test_head(void) {
     sl_harness_destroy(h);
 }
 
+/* The gathered PCF (pcf_step 1) against the hardware taps at a step 1e-6 larger: the same filter,
+ * so the same image up to rounding; a shadow must be in it. */
+static void test_pcf_gather(void) {
+    static float tap[W * H * 4];
+    for (int c = 0; c < 3; c++)
+        for (int k = 3; k <= 9; k += k == 5 ? 4 : 2) {
+            char json[4096], size[64];
+            snprintf(json, sizeof json, SCENE_HEAD "%s", cases[c].json);
+            snprintf(size, sizeof size, "spotlight-shadow.pcf_size=%d", k);
+            sl_harness *h = ss_make(W, H, json, (const char *[]){"spotlight-shadow.filter=pcf", size, "spotlight-shadow.map_size=512", NULL});
+            CHECK(h != NULL);
+            if (!h) continue;
+            CHECK(sl_harness_render(h, img));
+            CHECK(ss_set(h, "spotlight-shadow.pcf_step=1.000001") && sl_harness_render(h, tap));
+            CHECK(ss_set(h, "spotlight-shadow.shadows=false") && sl_harness_render(h, lit));
+            sl_compare d, sh;
+            sl_harness_compare(img, tap, W, H, 1e-5, &d);
+            sl_harness_compare(img, lit, W, H, 0.05, &sh);
+            printf("pcf %dx%d %-11s gathered vs taps: max difference %.3g, %ld pixels over 1e-5 (shadowed pixels: %ld)\n",
+                   k, k, cases[c].name, d.max_abs, d.pixels_over, sh.pixels_over);
+            CHECK_MSG(d.pixels_over == 0 && d.max_abs < 1e-5, "gathered PCF differs from the taps by %g", d.max_abs);
+            CHECK_MSG(sh.pixels_over > 50, "no shadow to compare (%ld pixels)", sh.pixels_over);
+            sl_harness_destroy(h);
+        }
+}
+
 int main(void) {
+    test_pcf_gather();
     test_head();
     test_umbra();
     test_stability();
