@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# OpenImageIO is opened only when an image file is read or a format other than PNG is written
-# (core/image/image.h: its ~250 libraries cost every process start ≈ 0.5 s): the bare scene
-# rendered to a PNG, and the built-in default (envmap's sky, no file), map no libOpenImageIO; an
-# EXR output, a scene with a texture file, and envmap with an HDR file do, and their images are
-# written. Checked with the dynamic loader's own log (LD_DEBUG=files), not with timings.
+# OpenImageIO is opened only when an image file other than a plain JPEG/PNG/EXR is read or a format
+# other than PNG is written (core/image/image.h: its ~250 libraries cost every process start ≈ 0.5 s):
+# the bare scene rendered to a PNG, the built-in default (envmap's sky, no file), a scene with a PNG
+# texture and envmap with an EXR file (both decoded natively, image_native.c) map no libOpenImageIO;
+# an EXR output and envmap with a Radiance .hdr file do, and their images are written. Checked with the dynamic loader's own log (LD_DEBUG=files), not with timings.
 #   usage: cli_lazy_oiio.sh SHADELAB SCENES_DIR OUTDIR
 set -u
 exe=$1 scenes=$2 out=$3
@@ -27,18 +27,25 @@ cat > "$out/textured.json" <<JSON
  "nodes": [{"name": "s", "mesh": {"primitive": "sphere", "radius": 1}, "material": "m"}],
  "lights": [{"type": "directional", "direction": [0, -1, -1], "color": [1, 1, 1]}]}
 JSON
-check loads_oiio --scene "$out/textured.json" --output "$out/textured.png"
+check eval '! loads_oiio --scene "$out/textured.json" --output "$out/textured.png"'
 check test -s "$out/textured.png"
-# envmap with an image file: read through host->read_image (SDK 1.10), which opens the module
-cat > "$out/env.json" <<JSON
-{"plugins": ["ggx", "envmap"], "environment": {"map": "basic.exr"},
+# envmap with an image file, read through host->read_image (SDK 1.10): an EXR natively, a .hdr
+# through OpenImageIO's module
+check loads_oiio --scene "$scenes/basic.json" --output "$out/basic.hdr"
+check test -s "$out/basic.hdr"
+for map in basic.exr basic.hdr; do
+  cat > "$out/env_$map.json" <<JSON
+{"plugins": ["ggx", "envmap"], "environment": {"map": "$map"},
  "materials": [{"name": "m", "model": "ggx", "base_color": [0.8, 0.8, 0.8], "roughness": 0.5}],
  "nodes": [{"name": "s", "mesh": {"primitive": "sphere", "radius": 1}, "material": "m"}],
  "lights": []}
 JSON
-check loads_oiio --scene "$out/env.json" --output "$out/env.png"
-msg=$("$exe" --headless --size 32x18 --frames 1 -v --scene "$out/env.json" --output "$out/env.png" 2>&1)
+done
+check eval '! loads_oiio --scene "$out/env_basic.exr.json" --output "$out/env_exr.png"'
+check test -s "$out/env_exr.png"
+check loads_oiio --scene "$out/env_basic.hdr.json" --output "$out/env.png"
+msg=$("$exe" --headless --size 32x18 --frames 1 -v --scene "$out/env_basic.hdr.json" --output "$out/env.png" 2>&1)
 check grep -q "OpenImageIO module: " <<<"$msg"
-check grep -q "basic.exr" <<<"$msg"
+check grep -q "basic.hdr" <<<"$msg"
 echo "cli_lazy_oiio: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -11,6 +11,7 @@ PKGS=(
   libgl1-mesa-dri         # llvmpipe/DRI drivers used by OSMesa and EGL surfaceless
   libopenimageio-dev openimageio-tools  # images in and out, image compare
   libpng-dev              # PNG output without loading OpenImageIO (core/image/image.c)
+  libjpeg-dev libopenexr-dev  # native JPEG and EXR decoding (core/image/image_native.c; OpenEXRCore only)
   libcjson-dev            # JSON scenes
   libassimp-dev           # glTF / OBJ meshes
   assimp-testmodels       # test data: Debian's glTF2 sample models (ctest gltf_models), so it never skips

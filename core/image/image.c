@@ -200,6 +200,17 @@ static bool colorspace_is_linear(const char *cs) {
 
 static bool decode(sl_image *img, const char *path, const void *data, size_t size, char *err, size_t err_size);
 
+/* HDR files with NaN/Inf are legal but poison shading: say so. Info, not a warning: the loader is
+ * faithful (image comparisons need the values); each consumer that shades with them applies its
+ * policy and warns (textures, environments). */
+static void report_nonfinite(const sl_image *img, const char *path) {
+    if (!img->source_float) return;
+    long bad = 0;
+    size_t n = (size_t)img->width * (size_t)img->height * 4;
+    for (size_t i = 0; i < n; i++) bad += !isfinite(img->pixels[i]);
+    if (bad) SL_INFO("%s: %ld sample%s NaN or Inf", path, bad, bad == 1 ? " is" : "s are");
+}
+
 bool sl_image_load(sl_image *img, const char *path, char *err, size_t err_size) {
     if (!img) {
         set_err(err, err_size, "%s: no output image given", path ? path : "(null)");
@@ -260,6 +271,13 @@ bool sl_image_load_memory(sl_image *img, const void *data, size_t size, const ch
 
 /* Opens (a file, or `data` when given) and decodes: the checks and conversions every image gets. */
 static bool decode(sl_image *img, const char *path, const void *data, size_t size, char *err, size_t err_size) {
+    /* The plain common JPEG, PNG and EXR files without OpenImageIO (image_native.c; image.h says why);
+     * SHADELAB_IMAGE_DECODER=oiio sends every file to OIIO (tests compare both paths). */
+    const char *decoder = getenv("SHADELAB_IMAGE_DECODER");
+    if (!(decoder && !strcmp(decoder, "oiio")) && sl_image_decode_native(img, path, data, size)) {
+        report_nonfinite(img, path);
+        return true;
+    }
     char ext[16], msg[1024] = "";
     path_extension(path, ext, sizeof ext);
     sl_oiio_info info;
@@ -349,14 +367,6 @@ static bool decode(sl_image *img, const char *path, const void *data, size_t siz
     }
     free(abuf);
 
-    if (info.is_float) { /* HDR files with NaN/Inf are legal but poison shading: say so */
-        long bad = 0;
-        for (size_t i = 0; i < npix * 4; i++) bad += !isfinite(buf[i]);
-        /* info, not a warning: the loader is faithful (image comparisons need the values); each
-         * consumer that shades with them applies its policy and warns (textures, environments) */
-        if (bad) SL_INFO("%s: %ld sample%s NaN or Inf", path, bad, bad == 1 ? " is" : "s are");
-    }
-
     img->width = info.width;
     img->height = info.height;
     img->channels = 4;
@@ -367,6 +377,7 @@ static bool decode(sl_image *img, const char *path, const void *data, size_t siz
     img->source_channels = info.channels;
     snprintf(img->source_description, sizeof img->source_description, "%s", info.description);
     snprintf(img->source_format, sizeof img->source_format, "%s", info.format_name);
+    report_nonfinite(img, path);
     return true;
 }
 

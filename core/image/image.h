@@ -1,5 +1,9 @@
-/* Images in and out, through OpenImageIO (image_oiio.cpp is the only C++ here), and
- * procedural textures. Pixels are float RGBA in memory unless stated otherwise.
+/* Images in and out, and procedural textures. Pixels are float RGBA in memory unless stated otherwise.
+ * Reading: the plain common JPEG, PNG and OpenEXR files are decoded natively (image_native.c: libjpeg,
+ * libpng, OpenEXRCore), giving exactly what OpenImageIO gives for them; every other file (other formats,
+ * and any JPEG/PNG/EXR with damage, unusual metadata or layout) goes through OpenImageIO, a module opened
+ * on first use (image_oiio.cpp, the only C++ here; see the SL_IMAGE_INTERNAL section for why). Writing:
+ * PNG with libpng, other formats through OpenImageIO.
  *
  * Conventions for every function here:
  *  - row 0 is the TOP of the image (file order). OpenGL's glReadPixels returns bottom-up
@@ -40,7 +44,9 @@ typedef struct sl_image {
 } sl_image;
 
 /* Loads any format OpenImageIO reads (PNG, JPEG, HDR, EXR, TIFF…; 8/16-bit integer, half,
- * float) as float RGBA, unmodified values (integers normalised to [0,1], no colour conversion:
+ * float) as float RGBA (plain JPEG/PNG/EXR natively, with identical results: see the top of this file;
+ * SHADELAB_IMAGE_DECODER=oiio in the environment sends every file to OpenImageIO, for tests and
+ * comparisons), unmodified values (integers normalised to [0,1], no colour conversion:
  * see sl_image_srgb_to_linear). One channel = grey, replicated to RGB; two channels = grey +
  * alpha; a missing alpha is 1. Only the first subimage / mip level is read; EXIF orientation
  * is not applied. On failure writes "path: reason" into err (no such file, is a directory,
@@ -161,6 +167,19 @@ void sl_image_to_rgba8(const float *rgba, int width, int height, bool display_en
                        unsigned char *out);
 
 #ifdef SL_IMAGE_INTERNAL
+/* Internal: the native decoders (image_native.c), used only by image.c's decode() before OpenImageIO.
+ * They exist because opening OpenImageIO's module costs ≈ 0.42 s and holds the dynamic loader's lock
+ * (see below), while most scenes read only JPEG, PNG and EXR files. Decodes `path` (or `data`/`size`
+ * when data is given; path is then the name) when it is a plain JPEG (8-bit grey/YCbCr/RGB), PNG
+ * (any bit depth/colour type/interlacing, sRGB/no/gAMA 1.0 or 1/2.2 colour chunks) or single-part
+ * scanline EXR (R,G,B[,A] or Y[,A], all half or all float) whose extension names that format, and
+ * fills *img exactly as the OpenImageIO path would (pixels, size and every source_* field). Returns
+ * false, with *img zeroed and nothing printed, for anything else: other formats, errors and warnings
+ * of the libraries (corrupt or truncated data), sizes over the limits, metadata that could change a
+ * field (ICC profiles, XMP, Exif/IPTC descriptions, cHRM…), multipart/deep/tiled/windowed EXRs:
+ * decode() then goes on with OpenImageIO as before. */
+bool sl_image_decode_native(sl_image *img, const char *path, const void *data, size_t size);
+
 /* Internal: the OpenImageIO adapter (image_oiio.cpp), used only by image.c. Every function
  * catches all C++ exceptions and reports them as errors (message without the path). */
 typedef struct sl_oiio_info {
