@@ -274,8 +274,18 @@ static bool decode(sl_image *img, const char *path, const void *data, size_t siz
     /* The plain common JPEG, PNG and EXR files without OpenImageIO (image_native.c; image.h says why);
      * SHADELAB_IMAGE_DECODER=oiio sends every file to OIIO (tests compare both paths). */
     const char *decoder = getenv("SHADELAB_IMAGE_DECODER");
-    if (!(decoder && !strcmp(decoder, "oiio")) && sl_image_decode_native(img, path, data, size)) {
+    bool force_oiio = decoder && !strcmp(decoder, "oiio");
+    if (!force_oiio && sl_image_decode_native(img, path, data, size)) {
         report_nonfinite(img, path);
+        return true;
+    }
+    /* A file only OpenImageIO reads, decoded before: from the cache, without opening the module
+     * (image_cache.c; image.h says why and what the key is). Forced OIIO decodes neither read nor
+     * write it. */
+    sl_image_cache_entry cached = {0};
+    bool use_cache = !force_oiio && sl_image_cache_enabled();
+    if (use_cache && sl_image_cache_lookup(img, path, data, size, &cached)) {
+        report_nonfinite(img, path); /* the same message as the decode gave: the values are the same */
         return true;
     }
     char ext[16], msg[1024] = "";
@@ -345,8 +355,10 @@ static bool decode(sl_image *img, const char *path, const void *data, size_t siz
         sl_oiio_close(in);
         return false;
     }
-    /* read, but the reader recovered from damage (a truncated JPEG is filled with grey): say so */
-    if (msg[0]) SL_WARN("%s: damaged image data, loaded as the reader recovered it (%s)", path, msg);
+    /* read, but the reader recovered from damage (a truncated JPEG is filled with grey): say so,
+     * and never cache it, so that the warning is given at every load */
+    bool damaged = msg[0] != 0;
+    if (damaged) SL_WARN("%s: damaged image data, loaded as the reader recovered it (%s)", path, msg);
     sl_oiio_close(in);
 
     for (size_t i = npix; i-- > 0;) {
@@ -377,6 +389,7 @@ static bool decode(sl_image *img, const char *path, const void *data, size_t siz
     img->source_channels = info.channels;
     snprintf(img->source_description, sizeof img->source_description, "%s", info.description);
     snprintf(img->source_format, sizeof img->source_format, "%s", info.format_name);
+    if (use_cache && !damaged) sl_image_cache_store(&cached, data ? NULL : path, img);
     report_nonfinite(img, path);
     return true;
 }

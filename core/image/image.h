@@ -46,8 +46,11 @@ typedef struct sl_image {
 /* Loads any format OpenImageIO reads (PNG, JPEG, HDR, EXR, TIFF…; 8/16-bit integer, half,
  * float) as float RGBA (plain JPEG/PNG/EXR natively, with identical results: see the top of this file;
  * SHADELAB_IMAGE_DECODER=oiio in the environment sends every file to OpenImageIO, for tests and
- * comparisons), unmodified values (integers normalised to [0,1], no colour conversion:
- * see sl_image_srgb_to_linear). One channel = grey, replicated to RGB; two channels = grey +
+ * comparisons, and bypasses the cache), unmodified values (integers normalised to [0,1], no colour
+ * conversion: see sl_image_srgb_to_linear). Files that need OpenImageIO and decode without damage are
+ * cached decoded, keyed by a hash of their bytes, so that a later load of the same content does not
+ * open the module (the SL_IMAGE_INTERNAL section: where, the key, the cap); SHADELAB_IMAGE_CACHE=0
+ * turns the cache off. One channel = grey, replicated to RGB; two channels = grey +
  * alpha; a missing alpha is 1. Only the first subimage / mip level is read; EXIF orientation
  * is not applied. On failure writes "path: reason" into err (no such file, is a directory,
  * permission denied, empty file, unsupported format, corrupt or truncated data, too large)
@@ -179,6 +182,41 @@ void sl_image_to_rgba8(const float *rgba, int width, int height, bool display_en
  * field (ICC profiles, XMP, Exif/IPTC descriptions, cHRM…), multipart/deep/tiled/windowed EXRs:
  * decode() then goes on with OpenImageIO as before. */
 bool sl_image_decode_native(sl_image *img, const char *path, const void *data, size_t size);
+
+/* Internal: the decoded-image cache (image_cache.c), used only by image.c's decode() for files the
+ * native decoders leave to OpenImageIO. It exists because the module costs ≈ 0.4 s to open and some
+ * files that are read at every start need it (blender-data's DWAB-compressed studio lights, which
+ * Debian 12's OpenEXRCore cannot decompress; .hdr, .tif…). A file OIIO decoded cleanly is kept as
+ * its sl_image (fields and float RGBA pixels) in $SHADELAB_CACHE/images (else
+ * $XDG_CACHE_HOME/shadelab/images, else ~/.cache/shadelab/images) as img-KEY.bin; the 8 most
+ * recently used are kept. The key is a 64-bit hash of the encoded bytes (the whole file, or the
+ * memory given), seeded with the cache's format version, the OpenImageIO version the module was
+ * built against and the name's extension: content-addressed, so an edited file can never find the
+ * entry of its old content, whatever its mtime. A missing, short, corrupt or mismatching entry (the
+ * header's key and byte count are checked, sizes against the limits, the file's exact size) is a
+ * miss, never an error; so is a cache directory that cannot be made. Not used (neither read nor
+ * written) with SHADELAB_IMAGE_DECODER=oiio or SHADELAB_IMAGE_CACHE=0. */
+typedef struct sl_image_cache_entry {
+    bool valid;            /* key and source_bytes were computed */
+    bool file;             /* a file (not memory): its identity below, re-checked before storing */
+    uint64_t key, source_bytes;
+    uint64_t dev, ino;
+    int64_t mtime_s, mtime_ns;
+} sl_image_cache_entry;
+/* False when SHADELAB_IMAGE_CACHE is "0". */
+bool sl_image_cache_enabled(void);
+/* The key's hash: 8-byte words xor-multiplied by the FNV-1a 64-bit prime with a fold, the tail
+ * bytes, the length. */
+uint64_t sl_image_cache_hash(const void *data, size_t size, uint64_t seed);
+/* Computes the key of `path` (or of data/size when data is given; path is then the name) into *e
+ * and, on a hit, fills *img exactly as the OpenImageIO path did and returns true. On a miss returns
+ * false with *img untouched; *e is then valid for sl_image_cache_store unless hashing failed. */
+bool sl_image_cache_lookup(sl_image *img, const char *path, const void *data, size_t size,
+                           sl_image_cache_entry *e);
+/* Stores img under e's key (written to a temporary name and renamed into place), then prunes the
+ * directory to 8 entries. Silent: a failure only means a later miss. Nothing is stored when the
+ * file's size, mtime or inode changed since its key was computed. */
+void sl_image_cache_store(const sl_image_cache_entry *e, const char *path, const sl_image *img);
 
 /* Internal: the OpenImageIO adapter (image_oiio.cpp), used only by image.c. Every function
  * catches all C++ exceptions and reports them as errors (message without the path). */
