@@ -9,6 +9,10 @@ set -u
 exe=$1 scenes=$2 out=$3
 mkdir -p "$out"
 . "$(dirname "$0")/cli_check.sh"
+# The decoded-image cache (core/image/image_cache.c) would let a .hdr read in an earlier run (every
+# test shares the build's test-cache) load without the module: off here, so that what is checked is
+# which files need OpenImageIO; the cache's own case is at the end, with a directory of its own.
+export SHADELAB_IMAGE_CACHE=0
 loads_oiio() { # the whole log first: grep -q would stop reading and SIGPIPE the run
     local log
     log=$(LD_DEBUG=files "$exe" --headless --size 32x18 --frames 1 "$@" 2>&1)
@@ -47,5 +51,13 @@ check loads_oiio --scene "$out/env_basic.hdr.json" --output "$out/env.png"
 msg=$("$exe" --headless --size 32x18 --frames 1 -v --scene "$out/env_basic.hdr.json" --output "$out/env.png" 2>&1)
 check grep -q "OpenImageIO module: " <<<"$msg"
 check grep -q "basic.hdr" <<<"$msg"
+# with the cache on, in a fresh directory: the first run decodes the .hdr through the module and keeps
+# it; the second loads it from the cache and opens no OpenImageIO
+rm -rf "$out/image-cache"
+cached() { SHADELAB_IMAGE_CACHE=1 SHADELAB_CACHE="$out/image-cache" loads_oiio "$@"; }
+check cached --scene "$out/env_basic.hdr.json" --output "$out/env_c1.png"
+check test "$(ls "$out/image-cache/images" | grep -c '^img-.*\.bin$')" = 1
+check eval '! cached --scene "$out/env_basic.hdr.json" --output "$out/env_c2.png"'
+check cmp "$out/env_c1.png" "$out/env_c2.png"
 echo "cli_lazy_oiio: $pass passed, $fail failed"
 [ $fail -eq 0 ]
