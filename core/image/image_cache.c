@@ -98,8 +98,10 @@ uint64_t sl_image_cache_hash(const void *data, size_t size, uint64_t seed) {
 
 /* Reads fd to its end, hashing as it goes: blocks of a multiple of 8 bytes, so the words are those
  * of the whole file and the result equals sl_image_cache_hash over its bytes. */
-static bool hash_fd(int fd, uint64_t seed, uint64_t *key, uint64_t *bytes) {
-    enum { BLOCK = 1 << 20 };
+static bool hash_fd(int fd, uint64_t expected, uint64_t seed, uint64_t *key, uint64_t *bytes) {
+    /* 1 MiB, or the file's size rounded up to whole words when smaller (no page faults for nothing);
+     * any multiple of 8 gives the same hash */
+    size_t BLOCK = expected < (1u << 20) ? (size_t)(expected / 8 + 1) * 8 : (size_t)1 << 20;
     unsigned char *buf = malloc(BLOCK);
     if (!buf) return false;
     uint64_t h = seed, total = 0;
@@ -191,7 +193,7 @@ bool sl_image_cache_lookup(sl_image *img, const char *path, const void *data, si
         int fd = open(path, O_RDONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
         if (fd < 0) return false;
         struct stat st;
-        bool ok = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && hash_fd(fd, seed, &e->key, &e->source_bytes) &&
+        bool ok = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && hash_fd(fd, (uint64_t)st.st_size, seed, &e->key, &e->source_bytes) &&
                   e->source_bytes == (uint64_t)st.st_size;
         close(fd);
         if (!ok) return false;
