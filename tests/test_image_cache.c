@@ -1,7 +1,7 @@
 /* core/image/image_cache.c: files only OpenImageIO reads are kept decoded, keyed by their bytes.
  * With SHADELAB_CACHE pointed at a directory of this test's own:
- *  - a float TIFF (with NaN and Inf samples), a Radiance .hdr and blender-data's DWAB courtyard.exr
- *    (when installed) load once through OIIO, which leaves exactly one cache file; a child process
+ *  - a float TIFF (with NaN and Inf samples), a Radiance .hdr, a 1.2 MB TIFF (hashed in two
+ *    blocks) and blender-data's DWAB courtyard.exr (when installed) load once through OIIO, which leaves exactly one cache file; a child process
  *    (this executable re-run, so that no module is inherited) then loads each again, from the file and
  *    from memory, and must get every float bit for bit and every source_* field of an OIIO-forced
  *    decode (SHADELAB_IMAGE_DECODER=oiio) — with OIIO's NaN/Inf message — while /proc/self/maps shows
@@ -144,6 +144,21 @@ static void write_tiff(const char *path, float salt) {
     free(p);
 }
 
+/* Over 1 MiB of noise (no compression shrinks it), so that hashing the file takes several blocks: its
+ * key must equal the one of the same bytes in memory. */
+static void write_big_tiff(const char *path) {
+    int w = 300, h = 290;
+    float *p = malloc((size_t)w * h * 16);
+    uint32_t x = 12345;
+    for (size_t i = 0; i < (size_t)w * h * 4; i++) {
+        x ^= x << 13, x ^= x >> 17, x ^= x << 5;
+        p[i] = (float)(x >> 8) / 16777216.0f;
+    }
+    char err[1024] = "";
+    CHECK_MSG(sl_oiio_write(path, "tiff", NULL, p, w, h, 4, "float", 0, err, sizeof err), "%s", err);
+    free(p);
+}
+
 static void write_hdr(const char *path, float salt) {
     int w = 20, h = 10;
     float *p = pattern(w, h, salt);
@@ -172,7 +187,7 @@ static void write_flat_hdr(const char *path, int w, int h) {
 /* ---- the child: a fresh process, so that a hit shows in /proc/self/maps ------------------- */
 
 static int child_hits(int argc, char **argv) {
-    enum { MAX = 3 };
+    enum { MAX = 4 };
     int count = argc - 2 < MAX ? argc - 2 : MAX;
     sl_image img[MAX], mem[MAX];
     bool ok[MAX], mok[MAX];
@@ -189,7 +204,7 @@ static int child_hits(int argc, char **argv) {
         mok[i] = bytes && sl_image_load_memory(&mem[i], bytes, n, path, err, sizeof err);
         CHECK_MSG(mok[i], "%s (memory): %s", path, err);
         free(bytes);
-        if (strstr(path, ".tif")) CHECK_CONTAINS(logbuf, "2 samples are NaN or Inf");
+        if (strstr(path, "float.tif")) CHECK_CONTAINS(logbuf, "2 samples are NaN or Inf");
         CHECK_MSG(!oiio_mapped(), "%s: shadelab-oiio.so was opened to load a cached image", path);
     }
     for (int i = 0; i < count; i++) {
@@ -213,13 +228,17 @@ static int child_hits(int argc, char **argv) {
  * executable on them, where every load must hit. */
 static void test_hits(void) {
     clear_cache();
-    const char *files[3] = {tmp("float.tif"), tmp("sky.hdr"), NULL};
+    const char *files[4] = {tmp("float.tif"), tmp("sky.hdr"), tmp("big.tif"), NULL};
     write_tiff(files[0], 0.0f);
     write_hdr(files[1], 0.0f);
-    if (access(COURTYARD, R_OK) == 0) files[2] = COURTYARD;
+    write_big_tiff(files[2]);
+    struct stat st;
+    CHECK_MSG(stat(files[2], &st) == 0 && st.st_size > (1 << 20), "big.tif: %lld bytes",
+              (long long)st.st_size);
+    if (access(COURTYARD, R_OK) == 0) files[3] = COURTYARD;
     else printf("note: %s not installed (Debian blender-data): its case is skipped\n", COURTYARD);
     int expected = 0;
-    for (int i = 0; i < 3 && files[i]; i++) {
+    for (int i = 0; i < 4 && files[i]; i++) {
         sl_image ref, img;
         if (!load_reference(&ref, files[i])) continue;
         CHECK_MSG(cache_files(NULL, 0) == expected, "a forced OIIO decode wrote a cache file (%s)", files[i]);
@@ -227,7 +246,7 @@ static void test_hits(void) {
         sl_log_capture(logbuf, sizeof logbuf);
         bool ok = load(&img, files[i]);
         sl_log_capture(NULL, 0);
-        if (strstr(files[i], ".tif")) CHECK_CONTAINS(logbuf, "2 samples are NaN or Inf");
+        if (strstr(files[i], "float.tif")) CHECK_CONTAINS(logbuf, "2 samples are NaN or Inf");
         if (ok) same_image(&img, &ref, files[i]);
         expected++;
         CHECK_MSG(cache_files(NULL, 0) == expected, "%s: %d cache files, expected %d", files[i], cache_files(NULL, 0),
@@ -238,7 +257,8 @@ static void test_hits(void) {
     fflush(stdout);
     pid_t pid = fork();
     if (pid == 0) {
-        char *args[6] = {"test_image_cache", "--hit-child", (char *)files[0], (char *)files[1], (char *)files[2], NULL};
+        char *args[7] = {"test_image_cache", "--hit-child", (char *)files[0], (char *)files[1], (char *)files[2],
+                         (char *)files[3], NULL};
         execv("/proc/self/exe", args);
         _exit(127);
     }
