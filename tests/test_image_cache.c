@@ -29,36 +29,6 @@
 
 #define COURTYARD "/usr/share/blender/datafiles/studiolights/world/courtyard.exr"
 
-static const char *tmp(const char *name) {
-    static char bufs[8][1024];
-    static int next;
-    char *b = bufs[next++ % 8];
-    snprintf(b, 1024, "%s/%s", sl_test_dir(), name);
-    return b;
-}
-
-static unsigned char *read_all(const char *path, size_t *n) {
-    *n = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    rewind(f);
-    unsigned char *d = malloc(len > 0 ? (size_t)len : 1);
-    *n = d ? fread(d, 1, (size_t)len, f) : 0;
-    fclose(f);
-    return d;
-}
-
-static void write_all(const char *path, const void *d, size_t n) {
-    FILE *f = fopen(path, "wb");
-    CHECK_MSG(f != NULL, "cannot write %s", path);
-    if (f) {
-        CHECK(fwrite(d, 1, n, f) == n);
-        fclose(f);
-    }
-}
-
 static char cache_images[1024]; /* $SHADELAB_CACHE/images */
 
 /* The img-*.bin files in the cache: how many, and the name of the last one seen. */
@@ -180,7 +150,7 @@ static void write_flat_hdr(const char *path, int w, int h) {
         unsigned char *q = d + hl + (size_t)i * 4;
         q[0] = (unsigned char)(64 + i % 128), q[1] = (unsigned char)(200 - i % 100), q[2] = 150, q[3] = 129;
     }
-    write_all(path, d, n);
+    sl_test_write_file(path, d, n);
     free(d);
 }
 
@@ -197,7 +167,7 @@ static int child_hits(int argc, char **argv) {
         const char *path = argv[i + 2];
         char logbuf[4096] = "", err[1024] = "";
         size_t n = 0;
-        unsigned char *bytes = read_all(path, &n);
+        unsigned char *bytes = sl_test_read_file(path, &n);
         sl_log_capture(logbuf, sizeof logbuf);
         ok[i] = load(&img[i], path);
         sl_log_capture(NULL, 0);
@@ -228,7 +198,7 @@ static int child_hits(int argc, char **argv) {
  * executable on them, where every load must hit. */
 static void test_hits(void) {
     clear_cache();
-    const char *files[4] = {tmp("float.tif"), tmp("sky.hdr"), tmp("big.tif"), NULL};
+    const char *files[4] = {sl_test_path("float.tif"), sl_test_path("sky.hdr"), sl_test_path("big.tif"), NULL};
     write_tiff(files[0], 0.0f);
     write_hdr(files[1], 0.0f);
     write_big_tiff(files[2]);
@@ -271,7 +241,7 @@ static void test_hits(void) {
  * (one byte, same name and size): a miss that decodes the new content. */
 static void test_tamper(void) {
     clear_cache();
-    const char *path = tmp("tamper.hdr");
+    const char *path = sl_test_path("tamper.hdr");
     write_flat_hdr(path, 20, 10);
     sl_image img, ref;
     if (!load(&img, path)) return;
@@ -279,13 +249,13 @@ static void test_tamper(void) {
     char entry[2048] = "";
     CHECK(cache_files(entry, sizeof entry) == 1);
     size_t n = 0;
-    unsigned char *d = read_all(entry, &n);
+    unsigned char *d = sl_test_read_file(entry, &n);
     size_t pixel_bytes = 20 * 10 * 4 * sizeof(float);
     CHECK_MSG(d && n > pixel_bytes, "cache file %s: %zu bytes", entry, n);
     if (!d || n <= pixel_bytes) return;
     float marker = 12345.5f;
     memcpy(d + n - pixel_bytes, &marker, sizeof marker); /* pixel 0, red */
-    write_all(entry, d, n);
+    sl_test_write_file(entry, d, n);
     free(d);
     if (load(&img, path)) {
         CHECK_MSG(img.pixels[0] == marker, "the tampered cache file was not read (red %g)", img.pixels[0]);
@@ -295,11 +265,11 @@ static void test_tamper(void) {
     /* the source: the same size, one byte of pixel data changed (the last pixel's green mantissa) */
     sl_image before;
     if (!load_reference(&before, path)) return;
-    unsigned char *src = read_all(path, &n);
+    unsigned char *src = sl_test_read_file(path, &n);
     CHECK(src && n > 16);
     if (!src || n <= 16) return;
     src[n - 3] ^= 0x10;
-    write_all(path, src, n);
+    sl_test_write_file(path, src, n);
     free(src);
     if (load_reference(&ref, path) && load(&img, path)) {
         same_image(&img, &ref, "changed source");
@@ -316,7 +286,7 @@ static void test_tamper(void) {
 /* Broken cache files are misses: the right pixels, no crash (and the entry written again). */
 static void test_broken_entries(void) {
     clear_cache();
-    const char *path = tmp("broken.tif");
+    const char *path = sl_test_path("broken.tif");
     write_tiff(path, 0.5f);
     sl_image ref, img;
     if (!load_reference(&ref, path) || !load(&img, path)) return;
@@ -324,7 +294,7 @@ static void test_broken_entries(void) {
     char entry[2048] = "";
     CHECK(cache_files(entry, sizeof entry) == 1);
     size_t n = 0;
-    unsigned char *good = read_all(entry, &n);
+    unsigned char *good = sl_test_read_file(entry, &n);
     CHECK(good && n > 256);
     if (!good || n <= 256) return;
     unsigned char *bad = malloc(n);
@@ -356,7 +326,7 @@ static void test_broken_entries(void) {
             sl_image_free(&img);
         }
         size_t m = 0;
-        unsigned char *now = read_all(entry, &m);
+        unsigned char *now = sl_test_read_file(entry, &m);
         CHECK_MSG(now && m == n && !memcmp(now, good, n), "%s: the entry was not written again", kinds[k]);
         free(now);
     }
@@ -377,9 +347,9 @@ static void test_broken_entries(void) {
     const char *saved = getenv("SHADELAB_CACHE");
     char keep[1024];
     snprintf(keep, sizeof keep, "%s", saved);
-    write_all(tmp("not_a_dir"), "x", 1);
+    sl_test_write_file(sl_test_path("not_a_dir"), "x", 1);
     char below[1100];
-    snprintf(below, sizeof below, "%s/sub", tmp("not_a_dir"));
+    snprintf(below, sizeof below, "%s/sub", sl_test_path("not_a_dir"));
     setenv("SHADELAB_CACHE", below, 1);
     if (load(&img, path)) sl_image_free(&img);
     setenv("SHADELAB_CACHE", keep, 1);
@@ -392,14 +362,14 @@ static void test_damaged(void) {
     int w = 64, h = 64;
     float *p = pattern(w, h, 0.0f);
     char err[1024] = "";
-    CHECK_MSG(sl_image_write(tmp("whole.jpg"), p, w, h, true, err, sizeof err), "%s", err);
+    CHECK_MSG(sl_image_write(sl_test_path("whole.jpg"), p, w, h, true, err, sizeof err), "%s", err);
     free(p);
     size_t n = 0;
-    unsigned char *d = read_all(tmp("whole.jpg"), &n);
+    unsigned char *d = sl_test_read_file(sl_test_path("whole.jpg"), &n);
     CHECK(d && n > 100);
     if (!d) return;
-    const char *path = tmp("damaged.jpg");
-    write_all(path, d, n * 6 / 10);
+    const char *path = sl_test_path("damaged.jpg");
+    sl_test_write_file(path, d, n * 6 / 10);
     free(d);
     for (int round = 0; round < 2; round++) {
         int before = sl_log_count(SL_LOG_WARN);
@@ -418,9 +388,9 @@ static void test_cap(void) {
     for (int i = 0; i < 10; i++) {
         char name[64];
         snprintf(name, sizeof name, "cap%d.hdr", i);
-        write_hdr(tmp(name), (float)i);
+        write_hdr(sl_test_path(name), (float)i);
         sl_image img;
-        if (load(&img, tmp(name))) sl_image_free(&img);
+        if (load(&img, sl_test_path(name))) sl_image_free(&img);
         if (i == 0) cache_files(first, sizeof first);
         usleep(20000); /* distinct mtimes on coarse file systems */
     }
@@ -451,7 +421,7 @@ static void test_hash(void) {
 int main(int argc, char **argv) {
     if (argc >= 2 && !strcmp(argv[1], "--hit-child")) return child_hits(argc, argv);
     snprintf(cache_images, sizeof cache_images, "%s/cache/images", sl_test_dir());
-    setenv("SHADELAB_CACHE", tmp("cache"), 1);
+    setenv("SHADELAB_CACHE", sl_test_path("cache"), 1);
     unsetenv("SHADELAB_IMAGE_CACHE");
     force_oiio(false);
     test_hash();

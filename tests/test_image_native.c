@@ -25,34 +25,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-static const char *tmp(const char *name) {
-    static char bufs[8][1024];
-    static int next;
-    char *b = bufs[next++ % 8];
-    snprintf(b, 1024, "%s/%s", sl_test_dir(), name);
-    return b;
-}
-
-static unsigned char *read_all(const char *path, size_t *n) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    rewind(f);
-    unsigned char *d = malloc(len > 0 ? (size_t)len : 1);
-    *n = d ? fread(d, 1, (size_t)len, f) : 0;
-    fclose(f);
-    return d;
-}
-
-static void write_all(const char *path, const void *d, size_t n) {
-    FILE *f = fopen(path, "wb");
-    if (f) {
-        fwrite(d, 1, n, f);
-        fclose(f);
-    }
-}
-
 static void use_oiio(bool on) {
     if (on) setenv("SHADELAB_IMAGE_DECODER", "oiio", 1);
     else unsetenv("SHADELAB_IMAGE_DECODER");
@@ -108,7 +80,7 @@ static bool compare_file(const char *path, int expect) {
     compared++;
 
     size_t n = 0;
-    unsigned char *data = read_all(path, &n);
+    unsigned char *data = sl_test_read_file(path, &n);
     if (data && n) {
         use_oiio(true);
         bool m_ok_oiio = sl_image_load_memory(&mem_ora, data, n, path, err, sizeof err);
@@ -307,8 +279,8 @@ static void test_pngs(void) {
     int w = 67, h = 45;
     float *rgba = make_rgba(w, h);
     char err[1024];
-    CHECK(sl_image_write(tmp("oiio_rgba.png"), rgba, w, h, true, err, sizeof err)); /* libpng: sRGB+gAMA+cHRM */
-    compare_file(tmp("oiio_rgba.png"), NATIVE);
+    CHECK(sl_image_write(sl_test_path("oiio_rgba.png"), rgba, w, h, true, err, sizeof err)); /* libpng: sRGB+gAMA+cHRM */
+    compare_file(sl_test_path("oiio_rgba.png"), NATIVE);
     /* OIIO's own PNG writer: RGB, grey, grey+alpha */
     unsigned char *b = malloc((size_t)w * h * 4);
     sl_image_to_rgba8(rgba, w, h, true, b);
@@ -318,15 +290,15 @@ static void test_pngs(void) {
             for (int c = 0; c < ch; c++) p[i * ch + c] = b[i * 4 + (ch == 2 && c == 1 ? 3 : c)];
         char name[64];
         snprintf(name, sizeof name, "oiio_%dch.png", ch);
-        CHECK(sl_oiio_write(tmp(name), "png", p, NULL, w, h, ch, "uint8", 0, err, sizeof err));
-        compare_file(tmp(name), NATIVE);
+        CHECK(sl_oiio_write(sl_test_path(name), "png", p, NULL, w, h, ch, "uint8", 0, err, sizeof err));
+        compare_file(sl_test_path(name), NATIVE);
         free(p);
     }
     free(b);
-    write_png_codes(tmp("codes8.png"), 8);
-    compare_file(tmp("codes8.png"), NATIVE);
-    write_png_codes(tmp("codes16.png"), 16);
-    compare_file(tmp("codes16.png"), NATIVE);
+    write_png_codes(sl_test_path("codes8.png"), 8);
+    compare_file(sl_test_path("codes8.png"), NATIVE);
+    write_png_codes(sl_test_path("codes16.png"), 16);
+    compare_file(sl_test_path("codes16.png"), NATIVE);
 
     static const struct {
         const char *name;
@@ -367,17 +339,17 @@ static void test_pngs(void) {
         {"imagedesc.png", {8, PNG_COLOR_TYPE_RGB, 0, 0, 0, 0, 0, 0, "ImageDescription", "x", 0}, DEFER},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        write_png_custom(tmp(cases[i].name), 37, 29, &cases[i].o);
-        compare_file(tmp(cases[i].name), cases[i].expect);
+        write_png_custom(sl_test_path(cases[i].name), 37, 29, &cases[i].o);
+        compare_file(sl_test_path(cases[i].name), cases[i].expect);
     }
     /* the descriptions and colour flags themselves, not only their agreement with OIIO */
     sl_image img;
-    if (sl_image_decode_native(&img, tmp("desc_text.png"), NULL, 0)) {
+    if (sl_image_decode_native(&img, sl_test_path("desc_text.png"), NULL, 0)) {
         CHECK(!strcmp(img.source_description, "shadelab-rgbe8"));
         CHECK(!img.source_srgb);
         sl_image_free(&img);
     }
-    if (sl_image_decode_native(&img, tmp("gamma22.png"), NULL, 0)) {
+    if (sl_image_decode_native(&img, sl_test_path("gamma22.png"), NULL, 0)) {
         CHECK(img.source_srgb);
         sl_image_free(&img);
     }
@@ -388,13 +360,13 @@ static void test_jpegs(void) {
     int w = 77, h = 51;
     float *rgba = make_rgba(w, h);
     char err[1024];
-    CHECK(sl_image_write(tmp("oiio.jpg"), rgba, w, h, true, err, sizeof err));
-    compare_file(tmp("oiio.jpg"), NATIVE);
+    CHECK(sl_image_write(sl_test_path("oiio.jpg"), rgba, w, h, true, err, sizeof err));
+    compare_file(sl_test_path("oiio.jpg"), NATIVE);
     unsigned char *b = malloc((size_t)w * h * 4), *g = malloc((size_t)w * h);
     sl_image_to_rgba8(rgba, w, h, true, b);
     for (size_t i = 0; i < (size_t)w * h; i++) g[i] = b[i * 4 + 1];
-    CHECK(sl_oiio_write(tmp("oiio_grey.jpg"), "jpeg", g, NULL, w, h, 1, "uint8", 90, err, sizeof err));
-    compare_file(tmp("oiio_grey.jpg"), NATIVE);
+    CHECK(sl_oiio_write(sl_test_path("oiio_grey.jpg"), "jpeg", g, NULL, w, h, 1, "uint8", 90, err, sizeof err));
+    compare_file(sl_test_path("oiio_grey.jpg"), NATIVE);
     free(b);
     free(g);
 
@@ -417,11 +389,11 @@ static void test_jpegs(void) {
         {"xmp.jpg", {false, false, 2, 2, NULL, xmp, sizeof xmp}, DEFER},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        write_jpeg_custom(tmp(cases[i].name), w, h, &cases[i].o);
-        compare_file(tmp(cases[i].name), cases[i].expect);
+        write_jpeg_custom(sl_test_path(cases[i].name), w, h, &cases[i].o);
+        compare_file(sl_test_path(cases[i].name), cases[i].expect);
     }
     sl_image img;
-    if (sl_image_decode_native(&img, tmp("comment.jpg"), NULL, 0)) {
+    if (sl_image_decode_native(&img, sl_test_path("comment.jpg"), NULL, 0)) {
         CHECK(!strcmp(img.source_description, "a comment"));
         CHECK(img.source_srgb && img.source_bits == 8 && !strcmp(img.source_format, "jpeg"));
         sl_image_free(&img);
@@ -438,17 +410,17 @@ static void test_exrs(void) {
     rgba[0] = -2.5f, rgba[1] = 70000.0f, rgba[2] = 1e-7f, rgba[4] = NAN, rgba[5] = INFINITY, rgba[6] = -INFINITY;
     rgba[8] = 6.1e-5f, rgba[9] = 3.3333333f;
     char err[1024];
-    CHECK(sl_image_write(tmp("oiio_half.exr"), rgba, w, h, false, err, sizeof err));
-    compare_file(tmp("oiio_half.exr"), NATIVE);
+    CHECK(sl_image_write(sl_test_path("oiio_half.exr"), rgba, w, h, false, err, sizeof err));
+    compare_file(sl_test_path("oiio_half.exr"), NATIVE);
     float *rgb = malloc((size_t)w * h * 12), *one = malloc((size_t)w * h * 4);
     for (size_t i = 0; i < (size_t)w * h; i++) {
         for (int c = 0; c < 3; c++) rgb[i * 3 + c] = rgba[i * 4 + c] * 3.0f;
         one[i] = rgba[i * 4 + 1];
     }
-    CHECK(sl_oiio_write(tmp("oiio_float.exr"), "openexr", NULL, rgb, w, h, 3, "float", 0, err, sizeof err));
-    compare_file(tmp("oiio_float.exr"), NATIVE);
-    CHECK(sl_oiio_write(tmp("oiio_one.exr"), "openexr", NULL, one, w, h, 1, "half", 0, err, sizeof err));
-    compare_file(tmp("oiio_one.exr"), EITHER); /* one channel: OIIO names it (Y: native, else OIIO) */
+    CHECK(sl_oiio_write(sl_test_path("oiio_float.exr"), "openexr", NULL, rgb, w, h, 3, "float", 0, err, sizeof err));
+    compare_file(sl_test_path("oiio_float.exr"), NATIVE);
+    CHECK(sl_oiio_write(sl_test_path("oiio_one.exr"), "openexr", NULL, one, w, h, 1, "half", 0, err, sizeof err));
+    compare_file(sl_test_path("oiio_one.exr"), EITHER); /* one channel: OIIO names it (Y: native, else OIIO) */
     free(rgb);
     free(one);
 
@@ -461,11 +433,11 @@ static void test_exrs(void) {
     for (int t = 0; t < 2; t++) {
         const char *type = t ? "float" : "half";
         char cmd[8192];
-        int len = snprintf(cmd, sizeof cmd, "oiiotool '%s' -d %s", tmp("oiio_half.exr"), type);
+        int len = snprintf(cmd, sizeof cmd, "oiiotool '%s' -d %s", sl_test_path("oiio_half.exr"), type);
         for (size_t i = 0; i < sizeof comps / sizeof *comps; i++) {
             char name[64];
             snprintf(name, sizeof name, "%s_%s.exr", type, comps[i]);
-            len += snprintf(cmd + len, sizeof cmd - len, " --compression %s -o '%s'", comps[i], tmp(name));
+            len += snprintf(cmd + len, sizeof cmd - len, " --compression %s -o '%s'", comps[i], sl_test_path(name));
         }
         CHECK_MSG(system(cmd) == 0, "%s", cmd);
         for (size_t i = 0; i < sizeof comps / sizeof *comps; i++) {
@@ -473,7 +445,7 @@ static void test_exrs(void) {
             snprintf(name, sizeof name, "%s_%s.exr", type, comps[i]);
             /* DWA: OpenEXRCore 3.1 cannot decompress it; B44 on float: 3.1.5 gets it wrong (image_native.c) */
             bool native = strncmp(comps[i], "dwa", 3) && !(t && !strncmp(comps[i], "b44", 3));
-            compare_file(tmp(name), native ? NATIVE : DEFER);
+            compare_file(sl_test_path(name), native ? NATIVE : DEFER);
         }
     }
     static const char *const variants[][2] = {
@@ -488,19 +460,19 @@ static void test_exrs(void) {
     };
     for (size_t i = 0; i < sizeof variants / sizeof *variants; i++) {
         char cmd[4096];
-        snprintf(cmd, sizeof cmd, "oiiotool '%s' %s -o '%s'", tmp("oiio_half.exr"), variants[i][1], tmp(variants[i][0]));
+        snprintf(cmd, sizeof cmd, "oiiotool '%s' %s -o '%s'", sl_test_path("oiio_half.exr"), variants[i][1], sl_test_path(variants[i][0]));
         CHECK_MSG(system(cmd) == 0, "%s", cmd);
     }
-    compare_file(tmp("ya.exr"), NATIVE);
-    compare_file(tmp("y.exr"), NATIVE);
-    compare_file(tmp("comments.exr"), NATIVE);
-    compare_file(tmp("rg.exr"), DEFER);
-    compare_file(tmp("tiled.exr"), DEFER);
-    compare_file(tmp("window.exr"), DEFER);
-    compare_file(tmp("rgbz.exr"), DEFER);
-    compare_file(tmp("mixed.exr"), DEFER);
+    compare_file(sl_test_path("ya.exr"), NATIVE);
+    compare_file(sl_test_path("y.exr"), NATIVE);
+    compare_file(sl_test_path("comments.exr"), NATIVE);
+    compare_file(sl_test_path("rg.exr"), DEFER);
+    compare_file(sl_test_path("tiled.exr"), DEFER);
+    compare_file(sl_test_path("window.exr"), DEFER);
+    compare_file(sl_test_path("rgbz.exr"), DEFER);
+    compare_file(sl_test_path("mixed.exr"), DEFER);
     sl_image img;
-    if (sl_image_decode_native(&img, tmp("comments.exr"), NULL, 0)) {
+    if (sl_image_decode_native(&img, sl_test_path("comments.exr"), NULL, 0)) {
         CHECK(!strcmp(img.source_description, "an EXR comment"));
         CHECK(img.source_float && !img.source_srgb && img.source_bits == 16);
         sl_image_free(&img);
@@ -540,7 +512,7 @@ static void test_damage(void) {
                                         "oiio_half.exr", "half_piz.exr", "float_dwab.exr"};
     for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
         size_t n = 0;
-        unsigned char *d = read_all(tmp(names[i]), &n);
+        unsigned char *d = sl_test_read_file(sl_test_path(names[i]), &n);
         if (!d || n < 64) {
             free(d);
             continue;
@@ -549,8 +521,8 @@ static void test_damage(void) {
         for (int c = 0; c < 4; c++) {
             char name[96];
             snprintf(name, sizeof name, "trunc%d_%s", c, names[i]);
-            write_all(tmp(name), d, (size_t)(n * cuts[c]));
-            compare_file(tmp(name), DEFER);
+            sl_test_write_file(sl_test_path(name), d, (size_t)(n * cuts[c]));
+            compare_file(sl_test_path(name), DEFER);
         }
         /* corruption: bytes flipped through the middle of the data */
         unsigned char *bad = malloc(n);
@@ -558,8 +530,8 @@ static void test_damage(void) {
         for (size_t k = n / 3; k < n - 8; k += n / 16 + 1) bad[k] ^= 0x5a;
         char name[96];
         snprintf(name, sizeof name, "corrupt_%s", names[i]);
-        write_all(tmp(name), bad, n);
-        compare_file(tmp(name), EITHER); /* a flip can land where nothing is checked */
+        sl_test_write_file(sl_test_path(name), bad, n);
+        compare_file(sl_test_path(name), EITHER); /* a flip can land where nothing is checked */
         free(bad);
         free(d);
     }
@@ -589,11 +561,11 @@ static void test_limits(void) {
         memcpy(f + len + sizes[k], cb, 4);
         len += sizes[k] + 4;
     }
-    write_all(tmp("wide.png"), f, len);
-    compare_file(tmp("wide.png"), DEFER);
+    sl_test_write_file(sl_test_path("wide.png"), f, len);
+    compare_file(sl_test_path("wide.png"), DEFER);
     sl_image img;
     char err[1024] = "";
-    CHECK(!sl_image_load(&img, tmp("wide.png"), err, sizeof err));
+    CHECK(!sl_image_load(&img, sl_test_path("wide.png"), err, sizeof err));
     CHECK_CONTAINS(err, "over the limit");
 }
 
@@ -618,7 +590,7 @@ static int child_lazy(const char *dir) {
         CHECK_MSG(sl_image_load(&img, path, err, sizeof err), "%s", err);
         sl_image_free(&img);
         size_t n = 0;
-        unsigned char *d = read_all(path, &n);
+        unsigned char *d = sl_test_read_file(path, &n);
         CHECK_MSG(d && sl_image_load_memory(&img, d, n, path, err, sizeof err), "%s", err);
         sl_image_free(&img);
         free(d);
@@ -636,7 +608,7 @@ static void test_lazy(void) {
     int w = 16, h = 8;
     float *rgba = make_rgba(w, h);
     char err[1024];
-    CHECK(sl_image_write(tmp("other.hdr"), rgba, w, h, false, err, sizeof err));
+    CHECK(sl_image_write(sl_test_path("other.hdr"), rgba, w, h, false, err, sizeof err));
     free(rgba);
     pid_t pid = fork();
     if (pid == 0) {

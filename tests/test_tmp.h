@@ -92,4 +92,37 @@ static inline const char *sl_test_dir(void) {
     atexit(sl_test_dir_cleanup_);
     return sl_test_dir_;
 }
+
+/* A path in the test's directory (one of 8 rotating buffers: valid until the 8th call after). */
+static inline const char *sl_test_path(const char *name) {
+    static char bufs[8][PATH_MAX];
+    static int next;
+    char *b = bufs[next++ % 8];
+    snprintf(b, PATH_MAX, "%s/%s", sl_test_dir(), name);
+    return b;
+}
+
+/* A whole file into malloc'd memory (*n its size; NULL and 0 when it cannot be read). */
+static inline unsigned char *sl_test_read_file(const char *path, size_t *n) {
+    *n = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long len = ftell(f);
+    rewind(f);
+    unsigned char *d = malloc(len > 0 ? (size_t)len : 1);
+    *n = d ? fread(d, 1, (size_t)len, f) : 0;
+    fclose(f);
+    return d;
+}
+
+/* Writes n bytes to path (a failed CHECK when it cannot). */
+static inline void sl_test_write_file(const char *path, const void *d, size_t n) {
+    FILE *f = fopen(path, "wb");
+    CHECK_MSG(f != NULL, "cannot write %s", path);
+    if (f) {
+        CHECK(fwrite(d, 1, n, f) == n);
+        fclose(f);
+    }
+}
 #endif

@@ -175,8 +175,8 @@ void sl_image_to_rgba8(const float *rgba, int width, int height, bool display_en
 
 /* ---- paths ------------------------------------------------------------------------------ */
 
-/* Lower-case extension without the dot ("" when none) of the last path component. */
-static void path_extension(const char *path, char *ext, size_t size) {
+/* Lower-case extension without the dot ("" when none) of the last path component (image.h). */
+void sl_image_path_extension(const char *path, char *ext, size_t size) {
     ext[0] = 0;
     const char *slash = strrchr(path, '/');
     const char *base = slash ? slash + 1 : path;
@@ -289,7 +289,7 @@ static bool decode(sl_image *img, const char *path, const void *data, size_t siz
         return true;
     }
     char ext[16], msg[1024] = "";
-    path_extension(path, ext, sizeof ext);
+    sl_image_path_extension(path, ext, sizeof ext);
     sl_oiio_info info;
     sl_oiio_input *in = data ? sl_oiio_open_memory(data, size, path, &info, msg, sizeof msg)
                              : sl_oiio_open(path, &info, msg, sizeof msg);
@@ -448,7 +448,7 @@ bool sl_image_write(const char *path, const float *rgba, int width, int height,
     }
 
     char ext[16];
-    path_extension(path, ext, sizeof ext);
+    sl_image_path_extension(path, ext, sizeof ext);
     const char *format, *file_type;
     int channels, quality = 0;
     if (!strcmp(ext, "png")) format = "png", file_type = "uint8", channels = 4;

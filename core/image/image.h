@@ -170,6 +170,9 @@ void sl_image_to_rgba8(const float *rgba, int width, int height, bool display_en
                        unsigned char *out);
 
 #ifdef SL_IMAGE_INTERNAL
+/* The lower-case extension, without the dot, of the last path component ("" when none; for an
+ * image in memory, of its name: "x.glb#image0.png" gives "png"). */
+void sl_image_path_extension(const char *path, char *ext, size_t size);
 /* Internal: the native decoders (image_native.c), used only by image.c's decode() before OpenImageIO.
  * They exist because opening OpenImageIO's module costs ≈ 0.42 s and holds the dynamic loader's lock
  * (see below), while most scenes read only JPEG, PNG and EXR files. Decodes `path` (or `data`/`size`

@@ -78,14 +78,10 @@ static uint64_t hash_finish(uint64_t h, uint64_t bytes) {
  * could decode differently under another name). */
 static uint64_t key_seed(const char *name) {
     uint64_t h = 0xcbf29ce484222325ull; /* FNV-1a offset basis */
-    char buf[96];
-    const char *base = name ? strrchr(name, '/') : NULL;
-    base = base ? base + 1 : name ? name : "";
-    const char *dot = strrchr(base, '.');
-    int n = snprintf(buf, sizeof buf, "v%u|oiio %s|", CACHE_VERSION, SL_OIIO_VERSION);
+    char buf[96], ext[16];
+    sl_image_path_extension(name ? name : "", ext, sizeof ext);
+    int n = snprintf(buf, sizeof buf, "v%u|oiio %s|%s", CACHE_VERSION, SL_OIIO_VERSION, ext);
     if (n < 0 || n >= (int)sizeof buf) n = (int)sizeof buf - 1;
-    for (const char *e = dot ? dot + 1 : ""; *e && n < (int)sizeof buf - 1; e++)
-        buf[n++] = (char)((*e >= 'A' && *e <= 'Z') ? *e - 'A' + 'a' : *e);
     return hash_tail((const unsigned char *)buf, (size_t)n, h);
 }
 

@@ -33,18 +33,6 @@ static bool dims_ok(uint64_t w, uint64_t h) {
     return w >= 1 && h >= 1 && w <= SL_IMAGE_MAX_DIM && h <= SL_IMAGE_MAX_DIM && w * h <= (uint64_t)SL_IMAGE_MAX_PIXELS;
 }
 
-/* The lower-case extension of the last path component (for memory images, of the name: "x.glb#image0.png"). */
-static void extension(const char *path, char *ext, size_t size) {
-    ext[0] = 0;
-    const char *slash = strrchr(path, '/');
-    const char *base = slash ? slash + 1 : path;
-    const char *dot = strrchr(base, '.');
-    if (!dot || dot == base) return;
-    size_t i = 0;
-    for (const char *p = dot + 1; *p && i + 1 < size; p++) ext[i++] = (char)tolower((unsigned char)*p);
-    ext[i] = 0;
-}
-
 static bool ext_in(const char *ext, const char *const *list) {
     for (; *list; list++)
         if (!strcmp(ext, *list)) return true;
@@ -506,7 +494,7 @@ bool sl_image_decode_native(sl_image *img, const char *path, const void *data, s
     static const char *const png_ext[] = {"png", NULL};
     static const char *const exr_ext[] = {"exr", "sxr", "mxr", NULL};
     char ext[16];
-    extension(path, ext, sizeof ext);
+    sl_image_path_extension(path, ext, sizeof ext);
     /* the reader OIIO tries first is the extension's; a file whose content is another format goes to OIIO,
      * which tries its readers in turn */
     enum { NONE, JPEG, PNG, EXR } kind = ext_in(ext, jpeg_ext) ? JPEG : ext_in(ext, png_ext) ? PNG
