@@ -1,6 +1,7 @@
 /* Start-up profile and Mesa's shader cache location: see startup.h. */
 #include "startup.h"
 #include "log.h"
+#include <shadelab/cache.h>
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -108,14 +109,6 @@ int sl_startup_phases(const sl_startup_phase **out) {
     return phase_count;
 }
 
-static void mkdir_p(const char *path) {
-    char tmp[4096];
-    snprintf(tmp, sizeof tmp, "%s", path);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') { *p = 0; mkdir(tmp, 0755); *p = '/'; }
-    mkdir(tmp, 0755);
-}
-
 static bool set_env(const char *name) { const char *v = getenv(name); return v && *v; }
 
 void sl_startup_shader_cache(char *dir, size_t n) {
@@ -124,15 +117,8 @@ void sl_startup_shader_cache(char *dir, size_t n) {
     if (set_env("MESA_SHADER_CACHE_DIR") || set_env("MESA_GLSL_CACHE_DIR") || set_env("MESA_SHADER_CACHE_DISABLE") ||
         set_env("MESA_GLSL_CACHE_DISABLE"))
         return;
-    const char *c = getenv("SHADELAB_CACHE"), *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
     char d[4096];
-    if (c && *c) snprintf(d, sizeof d, "%s/mesa", c);
-    else if (x && *x) snprintf(d, sizeof d, "%s/shadelab/mesa", x);
-    else if (home && *home) snprintf(d, sizeof d, "%s/.cache/shadelab/mesa", home);
-    else return;
-    mkdir_p(d);
-    struct stat st;
-    if (stat(d, &st) != 0 || !S_ISDIR(st.st_mode)) return; /* Mesa falls back to its own default */
+    if (!sl_cache_dir("mesa", d, sizeof d, true)) return; /* Mesa falls back to its own default */
     /* Mesa 22 reads MESA_SHADER_CACHE_DIR; releases before 21 read MESA_GLSL_CACHE_DIR */
     setenv("MESA_SHADER_CACHE_DIR", d, 1);
     setenv("MESA_GLSL_CACHE_DIR", d, 1);

@@ -78,15 +78,7 @@ static bool same_image(const sl_image *a, const sl_image *b, const char *what) {
     return same;
 }
 
-static bool oiio_mapped(void) {
-    FILE *f = fopen("/proc/self/maps", "r");
-    char line[4096];
-    bool found = false;
-    while (f && fgets(line, sizeof line, f))
-        if (strstr(line, "shadelab-oiio")) found = true;
-    if (f) fclose(f);
-    return found;
-}
+static bool oiio_mapped(void) { return sl_test_mapped("shadelab-oiio"); }
 
 /* ---- fixtures ---------------------------------------------------------------------------- */
 

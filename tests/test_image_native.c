@@ -571,15 +571,7 @@ static void test_limits(void) {
 
 /* The child: loads a JPEG, a PNG and an EXR (file and memory) and checks that shadelab-oiio.so was not
  * opened; then a .hdr, which only OIIO reads, still loads, and the module is then mapped. */
-static bool oiio_mapped(void) {
-    FILE *f = fopen("/proc/self/maps", "r");
-    char line[4096];
-    bool found = false;
-    while (f && fgets(line, sizeof line, f))
-        if (strstr(line, "shadelab-oiio")) found = true;
-    if (f) fclose(f);
-    return found;
-}
+static bool oiio_mapped(void) { return sl_test_mapped("shadelab-oiio"); }
 
 static int child_lazy(const char *dir) {
     char path[4096], err[1024];

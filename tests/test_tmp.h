@@ -17,6 +17,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <limits.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,5 +125,17 @@ static inline void sl_test_write_file(const char *path, const void *d, size_t n)
         CHECK(fwrite(d, 1, n, f) == n);
         fclose(f);
     }
+}
+
+/* Whether a file whose path contains `name` is mapped into this process (a shared object that was
+ * loaded: /proc/self/maps). */
+static inline bool sl_test_mapped(const char *name) {
+    FILE *f = fopen("/proc/self/maps", "r");
+    char line[4096];
+    bool found = false;
+    while (f && fgets(line, sizeof line, f))
+        if (strstr(line, name)) found = true;
+    if (f) fclose(f);
+    return found;
 }
 #endif

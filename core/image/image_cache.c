@@ -2,8 +2,8 @@
 #define _GNU_SOURCE
 #define SL_IMAGE_INTERNAL
 #include "image/image.h"
+#include <shadelab/cache.h>
 
-#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdatomic.h>
@@ -134,26 +134,8 @@ bool sl_image_cache_enabled(void) {
     return !(v && !strcmp(v, "0"));
 }
 
-/* The directory, created (mkdir -p) when create; false when no variable names one or it cannot be
- * made. */
-static bool cache_dir(char *out, size_t n, bool create) {
-    const char *c = getenv("SHADELAB_CACHE"), *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    int len;
-    if (c && *c) len = snprintf(out, n, "%s/images", c);
-    else if (x && *x) len = snprintf(out, n, "%s/shadelab/images", x);
-    else if (home && *home) len = snprintf(out, n, "%s/.cache/shadelab/images", home);
-    else return false;
-    if (len < 0 || (size_t)len >= n) return false;
-    if (!create) return true;
-    for (char *s = out + 1; *s; s++) {
-        if (*s != '/') continue;
-        *s = 0;
-        mkdir(out, 0755); /* an existing parent fails with EEXIST: the final check decides */
-        *s = '/';
-    }
-    struct stat st;
-    return (mkdir(out, 0755) == 0 || errno == EEXIST) && stat(out, &st) == 0 && S_ISDIR(st.st_mode);
-}
+/* The directory (sdk cache.h), created when create. */
+static bool cache_dir(char *out, size_t n, bool create) { return sl_cache_dir("images", out, n, create); }
 
 static bool entry_path(const sl_image_cache_entry *e, char *out, size_t n) {
     char dir[3800];
@@ -240,54 +222,6 @@ bool sl_image_cache_lookup(sl_image *img, const char *path, const void *data, si
 
 /* ---- store --------------------------------------------------------------------------------- */
 
-/* Deletes the least recently used img-*.bin beyond the newest `keep`, and temporary files left by a
- * process that died while writing (older than ten minutes). */
-static void prune(const char *dir, int keep) {
-    DIR *d = opendir(dir);
-    if (!d) return;
-    struct item {
-        char name[40];
-        struct timespec t;
-    } *items = NULL;
-    size_t n = 0, cap = 0;
-    time_t now = time(NULL);
-    for (struct dirent *de; (de = readdir(d));) {
-        const char *nm = de->d_name;
-        size_t l = strlen(nm);
-        if (strncmp(nm, "img-", 4)) continue;
-        char p[4400];
-        struct stat st;
-        snprintf(p, sizeof p, "%s/%s", dir, nm);
-        if (lstat(p, &st) != 0 || !S_ISREG(st.st_mode)) continue;
-        if (strstr(nm, ".tmp-")) {
-            if (now - st.st_mtim.tv_sec > 600) unlink(p);
-            continue;
-        }
-        if (l >= sizeof items[0].name || l < 8 || strcmp(nm + l - 4, ".bin")) continue;
-        if (n == cap) {
-            size_t nc = cap ? cap * 2 : 16;
-            struct item *grown = realloc(items, nc * sizeof *items);
-            if (!grown) break;
-            items = grown, cap = nc;
-        }
-        memcpy(items[n].name, nm, l + 1);
-        items[n++].t = st.st_mtim;
-    }
-    closedir(d);
-    while (n > (size_t)keep) {
-        size_t old = 0;
-        for (size_t i = 1; i < n; i++)
-            if (items[i].t.tv_sec < items[old].t.tv_sec ||
-                (items[i].t.tv_sec == items[old].t.tv_sec && items[i].t.tv_nsec < items[old].t.tv_nsec))
-                old = i;
-        char p[4400];
-        snprintf(p, sizeof p, "%s/%s", dir, items[old].name);
-        unlink(p);
-        items[old] = items[--n];
-    }
-    free(items);
-}
-
 static bool write_full(int fd, const void *src, size_t n) {
     const unsigned char *p = src;
     while (n) {
@@ -336,5 +270,5 @@ void sl_image_cache_store(const sl_image_cache_entry *e, const char *path, const
         unlink(tmp);
         return;
     }
-    prune(dir, CACHE_KEEP);
+    sl_cache_prune(dir, "img-", CACHE_KEEP);
 }

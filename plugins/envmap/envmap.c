@@ -6,6 +6,7 @@
  * Monte Carlo integration with the exact BRDF. See README.md; the shared implementation (also
  * used by tools/cube) is the library envmap_prefilter, include/envmap/prefilter.h and io.h. */
 #include <shadelab/shadelab.h>
+#include <shadelab/cache.h>
 #include <shadelab/input.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
@@ -209,18 +210,7 @@ static void progress(void *user, double fraction, const char *what) {
 /* ---------------------------------------------------------------- disk cache */
 
 static bool cache_dir(envmap *e, char *out, size_t n) {
-    if (!param(e, "cache").b) return false;
-    const char *c = getenv("SHADELAB_CACHE"), *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (c && *c) snprintf(out, n, "%s/envmap", c);
-    else if (x && *x) snprintf(out, n, "%s/shadelab/envmap", x);
-    else if (home && *home) snprintf(out, n, "%s/.cache/shadelab/envmap", home);
-    else return false;
-    /* mkdir -p */
-    char tmp[2048];
-    snprintf(tmp, sizeof tmp, "%s", out);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') { *p = 0; mkdir(tmp, 0755); *p = '/'; }
-    return mkdir(tmp, 0755) == 0 || errno == EEXIST;
+    return param(e, "cache").b && sl_cache_dir("envmap", out, n, true);
 }
 
 typedef struct cache_header { char magic[8]; uint64_t key; int32_t size, levels; } cache_header;

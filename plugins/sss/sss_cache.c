@@ -1,8 +1,8 @@
 /* sss's on-disk cache of the texture-space result: see sss_cache.h. */
 #define _GNU_SOURCE
 #include "sss_cache.h"
+#include <shadelab/cache.h>
 #include <shadelab/input.h>
-#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -47,32 +47,13 @@ uint64_t sss_hash_files(const char *dir, const char *const *names, uint64_t h) {
     return h;
 }
 
-bool sss_cache_dir(char *out, size_t n) {
-    const char *c = getenv("SHADELAB_CACHE"), *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    int len;
-    if (c && *c) len = snprintf(out, n, "%s/sss", c);
-    else if (x && *x) len = snprintf(out, n, "%s/shadelab/sss", x);
-    else if (home && *home) len = snprintf(out, n, "%s/.cache/shadelab/sss", home);
-    else return false;
-    if (len < 0 || (size_t)len >= n) return false;
-    char tmp[4096];
-    snprintf(tmp, sizeof tmp, "%s", out);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            mkdir(tmp, 0755);
-            *p = '/';
-        }
-    return mkdir(tmp, 0755) == 0 || errno == EEXIST;
-}
-
 static void file_path(const char *dir, uint64_t key, char *out, size_t n) {
     snprintf(out, n, "%s/ts-%016llx.bin", dir, (unsigned long long)key);
 }
 
 float *sss_cache_load(uint64_t key, int size, int *result) {
     char dir[2048], path[2300];
-    if (size <= 0 || !sss_cache_dir(dir, sizeof dir)) return NULL;
+    if (size <= 0 || !sl_cache_dir("sss", dir, sizeof dir, false)) return NULL;
     file_path(dir, key, path, sizeof path);
     int fd = sl_open_input_file(path, NULL, 0); /* a regular file only: never blocks on a FIFO */
     FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
@@ -96,40 +77,9 @@ float *sss_cache_load(uint64_t key, int size, int *result) {
     return px;
 }
 
-/* Deletes the oldest ts-*.bin files beyond the newest `keep`. */
-static void prune(const char *dir, int keep) {
-    DIR *d = opendir(dir);
-    if (!d) return;
-    struct entry { char name[64]; struct timespec t; } e[64];
-    int n = 0;
-    struct dirent *de;
-    while ((de = readdir(d)) && n < 64) {
-        size_t l = strlen(de->d_name);
-        if (strncmp(de->d_name, "ts-", 3) || l < 8 || l >= sizeof e[0].name || strcmp(de->d_name + l - 4, ".bin")) continue;
-        char path[4096];
-        struct stat st;
-        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
-        if (stat(path, &st) != 0) continue;
-        snprintf(e[n].name, sizeof e[n].name, "%s", de->d_name);
-        e[n++].t = st.st_mtim;
-    }
-    closedir(d);
-    while (n > keep) {
-        int oldest = 0;
-        for (int i = 1; i < n; i++)
-            if (e[i].t.tv_sec < e[oldest].t.tv_sec ||
-                (e[i].t.tv_sec == e[oldest].t.tv_sec && e[i].t.tv_nsec < e[oldest].t.tv_nsec))
-                oldest = i;
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s", dir, e[oldest].name);
-        unlink(path);
-        e[oldest] = e[--n];
-    }
-}
-
 bool sss_cache_store(uint64_t key, int size, int result, const float *texels, char *err, size_t n) {
     char dir[2048], path[2300], tmp[2400];
-    if (!sss_cache_dir(dir, sizeof dir)) {
+    if (!sl_cache_dir("sss", dir, sizeof dir, true)) {
         snprintf(err, n, "no cache directory (SHADELAB_CACHE, XDG_CACHE_HOME and HOME unset or not writable)");
         return false;
     }
@@ -150,6 +100,6 @@ bool sss_cache_store(uint64_t key, int size, int result, const float *texels, ch
         unlink(tmp);
         return false;
     }
-    prune(dir, SSS_CACHE_FILES);
+    sl_cache_prune(dir, "ts-", SSS_CACHE_FILES);
     return true;
 }

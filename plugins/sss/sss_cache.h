@@ -2,8 +2,8 @@
  * keyed by everything the blur reads: the irradiance and stretch maps' texels, the profile and
  * tap parameters, the GLSL source and the GL renderer. Its purpose is start-up (issue 18 item 5):
  * a warm start renders the irradiance (needed for the key) and loads the result instead of the
- * twelve blur draws. Files: $SHADELAB_CACHE/sss (else $XDG_CACHE_HOME/shadelab/sss, else
- * ~/.cache/shadelab/sss), "ts-KEY.bin"; at most SSS_CACHE_FILES are kept (the oldest go). */
+ * twelve blur draws. Files: the cache folder "sss" (sdk cache.h: $SHADELAB_CACHE/sss, ...),
+ * "ts-KEY.bin"; at most SSS_CACHE_FILES are kept (the oldest go). */
 #ifndef SSS_CACHE_H
 #define SSS_CACHE_H
 #include <stdbool.h>
@@ -18,8 +18,6 @@
 uint64_t sss_hash(const void *data, size_t bytes, uint64_t h);
 /* h over the files' contents (resource_dir/NAME); a missing file hashes its name. */
 uint64_t sss_hash_files(const char *dir, const char *const *names, uint64_t h);
-/* The cache directory (created); false when there is no place for it. */
-bool sss_cache_dir(char *out, size_t n);
 /* The cached result of `key` for a size×size map: RGBA32F texels (malloc'd, row 0 first) and which
  * sum texture held it. NULL when absent, short, or another key or size. */
 float *sss_cache_load(uint64_t key, int size, int *result);
