@@ -163,6 +163,9 @@ static bool host_read_image(const sl_host *h, const char *path, sl_image_file *o
     snprintf(out->format, sizeof out->format, "%s", img.source_format);
     return true;
 }
+static bool host_scene_uses_uniform(const sl_host *h, const char *name) {
+    return sl_renderer_materials_use_uniform((sl_app *)HOST_APP(h), name);
+}
 void sl_host_set_gl_app(sl_app *app) { g_gl_app = app; }
 
 sl_host *sl_host_make(sl_app *app, int index) {
@@ -205,6 +208,7 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->shader_dir = host_shader_dir;
     h->procedural_image = host_procedural_image;
     h->read_image = host_read_image;
+    h->scene_uses_uniform = host_scene_uses_uniform;
     return &impl->host;
 }
 

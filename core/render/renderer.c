@@ -335,6 +335,10 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     return true;
 }
 
+void sl_renderer_finish(sl_app *app) {
+    if (app->gl_ready) glFinish();
+}
+
 void sl_renderer_present(sl_app *app) {
     sl_renderer *r = R(app);
     resource *disp = r ? sl_graph_find(r, "display") : NULL;

@@ -25,6 +25,9 @@ int sl_renderer_reload_shaders(struct sl_app *app);
 /* Whether the next frame recomposes programs (a recompile parameter, a material, a light or the
  * debug view changed): the viewer shows a status line over the previous image meanwhile. */
 bool sl_renderer_compose_pending(struct sl_app *app);
+/* Waits until the frames issued so far are rendered (glFinish): the start-up figure of a complete
+ * first frame, which without timings only issued its commands. */
+void sl_renderer_finish(struct sl_app *app);
 /* Shows the last frame's display image in the window again (no rendering). */
 void sl_renderer_present(struct sl_app *app);
 
@@ -61,6 +64,9 @@ unsigned sl_renderer_pass_texture(struct sl_app *app, sl_pass_ctx *ctx, const ch
 sl_status sl_renderer_bind_outputs(struct sl_app *app, sl_pass_ctx *ctx, int layer);
 void sl_renderer_draw_scene(struct sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_desc *d);
 void sl_renderer_draw_fullscreen(struct sl_app *app, sl_pass_ctx *ctx);
+/* Whether a material's forward program (as composed now) has an active uniform `name`
+ * (host->scene_uses_uniform, ABI 1.11). */
+bool sl_renderer_materials_use_uniform(struct sl_app *app, const char *name);
 const sl_light_info *sl_renderer_lights(struct sl_app *app, int *count);
 void sl_renderer_set_jitter(struct sl_app *app, float x, float y);
 void sl_renderer_set_still_frames(struct sl_app *app, int frames);

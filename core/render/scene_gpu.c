@@ -546,6 +546,19 @@ static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set s
     return n;
 }
 
+/* On llvmpipe a draw without a depth test, without blending and with every channel written ("opaque")
+ * compiles its fragment shader twice: a second function for the tiles a triangle covers whole (Mesa's
+ * lp_state_fs.c, generate_variant). Blending ONE, ZERO writes the source unchanged (bit for bit,
+ * NaN and Inf included: checked on Mesa 22.3) and takes the draw off that path, so the program
+ * compiles once. For the draws in UV space (texture-space targets, no depth buffer: sss's irradiance
+ * and stretch, 0.15 s of the head scene's cold start). Returns whether it enabled blending. */
+static bool identity_blend(sl_app *app, const sl_draw_scene_desc *d) {
+    if (!d->uv_space || app->backend.is_gpu || glIsEnabled(GL_BLEND)) return false;
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    return true;
+}
+
 void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom, sl_gpu_draw_set set) {
     const char *model_override = d->mode == SL_DRAW_MATERIALS ? d->model_override : NULL;
     const char *fragment = d->mode == SL_DRAW_MATERIALS ? d->fragment : NULL; /* resolved (draw_scene) */
@@ -553,10 +566,14 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
     sl_scene *s = &app->scene;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
+    bool blend = identity_blend(app, d);
     if (d->cull == 0) glDisable(GL_CULL_FACE);
     else { glEnable(GL_CULL_FACE); glCullFace(d->cull == 2 ? GL_FRONT : GL_BACK); }
     if (custom) {
-        if (!sl_program_id(custom)) return; /* a deferred program compiles at its first draw */
+        if (!sl_program_id(custom)) { /* a deferred program compiles at its first draw */
+            if (blend) glDisable(GL_BLEND);
+            return;
+        }
         glUseProgram(custom->id);
         set_camera_uniforms(app, custom->id, d->view, d->proj);
         glUniform1i(glGetUniformLocation(custom->id, "sl_uv_space"), d->uv_space);
@@ -633,6 +650,7 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
     free(items);
     glBindVertexArray(0);
     glFrontFace(GL_CCW);
+    if (blend) glDisable(GL_BLEND);
 }
 
 void sl_renderer_draw_scene(sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_desc *in) {
@@ -664,6 +682,16 @@ void sl_renderer_draw_scene(sl_app *app, sl_pass_ctx *ctx, const sl_draw_scene_d
         d.fragment = NULL, d.fullscreen = false;
     }
     sl_gpu_draw_meshes(app, &d, d.mode == SL_DRAW_DEPTH_ONLY, d.mode == SL_DRAW_PROGRAM ? d.program : NULL, SL_GPU_DRAW_ALL);
+}
+
+bool sl_renderer_materials_use_uniform(sl_app *app, const char *name) {
+    sl_renderer *r = R(app);
+    if (!r || !r->materials || !name) return false;
+    for (int m = 0; m < app->scene.material_count; m++) {
+        unsigned prog = r->materials[m].forward.program ? sl_program_id(r->materials[m].forward.program) : 0;
+        if (prog && glGetUniformLocation(prog, name) >= 0) return true;
+    }
+    return false;
 }
 
 void sl_renderer_draw_fullscreen(sl_app *app, sl_pass_ctx *ctx) {

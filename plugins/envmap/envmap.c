@@ -533,6 +533,35 @@ static void ensure_lut(envmap *e) {
 
 /* ---------------------------------------------------------------- per frame */
 
+static bool host_scene_uses(envmap *e, const char *uniform) {
+    const sl_host *h = e->host;
+    return h->struct_size >= offsetof(sl_host, scene_uses_uniform) + sizeof h->scene_uses_uniform &&
+           h->scene_uses_uniform && h->scene_uses_uniform(h, uniform);
+}
+
+/* What this frame's materials will read, made now rather than at their first bind in the middle of a
+ * pass (host ABI 1.11; envmap_bind still makes anything missed, e.g. for override programs): the
+ * irradiance first (its SH projection reads the base cube back, which waits only for the base cube
+ * while nothing else is queued), then the GGX chain, queued ahead of every other plugin's passes,
+ * so that llvmpipe's rasteriser threads prefilter while the main thread compiles them. Issued at
+ * the forward pass, as before ABI 1.11, the chain waited for the passes before it. */
+static void prepare(envmap *e) {
+    if (!e->have_src) return;
+    bool irr = host_scene_uses(e, "envmap_sh") || host_scene_uses(e, "envmap_irr");
+    bool spec = !e->spec_from_chain && host_scene_uses(e, "envmap_spec");
+    bool lut = host_scene_uses(e, "envmap_lut"), base = host_scene_uses(e, "envmap_base");
+    if (!irr && !spec && !lut && !base) return;
+    gl_state st;
+    save_state(&st);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); /* the prefilter always filters across edges */
+    if (irr) ensure_irradiance(e);
+    if (spec) ensure_spec(e);
+    if (lut) ensure_lut(e);
+    if (base) ensure_base(e);
+    (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    restore_state(&st);
+}
+
 static void envmap_begin_frame(void *user, const sl_frame *f) {
     envmap *e = user;
     store_pending(e);
@@ -555,6 +584,7 @@ static void envmap_begin_frame(void *user, const sl_frame *f) {
     e->scene_yaw = env[4];
     for (int c = 0; c < 3; c++) e->clear[c] = env[c] * env[3];
     (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    prepare(e);
 }
 
 static void rotation(envmap *e, float m[9]) { /* world → map: R_y(−yaw), column-major */
@@ -779,7 +809,8 @@ static sl_status envmap_activate(void *user) {
         e->host->log(e->host, SL_LOG_ERROR, "OpenGL entry point %s is missing", missing);
         return SL_ERR_GL;
     }
-    e->gpu = (em_gpu){.load = load_for_gpu, .load_user = e, .progress = progress, .progress_user = e, .unit = e->unit_2d};
+    e->gpu = (em_gpu){.load = load_for_gpu, .load_user = e, .progress = progress, .progress_user = e, .unit = e->unit_2d,
+                      .identity_blend = !e->host->is_gpu(e->host)};
     char err[512];
     if (!em_gpu_init(&e->gpu, err, sizeof err)) {
         e->host->log(e->host, SL_LOG_ERROR, "%s", err);

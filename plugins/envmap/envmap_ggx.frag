@@ -6,7 +6,8 @@
 // lod = ½ log2(Ω_s/Ω_p) + bias. Weighted by n·l as in Karis' reference code.
 #include "envmap_common.glsl"
 uniform samplerCube envmap_incube;
-uniform sampler2D envmap_in2d; // the sample table, 1024 samples per row
+uniform sampler2D envmap_in2d; // the sample tables of every level, 1024 samples per row
+uniform int envmap_row;        // this level's first row
 uniform int envmap_count;
 uniform int envmap_face;
 uniform float envmap_size;     // face size of the level being written
@@ -19,7 +20,7 @@ void main() {
     vec3 sum = vec3(0.0);
     float weight = 0.0;
     for (int i = 0; i < envmap_count; i++) {
-        vec4 s = texelFetch(envmap_in2d, ivec2(i & 1023, i >> 10), 0);
+        vec4 s = texelFetch(envmap_in2d, ivec2(i & 1023, envmap_row + (i >> 10)), 0);
         sum += textureLod(envmap_incube, t * s.x + b * s.y + n * s.z, s.w).rgb * s.z;
         weight += s.z;
     }

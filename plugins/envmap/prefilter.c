@@ -117,11 +117,20 @@ static void draw_into(em_gpu *g, unsigned tex, int level, int layer, int w, int 
     glViewport(0, 0, w, h);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
+    /* on llvmpipe an opaque draw (no depth, no blending) compiles its shader twice, once more for whole
+     * tiles (Mesa's lp_state_fs.c); the identity blend writes the same bits and compiles it once:
+     * ≈ 0.1 s of a cold start's prefilter programs */
+    if (g->identity_blend) {
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ZERO);
+    } else {
+        glDisable(GL_BLEND);
+    }
     glDisable(GL_SCISSOR_TEST);
     glBindVertexArray(g->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
+    glDisable(GL_BLEND);
 }
 
 static void report(em_gpu *g, double fraction, const char *what) {
@@ -133,22 +142,33 @@ static void report(em_gpu *g, double fraction, const char *what) {
 #define U1I(p, name, v) glProgramUniform1i(p, glGetUniformLocation(p, name), v)
 #define U1F(p, name, v) glProgramUniform1f(p, glGetUniformLocation(p, name), v)
 
-/* Levels 1.. from level 0, each from the one above (sampling restricted to it: no feedback). */
+/* Levels 1.. from level 0, each from the one above (sampling restricted to it: no feedback). On
+ * llvmpipe a program compiles once per state of the textures it samples, and a sampled range whose
+ * last level is 0 is a state of its own: level 1 reads level 0 of t (base = max = 0), so every later
+ * level reads a one-level texture too, the level above drawn a second time into it (the smaller
+ * levels' texels, ≈ a third of level 1's: a second compile cost 0.08 s of a cold start). */
 static void downsample_cube(em_gpu *g, unsigned t, int size, int levels) {
     unsigned p = g->prog_downsample;
     glUseProgram(p);
-    bind_input(g, p, t, true);
+    glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, 0);
+    glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, 0);
+    unsigned src = t, copy = 0;
     for (int l = 1; l < levels; l++) {
         int s = size >> l;
-        glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, l - 1);
-        glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, l - 1);
-        U1F(p, "envmap_src_level", (float)(l - 1));
+        bind_input(g, p, src, true);
+        U1F(p, "envmap_src_level", 0.0f);
         U1F(p, "envmap_size", (float)s);
+        unsigned next = l + 1 < levels ? em_new_cube(s, 1) : 0;
+        if (next) set_filtering(next, true); /* the sampler state t has (a one-level range of a mipped cube) */
         for (int f = 0; f < 6; f++) {
             U1I(p, "envmap_face", f);
             draw_into(g, t, l, f, s, s);
+            if (next) draw_into(g, next, 0, f, s, s);
         }
+        if (copy) glDeleteTextures(1, &copy);
+        src = copy = next;
     }
+    if (copy) glDeleteTextures(1, &copy);
     glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, 0);
     glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, levels - 1);
 }
@@ -237,22 +257,30 @@ unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, in
     unsigned p = g->prog_ggx;
     glUseProgram(p);
     bind_input(g, p, base, true);
-    int rows = (samples + 1023) / 1024;
-    float *table = calloc((size_t)rows * 1024 * 4, sizeof(float));
+    /* every level's table in one texture, uploaded before the first draw: a texture written between
+     * draws that read it makes llvmpipe finish those draws first (the write waits for them), which
+     * made the main thread wait for each level in turn instead of issuing the chain and going on */
+    int rows = (samples + 1023) / 1024, n = levels > 1 ? levels - 1 : 1;
+    float *table = calloc((size_t)rows * n * 1024 * 4, sizeof(float));
+    int *counts = calloc((size_t)n, sizeof *counts);
+    for (int l = 1; l < levels && table && counts; l++) {
+        double a = em_level_alpha(l, levels, map);
+        counts[l - 1] = ggx_table(table + (size_t)(l - 1) * rows * 1024 * 4, samples, a < 2e-3 ? 2e-3 : a, size, lod_bias,
+                                  max_levels - 1);
+    }
     unsigned tex;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, GL_RGBA32F, 1024, rows);
+    glTextureStorage2D(tex, 1, GL_RGBA32F, 1024, rows * n);
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    if (table) glTextureSubImage2D(tex, 0, 0, 0, 1024, rows * n, GL_RGBA, GL_FLOAT, table);
     glBindTextureUnit(g->unit, tex);
     char what[128];
-    for (int l = 1; l < levels; l++) {
+    for (int l = 1; l < levels && table && counts; l++) {
         int s = size >> l;
         if (s < 1) s = 1;
-        double a = em_level_alpha(l, levels, map);
-        int count = ggx_table(table, samples, a < 2e-3 ? 2e-3 : a, size, lod_bias, max_levels - 1);
-        glTextureSubImage2D(tex, 0, 0, 0, 1024, rows, GL_RGBA, GL_FLOAT, table);
-        U1I(p, "envmap_count", count);
+        U1I(p, "envmap_count", counts[l - 1]);
+        U1I(p, "envmap_row", (l - 1) * rows);
         U1F(p, "envmap_size", (float)s);
         for (int f = 0; f < 6; f++) {
             U1I(p, "envmap_face", f);
@@ -265,6 +293,7 @@ unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, in
             report(g, total > 0 ? done / total : 1, what);
         }
     }
+    free(counts);
     glBindTextureUnit(g->unit, 0);
     glDeleteTextures(1, &tex);
     free(table);

@@ -118,6 +118,7 @@ typedef struct sss {
     /* the blur's programs along u [0] and along v [1]: the same source, a program object for
      * each pass's state (see ts_blur_execute) */
     sl_program *ts_prog[2], *ts_interior_prog[2], *dilate_prog, *ss_prog;
+    unsigned warmed[5]; /* the blur programs compiled ahead of the read-back (ts_blur_execute) */
     unsigned dummy2d, dummy_array;
     /* texture space: stretch, irradiance, tmp, the chain, sums 0 and 1 (slot 4 unused) */
     int ts_size, ts_generation, ts_result;
@@ -567,29 +568,12 @@ static void ts_store_pending(sss *s) {
     free(px);
 }
 
-/* Texture space 3: the chain of separable blurs, each v pass adding wᵢ·blurᵢ to the sum. */
-static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
-    sss *s = user;
+/* The chain of blurs and the dilation (ts_blur_execute). warm_up: the first step's draws and the
+ * dilation under an empty scissor, which rasterise nothing but make llvmpipe compile each program for
+ * the state it is drawn with (the compile happens at a program's first draw, on this thread). */
+static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], const unsigned fast[2], bool use_fast,
+                          bool warm_up) {
     const sl_host *h = s->host;
-    /* along u and along v: one program object per pass (the same source). The two passes draw
-     * into different targets (one colour buffer, two), and llvmpipe compiles a program once per
-     * state. With one program for both, the second state's compile missed Mesa's disk cache at
-     * the first warm start: its key is hashed over the program's IR after the first state's
-     * compile changed it, and at a warm start that first compile is a cache hit (no change). */
-    unsigned prog[2] = {h->program_id(h, s->ts_prog[0]), h->program_id(h, s->ts_prog[1])};
-    if (!prog[0] || !prog[1]) return;
-    unsigned fast[2] = {h->program_id(h, s->ts_interior_prog[0]), h->program_id(h, s->ts_interior_prog[1])};
-    ensure_ts(s);
-    bool use_fast = fast[0] && fast[1];
-    if (use_fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
-    /* SHADELAB_SSS_FULL_BLUR=1: the full program on every texel (the tests compare the two; A/B timing) */
-    if (use_fast && getenv("SHADELAB_SSS_FULL_BLUR")) use_fast = false;
-    /* the disk cache goes with the interior path (the default; the full program's tests run without) */
-    bool caching = use_fast && param(s, "cache").b;
-    uint64_t key = 0;
-    if (use_fast && (!s->ts_vao || !ts_read_inputs(s, caching ? &key : NULL))) use_fast = caching = false;
-    if (caching && ts_from_cache(s, key)) return;
-    if (use_fast && !ts_classify(s)) use_fast = caching = false; /* then the full program everywhere */
     unsigned progs[4] = {prog[0], prog[1], use_fast ? fast[0] : 0, use_fast ? fast[1] : 0};
 #define U(p, name) glGetUniformLocation(p, name)
 #define EACH for (int k = 0; k < 4; k++) if (progs[k])
@@ -613,7 +597,7 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     glViewport(0, 0, s->ts_size, s->ts_size);
     unsigned src = s->ts_tex[TS_IRR];
     double previous = 0;
-    for (int g = 0; g < s->gauss.n; g++) {
+    for (int g = 0; g < (warm_up ? 1 : s->gauss.n); g++) {
         float sigma = (float)sqrt(fmax(s->gauss.variance[g] - previous, 0.0));
         previous = s->gauss.variance[g];
         EACH glProgramUniform1f(progs[k], U(progs[k], "sss_sigma_mm"), sigma);
@@ -638,7 +622,7 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         if (use_fast) ts_split_draw(s, fast[1], prog[1], sigma);
         else h->draw_fullscreen(h, ctx);
         src = s->ts_tex[TS_A];
-        s->ts_result = even ? TS_SUM0 : TS_SUM1;
+        if (!warm_up) s->ts_result = even ? TS_SUM0 : TS_SUM1;
     }
 #undef EACH
 #undef U
@@ -651,9 +635,54 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         bool into1 = s->ts_result == TS_SUM0;
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[into1 ? 6 : 5]);
         h->draw_fullscreen(h, ctx);
-        s->ts_result = into1 ? TS_SUM1 : TS_SUM0;
+        if (!warm_up) s->ts_result = into1 ? TS_SUM1 : TS_SUM0;
     }
     for (int u = 0; u < 3; u++) glBindTextureUnit(u, 0);
+}
+
+/* Texture space 3: the chain of separable blurs, each v pass adding wᵢ·blurᵢ to the sum. */
+static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
+    sss *s = user;
+    const sl_host *h = s->host;
+    /* along u and along v: one program object per pass (the same source). The two passes draw
+     * into different targets (one colour buffer, two), and llvmpipe compiles a program once per
+     * state. With one program for both, the second state's compile missed Mesa's disk cache at
+     * the first warm start: its key is hashed over the program's IR after the first state's
+     * compile changed it, and at a warm start that first compile is a cache hit (no change). */
+    unsigned prog[2] = {h->program_id(h, s->ts_prog[0]), h->program_id(h, s->ts_prog[1])};
+    if (!prog[0] || !prog[1]) return;
+    unsigned fast[2] = {h->program_id(h, s->ts_interior_prog[0]), h->program_id(h, s->ts_interior_prog[1])};
+    ensure_ts(s);
+    bool use_fast = fast[0] && fast[1];
+    if (use_fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
+    /* SHADELAB_SSS_FULL_BLUR=1: the full program on every texel (the tests compare the two; A/B timing) */
+    if (use_fast && getenv("SHADELAB_SSS_FULL_BLUR")) use_fast = false;
+    /* the disk cache goes with the interior path (the default; the full program's tests run without) */
+    bool caching = use_fast && param(s, "cache").b;
+    uint64_t key = 0;
+    /* On a CPU renderer the read-back below waits for every pass queued before it, the main thread
+     * idle meanwhile, and the blur programs would then compile (their first draws) with the
+     * rasteriser idle: compile them first, while it works (the start-up's first blur, ≈ 0.45 s of
+     * compiles on llvmpipe). Once per program set; at a warm start their compiles are Mesa disk
+     * cache hits (a few ms) even when the result then comes from sss's own cache. */
+    unsigned dilate = h->program_id(h, s->dilate_prog);
+    if (use_fast && s->ts_vao && !h->is_gpu(h) &&
+        (s->warmed[0] != prog[0] || s->warmed[1] != prog[1] || s->warmed[2] != fast[0] || s->warmed[3] != fast[1] ||
+         s->warmed[4] != dilate)) {
+        int box[4];
+        glGetIntegerv(GL_SCISSOR_BOX, box);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, 0, 0, 0);
+        ts_blur_draws(s, ctx, prog, fast, true, true);
+        glDisable(GL_SCISSOR_TEST);
+        glScissor(box[0], box[1], box[2], box[3]);
+        s->warmed[0] = prog[0], s->warmed[1] = prog[1], s->warmed[2] = fast[0], s->warmed[3] = fast[1];
+        s->warmed[4] = dilate;
+    }
+    if (use_fast && (!s->ts_vao || !ts_read_inputs(s, caching ? &key : NULL))) use_fast = caching = false;
+    if (caching && ts_from_cache(s, key)) return;
+    if (use_fast && !ts_classify(s)) use_fast = caching = false; /* then the full program everywhere */
+    ts_blur_draws(s, ctx, prog, fast, use_fast, false);
     /* the first result of an activation goes to the disk cache, read back at the next frame or at
      * deactivate (not now: that would wait here for the blurs to finish) */
     if (caching && !s->stored) {

@@ -153,6 +153,12 @@ struct sl_host {
      * data refused), so a plugin links no image library of its own. out->struct_size must be
      * set. Returns false with "PATH: cause" in err. */
     bool (*read_image)(const sl_host *host, const char *path, sl_image_file *out, char *err, size_t err_size);
+    /* ABI 1.11, GL context current (begin_frame, passes): whether the program of any of the scene's
+     * materials, as the forward pass draws it this frame, has an active uniform of this name: the
+     * GLSL a plugin contributes reads it there. A plugin prepares in begin_frame what the frame will
+     * read (a lazily computed texture, say), before any pass runs, instead of at its first bind in
+     * the middle of a pass. Override programs (draw_scene with a fragment) are not included. */
+    bool (*scene_uses_uniform)(const sl_host *host, const char *name);
 };
 
 #ifdef __cplusplus

@@ -136,6 +136,9 @@ typedef struct em_gpu {
     int unit;                /* texture unit the passes may use for their input */
     unsigned vao, fbo;
     unsigned prog_to_cube, prog_ggx, prog_irradiance, prog_lut, prog_downsample;
+    /* llvmpipe: draw with blending ONE, ZERO (the identity) so that each program compiles once: an
+     * "opaque" draw (no depth, no blending) compiles its shader twice there (prefilter.c, draw_into) */
+    bool identity_blend;
 } em_gpu;
 
 bool em_gpu_init(em_gpu *g, char *err, size_t n);
