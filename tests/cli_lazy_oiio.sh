@@ -2,7 +2,8 @@
 # OpenImageIO is opened only when an image file other than a plain JPEG/PNG/EXR is read or a format
 # other than PNG is written (core/image/image.h: its ~250 libraries cost every process start ≈ 0.5 s):
 # the bare scene rendered to a PNG, the built-in default (envmap's sky, no file), a scene with a PNG
-# texture and envmap with an EXR file (both decoded natively, image_native.c) map no libOpenImageIO;
+# texture and envmap with an EXR file (both decoded natively, image_native.c; a DWAB one through the
+# OpenEXR module shadelab-exr.so) map no libOpenImageIO;
 # an EXR output and envmap with a Radiance .hdr file do, and their images are written. Checked with the dynamic loader's own log (LD_DEBUG=files), not with timings.
 #   usage: cli_lazy_oiio.sh SHADELAB SCENES_DIR OUTDIR
 set -u
@@ -47,9 +48,19 @@ JSON
 done
 check eval '! loads_oiio --scene "$out/env_basic.exr.json" --output "$out/env_exr.png"'
 check test -s "$out/env_exr.png"
+# a DWAB-compressed EXR (as blender-data's environments are): OpenEXRCore cannot decode it, OpenEXR's
+# C++ library does, in its own small module (shadelab-exr.so), still without OpenImageIO
+if command -v oiiotool >/dev/null; then
+  check oiiotool "$out/basic.exr" --compression dwab -o "$out/dwab.exr"
+  sed 's/basic\.exr/dwab.exr/' "$out/env_basic.exr.json" > "$out/env_dwab.json"
+  check eval '! loads_oiio --scene "$out/env_dwab.json" --output "$out/env_dwab.png"'
+  check test -s "$out/env_dwab.png"
+  msg=$("$exe" --headless --size 32x18 --frames 1 -v --scene "$out/env_dwab.json" --output "$out/env_dwab.png" 2>&1)
+  check grep -q "image module: .*shadelab-exr.so" <<<"$msg"
+fi
 check loads_oiio --scene "$out/env_basic.hdr.json" --output "$out/env.png"
 msg=$("$exe" --headless --size 32x18 --frames 1 -v --scene "$out/env_basic.hdr.json" --output "$out/env.png" 2>&1)
-check grep -q "OpenImageIO module: " <<<"$msg"
+check grep -q "image module: .*shadelab-oiio.so" <<<"$msg"
 check grep -q "basic.hdr" <<<"$msg"
 # with the cache on, in a fresh directory: the first run decodes the .hdr through the module and keeps
 # it; the second loads it from the cache and opens no OpenImageIO

@@ -1,7 +1,7 @@
 /* Images: the policy side of loading/writing (path checks, size limits, channel layout,
  * colour handling, messages), sRGB transfer functions, procedural textures, comparison and
  * small conversions. OpenImageIO is reached only through image_oiio.cpp (a module opened on first
- * use, oiio_module.c); PNG output is written here with libpng. */
+ * use, image_modules.c); PNG output is written here with libpng. */
 #define SL_IMAGE_INTERNAL
 #include <png.h>
 #include "image/image.h"

@@ -271,6 +271,21 @@ typedef struct sl_oiio_api {
 } sl_oiio_api;
 /* The module's one export. */
 const sl_oiio_api *sl_oiio_module_api(void);
+
+/* Internal: the OpenEXR C++ adapter (image_exr.cpp, the module shadelab-exr.so, opened on first use
+ * like OpenImageIO's), used only by image_native.c for the compressions OpenEXRCore 3.1 cannot
+ * decode. Reads the single-part scanline file (path, or data/size in memory; path is then its name)
+ * whose data window is x0, y0, w × h: channels names[0..nch) as stored (half: 2 bytes, else float),
+ * interleaved in that order, into out (w·h·nch samples). False with OpenEXR's message in err. */
+typedef struct sl_exr_api {
+    unsigned struct_size;
+    bool (*read)(const char *path, const void *data, size_t size, int x0, int y0, int w, int h, int nch,
+                 const char *const *names, bool half, void *out, char *err, size_t err_size);
+} sl_exr_api;
+const sl_exr_api *sl_exr_module_api(void); /* the module's one export */
+/* The same, through the module (false with why in err when it cannot be opened). */
+bool sl_exr_read(const char *path, const void *data, size_t size, int x0, int y0, int w, int h, int nch,
+                 const char *const *names, bool half, void *out, char *err, size_t err_size);
 #endif
 
 

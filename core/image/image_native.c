@@ -8,6 +8,7 @@
  * were. tests/test_image_native.c compares both paths bit for bit. */
 #define SL_IMAGE_INTERNAL
 #include "image/image.h"
+#include "log.h"
 
 #include <ctype.h>
 #include <setjmp.h>
@@ -351,6 +352,26 @@ static float half_to_float(uint16_t h) {
     return v;
 }
 
+/* n pixels of nch interleaved samples (half: bpe 2, else float) → RGBA in OIIO's order: file channel i
+ * goes to slot[i] (R,G,B,A or Y,A); grey is replicated, a missing alpha is 1. */
+static void convert(const unsigned char *tmp, size_t n, int nch, size_t bpe, const int *slot, bool grey, float *d) {
+    for (size_t p = 0; p < n; p++, d += 4) {
+        float v[4] = {0, 0, 0, 1};
+        for (int i = 0; i < nch; i++) {
+            const unsigned char *s = tmp + (p * nch + i) * bpe;
+            if (bpe == 2) {
+                uint16_t hv;
+                memcpy(&hv, s, 2);
+                v[slot[i]] = half_to_float(hv);
+            } else {
+                memcpy(&v[slot[i]], s, 4);
+            }
+        }
+        if (grey) d[0] = d[1] = d[2] = v[0], d[3] = nch == 2 ? v[1] : 1.0f;
+        else d[0] = v[0], d[1] = v[1], d[2] = v[2], d[3] = nch == 4 ? v[3] : 1.0f;
+    }
+}
+
 static bool native_exr(sl_image *img, const char *path, const unsigned char *data, size_t size) {
     struct exr_mem mem = {data, size};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -390,12 +411,14 @@ static bool native_exr(sl_image *img, const char *path, const unsigned char *dat
     if (w64 < 1 || h64 < 1 || !dims_ok((uint64_t)w64, (uint64_t)h64)) goto done;
     int w = (int)w64, h = (int)h64;
     /* the compressions whose results are checked bit for bit against OpenEXR's C++ library through OIIO
-     * (tests/test_image_native.c). Not here: DWAA/DWAB (OpenEXRCore 3.1 cannot decompress them: "not
-     * yet implemented, please use C++ library"), and B44/B44A on float channels (3.1.5 decodes them
-     * wrongly: every sample differed in the test; on half channels they agree). */
+     * (tests/test_image_native.c). DWAA/DWAB (OpenEXRCore 3.1 cannot decompress them: "not yet
+     * implemented, please use C++ library") and B44/B44A on float channels (3.1.5 decodes them wrongly:
+     * every sample differed in the test; on half channels they agree) are read by OpenEXR's C++ library,
+     * the one OIIO reads them with, in the module shadelab-exr.so (image_exr.cpp), opened only then. */
     if (comp != EXR_COMPRESSION_NONE && comp != EXR_COMPRESSION_RLE && comp != EXR_COMPRESSION_ZIPS &&
         comp != EXR_COMPRESSION_ZIP && comp != EXR_COMPRESSION_PIZ && comp != EXR_COMPRESSION_PXR24 &&
-        comp != EXR_COMPRESSION_B44 && comp != EXR_COMPRESSION_B44A)
+        comp != EXR_COMPRESSION_B44 && comp != EXR_COMPRESSION_B44A && comp != EXR_COMPRESSION_DWAA &&
+        comp != EXR_COMPRESSION_DWAB)
         goto done;
 
     /* channels: exactly R,G,B[,A] or Y[,A] (the file lists them sorted: A first), one sample type (half
@@ -419,7 +442,8 @@ static bool native_exr(sl_image *img, const char *path, const unsigned char *dat
         slot[i] = s;
     }
     if (nch == 3 && grey) goto done;
-    if ((comp == EXR_COMPRESSION_B44 || comp == EXR_COMPRESSION_B44A) && type != EXR_PIXEL_HALF) goto done;
+    bool by_cpp_library = comp == EXR_COMPRESSION_DWAA || comp == EXR_COMPRESSION_DWAB ||
+                          ((comp == EXR_COMPRESSION_B44 || comp == EXR_COMPRESSION_B44A) && type != EXR_PIXEL_HALF);
 
     /* metadata: OIIO maps "comments" to ImageDescription; an attribute of that very name goes to OIIO */
     const exr_attribute_t *attr = NULL;
@@ -434,9 +458,19 @@ static bool native_exr(sl_image *img, const char *path, const unsigned char *dat
 
     size_t bpe = type == EXR_PIXEL_HALF ? 2 : 4, npix = (size_t)w * h;
     out = malloc(npix * 4 * sizeof(float));
-    tmp = malloc((size_t)lpc * w * nch * bpe);
+    tmp = malloc((by_cpp_library ? npix : (size_t)lpc * w) * nch * bpe);
     if (!out || !tmp) goto done;
-    for (int64_t y = dw.min.y; y <= dw.max.y; y += lpc) {
+    if (by_cpp_library) {
+        const char *names[4];
+        for (int i = 0; i < nch; i++) names[i] = chl->entries[i].name.str;
+        char why[512];
+        if (!sl_exr_read(path, data, size, dw.min.x, dw.min.y, w, h, nch, names, bpe == 2, tmp, why, sizeof why)) {
+            SL_DEBUG("%s: %s; OpenImageIO reads it", path, why);
+            goto done;
+        }
+        convert(tmp, npix, nch, bpe, slot, grey, out);
+    }
+    for (int64_t y = dw.min.y; y <= dw.max.y && !by_cpp_library; y += lpc) {
         exr_chunk_info_t ci;
         if (exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci) != EXR_ERR_SUCCESS) goto done;
         if (ci.start_y != y || ci.height < 1 || ci.height > lpc || ci.start_y + (int64_t)ci.height - 1 > dw.max.y ||
@@ -458,23 +492,7 @@ static bool native_exr(sl_image *img, const char *path, const unsigned char *dat
         if (exr_decoding_choose_default_routines(ctx, 0, &dec) != EXR_ERR_SUCCESS ||
             exr_decoding_run(ctx, 0, &dec) != EXR_ERR_SUCCESS)
             goto done;
-        size_t n = (size_t)ci.height * w;
-        float *d = out + (size_t)(ci.start_y - dw.min.y) * w * 4;
-        for (size_t p = 0; p < n; p++, d += 4) {
-            float v[4] = {0, 0, 0, 1};
-            for (int i = 0; i < nch; i++) {
-                const unsigned char *s = tmp + (p * nch + i) * bpe;
-                if (bpe == 2) {
-                    uint16_t hv;
-                    memcpy(&hv, s, 2);
-                    v[slot[i]] = half_to_float(hv);
-                } else {
-                    memcpy(&v[slot[i]], s, 4);
-                }
-            }
-            if (grey) d[0] = d[1] = d[2] = v[0], d[3] = nch == 2 ? v[1] : 1.0f;
-            else d[0] = v[0], d[1] = v[1], d[2] = v[2], d[3] = nch == 4 ? v[3] : 1.0f;
-        }
+        convert(tmp, (size_t)ci.height * w, nch, bpe, slot, grey, out + (size_t)(ci.start_y - dw.min.y) * w * 4);
     }
     fill(img, w, h, out, (int)bpe * 8, true, false, nch, desc, desc_len, "openexr");
     out = NULL;

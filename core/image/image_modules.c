@@ -1,10 +1,12 @@
-/* Opens the OpenImageIO adapter module (shadelab-oiio.so, image_oiio.cpp) on first use and
- * forwards image.h's internal sl_oiio_* calls to it. Why a module: see image.h. Where it is
- * looked for, in order:
- *   $SHADELAB_OIIO_MODULE (a path to the .so);
+/* Opens the image modules on first use and forwards image.h's internal calls to them: the
+ * OpenImageIO adapter (shadelab-oiio.so, image_oiio.cpp: the sl_oiio_* calls) and the OpenEXR C++
+ * adapter (shadelab-exr.so, image_exr.cpp: sl_exr_read). Why modules: see image.h. Where a module
+ * is looked for, in order:
+ *   $SHADELAB_OIIO_MODULE / $SHADELAB_EXR_MODULE (a path to the .so);
  *   beside the object holding this code, and in its ../LIBDIR/shadelab/ (installed: bin/shadelab
  *   → lib/shadelab/, lib/libshadelab_harness.so → lib/shadelab/);
- *   the build tree's copy (SL_BUILD_OIIO_MODULE), for tools and tests built in subfolders. */
+ *   the build tree's copy (SL_BUILD_OIIO_MODULE, SL_BUILD_EXR_MODULE), for tools and tests built in
+ *   subfolders. */
 #define _GNU_SOURCE
 #define SL_IMAGE_INTERNAL
 #include "image/image.h"
@@ -18,18 +20,19 @@
 #include <string.h>
 #include <unistd.h>
 
-#define MODULE_NAME "shadelab-oiio.so"
-
-static pthread_once_t once = PTHREAD_ONCE_INIT;
-static const sl_oiio_api *api;
-static char why[2048];
+#ifndef SL_BUILD_OIIO_MODULE
+#define SL_BUILD_OIIO_MODULE NULL
+#endif
+#ifndef SL_BUILD_EXR_MODULE
+#define SL_BUILD_EXR_MODULE NULL
+#endif
 
 static void *try_open(const char *path, char *tried, size_t n) {
     size_t used = strlen(tried);
     snprintf(tried + used, n - used, "%s%s", used ? ", " : "", path);
     if (access(path, R_OK) != 0) return NULL;
     void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (h) SL_DEBUG("OpenImageIO module: %s", path);
+    if (h) SL_DEBUG("image module: %s", path);
     else {
         used = strlen(tried);
         snprintf(tried + used, n - used, " (%s)", dlerror());
@@ -37,13 +40,16 @@ static void *try_open(const char *path, char *tried, size_t n) {
     return h;
 }
 
-static void load(void) {
+/* dlopen()s module `name` (see the top of this file) and returns its `symbol`'s table, or NULL with
+ * why it could not in `why`. */
+static const void *open_module(const char *name, const char *env_var, const char *build_copy, const char *symbol,
+                               unsigned min_size, char *why, size_t why_size) {
     char tried[1500] = "", path[1200];
     void *h = NULL;
-    const char *env = getenv("SHADELAB_OIIO_MODULE");
+    const char *env = getenv(env_var);
     if (env && *env) h = try_open(env, tried, sizeof tried);
     Dl_info self;
-    if (!h && dladdr((void *)&load, &self) && self.dli_fname && self.dli_fname[0]) {
+    if (!h && dladdr((void *)&open_module, &self) && self.dli_fname && self.dli_fname[0]) {
         char copy[1024];
         /* the executable's own entry may be a bare name: /proc/self/exe is the real file */
         if (!strchr(self.dli_fname, '/')) {
@@ -53,31 +59,51 @@ static void load(void) {
             snprintf(copy, sizeof copy, "%s", self.dli_fname);
         }
         const char *dir = dirname(copy);
-        snprintf(path, sizeof path, "%s/" MODULE_NAME, dir);
+        snprintf(path, sizeof path, "%s/%s", dir, name);
         h = try_open(path, tried, sizeof tried);
         if (!h) {
-            snprintf(path, sizeof path, "%s/shadelab/" MODULE_NAME, dir);
+            snprintf(path, sizeof path, "%s/shadelab/%s", dir, name);
             h = try_open(path, tried, sizeof tried);
         }
         if (!h) {
-            snprintf(path, sizeof path, "%s/../%s/shadelab/" MODULE_NAME, dir, SL_INSTALL_LIBDIR);
+            snprintf(path, sizeof path, "%s/../%s/shadelab/%s", dir, SL_INSTALL_LIBDIR, name);
             h = try_open(path, tried, sizeof tried);
         }
     }
-#ifdef SL_BUILD_OIIO_MODULE
-    if (!h) h = try_open(SL_BUILD_OIIO_MODULE, tried, sizeof tried);
-#endif
-    const sl_oiio_api *(*get)(void) = NULL;
-    if (h) *(void **)&get = dlsym(h, "sl_oiio_module_api");
-    const sl_oiio_api *a = get ? get() : NULL;
-    if (a && a->struct_size >= sizeof *a) {
-        api = a;
-        return;
+    if (!h && build_copy) h = try_open(build_copy, tried, sizeof tried);
+    const void *(*get)(void) = NULL;
+    if (h) *(void **)&get = dlsym(h, symbol);
+    const unsigned *table = get ? get() : NULL; /* every table starts with its struct_size */
+    if (table && *table >= min_size) return table;
+    if (h && !table) snprintf(why, why_size, "%s has no %s", name, symbol);
+    else if (h) snprintf(why, why_size, "%s is from another build (its table is smaller)", name);
+    else snprintf(why, why_size, "cannot open the module %s (looked in: %s; %s names it)", name, tried, env_var);
+    return NULL;
+}
+
+static pthread_once_t once = PTHREAD_ONCE_INIT, exr_once = PTHREAD_ONCE_INIT;
+static const sl_oiio_api *api;
+static const sl_exr_api *exr_api;
+static char why[2048], exr_why[2048];
+
+static void load(void) {
+    api = open_module("shadelab-oiio.so", "SHADELAB_OIIO_MODULE", SL_BUILD_OIIO_MODULE, "sl_oiio_module_api",
+                      sizeof(sl_oiio_api), why, sizeof why);
+}
+
+static void load_exr(void) {
+    exr_api = open_module("shadelab-exr.so", "SHADELAB_EXR_MODULE", SL_BUILD_EXR_MODULE, "sl_exr_module_api",
+                          sizeof(sl_exr_api), exr_why, sizeof exr_why);
+}
+
+bool sl_exr_read(const char *path, const void *data, size_t size, int x0, int y0, int w, int h, int nch,
+                 const char *const *names, bool half, void *out, char *err, size_t n) {
+    pthread_once(&exr_once, load_exr);
+    if (!exr_api) {
+        if (err && n) snprintf(err, n, "%s", exr_why);
+        return false;
     }
-    if (h && !a) snprintf(why, sizeof why, "%s has no sl_oiio_module_api", MODULE_NAME);
-    else if (h) snprintf(why, sizeof why, "%s is from another build (its table is smaller)", MODULE_NAME);
-    else snprintf(why, sizeof why, "cannot open the OpenImageIO module %s (looked in: %s; SHADELAB_OIIO_MODULE names "
-                  "it)", MODULE_NAME, tried);
+    return exr_api->read(path, data, size, x0, y0, w, h, nch, names, half, out, err, n);
 }
 
 static const sl_oiio_api *module(char *err, size_t n) {
