@@ -634,8 +634,16 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
         glBindTextureUnit(0, s->ts_tex[s->ts_result]);
         bool into1 = s->ts_result == TS_SUM0;
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[into1 ? 6 : 5]);
-        h->draw_fullscreen(h, ctx);
-        if (!warm_up) s->ts_result = into1 ? TS_SUM1 : TS_SUM0;
+        if (warm_up) { /* the state draw_fullscreen draws with, but not counted as a draw of the frame */
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_CULL_FACE);
+            glBindVertexArray(s->ts_vao);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glBindVertexArray(0);
+        } else {
+            h->draw_fullscreen(h, ctx);
+            s->ts_result = into1 ? TS_SUM1 : TS_SUM0;
+        }
     }
     for (int u = 0; u < 3; u++) glBindTextureUnit(u, 0);
 }
