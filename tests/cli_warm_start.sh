@@ -35,5 +35,23 @@ starts() { # starts NAME ARGS...: three starts on one pair of caches; the entry 
 starts default
 starts basic --scene "$scenes/basic.json"
 starts sss --scene "$scenes/skin_standin.json"
+# host->compile_ahead (ABI 1.12; sss's texture-space blur calls it): the forward programs drawn
+# ahead under an empty scissor must be compiled for the very state the forward pass draws them
+# with, or the forward pass compiles them again (one more variant: one more cache entry). A cold
+# start with it and one without (SHADELAB_NO_COMPILE_AHEAD=1) compile as many variants and give
+# the same image.
+ahead() { # ahead NAME [ENV...]: one cold start; prints its Mesa cache entry count
+    local dir="$out/$1"
+    shift
+    rm -rf "$dir" && mkdir -p "$dir/mesa"
+    env "$@" MESA_SHADER_CACHE_DIR="$dir/mesa" SHADELAB_CACHE="$dir" "$exe" --headless -q --size 64x36 --frames 1 \
+        --scene "$scenes/skin_standin.json" --set sss.method=texture-space --output "$dir/out.png" >/dev/null 2>&1 &&
+        entries "$dir"
+}
+with=$(ahead ahead_on) without=$(ahead ahead_off SHADELAB_NO_COMPILE_AHEAD=1)
+echo "compile ahead: Mesa cache entries with $with, without $without"
+check test -n "$with"
+check test "$with" = "$without"
+check cmp "$out/ahead_on/out.png" "$out/ahead_off/out.png"
 echo "cli_warm_start: $pass passed, $fail failed"
 [ $fail -eq 0 ]

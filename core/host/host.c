@@ -166,6 +166,7 @@ static bool host_read_image(const sl_host *h, const char *path, sl_image_file *o
 static bool host_scene_uses_uniform(const sl_host *h, const char *name) {
     return sl_renderer_materials_use_uniform((sl_app *)HOST_APP(h), name);
 }
+static void host_compile_ahead(const sl_host *h) { sl_renderer_compile_ahead((sl_app *)HOST_APP(h)); }
 void sl_host_set_gl_app(sl_app *app) { g_gl_app = app; }
 
 sl_host *sl_host_make(sl_app *app, int index) {
@@ -209,6 +210,7 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->procedural_image = host_procedural_image;
     h->read_image = host_read_image;
     h->scene_uses_uniform = host_scene_uses_uniform;
+    h->compile_ahead = host_compile_ahead;
     return &impl->host;
 }
 

@@ -30,6 +30,63 @@ static void run_forward(sl_app *app, sl_pass_ctx *ctx) {
     sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_OPAQUE);
 }
 
+/* host->compile_ahead (ABI 1.12). llvmpipe compiles a program for the state it is drawn with, at
+ * its first draw, on the calling thread; a pass that then waits for the rasteriser (a read-back,
+ * a chain of draws each reading the last) leaves this thread idle meanwhile. Drawing the forward
+ * pass's materials there under an empty scissor (nothing is rasterised) compiles the forward
+ * programs during that wait, for the state the forward pass will draw them with: its own targets
+ * (bind_outputs: formats, the sRGB display view), the default blend, depth and colour-mask state
+ * every pass leaves, and the textures the materials bind (the caller makes sure they exist: an
+ * empty unit is another state). The forward pass's own draws then find them compiled. Draws made
+ * here are not counted in the frame's statistics. Nothing on a GPU, and nothing when the programs
+ * were drawn ahead already. tests/cli_warm_start.sh: the same compiles and image without it. */
+void sl_renderer_compile_ahead(sl_app *app) {
+    sl_renderer *r = R(app);
+    /* SHADELAB_NO_COMPILE_AHEAD=1: off (the test that compares both; A/B timing) */
+    if (!r || app->backend.is_gpu || getenv("SHADELAB_NO_COMPILE_AHEAD")) return;
+    graph_pass *g = NULL;
+    for (int i = 0; i < r->pass_count && !g; i++)
+        if (r->passes[i].core_forward) g = &r->passes[i];
+    if (!g || g->broken) return;
+    uint64_t key = sl_hash64(&r->programs_version, sizeof r->programs_version, (uint64_t)g->to_display);
+    for (int m = 0; m < app->scene.material_count; m++) {
+        unsigned id = r->materials[m].forward.program ? sl_program_id(r->materials[m].forward.program) : 0;
+        key = sl_hash64(&id, sizeof id, key);
+    }
+    if (key == r->compiled_ahead) return;
+    r->compiled_ahead = key;
+    GLint fbo = 0, prog = 0, viewport[4], box[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glGetIntegerv(GL_SCISSOR_BOX, box);
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    sl_pass_ctx ctx = {.pass = g};
+    sl_pass_ctx *current = r->current;
+    r->current = &ctx;
+    if (sl_renderer_bind_outputs(app, &ctx, 0) == SL_OK) {
+        glDisable(GL_BLEND);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthMask(GL_TRUE);
+        glDepthRange(0, 1);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, 0, 0, 0);
+        sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
+        memcpy(d.view, r->frame.view, sizeof d.view);
+        memcpy(d.proj, r->frame.proj, sizeof d.proj);
+        int draws = r->stats.draw_calls;
+        sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_OPAQUE);
+        r->stats.draw_calls = draws;
+        if (g->to_display) glDisable(GL_FRAMEBUFFER_SRGB);
+    }
+    r->current = current;
+    if (!scissor) glDisable(GL_SCISSOR_TEST);
+    glScissor(box[0], box[1], box[2], box[3]);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    glBindFramebuffer(GL_FRAMEBUFFER, (unsigned)fbo);
+    glUseProgram((unsigned)prog);
+}
+
 /* glTF alphaMode BLEND: the blended materials over the opaque image, back to front (scene_gpu.c),
  * colour = alpha·c + (1 − alpha)·dst with the target's alpha kept, no depth writes. The fragment
  * tests "depth" itself (forward.frag): it holds ssaa² samples per pixel of "color" here. */

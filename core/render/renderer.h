@@ -67,6 +67,10 @@ void sl_renderer_draw_fullscreen(struct sl_app *app, sl_pass_ctx *ctx);
 /* Whether a material's forward program (as composed now) has an active uniform `name`
  * (host->scene_uses_uniform, ABI 1.11). */
 bool sl_renderer_materials_use_uniform(struct sl_app *app, const char *name);
+/* host->compile_ahead (ABI 1.12): on a CPU renderer, the forward pass's draws under an empty
+ * scissor now, so that llvmpipe compiles its programs (at their first draw, on this thread) while
+ * the rasteriser works on what the calling pass queued. Once per set of forward programs. */
+void sl_renderer_compile_ahead(struct sl_app *app);
 const sl_light_info *sl_renderer_lights(struct sl_app *app, int *count);
 void sl_renderer_set_jitter(struct sl_app *app, float x, float y);
 void sl_renderer_set_still_frames(struct sl_app *app, int frames);

@@ -82,6 +82,7 @@ typedef struct sl_renderer {
     /* temporal antialiasing (ABI 1.6): the jitter plugins asked for this frame, the frames a still
      * needs, whether the forward pass writes "motion", and the previous frame's camera */
     float jitter_req[2];
+    uint64_t compiled_ahead;  /* the forward programs compile_ahead last drew (graph_run.c) */
     uint64_t programs_version; /* bumps on a hot reload or a new debug view (in params_version) */
     int still_frames;
     /* ABI 1.9 sample index: frames since the view or an edit last changed, and what it compares */

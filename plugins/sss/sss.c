@@ -674,6 +674,11 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
      * compiles on llvmpipe). Once per program set; at a warm start their compiles are Mesa disk
      * cache hits (a few ms) even when the result then comes from sss's own cache. */
     unsigned dilate = h->program_id(h, s->dilate_prog);
+    /* The same for the forward pass's programs (ABI 1.12), which sample this pass's result (its
+     * textures exist now): their compiles overlap the rasteriser's work on the irradiance and what
+     * was queued before it, instead of following the blurs, which wait for each other. */
+    if (h->struct_size >= offsetof(sl_host, compile_ahead) + sizeof h->compile_ahead && h->compile_ahead)
+        h->compile_ahead(h);
     if (use_fast && s->ts_vao && !h->is_gpu(h) &&
         (s->warmed[0] != prog[0] || s->warmed[1] != prog[1] || s->warmed[2] != fast[0] || s->warmed[3] != fast[1] ||
          s->warmed[4] != dilate)) {

@@ -159,6 +159,15 @@ struct sl_host {
      * read (a lazily computed texture, say), before any pass runs, instead of at its first bind in
      * the middle of a pass. Override programs (draw_scene with a fragment) are not included. */
     bool (*scene_uses_uniform)(const sl_host *host, const char *name);
+    /* ABI 1.12, in a pass (GL context current): a pass about to wait for the renderer (a read-back,
+     * a chain of draws each reading the one before) asks the core to compile the forward pass's
+     * programs now. On a CPU renderer (llvmpipe compiles a program at its first draw, on the
+     * calling thread) the core draws the forward pass's materials under an empty scissor, in the
+     * forward pass's state, so that the compiles overlap the rasteriser's work instead of
+     * following it. Nothing is drawn or counted; nothing happens on a GPU, or when the forward
+     * programs were compiled ahead already. Call it once every texture the materials bind exists
+     * (an empty texture unit is another state, compiled again by the forward pass itself). */
+    void (*compile_ahead)(const sl_host *host);
 };
 
 #ifdef __cplusplus
