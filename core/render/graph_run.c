@@ -76,8 +76,24 @@ void sl_renderer_compile_ahead(sl_app *app) {
         memcpy(d.proj, r->frame.proj, sizeof d.proj);
         int draws = r->stats.draw_calls;
         sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_OPAQUE);
-        r->stats.draw_calls = draws;
         if (g->to_display) glDisable(GL_FRAMEBUFFER_SRGB);
+        /* the plugins' passes after it that declare draws_only (ABI 1.12), in their state */
+        for (int i = (int)(g - r->passes) + 1; i < r->pass_count; i++) {
+            graph_pass *p = &r->passes[i];
+            if (p->owner < 0 || p->broken || !p->d->draws_only ||
+                (p->d->is_active && !p->d->is_active(p->d->user, &r->frame)))
+                continue;
+            ctx.pass = p;
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(0, 0, 0, 0);
+            p->d->execute(p->d->user, &ctx, &r->frame);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            if (p->to_display) {
+                glDisable(GL_FRAMEBUFFER_SRGB);
+                glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            }
+        }
+        r->stats.draw_calls = draws;
     }
     r->current = current;
     if (!scissor) glDisable(GL_SCISSOR_TEST);

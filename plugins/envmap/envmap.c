@@ -766,13 +766,13 @@ static sl_status envmap_create(const sl_host *host, void **user) {
                              .outputs = bg_in_place_outputs, .output_count = 2, .execute = background_execute,
                              .is_active = background_active, .user = e,
                              .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_CAMERA | SL_DEPENDS_OWN_PARAMS,
-                             .display_on_write = true};
+                             .display_on_write = true, .draws_only = true /* ABI 1.12: host->compile_ahead */};
     if (host->add_pass(host, &bg) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc bg_ssaa = {.struct_size = sizeof bg_ssaa, .name = "envmap-background-ssaa", .stage = SL_STAGE_OPAQUE,
                                   .inputs = bg_inputs, .outputs = bg_outputs, .output_count = 1,
                                   .execute = background_execute, .is_active = background_ssaa_active, .user = e,
                                   .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_CAMERA | SL_DEPENDS_OWN_PARAMS,
-                                  .display_on_write = true};
+                                  .display_on_write = true, .draws_only = true};
     if (host->add_pass(host, &bg_ssaa) != SL_OK) return SL_ERR_FAILED;
     static const sl_reference_desc ref = {
         .struct_size = sizeof ref, .settings = "envmap.mode=reference envmap.reference_samples=64",

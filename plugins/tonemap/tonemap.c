@@ -76,7 +76,8 @@ static sl_status create(const sl_host *host, void **user) {
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = "tonemap", .stage = SL_STAGE_TONEMAP, .inputs = inputs,
                                .outputs = outputs, .output_count = 1, .execute = execute, .is_active = active, .user = t,
                                .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS,
-                               .display_on_write = true /* ABI 1.8: as the last pass it writes the display */};
+                               .display_on_write = true /* ABI 1.8: as the last pass it writes the display */,
+                               .draws_only = true /* ABI 1.12: compiled ahead (host->compile_ahead) */};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
     static const sl_key_desc keys[] = {
         {.struct_size = sizeof(sl_key_desc), .key = "O", .param = "operator", .description = "next tone-mapping operator"},

@@ -160,6 +160,12 @@ typedef struct sl_pass_desc {
      * its "color" input, if any, is still the linear colour before it. false (the default, and
      * every plugin built before 1.8): the core's display pass runs after it. */
     bool display_on_write;
+    /* ABI 1.12: execute only sets GL state and draws into the framebuffer host->bind_outputs binds
+     * (no glClearTexImage, copies, read-backs or blits, and no change to the plugin's own state):
+     * run under an empty scissor it rasterises nothing and changes nothing. The core may then run
+     * it ahead of its turn (host->compile_ahead) so that a CPU renderer compiles its programs while
+     * an earlier pass waits. false (the default): never run but in its turn. */
+    bool draws_only;
 } sl_pass_desc;
 
 /* host->draw_scene: draw every visible mesh of the scene with a view. */
