@@ -354,14 +354,9 @@ static uint64_t stretch_signature(void *user, const sl_frame *f) {
     return h;
 }
 
-static bool ts_compile_ahead(sss *s, sl_pass_ctx *ctx, unsigned prog[2], unsigned fast[2], bool *fast_ok);
-
 static void stretch_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     sss *s = user;
     ensure_ts(s);
-    unsigned prog[2], fast[2];
-    bool fast_ok;
-    if (method(s) == M_TEXTURE_SPACE) ts_compile_ahead(s, ctx, prog, fast, &fast_ok); /* see there */
     glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[0]);
     glViewport(0, 0, s->ts_size, s->ts_size);
     clear_bound(-1);
@@ -653,36 +648,37 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
     for (int u = 0; u < 3; u++) glBindTextureUnit(u, 0);
 }
 
-/* The blur programs (prog: along u, v; fast: their interior versions, when fast_ok) and, on a CPU
- * renderer, their compiles and the forward pass's ahead of the waits (below). False without the
- * blur programs. */
-static bool ts_compile_ahead(sss *s, sl_pass_ctx *ctx, unsigned prog[2], unsigned fast[2], bool *fast_ok) {
+/* Texture space 3: the chain of separable blurs, each v pass adding wᵢ·blurᵢ to the sum. */
+static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
+    sss *s = user;
     const sl_host *h = s->host;
     /* along u and along v: one program object per pass (the same source). The two passes draw
      * into different targets (one colour buffer, two), and llvmpipe compiles a program once per
      * state. With one program for both, the second state's compile missed Mesa's disk cache at
      * the first warm start: its key is hashed over the program's IR after the first state's
      * compile changed it, and at a warm start that first compile is a cache hit (no change). */
-    prog[0] = h->program_id(h, s->ts_prog[0]), prog[1] = h->program_id(h, s->ts_prog[1]);
-    if (!prog[0] || !prog[1]) return false;
-    fast[0] = h->program_id(h, s->ts_interior_prog[0]), fast[1] = h->program_id(h, s->ts_interior_prog[1]);
+    unsigned prog[2] = {h->program_id(h, s->ts_prog[0]), h->program_id(h, s->ts_prog[1])};
+    if (!prog[0] || !prog[1]) return;
+    unsigned fast[2] = {h->program_id(h, s->ts_interior_prog[0]), h->program_id(h, s->ts_interior_prog[1])};
     ensure_ts(s);
     bool use_fast = fast[0] && fast[1];
     if (use_fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
     /* SHADELAB_SSS_FULL_BLUR=1: the full program on every texel (the tests compare the two; A/B timing) */
     if (use_fast && getenv("SHADELAB_SSS_FULL_BLUR")) use_fast = false;
-    *fast_ok = use_fast;
-    /* On a CPU renderer (llvmpipe compiles a program at its first draw, on this thread) the blur
-     * chain waits for the rasteriser: its read-back waits for every pass queued before it, and
-     * each blur reads the one before. Programs first drawn after such a wait compile with the
-     * rasteriser idle. So, as early as their textures exist (the stretch pass, while the
-     * rasteriser still works on envmap's prefilter and the shadow maps queued before it), the
-     * forward pass's programs (host->compile_ahead, ABI 1.12: they sample this plugin's result)
-     * and the blur programs (drawn here under an empty scissor) are compiled. Once per program
-     * set; at a warm start their compiles are Mesa disk cache hits (a few ms). */
+    /* the disk cache goes with the interior path (the default; the full program's tests run without) */
+    bool caching = use_fast && param(s, "cache").b;
+    uint64_t key = 0;
+    /* On a CPU renderer the read-back below waits for every pass queued before it, the main thread
+     * idle meanwhile, and the blur programs would then compile (their first draws) with the
+     * rasteriser idle: compile them first, while it works (the start-up's first blur, ≈ 0.45 s of
+     * compiles on llvmpipe). Once per program set; at a warm start their compiles are Mesa disk
+     * cache hits (a few ms) even when the result then comes from sss's own cache. */
+    unsigned dilate = h->program_id(h, s->dilate_prog);
+    /* The same for the forward pass's programs (ABI 1.12), which sample this pass's result (its
+     * textures exist now): their compiles overlap the rasteriser's work on the irradiance and what
+     * was queued before it, instead of following the blurs, which wait for each other. */
     if (h->struct_size >= offsetof(sl_host, compile_ahead) + sizeof h->compile_ahead && h->compile_ahead)
         h->compile_ahead(h);
-    unsigned dilate = h->program_id(h, s->dilate_prog);
     if (use_fast && s->ts_vao && !h->is_gpu(h) &&
         (s->warmed[0] != prog[0] || s->warmed[1] != prog[1] || s->warmed[2] != fast[0] || s->warmed[3] != fast[1] ||
          s->warmed[4] != dilate)) {
@@ -696,18 +692,6 @@ static bool ts_compile_ahead(sss *s, sl_pass_ctx *ctx, unsigned prog[2], unsigne
         s->warmed[0] = prog[0], s->warmed[1] = prog[1], s->warmed[2] = fast[0], s->warmed[3] = fast[1];
         s->warmed[4] = dilate;
     }
-    return true;
-}
-
-/* Texture space 3: the chain of separable blurs, each v pass adding wᵢ·blurᵢ to the sum. */
-static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
-    sss *s = user;
-    unsigned prog[2], fast[2];
-    bool use_fast = false;
-    if (!ts_compile_ahead(s, ctx, prog, fast, &use_fast)) return;
-    /* the disk cache goes with the interior path (the default; the full program's tests run without) */
-    bool caching = use_fast && param(s, "cache").b;
-    uint64_t key = 0;
     if (use_fast && (!s->ts_vao || !ts_read_inputs(s, caching ? &key : NULL))) use_fast = caching = false;
     if (caching && ts_from_cache(s, key)) return;
     if (use_fast && !ts_classify(s)) use_fast = caching = false; /* then the full program everywhere */
