@@ -45,6 +45,15 @@ void sl_startup_huge_pages(char **argv) {
     char value[4096];
     int len = snprintf(value, sizeof value, "%s%sglibc.malloc.hugetlb=1", set ? set : "", set && *set ? ":" : "");
     if (len < 0 || (size_t)len >= sizeof value || setenv("GLIBC_TUNABLES", value, 1) != 0) return;
+    /* by the executable's own path: the kernel names the process after the file exec'd (what ps,
+     * top and pkill show), and /proc/self/exe would name it "exe"; that link only when the path
+     * cannot be read or no longer execs (the file was replaced: " (deleted)") */
+    char self[4096];
+    ssize_t k = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (k > 0) {
+        self[k] = 0;
+        execv(self, argv);
+    }
     execv("/proc/self/exe", argv);
     /* no /proc (a chroot, a sandbox): go on with small pages, and do not pass the setting on */
     if (set) setenv("GLIBC_TUNABLES", set, 1);

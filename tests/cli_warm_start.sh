@@ -53,5 +53,21 @@ echo "compile ahead: Mesa cache entries with $with, without $without"
 check test -n "$with"
 check test "$with" = "$without"
 check cmp "$out/ahead_on/out.png" "$out/ahead_off/out.png"
+# The huge-page re-exec (core/startup.c: glibc's malloc on transparent huge pages) keeps the
+# process's name: exec'd through /proc/self/exe it was "exe" in ps, top and pkill.
+if grep -qE '\[(always|madvise)\]' /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null; then
+  env -u GLIBC_TUNABLES -u SHADELAB_SMALL_PAGES "$exe" --headless -q --size 16x16 --frames 100000 --output "$out/name.png" &
+  pid=$! name= reexec=
+  for _ in $(seq 100); do # until the re-executed process runs (its environment has the tunable)
+    if tr '\0' '\n' < /proc/$pid/environ 2>/dev/null | grep -q 'glibc.malloc.hugetlb=1'; then
+      reexec=1 name=$(cat /proc/$pid/comm); break
+    fi
+    sleep 0.05
+  done
+  kill $pid 2>/dev/null; wait $pid 2>/dev/null
+  echo "huge-page re-exec: ${reexec:-not seen}, process name '$name'"
+  check test -n "$reexec"
+  check test "$name" = "$(basename "$exe" | cut -c1-15)"
+fi
 echo "cli_warm_start: $pass passed, $fail failed"
 [ $fail -eq 0 ]
