@@ -469,30 +469,31 @@ static bool native_exr(sl_image *img, const char *path, const unsigned char *dat
             goto done;
         }
         convert(tmp, npix, nch, bpe, slot, grey, out);
-    }
-    for (int64_t y = dw.min.y; y <= dw.max.y && !by_cpp_library; y += lpc) {
-        exr_chunk_info_t ci;
-        if (exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci) != EXR_ERR_SUCCESS) goto done;
-        if (ci.start_y != y || ci.height < 1 || ci.height > lpc || ci.start_y + (int64_t)ci.height - 1 > dw.max.y ||
-            ci.width != w)
-            goto done;
-        exr_result_t r = dec_init ? exr_decoding_update(ctx, 0, &ci, &dec) : exr_decoding_initialize(ctx, 0, &ci, &dec);
-        if (r != EXR_ERR_SUCCESS) goto done;
-        dec_init = true;
-        if (dec.channel_count != nch) goto done;
-        for (int i = 0; i < nch; i++) {
-            exr_coding_channel_info_t *c = &dec.channels[i];
-            if (c->width != w || c->height != ci.height || c->bytes_per_element != (int)bpe) goto done;
-            c->decode_to_ptr = tmp + (size_t)i * bpe;
-            c->user_pixel_stride = (int32_t)(nch * bpe);
-            c->user_line_stride = (int32_t)((size_t)w * nch * bpe);
-            c->user_bytes_per_element = (int16_t)bpe;
-            c->user_data_type = (uint16_t)type;
+    } else {
+        for (int64_t y = dw.min.y; y <= dw.max.y; y += lpc) {
+            exr_chunk_info_t ci;
+            if (exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci) != EXR_ERR_SUCCESS) goto done;
+            if (ci.start_y != y || ci.height < 1 || ci.height > lpc || ci.start_y + (int64_t)ci.height - 1 > dw.max.y ||
+                ci.width != w)
+                goto done;
+            exr_result_t r = dec_init ? exr_decoding_update(ctx, 0, &ci, &dec) : exr_decoding_initialize(ctx, 0, &ci, &dec);
+            if (r != EXR_ERR_SUCCESS) goto done;
+            dec_init = true;
+            if (dec.channel_count != nch) goto done;
+            for (int i = 0; i < nch; i++) {
+                exr_coding_channel_info_t *c = &dec.channels[i];
+                if (c->width != w || c->height != ci.height || c->bytes_per_element != (int)bpe) goto done;
+                c->decode_to_ptr = tmp + (size_t)i * bpe;
+                c->user_pixel_stride = (int32_t)(nch * bpe);
+                c->user_line_stride = (int32_t)((size_t)w * nch * bpe);
+                c->user_bytes_per_element = (int16_t)bpe;
+                c->user_data_type = (uint16_t)type;
+            }
+            if (exr_decoding_choose_default_routines(ctx, 0, &dec) != EXR_ERR_SUCCESS ||
+                exr_decoding_run(ctx, 0, &dec) != EXR_ERR_SUCCESS)
+                goto done;
+            convert(tmp, (size_t)ci.height * w, nch, bpe, slot, grey, out + (size_t)(ci.start_y - dw.min.y) * w * 4);
         }
-        if (exr_decoding_choose_default_routines(ctx, 0, &dec) != EXR_ERR_SUCCESS ||
-            exr_decoding_run(ctx, 0, &dec) != EXR_ERR_SUCCESS)
-            goto done;
-        convert(tmp, (size_t)ci.height * w, nch, bpe, slot, grey, out + (size_t)(ci.start_y - dw.min.y) * w * 4);
     }
     fill(img, w, h, out, (int)bpe * 8, true, false, nch, desc, desc_len, "openexr");
     out = NULL;
