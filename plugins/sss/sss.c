@@ -354,9 +354,12 @@ static uint64_t stretch_signature(void *user, const sl_frame *f) {
     return h;
 }
 
+static void ts_warm_up(sss *s, sl_pass_ctx *ctx);
+
 static void stretch_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     sss *s = user;
     ensure_ts(s);
+    if (method(s) == M_TEXTURE_SPACE) ts_warm_up(s, ctx); /* the blurs' compiles (see ts_warm_up) */
     glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[0]);
     glViewport(0, 0, s->ts_size, s->ts_size);
     clear_bound(-1);
@@ -610,7 +613,10 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
         /* along v back into the chain and into the sum (0, 1 alternating) */
         bool even = g % 2 == 0;
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[even ? 3 : 4]);
-        glBindTextureUnit(0, s->ts_tex[TS_TMP]);
+        /* the warm-up samples the irradiance texture in place of tmp (the same format and sampler
+         * state, so the same compiled variant): on llvmpipe a draw sampling a texture that a queued
+         * draw renders waits for the rasteriser to reach it, here behind everything queued */
+        glBindTextureUnit(0, s->ts_tex[warm_up ? TS_IRR : TS_TMP]);
         glBindTextureUnit(2, s->ts_tex[even ? TS_SUM1 : TS_SUM0]);
         EACH {
             unsigned p = progs[k];
@@ -631,8 +637,10 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
     if (dilate) {
         glUseProgram(dilate);
         glUniform1i(glGetUniformLocation(dilate, "sss_src"), 0);
-        glBindTextureUnit(0, s->ts_tex[s->ts_result]);
-        bool into1 = s->ts_result == TS_SUM0;
+        /* the warm-up: from the sum its v pass did not write, into the one it did (as above) */
+        int from = warm_up ? TS_SUM1 : s->ts_result;
+        glBindTextureUnit(0, s->ts_tex[from]);
+        bool into1 = from == TS_SUM0;
         glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[into1 ? 6 : 5]);
         if (warm_up) { /* the state draw_fullscreen draws with, but not counted as a draw of the frame */
             glDisable(GL_DEPTH_TEST);
@@ -648,18 +656,55 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
     for (int u = 0; u < 3; u++) glBindTextureUnit(u, 0);
 }
 
+/* The blur programs (along u and along v: one program object per pass, the same source: the two
+ * passes draw into different targets, one colour buffer and two, and llvmpipe compiles a program
+ * once per state; with one program for both, the second state's compile missed Mesa's disk cache
+ * at the first warm start, its key hashed over the program's IR after the first state's compile
+ * changed it). false when one is missing. */
+static bool ts_programs(sss *s, unsigned prog[2], unsigned fast[2], unsigned *dilate) {
+    const sl_host *h = s->host;
+    prog[0] = h->program_id(h, s->ts_prog[0]), prog[1] = h->program_id(h, s->ts_prog[1]);
+    fast[0] = h->program_id(h, s->ts_interior_prog[0]), fast[1] = h->program_id(h, s->ts_interior_prog[1]);
+    *dilate = h->program_id(h, s->dilate_prog);
+    return prog[0] && prog[1];
+}
+
+/* On a CPU renderer (llvmpipe compiles a program at its first draw, on the calling thread) the
+ * blur programs are compiled by drawing them under an empty scissor before their turn, while the
+ * rasteriser works on what was queued before, instead of at the blurs' own draws, which follow the
+ * read-back of the irradiance with the rasteriser idle (≈ 0.35 s of compiles at a cold start; a
+ * few ms at a warm one, Mesa disk cache hits). Called first by the stretch pass: there, no texture
+ * the blurs sample is still being rendered (a draw sampling one waits on llvmpipe for the
+ * rasteriser to finish it: in the blur pass these draws waited for the irradiance); and again by
+ * the blur pass, for program sets the stretch pass did not see (it is skipped while the geometry
+ * does not change). Once per program set. */
+static void ts_warm_up(sss *s, sl_pass_ctx *ctx) {
+    const sl_host *h = s->host;
+    unsigned prog[2], fast[2], dilate;
+    if (h->is_gpu(h) || !ts_programs(s, prog, fast, &dilate) || !fast[0] || !fast[1]) return;
+    if (getenv("SHADELAB_SSS_FULL_BLUR")) return; /* the full program everywhere: no split draws */
+    if (s->warmed[0] == prog[0] && s->warmed[1] == prog[1] && s->warmed[2] == fast[0] && s->warmed[3] == fast[1] &&
+        s->warmed[4] == dilate)
+        return;
+    ensure_ts(s);
+    if (!s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
+    int box[4];
+    glGetIntegerv(GL_SCISSOR_BOX, box);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 0, 0);
+    ts_blur_draws(s, ctx, prog, fast, true, true);
+    glDisable(GL_SCISSOR_TEST);
+    glScissor(box[0], box[1], box[2], box[3]);
+    s->warmed[0] = prog[0], s->warmed[1] = prog[1], s->warmed[2] = fast[0], s->warmed[3] = fast[1];
+    s->warmed[4] = dilate;
+}
+
 /* Texture space 3: the chain of separable blurs, each v pass adding wᵢ·blurᵢ to the sum. */
 static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     sss *s = user;
     const sl_host *h = s->host;
-    /* along u and along v: one program object per pass (the same source). The two passes draw
-     * into different targets (one colour buffer, two), and llvmpipe compiles a program once per
-     * state. With one program for both, the second state's compile missed Mesa's disk cache at
-     * the first warm start: its key is hashed over the program's IR after the first state's
-     * compile changed it, and at a warm start that first compile is a cache hit (no change). */
-    unsigned prog[2] = {h->program_id(h, s->ts_prog[0]), h->program_id(h, s->ts_prog[1])};
-    if (!prog[0] || !prog[1]) return;
-    unsigned fast[2] = {h->program_id(h, s->ts_interior_prog[0]), h->program_id(h, s->ts_interior_prog[1])};
+    unsigned prog[2], fast[2], dilate;
+    if (!ts_programs(s, prog, fast, &dilate)) return;
     ensure_ts(s);
     bool use_fast = fast[0] && fast[1];
     if (use_fast && !s->ts_vao) glCreateVertexArrays(1, &s->ts_vao);
@@ -668,30 +713,15 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     /* the disk cache goes with the interior path (the default; the full program's tests run without) */
     bool caching = use_fast && param(s, "cache").b;
     uint64_t key = 0;
-    /* On a CPU renderer the read-back below waits for every pass queued before it, the main thread
-     * idle meanwhile, and the blur programs would then compile (their first draws) with the
-     * rasteriser idle: compile them first, while it works (the start-up's first blur, ≈ 0.45 s of
-     * compiles on llvmpipe). Once per program set; at a warm start their compiles are Mesa disk
-     * cache hits (a few ms) even when the result then comes from sss's own cache. */
-    unsigned dilate = h->program_id(h, s->dilate_prog);
+    ts_warm_up(s, ctx);
     /* The same for the forward pass's programs (ABI 1.12), which sample this pass's result (its
      * textures exist now): their compiles overlap the rasteriser's work on the irradiance and what
-     * was queued before it, instead of following the blurs, which wait for each other. */
+     * was queued before it, instead of following the blurs, which wait for each other. After the
+     * blur programs: a forward program that samples a texture still being rendered (envmap's GGX
+     * chain, prefiltered after the shadow maps) waits at its draw for the rasteriser to finish it,
+     * and the blur programs' compiles fill that time instead of following it. */
     if (h->struct_size >= offsetof(sl_host, compile_ahead) + sizeof h->compile_ahead && h->compile_ahead)
         h->compile_ahead(h);
-    if (use_fast && s->ts_vao && !h->is_gpu(h) &&
-        (s->warmed[0] != prog[0] || s->warmed[1] != prog[1] || s->warmed[2] != fast[0] || s->warmed[3] != fast[1] ||
-         s->warmed[4] != dilate)) {
-        int box[4];
-        glGetIntegerv(GL_SCISSOR_BOX, box);
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(0, 0, 0, 0);
-        ts_blur_draws(s, ctx, prog, fast, true, true);
-        glDisable(GL_SCISSOR_TEST);
-        glScissor(box[0], box[1], box[2], box[3]);
-        s->warmed[0] = prog[0], s->warmed[1] = prog[1], s->warmed[2] = fast[0], s->warmed[3] = fast[1];
-        s->warmed[4] = dilate;
-    }
     if (use_fast && (!s->ts_vao || !ts_read_inputs(s, caching ? &key : NULL))) use_fast = caching = false;
     if (caching && ts_from_cache(s, key)) return;
     if (use_fast && !ts_classify(s)) use_fast = caching = false; /* then the full program everywhere */
