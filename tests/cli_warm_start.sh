@@ -45,14 +45,24 @@ ahead() { # ahead NAME [ENV...]: one cold start; prints its Mesa cache entry cou
     shift
     rm -rf "$dir" && mkdir -p "$dir/mesa"
     env "$@" MESA_SHADER_CACHE_DIR="$dir/mesa" SHADELAB_CACHE="$dir" "$exe" --headless -q --size 64x36 --frames 1 \
-        --scene "$scenes/skin_standin.json" --set sss.method=texture-space --output "$dir/out.png" >/dev/null 2>&1 &&
+        --scene "$scenes/skin_standin.json" --set sss.method=texture-space $extra --output "$dir/out.png" >/dev/null 2>&1 &&
         entries "$dir"
 }
+extra=
 with=$(ahead ahead_on) without=$(ahead ahead_off SHADELAB_NO_COMPILE_AHEAD=1)
 echo "compile ahead: Mesa cache entries with $with, without $without"
 check test -n "$with"
 check test "$with" = "$without"
 check cmp "$out/ahead_on/out.png" "$out/ahead_off/out.png"
+# The same with envmap: the GGX material's forward program samples envmap's chain (the scene's
+# constant environment), queued by the envmap-prefilter pass after the shadow maps and compiled
+# ahead while it may still be prefiltering.
+extra="--plugin envmap"
+with=$(ahead ahead_env_on) without=$(ahead ahead_env_off SHADELAB_NO_COMPILE_AHEAD=1)
+echo "compile ahead under envmap: Mesa cache entries with $with, without $without"
+check test -n "$with"
+check test "$with" = "$without"
+check cmp "$out/ahead_env_on/out.png" "$out/ahead_env_off/out.png"
 # The huge-page re-exec (core/startup.c: glibc's malloc on transparent huge pages) keeps the
 # process's name: exec'd through /proc/self/exe it was "exe" in ps, top and pkill.
 if grep -qE '\[(always|madvise)\]' /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null; then
