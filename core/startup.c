@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -31,9 +32,31 @@ static void now(double *wall, double *cpu, double *main_cpu) {
     *main_cpu = clock_ms(CLOCK_THREAD_CPUTIME_ID);
 }
 
+/* Milliseconds per MB of first touches on 4 KiB pages: a fresh 1 MB anonymous mapping, advised
+ * against huge pages, touched once per page (the cost the huge-page re-exec saves). */
+static double small_page_ms_per_mb(void) {
+    const size_t bytes = 1u << 20;
+    char *p = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return 0;
+#ifdef MADV_NOHUGEPAGE
+    madvise(p, bytes, MADV_NOHUGEPAGE);
+#endif
+    double t0 = clock_ms(CLOCK_MONOTONIC);
+    for (size_t i = 0; i < bytes; i += 4096) p[i] = 1;
+    double ms = clock_ms(CLOCK_MONOTONIC) - t0;
+    munmap(p, bytes);
+    return ms;
+}
+
 void sl_startup_huge_pages(char **argv) {
     const char *set = getenv("GLIBC_TUNABLES");
     if (getenv("SHADELAB_SMALL_PAGES") || (set && strstr(set, "glibc.malloc.hugetlb"))) return;
+    /* Only where small pages are slow: 2.8 ms/MB on the VM the re-exec was measured on (a warm
+     * head start 3.05 → 2.54 s with it), 0.4-0.5 ms/MB on one where it made a cold head start
+     * 4-9 % slower (clearing whole huge pages, 0.85 s of system time against 0.32 s; interleaved
+     * A/B, docs/design-notes.md, seventh round). SHADELAB_HUGE_PAGES=1 re-executes regardless. */
+    const char *force = getenv("SHADELAB_HUGE_PAGES");
+    if (!(force && *force && strcmp(force, "0")) && small_page_ms_per_mb() < SL_HUGE_PAGES_MS_PER_MB) return;
     /* "always [madvise] never": madvise is what the tunable uses; "[never]" would make it a no-op */
     char mode[128] = "";
     FILE *f = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");

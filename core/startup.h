@@ -13,14 +13,17 @@ typedef struct sl_startup_phase {
     double wall_ms, cpu_ms, main_cpu_ms;
 } sl_startup_phase;
 
-/* Re-executes the process once (execv of /proc/self/exe, same argv) with glibc's malloc asked to
+/* Re-executes the process once (execv of the executable, same argv) with glibc's malloc asked to
  * back its memory with transparent huge pages (GLIBC_TUNABLES glibc.malloc.hugetlb=1, glibc
- * 2.35+: madvise(MADV_HUGEPAGE) on the heap and on mmap'd blocks), unless the tunable is already
- * set, the kernel has transparent huge pages off, or SHADELAB_SMALL_PAGES is set. Call it first
- * in main(). Why: a start-up writes ~300 MB of fresh memory (llvmpipe's textures and render
- * targets, decoded images), and a 4 KiB page fault cost ~11 µs on the project's VM (2.8 ms/MB
- * against 0.18 ms/MB with huge pages; docs/design-notes.md). Returns only when it did not
- * re-execute. */
+ * 2.35+: madvise(MADV_HUGEPAGE) on the heap and on mmap'd blocks) when first touches of 4 KiB
+ * pages cost at least SL_HUGE_PAGES_MS_PER_MB (measured on a 1 MB mapping, ≈ 0.5-3 ms), unless
+ * the tunable is already set, the kernel has transparent huge pages off, or SHADELAB_SMALL_PAGES
+ * is set; SHADELAB_HUGE_PAGES=1 re-executes without measuring. Call it first in main(). Why: a
+ * start-up writes ~300 MB of fresh memory (llvmpipe's textures and render targets, decoded
+ * images); where a 4 KiB page fault costs ~11 µs (2.8 ms/MB against 0.18 ms/MB with huge pages)
+ * huge pages save ~0.5 s, where it costs ~2 µs (0.4-0.5 ms/MB) clearing whole huge pages costs
+ * more than it saves (docs/design-notes.md). Returns only when it did not re-execute. */
+#define SL_HUGE_PAGES_MS_PER_MB 1.5
 void sl_startup_huge_pages(char **argv);
 /* Starts the clock (main() calls it first); marks before it count from the first mark. */
 void sl_startup_begin(void);

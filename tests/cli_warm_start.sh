@@ -63,10 +63,11 @@ echo "compile ahead under envmap: Mesa cache entries with $with, without $withou
 check test -n "$with"
 check test "$with" = "$without"
 check cmp "$out/ahead_env_on/out.png" "$out/ahead_env_off/out.png"
-# The huge-page re-exec (core/startup.c: glibc's malloc on transparent huge pages) keeps the
-# process's name: exec'd through /proc/self/exe it was "exe" in ps, top and pkill.
+# The huge-page re-exec (core/startup.c: glibc's malloc on transparent huge pages; made where
+# 4 KiB page faults are slow, forced here with SHADELAB_HUGE_PAGES=1) keeps the process's name:
+# exec'd through /proc/self/exe it was "exe" in ps, top and pkill.
 if grep -qE '\[(always|madvise)\]' /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null; then
-  env -u GLIBC_TUNABLES -u SHADELAB_SMALL_PAGES "$exe" --headless -q --size 16x16 --frames 100000 --output "$out/name.png" &
+  env -u GLIBC_TUNABLES -u SHADELAB_SMALL_PAGES SHADELAB_HUGE_PAGES=1 "$exe" --headless -q --size 16x16 --frames 100000 --output "$out/name.png" &
   pid=$! name= reexec=
   for _ in $(seq 100); do # until the re-executed process runs (its environment has the tunable)
     if tr '\0' '\n' < /proc/$pid/environ 2>/dev/null | grep -q 'glibc.malloc.hugetlb=1'; then
