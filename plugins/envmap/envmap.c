@@ -447,22 +447,38 @@ static void ensure_base(envmap *e) {
     e->base_key = key;
 }
 
-static void ensure_spec(envmap *e) {
-    if (e->spec_from_chain) return;
-    int size = eff_cube_size(e);
-    int samples = e->constant ? 64 : param(e, "samples").i;
-    int levels = param(e, "mip_count").i;
+/* The GGX chain's settings and the key of everything it is made from (source, GLSL, settings). */
+typedef struct spec_settings {
+    int size, samples, levels, map;
+    float bias;
+} spec_settings;
+
+static uint64_t spec_key(envmap *e, spec_settings *o) {
+    spec_settings t;
+    t.size = eff_cube_size(e);
+    t.samples = e->constant ? 64 : param(e, "samples").i;
+    t.levels = param(e, "mip_count").i;
     /* Level m is a (size/2^m)² mip: a chain down to 1² stores the roughest lobe in one texel a
      * face, and α = 1 measured 3-4x worse vs the reference than with a last level of 2² or more
      * (bench/levels.sh: sky 0.093 vs ≤ 0.023, courtyard 0.30 vs ≤ 0.115, any cube size). */
-    if (levels > em_max_levels(size) - 1) levels = em_max_levels(size) - 1;
-    if (levels < 2) levels = 2;
-    float bias = param(e, "lod_bias").f[0];
-    int map = param(e, "level_map").i;
+    if (t.levels > em_max_levels(t.size) - 1) t.levels = em_max_levels(t.size) - 1;
+    if (t.levels < 2) t.levels = 2;
+    t.bias = param(e, "lod_bias").f[0];
+    t.map = param(e, "level_map").i;
     uint64_t key = e->src_hash ^ e->glsl_hash;
-    int ints[4] = {size, samples, levels, map};
+    int ints[4] = {t.size, t.samples, t.levels, t.map};
     key = em_hash(ints, sizeof ints, key);
-    key = em_hash(&bias, sizeof bias, key);
+    key = em_hash(&t.bias, sizeof t.bias, key);
+    if (o) *o = t;
+    return key;
+}
+
+static void ensure_spec(envmap *e) {
+    if (e->spec_from_chain) return;
+    spec_settings t;
+    uint64_t key = spec_key(e, &t);
+    int size = t.size, samples = t.samples, levels = t.levels, map = t.map;
+    float bias = t.bias;
     if (e->spec && e->spec_key == key) return;
     e->store_pending = false;
     delete_tex(&e->spec);
@@ -574,6 +590,13 @@ static void prepare(envmap *e) {
 static bool prefilter_active(void *user, const sl_frame *f) {
     envmap *e = user;
     return e->have_src && !e->spec_from_chain && host_scene_uses(e, "envmap_spec");
+}
+
+/* Skipped while the chain it made is current (its key: source, GLSL, settings). */
+static uint64_t prefilter_signature(void *user, const sl_frame *f) {
+    envmap *e = user;
+    (void)f;
+    return spec_key(e, NULL);
 }
 
 static void prefilter_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
@@ -798,11 +821,11 @@ static sl_status envmap_create(const sl_host *host, void **user) {
                                   .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_CAMERA | SL_DEPENDS_OWN_PARAMS,
                                   .display_on_write = true, .draws_only = true};
     if (host->add_pass(host, &bg_ssaa) != SL_OK) return SL_ERR_FAILED;
-    /* no outputs: the chain is envmap's own texture; undeclared depends: runs every frame it is
-     * active, where ensure_spec returns at once unless the chain's key changed */
+    /* no outputs: the chain is envmap's own texture; runs when its signature (the chain's key)
+     * moves, or on any edit (a signature without depends) */
     const sl_pass_desc prefilter = {.struct_size = sizeof prefilter, .name = "envmap-prefilter",
                                     .stage = SL_STAGE_SHADOW + 50, .execute = prefilter_execute,
-                                    .is_active = prefilter_active, .user = e};
+                                    .is_active = prefilter_active, .signature = prefilter_signature, .user = e};
     if (host->add_pass(host, &prefilter) != SL_OK) return SL_ERR_FAILED;
     static const sl_reference_desc ref = {
         .struct_size = sizeof ref, .settings = "envmap.mode=reference envmap.reference_samples=64",
