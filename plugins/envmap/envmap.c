@@ -557,21 +557,18 @@ static bool host_scene_uses(envmap *e, const char *uniform) {
 
 /* What this frame's materials will read, made now rather than at their first bind in the middle of a
  * pass (host ABI 1.11; envmap_bind still makes anything missed, e.g. for override programs): the
- * irradiance first (its SH projection reads the base cube back, which waits only for the base cube
- * while nothing else is queued), then the GGX chain, queued ahead of every other plugin's passes,
- * so that llvmpipe's rasteriser threads prefilter while the main thread compiles them. Issued at
- * the forward pass, as before ABI 1.11, the chain waited for the passes before it. */
+ * irradiance (its SH projection reads the base cube back, which waits only for the base cube while
+ * nothing else is queued), the BRDF LUT and the base cube. The GGX chain is queued by the
+ * envmap-prefilter pass (below), after the shadow maps. */
 static void prepare(envmap *e) {
     if (!e->have_src) return;
     bool irr = host_scene_uses(e, "envmap_sh") || host_scene_uses(e, "envmap_irr");
-    bool spec = false; /* the GGX chain: the envmap-prefilter pass, after the shadow maps */
     bool lut = host_scene_uses(e, "envmap_lut"), base = host_scene_uses(e, "envmap_base");
-    if (!irr && !spec && !lut && !base) return;
+    if (!irr && !lut && !base) return;
     gl_state st;
     save_state(&st);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); /* the prefilter always filters across edges */
     if (irr) ensure_irradiance(e);
-    if (spec) ensure_spec(e);
     if (lut) ensure_lut(e);
     if (base) ensure_base(e);
     (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -579,7 +576,7 @@ static void prepare(envmap *e) {
 }
 
 /* The GGX chain, in a pass of its own after the shadow maps (stage SL_STAGE_SHADOW + 50), not in
- * begin_frame. On llvmpipe a draw that samples a depth texture rendered by a pass still queued
+ * begin_frame. On llvmpipe a draw that samples a texture rendered by a draw still queued
  * waits for the rasteriser to reach that pass, and the queue is in order: with the chain issued
  * in begin_frame, ahead of the shadow maps, sss's stretch and irradiance draws (which sample the
  * rim light's shadow map) waited for the whole prefilter, ≈ 0.7 s of a cold head start's main
