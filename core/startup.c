@@ -51,12 +51,6 @@ static double small_page_ms_per_mb(void) {
 void sl_startup_huge_pages(char **argv) {
     const char *set = getenv("GLIBC_TUNABLES");
     if (getenv("SHADELAB_SMALL_PAGES") || (set && strstr(set, "glibc.malloc.hugetlb"))) return;
-    /* Only where small pages are slow: 2.8 ms/MB on the VM the re-exec was measured on (a warm
-     * head start 3.05 → 2.54 s with it), 0.4-0.5 ms/MB on one where it made a cold head start
-     * 4-9 % slower (clearing whole huge pages, 0.85 s of system time against 0.32 s; interleaved
-     * A/B, docs/design-notes.md, seventh round). SHADELAB_HUGE_PAGES=1 re-executes regardless. */
-    const char *force = getenv("SHADELAB_HUGE_PAGES");
-    if (!(force && *force && strcmp(force, "0")) && small_page_ms_per_mb() < SL_HUGE_PAGES_MS_PER_MB) return;
     /* "always [madvise] never": madvise is what the tunable uses; "[never]" would make it a no-op */
     char mode[128] = "";
     FILE *f = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
@@ -65,6 +59,12 @@ void sl_startup_huge_pages(char **argv) {
     fclose(f);
     mode[n] = 0;
     if (!strstr(mode, "[always]") && !strstr(mode, "[madvise]")) return;
+    /* Only where small pages are slow: 2.8 ms/MB on the VM the re-exec was measured on (a warm
+     * head start 3.05 → 2.54 s with it), 0.4-0.5 ms/MB on one where it made a cold head start
+     * 0-9 % slower (clearing whole huge pages, 0.85 s of system time against 0.32 s; interleaved
+     * A/B, docs/design-notes.md, seventh round). SHADELAB_HUGE_PAGES=1 re-executes regardless. */
+    const char *force = getenv("SHADELAB_HUGE_PAGES");
+    if (!(force && *force && strcmp(force, "0")) && small_page_ms_per_mb() < SL_HUGE_PAGES_MS_PER_MB) return;
     char value[4096];
     int len = snprintf(value, sizeof value, "%s%sglibc.malloc.hugetlb=1", set ? set : "", set && *set ? ":" : "");
     if (len < 0 || (size_t)len >= sizeof value || setenv("GLIBC_TUNABLES", value, 1) != 0) return;

@@ -178,6 +178,19 @@ static void restore_state(const gl_state *s) {
     (s->scissor ? glEnable : glDisable)(GL_SCISSOR_TEST);
 }
 
+/* Envmap's own GPU work (prefiltering, conversions) in the middle of another's frame: the GL state
+ * saved and cube seams filtered (the prefilter always filters across face edges); gpu_work_end puts
+ * both back, seamless filtering as the "seamless" parameter says. */
+static void gpu_work_begin(gl_state *st) {
+    save_state(st);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+}
+
+static void gpu_work_end(envmap *e, const gl_state *st) {
+    (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    restore_state(st);
+}
+
 static void delete_tex(unsigned *t) {
     if (*t) glDeleteTextures(1, t);
     *t = 0;
@@ -477,9 +490,8 @@ static void ensure_spec(envmap *e) {
     if (e->spec_from_chain) return;
     spec_settings t;
     uint64_t key = spec_key(e, &t);
-    int size = t.size, samples = t.samples, levels = t.levels, map = t.map;
-    float bias = t.bias;
     if (e->spec && e->spec_key == key) return;
+    int size = t.size, samples = t.samples, levels = t.levels;
     e->store_pending = false;
     delete_tex(&e->spec);
     char path[2400] = "";
@@ -501,7 +513,7 @@ static void ensure_spec(envmap *e) {
                          "alongside the first frame", size, levels, samples);
         em_progress_fn report = e->gpu.progress;
         e->gpu.progress = NULL;
-        e->spec = em_prefilter_ggx_map(&e->gpu, e->base, size, levels, samples, bias, (em_level_map)map);
+        e->spec = em_prefilter_ggx_map(&e->gpu, e->base, size, levels, samples, t.bias, (em_level_map)t.map);
         e->gpu.progress = report;
         e->store_pending = true;
         e->store_key = key;
@@ -566,18 +578,16 @@ static void prepare(envmap *e) {
     bool lut = host_scene_uses(e, "envmap_lut"), base = host_scene_uses(e, "envmap_base");
     if (!irr && !lut && !base) return;
     gl_state st;
-    save_state(&st);
-    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); /* the prefilter always filters across edges */
+    gpu_work_begin(&st);
     if (irr) ensure_irradiance(e);
     if (lut) ensure_lut(e);
     if (base) ensure_base(e);
-    (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    restore_state(&st);
+    gpu_work_end(e, &st);
 }
 
 /* The GGX chain, in a pass of its own after the shadow maps (stage SL_STAGE_SHADOW + 50), not in
  * begin_frame. On llvmpipe a draw that samples a texture rendered by a draw still queued
- * waits for the rasteriser to reach that pass, and the queue is in order: with the chain issued
+ * waits for the rasteriser to reach that draw, and the queue is in order: with the chain issued
  * in begin_frame, ahead of the shadow maps, sss's stretch and irradiance draws (which sample the
  * rim light's shadow map) waited for the whole prefilter, ≈ 0.7 s of a cold head start's main
  * thread (measured with -v: irradiance 732 → 309 ms, stretch 391 → 118 ms with the prefilter
@@ -599,11 +609,9 @@ static uint64_t prefilter_signature(void *user, const sl_frame *f) {
 static void prefilter_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     envmap *e = user;
     gl_state st;
-    save_state(&st);
-    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); /* the prefilter always filters across edges */
+    gpu_work_begin(&st);
     ensure_spec(e);
-    (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    restore_state(&st);
+    gpu_work_end(e, &st);
 }
 
 static void envmap_begin_frame(void *user, const sl_frame *f) {
@@ -662,14 +670,12 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     bool need_base = l_base >= 0;
     if (need_spec || need_irr || need_lut || need_base) {
         gl_state st;
-        save_state(&st);
-        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); /* the prefilter always filters across edges */
+        gpu_work_begin(&st);
         if (need_spec) ensure_spec(e);
         if (need_irr) ensure_irradiance(e);
         if (need_lut) ensure_lut(e);
         if (need_base) ensure_base(e);
-        (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-        restore_state(&st);
+        gpu_work_end(e, &st);
     }
     bind_source(e, prog);
     glBindTextureUnit(e->unit_spec, e->spec ? e->spec : e->dummy_cube);
@@ -920,11 +926,9 @@ static bool envmap_ext_environment_get(void *ctx, sl_environment_cube *out) {
     if (!e || !out || out->struct_size < sizeof *out || !e->have_src) return false;
     if (!e->base) {
         gl_state st;
-        save_state(&st);
-        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        gpu_work_begin(&st);
         ensure_base(e);
-        (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-        restore_state(&st);
+        gpu_work_end(e, &st);
     }
     if (!e->base) return false;
     out->texture = e->base;

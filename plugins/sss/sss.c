@@ -716,10 +716,9 @@ static void ts_blur_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     ts_warm_up(s, ctx);
     /* The same for the forward pass's programs (ABI 1.12), which sample this pass's result (its
      * textures exist now): their compiles overlap the rasteriser's work on the irradiance and what
-     * was queued before it, instead of following the blurs, which wait for each other. After the
-     * blur programs: a forward program that samples a texture still being rendered (envmap's GGX
-     * chain, prefiltered after the shadow maps) waits at its draw for the rasteriser to finish it,
-     * and the blur programs' compiles fill that time instead of following it. */
+     * was queued before it (envmap's GGX chain), instead of following the blurs, which wait for
+     * each other. A forward program that samples the chain waits at its draw until the rasteriser
+     * has finished it; the read-back below would wait for it anyway. */
     if (h->struct_size >= offsetof(sl_host, compile_ahead) + sizeof h->compile_ahead && h->compile_ahead)
         h->compile_ahead(h);
     if (use_fast && (!s->ts_vao || !ts_read_inputs(s, caching ? &key : NULL))) use_fast = caching = false;
