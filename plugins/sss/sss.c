@@ -127,6 +127,9 @@ typedef struct sss {
      * split draws, CPU scratch for the read-back coverage and stretch */
     unsigned ts_class[2], ts_vao;
     float *ts_scratch;
+    /* the warm-up's own targets (ts_warm_up): the formats of tmp / the chain, the sums and the
+     * classification, one 64² tile each, in ts_fbo's slots 2 to 6 */
+    unsigned warm_tex[3], warm_fbo[7];
     /* the disk cache (sss_cache.h): code and renderer hash (activate), a result to store at the
      * next frame (one per activation: the start-up state), loads so far */
     uint64_t code_hash, store_key;
@@ -193,6 +196,10 @@ static void free_ts(sss *s) {
     glDeleteTextures(7, s->ts_tex);
     glDeleteTextures(2, s->ts_class);
     memset(s->ts_class, 0, sizeof s->ts_class);
+    glDeleteFramebuffers(7, s->warm_fbo);
+    glDeleteTextures(3, s->warm_tex);
+    memset(s->warm_fbo, 0, sizeof s->warm_fbo);
+    memset(s->warm_tex, 0, sizeof s->warm_tex);
     free(s->ts_scratch);
     s->ts_scratch = NULL;
     memset(s->ts_fbo, 0, sizeof s->ts_fbo);
@@ -236,8 +243,20 @@ static void ensure_ts(sss *s) {
     s->ts_fbo[4] = make_fbo(s->ts_tex[TS_A], s->ts_tex[TS_SUM1], s->ts_class[1]);
     s->ts_fbo[5] = make_fbo(s->ts_tex[TS_SUM0], 0, 0);
     s->ts_fbo[6] = make_fbo(s->ts_tex[TS_SUM1], 0, 0);
+    /* The warm-up draws (ts_warm_up) go to targets of their own with the same formats: on
+     * llvmpipe a draw that samples a texture a queued draw renders (or clears) waits for the
+     * rasteriser to reach that draw, and the forward pass's programs, compiled ahead in the blur
+     * pass (host->compile_ahead), sample the result sum; warm-up draws into it, queued behind
+     * envmap's GGX chain, made that compile wait for the chain first. */
+    s->warm_tex[0] = make_tex(64, 64, GL_RGBA16F, true);
+    s->warm_tex[1] = make_tex(64, 64, GL_RGBA32F, true);
+    s->warm_tex[2] = make_tex(64, 64, GL_DEPTH_COMPONENT32F, false);
+    s->warm_fbo[2] = make_fbo(s->warm_tex[0], 0, s->warm_tex[2]);
+    s->warm_fbo[3] = s->warm_fbo[4] = make_fbo(s->warm_tex[0], s->warm_tex[1], s->warm_tex[2]);
+    s->warm_fbo[5] = s->warm_fbo[6] = make_fbo(s->warm_tex[1], 0, 0);
+    /* the result before the first blurs: zero, written by the CPU (a clear draw would be queued) */
     static const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(s->ts_fbo[3], GL_COLOR, 1, zero);
+    glClearTexImage(s->ts_tex[TS_SUM0], 0, GL_RGBA, GL_FLOAT, zero);
     s->ts_result = TS_SUM0;
 }
 
@@ -598,6 +617,7 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
      * under a key that differed from run to run (no warm start found it in Mesa's disk cache). */
     glBindTextureUnit(2, s->ts_tex[TS_SUM1]);
     glViewport(0, 0, s->ts_size, s->ts_size);
+    const unsigned *fbo = warm_up ? s->warm_fbo : s->ts_fbo; /* the warm-up's own targets (ensure_ts) */
     unsigned src = s->ts_tex[TS_IRR];
     double previous = 0;
     for (int g = 0; g < (warm_up ? 1 : s->gauss.n); g++) {
@@ -605,14 +625,14 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
         previous = s->gauss.variance[g];
         EACH glProgramUniform1f(progs[k], U(progs[k], "sss_sigma_mm"), sigma);
         /* along u into tmp */
-        glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[2]);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo[2]);
         glBindTextureUnit(0, src);
         glUseProgram(prog[0]);
         if (use_fast) ts_split_draw(s, fast[0], prog[0], sigma);
         else h->draw_fullscreen(h, ctx);
         /* along v back into the chain and into the sum (0, 1 alternating) */
         bool even = g % 2 == 0;
-        glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[even ? 3 : 4]);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo[even ? 3 : 4]);
         /* the warm-up samples the irradiance texture in place of tmp (the same format and sampler
          * state, so the same compiled variant): on llvmpipe a draw sampling a texture that a queued
          * draw renders waits for the rasteriser to reach it, here behind everything queued */
@@ -641,7 +661,7 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
         int from = warm_up ? TS_SUM1 : s->ts_result;
         glBindTextureUnit(0, s->ts_tex[from]);
         bool into1 = from == TS_SUM0;
-        glBindFramebuffer(GL_FRAMEBUFFER, s->ts_fbo[into1 ? 6 : 5]);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo[into1 ? 6 : 5]);
         if (warm_up) { /* the state draw_fullscreen draws with, but not counted as a draw of the frame */
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_CULL_FACE);
