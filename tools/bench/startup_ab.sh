@@ -6,7 +6,8 @@
 # Each round runs, for each build, a cold start (fresh Mesa shader cache and shadelab cache) and
 # then a warm one on those caches, the two builds' order alternating from round to round; it prints
 # the first-frame figure `-v` reports ("start-up to the first complete frame") for each, with the
-# 1-minute load average, then the medians. Make BUILD_A from another commit with a worktree:
+# 1-minute load average, then the medians, the median of the per-round differences and the number
+# of rounds B was faster in. Make BUILD_A from another commit with a worktree:
 #   git worktree add /tmp/a REV && (cd /tmp/a && ./build.sh)
 # Needs the data directory (../shared/assets or SHADELAB_DATA) and Debian's blender-data, as
 # tools/bench/startup.sh's head rows. A benchmark: it prints figures and asserts nothing.
@@ -42,3 +43,12 @@ done
 median() { sort -n | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 printf '%-6s %8s %8s %8s %8s\n' median "$(awk '{print $2}' "$TMP/rows" | median)" "$(awk '{print $3}' "$TMP/rows" | median)" \
     "$(awk '{print $4}' "$TMP/rows" | median)" "$(awk '{print $5}' "$TMP/rows" | median)"
+# paired by round (the machine's speed drifts between rounds more than it does within one): the
+# median of A − B and how many rounds B was faster in
+for col in cold warm; do
+    c=$([ $col = cold ] && echo 2 || echo 3)
+    d=$(awk -v c=$c '{printf "%.3f\n", $c - $(c + 2)}' "$TMP/rows" | median)
+    n=$(awk -v c=$c '$c > $(c + 2)' "$TMP/rows" | wc -l)
+    printf '%s: median of the per-round differences A - B %.2f s; B faster in %d of %d rounds\n' \
+        "$col" "$d" "$n" "$(wc -l < "$TMP/rows")"
+done
