@@ -592,7 +592,9 @@ static void ts_store_pending(sss *s) {
 
 /* The chain of blurs and the dilation (ts_blur_execute). warm_up: the first step's draws and the
  * dilation under an empty scissor, which rasterise nothing but make llvmpipe compile each program for
- * the state it is drawn with (the compile happens at a program's first draw, on this thread). */
+ * the state it is drawn with (the compile happens at a program's first draw, on this thread), into
+ * targets of their own (ensure_ts) and sampling what the blurs sample, none of it written by a draw
+ * of this frame yet. */
 static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], const unsigned fast[2], bool use_fast,
                           bool warm_up) {
     const sl_host *h = s->host;
@@ -633,10 +635,7 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
         /* along v back into the chain and into the sum (0, 1 alternating) */
         bool even = g % 2 == 0;
         glBindFramebuffer(GL_FRAMEBUFFER, fbo[even ? 3 : 4]);
-        /* the warm-up samples the irradiance texture in place of tmp (the same format and sampler
-         * state, so the same compiled variant): on llvmpipe a draw sampling a texture that a queued
-         * draw renders waits for the rasteriser to reach it, here behind everything queued */
-        glBindTextureUnit(0, s->ts_tex[warm_up ? TS_IRR : TS_TMP]);
+        glBindTextureUnit(0, s->ts_tex[TS_TMP]);
         glBindTextureUnit(2, s->ts_tex[even ? TS_SUM1 : TS_SUM0]);
         EACH {
             unsigned p = progs[k];
@@ -657,10 +656,8 @@ static void ts_blur_draws(sss *s, sl_pass_ctx *ctx, const unsigned prog[2], cons
     if (dilate) {
         glUseProgram(dilate);
         glUniform1i(glGetUniformLocation(dilate, "sss_src"), 0);
-        /* the warm-up: from the sum its v pass did not write, into the one it did (as above) */
-        int from = warm_up ? TS_SUM1 : s->ts_result;
-        glBindTextureUnit(0, s->ts_tex[from]);
-        bool into1 = from == TS_SUM0;
+        glBindTextureUnit(0, s->ts_tex[s->ts_result]);
+        bool into1 = s->ts_result == TS_SUM0;
         glBindFramebuffer(GL_FRAMEBUFFER, fbo[into1 ? 6 : 5]);
         if (warm_up) { /* the state draw_fullscreen draws with, but not counted as a draw of the frame */
             glDisable(GL_DEPTH_TEST);
@@ -693,11 +690,9 @@ static bool ts_programs(sss *s, unsigned prog[2], unsigned fast[2], unsigned *di
  * blur programs are compiled by drawing them under an empty scissor before their turn, while the
  * rasteriser works on what was queued before, instead of at the blurs' own draws, which follow the
  * read-back of the irradiance with the rasteriser idle (≈ 0.35 s of compiles at a cold start; a
- * few ms at a warm one, Mesa disk cache hits). Called first by the stretch pass: there, no texture
- * the blurs sample is still being rendered (a draw sampling one waits on llvmpipe for the
- * rasteriser to finish it: in the blur pass these draws waited for the irradiance); and again by
- * the blur pass, for program sets the stretch pass did not see (it is skipped while the geometry
- * does not change). Once per program set. */
+ * few ms at a warm one, Mesa disk cache hits). Called first by the stretch pass, while the
+ * rasteriser works on envmap's prefilter; and again by the blur pass, for program sets the stretch
+ * pass did not see (it is skipped while the geometry does not change). Once per program set. */
 static void ts_warm_up(sss *s, sl_pass_ctx *ctx) {
     const sl_host *h = s->host;
     unsigned prog[2], fast[2], dilate;
