@@ -108,7 +108,8 @@ typedef struct envmap {
     const sl_host *host;
     int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut, unit_base; /* unit_cube = unit_2d + 1 (em_gpu) */
     em_gpu gpu;
-    sl_program *progs[5], *bg_prog, *bg_in_place_prog;
+    sl_program *progs[6];
+    sl_program *bg_prog[2], *bg_in_place_prog[2]; /* [1]: a cube source (ENVMAP_SOURCE_CUBE) */
     unsigned empty_vao; /* the in-place background's full-screen triangle */
     char glsl_dir[2048];
     uint64_t glsl_hash;
@@ -197,7 +198,7 @@ static void delete_tex(unsigned *t) {
 }
 
 /* em_gpu_init's programs, in its order (e->progs, refresh_programs' mask bits) */
-enum { PROG_TO_CUBE = 1, PROG_GGX = 2, PROG_IRRADIANCE = 4, PROG_LUT = 8, PROG_DOWNSAMPLE = 16 };
+enum { PROG_TO_CUBE = 1, PROG_GGX = 2, PROG_IRRADIANCE = 4, PROG_LUT = 8, PROG_DOWNSAMPLE = 16, PROG_CUBE_TO_CUBE = 32 };
 /* em_gpu's ids until refresh_programs sets them: em_gpu_init only needs them non-zero */
 #define LAZY_PROGRAM_ID (~0u)
 
@@ -206,9 +207,9 @@ enum { PROG_TO_CUBE = 1, PROG_GGX = 2, PROG_IRRADIANCE = 4, PROG_LUT = 8, PROG_D
  * program: the procedural sky's set-up needs no conversion, downsampling or irradiance program,
  * issue 19); one that fails to compile disables the plugin as a failing activate() did. */
 static void refresh_programs(envmap *e, unsigned which) {
-    unsigned *ids[5] = {&e->gpu.prog_to_cube, &e->gpu.prog_ggx, &e->gpu.prog_irradiance, &e->gpu.prog_lut,
-                        &e->gpu.prog_downsample};
-    for (int i = 0; i < 5; i++)
+    unsigned *ids[6] = {&e->gpu.prog_to_cube, &e->gpu.prog_ggx,        &e->gpu.prog_irradiance,
+                        &e->gpu.prog_lut,     &e->gpu.prog_downsample, &e->gpu.prog_cube_to_cube};
+    for (int i = 0; i < 6; i++)
         if (which & (1u << i)) *ids[i] = e->host->program_id(e->host, e->progs[i]);
 }
 
@@ -454,7 +455,7 @@ static void ensure_base(envmap *e) {
     uint64_t key = em_hash(&size, sizeof size, e->src_hash);
     if (e->base && e->base_key == key) return;
     delete_tex(&e->base);
-    refresh_programs(e, PROG_TO_CUBE | PROG_DOWNSAMPLE);
+    refresh_programs(e, (e->kind == EM_ENV_CUBE ? PROG_CUBE_TO_CUBE : PROG_TO_CUBE) | PROG_DOWNSAMPLE);
     e->base = em_make_base_cube(&e->gpu, e->src_tex, e->kind == EM_ENV_CUBE, e->src_w, e->src_h, size);
     e->base_size = size;
     e->base_key = key;
@@ -502,7 +503,7 @@ static void ensure_spec(envmap *e) {
         e->host->log(e->host, SL_LOG_DEBUG, "prefiltering the specular chain: %d² cube, %d levels, %d samples", size,
                      levels, samples);
         ensure_base(e);
-        refresh_programs(e, PROG_GGX | PROG_TO_CUBE); /* level 0 is a copy (convert_cube_into) */
+        refresh_programs(e, PROG_GGX); /* level 0 is a copy of the base (same size: no program) */
         /* Issued without waiting (issue 18 item 5: start-up): on llvmpipe the rasteriser threads
          * prefilter while this thread goes on composing, compiling and drawing the frame (draws
          * that sample the chain come after it in the GL command stream, so they see it done).
@@ -758,7 +759,8 @@ static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
     bool in_place = !core_supersampled(e);
     unsigned color = in_place ? 0 : h->pass_texture(h, ctx, "color"), depth = in_place ? 0 : h->pass_texture(h, ctx, "depth");
     if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
-    unsigned prog = h->program_id(h, in_place ? e->bg_in_place_prog : e->bg_prog);
+    int cube = e->kind == EM_ENV_CUBE;
+    unsigned prog = h->program_id(h, in_place ? e->bg_in_place_prog[cube] : e->bg_prog[cube]);
     if (!prog) return;
     glUseProgram(prog);
     /* the lighting units are free during this pass (bind() sets them again per material) */
@@ -853,7 +855,7 @@ static unsigned load_for_gpu(void *user, const char *fragment, const char *defin
     sl_program *p = e->host->load_program(
         e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc), .vertex = "sl:fullscreen.vert",
                                     .fragment = fragment, .defines = defines});
-    for (int i = 0; i < 5; i++)
+    for (int i = 0; i < 6; i++)
         if (!e->progs[i]) { e->progs[i] = p; break; }
     return p ? LAZY_PROGRAM_ID : 0; /* compiled when a step first needs it (refresh_programs) */
 }
@@ -872,15 +874,20 @@ static sl_status envmap_activate(void *user) {
         e->host->log(e->host, SL_LOG_ERROR, "%s", err);
         return SL_ERR_GL;
     }
-    e->bg_prog = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                    .vertex = "sl:fullscreen.vert",
-                                                                    .fragment = "envmap_background.frag"});
-    if (!e->bg_prog) return SL_ERR_GL; /* compiled at its first program_id() (lazy) */
-    e->bg_in_place_prog = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                             .vertex = "sl:fullscreen.vert",
-                                                                             .fragment = "envmap_background.frag",
-                                                                             .defines = "ENVMAP_IN_PLACE 1"});
-    if (!e->bg_in_place_prog) return SL_ERR_GL;
+    /* the background per source kind, drawn in place or (supersampled) as a pass of its own; each
+     * compiled at its first program_id() (lazy): a scene compiles the one it draws */
+    static const char *const bg_defines[2][2] = {{NULL, "ENVMAP_SOURCE_CUBE 1"},
+                                                 {"ENVMAP_IN_PLACE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_CUBE 1"}};
+    for (int cube = 0; cube < 2; cube++) {
+        sl_program **slot[2] = {&e->bg_prog[cube], &e->bg_in_place_prog[cube]};
+        for (int in_place = 0; in_place < 2; in_place++) {
+            *slot[in_place] = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                                 .vertex = "sl:fullscreen.vert",
+                                                                                 .fragment = "envmap_background.frag",
+                                                                                 .defines = bg_defines[in_place][cube]});
+            if (!*slot[in_place]) return SL_ERR_GL;
+        }
+    }
     glCreateVertexArrays(1, &e->empty_vao);
     e->glsl_hash = em_glsl_hash(e->glsl_dir, e->host->shader_dir(e->host));
     /* 1×1 stand-ins so every sampler always has a texture of its own type on its own unit */

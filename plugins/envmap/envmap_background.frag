@@ -6,9 +6,12 @@
 #include "envmap_common.glsl"
 uniform sampler2D envmap_color;
 uniform sampler2D envmap_depth;
-uniform sampler2D envmap_src2d;
+// ENVMAP_SOURCE_CUBE: the source is a cube, else a lat-long (a permutation: see envmap_to_cube.frag)
+#ifdef ENVMAP_SOURCE_CUBE
 uniform samplerCube envmap_srccube;
-uniform bool envmap_is_cube;
+#else
+uniform sampler2D envmap_src2d;
+#endif
 uniform vec2 envmap_src_size;
 uniform mat3 envmap_rot;
 uniform float envmap_scale;
@@ -35,13 +38,13 @@ void main() {
     vec4 a = envmap_inv_view_proj * vec4(ndc, -1.0, 1.0), b = envmap_inv_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
     vec3 sky;
-    if (envmap_is_cube) {
-        float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)));
-        sky = textureLod(envmap_srccube, d, lod).rgb;
-    } else {
-        float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)));
-        sky = textureLod(envmap_src2d, envmap_dir_latlong(d), lod).rgb;
-    }
+#ifdef ENVMAP_SOURCE_CUBE
+    float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)));
+    sky = textureLod(envmap_srccube, d, lod).rgb;
+#else
+    float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)));
+    sky = textureLod(envmap_src2d, envmap_dir_latlong(d), lod).rgb;
+#endif
     sky *= envmap_scale;
 #ifdef ENVMAP_IN_PLACE
     o_color = vec4(sky, 1.0); // only background pixels reach here (the depth test, envmap.c)

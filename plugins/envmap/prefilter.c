@@ -20,11 +20,13 @@ int em_max_levels(int size) {
 }
 
 bool em_gpu_init(em_gpu *g, char *err, size_t n) {
-    static const char *files[5] = {"envmap_to_cube.frag", "envmap_ggx.frag", "envmap_irradiance.frag", "envmap_lut.frag",
-                                   "envmap_downsample.frag"};
-    unsigned *progs[5] = {&g->prog_to_cube, &g->prog_ggx, &g->prog_irradiance, &g->prog_lut, &g->prog_downsample};
-    for (int i = 0; i < 5; i++) {
-        *progs[i] = g->load(g->load_user, files[i], NULL);
+    static const char *files[6] = {"envmap_to_cube.frag", "envmap_ggx.frag", "envmap_irradiance.frag", "envmap_lut.frag",
+                                   "envmap_downsample.frag", "envmap_to_cube.frag"};
+    static const char *defines[6] = {NULL, NULL, NULL, NULL, NULL, "ENVMAP_IN_CUBE 1"};
+    unsigned *progs[6] = {&g->prog_to_cube,    &g->prog_ggx,          &g->prog_irradiance,
+                          &g->prog_lut,        &g->prog_downsample,   &g->prog_cube_to_cube};
+    for (int i = 0; i < 6; i++) {
+        *progs[i] = g->load(g->load_user, files[i], defines[i]);
         if (!*progs[i]) {
             snprintf(err, n, "envmap: %s failed to compile (see the log)", files[i]);
             return false;
@@ -99,8 +101,8 @@ unsigned em_upload_cube_levels(float *const *level_faces, int size, int levels) 
     return t;
 }
 
-/* Binds the pass input on g->unit (2D) or g->unit + 1 (cube): a program declares both sampler
- * types, which must never share a unit. */
+/* Binds the pass input on g->unit (2D) or g->unit + 1 (cube): a program may declare both sampler
+ * types (envmap_ggx.frag: its sample table and the cube), which must never share a unit. */
 static void bind_input(em_gpu *g, unsigned prog, unsigned tex, bool is_cube) {
     glBindTextureUnit(g->unit, is_cube ? 0 : tex);
     glBindTextureUnit(g->unit + 1, is_cube ? tex : 0);
@@ -176,10 +178,9 @@ static void downsample_cube(em_gpu *g, unsigned t, int size, int levels) {
 unsigned em_make_base_cube(em_gpu *g, unsigned src, bool src_is_cube, int src_w, int src_h, int size) {
     int levels = em_max_levels(size);
     unsigned t = em_new_cube(size, levels);
-    unsigned p = g->prog_to_cube;
+    unsigned p = src_is_cube ? g->prog_cube_to_cube : g->prog_to_cube;
     glUseProgram(p);
     bind_input(g, p, src, src_is_cube);
-    U1I(p, "envmap_in_is_cube", src_is_cube);
     glProgramUniform2f(p, glGetUniformLocation(p, "envmap_in_size"), (float)src_w, (float)src_h);
     U1F(p, "envmap_size", (float)size);
     /* same-size cube copies read texel centres exactly; everything else gets 4×4 sub-samples */
@@ -324,10 +325,9 @@ static void convert_cube_into(em_gpu *g, unsigned src, int src_size, unsigned ds
         glCopyImageSubData(src, GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, dst, GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, out_size, out_size, 6);
         return;
     }
-    unsigned p = g->prog_to_cube;
+    unsigned p = g->prog_cube_to_cube;
     glUseProgram(p);
     bind_input(g, p, src, true);
-    U1I(p, "envmap_in_is_cube", 1);
     glProgramUniform2f(p, glGetUniformLocation(p, "envmap_in_size"), (float)src_size, (float)src_size);
     U1F(p, "envmap_size", (float)out_size);
     U1I(p, "envmap_subsamples", out_size >= src_size ? 1 : 4);

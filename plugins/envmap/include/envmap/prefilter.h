@@ -135,7 +135,9 @@ typedef struct em_gpu {
     void *progress_user;
     int unit;                /* texture unit the passes may use for their input */
     unsigned vao, fbo;
-    unsigned prog_to_cube, prog_ggx, prog_irradiance, prog_lut, prog_downsample;
+    /* prog_to_cube converts a lat-long, prog_cube_to_cube a cube (envmap_to_cube.frag with
+     * ENVMAP_IN_CUBE): the source kind is a permutation */
+    unsigned prog_to_cube, prog_ggx, prog_irradiance, prog_lut, prog_downsample, prog_cube_to_cube;
     /* llvmpipe: draw with blending ONE, ZERO (the identity) so that each program compiles once: an
      * "opaque" draw (no depth, no blending) compiles its shader twice there (prefilter.c, draw_into) */
     bool identity_blend;
