@@ -10,6 +10,8 @@
 #include <stdlib.h>
 
 static const char *const operators[] = {"linear", "reinhard", "reinhard-extended", "aces", "agx", "pbr-neutral", NULL};
+#define OPERATORS 6 /* tonemap_ops.glsl's TONEMAP_LINEAR .. TONEMAP_PBR_NEUTRAL */
+_Static_assert(sizeof operators / sizeof *operators == OPERATORS + 1, "one program per operator");
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
 static const sl_param_desc params[] = {
@@ -26,9 +28,10 @@ static const sl_param_desc params[] = {
       .description = "False-colour exposure view: luminance in stops from middle grey as colour bands."),
 };
 
+/* The program per permutation: [operator, or OPERATORS for the false-colour view][dither]. */
 typedef struct tonemap {
     const sl_host *host;
-    sl_program *prog;
+    sl_program *prog[OPERATORS + 1][2];
     int unit;
 } tonemap;
 
@@ -50,16 +53,15 @@ static void execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     const sl_host *h = t->host;
     unsigned src = h->pass_texture(h, ctx, "color");
     if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
-    unsigned p = h->program_id(h, t->prog);
+    int op = param(t, "operator").i;
+    if (op < 0 || op >= OPERATORS) op = 0;
+    unsigned p = h->program_id(h, t->prog[param(t, "false_color").b ? OPERATORS : op][param(t, "dither").b]);
     if (!p) return;
     glUseProgram(p);
     glBindTextureUnit(t->unit, src);
     glUniform1i(glGetUniformLocation(p, "tonemap_src"), t->unit);
-    glUniform1i(glGetUniformLocation(p, "tonemap_op"), param(t, "operator").i);
     glUniform1f(glGetUniformLocation(p, "tonemap_exposure_ev"), param(t, "exposure").f[0]);
     glUniform1f(glGetUniformLocation(p, "tonemap_white_point"), param(t, "white").f[0]);
-    glUniform1i(glGetUniformLocation(p, "tonemap_dither_on"), param(t, "dither").b);
-    glUniform1i(glGetUniformLocation(p, "tonemap_false_color_on"), param(t, "false_color").b);
     glUniform1i(glGetUniformLocation(p, "tonemap_frame"), (int)(f->index & 0x7fffffff));
     h->draw_fullscreen(h, ctx);
 }
@@ -92,9 +94,19 @@ static sl_status create(const sl_host *host, void **user) {
 static sl_status activate(void *user) {
     tonemap *t = user;
     if (!sl_gl_load(t->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
-    t->prog = t->host->load_program(t->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                  .vertex = "sl:fullscreen.vert", .fragment = "tonemap.frag"});
-    return t->prog ? SL_OK : SL_ERR_GL; /* compiled by the host when the pass first runs */
+    /* every permutation is loaded, and each compiles when the pass first draws it (lazy): a session
+     * compiles the ones its settings use */
+    for (int m = 0; m <= OPERATORS; m++)
+        for (int d = 0; d < 2; d++) {
+            char defines[128];
+            snprintf(defines, sizeof defines, "TONEMAP_OPERATOR %d\nTONEMAP_FALSE_COLOR %d\nTONEMAP_DITHER %d",
+                     m < OPERATORS ? m : 0, m == OPERATORS, d);
+            t->prog[m][d] = t->host->load_program(t->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                               .vertex = "sl:fullscreen.vert",
+                                                                               .fragment = "tonemap.frag", .defines = defines});
+            if (!t->prog[m][d]) return SL_ERR_GL;
+        }
+    return SL_OK;
 }
 
 static void destroy(void *user) { free(user); }
