@@ -45,7 +45,8 @@ static const sl_param_desc params[] = {
 
 typedef struct aa {
     const sl_host *host;
-    sl_program *fxaa, *taa, *taa_copy, *taa_copy_out; /* the copy into our history, into the output */
+    sl_program *fxaa, *taa_copy, *taa_copy_out; /* the copy into our history, into the output */
+    sl_program *taa[2][2]; /* the resolve per [clamp][reject] (taa.frag's AA_CLAMP, AA_REJECT) */
     int unit[5];
     unsigned sampler_linear, sampler_nearest;
     /* TAA: the history (rgb + frames in alpha) as a ping-pong pair, the last frame's depth */
@@ -234,7 +235,18 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     if (!invert4(f->view_proj, inv) || !invert4(f->prev_view_proj, prev_inv)) valid = false;
     int next = 1 - a->current;
     glNamedFramebufferTexture(a->fbo, GL_COLOR_ATTACHMENT0, a->history[next], 0);
-    unsigned p = valid ? h->program_id(h, a->taa) : 0;
+    /* A still (nothing moved: the history is this pixel's own earlier frames) is the exact mean:
+     * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
+     * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %); nor
+     * disocclusion rejection: nothing moved, yet at silhouettes (where the jitter alternates
+     * between the surface and the empty background) the rejection dropped the history of some
+     * pixels (the last frame's point not found again in the 3x3 neighbourhood; which case exactly
+     * was not pinned down): their still was then a mean of the last frames only (envmap
+     * bench/rim.sh --still, courtyard metal alpha 0.4: the reference still 0.128 from the C
+     * quadrature with rejection, 0.028 without). Each combination is a program of its own: on
+     * llvmpipe a uniform switch runs the code it switches off anyway, under a mask. */
+    bool clamp = param(a, "taa_clamp").b && a->still < 0, reject = param(a, "taa_reject").b && a->still < 0;
+    unsigned p = valid ? h->program_id(h, a->taa[clamp][reject]) : 0;
     if (!valid) {
         /* 1: no history (a first frame, a cut, a restarted still): the frame as it is, with a
          * history of one frame; the resolve program is not needed (nor compiled) for it */
@@ -252,16 +264,6 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
         glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
         glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
-        /* a still (nothing moved: the history is this pixel's own earlier frames) is the exact mean:
-         * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
-         * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %) */
-        glUniform1i(glGetUniformLocation(p, "aa_clamp"), param(a, "taa_clamp").b && a->still < 0);
-        /* nor disocclusion rejection: nothing moved, yet at silhouettes (where the jitter alternates
-         * between the surface and the empty background) the rejection dropped the history of some
-         * pixels (the last frame's point not found again in the 3x3 neighbourhood; which case exactly
-         * was not pinned down): their still was then a mean of the last frames only (envmap bench/rim.sh --still, courtyard metal alpha 0.4: the
-         * reference still 0.128 from the C quadrature with rejection, 0.028 without) */
-        glUniform1i(glGetUniformLocation(p, "aa_reject"), param(a, "taa_reject").b && a->still < 0);
         /* 1: the new history into our own target */
         glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
         glViewport(0, 0, w, hh);
@@ -330,8 +332,16 @@ static sl_status activate(void *user) {
     if (!sl_gl_load(a->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
     a->fxaa = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                   .vertex = "sl:fullscreen.vert", .fragment = "fxaa.frag"});
-    a->taa = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                 .vertex = "sl:fullscreen.vert", .fragment = "taa.frag"});
+    bool resolves = true;
+    for (int c = 0; c < 2; c++)
+        for (int r = 0; r < 2; r++) {
+            char defines[64];
+            snprintf(defines, sizeof defines, "AA_CLAMP %d\nAA_REJECT %d", c, r);
+            a->taa[c][r] = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                               .vertex = "sl:fullscreen.vert",
+                                                                               .fragment = "taa.frag", .defines = defines});
+            resolves = resolves && a->taa[c][r];
+        }
     a->taa_copy = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                       .vertex = "sl:fullscreen.vert", .fragment = "taa_copy.frag"});
     a->taa_copy_out = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
@@ -352,7 +362,7 @@ static sl_status activate(void *user) {
     /* Not compiled here: the host compiles each program at its first program_id() (in the pass
      * that uses it), so the mode not in use (fxaa while TAA runs) costs no compile. A missing
      * file is already an error (load_program returns a program that never gets an id). */
-    return a->fxaa && a->taa && a->taa_copy && a->taa_copy_out ? SL_OK : SL_ERR_GL;
+    return a->fxaa && resolves && a->taa_copy && a->taa_copy_out ? SL_OK : SL_ERR_GL;
 }
 
 static void deactivate(void *user) {

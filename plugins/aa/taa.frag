@@ -23,7 +23,9 @@ uniform sampler2D aa_history;     // bilinear, clamp to edge; alpha = frames in 
 uniform sampler2D aa_prev_depth;  // the last frame's depth (nearest)
 uniform mat4 aa_inv_view_proj, aa_prev_inv_view_proj;
 uniform vec3 aa_camera_pos;
-uniform int aa_frames, aa_clamp, aa_reject;
+uniform int aa_frames;
+// AA_CLAMP, AA_REJECT (0 or 1): the neighbourhood clip and the disocclusion test, a permutation
+// (aa.c): a still runs neither, and on llvmpipe a uniform switch would run both under a mask.
 layout(location = 0) out vec4 o_color;
 
 vec3 aa_ycocg(vec3 c) {
@@ -77,7 +79,8 @@ void main() {
     float frames = 0.0;
     vec3 h = c;
     bool keep = all(greaterThanEqual(uv_prev, vec2(0.0))) && all(lessThanEqual(uv_prev, vec2(1.0)));
-    if (keep && aa_reject != 0) {
+#if AA_REJECT
+    if (keep) {
         // The surface the history shows (the last frame's depth where this pixel came from,
         // reconstructed to world space) must still be visible in this pixel's 3x3 neighbourhood
         // now, within 5 % of the view distance; otherwise it was occluded or has moved away and
@@ -96,11 +99,14 @@ void main() {
             }
         keep = best <= 0.05 * distance(was, aa_camera_pos);
     }
+#endif
     if (keep) {
         vec4 hist = textureLod(aa_history, uv_prev, 0.0);
         frames = any(isnan(hist)) ? 0.0 : hist.a;
         h = any(isnan(hist)) ? c : hist.rgb;
-        if (aa_clamp != 0) h = aa_rgb(aa_clip(aa_ycocg(h), lo, hi));
+#if AA_CLAMP
+        h = aa_rgb(aa_clip(aa_ycocg(h), lo, hi));
+#endif
     }
     float n = min(frames + 1.0, float(aa_frames));
     o_color = vec4(mix(h, c, 1.0 / n), n);
