@@ -258,6 +258,77 @@ void em_sh9_project(const float *faces, int n, double sh[9][3]) {
     free(w);
 }
 
+/* The image is taken in blocks of k×k texels (k = ⌈h/128⌉: a fixed cost per image, whatever its
+ * size), each block's radiance as constant (the solid-angle-weighted mean of its texels), and the
+ * basis is integrated over each block exactly: with d = (−sinθ sinφ, cosθ, sinθ cosφ)
+ * (em_latlong_dir) every basis function is a sum of products of a θ factor and a φ factor, so a
+ * block's weights are products of θ moments ∫ f(θ) sinθ dθ and φ moments ∫ g(φ) dφ over it. Exact
+ * for a constant map, where a texel-centre rule is not: on a small lat-long (envmap's
+ * constant:R,G,B is 8×4) the centre rule put 3 % into the band-2 coefficients. Bands 0–2 vary
+ * slowly, so blocks of ≤ 1.4° lose nothing they keep (the cube path projects a 32² mip). */
+void em_sh9_project_latlong(const em_image *img, double sh[9][3]) {
+    memset(sh, 0, 9 * 3 * sizeof(double));
+    int w = img->w, h = img->h, k = (h + 127) / 128;
+    int bw = (w + k - 1) / k, bh = (h + k - 1) / k;
+    double *pm = malloc((size_t)bw * 6 * sizeof(double)), *sum = malloc((size_t)bw * 3 * sizeof(double));
+    if (!pm || !sum) {
+        free(pm), free(sum);
+        return;
+    }
+    for (int c = 0; c < bw; c++) { /* the φ moments of block column c */
+        int x1 = (c + 1) * k < w ? (c + 1) * k : w;
+        double a = 2 * M_PI * c * k / w, b = 2 * M_PI * x1 / w, *m = pm + 6 * c;
+        m[0] = b - a;                                            /* ∫ 1 */
+        m[1] = sin(b) - sin(a);                                  /* ∫ cos φ */
+        m[2] = cos(a) - cos(b);                                  /* ∫ sin φ */
+        m[3] = 0.5 * (b - a) + 0.25 * (sin(2 * b) - sin(2 * a)); /* ∫ cos² φ */
+        m[4] = 0.5 * (b - a) - 0.25 * (sin(2 * b) - sin(2 * a)); /* ∫ sin² φ */
+        m[5] = 0.5 * (cos(2 * a) - cos(2 * b));                  /* ∫ sin 2φ */
+    }
+    const double k0 = 0.282094791773878, k1 = 0.488602511902920, k2 = 1.092548430592079, k3 = 0.315391565252520,
+                 k4 = 0.546274215296040; /* sh9_basis's constants */
+    for (int r = 0; r < bh; r++) {
+        int y0 = r * k, y1 = y0 + k < h ? y0 + k : h;
+        /* each block's radiance: its texels weighted by their rows' solid angle (cos θ_top − cos θ_bottom) */
+        memset(sum, 0, (size_t)bw * 3 * sizeof(double));
+        double rows = 0;
+        for (int y = y0; y < y1; y++) {
+            double wy = cos(M_PI * y / h) - cos(M_PI * (y + 1) / h);
+            rows += wy;
+            const float *p = img->px + (size_t)y * w * 4;
+            for (int x = 0; x < w; x++, p += 4) {
+                double *s = sum + 3 * (x / k);
+                s[0] += p[0] * wy, s[1] += p[1] * wy, s[2] += p[2] * wy;
+            }
+        }
+        double a = M_PI * y0 / h, b = M_PI * y1 / h;
+        double ca = cos(a), cb = cos(b), sa = sin(a), sb = sin(b);
+        double t0 = ca - cb;                                          /* ∫ sinθ */
+        double tc = 0.5 * (sb * sb - sa * sa);                        /* ∫ cosθ sinθ */
+        double ts = 0.5 * (b - a) - 0.25 * (sin(2 * b) - sin(2 * a)); /* ∫ sin²θ */
+        double tsc = (sb * sb * sb - sa * sa * sa) / 3;               /* ∫ sin²θ cosθ */
+        double tss = (ca - cb) - (ca * ca * ca - cb * cb * cb) / 3;   /* ∫ sin³θ */
+        double tcc = (ca * ca * ca - cb * cb * cb) / 3;               /* ∫ cos²θ sinθ */
+        for (int c = 0; c < bw; c++) {
+            const double *m = pm + 6 * c;
+            int x1 = (c + 1) * k < w ? (c + 1) * k : w, cols = x1 - c * k;
+            double wt[9] = {k0 * t0 * m[0],
+                            k1 * tc * m[0],
+                            k1 * ts * m[1],
+                            -k1 * ts * m[2],
+                            -k2 * tsc * m[2],
+                            k2 * tsc * m[1],
+                            k3 * (3 * tss * m[3] - t0 * m[0]),
+                            -0.5 * k2 * tss * m[5],
+                            k4 * (tss * m[4] - tcc * m[0])};
+            double norm = rows > 0 ? 1.0 / (rows * cols) : 0;
+            for (int q = 0; q < 9; q++)
+                for (int ch = 0; ch < 3; ch++) sh[q][ch] += sum[3 * c + ch] * norm * wt[q];
+        }
+    }
+    free(pm), free(sum);
+}
+
 static const double band_factor[9] = {1.0, 2.0 / 3, 2.0 / 3, 2.0 / 3, 0.25, 0.25, 0.25, 0.25, 0.25}; /* Â_l/π */
 
 void em_sh9_diffuse(const double sh[9][3], const double n[3], double out[3]) {

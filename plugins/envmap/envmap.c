@@ -129,6 +129,10 @@ typedef struct envmap {
     bool spec_from_chain;
     float sh[9][3];
     bool sh_valid;
+    /* a lat-long source's SH projection, made on the CPU from the pixels as loaded (src_sh_valid):
+     * ensure_irradiance then reads nothing back from the GPU */
+    float src_sh[9][3];
+    bool src_sh_valid;
     double progress_start, progress_last;
     /* a prefiltered chain issued without waiting, written to the disk cache later (store_pending) */
     bool store_pending;
@@ -302,9 +306,19 @@ static void free_derived(envmap *e) {
     e->sh_valid = false;
 }
 
+/* SH irradiance from a lat-long's own pixels (the source, not the base cube resampled from it). */
+static void project_source_sh(envmap *e, const em_image *latlong) {
+    double sh[9][3];
+    em_sh9_project_latlong(latlong, sh);
+    em_sh9_diffuse_coefficients(sh, e->src_sh);
+    e->src_sh_valid = true;
+}
+
 static void upload_source(envmap *e, em_env *env, const char *name) {
     e->kind = env->kind;
+    e->src_sh_valid = false;
     if (env->kind == EM_ENV_LATLONG) {
+        project_source_sh(e, &env->latlong);
         e->src_tex = em_upload_latlong(&env->latlong);
         e->src_w = env->latlong.w, e->src_h = env->latlong.h;
         e->src_hash = em_hash(env->latlong.px, (size_t)e->src_w * e->src_h * 4 * sizeof(float), 1);
@@ -334,6 +348,7 @@ static void upload_sky(envmap *e, em_env *env) {
     int n = 0;
     em_latlong_mips(&env->latlong, mips, 16, &n);
     e->kind = EM_ENV_LATLONG;
+    project_source_sh(e, &env->latlong);
     glCreateTextures(GL_TEXTURE_2D, 1, &e->src_tex);
     glTextureStorage2D(e->src_tex, n, GL_RGBA16F, mips[0].w, mips[0].h);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -536,8 +551,14 @@ static void ensure_irradiance(envmap *e) {
         refresh_programs(e, PROG_IRRADIANCE);
         int out = e->base_size < 32 ? e->base_size : 32;
         e->irr = em_convolve_irradiance(&e->gpu, e->base, e->base_size, 16, out);
+    } else if (e->src_sh_valid) {
+        /* a lat-long source: projected from its pixels when it was loaded. Reading the base cube
+         * back waited ≈ 0.1 s in begin_frame for the rasteriser to convert it (head scene). */
+        memcpy(e->sh, e->src_sh, sizeof e->sh);
+        e->sh_valid = true;
     } else {
-        /* project a small mip (≤ 32²): the box-filtered mips keep the low frequencies SH keeps */
+        /* a cube source: project a small mip of the base cube (≤ 32²): the box-filtered mips keep
+         * the low frequencies SH keeps */
         int level = 0;
         while ((e->base_size >> level) > 32) level++;
         int s = e->base_size >> level;

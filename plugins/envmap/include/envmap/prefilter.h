@@ -88,6 +88,9 @@ void em_faces_to_hcross(float *const faces[6], int size, em_image *out);
 /* Projects a cube (6 faces of size², RGBA, GL order) onto the 9 real SH basis functions of
  * bands 0–2, with exact texel solid angles. */
 void em_sh9_project(const float *faces, int size, double sh[9][3]);
+/* The same projection of a lat-long image (em_latlong_dir's orientation), every texel weighted by
+ * its exact solid angle, (2π/w)(cos θ_top − cos θ_bottom). */
+void em_sh9_project_latlong(const em_image *img, double sh[9][3]);
 /* Irradiance E(n)/π (the outgoing radiance of a white Lambert surface) from the projection,
  * with Ramamoorthi & Hanrahan's convolution (Â0 = π, Â1 = 2π/3, Â2 = π/4). Not clamped. */
 void em_sh9_diffuse(const double sh[9][3], const double n[3], double out[3]);
