@@ -226,17 +226,21 @@ void em_faces_to_hcross(float *const faces[6], int n, em_image *out) {
 
 /* ---------------------------------------------------------------- spherical harmonics */
 
+/* The real SH basis of bands 0–2: k0; k1·(y, z, x); k2·(xy, yz, xz); k3·(3z² − 1); k4·(x² − y²). */
+static const double SH_K0 = 0.282094791773878, SH_K1 = 0.488602511902920, SH_K2 = 1.092548430592079,
+                    SH_K3 = 0.315391565252520, SH_K4 = 0.546274215296040;
+
 static void sh9_basis(const double d[3], double y[9]) {
     double x = d[0], yy = d[1], z = d[2];
-    y[0] = 0.282094791773878;
-    y[1] = 0.488602511902920 * yy;
-    y[2] = 0.488602511902920 * z;
-    y[3] = 0.488602511902920 * x;
-    y[4] = 1.092548430592079 * x * yy;
-    y[5] = 1.092548430592079 * yy * z;
-    y[6] = 0.315391565252520 * (3 * z * z - 1);
-    y[7] = 1.092548430592079 * x * z;
-    y[8] = 0.546274215296040 * (x * x - yy * yy);
+    y[0] = SH_K0;
+    y[1] = SH_K1 * yy;
+    y[2] = SH_K1 * z;
+    y[3] = SH_K1 * x;
+    y[4] = SH_K2 * x * yy;
+    y[5] = SH_K2 * yy * z;
+    y[6] = SH_K3 * (3 * z * z - 1);
+    y[7] = SH_K2 * x * z;
+    y[8] = SH_K4 * (x * x - yy * yy);
 }
 
 void em_sh9_project(const float *faces, int n, double sh[9][3]) {
@@ -285,8 +289,7 @@ void em_sh9_project_latlong(const em_image *img, double sh[9][3]) {
         m[4] = 0.5 * (b - a) - 0.25 * (sin(2 * b) - sin(2 * a)); /* ∫ sin² φ */
         m[5] = 0.5 * (cos(2 * a) - cos(2 * b));                  /* ∫ sin 2φ */
     }
-    const double k0 = 0.282094791773878, k1 = 0.488602511902920, k2 = 1.092548430592079, k3 = 0.315391565252520,
-                 k4 = 0.546274215296040; /* sh9_basis's constants */
+    const double k0 = SH_K0, k1 = SH_K1, k2 = SH_K2, k3 = SH_K3, k4 = SH_K4;
     for (int r = 0; r < bh; r++) {
         int y0 = r * k, y1 = y0 + k < h ? y0 + k : h;
         /* each block's radiance: its texels weighted by their rows' solid angle (cos θ_top − cos θ_bottom) */

@@ -591,8 +591,9 @@ static bool host_scene_uses(envmap *e, const char *uniform) {
 
 /* What this frame's materials will read, made now rather than at their first bind in the middle of a
  * pass (host ABI 1.11; envmap_bind still makes anything missed, e.g. for override programs): the
- * irradiance (its SH projection reads the base cube back, which waits only for the base cube while
- * nothing else is queued), the BRDF LUT and the base cube. The GGX chain is queued by the
+ * irradiance (a lat-long's SH was projected on the CPU at load; a cube source's is read back from
+ * the base cube, which waits only for the base cube while nothing else is queued), the BRDF LUT
+ * and the base cube. The GGX chain is queued by the
  * envmap-prefilter pass (below), after the shadow maps. */
 static void prepare(envmap *e) {
     if (!e->have_src) return;
