@@ -31,6 +31,66 @@ int sl_forward_light_types(sl_app *app, const char **types, int max) {
     return n;
 }
 
+/* Whether the forward programs have a loop of their own for the lights that cast shadows: a
+ * light of the scene casts them, enabled or not (as the SHADOW hook; toggling a light recompiles
+ * nothing). sl_gpu_pack_lights puts the enabled casters of the types with an l/E pair first in the
+ * light buffer, in ranges sl_shadowed_<type>, the rest in sl_lights_<type>; only the casters' loop
+ * calls the SHADOW hook. */
+bool sl_forward_shadow_casters(sl_app *app) {
+    for (int i = 0; i < app->scene.light_count; i++)
+        if (app->scene.lights[i].cast_shadows && sl_forward_light_type_lit(app, app->scene.lights[i].type)) return true;
+    return false;
+}
+
+/* A light type with an l/E pair (a LIGHT chunk without SL_CHUNK_LIGHT_RADIANCE), from the loaded
+ * plugins, enabled or not: the light buffer's layout does not change when a plugin is toggled. */
+bool sl_forward_light_type_lit(sl_app *app, const char *type) {
+    for (int i = 0; i < app->plugins.chunk_count; i++) {
+        const sl_chunk_reg *c = &app->plugins.chunks[i];
+        if (c->d.hook == SL_HOOK_LIGHT && c->d.name && !strcmp(c->d.name, type)) return !(c->d.flags & SL_CHUNK_LIGHT_RADIANCE);
+    }
+    return false;
+}
+
+/* A loop over the lights in [<prefix>_<ids[0]>.x, <prefix>_<ids[n-1]>.y) of sl_lights, as a
+ * do-while: llvmpipe runs a loop's body under a mask of the lanes still in it, and a for loop's
+ * test at the top runs the body once more after the last light with every lane masked (at full
+ * cost: 4 runs for 3 lights). The body runs once for an empty range, masked off by i < end (the
+ * ranges do not hold end, and `body` tests it where it calls without a range test); the record
+ * read is clamped into the buffer. */
+static void emit_light_loop(sl_strbuf *gen, const char *prefix, const char (*ids)[128], int n, const char *body) {
+    sl_sb_printf(gen,
+                 "    {\n"
+                 "        int i = %s_%s.x, end = %s_%s.y;\n"
+                 "        do {\n"
+                 "            SlLight L = sl_lights[max(min(i, end - 1), 0)];\n"
+                 "%s"
+                 "            ++i;\n"
+                 "        } while (i < end);\n"
+                 "    }\n",
+                 prefix, ids[0], prefix, ids[n - 1], body);
+}
+
+/* The body of a loop over the lights of the types with an l/E pair (ids, in buffer order): the
+ * type found by range (else-if), one evaluation of the model with E × `vis`. */
+static void lit_loop_body(char *out, size_t cap, const char *prefix, const char (*ids)[128], int n,
+                          const sl_chunk_reg *const *light_chunks, const int *lit_types, const char *per_light,
+                          const char *vis) {
+    sl_strbuf b = {0};
+    if (n == 1) {
+        sl_sb_printf(&b, "            vec3 l, E;\n            if (i < end && %s(L, s, l, E)) Lo += %s(s, l, %s);\n",
+                     light_chunks[lit_types[0]]->d.function, per_light, vis);
+    } else {
+        sl_sb_append(&b, "            vec3 l = vec3(0.0), E = vec3(0.0);\n            bool lit = false;\n");
+        for (int k = 0; k < n; k++)
+            sl_sb_printf(&b, "            %sif (i >= %s_%s.x && i < %s_%s.y) lit = %s(L, s, l, E);\n", k ? "else " : "",
+                         prefix, ids[k], prefix, ids[k], light_chunks[lit_types[k]]->d.function);
+        sl_sb_printf(&b, "            if (lit) Lo += %s(s, l, %s);\n", per_light, vis);
+    }
+    snprintf(out, cap, "%s", b.s ? b.s : "");
+    sl_sb_free(&b);
+}
+
 static const sl_chunk_reg *find_named(sl_app *app, sl_hook hook, const char *name) {
     for (int i = 0; i < app->plugins.chunk_count; i++) {
         const sl_chunk_reg *c = &app->plugins.chunks[i];
@@ -205,6 +265,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     for (int i = 0; i < app->scene.light_count && !shadow; i++)
         for (int c = 0; c < P->chunk_count && !shadow && app->scene.lights[i].cast_shadows; c++)
             if (P->chunks[c].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(&app->plugins, P->chunks[c].owner)) shadow = &P->chunks[c];
+    bool casters = sl_forward_shadow_casters(app); /* the casters' ranges and loop (sl_gpu_pack_lights) */
     /* LIGHT_LOOP hook (ABI 1.7, shader.h): the forward programs' light iteration; the first provider */
     const sl_chunk_reg *loop = NULL;
     for (int c = 0; c < P->chunk_count && !loop && kind == SL_VARIANT_FORWARD && !model_override; c++)
@@ -397,6 +458,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
             char id[128];
             sl_glsl_ident(types[t], id, sizeof id, false);
             sl_sb_printf(&decl, "uniform ivec2 sl_lights_%s; // [first, end) in sl_lights\n", id);
+            if (casters) sl_sb_printf(&decl, "uniform ivec2 sl_shadowed_%s; // the casters: [first, end) in sl_lights\n", id);
         }
         if (loop) sl_sb_append(&decl, "vec3 sl_light_radiance(int i, SlSurface s); // one light (LIGHT_LOOP, ABI 1.7)\n");
         if (fullscreen) sl_sb_append(&decl, "uniform int sl_material_index; // full-screen material pass (ABI 1.7)\n");
@@ -422,13 +484,16 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         sl_sb_append(&gen, "void sl_run_surface_hooks(inout SlSurface s) {\n");
         for (int i = 0; i < ns; i++) sl_sb_printf(&gen, "    %s(s);\n", surface_hooks[i]->d.function);
         sl_sb_append(&gen, "}\n");
-        /* The light loop (the lights are packed by type, contiguous in the order of types[],
+        /* The light loops (the lights are packed by type, contiguous in the order of types[],
          * core/render/scene_gpu.c; each light's record is read from the buffer once). The light
          * types with an l/E pair share ONE loop over their ranges and ONE evaluation of the model
-         * and the shadow hook per light: the type, found by range (else-if), only computes l and
-         * E. Mesa inlines every call, so a loop per type was a copy of the model and of the
-         * shadow filter per type: on llvmpipe the copies were a third of the forward programs'
-         * compile time (issue 19). Radiance types (area lights) keep a loop each. */
+         * per light: the type, found by range (else-if), only computes l and E. Mesa inlines
+         * every call, so a loop per type was a copy of the model and of the shadow filter per
+         * type: on llvmpipe the copies were a third of the forward programs' compile time (issue
+         * 19). When a light casts shadows, the casters (packed first) have a loop of their own,
+         * the only one with the SHADOW hook: llvmpipe runs every branch, so the filter in the
+         * shared loop ran for every light (issue 18, tenth round). Radiance types (area lights)
+         * keep a loop each. Loops are do-whiles (emit_light_loop). */
         const char *per_light = view && view->d.hook == SL_HOOK_DEBUG_VIEW_LIGHT ? view->d.function : model_chunk->d.function;
         int lit_types[32], radiance_types[32], nlit = 0, nrad = 0;
         for (int t = 0; t < ntypes; t++) {
@@ -459,6 +524,9 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
                 char id[128];
                 sl_glsl_ident(types[t], id, sizeof id, false);
                 if (untested) sl_sb_printf(&gen, "    /* %s: every light in the buffer */\n    ", id);
+                else if (casters && is_lit)
+                    sl_sb_printf(&gen, "    %sif ((i >= sl_lights_%s.x && i < sl_lights_%s.y) || (i >= sl_shadowed_%s.x && i < sl_shadowed_%s.y)) ",
+                                 emitted++ ? "else " : "", id, id, id, id);
                 else sl_sb_printf(&gen, "    %sif (i >= sl_lights_%s.x && i < sl_lights_%s.y) ", emitted++ ? "else " : "", id, id);
                 if (is_rad) sl_sb_printf(&gen, "Lo += %s(L, s);\n", light_chunks[t]->d.function);
                 else sl_sb_printf(&gen, "lit = %s(L, s, l, E);\n", light_chunks[t]->d.function);
@@ -466,37 +534,26 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
             if (nlit) sl_sb_printf(&gen, "    if (lit) Lo += %s(s, l, %s);\n", per_light, vis);
         } else {
             sl_sb_append(&gen, "vec3 sl_direct_lighting(SlSurface s) {\n    vec3 Lo = vec3(0.0);\n");
-            /* in the order of types[] (the order of the sums): radiance loops, and the shared
-             * loop where the first type with an l/E pair is */
+            /* in the order of types[]: radiance loops, and the loops of the types with an l/E pair
+             * where the first of those is (the shadow casters' first) */
             for (int t = 0; t < ntypes; t++) {
                 char id[128];
                 sl_glsl_ident(types[t], id, sizeof id, false);
                 for (int k = 0; k < nrad; k++)
-                    if (radiance_types[k] == t)
-                        sl_sb_printf(&gen,
-                                     "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) {\n"
-                                     "        SlLight L = sl_lights[i];\n        Lo += %s(L, s);\n    }\n",
-                                     id, id, light_chunks[t]->d.function);
+                    if (radiance_types[k] == t) {
+                        char call[300];
+                        snprintf(call, sizeof call, "            if (i < end) Lo += %s(L, s);\n", light_chunks[t]->d.function);
+                        emit_light_loop(&gen, "sl_lights", &id, 1, call);
+                    }
                 if (!nlit || lit_types[0] != t) continue;
-                char last[128];
-                sl_glsl_ident(types[lit_types[nlit - 1]], last, sizeof last, false);
-                sl_sb_printf(&gen,
-                             "    for (int i = sl_lights_%s.x; i < sl_lights_%s.y; ++i) {\n"
-                             "        SlLight L = sl_lights[i];\n",
-                             id, last);
-                if (nlit == 1) {
-                    sl_sb_printf(&gen, "        vec3 l, E;\n        if (%s(L, s, l, E)) Lo += %s(s, l, %s);\n    }\n",
-                                 light_chunks[t]->d.function, per_light, vis);
-                    continue;
+                char ids[32][128], body[4096];
+                for (int k = 0; k < nlit; k++) sl_glsl_ident(types[lit_types[k]], ids[k], sizeof ids[k], false);
+                if (casters) {
+                    lit_loop_body(body, sizeof body, "sl_shadowed", ids, nlit, light_chunks, lit_types, per_light, vis);
+                    emit_light_loop(&gen, "sl_shadowed", ids, nlit, body);
                 }
-                sl_sb_append(&gen, "        vec3 l = vec3(0.0), E = vec3(0.0);\n        bool lit = false;\n");
-                for (int k = 0; k < nlit; k++) {
-                    char tid[128];
-                    sl_glsl_ident(types[lit_types[k]], tid, sizeof tid, false);
-                    sl_sb_printf(&gen, "        %sif (i >= sl_lights_%s.x && i < sl_lights_%s.y) lit = %s(L, s, l, E);\n",
-                                 k ? "else " : "", tid, tid, light_chunks[lit_types[k]]->d.function);
-                }
-                sl_sb_printf(&gen, "        if (lit) Lo += %s(s, l, %s);\n    }\n", per_light, vis);
+                lit_loop_body(body, sizeof body, "sl_lights", ids, nlit, light_chunks, lit_types, per_light, "E");
+                emit_light_loop(&gen, "sl_lights", ids, nlit, body);
             }
         }
         sl_sb_append(&gen, "    return Lo;\n}\n");

@@ -37,6 +37,12 @@ bool sl_forward_compose_custom(struct sl_app *app, int material, sl_variant_kind
                                sl_program ***cache, int *cache_count, char *err, size_t n);
 /* Light types present among the scene's enabled lights, in packing order. */
 int sl_forward_light_types(struct sl_app *app, const char **types, int max);
+/* Whether a light of the scene (enabled or not) of a type with an l/E pair casts shadows: the
+ * forward programs then loop over the enabled casters apart (ranges sl_shadowed_<type>, first in
+ * the light buffer), the only loop that calls the SHADOW hook. */
+bool sl_forward_shadow_casters(struct sl_app *app);
+/* A light type with an l/E pair (not SL_CHUNK_LIGHT_RADIANCE), from the loaded plugins. */
+bool sl_forward_light_type_lit(struct sl_app *app, const char *type);
 /* GLSL-safe identifier from a name ("spotlight-shadow" → "spotlight_shadow"). */
 void sl_glsl_ident(const char *in, char *out, size_t n, bool upper);
 #endif

@@ -61,7 +61,7 @@ typedef struct sl_renderer {
     int anisotropy;                               /* core.anisotropy applied to the material textures */
     unsigned empty_vao, light_buffer;
     sl_light_info *lights; int light_count;
-    int type_range[32][2]; const char *types[32]; int ntypes;
+    int type_range[32][2], shadowed_range[32][2]; const char *types[32]; int ntypes;
     resource *res; int res_count;
     graph_pass *passes; int pass_count;
     bool plan_dirty;

@@ -262,20 +262,28 @@ void sl_gpu_pack_lights(sl_app *app) {
     r->ntypes = sl_forward_light_types(app, r->types, 32);
     gpu_light *buf = calloc(s->light_count + 1, sizeof *buf);
     int k = 0;
-    for (int t = 0; t < r->ntypes; t++) {
-        r->type_range[t][0] = k;
-        for (int i = 0; i < s->light_count; i++) {
-            const sl_light *L = &s->lights[i];
-            if (!L->enabled || strcmp(L->type, r->types[t])) continue;
-            sl_light_info *info = &r->lights[i];
-            info->index = k;
-            gpu_light *g = &buf[k++];
-            sl_light_at_time(L, app->time, g->position, g->direction);
-            light_radiant(L, g->color);
-            memcpy(g->params, app->light_params[i], sizeof g->params);
+    /* the enabled shadow casters of the types with an l/E pair first, in ranges of their own
+     * (sl_shadowed_<type>: the forward programs' casters loop, forward.c), then the rest */
+    bool casters = sl_forward_shadow_casters(app);
+    for (int pass = casters ? 0 : 1; pass < 2; pass++)
+        for (int t = 0; t < r->ntypes; t++) {
+            int(*range)[2] = pass == 0 ? r->shadowed_range : r->type_range;
+            bool lit = pass == 0 || sl_forward_light_type_lit(app, r->types[t]);
+            range[t][0] = k;
+            for (int i = 0; i < s->light_count; i++) {
+                const sl_light *L = &s->lights[i];
+                if (!L->enabled || strcmp(L->type, r->types[t])) continue;
+                if (casters && lit && L->cast_shadows != (pass == 0)) continue;
+                sl_light_info *info = &r->lights[i];
+                info->index = k;
+                gpu_light *g = &buf[k++];
+                sl_light_at_time(L, app->time, g->position, g->direction);
+                light_radiant(L, g->color);
+                memcpy(g->params, app->light_params[i], sizeof g->params);
+            }
+            range[t][1] = k;
         }
-        r->type_range[t][1] = k;
-    }
+    if (!casters) memset(r->shadowed_range, 0, sizeof r->shadowed_range);
     for (int i = 0; i < s->light_count; i++) {
         const sl_light *L = &s->lights[i];
         sl_light_info *info = &r->lights[i];
@@ -291,7 +299,7 @@ void sl_gpu_pack_lights(sl_app *app) {
     }
     if (!r->light_buffer) glCreateBuffers(1, &r->light_buffer);
     /* a uniform block is read as its declared size: the buffer holds the whole capacity */
-    int records = sl_gpu_lights_in_uniform_block(app) ? sl_gpu_light_block_capacity() : (k ? k : 1);
+    int records = sl_gpu_lights_in_uniform_block(app) ? sl_gpu_light_block_capacity() : k + 1;
     glNamedBufferData(r->light_buffer, (size_t)records * sizeof(gpu_light), NULL, GL_DYNAMIC_DRAW);
     if (k) glNamedBufferSubData(r->light_buffer, 0, (size_t)k * sizeof(gpu_light), buf);
     free(buf);
@@ -390,6 +398,8 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
         sl_glsl_ident(r->types[t], id, sizeof id, false);
         snprintf(name, sizeof name, "sl_lights_%s", id);
         glUniform2i(glGetUniformLocation(prog, name), r->type_range[t][0], r->type_range[t][1]);
+        snprintf(name, sizeof name, "sl_shadowed_%s", id);
+        glUniform2i(glGetUniformLocation(prog, name), r->shadowed_range[t][0], r->shadowed_range[t][1]);
     }
     glBindBufferBase(sl_gpu_lights_in_uniform_block(app) ? GL_UNIFORM_BUFFER : GL_SHADER_STORAGE_BUFFER, 0, r->light_buffer);
     if (var->program->tessellated) {

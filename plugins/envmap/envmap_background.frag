@@ -27,8 +27,13 @@ void main() {
     vec4 c = texelFetch(envmap_color, p, 0);
     int k = max(textureSize(envmap_depth, 0).x / max(textureSize(envmap_color, 0).x, 1), 1);
     int background = 0;
-    for (int j = 0; j < k; j++)
-        for (int i = 0; i < k; i++) background += texelFetch(envmap_depth, p * k + ivec2(i, j), 0).r >= 1.0 ? 1 : 0;
+    // do-whiles (k >= 1): llvmpipe ran a for loop's body once more, every lane masked (4 fetches for 1)
+    int j = 0;
+    do {
+        int i = 0;
+        do background += texelFetch(envmap_depth, p * k + ivec2(i, j), 0).r >= 1.0 ? 1 : 0;
+        while (++i < k);
+    } while (++j < k);
     if (background == 0) {
         o_color = c;
         return;

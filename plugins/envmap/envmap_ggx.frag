@@ -19,10 +19,11 @@ void main() {
     envmap_frame(n, t, b);
     vec3 sum = vec3(0.0);
     float weight = 0.0;
-    for (int i = 0; i < envmap_count; i++) {
+    int i = 0; // a do-while (count >= 1): a for loop ran its body once more, every lane masked
+    do {
         vec4 s = texelFetch(envmap_in2d, ivec2(i & 1023, envmap_row + (i >> 10)), 0);
         sum += textureLod(envmap_incube, t * s.x + b * s.y + n * s.z, s.w).rgb * s.z;
         weight += s.z;
-    }
+    } while (++i < envmap_count);
     o_color = vec4(envmap_finite(sum / max(weight, 1e-20)), 1.0);
 }

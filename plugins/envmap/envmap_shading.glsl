@@ -102,10 +102,11 @@ vec3 envmap_lambert_reference(SlSurface s) {
     envmap_frame(s.normal, t, b);
     vec2 rot = envmap_hash2(uvec2(gl_FragCoord.xy));
     vec3 sum = vec3(0.0);
-    for (int i = 0; i < envmap_reference_samples; i++) {
+    int i = 0; // do-whiles (reference_samples >= 1), as the fis loop below
+    do {
         vec3 l = envmap_sample_cosine(envmap_xi(uint(i), rot));
         sum += envmap_source(t * l.x + b * l.y + s.normal * l.z, 0.0);
-    }
+    } while (++i < envmap_reference_samples);
     return s.base_color * s.ao * sum / float(envmap_reference_samples);
 }
 
@@ -188,11 +189,15 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo,
     vec3 c = textureLod(envmap_spec, envmap_rot * d, envmap_spec_lod(alpha)).rgb * envmap_horizon(d, s.geometric_normal);
     vec3 sum = vec3(0.0);
     if (beta <= 0.0) count = 0; // the split sum alone: no sample (uniform per material unless α is mapped)
-    for (int i = 0; i < count; i++) {
+    // A do-while: llvmpipe runs a loop's body under a mask of the lanes still in it, and a for
+    // loop's test at the top ran it once more after the last sample, every lane masked, at full
+    // cost. With count = 0 its one run (masked by i < count) adds nothing.
+    int i = 0;
+    do {
         vec2 xi = fract(envmap_r2(uint(sl_sample_index) * uint(count) + uint(i)) + rot);
         vec3 hl = envmap_sample_vndf(vl, alpha, xi);
         vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
-        if (ll.z <= 0.0) continue; // weight 0 (G1(l) = 0): contributes 0 to the mean
+        if (i >= count || ll.z <= 0.0) continue; // weight 0 (G1(l) = 0): contributes 0 to the mean
         vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
         vec3 w = ggx_fresnel_schlick(dot(l, h), f0) * (ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v);
         // pdf(l) = G1(v) D(h) / (4 n·v) for visible-normal sampling
@@ -203,7 +208,7 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo,
                               envmap_fis_lod_bias, 0.0, lod_max);
         // light from under the geometric surface (normal maps) is blocked (the weight stays)
         sum += w * (envmap_above(l, s.geometric_normal) * textureLod(envmap_base, envmap_rot * l, lod).rgb - c);
-    }
+    } while (++i < count);
     // A frame's estimate dips below 0 where its few samples read darker than c with large
     // weights. A single frame (shown, or fed to TAA) is clamped at 0; an accumulated render is
     // not: the clamp would bias its mean upwards (band test, N = 1 × 64 frames, α = 1: +7 %),
@@ -289,7 +294,8 @@ vec3 envmap_ggx_reference(SlSurface s) {
 #endif
     ks *= envmap_zero_specular();
     vec3 spec = vec3(0.0), diff = vec3(0.0);
-    for (int i = 0; i < envmap_reference_samples; i++) {
+    int i = 0;
+    do {
         vec2 xi = envmap_xi(uint(i), rot);
         if (vl.z > 0.0) {
             vec3 hl = envmap_sample_vndf(vl, alpha, xi);
@@ -310,7 +316,7 @@ vec3 envmap_ggx_reference(SlSurface s) {
         vec3 kd = s.base_color;
 #endif
         diff += kd * envmap_source(l, 0.0);
-    }
+    } while (++i < envmap_reference_samples);
     // the same specular occlusion from s.ao as the split sum (an input, not something to integrate)
     ks *= envmap_specular_occlusion(vl.z, s.ao, alpha);
     return (ks * spec + diff * s.ao) / float(envmap_reference_samples);

@@ -19,8 +19,12 @@ layout(location = 0) out vec4 o_color;
 void main() {
     float k = float(envmap_subsamples);
     vec3 sum = vec3(0.0);
-    for (int j = 0; j < envmap_subsamples; j++)
-        for (int i = 0; i < envmap_subsamples; i++) {
+    // do-whiles (K >= 1): llvmpipe ran a for loop's body once more after the last pass, every lane
+    // masked, at full cost (25 lookups for 16)
+    int j = 0;
+    do {
+        int i = 0;
+        do {
             vec2 st = (floor(gl_FragCoord.xy) + (vec2(i, j) + 0.5) / k) / envmap_size;
             vec3 d = normalize(envmap_cube_dir(envmap_face, st));
             float omega = envmap_texel_solid_angle(2.0 * st - 1.0, envmap_size * k);
@@ -38,6 +42,7 @@ void main() {
             c = textureLod(envmap_in2d, uv, max(lod, 0.0)).rgb;
 #endif
             sum += c;
-        }
+        } while (++i < envmap_subsamples);
+    } while (++j < envmap_subsamples);
     o_color = vec4(envmap_finite(sum / (k * k)), 1.0);
 }

@@ -290,11 +290,15 @@ float spotlight_shadow_visibility(int i, SlLight L, SlSurface s, vec3 l) {
         vec3 a = abs(d);
         v += a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5);
     }
+    // A do-while: llvmpipe runs a loop's body under a mask of the lanes still in it, and a for
+    // loop's test at the top ran the filter once more, every lane masked, at full cost.
     float vis = 1.0;
-    for (int j = 0; j < n; ++j) {
+    int j = 0;
+    do {
         float x = spotlight_shadow_view_visibility(v + j, s, l);
         vis = j == 0 ? x : mix(vis, x, t);
-    }
-    return vis;
+        ++j;
+    } while (j < n);
+    return n > 0 ? vis : 1.0;
 #endif
 }

@@ -160,15 +160,18 @@ float sss_tl_thickness(int t, vec3 p) {
 vec3 sss_translucent_irradiance(SlSurface s) {
     vec3 sum = vec3(0.0);
     float mm = max(sl_mat_sss_radius, 1e-12);
-    for (int t = 0; t < sss_tl_count && t < SSS_MAX_MAPS; ++t) {
+    // a do-while (llvmpipe ran a for loop's body once more, every lane masked, at full cost);
+    // with no map its one run adds nothing
+    int n = min(sss_tl_count, SSS_MAX_MAPS), t = 0;
+    do {
         vec3 l, E;
-        if (!sss_tl_light_at(t, s.position, l, E)) continue;
+        if (t >= n || !sss_tl_light_at(t, s.position, l, E)) continue;
         float back = max(0.0, -dot(s.normal, l));
         if (back <= 0.0) continue;
         float thick = sss_tl_thickness(t, s.position);
         if (thick < 0.0) continue;
         sum += sss_slab_transmittance(thick / mm) * E * back;
-    }
+    } while (++t < n);
     return sum;
 }
 

@@ -35,7 +35,10 @@ void main() {
     float d0 = sss_linear_depth(texelFetch(sss_depth, p, 0).r, sss_depth_params.x, sss_depth_params.y);
     float px_per_mm = dot(sss_px_per_unit, sss_dir) * sss_mm / max(d0, 1e-20);
     vec3 sum = vec3(0.0), wsum = vec3(0.0);
-    for (int t = 0; t < sss_taps; ++t) {
+    // do-whiles (taps >= 3, gaussians >= 1): llvmpipe ran a for loop's body once more after the
+    // last pass, every lane masked, at full cost (18 × 7 kernel terms for 17 × 6)
+    int t = 0;
+    do {
         float x_mm = texelFetch(sss_kernel, ivec2(t, 0), 0).a;
         float off = clamp(x_mm * px_per_mm, -sss_max_px, sss_max_px);
         ivec2 q = p + ivec2(round(off * sss_dir));
@@ -45,11 +48,12 @@ void main() {
         float d = sss_linear_depth(texelFetch(sss_depth, q, 0).r, sss_depth_params.x, sss_depth_params.y);
         float dz = sss_follow_surface != 0 ? (d - d0) / sss_mm : 0.0;
         vec3 w = vec3(0.0);
-        for (int g = 0; g < sss_gaussians; ++g)
-            w += texelFetch(sss_kernel, ivec2(t, g), 0).rgb * exp(-dz * dz / (2.0 * sss_variance[g]));
+        int g = 0;
+        do w += texelFetch(sss_kernel, ivec2(t, g), 0).rgb * exp(-dz * dz / (2.0 * sss_variance[g]));
+        while (++g < sss_gaussians);
         sum += w * (c.rgb / c.a);
         wsum += w;
-    }
+    } while (++t < sss_taps);
     vec3 result = sum + max(vec3(1.0) - wsum, vec3(0.0)) * centre;
     o_blur = vec4(result * c0.a, c0.a);
 }

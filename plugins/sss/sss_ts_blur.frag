@@ -21,6 +21,10 @@
 // filtering alone, the branches above never taken — the same sums without their cost (llvmpipe
 // runs both sides of a branch). Uncovered texels take this path too: ×c0.a makes them 0.
 //
+// SSS_LOOP_NOTE: the tap loops are do-whiles. llvmpipe runs a loop's body under a mask of the
+// lanes still in it, and a for loop's test at the top ran the body once more after the last tap
+// with every lane masked, at full cost (4 runs for 3 tap pairs).
+//
 // Stretch correction: sss_stretch_map holds the surface length of one texel along u and v in
 // millimetres of the profile (the "sss-stretch" pass), so σ in texels = σ_mm / (mm per texel).
 #include "sss_lib.glsl"
@@ -82,11 +86,12 @@ void main() {
     float wc = sss_weights[half_taps];
     vec3 sum = wc * c0.rgb; // covered: alpha 1
     float wsum = wc;
-    for (int t = 1; t <= half_taps; ++t) {
+    int t = 1; // half_taps >= 1 (sss.ts_taps >= 3); a do-while: see SSS_LOOP_NOTE below
+    do {
         float w = sss_weights[half_taps + t], o = sss_offsets[half_taps + t] * sigma;
         sum += w * (texture(sss_src, uv - o * texel).rgb + texture(sss_src, uv + o * texel).rgb);
         wsum += 2.0 * w;
-    }
+    } while (++t <= half_taps);
     vec4 result = vec4(sum / wsum, 1.0) * c0.a;
 #else
 void main() {
@@ -104,7 +109,8 @@ void main() {
         float wc = sss_weights[half_taps];
         vec3 sum = wc * centre;
         float wsum = wc;
-        for (int t = 1; t <= half_taps; ++t) {
+        int t = 1;
+        do {
             float w = sss_weights[half_taps + t], o = sss_offsets[half_taps + t] * sigma;
             vec3 va, vb;
             bool ha = sss_tap(p, uv - o * texel, -o, va), hb = sss_tap(p, uv + o * texel, o, vb);
@@ -113,7 +119,7 @@ void main() {
             if (!hb) vb = max(2.0 * centre - va, vec3(0.0));
             sum += w * (va + vb);
             wsum += 2.0 * w;
-        }
+        } while (++t <= half_taps);
         result = vec4(sum / wsum, 1.0) * c0.a;
     }
 #endif

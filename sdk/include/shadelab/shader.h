@@ -83,7 +83,10 @@
  *                                                                it. Compiled in only when a
  *                                                                light casts shadows (enabled
  *                                                                or not: toggling recompiles
- *                                                                nothing);
+ *                                                                nothing), and called only for
+ *                                                                the lights that cast them
+ *                                                                (their own loop; with a
+ *                                                                LIGHT_LOOP, for every light);
  *                                                                one provider (the first enabled)
  *   LIGHT_LOOP       vec3 FN(SlSurface s)                        ABI 1.7: replaces the core's
  *                                                                iteration over sl_lights in
