@@ -1,11 +1,15 @@
-/* Additivity: with 32 shadowed spot lights the linear float image equals the sum of the 32
- * single-light images within 1e-3 (every light has its own map layer, table row and lookup;
- * a light reading another light's map, or a layer overwritten, breaks the sum). */
+/* Additivity: with 32 spot lights (two in three shadowed) and two directional lights (one
+ * shadowed) the linear float image equals the sum of the 34 single-light images within 1e-3
+ * (every light has its own map layer, table row and lookup; a light reading another light's map,
+ * a layer overwritten, or a light lost or counted twice by the core's casters' and others'
+ * loops — the casters are packed first, in ranges of their own — breaks the sum). Then a light's
+ * shadow switched off and on again live gives the first image back. */
 #include "shadow_test.h"
 
 #define W 64
 #define H 48
 #define NL 32
+#define ND 2 /* directional lights: d0 casts, d1 does not */
 static float all[W * H * 4], one[W * H * 4], sum[W * H * 4];
 
 int main(void) {
@@ -21,8 +25,14 @@ int main(void) {
         u += snprintf(lights + u, sizeof lights - u,
                       "%s{\"name\": \"s%d\", \"type\": \"spot\", \"position\": [%.4f, %.4f, %.4f], \"direction\": [%.4f, %.4f, %.4f], "
                       "\"color\": [%.3f, %.3f, %.3f], \"intensity\": 3, \"cone_angle\": %d, \"falloff\": \"%s\", "
-                      "\"inner_cone_angle\": 10, \"radius\": 0.1, \"cast_shadows\": true}\n",
-                      k ? "," : "", k, px, hgt, pz, tx - px, -hgt, tz - pz, c[0], c[1], c[2], 20 + k % 20, k % 2 ? "gltf" : "linear");
+                      "\"inner_cone_angle\": 10, \"radius\": 0.1, \"cast_shadows\": %s}\n",
+                      k ? "," : "", k, px, hgt, pz, tx - px, -hgt, tz - pz, c[0], c[1], c[2], 20 + k % 20, k % 2 ? "gltf" : "linear",
+                      k % 3 == 2 ? "false" : "true");
+        if (k == 10 || k == 20) /* between the spots in the scene's order */
+            u += snprintf(lights + u, sizeof lights - u,
+                          ",{\"name\": \"d%d\", \"type\": \"directional\", \"direction\": [%.2f, -1, -0.4], "
+                          "\"intensity\": 0.4, \"cast_shadows\": %s}\n",
+                          k / 20, k == 10 ? 0.5 : -0.6, k == 10 ? "true" : "false");
     }
     snprintf(json, sizeof json,
              "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 5, 6], \"target\": [0, 0.3, 0], \"fov_y\": 50}],\n"
@@ -40,8 +50,9 @@ int main(void) {
         if (!h) return check_result();
         CHECK(sl_harness_render(h, all));
         memset(sum, 0, sizeof sum);
-        for (int k = 0; k < NL; k++) {
-            for (int j = 0; j < NL; j++) CHECK(ss_set(h, "light.s%d.enabled=%s", j, j == k ? "true" : "false"));
+        for (int k = 0; k < NL + ND; k++) {
+            for (int j = 0; j < NL + ND; j++)
+                CHECK(ss_set(h, "light.%c%d.enabled=%s", j < NL ? 's' : 'd', j < NL ? j : j - NL, j == k ? "true" : "false"));
             CHECK(sl_harness_render(h, one));
             for (int i = 0; i < W * H * 4; i++) sum[i] += one[i];
         }
@@ -52,11 +63,20 @@ int main(void) {
             if (i % 4 != 3) peak = fmax(peak, all[i]);
         /* the shadows are there: all lights with shadows off differs */
         static float noshadow[W * H * 4];
-        for (int j = 0; j < NL; j++) CHECK(ss_set(h, "light.s%d.enabled=true", j));
+        for (int j = 0; j < NL + ND; j++) CHECK(ss_set(h, "light.%c%d.enabled=true", j < NL ? 's' : 'd', j < NL ? j : j - NL));
+        /* a light's shadow off and on again, live: the first image (the casters are repacked) */
+        static float again[W * H * 4];
+        sl_compare e, e_off;
+        CHECK(ss_set(h, "light.s0.cast_shadows=false") && sl_harness_render(h, noshadow));
+        sl_harness_compare(all, noshadow, W, H, 1e-6, &e_off);
+        CHECK(ss_set(h, "light.s0.cast_shadows=true") && sl_harness_render(h, again));
+        sl_harness_compare(all, again, W, H, 1e-6, &e);
+        CHECK_MSG(e_off.pixels_over > 0, "light s0's shadow switched off changed nothing");
+        CHECK_MSG(e.max_abs <= 1e-6, "s0's shadow off and on again: max difference %g from the first image", e.max_abs);
         CHECK(ss_set(h, "spotlight-shadow.shadows=false") && sl_harness_render(h, noshadow));
         sl_compare d;
         sl_harness_compare(all, noshadow, W, H, 1e-2, &d);
-        printf("%-7s 32 shadowed spots vs the sum of 32 single-light images: max difference %.2e (peak radiance %.2f), "
+        printf("%-7s 32 spots and 2 directional lights (23 casting) vs the sum of 34 single-light images: max difference %.2e (peak radiance %.2f), "
                "%ld pixels over 1e-3; %ld pixels differ from the unshadowed image\n",
                ss_filters[f], c.max_abs, peak, c.pixels_over, d.pixels_over);
         CHECK_MSG(c.max_abs < 1e-3, "not additive: max difference %g", c.max_abs);
