@@ -74,10 +74,15 @@ SlSurface sl_surface_from_varyings() {
 uniform sampler2D sl_blend_depth;
 uniform int sl_blend_ssaa;
 float sl_blend_visible() {
-    int k = sl_blend_ssaa, front = 0;
+    // do-whiles (called with k >= 1): llvmpipe ran a for loop's body once more after the last
+    // pass, every lane masked, at full cost (4 fetches for 1 without supersampling)
+    int k = max(sl_blend_ssaa, 1), front = 0, j = 0;
     ivec2 p = ivec2(gl_FragCoord.xy) * k;
-    for (int j = 0; j < k; j++)
-        for (int i = 0; i < k; i++) front += gl_FragCoord.z < texelFetch(sl_blend_depth, p + ivec2(i, j), 0).r ? 1 : 0;
+    do {
+        int i = 0;
+        do front += gl_FragCoord.z < texelFetch(sl_blend_depth, p + ivec2(i, j), 0).r ? 1 : 0;
+        while (++i < k);
+    } while (++j < k);
     return float(front) / float(k * k);
 }
 #endif
