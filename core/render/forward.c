@@ -71,9 +71,9 @@ static void emit_light_loop(sl_strbuf *gen, const char *prefix, const char (*ids
                  prefix, ids[0], prefix, ids[n - 1], body);
 }
 
-/* The body of a loop over the lights of the types with an l/E pair (ids, in buffer order): the
- * type found by range (else-if), one evaluation of the model with E × `vis`. */
-static void lit_loop_body(char *out, size_t cap, const char *prefix, const char (*ids)[128], int n,
+/* The loop over the lights of the types with an l/E pair (ids, in buffer order) in the ranges
+ * <prefix>_<type>: the type found by range (else-if), one evaluation of the model with E × `vis`. */
+static void emit_lit_loop(sl_strbuf *gen, const char *prefix, const char (*ids)[128], int n,
                           const sl_chunk_reg *const *light_chunks, const int *lit_types, const char *per_light,
                           const char *vis) {
     sl_strbuf b = {0};
@@ -87,7 +87,7 @@ static void lit_loop_body(char *out, size_t cap, const char *prefix, const char 
                          prefix, ids[k], prefix, ids[k], light_chunks[lit_types[k]]->d.function);
         sl_sb_printf(&b, "            if (lit) Lo += %s(s, l, %s);\n", per_light, vis);
     }
-    snprintf(out, cap, "%s", b.s ? b.s : "");
+    emit_light_loop(gen, prefix, ids, n, b.s ? b.s : "");
     sl_sb_free(&b);
 }
 
@@ -541,19 +541,16 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
                 sl_glsl_ident(types[t], id, sizeof id, false);
                 for (int k = 0; k < nrad; k++)
                     if (radiance_types[k] == t) {
-                        char call[300];
-                        snprintf(call, sizeof call, "            if (i < end) Lo += %s(L, s);\n", light_chunks[t]->d.function);
-                        emit_light_loop(&gen, "sl_lights", &id, 1, call);
+                        sl_strbuf call = {0};
+                        sl_sb_printf(&call, "            if (i < end) Lo += %s(L, s);\n", light_chunks[t]->d.function);
+                        emit_light_loop(&gen, "sl_lights", &id, 1, call.s);
+                        sl_sb_free(&call);
                     }
                 if (!nlit || lit_types[0] != t) continue;
-                char ids[32][128], body[4096];
+                char ids[32][128];
                 for (int k = 0; k < nlit; k++) sl_glsl_ident(types[lit_types[k]], ids[k], sizeof ids[k], false);
-                if (casters) {
-                    lit_loop_body(body, sizeof body, "sl_shadowed", ids, nlit, light_chunks, lit_types, per_light, vis);
-                    emit_light_loop(&gen, "sl_shadowed", ids, nlit, body);
-                }
-                lit_loop_body(body, sizeof body, "sl_lights", ids, nlit, light_chunks, lit_types, per_light, "E");
-                emit_light_loop(&gen, "sl_lights", ids, nlit, body);
+                if (casters) emit_lit_loop(&gen, "sl_shadowed", ids, nlit, light_chunks, lit_types, per_light, vis);
+                emit_lit_loop(&gen, "sl_lights", ids, nlit, light_chunks, lit_types, per_light, "E");
             }
         }
         sl_sb_append(&gen, "    return Lo;\n}\n");
