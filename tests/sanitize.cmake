@@ -23,15 +23,21 @@ if(CMAKE_SCRIPT_MODE_FILE)
   # BIN stays between runs (incremental); in a read-only or copied build tree, a temporary tree
   include("${CMAKE_CURRENT_LIST_DIR}/tree_or_tmp.cmake")
   sl_tree_or_tmp(BIN sanitize)
+  # configure and build quietly (their output, thousands of lines, would bury a failing test's
+  # in a log that readers see only the ends of): shown only when they fail
+  message(STATUS "sanitize: configuring and building ${BIN} (ASan + UBSan)")
   execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SRC}" -B "${BIN}" -DSL_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
-                  RESULT_VARIABLE rc)
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(rc)
+    message("${out}")
     message(FATAL_ERROR "sanitize: configure failed (${rc})")
   endif()
-  execute_process(COMMAND "${CMAKE_COMMAND}" --build "${BIN}" -j2 RESULT_VARIABLE rc)
+  execute_process(COMMAND "${CMAKE_COMMAND}" --build "${BIN}" -j2 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(rc)
+    message("${out}")
     message(FATAL_ERROR "sanitize: build failed (${rc})")
   endif()
+  message(STATUS "sanitize: built; running the tests")
   set(ENV{ASAN_OPTIONS} "detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1")
   set(ENV{LSAN_OPTIONS} "suppressions=${SRC}/tests/sanitizers/lsan.supp:print_suppressions=0")
   set(ENV{UBSAN_OPTIONS} "print_stacktrace=1:halt_on_error=1")

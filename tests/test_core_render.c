@@ -269,27 +269,39 @@ static void test_light_animation(void) {
 /* ABI 1.6: a LIGHT chunk flagged SL_CHUNK_LIGHT_RADIANCE returns radiance, added as it is to the
  * light loop, and may call sl_shading_model (the material's model). The test plugin's glow light
  * calls Lambert with l = n and E = colour × intensity (in two halves): L = k_d/π · E on every
- * plane pixel. */
+ * plane pixel.
+ * The second scene has three glow lights flagged cast_shadows beside a casting sun straight
+ * overhead (E = 1, no shadow plugin: visibility 1). A radiance type has no casters' loop, so its
+ * lights are packed once, in its own range: packing them among the casters as well (the tenth
+ * round's first packer did) writes past the light records' end (ASan, the sanitize test). */
 static void test_radiance_light(void) {
     char err[4096];
     const char *plugins[] = {SL_TEST_PLUGIN_DIR "/tp-good/tp-good.so", NULL};
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
-        .scene_json = PLANE_SCENE("{\"name\": \"g\", \"type\": \"tp-good-glow\", \"intensity\": 3, \"color\": [1, 0.5, 0.25]}", ""),
-        .plugins = plugins, .float32 = true, .strict = true}, err, sizeof err);
-    CHECK_MSG(h != NULL, "harness: %s", err);
-    if (!h) return;
-    CHECK(sl_harness_render(h, img));
-    const float kd[3] = {0.7f, 0.5f, 0.3f}, E[3] = {3, 1.5f, 0.75f};
-    int checked = 0;
-    for (int y = 0; y < H; y += 7)
-        for (int x = 0; x < W; x += 7) {
-            float p[3];
-            if (!plane_hit(x, y, p)) continue;
-            for (int c = 0; c < 3; c++) CHECK_NEAR(img[(y * W + x) * 4 + c], kd[c] / M_PI * E[c], 1e-4);
-            checked++;
-        }
-    CHECK_MSG(checked > 50, "only %d plane pixels sampled", checked);
-    sl_harness_destroy(h);
+    const char *scenes[] = {
+        PLANE_SCENE("{\"name\": \"g\", \"type\": \"tp-good-glow\", \"intensity\": 3, \"color\": [1, 0.5, 0.25]}", ""),
+        PLANE_SCENE("{\"name\": \"g1\", \"type\": \"tp-good-glow\", \"intensity\": 1, \"color\": [1, 0.5, 0.25], \"cast_shadows\": true},"
+                    "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -1, 0], \"intensity\": 1, \"cast_shadows\": true},"
+                    "{\"name\": \"g2\", \"type\": \"tp-good-glow\", \"intensity\": 1.5, \"color\": [1, 0.5, 0.25], \"cast_shadows\": true},"
+                    "{\"name\": \"g3\", \"type\": \"tp-good-glow\", \"intensity\": 0.5, \"color\": [1, 0.5, 0.25], \"cast_shadows\": true}", "")};
+    const float sun[2] = {0, 1};
+    for (int sc = 0; sc < 2; sc++) {
+        sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+            .scene_json = scenes[sc], .plugins = plugins, .float32 = true, .strict = true}, err, sizeof err);
+        CHECK_MSG(h != NULL, "harness (scene %d): %s", sc, err);
+        if (!h) return;
+        CHECK(sl_harness_render(h, img));
+        const float kd[3] = {0.7f, 0.5f, 0.3f}, E[3] = {3, 1.5f, 0.75f};
+        int checked = 0;
+        for (int y = 0; y < H; y += 7)
+            for (int x = 0; x < W; x += 7) {
+                float p[3];
+                if (!plane_hit(x, y, p)) continue;
+                for (int c = 0; c < 3; c++) CHECK_NEAR(img[(y * W + x) * 4 + c], kd[c] / M_PI * (E[c] + sun[sc]), 1e-4);
+                checked++;
+            }
+        CHECK_MSG(checked > 50, "only %d plane pixels sampled", checked);
+        sl_harness_destroy(h);
+    }
 }
 
 /* Issue 18: programs specialise on the set of light types, not on which lights are on. Switching
