@@ -339,42 +339,75 @@ static void test_seam(void) {
  * edge (sss.c: ts_classify) and the full program elsewhere; the full program alone
  * (SHADELAB_SSS_FULL_BLUR=1) must give the same image, on a UV sphere whose seam faces the camera,
  * whose stretch varies from the equator to the poles (degenerate there) and whose atlas edges
- * are chart edges, in two sizes of the profile. Equal within 1e-6 (the same sums in the same order). */
+ * are chart edges, in two sizes of the profile. Equal within 1e-6 (the same sums in the same order).
+ * Live changes: the split harness moves the light, then changes the profile's size from 0.5 mm
+ * to 2 (a classification kept from 0.5 mm would send texels whose 2 mm taps reach an edge to
+ * the interior program: 0.0445 when tried), each compared with a fresh start of that state under
+ * the full program. */
+#define INTERIOR_SCENE(RADIUS, LIGHT_DIR) \
+    "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 30, 160], \"target\": [0, 0, 0], \"fov_y\": 35," \
+    " \"near\": 1, \"far\": 1000}],\n" \
+    " \"materials\": [{\"name\": \"skin\", \"model\": \"skin\", \"base_color\": [0.7, 0.7, 0.7]," \
+    " \"sss_radius\": " RADIUS ", \"specular\": 0}],\n" \
+    " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 40, \"segments\": 64," \
+    " \"rings\": 32}, \"material\": \"skin\"}],\n" \
+    " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": " LIGHT_DIR "," \
+    " \"intensity\": 3}]}\n"
+
+enum { IN = 64 };
+static bool interior_render(const char *scene, bool full, float *img) {
+    if (full) setenv("SHADELAB_SSS_FULL_BLUR", "1", 1);
+    sl_harness *h = sss_t_harness(scene, IN, IN, PLUGINS, (const char *[]){"sss.ts_size=256", NULL});
+    bool ok = h && sl_harness_render(h, img);
+    sl_harness_destroy(h);
+    unsetenv("SHADELAB_SSS_FULL_BLUR");
+    return ok;
+}
+
+static double interior_diff(const float *a, const float *b) {
+    double worst = 0;
+    for (int i = 0; i < IN * IN * 4; i++) worst = fmax(worst, fabs(a[i] - b[i]));
+    return worst;
+}
+
 static void test_interior(void) {
-    static const char *const radii[] = {"2", "0.5"};
+    static const char *const scenes[] = {INTERIOR_SCENE("2", "[-1, -0.3, -0.4]"), INTERIOR_SCENE("0.5", "[-1, -0.3, -0.4]")};
+    static float split[IN * IN * 4], full[IN * IN * 4];
     for (int r = 0; r < 2; r++) {
-        char scene[2048];
-        snprintf(scene, sizeof scene,
-                 "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 30, 160], \"target\": [0, 0, 0], \"fov_y\": 35,"
-                 " \"near\": 1, \"far\": 1000}],\n"
-                 " \"materials\": [{\"name\": \"skin\", \"model\": \"skin\", \"base_color\": [0.7, 0.7, 0.7],"
-                 " \"sss_radius\": %s, \"specular\": 0}],\n"
-                 " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 40, \"segments\": 64,"
-                 " \"rings\": 32}, \"material\": \"skin\"}],\n"
-                 " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [-1, -0.3, -0.4],"
-                 " \"intensity\": 3}]}\n",
-                 radii[r]);
-        enum { N = 64 };
-        static float split[N * N * 4], full[N * N * 4];
-        bool ok = true;
-        for (int k = 0; k < 2 && ok; k++) {
-            if (k) setenv("SHADELAB_SSS_FULL_BLUR", "1", 1);
-            sl_harness *h = sss_t_harness(scene, N, N, PLUGINS, (const char *[]){"sss.ts_size=256", NULL});
-            if (!h) ok = false;
-            else {
-                ok = sl_harness_render(h, k ? full : split);
-                sl_harness_destroy(h);
-            }
-            unsetenv("SHADELAB_SSS_FULL_BLUR");
-        }
+        bool ok = interior_render(scenes[r], false, split) && interior_render(scenes[r], true, full);
         CHECK(ok);
         if (!ok) continue;
-        double worst = 0;
-        for (int i = 0; i < N * N * 4; i++) worst = fmax(worst, fabs(split[i] - full[i]));
-        printf("interior split, sss_radius %s: largest difference to the full program %.3g\n", radii[r], worst);
+        double worst = interior_diff(split, full);
+        printf("interior split, sss_radius %s: largest difference to the full program %.3g\n", r ? "0.5" : "2", worst);
         CHECK_MSG(worst <= 1e-6, "the interior path differs from the full program by %g", worst);
-        CHECK(sl_harness_count_nonfinite(split, N, N) == 0);
+        CHECK(sl_harness_count_nonfinite(split, IN, IN) == 0);
     }
+    /* live: 0.5 mm, then the light moved, then 2 mm; the fresh starts first (one harness at a
+     * time per process) */
+    static const struct {
+        const char *set, *scene, *what;
+    } steps[] = {
+        {"light.sun.direction=0.3,-0.5,-1", INTERIOR_SCENE("0.5", "[0.3, -0.5, -1]"), "light moved"},
+        {"material.skin.sss_radius=2", INTERIOR_SCENE("2", "[0.3, -0.5, -1]"), "profile 0.5 -> 2 mm"},
+    };
+    enum { STEPS = sizeof steps / sizeof *steps };
+    static float fresh[STEPS][IN * IN * 4];
+    for (int k = 0; k < STEPS; k++)
+        if (!interior_render(steps[k].scene, true, fresh[k])) {
+            CHECK_MSG(false, "fresh start: %s", steps[k].what);
+            return;
+        }
+    sl_harness *h = sss_t_harness(scenes[1], IN, IN, PLUGINS, (const char *[]){"sss.ts_size=256", NULL});
+    if (!h) return;
+    CHECK(sl_harness_render(h, split));
+    for (int k = 0; k < STEPS; k++) {
+        sss_t_set(h, steps[k].set);
+        CHECK(sl_harness_render(h, split));
+        double worst = interior_diff(split, fresh[k]);
+        printf("interior split, live, %s: largest difference to a fresh start (full program) %.3g\n", steps[k].what, worst);
+        CHECK_MSG(worst <= 1e-6, "%s: differs from a fresh start by %g", steps[k].what, worst);
+    }
+    sl_harness_destroy(h);
 }
 
 /* ------------------------------------------------------------------ cache ------------------ */
