@@ -69,7 +69,10 @@ vec3 area_light_vector_irradiance(AreaLightPolygon p, mat3 m) {
     vec3 first = vec3(0.0), last = vec3(0.0), sum = vec3(0.0);
     int count = 0;
     vec3 v0 = m * area_light_vertex(p, 0), a = v0;
-    for (int i = 0; i < p.n; ++i) {
+    // a do-while (n >= 3): llvmpipe runs a for loop's body once more, every lane masked, after
+    // its last iteration (a rectangle's 4 edges cost 5)
+    int i = 0;
+    do {
         vec3 b = i + 1 < p.n ? m * area_light_vertex(p, i + 1) : v0;
         bool ain = a.z >= 0.0, bin = b.z >= 0.0;
         if (ain) area_light_emit(a, first, last, count, sum);
@@ -79,7 +82,7 @@ vec3 area_light_vector_irradiance(AreaLightPolygon p, mat3 m) {
             area_light_emit(q, first, last, count, sum);
         }
         a = b;
-    }
+    } while (++i < p.n);
     if (count < 3) return vec3(0.0);
     sum += area_light_edge(last, first);
     return 0.5 * (sum.z < 0.0 ? -sum : sum);

@@ -22,14 +22,20 @@ void voronoi_tiles_surface(inout SlSurface s) {
     int k = max(voronoi_tiles_samples, 1);
     vec3 n = vec3(0.0), col = vec3(0.0);
     float ao = 0.0, alpha = 0.0;
-    for (int j = 0; j < k; j++)
-        for (int i = 0; i < k; i++) {
+    // do-whiles (k >= 1): llvmpipe runs a for loop's body once more, every lane masked, after
+    // its last iteration (the test is at the top), and nested ones multiply: k = 1 evaluated
+    // the Voronoi search 4 times (docs/design-notes.md, "Loops on llvmpipe")
+    int j = 0;
+    do {
+        int i = 0;
+        do {
             vec2 o = (vec2(i, j) + 0.5) / float(k) - 0.5; // stratified over the pixel footprint
             vec3 n1, c1;
             float a1, al1;
             voronoi_tiles_sample(k == 1 ? x : x + o.x * dx + o.y * dy, n1, a1, c1, al1);
             n += n1, ao += a1, col += c1, alpha += al1;
-        }
+        } while (++i < k);
+    } while (++j < k);
     float inv = 1.0 / float(k * k);
     vec3 nt = n * inv;
     float len = length(nt);
