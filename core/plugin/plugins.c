@@ -521,7 +521,7 @@ static void create_one(sl_plugins *P, int i, int depth) {
         remove_registrations(P, i);
         disable(r, "a registration was refused during create() (see the messages above)");
     } else {
-        r->ok = true;
+        r->ok = r->live = true;
     }
 }
 
@@ -551,7 +551,9 @@ void sl_plugins_shutdown(sl_plugins *P) {
         sl_plugin_rec *r = P->items[i];
         if (r->active && r->desc.deactivate) r->desc.deactivate(r->user);
         r->active = false;
-        if (r->ok && r->user && r->desc.destroy) r->desc.destroy(r->user);
+        /* r->user == r: create() gave no state (the "created" mark) */
+        if (r->live && r->desc.destroy) r->desc.destroy(r->user == (void *)r ? NULL : r->user);
+        r->live = false;
         r->user = NULL;
     }
     for (int i = 0; i < P->count; i++) {

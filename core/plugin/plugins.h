@@ -25,6 +25,8 @@ typedef struct sl_plugin_rec {
     bool ok;               /* loaded and created */
     bool active;           /* activate() succeeded */
     bool creating;         /* inside create(): registrations allowed */
+    bool live;             /* create() succeeded: destroy() is owed at shutdown, also after the
+                            * plugin was disabled later (activate() or a lazy compile failed) */
     char *disabled_reason; /* why it is not ok */
     void *user;
     sl_host *host;         /* made by sl_plugins.make_host (core/host), freed with the record */
