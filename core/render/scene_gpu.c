@@ -268,10 +268,13 @@ void sl_gpu_pack_lights(sl_app *app) {
     for (int pass = casters ? 0 : 1; pass < 2; pass++)
         for (int t = 0; t < r->ntypes; t++) {
             int(*range)[2] = pass == 0 ? r->shadowed_range : r->type_range;
-            /* a type without an l/E pair has no casters' loop: its casters stay in pass 1 */
             bool lit = sl_forward_light_type_lit(app, r->types[t]);
             range[t][0] = k;
-            for (int i = 0; i < s->light_count && (lit || pass == 1); i++) {
+            if (pass == 0 && !lit) { /* no casters' loop for a type without an l/E pair: its */
+                range[t][1] = k;     /* casters stay in its own range (pass 1) */
+                continue;
+            }
+            for (int i = 0; i < s->light_count; i++) {
                 const sl_light *L = &s->lights[i];
                 if (!L->enabled || strcmp(L->type, r->types[t])) continue;
                 if (casters && lit && L->cast_shadows != (pass == 0)) continue;
