@@ -1,7 +1,8 @@
 /* shadelab-bench's numbers on inputs whose answers are known by hand: RMSE/PSNR/relMSE of
  * constant offsets, SSIM = 1 for identical images, the closed forms of SSIM for constant
  * images and for checkerboards, SSIM against a direct (non-separable) evaluation of Wang et
- * al.'s formula, the Pareto front of a hand-made point set, and the --auto-quality choice. */
+ * al.'s formula, FLIP on pairs derived by hand from Andersson et al.'s formulas, the Pareto
+ * front of a hand-made point set, and the --auto-quality choice. */
 #include "autoquality.h"
 #include "bench.h"
 #include "check.h"
@@ -129,6 +130,112 @@ static void test_display_luma(void) {
     CHECK_NEAR(l[0], 0.49994, 2e-4);
     CHECK_NEAR(l[1], 0.2126, 1e-6);
     CHECK_NEAR(l[2], 0.7152, 1e-6); /* NaN -> 0, 5 -> 1 (clamped), -1 -> 0 */
+}
+
+/* FLIP on pairs whose value follows by hand from the paper's formulas (Andersson et al. 2020).
+ *
+ * Shared constants. sRGB->XYZ matrix M (IEC 61966-2-1), white W = M (1,1,1) =
+ * (0.95047, 1.0000001, 1.08883). CIE L*a*b* of the primaries with that white, f(t) = cbrt(t):
+ *   green (0,1,0): L 87.734719, a -86.182702, b  83.179315
+ *   blue  (0,0,1): L 32.297009, a  79.187527, b -107.860165
+ *   red   (1,0,0): L 53.240792, a  80.092470, b  67.203193
+ * Hunt adjustment a_H = a L/100, b_H = b L/100:
+ *   green (87.734719, -75.612151, 72.977138), blue (32.297009, 25.575203, -34.835607),
+ *   red (53.240792, 42.641865, 35.779512).
+ * HyAB(green, blue) = |87.734719 - 32.297009| + |(-101.187354, 107.812745)| = 55.437710 +
+ * 147.859624 = 203.297334; cmax = 203.297334^0.7 = 41.275484; knee pc cmax = 16.510194.
+ * Compression: e = HyAB^0.7; e < 16.510194: 0.95 e / 16.510194; else
+ * 0.95 + (e - 16.510194) / (41.275484 - 16.510194) * 0.05.
+ *
+ * Uniform images: every filter has unit sum (CSF) or zero sum (edge, point) and borders are
+ * clamped, so the CSF leaves each colour unchanged and the feature error is 0: the FLIP of
+ * every pixel, and the mean, is the compressed colour error, at any ppd. */
+static void test_flip_uniform(void) {
+    const int w = 24, h = 18;
+    float *black = image(w, h, 0, 0, 0), *white = image(w, h, 1, 1, 1);
+    float *red = image(w, h, 1, 0, 0), *green = image(w, h, 0, 1, 0);
+    /* identical images: 0 everywhere */
+    float *map = malloc(sizeof(float) * w * h);
+    CHECK(sl_metric_flip(red, red, w, h, 0, map) == 0.0);
+    /* black vs white: L 0 vs 100, a = b = 0: HyAB 100, e = 100^0.7 = 25.118864 > knee:
+     * 0.95 + (25.118864 - 16.510194) / 24.765290 * 0.05 = 0.967381 */
+    CHECK_NEAR(sl_metric_flip(black, white, w, h, 0, map), 0.967381, 2e-5);
+    CHECK_NEAR(map[0], 0.967381, 2e-5);
+    CHECK_NEAR(map[w * h - 1], 0.967381, 2e-5);
+    /* red vs green: |53.240792 - 87.734719| + |(118.254016, -37.197626)| = 34.493927 +
+     * 123.966430 = 158.460357; e = 158.460357^0.7 = 34.669249 > knee:
+     * 0.95 + (34.669249 - 16.510194) / 24.765290 * 0.05 = 0.986662 */
+    CHECK_NEAR(sl_metric_flip(red, green, w, h, 0, NULL), 0.986662, 2e-5);
+    /* symmetric in its arguments; non-finite values are displayed as 0 (NaN) or 1 (+Inf) */
+    CHECK_NEAR(sl_metric_flip(green, red, w, h, 0, NULL), 0.986662, 2e-5);
+    for (int i = 0; i < w * h; i++) { black[4 * i] = NAN; white[4 * i + 1] = INFINITY; }
+    CHECK_NEAR(sl_metric_flip(black, white, w, h, 0, NULL), 0.967381, 2e-5);
+    /* invalid arguments: NaN, not garbage */
+    CHECK(isnan(sl_metric_flip(red, green, 0, h, 0, NULL)));
+    CHECK(isnan(sl_metric_flip(red, green, w, h, 0.5, NULL)));
+    free(black); free(white); free(red); free(green); free(map);
+}
+
+/* A vertical step edge at ppd = 2 (half a degree per pixel), where both pipelines reduce to
+ * sums a hand can do:
+ * - CSF: radius ceil(3 sqrt(0.04 / (2 pi^2)) 2) = 1; the neighbours' weights relative to the
+ *   centre are exp(-pi^2 0.5^2 / b) <= exp(-61.7) ~ 1.6e-27, so each pixel keeps its colour.
+ * - Features: sigma = 0.5 * 0.082 * 2 = 0.082 px, radius 1. The 1D edge kernel -x g(x) is
+ *   (+, 0, -) and normalised to (1, 0, -1); the point kernel (x^2/sigma^2 - 1) g(x) is
+ *   (+, -, +), normalised to (0.5, -1, 0.5); across the edge the unit-sum Gaussian (with
+ *   clamped borders on a vertically constant image) changes nothing and the y responses are 0.
+ *   Reference: columns 0-3 black (Y^ = 0), 4-7 white (Y^ = 1). Test: columns 4-7 grey 0.8
+ *   (Y^ = 0.8). At columns 3 and 4 the edge response is |0 - Y^right| (1 vs 0.8), the point
+ *   response half that (0.5 vs 0.4); elsewhere both are 0. Feature error at columns 3, 4:
+ *   (max(0.2, 0.1) / sqrt 2)^0.5 = 0.376060.
+ * - Colour: columns 0-3 black vs black: 0, so FLIP 0 (0^(1 - f) = 0). Columns 4-7: white vs
+ *   grey 0.8: L* = 116 * 0.8^(1/3) - 16 = 91.684861, a = b = 0; HyAB = 8.315139,
+ *   e = 8.315139^0.7 = 4.404622 < knee: 0.95 * 4.404622 / 16.510194 = 0.253443.
+ * - Column 4: 0.253443^(1 - 0.376060) = 0.424675; columns 5-7: 0.253443.
+ * Mean over the 8 columns: (3 * 0.253443 + 0.424675) / 8 = 0.148126. */
+static void test_flip_step_edge(void) {
+    const int w = 8, h = 5;
+    float *ref = image(w, h, 0, 0, 0), *test = image(w, h, 0, 0, 0), map[8 * 5];
+    for (int y = 0; y < h; y++)
+        for (int x = 4; x < w; x++)
+            for (int c = 0; c < 3; c++) {
+                ref[4 * (y * w + x) + c] = 1.0f;
+                test[4 * (y * w + x) + c] = 0.8f;
+            }
+    CHECK_NEAR(sl_metric_flip(test, ref, w, h, 2.0, map), 0.148126, 1e-5);
+    for (int y = 0; y < h; y++) {
+        CHECK(map[y * w + 0] == 0 && map[y * w + 3] == 0);
+        CHECK_NEAR(map[y * w + 4], 0.424675, 1e-5);
+        CHECK_NEAR(map[y * w + 5], 0.253443, 1e-5);
+        CHECK_NEAR(map[y * w + 7], 0.253443, 1e-5);
+    }
+    free(ref); free(test);
+}
+
+/* What the CSF is for: a one-pixel blue/yellow checkerboard against its mean colour (the
+ * average of yellow and blue in XYZ is grey 0.5) is plain at 8 pixels per degree and all but
+ * invisible at 64, where the filters average it out (borders excepted); a firefly is an error
+ * at any distance. */
+static void test_flip_viewing_distance(void) {
+    const int w = 64, h = 64;
+    float *checker = image(w, h, 0, 0, 0), *mean = image(w, h, 0.5f, 0.5f, 0.5f), *noisy = image(w, h, 0.5f, 0.5f, 0.5f);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            bool odd = (x + y) % 2;
+            float *p = checker + 4 * (y * w + x);
+            p[0] = p[1] = odd ? 1.0f : 0.0f; /* yellow */
+            p[2] = odd ? 0.0f : 1.0f;        /* blue */
+        }
+    noisy[4 * (16 * w + 16)] = noisy[4 * (16 * w + 16) + 1] = noisy[4 * (16 * w + 16) + 2] = 1.0f;
+    double near = sl_metric_flip(checker, mean, w, h, 8, NULL), far = sl_metric_flip(checker, mean, w, h, 64, NULL);
+    CHECK(near > 0.9 && far < 0.05 && far > 0);
+    float *map = malloc(sizeof(float) * w * h);
+    double firefly = sl_metric_flip(noisy, mean, w, h, 0, map);
+    CHECK(firefly > 0 && map[16 * w + 16] > 0.2f && map[0] == 0);
+    double sum = 0;
+    for (int i = 0; i < w * h; i++) sum += map[i];
+    CHECK_NEAR(firefly, sum / (w * h), 1e-9);
+    free(checker); free(mean); free(noisy); free(map);
 }
 
 static void test_pareto(void) {
@@ -329,6 +436,9 @@ int main(void) {
     test_rmse_psnr_relmse();
     test_ssim();
     test_display_luma();
+    test_flip_uniform();
+    test_flip_step_edge();
+    test_flip_viewing_distance();
     test_pareto();
     test_choose();
     test_outputs();

@@ -19,6 +19,24 @@
  *           core's display transform), in float (no 8-bit quantisation). DSSIM = 1 - SSIM is
  *           the lower-is-better form the charts and budgets use.
  *
+ *   FLIP    LDR-FLIP of Andersson et al., "FLIP: A Difference Evaluator for Alternating Images",
+ *           Proc. ACM CGIT 3(2), 2020, written from the paper's formulas: a perceptual error per
+ *           pixel in [0,1] and its mean over the image (the pooled value the authors recommend).
+ *           Input: the display image, each channel of the linear image clamped to [0,1] (NaN ->
+ *           0), i.e. what the core's display pass encodes, without 8-bit quantisation. Colour:
+ *           sRGB primaries -> XYZ (white = RGB 1,1,1) -> YyCxCz; each channel filtered by the
+ *           paper's contrast sensitivity kernel sum_k a_k sqrt(pi/b_k) exp(-pi^2 x^2/b_k) (x in
+ *           degrees, unit sum, radius ceil(3 sqrt(0.04/(2 pi^2)) ppd)); back to linear RGB
+ *           clamped to [0,1]; L*a*b* with the Hunt adjustment a,b *= L/100; HyAB distance
+ *           |dL| + |(da,db)|, raised to 0.7 and compressed (knee 0.4 of the Hunt-adjusted
+ *           green-blue distance -> 0.95). Features: on Y/Yn, the magnitudes of the first and
+ *           second derivatives of a Gaussian (sigma = 0.5 * 0.082 deg * ppd pixels, radius
+ *           ceil(3 sigma), positive weights summing to 1 and negative to -1); feature error =
+ *           (max(|d edge|, |d point|) / sqrt 2)^0.5. Per pixel: colour^(1 - feature). Image
+ *           borders: clamp to edge. ppd: pixels per degree of visual angle; the paper's default
+ *           67 (a 0.7 m wide 3840-pixel monitor seen from 0.7 m). HDR-FLIP (several exposures of
+ *           an HDR pair) is not implemented: the bench compares images after tone mapping.
+ *
  * Non-finite pixels (NaN/Inf in either image) are left out of RMSE/relMSE/PSNR and counted
  * (sl_bench_error.nonfinite): a setting that produces NaN is reported, never averaged in. */
 #ifndef SL_BENCH_METRICS_H
@@ -36,6 +54,10 @@ extern "C" {
 #define SL_SSIM_K2 0.03
 #define SL_SSIM_WINDOW 11
 #define SL_SSIM_SIGMA 1.5
+/* 0.7 m * (3840 px / 0.7 m) * pi / 180: the paper's observer (section 5). */
+#define SL_FLIP_PPD_DEFAULT 67.0206
+#define SL_FLIP_PPD_MIN 1.0     /* below this the feature kernels underflow */
+#define SL_FLIP_PPD_MAX 1000.0
 
 typedef struct sl_bench_error {
     double rmse, relmse, psnr, ssim, max_abs;
@@ -49,6 +71,10 @@ void sl_metric_display_luma(const float *rgba, int width, int height, float *lum
 /* Mean SSIM of two single-channel images with values in [0,1] (see above). Needs width and
  * height >= SL_SSIM_WINDOW; returns NaN otherwise. */
 double sl_metric_ssim(const float *x, const float *y, int width, int height);
+/* Mean LDR-FLIP of test against ref (RGBA float, w*h*4, see above); ppd <= 0 means
+ * SL_FLIP_PPD_DEFAULT. error_map: NULL, or w*h floats that receive the per-pixel error.
+ * NaN when w or h <= 0, ppd is outside [SL_FLIP_PPD_MIN, SL_FLIP_PPD_MAX] or memory runs out. */
+double sl_metric_flip(const float *test_rgba, const float *ref_rgba, int w, int h, double ppd, float *error_map);
 /* Every metric above at once: a = the image under test, ref = the reference. */
 void sl_metric_all(const float *a, const float *ref, int width, int height, sl_bench_error *out);
 
