@@ -62,7 +62,7 @@ void sl_startup_huge_pages(char **argv) {
     /* Only where small pages are slow: 2.8 ms/MB on the VM the re-exec was measured on (a warm
      * head start 3.05 → 2.54 s with it), 0.4-0.5 ms/MB on one where it made a cold head start
      * 0-9 % slower (clearing whole huge pages, 0.85 s of system time against 0.32 s; interleaved
-     * A/B, docs/design-notes.md, seventh round). SHADELAB_HUGE_PAGES=1 re-executes regardless. */
+     * A/B; docs/design-notes.md, "Start-up"). SHADELAB_HUGE_PAGES=1 re-executes regardless. */
     const char *force = getenv("SHADELAB_HUGE_PAGES");
     if (!(force && *force && strcmp(force, "0")) && small_page_ms_per_mb() < SL_HUGE_PAGES_MS_PER_MB) return;
     char value[4096];
