@@ -5,6 +5,7 @@
 #include <shadelab/ext/shadow_maps.h>
 #include <shadelab/ext/environment.h>
 #include <shadelab/input.h>
+#include <shadelab/matrix.h>
 int main() {
     sl_plugin_desc d{};
     d.dependencies = nullptr;

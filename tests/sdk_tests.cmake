@@ -13,3 +13,6 @@ set_tests_properties(sdk_install PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT
 add_executable(sdk_cxx20 ${CMAKE_CURRENT_LIST_DIR}/sdk_cxx20.cpp)
 target_include_directories(sdk_cxx20 PRIVATE ${PROJECT_SOURCE_DIR}/sdk/include)
 set_target_properties(sdk_cxx20 PROPERTIES CXX_STANDARD 20 CXX_STANDARD_REQUIRED ON CXX_EXTENSIONS OFF)
+
+# <shadelab/matrix.h>: the 4x4 inverse plugins share, against closed forms.
+sl_add_test(sdk_matrix SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_sdk_matrix.c)

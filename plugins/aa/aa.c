@@ -5,6 +5,7 @@
 #include <shadelab/shadelab.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
+#include <shadelab/matrix.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -153,30 +154,6 @@ static bool taa_active(void *user, const sl_frame *f) {
     return param(user, "method").i == AA_TAA;
 }
 
-/* 4x4 inverse by Gauss-Jordan elimination with partial pivoting (column-major in and out). */
-static bool invert4(const float *m, float *out) {
-    double a[4][8];
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) a[r][c] = m[c * 4 + r], a[r][c + 4] = r == c;
-    for (int c = 0; c < 4; c++) {
-        int piv = c;
-        for (int r = c + 1; r < 4; r++)
-            if (fabs(a[r][c]) > fabs(a[piv][c])) piv = r;
-        if (fabs(a[piv][c]) < 1e-30) return false;
-        for (int k = 0; k < 8; k++) { double t = a[c][k]; a[c][k] = a[piv][k]; a[piv][k] = t; }
-        double d = a[c][c];
-        for (int k = 0; k < 8; k++) a[c][k] /= d;
-        for (int r = 0; r < 4; r++)
-            if (r != c) {
-                double g = a[r][c];
-                for (int k = 0; k < 8; k++) a[r][k] -= g * a[c][k];
-            }
-    }
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) out[c * 4 + r] = (float)a[r][c + 4];
-    return true;
-}
-
 /* The history in the colour target's own format (RGBA16F, RGBA32F with --float). */
 static void taa_textures(aa *a, int w, int h, int format, int dw, int dh) {
     if (w != a->hw || h != a->hh || format != a->hformat) {
@@ -232,7 +209,7 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         return;
     }
     float inv[16], prev_inv[16];
-    if (!invert4(f->view_proj, inv) || !invert4(f->prev_view_proj, prev_inv)) valid = false;
+    if (!sl_mat4_invert(f->view_proj, inv) || !sl_mat4_invert(f->prev_view_proj, prev_inv)) valid = false;
     int next = 1 - a->current;
     glNamedFramebufferTexture(a->fbo, GL_COLOR_ATTACHMENT0, a->history[next], 0);
     /* A still (nothing moved: the history is this pixel's own earlier frames) is the exact mean:

@@ -8,6 +8,7 @@
 #include <shadelab/shadelab.h>
 #include <shadelab/cache.h>
 #include <shadelab/input.h>
+#include <shadelab/matrix.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include "envmap/io.h"
@@ -735,29 +736,6 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
 
 /* ---------------------------------------------------------------- background pass */
 
-static bool invert4(const float m[16], float out[16]) {
-    double a[4][8];
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 8; c++) a[r][c] = c < 4 ? m[c * 4 + r] : (c - 4 == r);
-    for (int c = 0; c < 4; c++) {
-        int p = c;
-        for (int r = c + 1; r < 4; r++)
-            if (fabs(a[r][c]) > fabs(a[p][c])) p = r;
-        if (fabs(a[p][c]) < 1e-30) return false;
-        for (int k = 0; k < 8; k++) { double t = a[c][k]; a[c][k] = a[p][k]; a[p][k] = t; }
-        double d = a[c][c];
-        for (int k = 0; k < 8; k++) a[c][k] /= d;
-        for (int r = 0; r < 4; r++)
-            if (r != c) {
-                double q = a[r][c];
-                for (int k = 0; k < 8; k++) a[r][k] -= q * a[c][k];
-            }
-    }
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) out[c * 4 + r] = (float)a[r][c + 4];
-    return true;
-}
-
 static bool background_shown(envmap *e) { return e->have_src && !e->bg_is_clear && param(e, "background").b; }
 static bool core_supersampled(envmap *e) { return e->host->get_param(e->host, "core.ssaa").i > 1; }
 
@@ -792,7 +770,7 @@ static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
     glUniform1i(glGetUniformLocation(prog, "envmap_depth"), e->unit_lut);
     bind_source(e, prog);
     float inv[16];
-    if (!invert4(f->view_proj, inv)) return;
+    if (!sl_mat4_invert(f->view_proj, inv)) return;
     glUniformMatrix4fv(glGetUniformLocation(prog, "envmap_inv_view_proj"), 1, GL_FALSE, inv);
     glUniform2f(glGetUniformLocation(prog, "envmap_viewport"), (float)f->width, (float)f->height);
     glUniform1f(glGetUniformLocation(prog, "envmap_pixel_angle"), 2.0f / (f->proj[5] * (float)f->height));
