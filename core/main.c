@@ -1,5 +1,6 @@
 /* shadelab command line: headless renders, the window viewer, plugin/parameter listings. */
 #include "app.h"
+#include "cli.h"
 #include "quality/autoquality.h" /* --auto-quality (shadelab_quality) */
 #include "log.h"
 #include "render/renderer.h"
@@ -7,7 +8,6 @@
 #include "turntable.h"
 #include "viewer.h"
 #include <cjson/cJSON.h>
-#include <shadelab/input.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <errno.h>
@@ -15,7 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -23,146 +22,9 @@
 #include <unistd.h>
 #include <time.h>
 
-static const char *usage =
-    "usage: shadelab [options] [FILE]\n"
-    "  FILE, --scene FILE     a JSON scene, or a model (glTF .gltf/.glb, OBJ, anything assimp reads; detected by\n"
-    "                         content) shown framed with a default environment and tone mapping\n"
-    "                         (default: the built-in scene, no files needed)\n"
-    "  --headless             render without a window (EGL on a GPU, else OSMesa)\n"
-    "  --backend NAME         auto | headless | glfw | osmesa | egl\n"
-    "  --size WxH             viewport size (default 1280x720)\n"
-    "  --frames N             render N frames, then write --output and exit (headless default 1, or the\n"
-    "                         frames a still needs: aa.taa_frames with TAA, all at --time)\n"
-    "  --output FILE          .png (display-encoded) or .exr (linear HDR); headless default out.png\n"
-    "  --turntable N          N frames orbiting the camera once around the scene (a seamless loop, scene time\n"
-    "                         frozen), written as OUT-000.png ... from --output's name; --output x.mp4 (.mkv,\n"
-    "                         .webm, .mov) encodes them at 30 fps with ffmpeg when it is installed (optional)\n"
-    "  --stats FILE.json      per-pass and frame times (median/mean/min over the frames)\n"
-    "  --bench                print median frame and per-pass times over the frames (use --frames >= 30)\n"
-    "  --plugin NAME|PATH     load a plugin (repeatable)\n"
-    "  --set ID=VALUE         set a parameter: plugin.param, material.NAME.key, light.NAME.key (repeatable)\n"
-    "  --camera NAME          start from a scene camera (--list-cameras; a model's first camera by default)\n"
-    "  --list-cameras         the scene's cameras (a model file's own included) with position and field of view\n"
-    "  --debug-view NAME      replace the output with a debug view (--list-debug-views)\n"
-    "  --accumulate N         average N frames per output (Monte Carlo references)\n"
-    "  --reference PLUGIN     render PLUGIN's declared ground truth (its settings and accumulation)\n"
-    "  --auto-quality SPEC    [METRIC=]BUDGET[@FRONT.json,...]: per plugin the cheapest benchmarked setting within BUDGET\n"
-    "  --float                RGBA32F colour target instead of RGBA16F\n"
-    "  --data DIR             data directory for assets (also SHADELAB_DATA)\n"
-    "  --time T               scene time in seconds for the first frame (default 0)\n"
-    "  --strict               a plugin that fails to load is fatal\n"
-    "  --list-plugins         loaded plugins, disabled ones with their reasons\n"
-    "  --list-debug-views     debug views of the loaded plugins\n"
-    "  --dump-params          the parameter schema and values as JSON\n"
-    "  --explain              passes, programs and plugins the scene really runs, with their cost\n"
-    "  --help-keys            key bindings of the viewer and the plugins\n"
-    "  -v, --verbose | -q, --quiet | --version | --help\n";
-
-typedef struct cli {
-    sl_app_options opt;
-    const char *output, *stats, *reference, *auto_quality;
-    int frames, turntable;
-    bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys, list_cameras;
-    double start_time;
-} cli;
-
 static int die(const char *msg) {
     fprintf(stderr, "shadelab: %s\n", msg);
     return 1;
-}
-
-/* Every number on the command line goes through the SDK's strict readers (<shadelab/input.h>:
- * the whole text, within range, finite, no overflow), as the tools' do. */
-
-/* --output names a video (encoded by ffmpeg from the turntable's PNG frames). */
-static bool is_video(const char *path) {
-    const char *dot = strrchr(path, '.');
-    return dot && (!strcasecmp(dot, ".mp4") || !strcasecmp(dot, ".mkv") || !strcasecmp(dot, ".webm") || !strcasecmp(dot, ".mov"));
-}
-
-static int parse_args(int argc, char **argv, cli *c, char *err, size_t n) {
-    memset(c, 0, sizeof *c);
-    c->frames = -1;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-#define NEXT() (i + 1 < argc ? argv[++i] : (snprintf(err, n, "%s needs a value", a), (char *)NULL))
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); return 2; }
-        else if (!strcmp(a, "--version")) { printf("shadelab %s (plugin ABI %d.%d)\n", SL_VERSION, SL_ABI_MAJOR, SL_ABI_MINOR); return 2; }
-        else if (!strcmp(a, "--scene")) { if (!(c->opt.scene_path = NEXT())) return 1; }
-        else if (!strcmp(a, "--headless")) c->headless = true;
-        else if (!strcmp(a, "--backend")) {
-            const char *v = NEXT();
-            if (!v) return 1;
-            if (!sl_backend_parse(v, &c->opt.backend)) { snprintf(err, n, "--backend %s: expected auto, headless, glfw, osmesa or egl", v); return 1; }
-        } else if (!strcmp(a, "--size")) {
-            const char *v = NEXT();
-            if (!v) return 1;
-            if (!sl_parse_size(v, 16384, &c->opt.width, &c->opt.height)) { snprintf(err, n, "--size %s: expected WxH, 1..16384 each", v); return 1; }
-        } else if (!strcmp(a, "--frames")) {
-            const char *v = NEXT();
-            if (!v) return 1;
-            long f;
-            if (!sl_parse_long(v, 1, 1000000, &f)) { snprintf(err, n, "--frames %s: expected a whole number 1..1000000", v); return 1; }
-            c->frames = (int)f;
-        } else if (!strcmp(a, "--output")) { if (!(c->output = NEXT())) return 1; }
-        else if (!strcmp(a, "--turntable")) {
-            const char *v = NEXT();
-            if (!v) return 1;
-            long t;
-            if (!sl_parse_long(v, 1, 100000, &t)) { snprintf(err, n, "--turntable %s: expected a whole number of frames 1..100000", v); return 1; }
-            c->turntable = (int)t;
-        }
-        else if (!strcmp(a, "--stats")) { if (!(c->stats = NEXT())) return 1; }
-        else if (!strcmp(a, "--bench")) c->bench = true;
-        else if (!strcmp(a, "--plugin")) {
-            if (c->opt.plugin_count == 64) { snprintf(err, n, "too many --plugin"); return 1; }
-            if (!(c->opt.plugins[c->opt.plugin_count++] = NEXT())) return 1;
-        } else if (!strcmp(a, "--set")) {
-            if (c->opt.setting_count == 128) { snprintf(err, n, "too many --set"); return 1; }
-            if (!(c->opt.settings[c->opt.setting_count++] = NEXT())) return 1;
-        } else if (!strcmp(a, "--camera")) { if (!(c->opt.camera = NEXT())) return 1; }
-        else if (!strcmp(a, "--debug-view")) { if (!(c->opt.debug_view = NEXT())) return 1; }
-        else if (!strcmp(a, "--accumulate")) {
-            const char *v = NEXT();
-            if (!v) return 1;
-            long k;
-            if (!sl_parse_long(v, 1, 1000000, &k)) { snprintf(err, n, "--accumulate %s: expected a whole number 1..1000000", v); return 1; }
-            c->opt.accumulate = (int)k;
-        } else if (!strcmp(a, "--reference")) { if (!(c->reference = NEXT())) return 1; }
-        else if (!strcmp(a, "--auto-quality")) { if (!(c->auto_quality = NEXT())) return 1; }
-        else if (!strcmp(a, "--float")) c->opt.float32 = true;
-        else if (!strcmp(a, "--data")) { if (!(c->opt.data_dir = NEXT())) return 1; }
-        else if (!strcmp(a, "--time")) {
-            const char *v = NEXT();
-            if (!v) return 1;
-            if (!sl_parse_double(v, -1e9, 1e9, &c->start_time)) { snprintf(err, n, "--time %s: expected seconds, a finite number within +-1e9", v); return 1; }
-        }
-        else if (!strcmp(a, "--strict")) c->opt.strict = true;
-        else if (!strcmp(a, "--list-plugins")) c->list_plugins = true;
-        else if (!strcmp(a, "--list-debug-views")) c->list_views = true;
-        else if (!strcmp(a, "--dump-params")) c->dump_params = true;
-        else if (!strcmp(a, "--explain")) c->explain = true;
-        else if (!strcmp(a, "--help-keys")) c->help_keys = true;
-        else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) sl_log_threshold = SL_LOG_DEBUG;
-        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) sl_log_threshold = SL_LOG_WARN;
-        else if (!strcmp(a, "--list-cameras")) c->list_cameras = true;
-        else if (a[0] != '-' && !c->opt.scene_path) c->opt.scene_path = a; /* shadelab model.glb */
-        else if (a[0] != '-') { snprintf(err, n, "%s: only one scene or model file (already %s)", a, c->opt.scene_path); return 1; }
-        else { snprintf(err, n, "unknown option %s (see --help)", a); return 1; }
-#undef NEXT
-    }
-    if (c->headless && c->opt.backend == SL_BACKEND_AUTO) c->opt.backend = SL_BACKEND_HEADLESS;
-    /* pass timings (glFinish on CPU rasterisers) only where they are printed */
-    c->opt.timings = c->bench || c->stats || c->explain;
-    /* an EXR is the final linear "color": no pass writes the display encoding on the fly */
-    const char *ext = c->output ? strrchr(c->output, '.') : NULL;
-    c->opt.keep_color = ext && (!strcasecmp(ext, ".exr") || !strcasecmp(ext, ".hdr"));
-    if (c->turntable && c->frames > 0) { snprintf(err, n, "--turntable renders its own frames (each a still); leave out --frames"); return 1; }
-    if (c->output && is_video(c->output) && !c->turntable) {
-        snprintf(err, n, "--output %s: a video is written by --turntable N (a still is .png or .exr)", c->output);
-        return 1;
-    }
-    return 0;
 }
 
 static int cmp_double(const void *a, const void *b) {
@@ -395,9 +257,9 @@ static void remove_frames(const char *dir) {
 /* N frames orbiting the camera once around the scene's bounds (turntable.h); each frame is a
  * still (the frames a plugin's still needs, TAA's history, at the frozen start time), so frame k
  * depends only on its angle and frame N would equal frame 0. */
-static int run_turntable(sl_app *app, const cli *c, const char *ffmpeg, recorder *rec, double start, double *first_ms) {
+static int run_turntable(sl_app *app, const sl_cli *c, const char *ffmpeg, recorder *rec, double start, double *first_ms) {
     const char *output = c->output ? c->output : "out.png";
-    bool video = is_video(output);
+    bool video = sl_cli_is_video(output);
     char dir[4096] = "", base[4200], path[4300], err[4096];
     if (video) {
         const char *tmp = getenv("TMPDIR");
@@ -472,14 +334,14 @@ int main(int argc, char **argv) {
     sl_startup_huge_pages(argv);
     double start = now_ms();
     sl_startup_begin();
-    cli c;
+    sl_cli c;
     char err[16384] = "";
-    int pr = parse_args(argc, argv, &c, err, sizeof err);
-    if (pr == 2) return 0;
-    if (pr) return die(err);
+    sl_cli_result parsed = sl_cli_parse(argc, argv, &c, err, sizeof err);
+    if (parsed == SL_CLI_DONE) return 0;
+    if (parsed == SL_CLI_ERROR) return die(err);
     sl_startup_mark("command line");
     char ffmpeg[4096] = "";
-    if (c.turntable && c.output && is_video(c.output) && !find_in_path("ffmpeg", ffmpeg, sizeof ffmpeg)) {
+    if (c.turntable && c.output && sl_cli_is_video(c.output) && !find_in_path("ffmpeg", ffmpeg, sizeof ffmpeg)) {
         snprintf(err, sizeof err, "--output %s: encoding a video needs ffmpeg, which is not installed (it is optional: "
                  "apt-get install ffmpeg); --output NAME.png writes the frames as NAME-000.png ... instead", c.output);
         return die(err);
