@@ -1,7 +1,17 @@
 #!/usr/bin/env bash
 # Installs every build/test dependency of shadelab from Debian 12's packages, only when missing.
 # Nothing is downloaded from anywhere else. Safe to run repeatedly.
+#   --with-tests  also what only the tests need: Blender (the cross-check's reference renderer,
+#                 tools/xcheck, ctest -L xcheck), left out of the first command's install
 set -euo pipefail
+
+WITH_TESTS=0
+for a in "$@"; do
+  case "$a" in
+    --with-tests) WITH_TESTS=1 ;;
+    *) echo "install-deps: unknown option $a (expected --with-tests)" >&2; exit 2 ;;
+  esac
+done
 
 PKGS=(
   build-essential cmake pkg-config
@@ -21,6 +31,9 @@ PKGS=(
   xvfb xauth              # GUI smoke test
   clang libclang-rt-14-dev  # fuzzing (libFuzzer) and sanitizers
 )
+if [ "$WITH_TESTS" = 1 ]; then
+  PKGS+=(blender)         # shadelab-xcheck's reference (Cycles) and its tests; large, tests only
+fi
 
 missing=()
 for p in "${PKGS[@]}"; do

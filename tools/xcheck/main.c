@@ -1,0 +1,536 @@
+/* shadelab-xcheck: a scene or model file against Blender's path tracer (docs/xcheck.md).
+ * Exports the scene as a Blender scene, renders it with Cycles (cached by a hash of the export,
+ * Blender's version and the sample count), renders the same view with shadelab and compares them
+ * before tone mapping, per object and per material. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "compare.h"
+#include "export.h"
+#include "toolkit.h"
+
+#define XC_EXIT_NO_BLENDER 77 /* ctest's skip code: the cross-check cannot run without Blender */
+
+static const char usage[] =
+    "usage: shadelab-xcheck [options] SCENE.json|MODEL.gltf|MODEL.glb\n"
+    "Renders SCENE with Blender's Cycles and with shadelab, and compares them before tone mapping.\n"
+    "  --size WxH         image size (default 256x256)\n"
+    "  --samples N        Cycles samples per pixel (default 128)\n"
+    "  --bounces N        Cycles' light bounces (default 8; 0 = direct light only)\n"
+    "  --out DIR          where the report and images go (default xcheck-<scene name>)\n"
+    "  --set ID=VALUE     a shadelab setting, applied before the export (repeatable)\n"
+    "  --plugin NAME      load a plugin (repeatable)\n"
+    "  --camera NAME      the scene camera to use\n"
+    "  --data DIR         data directory for scene assets\n"
+    "  --frames N         shadelab frames rendered (TAA converges; default 8); the last is compared\n"
+    "  --reference-only   export and render Cycles only (DIR/cycles.exr, DIR/index.exr)\n"
+    "  --blender PATH     the Blender executable (default $SHADELAB_BLENDER or blender)\n"
+    "  --cache DIR        reference cache (default $SHADELAB_CACHE, $XDG_CACHE_HOME/shadelab or\n"
+    "                     ~/.cache/shadelab; references under DIR/xcheck/)\n"
+    "  --no-cache         always render the reference\n"
+    "  --max-rel-rms X    exit 1 when a cross-checked object's relative RMS exceeds X\n"
+    "Writes DIR/report.txt (printed), DIR/report.json, DIR/shadelab.exr, DIR/cycles.exr,\n"
+    "DIR/index.exr, DIR/error.png, DIR/side_by_side.png and the Blender scene in DIR/blender/.\n"
+    "Exit status: 0 done, 1 error (or --max-rel-rms exceeded), 77 Blender is not installed.\n";
+
+typedef struct options {
+    const char *scene, *out, *blender, *cache, *camera, *data;
+    int width, height, samples, bounces, frames;
+    bool reference_only, no_cache;
+    double max_rel_rms;
+    const char *settings[128]; int setting_count;
+    const char *plugins[64]; int plugin_count;
+} options;
+
+static bool parse(int argc, char **argv, options *o) {
+    *o = (options){.width = 256, .height = 256, .samples = 128, .bounces = 8, .frames = 8, .max_rel_rms = -1};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        bool has_next = i + 1 < argc;
+#define NEXT() (has_next ? argv[++i] : NULL)
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); exit(0); }
+        else if (!strcmp(a, "--reference-only")) o->reference_only = true;
+        else if (!strcmp(a, "--no-cache")) o->no_cache = true;
+        else if (a[0] == '-' && a[1] == '-' && !has_next) { fprintf(stderr, "shadelab-xcheck: %s needs a value\n", a); return false; }
+        else if (!strcmp(a, "--size")) {
+            const char *v = NEXT();
+            if (sscanf(v, "%dx%d", &o->width, &o->height) != 2 || o->width < 8 || o->height < 8 || o->width > 8192 ||
+                o->height > 8192) {
+                fprintf(stderr, "shadelab-xcheck: --size %s: expected WxH, 8..8192 each\n", v);
+                return false;
+            }
+        } else if (!strcmp(a, "--samples") || !strcmp(a, "--bounces") || !strcmp(a, "--frames")) {
+            const char *v = NEXT();
+            char *end;
+            long x = strtol(v, &end, 10);
+            long lo = !strcmp(a, "--bounces") ? 0 : 1, hi = !strcmp(a, "--samples") ? 1 << 20 : 1024;
+            if (*end || x < lo || x > hi) {
+                fprintf(stderr, "shadelab-xcheck: %s %s: expected an integer in [%ld, %ld]\n", a, v, lo, hi);
+                return false;
+            }
+            if (!strcmp(a, "--samples")) o->samples = (int)x;
+            else if (!strcmp(a, "--bounces")) o->bounces = (int)x;
+            else o->frames = (int)x;
+        } else if (!strcmp(a, "--max-rel-rms")) {
+            const char *v = NEXT();
+            char *end;
+            o->max_rel_rms = strtod(v, &end);
+            if (*end || !(o->max_rel_rms >= 0)) { fprintf(stderr, "shadelab-xcheck: --max-rel-rms %s: expected a number >= 0\n", v); return false; }
+        } else if (!strcmp(a, "--out")) o->out = NEXT();
+        else if (!strcmp(a, "--blender")) o->blender = NEXT();
+        else if (!strcmp(a, "--cache")) o->cache = NEXT();
+        else if (!strcmp(a, "--camera")) o->camera = NEXT();
+        else if (!strcmp(a, "--data")) o->data = NEXT();
+        else if (!strcmp(a, "--set")) {
+            if (o->setting_count == 127) { fprintf(stderr, "shadelab-xcheck: too many --set\n"); return false; }
+            o->settings[o->setting_count++] = NEXT();
+        } else if (!strcmp(a, "--plugin")) {
+            if (o->plugin_count == 63) { fprintf(stderr, "shadelab-xcheck: too many --plugin\n"); return false; }
+            o->plugins[o->plugin_count++] = NEXT();
+        } else if (a[0] == '-') { fprintf(stderr, "shadelab-xcheck: unknown option %s\n%s", a, usage); return false; }
+        else if (o->scene) { fprintf(stderr, "shadelab-xcheck: one scene at a time (%s and %s)\n", o->scene, a); return false; }
+        else o->scene = a;
+#undef NEXT
+    }
+    if (!o->scene) { fputs(usage, stderr); return false; }
+    return true;
+}
+
+/* ------------------------------------------------------------------------------ blender -- */
+
+static const char *blender_path(const options *o) {
+    if (o->blender) return o->blender;
+    const char *env = getenv("SHADELAB_BLENDER");
+    return env && *env ? env : "blender";
+}
+
+/* Single-quotes s for /bin/sh. */
+static void shell_quote(const char *s, char *out, size_t n) {
+    size_t u = 0;
+    if (u < n) out[u++] = '\'';
+    for (; *s && u + 5 < n; s++) {
+        if (*s == '\'') { memcpy(out + u, "'\\''", 4); u += 4; }
+        else out[u++] = *s;
+    }
+    if (u < n) out[u++] = '\'';
+    out[u < n ? u : n - 1] = 0;
+}
+
+/* "Blender 3.4.1" (the first line of blender --version), or false when it does not run. */
+static bool blender_version(const char *blender, char *version, size_t n) {
+    char q[4200], cmd[4400];
+    shell_quote(blender, q, sizeof q);
+    snprintf(cmd, sizeof cmd, "%s --version 2>/dev/null", q);
+    FILE *p = popen(cmd, "r");
+    if (!p) return false;
+    char line[256] = "";
+    version[0] = 0;
+    while (fgets(line, sizeof line, p))
+        if (!version[0] && !strncmp(line, "Blender ", 8)) {
+            line[strcspn(line, "\r\n")] = 0;
+            snprintf(version, n, "%s", line);
+        }
+    int status = pclose(p);
+    return version[0] && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+static double now_seconds(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+static bool copy_file(const char *from, const char *to, char *err, size_t n) {
+    FILE *in = fopen(from, "rb");
+    if (!in) { snprintf(err, n, "%s: %s", from, strerror(errno)); return false; }
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld", to, (long)getpid());
+    FILE *out = fopen(tmp, "wb");
+    if (!out) { fclose(in); snprintf(err, n, "%s: %s", tmp, strerror(errno)); return false; }
+    char buf[65536];
+    size_t k;
+    bool ok = true;
+    while ((k = fread(buf, 1, sizeof buf, in)) > 0) ok &= fwrite(buf, 1, k, out) == k;
+    ok &= !ferror(in);
+    fclose(in);
+    ok &= fclose(out) == 0;
+    if (ok && rename(tmp, to) != 0) ok = false;
+    if (!ok) { remove(tmp); snprintf(err, n, "%s: cannot copy to %s: %s", from, to, strerror(errno)); }
+    return ok;
+}
+
+static void cache_dir(const options *o, char *out, size_t n) {
+    const char *base = o->cache ? o->cache : getenv("SHADELAB_CACHE");
+    if (base && *base) { snprintf(out, n, "%s/xcheck", base); return; }
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    if (xdg && *xdg) snprintf(out, n, "%s/shadelab/xcheck", xdg);
+    else snprintf(out, n, "%s/.cache/shadelab/xcheck", home && *home ? home : "/tmp");
+}
+
+/* Renders DIR/blender/scene.py with Cycles into DIR/cycles.exr and DIR/index.exr, or copies them
+ * from the cache. */
+static bool cycles_reference(const options *o, const char *dir, uint64_t key, const char *blender, bool *cached,
+                             double *seconds, char *err, size_t n) {
+    char cdir[4096], cached_img[4200], cached_idx[4200], out_img[4200], out_idx[4200];
+    cache_dir(o, cdir, sizeof cdir);
+    snprintf(cdir + strlen(cdir), sizeof cdir - strlen(cdir), "/%016llx", (unsigned long long)key);
+    snprintf(cached_img, sizeof cached_img, "%s/combined.exr", cdir);
+    snprintf(cached_idx, sizeof cached_idx, "%s/index.exr", cdir);
+    snprintf(out_img, sizeof out_img, "%s/cycles.exr", dir);
+    snprintf(out_idx, sizeof out_idx, "%s/index.exr", dir);
+    *cached = false;
+    *seconds = 0;
+    struct stat st;
+    if (!o->no_cache && stat(cached_img, &st) == 0 && stat(cached_idx, &st) == 0) {
+        *cached = true;
+        return copy_file(cached_img, out_img, err, n) && copy_file(cached_idx, out_idx, err, n);
+    }
+    char render_dir[4200], qb[4200], qs[4400], qr[4400], ql[4400], cmd[20000];
+    snprintf(render_dir, sizeof render_dir, "%s/blender/render", dir);
+    char script[4300], log[4300];
+    snprintf(script, sizeof script, "%s/blender/scene.py", dir);
+    snprintf(log, sizeof log, "%s/blender.log", dir);
+    shell_quote(blender, qb, sizeof qb);
+    shell_quote(script, qs, sizeof qs);
+    shell_quote(render_dir, qr, sizeof qr);
+    shell_quote(log, ql, sizeof ql);
+    snprintf(cmd, sizeof cmd, "%s -b --factory-startup --python-exit-code 1 --python %s -- %s > %s 2>&1", qb, qs, qr, ql);
+    fprintf(stderr, "[xcheck] Cycles: %dx%d, %d samples, %d bounces (log: %s)\n", o->width, o->height, o->samples,
+            o->bounces, log);
+    double t0 = now_seconds();
+    int status = system(cmd);
+    *seconds = now_seconds() - t0;
+    char img[4300], idx[4300];
+    snprintf(img, sizeof img, "%s/combined_0001.exr", render_dir);
+    snprintf(idx, sizeof idx, "%s/index_0001.exr", render_dir);
+    if (status != 0 || stat(img, &st) != 0 || stat(idx, &st) != 0) {
+        snprintf(err, n, "Blender failed (exit status %d) for %s; its output is in %s", WIFEXITED(status) ? WEXITSTATUS(status) : -1,
+                 script, log);
+        return false;
+    }
+    if (!copy_file(img, out_img, err, n) || !copy_file(idx, out_idx, err, n)) return false;
+    if (!o->no_cache) {
+        char why[512];
+        if (xc_mkdirs(cdir, why, sizeof why) && copy_file(img, cached_img, why, sizeof why) &&
+            copy_file(idx, cached_idx, why, sizeof why)) {
+        } else {
+            fprintf(stderr, "[xcheck] warning: the reference is not cached: %s\n", why);
+        }
+    }
+    return true;
+}
+
+/* ------------------------------------------------------------------------------ shadelab -- */
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Renders o->frames frames (the first `warm-up` ones untimed) and reads the last one's linear
+ * colour; *ms = the median CPU time of the timed frames. */
+static bool render_shadelab(sl_app *app, const options *o, float *rgba, double *ms, char *err, size_t n) {
+    if (!sl_app_start_gl(app, err, n)) return false;
+    double times[1024];
+    int timed = 0;
+    for (int f = 0; f < o->frames; f++) {
+        app->time = f * app->opt.fixed_dt;
+        if (!sl_app_render_frame(app)) { snprintf(err, n, "shadelab could not render frame %d", f); return false; }
+        sl_tool_frame_times t;
+        sl_tool_frame_times_of(app, &t);
+        if (f > 0 || o->frames == 1) times[timed++] = t.frame_ms;
+    }
+    qsort(times, timed, sizeof *times, cmp_double);
+    *ms = timed ? times[timed / 2] : NAN;
+    if (!sl_app_read_color(app, rgba)) { snprintf(err, n, "shadelab: cannot read the frame"); return false; }
+    if (app->strict_failure) { snprintf(err, n, "%s", app->strict_failure); return false; }
+    return true;
+}
+
+/* ------------------------------------------------------------------------------- report -- */
+
+static void print_row(FILE *f, const char *name, const char *material, const xc_stats *s, bool checked) {
+    if (!s->pixels) {
+        fprintf(f, "  %-24s %-18s %8s  (not visible)\n", name, material, "");
+        return;
+    }
+    fprintf(f, "  %-24s %-18s %8ld  %8.4f  %8.4f  %10.4g  %10.4g%s\n", name, material, s->pixels, s->rel_rms,
+            s->mean_ratio, s->mean_test, s->mean_ref, checked ? "" : "  (not cross-checked)");
+}
+
+static void json_stats(FILE *f, const char *name, const char *material, const xc_stats *s, bool checked, bool last) {
+    fprintf(f, "    {\"name\": \"%s\", \"material\": \"%s\", \"pixels\": %ld, \"rel_rms\": %.6g, \"mean_ratio\": %.6g, "
+               "\"mean_shadelab\": %.6g, \"mean_cycles\": %.6g, \"cross_checked\": %s}%s\n",
+            name, material, s->pixels, isfinite(s->rel_rms) ? s->rel_rms : -1, isfinite(s->mean_ratio) ? s->mean_ratio : -1,
+            s->mean_test, s->mean_ref, checked ? "true" : "false", last ? "" : ",");
+}
+
+typedef struct report_ctx {
+    const options *o;
+    sl_app *app;
+    const xc_export *ex;
+    const float *test, *ref, *index;
+    int w, h;
+    const char *blender_version;
+    double cycles_seconds, shadelab_ms;
+    bool cached;
+    uint64_t key;
+} report_ctx;
+
+/* Prints and writes the report; returns the largest relative RMS of a cross-checked object. */
+static double report(const report_ctx *r, FILE *txt, FILE *json) {
+    const xc_export *ex = r->ex;
+    int w = r->w, h = r->h;
+    unsigned char *mask = malloc((size_t)w * h);
+    int mc = r->app->scene.material_count;
+    xc_stats *objects = calloc(ex->object_count + 1, sizeof *objects);
+    double worst = 0;
+    fprintf(txt, "shadelab-xcheck %s: %dx%d, Cycles (%s) %d samples, %d bounces%s\n", r->o->scene, w, h,
+            r->blender_version, r->o->samples, r->o->bounces,
+            r->cached ? ", reference from the cache" : "");
+    if (!r->cached) fprintf(txt, "Cycles: %.1f s (Blender start-up included)\n", r->cycles_seconds);
+    fprintf(txt, "shadelab: %.2f ms per frame (median)\n", r->shadelab_ms);
+    fprintf(txt, "compared before tone mapping, on each object's interior (its pixels whose four neighbours are it too)\n\n");
+    fprintf(txt, "  %-24s %-18s %8s  %8s  %8s  %10s  %10s\n", "object", "material", "pixels", "rel-RMS", "ratio",
+            "shadelab", "Cycles");
+    fprintf(json, "{\n  \"scene\": \"%s\", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d,\n"
+                  "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n"
+                  "  \"objects\": [\n",
+            r->o->scene, w, h, r->o->samples, r->o->bounces, r->blender_version, (unsigned long long)r->key,
+            r->cycles_seconds, r->shadelab_ms);
+    for (int i = 0; i < ex->object_count; i++) {
+        const xc_object *ob = &ex->objects[i];
+        xc_region_mask(r->index, w, h, i + 1, mask);
+        xc_region_stats(r->test, r->ref, mask, w, h, &objects[i]);
+        const char *mat = ob->material >= 0 ? r->app->scene.materials[ob->material].name : "";
+        print_row(txt, ob->name, mat, &objects[i], ob->checked);
+        json_stats(json, ob->name, mat, &objects[i], ob->checked, i == ex->object_count - 1);
+        if (ob->checked && objects[i].pixels && !(objects[i].rel_rms <= worst)) worst = objects[i].rel_rms;
+    }
+    fprintf(json, "  ],\n  \"materials\": [\n");
+    fprintf(txt, "\n  %-24s %-18s %8s  %8s  %8s  %10s  %10s\n", "material", "", "pixels", "rel-RMS", "ratio",
+            "shadelab", "Cycles");
+    bool first = true;
+    for (int m = 0; m < mc; m++) {
+        /* the union of its objects' interiors */
+        memset(mask, 0, (size_t)w * h);
+        bool checked = true, any = false;
+        unsigned char *one = malloc((size_t)w * h);
+        for (int i = 0; one && i < ex->object_count; i++) {
+            if (ex->objects[i].material != m) continue;
+            any = true;
+            checked &= ex->objects[i].checked;
+            xc_region_mask(r->index, w, h, i + 1, one);
+            for (size_t p = 0; p < (size_t)w * h; p++) mask[p] |= one[p];
+        }
+        free(one);
+        if (!any) continue;
+        xc_stats s;
+        xc_region_stats(r->test, r->ref, mask, w, h, &s);
+        print_row(txt, r->app->scene.materials[m].name, "", &s, checked);
+        fprintf(json, "%s", first ? "" : ",\n");
+        json_stats(json, r->app->scene.materials[m].name, "", &s, checked, true);
+        first = false;
+    }
+    xc_stats bg, all;
+    xc_region_mask(r->index, w, h, 0, mask);
+    xc_region_stats(r->test, r->ref, mask, w, h, &bg);
+    xc_region_stats(r->test, r->ref, NULL, w, h, &all);
+    fprintf(txt, "\n");
+    print_row(txt, "(background)", "", &bg, true);
+    print_row(txt, "(whole image)", "", &all, true);
+    fprintf(json, "  ],\n  \"background\": ");
+    json_stats(json, "(background)", "", &bg, true, true);
+    fprintf(json, "  , \"whole_image\": ");
+    json_stats(json, "(whole image)", "", &all, true, true);
+    fprintf(json, "  , \"notes\": [");
+    if (ex->note_count) fprintf(txt, "\n");
+    for (int i = 0; i < ex->note_count; i++) {
+        fprintf(txt, "%s\n", ex->notes[i]);
+        fprintf(json, "%s\n    \"", i ? "," : "");
+        for (const char *c = ex->notes[i]; *c; c++) fprintf(json, *c == '"' || *c == '\\' ? "\\%c" : "%c", *c);
+        fprintf(json, "\"");
+    }
+    fprintf(json, "]\n}\n");
+    free(mask);
+    free(objects);
+    return worst;
+}
+
+/* ------------------------------------------------------------------------------ main ---- */
+
+static void default_out(const char *scene, char *out, size_t n) {
+    const char *base = strrchr(scene, '/');
+    base = base ? base + 1 : scene;
+    char stem[256];
+    snprintf(stem, sizeof stem, "%s", base);
+    char *dot = strrchr(stem, '.');
+    if (dot && dot != stem) *dot = 0;
+    snprintf(out, n, "xcheck-%s", stem);
+}
+
+static bool find_builder(char *out, size_t n) {
+    const char *env = getenv("SHADELAB_XCHECK_BUILDER");
+    struct stat st;
+    if (env && *env) { snprintf(out, n, "%s", env); return stat(out, &st) == 0; }
+    char exe[4096];
+    ssize_t k = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (k > 0) {
+        exe[k] = 0;
+        char *slash = strrchr(exe, '/');
+        if (slash) *slash = 0;
+        snprintf(out, n, "%s/../share/shadelab/xcheck/xcheck_blender.py", exe); /* installed */
+        if (stat(out, &st) == 0) return true;
+    }
+    snprintf(out, n, "%s", SL_XCHECK_SOURCE_DIR "/xcheck_blender.py"); /* the build tree */
+    return stat(out, &st) == 0;
+}
+
+static bool load_exr(const char *path, sl_image *img, int w, int h, char *err, size_t n) {
+    if (!sl_image_load(img, path, err, n)) return false;
+    if (img->width != w || img->height != h) {
+        snprintf(err, n, "%s: %dx%d, expected %dx%d", path, img->width, img->height, w, h);
+        sl_image_free(img);
+        return false;
+    }
+    return true;
+}
+
+int main(int argc, char **argv) {
+    options o;
+    if (!parse(argc, argv, &o)) return 1;
+    char out[4096], err[8192] = "", builder[4096], version[256] = "";
+    if (o.out) snprintf(out, sizeof out, "%s", o.out);
+    else default_out(o.scene, out, sizeof out);
+    const char *blender = blender_path(&o);
+    if (!blender_version(blender, version, sizeof version)) {
+        fprintf(stderr, "shadelab-xcheck: Blender is not installed or does not run (\"%s --version\" failed): "
+                        "the cross-check needs it (Debian package blender; tools/install-deps.sh --with-tests)\n",
+                blender);
+        return XC_EXIT_NO_BLENDER;
+    }
+    if (!find_builder(builder, sizeof builder)) {
+        fprintf(stderr, "shadelab-xcheck: %s: the Blender builder script is missing\n", builder);
+        return 1;
+    }
+
+    sl_app_options opt = {0};
+    opt.scene_path = o.scene;
+    opt.data_dir = o.data;
+    opt.backend = SL_BACKEND_OSMESA;
+    opt.width = o.width;
+    opt.height = o.height;
+    opt.keep_color = true;
+    opt.timings = true;
+    opt.accumulate = 1;
+    opt.fixed_dt = 1.0 / 60;
+    opt.camera = o.camera;
+    for (int i = 0; i < o.plugin_count; i++) opt.plugins[opt.plugin_count++] = o.plugins[i];
+    for (int i = 0; i < o.setting_count; i++) opt.settings[opt.setting_count++] = o.settings[i];
+    sl_app app;
+    memset(&app, 0, sizeof app);
+    if (!sl_app_init(&app, &opt, err, sizeof err)) {
+        fprintf(stderr, "shadelab-xcheck: %s\n", err);
+        return 1;
+    }
+    /* compare before tone mapping: the tone curve is not cross-checked (a note says so) */
+    if (sl_plugins_find(&app.plugins, "tonemap") >= 0 && !sl_app_set(&app, "tonemap.enabled=false", SL_SRC_CLI, err, sizeof err)) {
+        fprintf(stderr, "shadelab-xcheck: %s\n", err);
+        sl_app_shutdown(&app);
+        return 1;
+    }
+
+    char blender_dir[4200];
+    snprintf(blender_dir, sizeof blender_dir, "%s/blender", out);
+    xc_export_options eo = {.width = o.width, .height = o.height, .samples = o.samples, .bounces = o.bounces,
+                            .builder = builder};
+    xc_export ex;
+    int rc = 1;
+    float *test = NULL, *emap = NULL, *side = NULL;
+    sl_image ref = {0}, index = {0};
+    if (!xc_mkdirs(out, err, sizeof err) || !xc_export_scene(&app, &eo, blender_dir, &ex, err, sizeof err)) {
+        fprintf(stderr, "shadelab-xcheck: %s\n", err);
+        sl_app_shutdown(&app);
+        return 1;
+    }
+    uint64_t key = sl_tool_hash64(version, strlen(version), ex.hash);
+    bool cached = false;
+    double cycles_s = 0, ms = NAN;
+    if (!cycles_reference(&o, out, key, blender, &cached, &cycles_s, err, sizeof err)) goto fail;
+    char path[4300];
+    snprintf(path, sizeof path, "%s/cycles.exr", out);
+    if (!load_exr(path, &ref, o.width, o.height, err, sizeof err)) goto fail;
+    snprintf(path, sizeof path, "%s/index.exr", out);
+    if (!load_exr(path, &index, o.width, o.height, err, sizeof err)) goto fail;
+    if (o.reference_only) {
+        printf("shadelab-xcheck: Cycles reference %s/cycles.exr (%s)\n", out,
+               cached ? "from the cache" : "rendered");
+        for (int i = 0; i < ex.note_count; i++) printf("%s\n", ex.notes[i]);
+        rc = 0;
+        goto done;
+    }
+
+    size_t px = (size_t)o.width * o.height * 4;
+    test = malloc(px * sizeof *test);
+    emap = malloc(px * sizeof *emap);
+    side = malloc(px * 3 * sizeof *side);
+    if (!test || !emap || !side) { snprintf(err, sizeof err, "out of memory"); goto fail; }
+    if (!render_shadelab(&app, &o, test, &ms, err, sizeof err)) goto fail;
+    snprintf(path, sizeof path, "%s/shadelab.exr", out);
+    if (!sl_image_write(path, test, o.width, o.height, false, err, sizeof err)) goto fail;
+    xc_error_map(test, ref.pixels, o.width, o.height, emap);
+    snprintf(path, sizeof path, "%s/error.png", out);
+    if (!sl_image_write(path, emap, o.width, o.height, true, err, sizeof err)) goto fail;
+    xc_side_by_side(test, ref.pixels, emap, o.width, o.height, side);
+    snprintf(path, sizeof path, "%s/side_by_side.png", out);
+    if (!sl_image_write(path, side, o.width * 3, o.height, true, err, sizeof err)) goto fail;
+
+    char txt_path[4300], json_path[4300];
+    snprintf(txt_path, sizeof txt_path, "%s/report.txt", out);
+    snprintf(json_path, sizeof json_path, "%s/report.json", out);
+    FILE *txt = fopen(txt_path, "w"), *json = fopen(json_path, "w");
+    if (!txt || !json) {
+        snprintf(err, sizeof err, "%s: cannot write: %s", !txt ? txt_path : json_path, strerror(errno));
+        if (txt) fclose(txt);
+        if (json) fclose(json);
+        goto fail;
+    }
+    report_ctx r = {&o, &app, &ex, test, ref.pixels, index.pixels, o.width, o.height, version, cycles_s, ms, cached, key};
+    double worst = report(&r, txt, json);
+    fclose(txt);
+    fclose(json);
+    FILE *again = fopen(txt_path, "r");
+    if (again) {
+        char buf[4096];
+        size_t k;
+        while ((k = fread(buf, 1, sizeof buf, again)) > 0) fwrite(buf, 1, k, stdout);
+        fclose(again);
+    }
+    printf("\nimages: %s/side_by_side.png (shadelab | Cycles | error: red brighter, blue darker, full at 2x)\n", out);
+    rc = 0;
+    if (o.max_rel_rms >= 0 && worst > o.max_rel_rms) {
+        fprintf(stderr, "shadelab-xcheck: a cross-checked object's relative RMS %.4f exceeds --max-rel-rms %.4f\n", worst,
+                o.max_rel_rms);
+        rc = 1;
+    }
+    goto done;
+fail:
+    fprintf(stderr, "shadelab-xcheck: %s\n", err);
+    rc = 1;
+done:
+    free(test);
+    free(emap);
+    free(side);
+    sl_image_free(&ref);
+    sl_image_free(&index);
+    xc_export_free(&ex);
+    sl_app_shutdown(&app);
+    return rc;
+}

@@ -1,0 +1,304 @@
+/* The exporter against closed forms (issue 40 item 2): small scenes whose Cycles image has a
+ * known value, rendered through shadelab-xcheck --reference-only. What is checked is the export
+ * (units, axes, cameras, lights, the environment's orientation), not Cycles: each expected value
+ * is derived here from the scene's own numbers and shadelab's documented conventions.
+ *
+ *   sun        Lambert plane under a sun at 40°: L = ρ·E·cos θ / π
+ *   furnace    Lambert sphere in a uniform environment: L = ρ·L_env (a convex object)
+ *   point      point light over a plane, perspective camera: L = ρ/π · I·h / d³
+ *   spot       spots over a plane (linear and glTF fall-off, one tilted): L = ρ/π · I·f(θ)·cos θ_i / d²
+ *   mirror     mirror sphere in a lat-long whose colour is a linear function of the direction, in
+ *              Blender's orientation (u = ½ at +X growing towards +Z, v = 0 up), turned by yaw
+ *
+ * Blender missing: exit 77 (skipped), said on stderr. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "test_tmp.h"
+#include "toolkit.h"
+
+#define W 64
+#define H 64
+#define SKIP 77
+
+static const double PI = 3.14159265358979323846;
+
+typedef struct render {
+    sl_image img, index;
+} render;
+
+static void write_text(const char *path, const char *text) {
+    FILE *f = fopen(path, "w");
+    if (!f || fputs(text, f) < 0) { fprintf(stderr, "cannot write %s\n", path); exit(1); }
+    fclose(f);
+}
+
+/* Renders scene text with Cycles through shadelab-xcheck; exits 77 when Blender is missing. */
+static bool cycles(const char *name, const char *scene, int samples, render *r) {
+    char path[4096], out[4096], cmd[9000];
+    snprintf(path, sizeof path, "%s/%s.json", sl_test_dir(), name);
+    snprintf(out, sizeof out, "%s/%s", sl_test_dir(), name);
+    write_text(path, scene);
+    snprintf(cmd, sizeof cmd, "'%s' --reference-only --size %dx%d --samples %d --out '%s' '%s'", SL_XCHECK_EXE, W, H,
+             samples, out, path);
+    int status = system(cmd);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == SKIP) {
+        fprintf(stderr, "SKIPPED: Blender is not installed (tools/install-deps.sh --with-tests installs it)\n");
+        exit(SKIP);
+    }
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 0, "%s: shadelab-xcheck failed (%d)", name, status);
+    char err[1024];
+    snprintf(path, sizeof path, "%s/cycles.exr", out);
+    bool ok = sl_image_load(&r->img, path, err, sizeof err);
+    snprintf(path, sizeof path, "%s/index.exr", out);
+    ok = ok && sl_image_load(&r->index, path, err, sizeof err);
+    CHECK_MSG(ok, "%s: %s", name, err);
+    return ok;
+}
+
+static void free_render(render *r) {
+    sl_image_free(&r->img);
+    sl_image_free(&r->index);
+}
+
+/* The world point an orthographic camera at (0, 0, 5) looking down −Z sees at pixel (x, y), on z = 0. */
+static void ortho_point(int x, int y, double ymag, double p[3]) {
+    p[0] = (2 * (x + 0.5) / W - 1) * ymag * W / H;
+    p[1] = (1 - 2 * (y + 0.5) / H) * ymag;
+    p[2] = 0;
+}
+
+/* The same for a perspective camera there (vertical field of view fov_deg). */
+static void perspective_point(int x, int y, double fov_deg, double p[3]) {
+    double t = tan(fov_deg * PI / 360);
+    p[0] = 5 * (2 * (x + 0.5) / W - 1) * t * W / H;
+    p[1] = 5 * (1 - 2 * (y + 0.5) / H) * t;
+    p[2] = 0;
+}
+
+typedef double (*closed_form)(const double p[3], int channel, void *user);
+
+/* Compares the image with the closed form over the pixels of object `index` (−1: all) whose
+ * expected value is at least `floor` (a closed form returns −1 where it makes no claim): the
+ * relative difference of the means (the issue's 1 %), the relative RMS difference (where in the
+ * image the light falls: a mirrored or turned export keeps the mean but not this) and the worst
+ * pixel, relative to the mean (pixel filters at steep gradients allowed for). */
+static void compare(const char *name, const render *r, int index, closed_form f, void *user, bool perspective,
+                    double view, double floor, double mean_tol, double rms_tol, double pixel_tol) {
+    double sum_e = 0, sum_c = 0, sum_e2 = 0, sum_d2 = 0, worst = 0;
+    long count = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                size_t px = ((size_t)y * W + x) * 4;
+                if (index >= 0 && lroundf(r->index.pixels[px]) != index) continue;
+                double p[3];
+                if (perspective) perspective_point(x, y, view, p);
+                else ortho_point(x, y, view, p);
+                for (int c = 0; c < 3; c++) {
+                    double e = f(p, c, user), v = r->img.pixels[px + c];
+                    if (e < floor || e < 0) continue;
+                    if (pass == 0) {
+                        sum_e += e, sum_c += v, sum_e2 += e * e, sum_d2 += (v - e) * (v - e);
+                        count++;
+                    } else {
+                        worst = fmax(worst, fabs(v - e) / (sum_e / count));
+                    }
+                }
+            }
+    double rel = count ? sum_c / sum_e - 1 : NAN, rms = count ? sqrt(sum_d2 / sum_e2) : NAN;
+    printf("%-12s %6ld values  mean: Cycles %.5f, closed form %.5f (%+.3f %%)  rel-RMS %.3f %%  worst %.2f %% of the "
+           "mean\n",
+           name, count, count ? sum_c / count : 0, count ? sum_e / count : 0, 100 * rel, 100 * rms, 100 * worst);
+    CHECK_MSG(count > 100, "%s: only %ld values compared", name, count);
+    CHECK_MSG(fabs(rel) <= mean_tol, "%s: mean %+.4f %% off (tolerance %.2f %%)", name, 100 * rel, 100 * mean_tol);
+    CHECK_MSG(rms <= rms_tol, "%s: relative RMS %.4f %% (tolerance %.2f %%)", name, 100 * rms, 100 * rms_tol);
+    CHECK_MSG(worst <= pixel_tol, "%s: worst pixel %.4f of the mean off (tolerance %.3f)", name, worst, pixel_tol);
+}
+
+/* ---- sun --------------------------------------------------------------------------------- */
+
+static double sun_form(const double p[3], int c, void *u) {
+    (void)p, (void)c, (void)u;
+    return 0.5 * 3.0 * cos(40 * PI / 180) / PI;
+}
+
+/* ---- furnace ----------------------------------------------------------------------------- */
+
+static double furnace_sphere(const double p[3], int c, void *u) {
+    (void)c, (void)u;
+    return p[0] * p[0] + p[1] * p[1] < 0.9 * 0.9 ? 0.8 : -1; /* inside the silhouette */
+}
+
+static double furnace_background(const double p[3], int c, void *u) {
+    (void)c, (void)u;
+    return p[0] * p[0] + p[1] * p[1] > 1.05 * 1.05 ? 1.0 : -1; /* clear of the silhouette */
+}
+
+/* ---- point ------------------------------------------------------------------------------- */
+
+static const double POINT_POS[3] = {0.3, -0.2, 1.0};
+
+static double point_form(const double p[3], int c, void *u) {
+    (void)c, (void)u;
+    double d[3] = {POINT_POS[0] - p[0], POINT_POS[1] - p[1], POINT_POS[2] - p[2]};
+    double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    return 0.5 / PI * 2.0 * (d[2] / dist) / (dist * dist);
+}
+
+/* ---- spot -------------------------------------------------------------------------------- */
+
+typedef struct spot {
+    double pos[3], axis[3], intensity, outer_deg, inner_deg;
+    bool gltf;
+} spot;
+
+static double spot_form(const double p[3], int c, void *u) {
+    (void)c;
+    const spot *s = u;
+    double d[3] = {p[0] - s->pos[0], p[1] - s->pos[1], p[2] - s->pos[2]};
+    double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double cos_axis = (d[0] * s->axis[0] + d[1] * s->axis[1] + d[2] * s->axis[2]) / dist;
+    double theta = acos(fmax(-1, fmin(1, cos_axis))), outer = s->outer_deg * PI / 180, f;
+    if (s->gltf) {
+        double scale = 1 / fmax(0.001, cos(s->inner_deg * PI / 180) - cos(outer)), offset = -cos(outer) * scale;
+        f = fmin(1, fmax(0, cos_axis * scale + offset));
+        f *= f;
+    } else {
+        f = fmin(1, fmax(0, (1.1 * outer - theta) / (0.2 * outer)));
+    }
+    double cos_in = -d[2] / dist; /* the plane's normal is +Z */
+    return 0.5 / PI * s->intensity * f * cos_in / (dist * dist);
+}
+
+static void spot_case(const char *name, const spot *s, const char *falloff) {
+    char scene[4096];
+    snprintf(scene, sizeof scene,
+             "{ \"plugins\": [\"spotlight-shadow\"],\n"
+             "  \"cameras\": [{ \"type\": \"orthographic\", \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"ymag\": 1.2 }],\n"
+             "  \"materials\": [{ \"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5] }],\n"
+             "  \"nodes\": [{ \"name\": \"plane\", \"rotate\": [90, 0, 0], \"mesh\": { \"primitive\": \"plane\", \"size\": 8 }, \"material\": \"m\" }],\n"
+             "  \"lights\": [{ \"name\": \"s\", \"type\": \"spot\", \"position\": [%g, %g, %g], \"direction\": [%.9g, %.9g, %.9g],\n"
+             "    \"intensity\": %g, \"cone_angle\": %g, \"inner_cone_angle\": %g, \"falloff\": \"%s\" }] }\n",
+             s->pos[0], s->pos[1], s->pos[2], s->axis[0], s->axis[1], s->axis[2], s->intensity, s->outer_deg,
+             s->inner_deg, falloff);
+    render r = {0};
+    if (cycles(name, scene, 16, &r))
+        compare(name, &r, -1, spot_form, (void *)s, false, 1.2, 0.02, 0.01, 0.01, 0.08);
+    free_render(&r);
+}
+
+/* ---- mirror ------------------------------------------------------------------------------ */
+
+/* The lat-long convention of Blender and three.js, from its statement: u = ½ at +X, growing
+ * towards +Z; v = 0 straight up (Y). Direction of the texel centre (u, v). */
+static void latlong_dir(double u, double v, double d[3]) {
+    double phi = 2 * PI * (u - 0.5), theta = PI * v;
+    d[0] = sin(theta) * cos(phi);
+    d[1] = cos(theta);
+    d[2] = sin(theta) * sin(phi);
+}
+
+static const double YAW = 30;
+
+/* The map's colour for a world direction: d turned by R_y(−yaw), then 0.5 + 0.4·d per channel. */
+static double map_colour(const double r[3], int c) {
+    double a = -YAW * PI / 180;
+    double d[3] = {cos(a) * r[0] + sin(a) * r[2], r[1], -sin(a) * r[0] + cos(a) * r[2]};
+    return 0.5 + 0.4 * d[c];
+}
+
+static double mirror_form(const double p[3], int c, void *u) {
+    (void)u;
+    double rr = p[0] * p[0] + p[1] * p[1];
+    if (rr > 0.9 * 0.9) return -1; /* away from the rim, where a pixel spans a wide cone */
+    double n[3] = {p[0], p[1], sqrt(1 - rr)}, v[3] = {0, 0, 1};
+    double nv = n[2], r[3];
+    for (int i = 0; i < 3; i++) r[i] = 2 * nv * n[i] - v[i];
+    return map_colour(r, c);
+}
+
+static double mirror_background(const double p[3], int c, void *u) {
+    (void)u;
+    const double view[3] = {0, 0, -1};
+    if (p[0] * p[0] + p[1] * p[1] < 1.05 * 1.05) return -1; /* clear of the silhouette */
+    return map_colour(view, c);
+}
+
+static void write_pattern_map(const char *path) {
+    int w = 256, h = 128;
+    float *px = malloc((size_t)w * h * 4 * sizeof *px);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double d[3];
+            latlong_dir((x + 0.5) / w, (y + 0.5) / h, d);
+            for (int c = 0; c < 3; c++) px[((size_t)y * w + x) * 4 + c] = (float)(0.5 + 0.4 * d[c]);
+            px[((size_t)y * w + x) * 4 + 3] = 1;
+        }
+    char err[512];
+    if (!sl_image_write(path, px, w, h, false, err, sizeof err)) { fprintf(stderr, "%s\n", err); exit(1); }
+    free(px);
+}
+
+int main(void) {
+    render r = {0};
+    /* sun: plane facing +Z (a +Y plane turned 90° about X), sun 40° from its normal */
+    const char *sun =
+        "{ \"cameras\": [{ \"type\": \"orthographic\", \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"ymag\": 1 }],\n"
+        "  \"materials\": [{ \"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5] }],\n"
+        "  \"nodes\": [{ \"name\": \"plane\", \"rotate\": [90, 0, 0], \"mesh\": { \"primitive\": \"plane\", \"size\": 8 }, \"material\": \"m\" }],\n"
+        "  \"lights\": [{ \"name\": \"sun\", \"type\": \"directional\", \"direction\": [-0.6427876097, 0, -0.7660444431], \"intensity\": 3 }] }\n";
+    if (cycles("sun", sun, 8, &r)) compare("sun", &r, 1, sun_form, NULL, false, 1, 0, 0.01, 0.005, 0.01);
+    free_render(&r);
+
+    /* furnace: no lights, a white environment of radiance 1 */
+    const char *furnace =
+        "{ \"cameras\": [{ \"type\": \"orthographic\", \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"ymag\": 1.5 }],\n"
+        "  \"materials\": [{ \"name\": \"m\", \"base_color\": [0.8, 0.8, 0.8] }],\n"
+        "  \"nodes\": [{ \"name\": \"ball\", \"mesh\": { \"primitive\": \"sphere\", \"radius\": 1 }, \"material\": \"m\" }],\n"
+        "  \"environment\": { \"color\": [1, 1, 1], \"intensity\": 1 } }\n";
+    if (cycles("furnace", furnace, 64, &r)) {
+        compare("furnace", &r, 1, furnace_sphere, NULL, false, 1.5, 0, 0.01, 0.02, 0.08);
+        compare("furnace-bg", &r, 0, furnace_background, NULL, false, 1.5, 0, 0.01, 0.005, 0.01);
+    }
+    free_render(&r);
+
+    /* point light 1 m over a plane, seen through a 40° perspective camera */
+    char point[2048];
+    snprintf(point, sizeof point,
+             "{ \"cameras\": [{ \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"fov_y\": 40 }],\n"
+             "  \"materials\": [{ \"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5] }],\n"
+             "  \"nodes\": [{ \"name\": \"plane\", \"rotate\": [90, 0, 0], \"mesh\": { \"primitive\": \"plane\", \"size\": 8 }, \"material\": \"m\" }],\n"
+             "  \"lights\": [{ \"name\": \"p\", \"type\": \"point\", \"position\": [%g, %g, %g], \"intensity\": 2 }] }\n",
+             POINT_POS[0], POINT_POS[1], POINT_POS[2]);
+    if (cycles("point", point, 8, &r)) compare("point", &r, 1, point_form, NULL, true, 40, 0, 0.01, 0.005, 0.03);
+    free_render(&r);
+
+    /* spots: straight down with the linear fall-off, tilted 20° towards +X with glTF's */
+    spot down = {{0, 0, 1.5}, {0, 0, -1}, 3, 25, 0, false};
+    spot_case("spot-linear", &down, "linear");
+    double t = 20 * PI / 180;
+    spot tilted = {{-0.2, 0.1, 1.5}, {sin(t), 0, -cos(t)}, 3, 25, 15, true};
+    spot_case("spot-gltf", &tilted, "gltf");
+
+    /* mirror sphere in a lat-long turned by yaw */
+    char map[4096], mirror[4096];
+    snprintf(map, sizeof map, "%s/pattern.exr", sl_test_dir());
+    write_pattern_map(map);
+    snprintf(mirror, sizeof mirror,
+             "{ \"plugins\": [\"envmap\"],\n"
+             "  \"cameras\": [{ \"type\": \"orthographic\", \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"ymag\": 1.2 }],\n"
+             "  \"materials\": [{ \"name\": \"m\", \"model\": \"mirror\" }],\n"
+             "  \"nodes\": [{ \"name\": \"ball\", \"mesh\": { \"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128 }, \"material\": \"m\" }],\n"
+             "  \"environment\": { \"map\": \"%s\", \"yaw\": %g } }\n",
+             map, YAW);
+    if (cycles("mirror", mirror, 8, &r)) {
+        compare("mirror", &r, 1, mirror_form, NULL, false, 1.2, 0, 0.01, 0.01, 0.1);
+        compare("mirror-bg", &r, 0, mirror_background, NULL, false, 1.2, 0, 0.01, 0.005, 0.01);
+    }
+    free_render(&r);
+    return check_result();
+}
