@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Ratio benchmark against the hand-written floor (../shared/bench/baseline_ggx.c): shadelab's frame
 # on scenes/ratio_sphere.json over the baseline's, interleaved, per size and light count, with the
-# load average. README.md, "Ratio to the hand-written floor", explains the figures.
-#   tools/bench/ratio.sh [--build DIR] [--quick] [--readme] [--rounds N] [--sizes WxH,..] [--lights N,..]
-# --readme rewrites the table in README.md. Without ../shared (or --shared DIR) it says so and exits 0.
+# load average (docs/benchmarks.md holds the current 720p figures, from tools/bench/benchmarks-table.sh).
+#   tools/bench/ratio.sh [--build DIR] [--quick] [--rounds N] [--sizes WxH,..] [--lights N,..] [--shared DIR]
+# Without ../shared (or --shared DIR) it says so and exits 0.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="${SHADELAB_BUILD:-$root/build}"

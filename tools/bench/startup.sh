@@ -87,7 +87,7 @@ for r in $(seq "$ROUNDS"); do
         d=$(grep '^default ' "$TMP/rows" | tail -1) b=$(grep '^bare-then ' "$TMP/rows" | tail -1)
         [ -n "$d" ] && [ -n "$b" ] && echo "$d $b" | awk '{printf "ratio-then   %8.2f %8.2f\n", $2/$7, $3/$8}' | tee -a "$TMP/ratios_then"
     fi
-    # this round's default/basic ratios (wall, CPU, first frame): the README reports their median
+    # this round's default/basic ratios (wall, CPU, first frame): their median is printed below
     d=$(grep '^default ' "$TMP/rows" | tail -1) b=$(grep '^basic ' "$TMP/rows" | tail -1)
     [ -n "$d" ] && [ -n "$b" ] && echo "$d $b" | awk '{printf "ratio        %8.2f %8.2f %8.2f\n", $2/$7, $3/$8, $4/$9}' | tee -a "$TMP/ratios"
 done
