@@ -32,7 +32,8 @@ PKGS=(
   clang libclang-rt-14-dev  # fuzzing (libFuzzer) and sanitizers
 )
 if [ "$WITH_TESTS" = 1 ]; then
-  PKGS+=(blender)         # shadelab-xcheck's reference (Cycles) and its tests; large, tests only
+  PKGS+=(blender          # shadelab-xcheck's reference (Cycles) and its tests; large, tests only
+         python3-numpy)   # Blender's glTF importer needs it (the blender package does not depend on it)
 fi
 
 missing=()

@@ -59,6 +59,28 @@ bool xc_mkdirs(const char *path, char *err, size_t n) {
     return true;
 }
 
+/* Adds `item` to the note "text (items)", one note per text. */
+static void note_item(ctx *c, const char *text, const char *item) {
+    size_t len = strlen(text);
+    for (int i = 0; i < c->out->note_count; i++) {
+        char *old = c->out->notes[i];
+        if (strncmp(old, text, len) || strncmp(old + len, " (", 2)) continue;
+        size_t n = strlen(old) + strlen(item) + 3;
+        char *grown = malloc(n);
+        if (!grown) return;
+        snprintf(grown, n, "%.*s, %s)", (int)(strlen(old) - 1), old, item);
+        free(old);
+        c->out->notes[i] = grown;
+        return;
+    }
+    char **grown = realloc(c->out->notes, (c->out->note_count + 1) * sizeof *grown);
+    if (!grown) return;
+    c->out->notes = grown;
+    size_t n = len + strlen(item) + 4;
+    c->out->notes[c->out->note_count] = malloc(n);
+    if (c->out->notes[c->out->note_count]) snprintf(c->out->notes[c->out->note_count++], n, "%s (%s)", text, item);
+}
+
 static void note(ctx *c, const char *fmt, ...) {
     char line[1024];
     va_list ap;
@@ -342,8 +364,8 @@ static bool export_ggx(ctx *c, int m, cJSON *j, bool *checked) {
         if (!mat_value(app, m, "ior")) f0 = 0.04f;
         if (f0 / 0.08f > 1) note(c, "approximated: material %s: F0 %.3f above Principled's 0.08 (ior %.2f)", name, f0, ior);
         cJSON_AddNumberToObject(j, "specular_level", fminf(f0 / 0.08f, 1));
-        note(c, "approximated: material %s: glTF metallic-roughness as Cycles' Principled BSDF (Burley diffuse "
-                "instead of Lambert x (1 - F); Cycles' normalised dielectric Fresnel instead of Schlick)", name);
+        note_item(c, "approximated: glTF metallic-roughness as Cycles' Principled BSDF (Burley diffuse instead of "
+                     "Lambert x (1 - F); Cycles' normalised dielectric Fresnel instead of Schlick's)", name);
         if (zero_specular) {
             note(c, "not cross-checked: ggx.zero_specular with metallic-roughness materials (%s)", name);
             *checked = false;
@@ -363,7 +385,7 @@ static bool export_ggx(ctx *c, int m, cJSON *j, bool *checked) {
     }
     cJSON_AddNumberToObject(j, "specular_level", fminf(f0 / 0.08f, 1));
     if (!strcmp(fresnel, "schlick"))
-        note(c, "approximated: material %s: Schlick's Fresnel as Cycles' exact dielectric Fresnel of the same F0", name);
+        note_item(c, "approximated: Schlick's Fresnel as Cycles' exact dielectric Fresnel of the same F0", name);
     const char *smap = mat_texture(app, m, "specular_map");
     cJSON *ks = textured(c, smap, true, cJSON_CreateNumber(mat_float(app, m, "specular", 1)), "R",
                          mat_value(app, m, "specular") != NULL);
@@ -402,8 +424,10 @@ static bool export_material(ctx *c, int m, cJSON *list, bool *checked) {
     } else if (is_mirror) {
         cJSON_AddStringToObject(j, "kind", "mirror");
     } else {
-        note(c, "not cross-checked: material %s: shading model \"%s\" has no Cycles counterpart (drawn as a "
-                "diffuse of its base colour)", mat->name, model);
+        char text[256];
+        snprintf(text, sizeof text, "not cross-checked: shading model \"%s\" has no Cycles counterpart (drawn as a "
+                 "diffuse of its base colour)", model);
+        note_item(c, text, mat->name);
         cJSON_AddStringToObject(j, "kind", "diffuse");
         *checked = false;
     }
@@ -435,8 +459,8 @@ static bool export_material(ctx *c, int m, cJSON *list, bool *checked) {
         cJSON_AddItemToObject(j, "emission", emission);
     }
     if (mat_texture(app, m, "occlusion_map"))
-        note(c, "not cross-checked: material %s: occlusion_map (shadelab darkens ambient light by it; Cycles traces "
-                "the occlusion itself)", mat->name);
+        note_item(c, "not cross-checked: occlusion maps (shadelab darkens ambient light by them; Cycles traces "
+                     "the occlusion itself)", mat->name);
     if (mat_value(app, m, "opacity") && mat_float(app, m, "opacity", 1) < 1) {
         note(c, "not cross-checked: material %s: opacity below 1", mat->name);
         *checked = false;
@@ -502,7 +526,7 @@ static bool export_objects(ctx *c, cJSON *root, const bool *mat_checked) {
             memset(o, 0, sizeof *o);
             if (node->mesh_count > 1) snprintf(o->name, sizeof o->name, "%s#%d", node->name, k);
             else snprintf(o->name, sizeof o->name, "%s", node->name);
-            o->material = mat;
+            snprintf(o->material, sizeof o->material, "%s", mat >= 0 ? s->materials[mat].name : "");
             o->checked = mat >= 0 && mat_checked[mat];
             cJSON *j = cJSON_CreateObject();
             cJSON_AddStringToObject(j, "name", o->name);
@@ -720,6 +744,73 @@ static void export_camera(ctx *c, const xc_export_options *o, cJSON *root) {
     cJSON_AddItemToObject(j, "matrix", vec(m, 16));
 }
 
+/* ------------------------------------------------------------------------------ glTF ---- */
+
+static bool is_gltf_model(const sl_app *app) {
+    if (!app->scene.from_model || !app->scene.path) return false;
+    char ext[16];
+    file_extension(app->scene.path, ext, sizeof ext);
+    return !strcmp(ext, "gltf") || !strcmp(ext, "glb");
+}
+
+/* Adds a file's bytes to the export's hash. */
+static bool hash_file(ctx *c, const char *path) {
+    unsigned char *bytes = NULL;
+    size_t size = 0;
+    if (!read_whole(path, &bytes, &size, c->err, c->n)) return false;
+    c->out->hash = sl_tool_hash64(bytes, size, c->out->hash);
+    free(bytes);
+    return true;
+}
+
+/* The model for Blender's own importer: a .glb copied under assets/; a .gltf read where it is (its
+ * buffers and images are relative to it), hashed with every file its "uri"s name. */
+static bool export_gltf(ctx *c, cJSON *root) {
+    const char *path = c->app->scene.path;
+    char ext[16];
+    file_extension(path, ext, sizeof ext);
+    cJSON *g = cJSON_AddObjectToObject(root, "gltf");
+    if (!strcmp(ext, "glb")) {
+        unsigned char *bytes = NULL;
+        size_t size = 0;
+        if (!read_whole(path, &bytes, &size, c->err, c->n)) return false;
+        bool ok = write_file(c, "assets/model.glb", bytes, size);
+        free(bytes);
+        cJSON_AddStringToObject(g, "file", "assets/model.glb");
+        return ok;
+    }
+    char *abs = realpath(path, NULL);
+    if (!abs) { snprintf(c->err, c->n, "%s: %s", path, strerror(errno)); return false; }
+    cJSON_AddStringToObject(g, "file", abs);
+    unsigned char *text = NULL;
+    size_t size = 0;
+    bool ok = read_whole(abs, &text, &size, c->err, c->n);
+    if (ok) {
+        text[size] = 0;
+        c->out->hash = sl_tool_hash64(text, size, c->out->hash);
+        cJSON *doc = cJSON_Parse((const char *)text);
+        char dir[4096];
+        snprintf(dir, sizeof dir, "%s", abs);
+        char *slash = strrchr(dir, '/');
+        if (slash) *slash = 0;
+        const char *lists[2] = {"buffers", "images"};
+        for (int l = 0; doc && ok && l < 2; l++) {
+            cJSON *item;
+            cJSON_ArrayForEach(item, cJSON_GetObjectItemCaseSensitive(doc, lists[l])) {
+                const cJSON *uri = cJSON_GetObjectItemCaseSensitive(item, "uri");
+                if (!cJSON_IsString(uri) || !strncmp(uri->valuestring, "data:", 5)) continue;
+                char file[8192];
+                snprintf(file, sizeof file, "%s/%s", dir, uri->valuestring);
+                if (!hash_file(c, file)) { ok = false; break; }
+            }
+        }
+        cJSON_Delete(doc);
+    }
+    free(text);
+    free(abs);
+    return ok;
+}
+
 /* ---------------------------------------------------------------------------------- main -- */
 
 static bool copy_builder(ctx *c, const char *builder) {
@@ -750,7 +841,8 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
     cJSON_AddNumberToObject(render, "height", o->height);
     cJSON_AddNumberToObject(render, "samples", o->samples);
     cJSON_AddNumberToObject(render, "bounces", o->bounces);
-    if (plugin_on(app, "tonemap")) {
+    int tm = sl_plugins_find(&app->plugins, "tonemap");
+    if (tm >= 0 && app->plugins.items[tm]->ok) { /* shadelab-xcheck switches it off: loaded is what counts */
         cJSON_AddNumberToObject(render, "exposure", global_float(app, "tonemap.exposure", 0));
         note(&c, "not cross-checked: tonemap (operator %s, exposure %g EV): images are compared before tone mapping",
              global_enum(app, "tonemap.operator"), global_float(app, "tonemap.exposure", 0));
@@ -760,8 +852,18 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
     int mc = app->scene.material_count;
     bool *checked = calloc(mc + 1, sizeof *checked);
     cJSON *mats = cJSON_AddArrayToObject(root, "materials");
-    for (int m = 0; ok && m < mc; m++) ok = export_material(&c, m, mats, &checked[m]);
-    ok = ok && export_objects(&c, root, checked);
+    out->gltf = is_gltf_model(app);
+    if (out->gltf) {
+        /* geometry and materials: Blender's own reading of the file */
+        note(&c, "glTF: geometry and materials as Blender's glTF importer reads the file; lights as shadelab reads "
+                 "them (Blender's importer gives spots its own edge)");
+        cJSON_AddArrayToObject(root, "meshes");
+        cJSON_AddArrayToObject(root, "objects");
+        ok = export_gltf(&c, root);
+    } else {
+        for (int m = 0; ok && m < mc; m++) ok = export_material(&c, m, mats, &checked[m]);
+        ok = ok && export_objects(&c, root, checked);
+    }
     cJSON *lights = cJSON_AddArrayToObject(root, "lights");
     for (int li = 0; ok && li < app->scene.light_count; li++) ok = export_light(&c, li, lights);
     ok = ok && export_world(&c, root);
@@ -777,6 +879,35 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
     free(c.textures);
     if (!ok) xc_export_free(out);
     return ok;
+}
+
+bool xc_export_read_objects(xc_export *e, const char *objects_json, char *err, size_t n) {
+    unsigned char *text = NULL;
+    size_t size = 0;
+    if (!read_whole(objects_json, &text, &size, err, n)) return false;
+    text[size] = 0;
+    cJSON *doc = cJSON_Parse((const char *)text);
+    free(text);
+    cJSON *list = cJSON_GetObjectItemCaseSensitive(doc, "objects"), *item;
+    if (!cJSON_IsArray(list)) {
+        snprintf(err, n, "%s: no \"objects\" list", objects_json);
+        cJSON_Delete(doc);
+        return false;
+    }
+    int count = cJSON_GetArraySize(list), k = 0;
+    free(e->objects);
+    e->objects = calloc(count + 1, sizeof *e->objects);
+    cJSON_ArrayForEach(item, list) {
+        const cJSON *name = cJSON_GetObjectItemCaseSensitive(item, "name"),
+                    *mat = cJSON_GetObjectItemCaseSensitive(item, "material");
+        xc_object *o = &e->objects[k++]; /* listed in pass-index order, from 1 */
+        snprintf(o->name, sizeof o->name, "%s", cJSON_IsString(name) ? name->valuestring : "?");
+        snprintf(o->material, sizeof o->material, "%s", cJSON_IsString(mat) ? mat->valuestring : "");
+        o->checked = true;
+    }
+    e->object_count = k;
+    cJSON_Delete(doc);
+    return true;
 }
 
 void xc_export_free(xc_export *e) {

@@ -22,10 +22,11 @@ typedef struct xc_export_options {
     const char *builder; /* path of xcheck_blender.py */
 } xc_export_options;
 
-/* One object of the export: a mesh of a scene node. Its Cycles pass index is its position + 1. */
+/* One object of the reference: a mesh of a scene node (or, for a glTF file, a mesh object of
+ * Blender's import). Its Cycles pass index is its position + 1. */
 typedef struct xc_object {
     char name[160];
-    int material;       /* index into the scene's materials */
+    char material[160]; /* its material's name ("a, b" when several) */
     bool checked;       /* false: its material is not cross-checked (see notes) */
 } xc_object;
 
@@ -35,10 +36,16 @@ typedef struct xc_export {
      * "approximated: …" lines, one per feature and material or light. */
     char **notes; int note_count;
     uint64_t hash;      /* of every file written (what was exported) */
+    /* The scene is a .gltf/.glb opened directly: Blender's own importer reads it (geometry and
+     * materials), the objects are known after the render (xc_export_read_objects). */
+    bool gltf;
 } xc_export;
 
 bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, xc_export *out, char *err, size_t n);
 void xc_export_free(xc_export *e);
+
+/* Reads the objects Blender's glTF import made (objects.json written beside the render). */
+bool xc_export_read_objects(xc_export *e, const char *objects_json, char *err, size_t n);
 
 /* mkdir -p; false with err set when a component cannot be made. */
 bool xc_mkdirs(const char *path, char *err, size_t n);

@@ -176,8 +176,8 @@ static void cache_dir(const options *o, char *out, size_t n) {
 
 /* Renders DIR/blender/scene.py with Cycles into DIR/cycles.exr and DIR/index.exr, or copies them
  * from the cache. */
-static bool cycles_reference(const options *o, const char *dir, uint64_t key, const char *blender, bool *cached,
-                             double *seconds, char *err, size_t n) {
+static bool cycles_reference(const options *o, const char *dir, uint64_t key, const char *blender, bool gltf,
+                             bool *cached, double *seconds, char *err, size_t n) {
     char cdir[4096], cached_img[4200], cached_idx[4200], out_img[4200], out_idx[4200];
     cache_dir(o, cdir, sizeof cdir);
     snprintf(cdir + strlen(cdir), sizeof cdir - strlen(cdir), "/%016llx", (unsigned long long)key);
@@ -188,9 +188,14 @@ static bool cycles_reference(const options *o, const char *dir, uint64_t key, co
     *cached = false;
     *seconds = 0;
     struct stat st;
-    if (!o->no_cache && stat(cached_img, &st) == 0 && stat(cached_idx, &st) == 0) {
+    char cached_obj[4200], out_obj[4200];
+    snprintf(cached_obj, sizeof cached_obj, "%s/objects.json", cdir);
+    snprintf(out_obj, sizeof out_obj, "%s/objects.json", dir);
+    if (!o->no_cache && stat(cached_img, &st) == 0 && stat(cached_idx, &st) == 0 &&
+        (!gltf || stat(cached_obj, &st) == 0)) {
         *cached = true;
-        return copy_file(cached_img, out_img, err, n) && copy_file(cached_idx, out_idx, err, n);
+        return copy_file(cached_img, out_img, err, n) && copy_file(cached_idx, out_idx, err, n) &&
+               (!gltf || copy_file(cached_obj, out_obj, err, n));
     }
     char render_dir[4200], qb[4200], qs[4400], qr[4400], ql[4400], cmd[20000];
     snprintf(render_dir, sizeof render_dir, "%s/blender/render", dir);
@@ -207,19 +212,22 @@ static bool cycles_reference(const options *o, const char *dir, uint64_t key, co
     double t0 = now_seconds();
     int status = system(cmd);
     *seconds = now_seconds() - t0;
-    char img[4300], idx[4300];
+    char img[4300], idx[4300], obj[4300];
     snprintf(img, sizeof img, "%s/combined_0001.exr", render_dir);
     snprintf(idx, sizeof idx, "%s/index_0001.exr", render_dir);
-    if (status != 0 || stat(img, &st) != 0 || stat(idx, &st) != 0) {
+    snprintf(obj, sizeof obj, "%s/objects.json", render_dir);
+    if (status != 0 || stat(img, &st) != 0 || stat(idx, &st) != 0 || (gltf && stat(obj, &st) != 0)) {
         snprintf(err, n, "Blender failed (exit status %d) for %s; its output is in %s", WIFEXITED(status) ? WEXITSTATUS(status) : -1,
                  script, log);
         return false;
     }
-    if (!copy_file(img, out_img, err, n) || !copy_file(idx, out_idx, err, n)) return false;
+    if (!copy_file(img, out_img, err, n) || !copy_file(idx, out_idx, err, n) ||
+        (gltf && !copy_file(obj, out_obj, err, n)))
+        return false;
     if (!o->no_cache) {
         char why[512];
-        if (xc_mkdirs(cdir, why, sizeof why) && copy_file(img, cached_img, why, sizeof why) &&
-            copy_file(idx, cached_idx, why, sizeof why)) {
+        if (xc_mkdirs(cdir, why, sizeof why) && (!gltf || copy_file(obj, cached_obj, why, sizeof why)) &&
+            copy_file(idx, cached_idx, why, sizeof why) && copy_file(img, cached_img, why, sizeof why)) {
         } else {
             fprintf(stderr, "[xcheck] warning: the reference is not cached: %s\n", why);
         }
@@ -289,7 +297,6 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     const xc_export *ex = r->ex;
     int w = r->w, h = r->h;
     unsigned char *mask = malloc((size_t)w * h);
-    int mc = r->app->scene.material_count;
     xc_stats *objects = calloc(ex->object_count + 1, sizeof *objects);
     double worst = 0;
     fprintf(txt, "shadelab-xcheck %s: %dx%d, Cycles (%s) %d samples, %d bounces%s\n", r->o->scene, w, h,
@@ -309,7 +316,7 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
         const xc_object *ob = &ex->objects[i];
         xc_region_mask(r->index, w, h, i + 1, mask);
         xc_region_stats(r->test, r->ref, mask, w, h, &objects[i]);
-        const char *mat = ob->material >= 0 ? r->app->scene.materials[ob->material].name : "";
+        const char *mat = ob->material;
         print_row(txt, ob->name, mat, &objects[i], ob->checked);
         json_stats(json, ob->name, mat, &objects[i], ob->checked, i == ex->object_count - 1);
         if (ob->checked && objects[i].pixels && !(objects[i].rel_rms <= worst)) worst = objects[i].rel_rms;
@@ -318,27 +325,29 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     fprintf(txt, "\n  %-24s %-18s %8s  %8s  %8s  %10s  %10s\n", "material", "", "pixels", "rel-RMS", "ratio",
             "shadelab", "Cycles");
     bool first = true;
-    for (int m = 0; m < mc; m++) {
-        /* the union of its objects' interiors */
+    unsigned char *one = malloc((size_t)w * h);
+    for (int i = 0; one && i < ex->object_count; i++) {
+        /* each material once, on the union of its objects' interiors */
+        const char *m = ex->objects[i].material;
+        bool seen = false;
+        for (int k = 0; k < i; k++) seen |= !strcmp(ex->objects[k].material, m);
+        if (seen || !m[0]) continue;
         memset(mask, 0, (size_t)w * h);
-        bool checked = true, any = false;
-        unsigned char *one = malloc((size_t)w * h);
-        for (int i = 0; one && i < ex->object_count; i++) {
-            if (ex->objects[i].material != m) continue;
-            any = true;
-            checked &= ex->objects[i].checked;
-            xc_region_mask(r->index, w, h, i + 1, one);
+        bool checked = true;
+        for (int k = i; k < ex->object_count; k++) {
+            if (strcmp(ex->objects[k].material, m)) continue;
+            checked &= ex->objects[k].checked;
+            xc_region_mask(r->index, w, h, k + 1, one);
             for (size_t p = 0; p < (size_t)w * h; p++) mask[p] |= one[p];
         }
-        free(one);
-        if (!any) continue;
         xc_stats s;
         xc_region_stats(r->test, r->ref, mask, w, h, &s);
-        print_row(txt, r->app->scene.materials[m].name, "", &s, checked);
+        print_row(txt, m, "", &s, checked);
         fprintf(json, "%s", first ? "" : ",\n");
-        json_stats(json, r->app->scene.materials[m].name, "", &s, checked, true);
+        json_stats(json, m, "", &s, checked, true);
         first = false;
     }
+    free(one);
     xc_stats bg, all;
     xc_region_mask(r->index, w, h, 0, mask);
     xc_region_stats(r->test, r->ref, mask, w, h, &bg);
@@ -463,8 +472,10 @@ int main(int argc, char **argv) {
     uint64_t key = sl_tool_hash64(version, strlen(version), ex.hash);
     bool cached = false;
     double cycles_s = 0, ms = NAN;
-    if (!cycles_reference(&o, out, key, blender, &cached, &cycles_s, err, sizeof err)) goto fail;
     char path[4300];
+    if (!cycles_reference(&o, out, key, blender, ex.gltf, &cached, &cycles_s, err, sizeof err)) goto fail;
+    snprintf(path, sizeof path, "%s/objects.json", out);
+    if (ex.gltf && !xc_export_read_objects(&ex, path, err, sizeof err)) goto fail;
     snprintf(path, sizeof path, "%s/cycles.exr", out);
     if (!load_exr(path, &ref, o.width, o.height, err, sizeof err)) goto fail;
     snprintf(path, sizeof path, "%s/index.exr", out);

@@ -382,6 +382,31 @@ def setup_render(S, out_dir):
     tree.links.new(rl.outputs["Image"], comp.inputs[0])
 
 
+def import_gltf(d, g, out_dir):
+    """Blender's own glTF importer reads the file (geometry, materials); its lights and cameras are
+    dropped (the export's stand for them). The mesh objects get pass indices 1..N by name, listed in
+    OUT/objects.json for the report."""
+    import numpy
+    if not hasattr(numpy, "bool"):
+        numpy.bool = bool  # Blender 3.4's importer uses the alias that numpy 1.24 removed
+    path = g["file"] if os.path.isabs(g["file"]) else os.path.join(d, g["file"])
+    before = set(bpy.data.objects)
+    bpy.ops.import_scene.gltf(filepath=path)
+    new = [o for o in bpy.data.objects if o not in before]
+    for o in [o for o in new if o.type in ("LIGHT", "CAMERA")]:
+        bpy.data.objects.remove(o)
+    meshes = sorted([o for o in bpy.data.objects if o.type == "MESH" and o.pass_index == 0 and o not in before],
+                    key=lambda o: o.name)
+    listed = []
+    for i, o in enumerate(meshes):
+        o.pass_index = i + 1
+        names = [m.name for m in o.data.materials if m is not None]
+        listed.append({"index": i + 1, "name": o.name, "material": ", ".join(names)})
+    os.makedirs(out_dir, exist_ok=True)
+    with open(os.path.join(out_dir, "objects.json"), "w") as f:
+        json.dump({"objects": listed}, f, indent=1)
+
+
 def main():
     d = os.environ.get("XCHECK_DIR") or os.path.dirname(os.path.abspath(__file__))
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
@@ -401,6 +426,8 @@ def main():
         obj.matrix_basis = matrix(o["matrix"])
         obj.pass_index = o["index"]
         link(obj, root)
+    if "gltf" in S:
+        import_gltf(d, S["gltf"], out_dir)
     for l in S["lights"]:
         make_light(l, root)
     bpy.context.scene.world = make_world(d, S["world"])
