@@ -18,9 +18,9 @@ static void set3(float *dst, float x, float y, float z) { dst[0] = x, dst[1] = y
  *   d(θ, φ) = (sin θ sin φ, cos θ, sin θ cos φ),  θ ∈ [0, π] from +Y,  φ = atan2(x, z) ∈ [0, 2π)
  *   u = φ / 2π,  v = θ / π
  * so u = 0 faces +Z, u = 0.25 faces +X, v = 0 is the north pole (+Y): an image on it reads
- * unmirrored from outside. Environment maps are read from inside and use the mirror of this
- * (φ = atan2(−x, z), u = ½ facing −Z; sdk/docs/conventions.md): the sphere's u at direction d
- * is 1 − the environment's u there. The seam (u = 0 and
+ * unmirrored from outside. Environment maps are read from inside, in Blender's orientation
+ * (u = atan2(z, x)/2π + ½, u = ½ facing +X; sdk/docs/conventions.md): the sphere's u at
+ * direction d is ¾ − the environment's u there (wrapped). The seam (u = 0 and
  * u = 1) and the poles have one vertex per column, so UVs and tangents are exact there too.
  * Tangent: ∂d/∂φ normalised = (cos φ, 0, −sin φ); w = +1. */
 bool sl_mesh_sphere(sl_mesh_data *m, float radius, int segments, int rings) {

@@ -17,20 +17,21 @@ void em_image_free(em_image *img) {
 
 /* ---------------------------------------------------------------- directions */
 
-/* The standard equirectangular orientation (Blender, three.js, Filament): seen from inside, u grows
- * to the right. u = 0 faces +Z, u = 1/4 faces −X, u = 1/2 faces −Z (the default camera's view),
- * u = 3/4 faces +X. See sdk/docs/conventions.md. */
+/* The equirectangular orientation of Blender and three.js (sdk/docs/conventions.md): seen from
+ * inside, u grows to the right. u = 0 faces −X, u = 1/4 faces −Z (the default camera's view),
+ * u = 1/2 (the image's centre) faces +X, u = 3/4 faces +Z; v = 0 is the top row (+Y). */
 void em_latlong_dir(double u, double v, double d[3]) {
     double phi = 2 * M_PI * u, theta = M_PI * v;
-    d[0] = -sin(theta) * sin(phi);
+    d[0] = -sin(theta) * cos(phi);
     d[1] = cos(theta);
-    d[2] = sin(theta) * cos(phi);
+    d[2] = -sin(theta) * sin(phi);
 }
 
 void em_dir_latlong(const double d[3], double *u, double *v) {
     double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double y = len > 0 ? d[1] / len : 1;
-    double phi = (fabs(d[0]) + fabs(d[2]) > 0) ? atan2(-d[0], d[2]) : 0; /* atan2(0, 0) at the poles */
+    /* three.js' u = atan2(z, x)/2π + ½, as φ = atan2(−z, −x) wrapped to [0, 2π); atan2(0, 0) at the poles */
+    double phi = (fabs(d[0]) + fabs(d[2]) > 0) ? atan2(-d[2], -d[0]) : 0;
     double uu = phi / (2 * M_PI);
     uu -= floor(uu);
     if (uu >= 1) uu = 0;
@@ -264,7 +265,7 @@ void em_sh9_project(const float *faces, int n, double sh[9][3]) {
 
 /* The image is taken in blocks of k×k texels (k = ⌈h/128⌉: a fixed cost per image, whatever its
  * size), each block's radiance as constant (the solid-angle-weighted mean of its texels), and the
- * basis is integrated over each block exactly: with d = (−sinθ sinφ, cosθ, sinθ cosφ)
+ * basis is integrated over each block exactly: with d = (−sinθ cosφ, cosθ, −sinθ sinφ)
  * (em_latlong_dir) every basis function is a sum of products of a θ factor and a φ factor, so a
  * block's weights are products of θ moments ∫ f(θ) sinθ dθ and φ moments ∫ g(φ) dφ over it. Exact
  * for a constant map, where a texel-centre rule is not: on a small lat-long (envmap's
@@ -317,13 +318,13 @@ void em_sh9_project_latlong(const em_image *img, double sh[9][3]) {
             int x1 = (c + 1) * k < w ? (c + 1) * k : w, cols = x1 - c * k;
             double wt[9] = {k0 * t0 * m[0],
                             k1 * tc * m[0],
-                            k1 * ts * m[1],
                             -k1 * ts * m[2],
+                            -k1 * ts * m[1],
+                            -k2 * tsc * m[1],
                             -k2 * tsc * m[2],
-                            k2 * tsc * m[1],
-                            k3 * (3 * tss * m[3] - t0 * m[0]),
-                            -0.5 * k2 * tss * m[5],
-                            k4 * (tss * m[4] - tcc * m[0])};
+                            k3 * (3 * tss * m[4] - t0 * m[0]),
+                            0.5 * k2 * tss * m[5],
+                            k4 * (tss * m[3] - tcc * m[0])};
             double norm = rows > 0 ? 1.0 / (rows * cols) : 0;
             for (int q = 0; q < 9; q++)
                 for (int ch = 0; ch < 3; ch++) sh[q][ch] += sum[3 * c + ch] * norm * wt[q];
@@ -428,19 +429,21 @@ void em_sky_latlong(const em_sky *s, int w, int h, em_image *out) {
     double sd[3];
     sun_dir(s, sd);
     double r = s->sun_radius_deg * M_PI / 180, texel = M_PI / h;
-    /* em_latlong_dir's sines and cosines, per column and per row (start-up, issue 19: a third of
-     * the time it took when every texel called em_latlong_dir and em_sky_radiance; same values) */
-    double *sin_phi = malloc(2 * (size_t)w * sizeof(double)), *cos_phi = sin_phi + w;
+    /* each column's horizontal direction (em_latlong_dir on the horizon) and each row's sines,
+     * computed once (start-up, issue 19: a third of the time it took when every texel called
+     * em_latlong_dir and em_sky_radiance; same values) */
+    double *col_x = malloc(2 * (size_t)w * sizeof(double)), *col_z = col_x + w;
     for (int x = 0; x < w; x++) {
-        double phi = 2 * M_PI * ((x + 0.5) / w);
-        sin_phi[x] = sin(phi), cos_phi[x] = cos(phi);
+        double e[3];
+        em_latlong_dir((x + 0.5) / w, 0.5, e);
+        col_x[x] = e[0], col_z[x] = e[2];
     }
     for (int y = 0; y < h; y++) {
         double theta = M_PI * ((y + 0.5) / h), st = sin(theta), ct = cos(theta);
         sky_row row;
         sky_row_init(ct, &row);
         for (int x = 0; x < w; x++) {
-            double d[3] = {-st * sin_phi[x], ct, st * cos_phi[x]}, c[3] = {0, 0, 0};
+            double d[3] = {st * col_x[x], ct, st * col_z[x]}, c[3] = {0, 0, 0};
             double cs = d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2];
             double angle = acos(cs < -1 ? -1 : cs > 1 ? 1 : cs);
             /* near the sun disk: 8×8 sub-samples so the disk's energy does not depend on
@@ -464,7 +467,7 @@ void em_sky_latlong(const em_sky *s, int w, int h, em_image *out) {
             p[3] = 1;
         }
     }
-    free(sin_phi);
+    free(col_x);
 }
 
 /* ---------------------------------------------------------------- lat-long → base cube on the CPU */

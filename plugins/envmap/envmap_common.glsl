@@ -9,17 +9,17 @@ layout(binding = ENVMAP_PROBE_UNIT) uniform samplerCube envmap_probe;
 #endif
 const float ENVMAP_HALF_MAX = 65504.0;
 
-// Lat-long: d = (−sinθ sinφ, cosθ, sinθ cosφ), φ = atan2(−x, z), u = φ/2π wrapped to [0,1),
-// v = θ/π (v = 0 up). Seen from inside, u grows to the right (the standard equirectangular
-// orientation): u = 0 faces +Z, ¼ faces −X, ½ faces −Z, ¾ faces +X.
+// Lat-long, the orientation of Blender and three.js: d = (−sinθ cosφ, cosθ, −sinθ sinφ),
+// φ = atan2(−z, −x), u = φ/2π wrapped to [0,1) (three.js: atan(z, x)/2π + ½), v = θ/π (v = 0 up).
+// Seen from inside, u grows to the right: u = 0 faces −X, ¼ faces −Z, ½ faces +X, ¾ faces +Z.
 vec3 envmap_latlong_dir(vec2 uv) {
     float phi = 2.0 * ENVMAP_PI * uv.x, theta = ENVMAP_PI * uv.y;
-    return vec3(-sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
+    return vec3(-sin(theta) * cos(phi), cos(theta), -sin(theta) * sin(phi));
 }
 vec2 envmap_dir_latlong(vec3 d) {
     d = normalize(d);
     // atan(0, 0) is undefined in GLSL: the poles get u = 0 (any u is the same point there)
-    float phi = (abs(d.x) + abs(d.z) > 0.0) ? atan(-d.x, d.z) : 0.0;
+    float phi = (abs(d.x) + abs(d.z) > 0.0) ? atan(-d.z, -d.x) : 0.0;
     float u = phi * (0.5 / ENVMAP_PI);
     u = u - floor(u);
     return vec2(u, acos(clamp(d.y, -1.0, 1.0)) / ENVMAP_PI);

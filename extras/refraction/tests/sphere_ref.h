@@ -3,10 +3,10 @@
  *
  * Environment: envmap's procedural "uv" lat-long map (its texel centres hold u and v exactly and
  * bilinear filtering reproduces a linear function), so radiance along a world direction d is
- *     L(d) = (u, v, 0),  u = frac(atan2(−d.x, d.z) / 2π),  v = acos(d.y) / π
- * (sdk/docs/conventions.md's lat-long orientation, yaw 0, intensity 1). v (green) is continuous
- * everywhere; u (red) jumps from 1 to 0 across the half-plane x = 0, z > 0 (the seam), so red is
- * only compared where every direction that contributes stays away from it (rf_seam_margin).
+ *     L(d) = (u, v, 0),  u = frac(atan2(d.z, d.x) / 2π + ½),  v = acos(d.y) / π
+ * (sdk/docs/conventions.md's lat-long orientation, three.js' formula, yaw 0, intensity 1). v
+ * (green) is continuous everywhere; u (red) jumps from 1 to 0 across the half-plane z = 0, x < 0
+ * (the seam), so red is only compared where every direction that contributes stays away from it (rf_seam_margin).
  *
  * Fresnel: Walter, Marschner, Li, Torrance 2007 eq. 22, written with g = √(n² − 1 + c²) and n the
  * ratio n_transmitted / n_incident (the GLSL's ggx_fresnel_exact is written with β and the
@@ -33,7 +33,7 @@ static void rf_norm(double a[3]) {
 
 /* environment radiance along d (unit), channel-wise; weight: how much it contributes */
 static void rf_env(const double d[3], double weight, double out[3]) {
-    double u = atan2(-d[0], d[2]) / (2 * RF_PI);
+    double u = atan2(d[2], d[0]) / (2 * RF_PI) + 0.5;
     u -= floor(u);
     double v = acos(fmax(-1.0, fmin(1.0, d[1]))) / RF_PI;
     if (weight > 1e-4) {

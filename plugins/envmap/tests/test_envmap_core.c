@@ -30,19 +30,29 @@ static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + 
 
 static void test_conventions(void) {
     double d[3], u, v;
+    /* the orientation of Blender and three.js: three.js' equirectUv, u = atan2(d.z, d.x)/2π + ½,
+     * puts the image's centre at +X and u = ¾ at +Z */
     em_latlong_dir(0, 0.5, d);
-    CHECK(fabs(d[2] - 1) < 1e-12); /* u = 0 faces +Z */
-    /* the standard equirectangular orientation: seen from inside, u grows to the right */
+    CHECK(fabs(d[0] + 1) < 1e-12); /* u = 0 faces −X */
     em_latlong_dir(0.25, 0.5, d);
-    CHECK(fabs(d[0] + 1) < 1e-12); /* u = 0.25 faces −X */
+    CHECK(fabs(d[2] + 1) < 1e-12); /* u = 0.25 faces −Z, the default camera's view */
     em_latlong_dir(0.5, 0.5, d);
-    CHECK(fabs(d[2] + 1) < 1e-12); /* u = 0.5 faces −Z, the default camera's view */
+    CHECK(fabs(d[0] - 1) < 1e-12); /* u = 0.5 faces +X */
     em_latlong_dir(0.75, 0.5, d);
-    CHECK(fabs(d[0] - 1) < 1e-12); /* u = 0.75 faces +X */
-    /* facing −Z (u = ½) with +Y up, the right hand is +X: a step right must raise u */
-    double right[3] = {0.1, 0, -1};
+    CHECK(fabs(d[2] - 1) < 1e-12); /* u = 0.75 faces +Z */
+    /* facing +X (u = ½) with +Y up, the right hand is +X × +Y = +Z: a step right must raise u */
+    double right[3] = {1, 0, 0.1};
     em_dir_latlong(right, &u, &v);
-    CHECK_MSG(u > 0.5 && u < 0.55, "u to the right of -Z: %g", u);
+    CHECK_MSG(u > 0.5 && u < 0.55, "u to the right of +X: %g", u);
+    /* three.js' formula itself, at directions off the axes */
+    for (int i = 0; i < 12; i++) {
+        double t[3] = {cos(0.5 + i), 0.3 * i - 1.5, sin(0.5 + i)};
+        normalize3(t);
+        em_dir_latlong(t, &u, &v);
+        double three_u = atan2(t[2], t[0]) / (2 * M_PI) + 0.5;
+        CHECK_MSG(fabs(u - three_u) < 1e-12 || fabs(fabs(u - three_u) - 1) < 1e-12, "u %g vs three.js %g", u, three_u);
+        CHECK_NEAR(v, acos(t[1]) / M_PI, 1e-12);
+    }
     em_latlong_dir(0.7, 0, d);
     CHECK(fabs(d[1] - 1) < 1e-12); /* v = 0 is straight up */
     double worst = 0;
@@ -501,6 +511,44 @@ static void test_irradiance(em_gpu *g) {
     em_image_free(&img);
 }
 
+/* The SH projection of a lat-long (em_sh9_project_latlong, its φ moments written for the
+ * convention's d(u, v)) against known coefficients: a map that is itself a sum of the nine real
+ * SH basis functions with distinct weights, L(d) = Σ c_k Y_k(d) (Y_k as tabulated by Ramamoorthi
+ * & Hanrahan 2001, written out here), must project back to c_k. Every coefficient that depends
+ * on x or z changes sign or moves if the projection's moments assume another azimuth convention
+ * than em_latlong_dir's (the linear-in-y tests above cannot see that). */
+static const double sh_weight[9] = {1.0, 0.3, -0.45, 0.6, 0.25, -0.2, 0.15, -0.35, 0.4};
+static double sh_basis_ref(int k, const double d[3]) {
+    double x = d[0], y = d[1], z = d[2];
+    switch (k) {
+    case 0: return 0.282095;
+    case 1: return 0.488603 * y;
+    case 2: return 0.488603 * z;
+    case 3: return 0.488603 * x;
+    case 4: return 1.092548 * x * y;
+    case 5: return 1.092548 * y * z;
+    case 6: return 0.315392 * (3 * z * z - 1);
+    case 7: return 1.092548 * x * z;
+    default: return 0.546274 * (x * x - y * y);
+    }
+}
+static void sh_sum_fn(const double d[3], double out[3], void *user) {
+    (void)user;
+    double s = 0;
+    for (int k = 0; k < 9; k++) s += sh_weight[k] * sh_basis_ref(k, d);
+    out[0] = out[1] = out[2] = s;
+}
+static void test_sh_latlong(void) {
+    em_image img;
+    make_latlong(&img, 256, 128, 4, sh_sum_fn, NULL);
+    double sh[9][3], worst = 0;
+    em_sh9_project_latlong(&img, sh);
+    for (int k = 0; k < 9; k++) worst = fmax(worst, fabs(sh[k][0] - sh_weight[k]));
+    printf("SH projection of a lat-long made of the nine basis functions: max |c_k - c_k,true| = %.2e\n", worst);
+    CHECK_MSG(worst < 2e-3, "lat-long SH projection off by %.2e", worst);
+    em_image_free(&img);
+}
+
 /* em_irradiance_cube's three methods (issue 18 item 6) against closed forms, and the two fast
  * ones against the direct sum:
  *   constant L                    E/π = L (per channel);
@@ -662,6 +710,7 @@ int main(void) {
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     test_lut(&g);
     test_irradiance(&g);
+    test_sh_latlong();
     test_irradiance_methods(&g);
     test_level_maps();
     test_disk(&g, EM_LEVEL_MAP_SQRT);

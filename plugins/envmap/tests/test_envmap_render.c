@@ -429,11 +429,12 @@ static void test_conventions(void) {
 
 /* The orientation, from the convention on paper (sdk/docs/conventions.md), not from a render:
  * an asymmetric probe, a lat-long that is dark (0.02) except one marked quadrant (1, 0.5, 0.1)
- * at u ∈ [½, ¾), v ∈ [¼, ½). The image is made from texel indices alone (no code under test).
+ * at u ∈ [¼, ½), v ∈ [¼, ½). The image is made from texel indices alone (no code under test).
  *
- * Where the mark is. The convention states: u = ½ faces −Z, u = ¾ faces +X, u grows to the
- * right as seen from inside; v = θ/π, θ from +Y, so v = ¼ is 45° above the horizon and v = ½
- * the horizon. Hence the mark covers the directions d with
+ * Where the mark is. The convention (Blender's and three.js': u = atan2(d.z, d.x)/2π + ½)
+ * states: u = ¼ faces −Z, u = ½ faces +X, u grows to the right as seen from inside; v = θ/π,
+ * θ from +Y, so v = ¼ is 45° above the horizon and v = ½ the horizon. Hence the mark covers the
+ * directions d with
  *     d.x > 0, d.z < 0 (between −Z and +X), and 0 < elevation < 45°  (elevation = asin d.y).
  * The camera sits at (0, 0, 4) looking at the origin (down −Z), +Y up, 40° vertical field of
  * view: its right hand is +X, so the right half of the image sees d.x > 0, the upper half
@@ -444,8 +445,9 @@ static void test_conventions(void) {
  *     image, counter-clockwise from "right"), r ≈ (sin2β cosγ, sin2β sinγ, cos2β): r.z < 0 only
  *     in the ring β > 45°, and there r.x has the sign of cosγ, r.y of sinγ. The mark shows in
  *     the outer ring, upper-right quarter (cut off where r rises above 45°) — on the same side
- *     as in the background, as a real mirror ball shows what is beside it. A mirrored map (the
- *     old φ = atan2(x, z)) puts both on the left; no yaw turns one into the other.
+ *     as in the background, as a real mirror ball shows what is beside it. The previous
+ *     convention (u = ½ at −Z) put u ∈ [¼, ½) between −X and −Z, on the left; a mirrored map
+ *     (φ = atan2(x, z), before ABI 1.6) likewise.
  * The test classifies every pixel with that rule (exact ray and reflection, directions within
  * 4° of the mark's edges skipped) and requires the marked/unmarked colour. */
 static bool probe_marked(const double d[3], bool *near_edge) {
@@ -462,7 +464,7 @@ static void test_probe(void) {
     float *px = malloc((size_t)PW * PH * 16);
     for (int y = 0; y < PH; y++)
         for (int x = 0; x < PW; x++) {
-            bool mark = x >= PW / 2 && x < 3 * PW / 4 && y >= PH / 4 && y < PH / 2;
+            bool mark = x >= PW / 4 && x < PW / 2 && y >= PH / 4 && y < PH / 2;
             float *p = px + ((size_t)y * PW + x) * 4;
             p[0] = mark ? 1.0f : 0.02f, p[1] = mark ? 0.5f : 0.02f, p[2] = mark ? 0.1f : 0.02f, p[3] = 1;
         }
@@ -496,7 +498,7 @@ static void test_probe(void) {
                 counted++;
                 if (seen != mark) wrong++;
             }
-        printf("probe (marked quadrant u in [1/2, 3/4), v in [1/4, 1/2))%s: %d pixels classified on paper, %d wrong; "
+        printf("probe (marked quadrant u in [1/4, 1/2), v in [1/4, 1/2))%s: %d pixels classified on paper, %d wrong; "
                "marked background pixels: upper-left %d, upper-right %d, lower-left %d, lower-right %d; "
                "marked sphere pixels upper-right %d\n",
                model ? ", yaw 180" : "", counted, wrong, quad[1][0], quad[1][1], quad[0][0], quad[0][1], ring_right_up);
@@ -507,6 +509,60 @@ static void test_probe(void) {
         else CHECK(quad[1][1] == 0);
         sl_harness_destroy(h);
     }
+}
+
+/* A sun placed by the convention, found on a mirror sphere where geometry says. The map (made
+ * from texel indices alone: 4 × 4 texels of radiance 1000 on black, centred on u = 0.625,
+ * v = 0.25 of a 512 × 256 image) puts the sun, worked out by hand from the convention
+ * (u = atan2(d.z, d.x)/2π + ½, v = θ/π from +Y):
+ *     v = ¼  → θ = 45°:  d.y = cos 45° = √½, horizontal part sin 45° = √½;
+ *     u = ⅝  → atan2(d.z, d.x) = 2π(⅝ − ½) = 45°: d.x = d.z = √½ · √½ = ½;
+ *     s = (½, √½, ½) — up, to the right and towards the camera.
+ * A unit mirror sphere seen from (0, 0, 4) shows it where its normal bisects s and the
+ * direction to the camera: n = normalize(s + normalize(c − n)), solved by iterating from
+ * n = normalize(s + ẑ) (≈ (0.29, 0.41, 0.87), the upper right of the sphere). The highlight's
+ * centroid must be within 1.5 pixels of n's projection. The previous convention (u = ½ at −Z)
+ * put this texel at (½, √½, −½), behind the sphere: its highlight lay 5 pixels away, near the
+ * upper-right rim; a mirrored map puts it on the left. */
+static void test_sun_highlight(void) {
+    enum { SW = 512, SH = 256 };
+    char path[512], err[1024];
+    snprintf(path, sizeof path, "%s/sun_probe.exr", dir);
+    float *px = calloc((size_t)SW * SH * 4, sizeof(float));
+    for (int y = 0; y < SH; y++)
+        for (int x = 0; x < SW; x++) {
+            bool sun = x >= 318 && x < 322 && y >= 62 && y < 66; /* centre (320/512, 64/256) = (0.625, 0.25) */
+            float *p = px + ((size_t)y * SW + x) * 4;
+            p[0] = p[1] = p[2] = sun ? 1000.0f : 0.0f, p[3] = 1;
+        }
+    CHECK_MSG(em_io_write_exr(path, px, SW, SH, NULL, err, sizeof err), "%s", err);
+    free(px);
+    const double s[3] = {0.5, sqrt(0.5), 0.5}, cam_z = 4;
+    double n[3] = {s[0], s[1], s[2] + 1};
+    normalize3(n);
+    for (int it = 0; it < 50; it++) { /* n bisects s and the direction from n (on the sphere) to the camera */
+        double v[3] = {-n[0], -n[1], cam_z - n[2]};
+        normalize3(v);
+        for (int i = 0; i < 3; i++) n[i] = s[i] + v[i];
+        normalize3(n);
+    }
+    double f = 1 / tan(20 * M_PI / 180); /* 40° vertical field of view, square image */
+    double want_x = (f * n[0] / (cam_z - n[2]) + 1) / 2 * W - 0.5, want_y = (1 - f * n[1] / (cam_z - n[2])) / 2 * H - 0.5;
+    sl_harness *h = make(path, "\"model\": \"mirror\"", NULL, 1);
+    CHECK(h && sl_harness_render(h, img));
+    double sum = 0, cx = 0, cy = 0, peak = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double L = img[(y * W + x) * 4 + 1];
+            peak = fmax(peak, L);
+            if (L > 1) sum += L, cx += L * x, cy += L * y;
+        }
+    cx /= fmax(sum, 1e-30), cy /= fmax(sum, 1e-30);
+    printf("sun at (u, v) = (0.625, 0.25) -> s = (0.5, 0.707, 0.5) on a mirror sphere: highlight centroid (%.2f, %.2f), "
+           "expected (%.2f, %.2f) from n = (%.3f, %.3f, %.3f); peak %.1f\n", cx, cy, want_x, want_y, n[0], n[1], n[2], peak);
+    CHECK_MSG(sum > 0, "no highlight at all");
+    CHECK_MSG(hypot(cx - want_x, cy - want_y) < 1.5, "highlight at (%.2f, %.2f), expected (%.2f, %.2f)", cx, cy, want_x, want_y);
+    sl_harness_destroy(h);
 }
 
 /* The core's procedural specs as environments; "uv" encodes the convention itself: an
@@ -710,6 +766,7 @@ int main(void) {
     test_sh_ringing();
     test_conventions();
     test_probe();
+    test_sun_highlight();
     test_procedural();
     test_bad_input();
     test_chain_and_cache();

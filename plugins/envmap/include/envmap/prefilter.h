@@ -7,15 +7,16 @@
  * does: the plugin in envmap.c, the tool and the tests through the core library).
  *
  * Conventions (sdk conventions, scenes/README.md):
- *   lat-long   d = (−sinθ sinφ, cosθ, sinθ cosφ), θ from +Y, φ = atan2(−d.x, d.z);
+ *   lat-long   d = (−sinθ cosφ, cosθ, −sinθ sinφ), θ from +Y, φ = atan2(−d.z, −d.x);
  *              u = φ/2π wrapped to [0,1), v = θ/π; row 0 of an image (v = 0) is the top (+Y).
- *              The standard equirectangular orientation: seen from inside, u grows to the
- *              right; u = 0 faces +Z, ¼ −X, ½ −Z (the default camera's view), ¾ +X.
+ *              The orientation of Blender and three.js (three.js: u = atan2(d.z, d.x)/2π + ½):
+ *              seen from inside, u grows to the right; u = 0 faces −X, ¼ −Z (the default
+ *              camera's view), ½ (the image's centre) +X, ¾ +Z.
  *   cube maps  OpenGL's face order (+X, −X, +Y, −Y, +Z, −Z) and face orientation (GL 4.5
  *              §8.13, table 8.19); a face image's row 0 is t = 0, so uploading it as is gives
  *              the GL cube map. Cross layouts: see em_layout.
- *   yaw        the environment turns by yaw degrees about +Y, +Z towards +X: the map's u = 0
- *              content appears at (sin yaw, 0, cos yaw). Lookups use d_map = R_y(−yaw) d.
+ *   yaw        the environment turns by yaw degrees about +Y, +Z towards +X: the map's centre
+ *              (u = ½) appears at (cos yaw, 0, −sin yaw). Lookups use d_map = R_y(−yaw) d.
  */
 #ifndef ENVMAP_PREFILTER_H
 #define ENVMAP_PREFILTER_H
