@@ -238,6 +238,38 @@ static void test_flip_viewing_distance(void) {
     free(checker); free(mean); free(noisy); free(map);
 }
 
+/* The noise measure on frames whose spread is known: identical frames 0; black and white in turn
+ * (sRGB 0 and 1): sample variance ((0 - 1/2)^2 + (1 - 1/2)^2) / (2 - 1) = 1/2, sigma = 0.707107;
+ * on one pixel of four only: RMS over pixels sqrt(0.5 / 4) = 0.353553. */
+static void test_noise(void) {
+    const int w = 2, h = 2;
+    float *grey = image(w, h, 0.3f, 0.3f, 0.3f), *black = image(w, h, 0, 0, 0), *white = image(w, h, 1, 1, 1);
+    float sigma[4];
+    sl_noise_acc acc;
+    CHECK(sl_noise_begin(&acc, w, h));
+    for (int i = 0; i < 5; i++) sl_noise_add(&acc, grey);
+    CHECK(sl_noise_end(&acc, sigma) == 0.0 && sigma[3] == 0);
+    CHECK(sl_noise_begin(&acc, w, h));
+    sl_noise_add(&acc, black);
+    sl_noise_add(&acc, white);
+    CHECK_NEAR(sl_noise_end(&acc, sigma), 0.707107, 1e-6);
+    CHECK_NEAR(sigma[0], 0.707107, 1e-6);
+    /* four frames, pixel 0 alternating, the others constant; linear 2 and -1 display as 1 and 0 */
+    float *alt = image(w, h, 0, 0, 0);
+    CHECK(sl_noise_begin(&acc, w, h));
+    for (int k = 0; k < 4; k++) {
+        for (int c = 0; c < 3; c++) alt[c] = k % 2 ? 2.0f : -1.0f;
+        sl_noise_add(&acc, alt);
+    }
+    /* sample variance of 0,1,0,1: (4 * 1/4) / 3 = 1/3; RMS over 4 pixels sqrt(1/12) = 0.288675 */
+    CHECK_NEAR(sl_noise_end(&acc, sigma), 0.288675, 1e-6);
+    CHECK(sigma[1] == 0 && sigma[2] == 0);
+    CHECK(sl_noise_begin(&acc, w, h));
+    sl_noise_add(&acc, white);
+    CHECK(sl_noise_end(&acc, NULL) == 0.0); /* one frame: no spread */
+    free(grey); free(black); free(white); free(alt);
+}
+
 static void test_pareto(void) {
     /*            A     B    C    D    E    F    G    H */
     double c[] = {1,    2,   3,   4,   2,   5,   NAN, 0.5};
@@ -278,14 +310,26 @@ static const char *front_json =
     "{\"format\": \"shadelab-bench/1\", \"plugin\": \"core\", \"primary_metric\": \"rmse\", \"scene\": \"s.json\","
     " \"width\": 64, \"height\": 32, \"backend\": \"osmesa\", \"renderer\": \"llvmpipe\", \"settings\": ["
     " {\"settings\": \"core.ssaa=1\", \"ok\": true, \"frame_ms\": {\"median\": 1.0},"
-    "  \"passes\": [{\"name\": \"forward\", \"median_ms\": 0.8}], \"error\": {\"rmse\": 0.02, \"ssim\": 0.98, \"psnr\": 34}},"
+    "  \"passes\": [{\"name\": \"forward\", \"median_ms\": 0.8}], \"error\": {\"rmse\": 0.02, \"ssim\": 0.98, \"psnr\": 34,"
+    "   \"flip\": 0.1, \"noise\": 0}},"
     " {\"settings\": \"core.ssaa=2\", \"ok\": true, \"frame_ms\": {\"median\": 3.0},"
-    "  \"error\": {\"rmse\": 0.007, \"ssim\": 0.997, \"psnr\": 43}},"
+    "  \"error\": {\"rmse\": 0.007, \"ssim\": 0.997, \"psnr\": 43, \"flip\": 0.05, \"noise\": 0}},"
     " {\"settings\": \"core.ssaa=3\", \"ok\": false, \"failure\": \"x\"},"
     " {\"settings\": \"core.ssaa=4\", \"ok\": true, \"frame_ms\": {\"median\": 9.0},"
     "  \"error\": {\"rmse\": 0.003, \"ssim\": 0.9995, \"psnr\": 50}},"
     " {\"settings\": \"core.ssaa=5\", \"ok\": true, \"frame_ms\": {\"median\": 12.0},"
-    "  \"error\": {\"rmse\": 0.004, \"ssim\": 0.999, \"psnr\": 48}}]}";
+    "  \"error\": {\"rmse\": 0.004, \"ssim\": 0.999, \"psnr\": 48}},"
+    /* the cheapest and most accurate on every metric, but its frames scatter: never chosen */
+    " {\"settings\": \"core.ssaa=6\", \"ok\": true, \"frame_ms\": {\"median\": 0.5},"
+    "  \"error\": {\"rmse\": 0.001, \"ssim\": 0.9999, \"psnr\": 60, \"flip\": 0.01, \"noise\": 0.03, \"noisy\": true}}]}";
+
+/* only noisy settings: the most accurate of them is chosen, and flagged */
+static const char *noisy_json =
+    "{\"format\": \"shadelab-bench/1\", \"plugin\": \"core\", \"primary_metric\": \"flip\", \"settings\": ["
+    " {\"settings\": \"core.ssaa=1\", \"ok\": true, \"frame_ms\": {\"median\": 1.0},"
+    "  \"error\": {\"rmse\": 0.02, \"flip\": 0.2, \"noise\": 0.01, \"noisy\": true}},"
+    " {\"settings\": \"core.ssaa=2\", \"ok\": true, \"frame_ms\": {\"median\": 2.0},"
+    "  \"error\": {\"rmse\": 0.01, \"flip\": 0.1, \"noise\": 0.01, \"noisy\": true}}]}";
 
 static void test_choose(void) {
     sl_aq_choice c;
@@ -306,8 +350,14 @@ static void test_choose(void) {
     CHECK_CONTAINS(err, "not a shadelab-bench result");
     CHECK(!sl_autoquality_choose("{ nope", NULL, 1, &c, err, sizeof err));
     CHECK_CONTAINS(err, "malformed JSON");
-    CHECK(!sl_autoquality_choose(front_json, "flip", 1, &c, err, sizeof err));
+    CHECK(!sl_autoquality_choose(front_json, "nope", 1, &c, err, sizeof err));
     CHECK_CONTAINS(err, "unknown metric");
+    /* flip and noise budgets; the noisy ssaa=6 would win every one of them on its numbers */
+    CHECK(sl_autoquality_choose(front_json, "flip", 0.06, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=2"));
+    CHECK(c.error == 0.05 && !c.noisy);
+    CHECK(sl_autoquality_choose(front_json, "noise", 0.001, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=1"));
+    CHECK(sl_autoquality_choose(noisy_json, NULL, 0.15, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=2"));
+    CHECK(c.noisy && c.within_budget && !strcmp(c.metric, "flip"));
 }
 
 /* The writers on a synthetic result: one dominated setting, one identical to the reference. */
@@ -342,6 +392,14 @@ static void test_outputs(void) {
     r.rows[2].frame_ms_median = 5;
     sl_bench_mark_fronts(&r);
     CHECK(!r.rows[2].front[SL_METRIC_RMSE] && r.rows[1].front[SL_METRIC_RMSE]);
+    /* a noisy setting is on no front: here the cheapest is, until its frames scatter */
+    r.noise_limit = 0.002;
+    r.rows[0].error.noise = 0.0021;
+    sl_bench_mark_fronts(&r);
+    CHECK(r.rows[0].noisy && !r.rows[0].front[SL_METRIC_RMSE] && !r.rows[0].front[SL_METRIC_FLIP]);
+    r.rows[0].error.noise = 0.002;
+    sl_bench_mark_fronts(&r);
+    CHECK(!r.rows[0].noisy && r.rows[0].front[SL_METRIC_RMSE]);
     CHECK(!strcmp(r.rows[2].label, "ssaa=3"));
     char dir[512], path[600], err[1024];
     snprintf(dir, sizeof dir, "%s/bench-metrics", sl_test_dir());
@@ -439,6 +497,7 @@ int main(void) {
     test_flip_uniform();
     test_flip_step_edge();
     test_flip_viewing_distance();
+    test_noise();
     test_pareto();
     test_choose();
     test_outputs();

@@ -36,8 +36,15 @@ static double row_error(const cJSON *row, sl_metric m) {
         if (isnan(p) && jnum(e, "rmse") == 0) p = INFINITY;
         return -p;
     }
+    case SL_METRIC_FLIP: return jnum(e, "flip");
+    case SL_METRIC_NOISE: return jnum(e, "noise");
     default: return NAN;
     }
+}
+
+/* shadelab-bench marked it noisy: its frames scatter visibly (metrics.h, "noise"). */
+static bool row_noisy(const cJSON *row) {
+    return cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(row, "error"), "noisy"));
 }
 
 static bool choose_json(const cJSON *root, const char *metric_name, double budget, sl_aq_choice *out, char *err, size_t n) {
@@ -50,23 +57,29 @@ static bool choose_json(const cJSON *root, const char *metric_name, double budge
     if (!*mname) mname = "rmse";
     sl_metric m;
     if (!sl_metric_parse(mname, &m)) {
-        snprintf(err, n, "unknown metric \"%s\" (rmse, relmse, dssim, psnr)", mname);
+        snprintf(err, n, "unknown metric \"%s\" (rmse, relmse, dssim, psnr, flip, noise)", mname);
         return false;
     }
     const cJSON *rows = cJSON_GetObjectItemCaseSensitive(root, "settings");
     int count = cJSON_GetArraySize(rows);
     if (!cJSON_IsArray(rows) || count == 0) { snprintf(err, n, "no measured settings"); return false; }
     double *cost = calloc(count, sizeof *cost), *error = calloc(count, sizeof *error);
-    for (int i = 0; i < count; i++) {
-        const cJSON *r = cJSON_GetArrayItem(rows, i);
-        bool ok = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(r, "ok"));
-        cost[i] = ok ? jnum(cJSON_GetObjectItemCaseSensitive(r, "frame_ms"), "median") : NAN;
-        error[i] = ok ? row_error(r, m) : NAN;
-    }
     double limit = m == SL_METRIC_PSNR ? -budget : budget;
-    int pick = sl_pareto_cheapest_within(cost, error, count, limit);
-    out->within_budget = pick >= 0;
-    if (pick < 0) pick = sl_pareto_most_accurate(cost, error, count);
+    int pick = -1;
+    /* noisy settings only when every setting is noisy: a lower mean error does not make up for
+     * visible noise */
+    for (int with_noisy = 0; with_noisy < 2 && pick < 0; with_noisy++) {
+        for (int i = 0; i < count; i++) {
+            const cJSON *r = cJSON_GetArrayItem(rows, i);
+            bool ok = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(r, "ok")) && (with_noisy || !row_noisy(r));
+            cost[i] = ok ? jnum(cJSON_GetObjectItemCaseSensitive(r, "frame_ms"), "median") : NAN;
+            error[i] = ok ? row_error(r, m) : NAN;
+        }
+        pick = sl_pareto_cheapest_within(cost, error, count, limit);
+        out->within_budget = pick >= 0;
+        if (pick < 0) pick = sl_pareto_most_accurate(cost, error, count);
+        out->noisy = pick >= 0 && with_noisy && row_noisy(cJSON_GetArrayItem(rows, pick));
+    }
     if (pick < 0) {
         free(cost);
         free(error);
@@ -234,6 +247,7 @@ bool sl_autoquality_apply(sl_app *app, const char *spec, char *err, size_t n) {
                 list.items[best].path);
         if (kept[0]) fprintf(stderr, "  kept your --set for %s\n", kept);
         if (!c.within_budget) SL_WARN("auto-quality %s: no measured setting meets %s budget %g", rec->id, c.metric, budget);
+        if (c.noisy) SL_WARN("auto-quality %s: every measured setting is noisy (shadelab-bench's noise limit)", rec->id);
     }
     if (ok && !applied)
         SL_WARN("--auto-quality: no benchmark result for any loaded plugin in %s (run shadelab-bench first)", where);

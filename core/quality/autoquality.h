@@ -14,13 +14,14 @@
  *     if (c.auto_quality && !sl_autoquality_apply(&app, c.auto_quality, err, sizeof err)) → error
  *
  * SPEC is "[METRIC=]BUDGET[@FRONTS]":
- *   METRIC  rmse | relmse | dssim (1 - SSIM) | psnr; default: the metric the benchmark was
+ *   METRIC  rmse | relmse | dssim (1 - SSIM) | psnr | flip | noise; default: the metric the benchmark was
  *           charted with (its "primary_metric", rmse unless --metric said otherwise). For psnr
  *           BUDGET is the lowest acceptable PSNR in dB; for the others the highest error.
  *   FRONTS  comma-separated JSON files or directories of them; default: the "fronts" folder of
  *           the bench cache (sl_bench_default_cache_dir()/fronts, where shadelab-bench saves a
  *           copy of every run).
- * Per plugin, the run measured on the same scene (same file contents) is preferred, then the
+ * A setting the benchmark marked noisy (its noise above the run's "noise_limit") is never
+ * chosen unless every setting is. Per plugin, the run measured on the same scene (same file contents) is preferred, then the
  * newest. When no setting meets the budget, the most accurate one is applied, with a warning.
  * A parameter the user set with --set keeps the user's value. The choices and their measured
  * cost (median frame ms, per-pass ms) and error are printed on stderr. */
@@ -40,9 +41,12 @@ struct sl_app; /* core/app.h */
 
 /* Lower-is-better metrics by name, for charts, Pareto fronts and budgets (their definitions:
  * tools/bench/metrics.h, docs/benchmarks.md). */
-typedef enum sl_metric { SL_METRIC_RMSE, SL_METRIC_RELMSE, SL_METRIC_DSSIM, SL_METRIC_PSNR, SL_METRIC_COUNT } sl_metric;
+typedef enum sl_metric {
+    SL_METRIC_RMSE, SL_METRIC_RELMSE, SL_METRIC_DSSIM, SL_METRIC_PSNR, SL_METRIC_FLIP, SL_METRIC_NOISE, SL_METRIC_COUNT
+} sl_metric;
 /* "rmse", "relmse", "dssim" (1 - SSIM), "psnr" (higher is better: its value is negated in
- * sl_metric_value so that every metric is lower-is-better). */
+ * sl_metric_value so that every metric is lower-is-better), "flip" (mean LDR-FLIP), "noise"
+ * (the spread of a still's frames). */
 const char *sl_metric_name(sl_metric m);
 bool sl_metric_parse(const char *name, sl_metric *out);
 
@@ -79,6 +83,7 @@ typedef struct sl_aq_choice {
     double frame_ms;         /* measured median frame time of that setting */
     double error;            /* its error under `metric` (psnr: dB) */
     bool within_budget;      /* false: nothing met the budget, this is the most accurate */
+    bool noisy;              /* every setting was noisy (shadelab-bench's noise limit); this one too */
     char passes[512];        /* "forward 2.10 ms, display 0.20 ms" */
     char measured_on[512];   /* "scenes/default.json 320x180, osmesa (llvmpipe …)" */
 } sl_aq_choice;

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const metric_names[SL_METRIC_COUNT] = {"rmse", "relmse", "dssim", "psnr"};
+static const char *const metric_names[SL_METRIC_COUNT] = {"rmse", "relmse", "dssim", "psnr", "flip", "noise"};
 const char *sl_metric_name(sl_metric m) { return m >= 0 && m < SL_METRIC_COUNT ? metric_names[m] : "?"; }
 bool sl_metric_parse(const char *name, sl_metric *out) {
     for (int i = 0; i < SL_METRIC_COUNT; i++)

@@ -169,7 +169,7 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
     /* + programs reloaded or a new debug view: what a pass shows may change */
     f->params_version = app->params.version + app->materials_version + r->programs_version;
-    f->edits_version = f->params_version + app->lights_version;
+    f->edits_version = f->params_version + app->lights_version + r->forced_starts;
     f->accumulate_index = acc_index;
     f->accumulate_count = acc_count;
     /* temporal antialiasing (ABI 1.6): the previous frame's camera, the unjittered view-projection,
@@ -215,6 +215,11 @@ static void still_count(sl_renderer *r) {
 
 /* The sample fields of sub-frame acc_index of acc_count, once the plugins asked for their still. */
 static void fill_sample(sl_renderer *r, int acc_index, int acc_count) {
+    if (r->forced_count > 0) {
+        r->frame.sample_count = r->forced_count;
+        r->frame.sample_index = r->forced_index;
+        return;
+    }
     int still = r->still_frames > 1 ? r->still_frames : 1;
     r->frame.sample_count = still * acc_count;
     r->frame.sample_index = (r->still_run % still) * acc_count + acc_index;
@@ -230,6 +235,14 @@ void sl_renderer_set_jitter(sl_app *app, float x, float y) {
 void sl_renderer_set_still_frames(sl_app *app, int frames) {
     sl_renderer *r = R(app);
     if (r && frames > r->still_frames) r->still_frames = frames > 4096 ? 4096 : frames;
+}
+
+void sl_renderer_force_sample(sl_app *app, int index, int count) {
+    sl_renderer *r = R(app);
+    if (!r || count < 1 || index < 0 || index >= count) return;
+    r->forced_index = index;
+    r->forced_count = count;
+    r->forced_starts++;
 }
 
 int sl_renderer_still_frames(sl_app *app) {
@@ -259,7 +272,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     }
     if (sl_startup_recording()) sl_startup_mark("frame %d: plugins' begin_frame", (int)app->frame_index);
     apply_jitter(r);
-    int count = app->opt.accumulate > 1 ? app->opt.accumulate : 1;
+    int count = app->opt.accumulate > 1 && !r->forced_count ? app->opt.accumulate : 1;
     fill_sample(r, 0, count);
     int post_begin = r->pass_count;
     for (int i = 0; i < r->pass_count; i++)
@@ -318,6 +331,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         if (p) r->stats.program_hashes[r->stats.program_count++] = p->hash;
     }
     r->stats.frame_ms = sl_now_ms() - t0;
+    r->forced_count = 0; /* sl_renderer_force_sample: one frame */
     memcpy(r->prev_view_proj, r->frame.view_proj, sizeof r->prev_view_proj);
     memcpy(r->prev_unjittered_vp, r->frame.unjittered_view_proj, sizeof r->prev_unjittered_vp);
     r->prev_time = r->frame.time;

@@ -77,5 +77,9 @@ void sl_renderer_set_still_frames(struct sl_app *app, int frames);
 /* The largest frame count a still image needs that a plugin asked for during the last frame
  * (host set_still_frames; TAA's history), at least 1. */
 int sl_renderer_still_frames(struct sl_app *app);
+/* For measurements (shadelab-bench's noise): the next frame is a fresh start (as after an edit:
+ * temporal methods restart their history) rendered as sample `index` of `count`
+ * (sl_frame.sample_index/count), with no accumulation. One frame only. */
+void sl_renderer_force_sample(struct sl_app *app, int index, int count);
 unsigned sl_renderer_material_texture(struct sl_app *app, int material, const char *key);
 #endif

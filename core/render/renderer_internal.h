@@ -89,6 +89,10 @@ typedef struct sl_renderer {
     int still_run;
     uint64_t still_key, still_last_frame, frames_run;
     bool still_valid;
+    /* sl_renderer_force_sample: the next frame's sample (count 0: none forced), and the fresh
+     * starts forced so far (part of edits_version) */
+    int forced_index, forced_count;
+    uint64_t forced_starts;
     bool motion;
     bool have_prev;
     float prev_view_proj[16], prev_unjittered_vp[16];

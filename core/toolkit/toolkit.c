@@ -20,6 +20,14 @@ void sl_tool_frame_times_of(sl_app *app, sl_tool_frame_times *out) {
     out->timing_mode = st->timing_mode;
 }
 
+bool sl_tool_render_sample(sl_app *app, int index, int count) {
+    if (!app || count < 1 || index < 0 || index >= count) return false;
+    sl_renderer_force_sample(app, index, count);
+    return sl_app_render_frame(app);
+}
+
+int sl_tool_still_frames(sl_app *app) { return sl_renderer_still_frames(app); }
+
 sl_program *sl_tool_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
                                        char *err, size_t n) {
     return sl_program_from_files(dir, vs, fs, defines, err, n);

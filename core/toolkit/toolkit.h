@@ -51,6 +51,17 @@ typedef struct sl_tool_frame_times {
 /* The times of the frame sl_app_render_frame rendered last (zeros before the first). */
 void sl_tool_frame_times_of(sl_app *app, sl_tool_frame_times *out);
 
+/* ------------------------------------------------------------- samples of a still ------- */
+
+/* Renders one frame as sample `index` of `count` (sl_frame.sample_index/count: what the frames
+ * of a `count`-frame still or accumulation each see), as a fresh start: temporal methods (TAA)
+ * restart their history, so the frame is shown as rendered, and nothing is accumulated.
+ * shadelab-bench's noise measure renders index 0..count-1 this way. False when the frame fails
+ * or index is not in [0, count). */
+bool sl_tool_render_sample(sl_app *app, int index, int count);
+/* The frames a still needs that the plugins asked for in the last frame (TAA's history), >= 1. */
+int sl_tool_still_frames(sl_app *app);
+
 /* ------------------------------------------------------------- stand-alone GL programs --- */
 
 /* Compiles and links a program from files: `vs` and `fs` relative to `dir`, or "sl:NAME" for

@@ -414,6 +414,20 @@ static bool time_setting(sl_app *app, int warmup, int frames, samples *sm, float
     return ok;
 }
 
+/* The noise measure (metrics.h): sample k of `samples`, each rendered on its own at time 0. */
+static bool measure_noise(sl_app *app, int samples, float *image, double *noise) {
+    sl_noise_acc acc;
+    if (!sl_noise_begin(&acc, app->backend.width, app->backend.height)) return false;
+    bool ok = true;
+    app->time = 0;
+    for (int k = 0; k < samples && ok; k++) {
+        ok = sl_tool_render_sample(app, k, samples) && sl_app_read_color(app, image);
+        if (ok) sl_noise_add(&acc, image);
+    }
+    *noise = sl_noise_end(&acc, NULL);
+    return ok;
+}
+
 static void finish_row(sl_bench_row *row, const samples *sm) {
     row->frames = sm->nframe;
     summarise(sm->frame, sm->nframe, &row->frame_ms_median, &row->frame_ms_mean, &row->frame_ms_min);
@@ -594,10 +608,12 @@ void sl_bench_mark_fronts(sl_bench_result *res) {
     int n = res->row_count;
     double *cost = malloc(sizeof(double) * (n + 1)), *error = malloc(sizeof(double) * (n + 1));
     bool *front = malloc(sizeof(bool) * (n + 1));
+    for (int i = 0; i < n; i++) res->rows[i].noisy = res->rows[i].error.noise > res->noise_limit; /* NaN: not noisy */
     for (int m = 0; m < SL_METRIC_COUNT; m++) {
         for (int i = 0; i < n; i++) {
-            cost[i] = res->rows[i].ok ? res->rows[i].frame_ms_median : NAN;
-            error[i] = res->rows[i].ok ? sl_metric_value(&res->rows[i].error, (sl_metric)m) : NAN;
+            bool on = res->rows[i].ok && !res->rows[i].noisy;
+            cost[i] = on ? res->rows[i].frame_ms_median : NAN;
+            error[i] = on ? sl_metric_value(&res->rows[i].error, (sl_metric)m) : NAN;
         }
         sl_pareto_front(cost, error, n, front);
         for (int i = 0; i < n; i++) res->rows[i].front[m] = front[i];
@@ -636,6 +652,8 @@ bool sl_bench_run(const sl_bench_options *o, sl_bench_result *res, char *err, si
     res->frames = o->frames > 0 ? o->frames : 30;
     res->warmup = o->warmup >= 0 ? o->warmup : 5;
     if (o->warmup == 0 && o->frames == 0) res->warmup = 5; /* zeroed options: the defaults */
+    res->noise_samples = o->noise_samples < 0 ? 0 : o->noise_samples > 0 ? o->noise_samples : SL_NOISE_SAMPLES;
+    res->noise_limit = o->noise_limit > 0 ? o->noise_limit : SL_NOISE_VISIBLE;
     char **settings = NULL;
     int count = 0;
     if (!sl_bench_enumerate(o, &settings, &count, err, n)) return false;
@@ -702,6 +720,7 @@ bool sl_bench_run(const sl_bench_options *o, sl_bench_result *res, char *err, si
                     }
                     sl_metric_all(image, res->reference.pixels, w, h, &row->error);
                     if (o->image_prefix) save_image(o, row->label, image, w, h);
+                    if (res->noise_samples > 1) ok = measure_noise(&b.app, res->noise_samples, image, &row->error.noise);
                 }
                 if (!ok) snprintf(why, sizeof why, "rendering failed");
             }
@@ -720,10 +739,10 @@ bool sl_bench_run(const sl_bench_options *o, sl_bench_result *res, char *err, si
                 fmt_duration(elapsed, e, sizeof e);
                 fmt_duration(per * (steps - step), left, sizeof left);
                 if (row->ok)
-                    fprintf(stderr, "[bench]   %s: %.3f ms/frame (median of this round's %d), rmse %.3g, ssim %.4f; "
-                            "elapsed %s, about %s left\n", row->label,
+                    fprintf(stderr, "[bench]   %s: %.3f ms/frame (median of this round's %d), rmse %.3g, flip %.4f, "
+                            "noise %.4g; elapsed %s, about %s left\n", row->label,
                             median_of(sm[i].frame + sm[i].nframe - per_round, per_round), per_round,
-                            row->error.rmse, row->error.ssim, e, left);
+                            row->error.rmse, row->error.flip, row->error.noise, e, left);
                 else
                     fprintf(stderr, "[bench]   %s FAILED; elapsed %s, about %s left\n", row->label, e, left);
             }

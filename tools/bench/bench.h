@@ -44,6 +44,9 @@ typedef struct sl_bench_options {
     bool float32;                    /* RGBA32F colour target for every render */
     bool progress;                   /* progress lines on stderr */
     const char *image_prefix;        /* non-NULL: write PREFIX-<label>.png per setting + reference */
+    int noise_samples;               /* the noise measure's still (metrics.h): 0 = SL_NOISE_SAMPLES,
+                                        < 0: not measured (noise NaN) */
+    double noise_limit;              /* settings noisier are "noisy": 0 = SL_NOISE_VISIBLE */
 } sl_bench_options;
 
 typedef struct sl_bench_pass {
@@ -62,6 +65,7 @@ typedef struct sl_bench_row {
     double passes_ms;                /* sum of the per-pass medians */
     sl_bench_pass *passes; int pass_count;
     sl_bench_error error;
+    bool noisy;                      /* error.noise > the run's noise_limit: on no front */
     bool front[SL_METRIC_COUNT];     /* on the Pareto front of (frame_ms_median, metric) */
     double wall_s;                   /* time spent measuring this setting */
 } sl_bench_row;
@@ -75,6 +79,8 @@ typedef struct sl_bench_result {
     char *backend, *renderer, *timing_mode;
     bool gpu;
     int frames, warmup, rounds;
+    int noise_samples;               /* 0: noise not measured */
+    double noise_limit;
     struct {
         char *settings, *description;
         int accumulate;
@@ -96,7 +102,8 @@ bool sl_bench_enumerate(const sl_bench_options *opt, char ***settings, int *coun
  * setting that fails is a row with ok = false. */
 bool sl_bench_run(const sl_bench_options *opt, sl_bench_result *res, char *err, size_t n);
 void sl_bench_result_free(sl_bench_result *res);
-/* Recomputes rows[].front from the measured values (sl_bench_run does it). */
+/* Recomputes rows[].noisy and rows[].front from the measured values (sl_bench_run does it):
+ * noisy rows are on no front. */
 void sl_bench_mark_fronts(sl_bench_result *res);
 
 bool sl_bench_write_csv(const sl_bench_result *res, const char *path, sl_metric primary, char *err, size_t n);

@@ -98,11 +98,12 @@ metrics="--metric rmse --metric dssim"
 SSAA="shadelab-bench --plugin core --scene scenes/teapot.json --size 320x180 --reference-scale 2 --vary core.ssaa=1,2,4 --set aa.enabled=false --frames 15 --rounds 3 $metrics"
 # shellcheck disable=SC2086
 if "$BUILD/shadelab-bench" ${SSAA#shadelab-bench } --no-cache --no-chart --out "$TMP/ssaa" -q > "$TMP/ssaa.log" 2>&1; then
-    # by the CSV header's names: label, ok, frame_ms_median, rmse, dssim[, flip]
+    # by the CSV header's names: label, ok, frame_ms_median, rmse, dssim[, flip, noise]
     awk -F, 'NR == 1 {for (i = 1; i <= NF; i++) col[$i] = i; next}
              $col["ok"] == 1 {gsub(/"/, "", $col["label"]);
                  printf "%s|%.1f ms per frame, RMSE %.4f, DSSIM %.5f", $col["label"], $col["frame_ms_median"], $col["rmse"], $col["dssim"];
                  if ("flip" in col) printf ", FLIP %.4f", $col["flip"];
+                 if ("noise" in col && $col["noise"] != "") printf ", noise %.3g", $col["noise"];
                  printf "\n"}' "$TMP/ssaa.csv" > "$TMP/ssaa.rows"
     while IFS='|' read -r label value; do
         row "teapot at 320×180, \`core.$label\` (aa off) against ssaa 8 at 2× size" "$value" "$SSAA"

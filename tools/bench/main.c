@@ -33,8 +33,13 @@ static const char *usage =
     "                            shadelab --auto-quality\n"
     "  --no-cache                always render the reference; store nothing\n"
     "  --out PREFIX              PREFIX.csv, PREFIX.json, PREFIX.png (default bench-PLUGIN-SCENE)\n"
-    "  --metric M                rmse | relmse | dssim | psnr: the chart's and the front's metric\n"
-    "                            (repeatable: the first is primary, each other gets PREFIX-M.png)\n"
+    "  --metric M                rmse | relmse | dssim | psnr | flip | noise: the chart's and the\n"
+    "                            front's metric (repeatable: the first is primary, each other gets\n"
+    "                            PREFIX-M.png; default: rmse, and flip in PREFIX-flip.png)\n"
+    "  --noise-samples N         the still whose frames' spread is the noise (default 16; 0: not\n"
+    "                            measured)\n"
+    "  --noise-limit X           noise above X makes a setting noisy: on no front, never chosen by\n"
+    "                            --auto-quality (default 0.002, half an 8-bit step)\n"
     "  --images                  also write PREFIX-<setting>.png and PREFIX-reference.png\n"
     "  --no-chart                no PNG chart\n"
     "  --list                    print the settings that would be measured, then exit\n"
@@ -85,20 +90,31 @@ int main(int argc, char **argv) {
             else if (!strcmp(v, "egl")) o.backend = SL_BACKEND_EGL;
             else { snprintf(err, sizeof err, "--backend %s: expected osmesa or egl (headless)", v); return die(err); }
         } else if (!strcmp(a, "--frames") || !strcmp(a, "--warmup") || !strcmp(a, "--reference-accumulate") ||
-                   !strcmp(a, "--reference-scale") || !strcmp(a, "--rounds")) {
+                   !strcmp(a, "--reference-scale") || !strcmp(a, "--rounds") || !strcmp(a, "--noise-samples")) {
             const char *v = NEXT();
             NEED(v);
             long x;
-            bool frames = !strcmp(a, "--frames"), warm = !strcmp(a, "--warmup");
-            if (!sl_parse_long(v, warm ? 0 : 1, 1000000, &x)) {
-                snprintf(err, sizeof err, "%s %s: expected a whole number %d..1000000", a, v, warm ? 0 : 1);
+            bool frames = !strcmp(a, "--frames"), warm = !strcmp(a, "--warmup"), noise = !strcmp(a, "--noise-samples");
+            long lo = warm || noise ? 0 : 1, hi = noise ? 4096 : 1000000;
+            if (!sl_parse_long(v, lo, hi, &x)) {
+                snprintf(err, sizeof err, "%s %s: expected a whole number %ld..%ld", a, v, lo, hi);
                 return die(err);
             }
             if (frames) o.frames = (int)x;
+            else if (noise) o.noise_samples = x ? (int)x : -1;
             else if (warm) o.warmup = (int)x;
             else if (!strcmp(a, "--reference-scale")) o.reference_scale = (int)x;
             else if (!strcmp(a, "--rounds")) o.rounds = (int)x;
             else o.reference_accumulate = (int)x;
+        } else if (!strcmp(a, "--noise-limit")) {
+            const char *v = NEXT();
+            NEED(v);
+            char *end;
+            o.noise_limit = strtod(v, &end);
+            if (*end || !(o.noise_limit > 0 && o.noise_limit <= 1)) {
+                snprintf(err, sizeof err, "--noise-limit %s: expected a number in (0, 1]", v);
+                return die(err);
+            }
         } else if (!strcmp(a, "--reference-settings")) NEED(o.reference_settings = NEXT());
         else if (!strcmp(a, "--cache")) NEED(o.cache_dir = NEXT());
         else if (!strcmp(a, "--no-cache")) o.no_cache = true;
@@ -107,7 +123,7 @@ int main(int argc, char **argv) {
             const char *v = NEXT();
             NEED(v);
             if (nm == SL_METRIC_COUNT || !sl_metric_parse(v, &metrics[nm])) {
-                snprintf(err, sizeof err, "--metric %s: expected rmse, relmse, dssim or psnr (each once)", v);
+                snprintf(err, sizeof err, "--metric %s: expected rmse, relmse, dssim, psnr, flip or noise (each once)", v);
                 return die(err);
             }
             nm++;
@@ -138,7 +154,7 @@ int main(int argc, char **argv) {
     o.base_settings = base; o.base_setting_count = nb;
     o.settings = settings; o.setting_count = ns;
     o.vary = vary; o.vary_count = nv;
-    if (!nm) metrics[nm++] = SL_METRIC_RMSE;
+    if (!nm) metrics[nm++] = SL_METRIC_RMSE, metrics[nm++] = SL_METRIC_FLIP;
     if (ns && nv) return die("--vary chooses values for enumerated knobs; it cannot be combined with --settings");
     if (o.frames < 30)
         fprintf(stderr, "shadelab-bench: note: %d timed frames (fewer than 30): the medians are indicative only\n", o.frames);
@@ -206,13 +222,15 @@ int main(int argc, char **argv) {
     printf("reference: %s (%d frame%s, %dx size box-filtered)%s\n", res.reference.settings, res.reference.accumulate,
            res.reference.accumulate > 1 ? "s accumulated" : "", res.reference.scale,
            res.reference.from_cache ? ", from the cache" : "");
-    printf("  %-28s %10s %10s %10s %8s %8s %s\n", "setting", "frame ms", "rmse", "relmse", "psnr", "ssim", "front");
+    printf("  %-28s %10s %10s %10s %8s %8s %8s %8s %s\n", "setting", "frame ms", "rmse", "relmse", "psnr", "ssim", "flip",
+           "noise", "front");
     int failed = 0;
     for (int i = 0; i < res.row_count; i++) {
         sl_bench_row *r = &res.rows[i];
         if (!r->ok) { printf("  %-28s FAILED: %s\n", r->label, r->failure ? r->failure : ""); failed++; continue; }
-        printf("  %-28s %10.3f %10.4g %10.4g %8.2f %8.5f %s\n", r->label, r->frame_ms_median, r->error.rmse, r->error.relmse,
-               r->error.psnr, r->error.ssim, r->front[metrics[0]] ? "*" : "");
+        printf("  %-28s %10.3f %10.4g %10.4g %8.2f %8.5f %8.4f %8.4g %s\n", r->label, r->frame_ms_median, r->error.rmse,
+               r->error.relmse, r->error.psnr, r->error.ssim, r->error.flip, r->error.noise,
+               r->noisy ? "noisy" : r->front[metrics[0]] ? "*" : "");
     }
     printf("total %.1f s\n", res.total_s);
     sl_bench_result_free(&res);

@@ -107,6 +107,43 @@ void sl_metric_all(const float *a, const float *ref, int w, int h, sl_bench_erro
     sl_metric_display_luma(ref, w, h, lb);
     out->ssim = sl_metric_ssim(la, lb, w, h);
     free(la);
+    out->flip = sl_metric_flip(a, ref, w, h, SL_FLIP_PPD_DEFAULT, NULL);
+    out->noise = NAN;
+}
+
+bool sl_noise_begin(sl_noise_acc *acc, int w, int h) {
+    memset(acc, 0, sizeof *acc);
+    size_t n = (size_t)w * h * 3;
+    acc->mean = calloc(2 * n, sizeof(double));
+    if (!acc->mean) return false;
+    acc->m2 = acc->mean + n;
+    acc->width = w, acc->height = h;
+    return true;
+}
+
+void sl_noise_add(sl_noise_acc *acc, const float *rgba) {
+    acc->count++;
+    for (size_t i = 0; i < (size_t)acc->width * acc->height; i++)
+        for (int c = 0; c < 3; c++) {
+            double x = sl_srgb_encode(rgba[4 * i + c]), *mean = &acc->mean[3 * i + c];
+            double d = x - *mean;
+            *mean += d / acc->count;
+            acc->m2[3 * i + c] += d * (x - *mean);
+        }
+}
+
+double sl_noise_end(sl_noise_acc *acc, float *sigma_map) {
+    size_t n = (size_t)acc->width * acc->height;
+    double sum = 0;
+    for (size_t i = 0; i < n; i++) {
+        double v = 0;
+        for (int c = 0; c < 3 && acc->count > 1; c++) v += acc->m2[3 * i + c] / (acc->count - 1);
+        if (sigma_map) sigma_map[i] = (float)sqrt(v / 3);
+        sum += v;
+    }
+    free(acc->mean);
+    memset(acc, 0, sizeof *acc);
+    return n ? sqrt(sum / (3.0 * n)) : NAN;
 }
 
 /* sl_metric_name, sl_metric_parse: core/quality/results.c (autoquality.h). */
@@ -116,6 +153,8 @@ double sl_metric_value(const sl_bench_error *e, sl_metric m) {
     case SL_METRIC_RELMSE: return e->relmse;
     case SL_METRIC_DSSIM: return 1.0 - e->ssim;
     case SL_METRIC_PSNR: return -e->psnr;
+    case SL_METRIC_FLIP: return e->flip;
+    case SL_METRIC_NOISE: return e->noise;
     default: return NAN;
     }
 }

@@ -37,6 +37,19 @@
  *           67 (a 0.7 m wide 3840-pixel monitor seen from 0.7 m). HDR-FLIP (several exposures of
  *           an HDR pair) is not implemented: the bench compares images after tone mapping.
  *
+ *   noise   How much a setting's frames scatter around their mean: the per-pixel sample standard
+ *           deviation, over the frames k = 0..n-1 of an n-frame still (sl_frame.sample_index k
+ *           of n, n = SL_NOISE_SAMPLES unless told), of the display-encoded value (sRGB of the
+ *           value clamped to [0,1]), root-mean-square over pixels and R, G, B. Each frame is
+ *           rendered on its own (sl_tool_render_sample: a fresh start, no TAA history, no
+ *           accumulation), so it is what a TAA still or an accumulation has to average away, the
+ *           sparkle while a still settles. 0 exactly for a method whose frames do not depend on
+ *           the sample index (deterministic). A setting whose noise exceeds the limit
+ *           (SL_NOISE_VISIBLE unless told) is "noisy": it is left off every Pareto front and
+ *           --auto-quality does not choose it, whatever its mean error. Noise fixed in screen
+ *           space (the same speckle in every frame) does not scatter: FLIP against the
+ *           reference sees it.
+ *
  * Non-finite pixels (NaN/Inf in either image) are left out of RMSE/relMSE/PSNR and counted
  * (sl_bench_error.nonfinite): a setting that produces NaN is reported, never averaged in. */
 #ifndef SL_BENCH_METRICS_H
@@ -58,9 +71,13 @@ extern "C" {
 #define SL_FLIP_PPD_DEFAULT 67.0206
 #define SL_FLIP_PPD_MIN 1.0     /* below this the feature kernels underflow */
 #define SL_FLIP_PPD_MAX 1000.0
+#define SL_NOISE_SAMPLES 16     /* the frames of the still whose spread is the noise (TAA's default) */
+#define SL_NOISE_VISIBLE 0.002  /* noise limit: half an 8-bit code value, RMS (issue 42's target) */
 
 typedef struct sl_bench_error {
     double rmse, relmse, psnr, ssim, max_abs;
+    double flip;         /* mean LDR-FLIP at SL_FLIP_PPD_DEFAULT */
+    double noise;        /* NaN when not measured */
     long nonfinite;      /* pixels with a NaN/Inf channel in either image */
 } sl_bench_error;
 
@@ -75,6 +92,13 @@ double sl_metric_ssim(const float *x, const float *y, int width, int height);
  * SL_FLIP_PPD_DEFAULT. error_map: NULL, or w*h floats that receive the per-pixel error.
  * NaN when w or h <= 0, ppd is outside [SL_FLIP_PPD_MIN, SL_FLIP_PPD_MAX] or memory runs out. */
 double sl_metric_flip(const float *test_rgba, const float *ref_rgba, int w, int h, double ppd, float *error_map);
+/* The noise measure, one frame at a time (Welford's running mean and variance per value). */
+typedef struct sl_noise_acc { int width, height, count; double *mean, *m2; } sl_noise_acc;
+bool sl_noise_begin(sl_noise_acc *acc, int width, int height);
+void sl_noise_add(sl_noise_acc *acc, const float *rgba);
+/* The noise of the frames added (0 for fewer than 2); sigma_map: NULL, or width*height floats
+ * that receive each pixel's standard deviation (RMS over R, G, B). Frees the accumulator. */
+double sl_noise_end(sl_noise_acc *acc, float *sigma_map);
 /* Every metric above at once: a = the image under test, ref = the reference. */
 void sl_metric_all(const float *a, const float *ref, int width, int height, sl_bench_error *out);
 

@@ -49,7 +49,7 @@ bool sl_bench_write_csv(const sl_bench_result *res, const char *path, sl_metric 
     const char *passes[64];
     int np = union_passes(res, passes, 64);
     fprintf(f, "settings,label,ok,frame_ms_median,frame_ms_mean,frame_ms_min,passes_ms,rmse,relmse,psnr,ssim,dssim,max_abs,"
-               "nonfinite_pixels,pareto_%s", sl_metric_name(primary));
+               "flip,noise,noisy,nonfinite_pixels,pareto_%s", sl_metric_name(primary));
     for (int k = 0; k < np; k++) fprintf(f, ",ms_%s", passes[k]);
     fputc('\n', f);
     for (int i = 0; i < res->row_count; i++) {
@@ -68,7 +68,9 @@ bool sl_bench_write_csv(const sl_bench_result *res, const char *path, sl_metric 
         csv_number(f, r->ok ? r->error.ssim : NAN);
         csv_number(f, r->ok ? 1 - r->error.ssim : NAN);
         csv_number(f, r->ok ? r->error.max_abs : NAN);
-        fprintf(f, ",%ld,%d", r->error.nonfinite, r->front[primary]);
+        csv_number(f, r->ok ? r->error.flip : NAN);
+        csv_number(f, r->ok ? r->error.noise : NAN);
+        fprintf(f, ",%d,%ld,%d", r->noisy, r->error.nonfinite, r->front[primary]);
         for (int k = 0; k < np; k++) csv_number(f, pass_median(r, passes[k]));
         fputc('\n', f);
     }
@@ -108,6 +110,12 @@ bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric
     cJSON_AddStringToObject(md, "ssim", "mean SSIM (Wang et al. 2004), 11x11 Gaussian sigma 1.5, K1 0.01, K2 0.03, L 1, valid "
                                         "windows only, on Y' = 0.2126R'+0.7152G'+0.0722B' of the sRGB-encoded image clamped to [0,1]");
     cJSON_AddStringToObject(md, "dssim", "1 - ssim");
+    cJSON_AddStringToObject(md, "flip", "mean LDR-FLIP (Andersson et al. 2020) of the image clamped to [0,1], 67 pixels per degree");
+    cJSON_AddStringToObject(md, "noise", "RMS over pixels and RGB of the per-pixel standard deviation of the sRGB-encoded value "
+                                         "over the frames of a still (sample k of noise_samples, each rendered on its own)");
+    cJSON_AddItemToObject(md, "noise_samples", num(res->noise_samples));
+    cJSON_AddItemToObject(md, "noise_limit", num(res->noise_limit));
+    cJSON_AddStringToObject(md, "noisy", "noise > noise_limit: on no Pareto front, never chosen by --auto-quality");
     cJSON *ref = cJSON_AddObjectToObject(root, "reference");
     cJSON_AddStringToObject(ref, "settings", res->reference.settings ? res->reference.settings : "");
     cJSON_AddNumberToObject(ref, "accumulate", res->reference.accumulate);
@@ -149,6 +157,9 @@ bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric
             cJSON_AddItemToObject(e, "ssim", num(r->error.ssim));
             cJSON_AddItemToObject(e, "dssim", num(1 - r->error.ssim));
             cJSON_AddItemToObject(e, "max_abs", num(r->error.max_abs));
+            cJSON_AddItemToObject(e, "flip", num(r->error.flip));
+            cJSON_AddItemToObject(e, "noise", num(r->error.noise));
+            cJSON_AddBoolToObject(e, "noisy", r->noisy);
             cJSON_AddNumberToObject(e, "nonfinite_pixels", r->error.nonfinite);
             cJSON *pf = cJSON_AddObjectToObject(o, "pareto");
             for (int m = 0; m < SL_METRIC_COUNT; m++) cJSON_AddBoolToObject(pf, sl_metric_name((sl_metric)m), r->front[m]);
@@ -286,24 +297,28 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     snprintf(script, sizeof script, "%s/chart.gp", dir);
     FILE *fp = fopen(pts, "w"), *ff = fopen(frt, "w"), *fz = fopen(zero, "w");
     double (*front)[2] = calloc(res->row_count + 1, sizeof *front);
-    int nf = 0, nz = 0, npts = 0, ndom = 0, left[2] = {0, 0}; /* labels left of their point: [points, zero] */
+    int nf = 0, nz = 0, npts = 0, ndom = 0, nnoisy = 0, left[2] = {0, 0}; /* labels left of their point: [points, zero] */
     for (int i = 0; i < res->row_count && fp && ff && fz; i++) {
         const sl_bench_row *r = &res->rows[i];
         if (!r->ok) continue;
         double y = psnr ? r->error.psnr : sl_metric_value(&r->error, metric);
         if (isnan(y)) continue;
+        /* every point says how noisy its frames are (metrics.h); deterministic ones say nothing */
+        char label[600];
+        if (r->error.noise > 0) snprintf(label, sizeof label, "%s (noise %.2g)", r->label, r->error.noise);
+        else snprintf(label, sizeof label, "%s", r->label);
+        int l = label_goes_left(r->frame_ms_median, x_end, label);
         if (psnr ? isinf(y) : y <= 0) {
             y = special_y;
-            int l = label_goes_left(r->frame_ms_median, x_end, r->label);
-            fprintf(fz, "%.6g %.6g \"%s\" %d\n", r->frame_ms_median, y, r->label, l);
+            fprintf(fz, "%.6g %.6g \"%s\" %d\n", r->frame_ms_median, y, label, l);
             nz++;
             left[1] += l;
         } else {
-            int l = label_goes_left(r->frame_ms_median, x_end, r->label);
-            fprintf(fp, "%.6g %.6g \"%s\" %d %d\n", r->frame_ms_median, y, r->label, r->front[metric] ? 1 : 0, l);
+            fprintf(fp, "%.6g %.6g \"%s\" %d %d %d\n", r->frame_ms_median, y, label, r->front[metric] ? 1 : 0, l, r->noisy);
             npts++;
             left[0] += l;
-            ndom += !r->front[metric];
+            ndom += !r->front[metric] && !r->noisy;
+            nnoisy += r->noisy;
         }
         if (r->front[metric]) { front[nf][0] = r->frame_ms_median; front[nf][1] = y; nf++; }
     }
@@ -318,6 +333,8 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     const char *metric_title = metric == SL_METRIC_RMSE     ? "RMSE vs reference (linear radiance, log scale)"
                                : metric == SL_METRIC_RELMSE ? "relative MSE vs reference (eps 0.01, log scale)"
                                : metric == SL_METRIC_DSSIM  ? "1 - SSIM vs reference (display luma, log scale)"
+                               : metric == SL_METRIC_FLIP   ? "mean FLIP vs reference (perceptual, 67 px/degree, log scale)"
+                               : metric == SL_METRIC_NOISE  ? "noise: std. dev. of a still's frames (sRGB, RMS, log scale)"
                                                             : "PSNR vs reference (dB, peak 1, linear radiance; higher is better)";
     char title[2048], wrapped[2100];
     snprintf(title, sizeof title, "%s quality knobs on %s, %dx%d\n%s (%s), %s timing\nreference: %s%s",
@@ -327,6 +344,11 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     if (res->reference.scale > 1) {
         size_t u = strlen(title);
         snprintf(title + u, sizeof title - u, " at %dx the size, box-filtered", res->reference.scale);
+    }
+    if (res->noise_samples > 1) {
+        size_t u = strlen(title);
+        snprintf(title + u, sizeof title - u, "\nnoise: spread of a %d-frame still's frames; above %.3g a setting is noisy "
+                 "and on no front", res->noise_samples, res->noise_limit);
     }
     /* long titles (reference settings, file names) wrap instead of running off both edges */
     wrap_text(title, wrapped, sizeof wrapped, CHART_TITLE_CHARS);
@@ -352,8 +374,11 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     bool first = true;
     if (npts) {
         if (ndom) /* settings off the front: another setting is both cheaper and more accurate */
-            fprintf(g, "'%s' using 1:($4 == 0 ? $2 : 1/0) with points pt 7 ps 1.3 lc rgb '#1f77b4' "
+            fprintf(g, "'%s' using 1:($4 == 0 && $6 == 0 ? $2 : 1/0) with points pt 7 ps 1.3 lc rgb '#1f77b4' "
                        "title 'dominated setting', \\\n     ", pts);
+        if (nnoisy) /* visible noise: whatever its mean error, never the choice */
+            fprintf(g, "'%s' using 1:($6 != 0 ? $2 : 1/0) with points pt 2 ps 1.8 lw 2 lc rgb '#ff7f0e' "
+                       "title 'noisy setting (its frames scatter visibly)', \\\n     ", pts);
         /* labels right of their point, or left of it where they would pass the right edge (a
          * plot whose points are all undefined is left out: gnuplot 5.4 crashes on it) */
         if (left[0] < npts)
