@@ -577,18 +577,36 @@ bool sl_app_start_gl(sl_app *app, char *err, size_t n) {
     return ok;
 }
 
+/* A plugin's disabled reason from a compile message: its first line naming an error
+ * ("plugins/x/x.glsl:4(22): error: …"), for --list-plugins and the panel. */
+static char *glsl_reason(const char *why) {
+    const char *line = why;
+    for (const char *p = why; p && *p; p = strchr(p, '\n') ? strchr(p, '\n') + 1 : NULL) {
+        const char *end = strchr(p, '\n');
+        const char *e = strstr(p, "error");
+        if (e && (!end || e < end)) { line = p; break; }
+    }
+    size_t len = strchr(line, '\n') ? (size_t)(strchr(line, '\n') - line) : strlen(line);
+    char buf[1200];
+    snprintf(buf, sizeof buf, "its GLSL does not compile: %.*s", (int)(len < 1100 ? len : 1100), line);
+    return strdup(buf);
+}
+
 bool sl_app_render_frame(sl_app *app) {
     bool ok = sl_renderer_frame(app, 0, app->opt.accumulate);
     /* Plugins' programs compile at their first use (lazy creation, docs/design-notes.md). One
      * that fails disables its plugin, as a failing activate() does, and the frame is rendered
      * again without it, so no image shows a pass that drew nothing; --strict makes it fatal. */
-    char why[4096];
+    char why[16384];
     for (int k, tries = 0; (k = sl_renderer_failed_plugin(app, why, sizeof why)) >= 0 && tries < 64; tries++) {
         sl_plugin_rec *r = app->plugins.items[k];
+        if (!r->ok) continue; /* already off (its pass program and a material both broke) */
         r->ok = false;
+        r->glsl_failed = true;
         free(r->disabled_reason);
-        r->disabled_reason = strdup("a program failed to compile");
-        SL_ERROR("plugin %s disabled: %s", r->id, why);
+        r->disabled_reason = glsl_reason(why);
+        /* the one message: the program, file:line and the compiler's words (the window shows it) */
+        SL_ERROR("plugin %s disabled, its GLSL does not compile: %s", r->id, why);
         /* as switching it off: its passes leave the plan, its GLSL chunks the materials */
         app->params.version++;
         app->params.recompile_version++;

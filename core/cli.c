@@ -236,6 +236,8 @@ void sl_cli_print_help(FILE *f) {
         }
         fputc('\n', f);
     }
+    fprintf(f, "exit status: 0 done; 1 failed, nothing written; 2 the output was written but an error was printed\n"
+               "(a missing texture's magenta stand-in, a plugin switched off because its GLSL does not compile, ...)\n");
 }
 
 /* Text for a Markdown table cell: | escaped (also inside `code`, as GitHub's tables need), < and

@@ -12,7 +12,16 @@
 
 struct sl_harness { sl_app app; };
 
+/* The live harness: the GL loader's function pointers and the host's GL app are per process, so a
+ * second harness would run on the first one's context (empty compile logs, then a crash). */
+static sl_harness *live_harness;
+
 sl_harness *sl_harness_create(const sl_harness_desc *in, char *err, size_t n) {
+    if (live_harness) {
+        snprintf(err, n, "sl_harness_create: a harness already exists in this process (one GL context per process); "
+                 "sl_harness_destroy it first");
+        return NULL;
+    }
     sl_harness_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
     sl_app_options opt = {0};
@@ -41,12 +50,14 @@ sl_harness *sl_harness_create(const sl_harness_desc *in, char *err, size_t n) {
         free(h);
         return NULL;
     }
+    live_harness = h;
     return h;
 }
 
 void sl_harness_destroy(sl_harness *h) {
     if (!h) return;
     sl_app_shutdown(&h->app);
+    if (live_harness == h) live_harness = NULL;
     free(h);
 }
 

@@ -462,6 +462,14 @@ int main(int argc, char **argv) {
         free(rec.frame);
     }
     if (!rc && app.strict_failure) rc = die(app.strict_failure);
+    /* A render that printed an error (a magenta stand-in for a texture, a plugin switched off for
+     * its GLSL, a pass skipped) wrote its image but must not look like a clean one to a script. */
+    bool interactive = app.backend.has_window && c.frames < 0 && !c.turntable;
+    int errors = sl_log_count(SL_LOG_ERROR);
+    if (!rc && !interactive && errors) {
+        fprintf(stderr, "shadelab: %d error%s above; exit status 2 (the output was written)\n", errors, errors > 1 ? "s" : "");
+        rc = 2;
+    }
     sl_app_shutdown(&app);
     free(ref_copy);
     return rc;

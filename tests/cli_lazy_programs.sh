@@ -41,10 +41,13 @@ mkdir -p "$broken"
 cp -L "$(dirname "$exe")/plugins/aa/aa.so" "$broken/"
 cp "$scenes/../plugins/aa/"*.frag "$broken/"
 printf '\nvoid sl_broken() { no_such_function(); }\n' >> "$broken/taa.frag"
+# The run writes its image and exits 2: it printed an error (one, naming the plugin and file).
 msg=$(SHADELAB_PLUGIN_PATH="$out/broken-plugins" "$exe" --headless --size 32x18 --scene "$scenes/basic.json" --output "$out/broken.png" 2>&1)
-check test $? -eq 0
+check test $? -eq 2
+check test -s "$out/broken.png"
 check grep -qF "plugin aa disabled" <<<"$msg"
 check grep -qF "taa.frag" <<<"$msg"
+check test "$(grep -c '^error: ' <<<"$msg")" -eq 1
 "$exe" --headless -q --size 32x18 --scene "$scenes/basic.json" --set aa.enabled=false --output "$out/aa-off.png"
 check cmp -s "$out/broken.png" "$out/aa-off.png"
 msg=$(SHADELAB_PLUGIN_PATH="$out/broken-plugins" "$exe" --headless --strict --size 32x18 --scene "$scenes/basic.json" --output "$out/broken-strict.png" 2>&1)

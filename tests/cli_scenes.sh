@@ -39,5 +39,14 @@ expect_error "outside the valid range" --set core.ssaa=0
 expect_error "--size 0x0" --size 0x0
 expect_error "unknown option" --frobnicate
 expect_error "--strict" --plugin no-such-plugin --strict
+# A render that printed an error writes its image and exits 2 (issue 41): a missing texture is
+# drawn with a magenta stand-in, which a script must be able to tell from a clean render.
+printf '{"materials": [{"name": "m", "base_color_map": "no-such-texture.png"}],\n "nodes": [{"name": "n", "mesh": {"primitive": "sphere"}, "material": "m"}]}\n' > "$out/missing_texture.json"
+rm -f "$out/missing_texture.png"
+msg=$("$exe" --headless --size 16x16 --scene "$out/missing_texture.json" --output "$out/missing_texture.png" 2>&1)
+check test $? -eq 2
+check test -s "$out/missing_texture.png"
+check grep -qF "no-such-texture.png" <<<"$msg"
+check grep -qF "exit status 2" <<<"$msg"
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -170,6 +170,27 @@ int main(void) {
     render(&app, img);
     CHECK(max_diff(img, vig) == 0);
 
+    /* 5. a chunk broken outside a reload (a recomposition after an edit): the plugin is switched
+     * off with one message; the next hot reload switches it on again with the fixed file */
+    write_file(plugdir, "tint.glsl", tint_broken);
+    sl_renderer_poll_reload(&app); /* the reload itself keeps the last good program */
+    app.params.recompile_version++; /* an edit that recomposes every material */
+    int errors = sl_log_count(SL_LOG_ERROR);
+    sl_log_capture(logbuf, sizeof logbuf);
+    render(&app, img);
+    sl_log_capture(NULL, 0);
+    CHECK_MSG(sl_log_count(SL_LOG_ERROR) - errors == 1, "%s", logbuf);
+    CHECK_CONTAINS(logbuf, "plugin example disabled");
+    CHECK(!app.plugins.items[1]->ok);
+    write_file(plugdir, "tint.glsl", tint_green);
+    sl_log_capture(logbuf, sizeof logbuf);
+    CHECK(sl_renderer_poll_reload(&app));
+    render(&app, img);
+    sl_log_capture(NULL, 0);
+    CHECK_MSG(!strstr(logbuf, "error"), "%s", logbuf);
+    CHECK(app.plugins.items[1]->ok);
+    CHECK_MSG(max_diff(img, vig) == 0, "after the fix the plugin's image is back (max diff %g)", max_diff(img, vig));
+
     sl_app_shutdown(&app);
     free(orig); free(broken); free(vorig);
     sh("rm -rf '%s'%s", tmp, "");

@@ -7,6 +7,7 @@
 #include "render/renderer.h"
 #include "test_tmp.h"
 #include <shadelab/harness.h>
+#include <math.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -135,20 +136,45 @@ int main(void) {
     CHECK(sl_plugins_find(&app.plugins, "tp-good") >= 0 && app.plugins.items[sl_plugins_find(&app.plugins, "tp-good")]->ok);
     sl_app_shutdown(&app);
 
-    /* a shader compile error names the plugin's file and line */
+    /* A shader compile error in a plugin's chunk (issue 41, one failure policy): the plugin is
+     * switched off with ONE message naming it and its file and line (not one per material), the
+     * viewer goes on, the materials fall back to the core's model; --strict makes it fatal. */
     const char *bad_scene =
-        "{\"materials\": [{\"name\": \"m\", \"model\": \"tp-bad-glsl-model\"}],\n"
-        " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"cube\"}, \"material\": \"m\"}],\n"
-        " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\"}]}\n";
-    r = load(&app, (const char *[]){"tp-bad-glsl", NULL}, bad_scene, false, &ok);
-    CHECK(ok);
-    sl_log_capture(logbuf, sizeof logbuf);
-    bool started = sl_app_start_gl(&app, err, sizeof err);
-    sl_log_capture(NULL, 0);
-    CHECK(!started);
-    CHECK_CONTAINS(logbuf, "tests/plugins/test_plugin_bad.glsl:4");
-    CHECK_CONTAINS(logbuf, "undefined_identifier");
-    sl_app_shutdown(&app);
+        "{\"materials\": [{\"name\": \"m\", \"model\": \"tp-bad-glsl-model\", \"base_color\": [0.5, 0.5, 0.5]},\n"
+        "               {\"name\": \"m2\", \"model\": \"tp-bad-glsl-model\", \"base_color\": [0.5, 0.5, 0.5]}],\n"
+        " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3], \"target\": [0, 0, 0]}],\n"
+        " \"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"plane\", \"size\": 10}, \"rotate\": [90, 0, 0], \"material\": \"m\"},\n"
+        "           {\"name\": \"n2\", \"mesh\": {\"primitive\": \"cube\"}, \"translate\": [0, 0, -5], \"material\": \"m2\"}],\n"
+        " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 1}]}\n";
+    for (int strict = 0; strict < 2; strict++) {
+        r = load(&app, (const char *[]){"tp-bad-glsl", NULL}, bad_scene, strict, &ok);
+        CHECK(ok);
+        int errors_before = sl_log_count(SL_LOG_ERROR);
+        sl_log_capture(logbuf, sizeof logbuf);
+        bool started = sl_app_start_gl(&app, err, sizeof err);
+        CHECK_MSG(started, "%s", err);
+        app.opt.keep_color = true;
+        bool rendered = started && sl_app_render_frame(&app);
+        sl_log_capture(NULL, 0);
+        CHECK(rendered);
+        CHECK_MSG(sl_log_count(SL_LOG_ERROR) - errors_before == 1, "%d errors:\n%s", sl_log_count(SL_LOG_ERROR) - errors_before,
+                  logbuf);
+        CHECK_CONTAINS(logbuf, "plugin tp-bad-glsl disabled");
+        CHECK_CONTAINS(logbuf, "tests/plugins/test_plugin_bad.glsl:4");
+        CHECK_CONTAINS(logbuf, "undefined_identifier");
+        int k = sl_plugins_find(&app.plugins, "tp-bad-glsl");
+        CHECK(k >= 1 && !app.plugins.items[k]->ok);
+        if (k >= 1 && app.plugins.items[k]->disabled_reason)
+            CHECK_CONTAINS(app.plugins.items[k]->disabled_reason, "test_plugin_bad.glsl:4");
+        if (rendered) { /* the plane in Lambert: 0.5/π × E, E = 1 at normal incidence */
+            static float px[32 * 32 * 4];
+            CHECK(sl_app_read_color(&app, px));
+            CHECK_NEAR(px[(16 * 32 + 16) * 4], 0.5 / M_PI, 2e-3);
+        }
+        if (strict) CHECK(app.strict_failure && strstr(app.strict_failure, "tp-bad-glsl"));
+        else CHECK(!app.strict_failure);
+        sl_app_shutdown(&app);
+    }
 
     /* the plugin's model, hook and pass work when used */
     const char *mark_scene =
@@ -173,6 +199,16 @@ int main(void) {
         CHECK(sl_harness_set(h, "tp-good.gain=2", err, sizeof err));
         CHECK(sl_harness_render(h, px));
         CHECK_NEAR(px[c + 0], 1.0, 4e-3);
+        /* a second harness in the same process is refused with a message, the first one unharmed */
+        char err2[512] = "";
+        sl_harness *second = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc)}, err2, sizeof err2);
+        CHECK(second == NULL);
+        CHECK_CONTAINS(err2, "a harness already exists");
+        CHECK(sl_harness_render(h, px));
+        CHECK_NEAR(px[c + 0], 1.0, 4e-3);
+        sl_harness_destroy(h);
+        h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc)}, err2, sizeof err2);
+        CHECK_MSG(h != NULL, "after destroying the first: %s", err2);
         sl_harness_destroy(h);
     }
     /* SL_DRAW_MATERIALS: the marked material drawn with the plugin's model (no 1/π) in a prepass,

@@ -67,8 +67,6 @@ static sl_status host_set_bind(const sl_host *h, void (*bind)(void *, unsigned, 
     return SL_OK;
 }
 
-/* Texture units: 0..15 belong to material textures, plugins get 16.. upwards. */
-
 static sl_value host_get_param(const sl_host *h, const char *id) {
     sl_param *q = sl_params_find(&HOST_APP(h)->params, id);
     if (!q) {

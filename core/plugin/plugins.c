@@ -162,19 +162,16 @@ sl_status sl_plugins_set_reference(sl_plugins *P, int owner, const sl_reference_
     return SL_OK;
 }
 
-/* Plugins get units 16..63: the core's material textures use 0..15, and OpenGL 4.5 guarantees
- * at least 80 combined texture image units (MAX_COMBINED_TEXTURE_IMAGE_UNITS, in the core
- * specification's table of implementation-dependent limits). 16 were too few once every bundled
- * plugin is loaded together (aa 5, envmap 6, spotlight-shadow 3, sss 3, phong 1, tonemap 1). A unit's number is not a
- * sampler count: one program still uses at most MAX_TEXTURE_IMAGE_UNITS samplers. */
-#define SL_PLUGIN_TEXTURE_UNITS 48
-
+/* The layout of texture units is host.h's (SL_TEXTURE_UNIT_*). The plugin range is 48 units: 16
+ * were too few once every bundled plugin is loaded together (aa 5, envmap 6, spotlight-shadow 3,
+ * sss 3, phong 1, tonemap 1). */
 int sl_plugins_reserve_unit(sl_plugins *P, int owner) {
-    if (P->texture_units_used >= SL_PLUGIN_TEXTURE_UNITS) {
-        SL_ERROR("%s: out of plugin texture units", P->items[owner]->id);
+    if (P->texture_units_used >= SL_TEXTURE_UNIT_PLUGIN_COUNT) {
+        SL_ERROR("%s: reserve_texture_unit: all %d plugin texture units are taken (host.h, SL_TEXTURE_UNIT_PLUGIN_COUNT)",
+                 P->items[owner]->id, SL_TEXTURE_UNIT_PLUGIN_COUNT);
         return -1;
     }
-    return 16 + P->texture_units_used++;
+    return SL_TEXTURE_UNIT_PLUGIN_FIRST + P->texture_units_used++;
 }
 
 const void *sl_plugins_extension(const sl_plugins *P, const char *id) {

@@ -28,6 +28,7 @@ typedef struct sl_plugin_rec {
     bool live;             /* create() succeeded: destroy() is owed at shutdown, also after the
                             * plugin was disabled later (activate() or a lazy compile failed) */
     char *disabled_reason; /* why it is not ok */
+    bool glsl_failed;      /* switched off because its GLSL did not compile (a hot reload retries it) */
     void *user;
     sl_host *host;         /* made by sl_plugins.make_host (core/host), freed with the record */
     void (*bind)(void *user, unsigned program, int material, const sl_frame *frame);
@@ -42,7 +43,7 @@ typedef struct sl_plugins {
     sl_chunk_reg *chunks; int chunk_count;
     sl_pass_reg *passes; int pass_count;
     sl_key_reg *keys; int key_count;
-    int texture_units_used; /* plugin units are handed out from the top of the range down */
+    int texture_units_used; /* units handed out by reserve_texture_unit (host.h, SL_TEXTURE_UNIT_*) */
     /* Set by the owner before loading: the parameter store plugins register into, and the maker
      * of each plugin's host table (core/host), so the registry calls nothing above it. */
     sl_params *params;

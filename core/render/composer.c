@@ -103,7 +103,7 @@ static void ensure_generated_slot(sl_source *s) {
     }
 }
 
-static bool include_file(sl_source *s, const char *path, int depth, char *err, size_t n) {
+static bool include_file(sl_source *s, const char *path, int owner, int depth, char *err, size_t n) {
     ensure_generated_slot(s);
     char resolved[2048];
     if (!strncmp(path, "sl:", 3)) snprintf(resolved, sizeof resolved, "%s/%s", sl_shader_dir(), path + 3);
@@ -114,6 +114,7 @@ static bool include_file(sl_source *s, const char *path, int depth, char *err, s
     int idx = file_index(s, abs, &added);
     if (idx < 0) { snprintf(err, n, "%s: too many included files", abs); free(abs); return false; }
     if (!added) { free(abs); return true; } /* each file once */
+    s->file_owner[idx] = strncmp(path, "sl:", 3) ? owner : 0;
     if (depth > 16) { snprintf(err, n, "%s: #include nested too deeply", abs); free(abs); return false; }
     char *text = sl_read_file(abs, NULL, NULL, 0);
     if (!text) {
@@ -148,7 +149,7 @@ static bool include_file(sl_source *s, const char *path, int depth, char *err, s
             if (!strncmp(inc, "sl:", 3) || inc[0] == '/') snprintf(full, sizeof full, "%s", inc);
             else snprintf(full, sizeof full, "%s/%s", d, inc);
             char sub[1024] = "";
-            if (!include_file(s, full, depth + 1, sub, sizeof sub)) {
+            if (!include_file(s, full, owner, depth + 1, sub, sizeof sub)) {
                 char shown[1024];
                 snprintf(err, n, "%s:%d: %s", sl_display_path(abs, shown, sizeof shown), line, sub);
                 ok = false;
@@ -167,7 +168,11 @@ static bool include_file(sl_source *s, const char *path, int depth, char *err, s
 }
 
 bool sl_source_include(sl_source *s, const char *path, char *err, size_t n) {
-    return include_file(s, path, 0, err, n);
+    return include_file(s, path, 0, 0, err, n);
+}
+
+bool sl_source_include_from(sl_source *s, const char *path, int owner, char *err, size_t n) {
+    return include_file(s, path, owner, 0, err, n);
 }
 
 void sl_source_generated(sl_source *s, const char *text) {
@@ -180,6 +185,27 @@ void sl_source_generated(sl_source *s, const char *text) {
     if (text[0] && text[strlen(text) - 1] != '\n') sl_sb_append(&s->text, "\n");
 }
 
+/* The file index and line of a log line "0:12(5): …" (Mesa) or "0(12) : …" (NVIDIA), with the
+ * index recovered from the line number (include_file); false for a line without a position. */
+static bool log_position(const char *p, int *file, int *line, int *consumed, bool *mesa) {
+    *mesa = sscanf(p, "%d:%d%n", file, line, consumed) == 2;
+    bool nv = !*mesa && sscanf(p, "%d(%d)%n", file, line, consumed) == 2;
+    if ((*mesa || nv) && *line >= SL_LINE_STRIDE) {
+        *file = *line / SL_LINE_STRIDE;
+        *line %= SL_LINE_STRIDE;
+    }
+    return *mesa || nv;
+}
+
+int sl_source_log_owner(const sl_source *s, const char *log) {
+    for (const char *p = log; p && *p; p = strchr(p, '\n') ? strchr(p, '\n') + 1 : NULL) {
+        int file, line, consumed;
+        bool mesa;
+        if (log_position(p, &file, &line, &consumed, &mesa) && file >= 0 && file < s->file_count) return s->file_owner[file];
+    }
+    return 0;
+}
+
 void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n) {
     out[0] = 0;
     size_t used = 0;
@@ -189,16 +215,9 @@ void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n)
         int file, line, consumed = 0;
         char shown[1024];
         /* Mesa: "0:12(5): error: …"; NVIDIA: "0(12) : error …" */
-        bool mesa = sscanf(p, "%d:%d%n", &file, &line, &consumed) == 2;
-        bool nv = !mesa && sscanf(p, "%d(%d)%n", &file, &line, &consumed) == 2;
-        if ((mesa || nv) && line >= SL_LINE_STRIDE) {
-            file = line / SL_LINE_STRIDE;
-            line %= SL_LINE_STRIDE;
-        }
-        if (mesa && file >= 0 && file < s->file_count) {
-            used += snprintf(out + used, n - used, "%s:%d%.*s\n", sl_display_path(s->files[file], shown, sizeof shown),
-                             line, (int)(len - consumed), p + consumed);
-        } else if (nv && file >= 0 && file < s->file_count) {
+        bool mesa;
+        bool positioned = log_position(p, &file, &line, &consumed, &mesa);
+        if (positioned && file >= 0 && file < s->file_count) {
             used += snprintf(out + used, n - used, "%s:%d%.*s\n", sl_display_path(s->files[file], shown, sizeof shown),
                              line, (int)(len - consumed), p + consumed);
         } else if (len) {
@@ -209,7 +228,7 @@ void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n)
     }
 }
 
-static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size_t n) {
+static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size_t n, int *err_owner) {
     unsigned sh = glCreateShader(type);
     const char *text = src->text.s;
     glShaderSource(sh, 1, &text, NULL);
@@ -220,6 +239,7 @@ static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size
         char log[8192] = "";
         glGetShaderInfoLog(sh, sizeof log, NULL, log);
         sl_source_map_log(src, log, err, n);
+        *err_owner = sl_source_log_owner(src, log);
         glDeleteShader(sh);
         return 0;
     }
@@ -228,14 +248,15 @@ static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size
 
 bool sl_program_build(sl_program *p, char *err, size_t n) {
     char log[8192] = "";
+    int err_owner = 0;
     double cpu0 = sl_startup_thread_cpu_ms(), wall0 = sl_startup_wall_ms();
-    unsigned vs = compile_stage(GL_VERTEX_SHADER, &p->vs, log, sizeof log);
-    unsigned fs = vs ? compile_stage(GL_FRAGMENT_SHADER, &p->fs, log, sizeof log) : 0;
+    unsigned vs = compile_stage(GL_VERTEX_SHADER, &p->vs, log, sizeof log, &err_owner);
+    unsigned fs = vs ? compile_stage(GL_FRAGMENT_SHADER, &p->fs, log, sizeof log, &err_owner) : 0;
     /* tessellation stages (DISPLACEMENT hooks, shader.h ABI 1.7) only when composed */
     unsigned tcs = 0, tes = 0;
     if (p->tessellated && fs) {
-        tcs = compile_stage(GL_TESS_CONTROL_SHADER, &p->tcs, log, sizeof log);
-        tes = tcs ? compile_stage(GL_TESS_EVALUATION_SHADER, &p->tes, log, sizeof log) : 0;
+        tcs = compile_stage(GL_TESS_CONTROL_SHADER, &p->tcs, log, sizeof log, &err_owner);
+        tes = tcs ? compile_stage(GL_TESS_EVALUATION_SHADER, &p->tes, log, sizeof log, &err_owner) : 0;
     }
     unsigned prog = 0;
     if (vs && fs && (!p->tessellated || (tcs && tes))) {
@@ -251,6 +272,7 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
             char raw[8192] = "";
             glGetProgramInfoLog(prog, sizeof raw, NULL, raw);
             sl_source_map_log(&p->fs, raw, log, sizeof log);
+            err_owner = sl_source_log_owner(&p->fs, raw);
             glDeleteProgram(prog);
             prog = 0;
         }
@@ -264,8 +286,10 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
              p->fs.text.len, sl_startup_thread_cpu_ms() - cpu0);
     free(p->error);
     p->error = NULL;
+    p->error_owner = 0;
     if (!prog) {
         p->error = strdup(log);
+        p->error_owner = err_owner;
         snprintf(err, n, "%s: shader compile failed%s:\n%s", p->label ? p->label : "program",
                  p->id ? " (keeping the last good program)" : "", log);
         return false;
@@ -334,7 +358,8 @@ unsigned sl_program_id(sl_program *p) {
     if (p->deferred) {
         p->deferred = false;
         char err[16384] = "";
-        if (!sl_program_build(p, err, sizeof err)) SL_ERROR("%s", err);
+        /* a plugin's program is reported once, where its failure disables the plugin (app.c) */
+        if (!sl_program_build(p, err, sizeof err) && p->owner < 1) SL_ERROR("%s", err);
     }
     return p->id;
 }

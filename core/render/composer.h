@@ -18,6 +18,7 @@ typedef struct sl_source {
     sl_strbuf text;
     char *files[64]; int file_count;
     time_t mtimes[64];
+    int file_owner[64];   /* plugin index that included the file (sl_source_include_from); 0 = core */
 } sl_source;
 
 void sl_source_init(sl_source *s);
@@ -26,10 +27,16 @@ void sl_source_free(sl_source *s);
  * #include "sl:x" from the core shader directory), each file once, with #line mapping.
  * Returns false and fills err ("file:line: cause") when a file is missing. */
 bool sl_source_include(sl_source *s, const char *path, char *err, size_t n);
+/* The same for a file of plugin `owner` (its chunk, library or fragment): the file and those it
+ * includes (but "sl:" ones) are that plugin's, so an error in them is blamed on it. */
+bool sl_source_include_from(sl_source *s, const char *path, int owner, char *err, size_t n);
 /* Appends generated text (reported as "<generated>" in errors). */
 void sl_source_generated(sl_source *s, const char *text);
 /* Rewrites a driver info log ("0:12(5): error: …") into "path:12(5): error: …". */
 void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n);
+/* The owner (file_owner) of the file the first positioned line of a driver info log names; 0
+ * when none does or it is generated text. */
+int sl_source_log_owner(const sl_source *s, const char *log);
 
 struct sl_program {
     uint64_t hash;          /* of vertex + fragment (+ tessellation) source */
@@ -38,6 +45,8 @@ struct sl_program {
     sl_source vs, fs;
     sl_source tcs, tes;     /* tessellation stages (DISPLACEMENT hooks); empty text = none */
     char *error;            /* last compile/link error (mapped), NULL when good */
+    int error_owner;        /* plugin owning the file its first error names (sl_source_include_from);
+                               0 for the core's files, generated text or no position */
     char *vs_path, *fs_path, *defines; /* for stand-alone programs: rebuilt on reload */
     int owner;
     bool composed;          /* forward material program (rebuilt by the material code) */

@@ -164,11 +164,22 @@ static const char *glsl_type(sl_param_type t) {
     return "float";
 }
 
+/* Includes chunk c's file into src as its plugin's (an error in it is blamed on that plugin); a
+ * file that cannot be included is blamed on it at once (*culprit). */
+static bool include_chunk(sl_plugins *P, sl_source *src, const sl_chunk_reg *c, int *culprit, char *err, size_t n) {
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s", P->items[c->owner]->resource_dir, c->d.file);
+    if (sl_source_include_from(src, path, c->owner, err, n)) return true;
+    *culprit = c->owner;
+    return false;
+}
+
 /* The tessellation of a displaced material (DISPLACEMENT hooks, shader.h ABI 1.7): tess.vert runs
  * the VERTEX hooks and hands the object-space vertex on; the control stage sets per-edge levels
  * from each edge's endpoints (crack-free), the evaluation stage displaces along the normal. */
 static bool compose_tessellation(sl_plugins *P, sl_program *p, const char *pre, const char *uni,
-                                 const sl_chunk_reg *const *hooks, int nd, sl_variant_kind kind, char *err, size_t n) {
+                                 const sl_chunk_reg *const *hooks, int nd, sl_variant_kind kind, int *culprit, char *err,
+                                 size_t n) {
     bool ok = sl_source_include(&p->vs, "sl:tess.vert", err, n);
     sl_source *stages[2] = {&p->tcs, &p->tes};
     const char *defines[2] = {"#define SL_TESS_CONTROL_STAGE 1\n", "#define SL_TESS_EVALUATION_STAGE 1\n"};
@@ -188,11 +199,7 @@ static bool compose_tessellation(sl_plugins *P, sl_program *p, const char *pre, 
         ok = sl_source_include(stages[k], "sl:common.glsl", err, n);
         sl_source_generated(stages[k], uni ? uni : "");
         ok = ok && sl_source_include(stages[k], "sl:tess.glsl", err, n);
-        for (int i = 0; i < nd && ok; i++) {
-            char path[2048];
-            snprintf(path, sizeof path, "%s/%s", P->items[hooks[i]->owner]->resource_dir, hooks[i]->d.file);
-            ok = sl_source_include(stages[k], path, err, n);
-        }
+        for (int i = 0; i < nd && ok; i++) ok = include_chunk(P, stages[k], hooks[i], culprit, err, n);
         if (ok) sl_source_generated(stages[k], gen.s);
         ok = ok && sl_source_include(stages[k], k == 0 ? "sl:tess.tesc" : "sl:tess.tese", err, n);
     }
@@ -224,6 +231,35 @@ static bool uv_function(sl_strbuf *b, const sl_material *mat, const sl_param *q)
     return map->texcoord == 1;
 }
 
+/* The plugin whose resource directory holds `path` (a draw_scene fragment), or 0. */
+static int owner_of_file(const sl_plugins *P, const char *path) {
+    for (int i = 1; i < P->count; i++) {
+        const char *dir = P->items[i]->resource_dir;
+        size_t l = dir ? strlen(dir) : 0;
+        if (l && !strncmp(path, dir, l) && path[l] == '/') return i;
+    }
+    return 0;
+}
+
+/* The plugin to blame for a material program that failed to compile, or -1: the owner of the
+ * file the first error names (sl_source_include_from); else the plugin with a chunk function the
+ * log quotes (a generated call to a function its file lacks); else the one plugin contributing. */
+static int blame_compile_error(const sl_plugins *P, const sl_program *p, uint64_t owners) {
+    if (p->error_owner >= 1) return p->error_owner;
+    for (int i = 0; p->error && i < P->chunk_count; i++) {
+        const sl_chunk_reg *c = &P->chunks[i];
+        if (c->owner < 1 || !(owners & (1ull << (c->owner & 63))) || !c->d.function) continue;
+        char quoted[2][300];
+        snprintf(quoted[0], sizeof quoted[0], "'%s'", c->d.function);
+        snprintf(quoted[1], sizeof quoted[1], "`%s'", c->d.function);
+        if (strstr(p->error, quoted[0]) || strstr(p->error, quoted[1])) return c->owner;
+    }
+    int only = -1;
+    for (int i = 1; i < P->count && i < 64; i++)
+        if (owners & (1ull << i)) only = only < 0 ? i : 64;
+    return only < 64 ? only : -1;
+}
+
 bool sl_forward_compose(sl_app *app, int m, sl_variant_kind kind, const char *model_override, sl_forward_variant *out,
                         sl_program ***cache, int *cache_count, char *err, size_t n) {
     return sl_forward_compose_custom(app, m, kind, model_override, NULL, false, out, cache, cache_count, err, n);
@@ -234,6 +270,8 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
                                size_t n) {
     if (!fragment) fullscreen = false;
     sl_plugins *P = &app->plugins;
+    int culprit = 0; /* the plugin whose file could not be included */
+    out->failed_plugin = -1;
     const sl_material *mat = &app->scene.materials[m];
     uint64_t owners = 1; /* the core */
     const sl_chunk_reg *list[256];
@@ -401,11 +439,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
                                     "float sl_hook_time;\n"
                                     "#define sl_time sl_hook_time\n");
     sl_strbuf gen = {0};
-    for (int i = 0; i < nv && ok; i++) {
-        char path[2048];
-        snprintf(path, sizeof path, "%s/%s", P->items[vertex_hooks[i]->owner]->resource_dir, vertex_hooks[i]->d.file);
-        ok = sl_source_include(&p->vs, path, err, n);
-    }
+    for (int i = 0; i < nv && ok; i++) ok = include_chunk(P, &p->vs, vertex_hooks[i], &culprit, err, n);
     /* hooks for tagged nodes only (when_node_tag, ABI 1.6) run under a bit of a per-draw uniform */
     const char *node_tags[32] = {0};
     int node_tag_count = 0;
@@ -426,7 +460,7 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     sl_sb_free(&gen);
     /* DISPLACEMENT hooks (shader.h, ABI 1.7): a pass-through vertex stage and the tessellation
      * stages; without them the vertex stage is forward.vert and nothing else changes */
-    if (nd && !fullscreen) ok = ok && compose_tessellation(P, p, pre.s, uni.s, displacement_hooks, nd, kind, err, n);
+    if (nd && !fullscreen) ok = ok && compose_tessellation(P, p, pre.s, uni.s, displacement_hooks, nd, kind, &culprit, err, n);
     else ok = ok && sl_source_include(&p->vs, fullscreen ? "sl:fullscreen.vert" : "sl:forward.vert", err, n);
 
     /* ---- fragment stage ---- */
@@ -469,14 +503,10 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         for (int i = 0; i < P->chunk_count && ok; i++) {
             const sl_chunk_reg *c = &P->chunks[i];
             if (c->d.hook != SL_HOOK_LIBRARY || !(owners & (1ull << (c->owner & 63))) || !sl_plugin_enabled(&app->plugins, c->owner)) continue;
-            char path[2048];
-            snprintf(path, sizeof path, "%s/%s", P->items[c->owner]->resource_dir, c->d.file);
-            ok = sl_source_include(&p->fs, path, err, n);
+            ok = include_chunk(P, &p->fs, c, &culprit, err, n);
         }
         for (int i = 0; i < count && ok; i++) {
-            char path[2048];
-            snprintf(path, sizeof path, "%s/%s", P->items[list[i]->owner]->resource_dir, list[i]->d.file);
-            ok = sl_source_include(&p->fs, path, err, n);
+            ok = include_chunk(P, &p->fs, list[i], &culprit, err, n);
             sl_sb_printf(&explain, "%s%s:%s%s", explain.len ? ", " : "", P->items[list[i]->owner]->id,
                          list[i]->d.name ? list[i]->d.name : list[i]->d.function,
                          list[i]->d.hook == SL_HOOK_MODEL_AMBIENT ? " (ambient)" : "");
@@ -581,7 +611,8 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         }
         sl_source_generated(&p->fs, gen.s);
         ok = ok && sl_source_include(&p->fs, "sl:forward.frag", err, n);
-        if (fragment) ok = ok && sl_source_include(&p->fs, fragment, err, n);
+        if (fragment && ok && !sl_source_include_from(&p->fs, fragment, owner_of_file(P, fragment), err, n))
+            ok = false, culprit = owner_of_file(P, fragment);
     }
     sl_sb_free(&gen);
     sl_sb_free(&pre);
@@ -595,8 +626,8 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
     free(out->chunks);
     out->chunks = explain.s ? explain.s : strdup("");
     out->owners = owners;
-    if (!ok) {
-        SL_ERROR("%s", err);
+    if (!ok) { /* a file could not be included: the plugin that named it is to blame */
+        out->failed_plugin = culprit >= 1 ? culprit : -1;
         sl_program_free(p);
         return false;
     }
@@ -614,8 +645,8 @@ bool sl_forward_compose_custom(sl_app *app, int m, sl_variant_kind kind, const c
         }
     }
     if (!sl_program_build(p, err, n)) {
-        SL_ERROR("%s", err);
-        /* keep the previous program of this variant (hot reload) */
+        out->failed_plugin = blame_compile_error(P, p, owners);
+        /* the variant keeps its previous program (hot reload) */
         sl_program_free(p);
         return false;
     }

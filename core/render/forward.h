@@ -11,21 +11,22 @@ struct sl_app;
 typedef struct sl_forward_variant {
     sl_program *program;
     uint64_t owners;            /* bit i: plugin i contributed chunks (bind callbacks, uniforms) */
-    int texture_params[16];     /* material texture keys bound to units 0.. (param indices) */
+    int texture_params[SL_TEXTURE_UNIT_MATERIAL_COUNT]; /* material texture keys on units 0.. (param indices) */
     int texture_count;
     char *chunks;               /* human-readable list of the chunks included (--explain) */
     /* VERTEX hooks with when_node_tag: bit k of the uniform sl_vertex_hook_mask runs node_tags[k]'s
      * hook; the draw sets the bits of the tags its node carries (sl_scene_node_has_tag) */
     const char *node_tags[32];
     int node_tag_count;
+    int failed_plugin;          /* after a failed composition: the plugin to blame (>= 1), or -1 */
 } sl_forward_variant;
 
 typedef enum sl_variant_kind { SL_VARIANT_FORWARD, SL_VARIANT_DEPTH } sl_variant_kind;
 
 /* Builds the program source for material m and compiles it unless a program with the same
  * hash exists in `cache`. model_override (NULL = the material's own) replaces the shading model
- * (host draw_scene SL_DRAW_MATERIALS). Returns false with a message (the variant keeps its last
- * program). */
+ * (host draw_scene SL_DRAW_MATERIALS). Returns false with the message in err, logging nothing: the
+ * variant keeps its last program and out->failed_plugin names the plugin to blame (or -1). */
 bool sl_forward_compose(struct sl_app *app, int material, sl_variant_kind kind, const char *model_override,
                         sl_forward_variant *out,
                         sl_program ***cache, int *cache_count, char *err, size_t n);

@@ -36,16 +36,52 @@ sl_program *sl_renderer_load_program(sl_app *app, int owner, const sl_program_de
 
 unsigned sl_renderer_program_id(sl_program *p) { return sl_program_id(p); }
 
+void sl_renderer_blame_plugin(sl_app *app, int k, const char *err) {
+    sl_renderer *r = R(app);
+    for (int i = 0; i < r->blamed_count; i++)
+        if (r->blamed[i].plugin == k) return; /* the same chunk breaks every material: one message */
+    if (r->blamed_count == 64) return;
+    r->blamed[r->blamed_count].plugin = k;
+    r->blamed[r->blamed_count++].why = strdup(err);
+}
+
 int sl_renderer_failed_plugin(sl_app *app, char *err, size_t n) {
     sl_renderer *r = R(app);
+    if (r && r->blamed_count) {
+        int k = r->blamed[0].plugin;
+        snprintf(err, n, "%s", r->blamed[0].why);
+        free(r->blamed[0].why);
+        memmove(r->blamed, r->blamed + 1, --r->blamed_count * sizeof r->blamed[0]);
+        return k;
+    }
     for (int i = 0; r && i < r->program_count; i++) {
         sl_program *p = r->programs[i];
         if (p->owner < 1 || p->id || p->deferred || !p->error || p->failure_reported) continue;
         p->failure_reported = true;
-        snprintf(err, n, "%s", p->error);
+        snprintf(err, n, "%s: %s", p->label ? p->label : "program", p->error);
         return p->owner;
     }
     return -1;
+}
+
+/* Plugins switched off because their GLSL failed to compile get another chance at a hot reload
+ * (the files may be fixed): on again, their programs' failures reportable again. */
+static void retry_failed_plugins(sl_app *app) {
+    sl_renderer *r = R(app);
+    for (int k = 1; k < app->plugins.count; k++) {
+        sl_plugin_rec *rec = app->plugins.items[k];
+        if (!rec->glsl_failed) continue;
+        rec->glsl_failed = false;
+        rec->ok = true;
+        free(rec->disabled_reason);
+        rec->disabled_reason = NULL;
+        app->params.version++;
+        app->params.recompile_version++;
+        r->plan_dirty = true;
+        if (k < 64) r->retried |= 1ull << k;
+        for (int i = 0; i < r->program_count; i++)
+            if (r->programs[i]->owner == k) r->programs[i]->failure_reported = false;
+    }
 }
 
 int sl_renderer_reload_shaders(sl_app *app) {
@@ -53,6 +89,8 @@ int sl_renderer_reload_shaders(sl_app *app) {
     int failures = 0;
     char err[16384];
     r->programs_version++;
+    retry_failed_plugins(app);
+    r->reloading = true;
     for (int i = 0; i < r->program_count; i++) {
         sl_program *p = r->programs[i];
         const char *dir = p->owner >= 0 ? app->plugins.items[p->owner]->resource_dir : sl_shader_dir();
@@ -62,6 +100,8 @@ int sl_renderer_reload_shaders(sl_app *app) {
     int before = sl_log_count(SL_LOG_ERROR);
     for (int i = 0; i < r->cache_count; i++) r->cache[i]->stale = true; /* compiled from old files */
     sl_gpu_compose_all(app);
+    r->reloading = false;
+    r->retried = 0;
     failures += sl_log_count(SL_LOG_ERROR) - before;
     /* Stamp the files' current mtimes on every source, including programs whose rebuild failed
      * and cache entries no longer in use: otherwise their stale mtimes make the poll reload (and
@@ -487,7 +527,8 @@ bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
     r->seen_param_version = app->params.version;
     r->plan_key = plan_key(app);
     r->seen_debug_view = app->debug_view ? strdup(app->debug_view) : NULL;
-    for (int m = 0; m < s->material_count; m++)
+    /* a program a plugin broke is made again without it before the first frame (app.c) */
+    for (int m = 0; m < s->material_count && !r->blamed_count; m++)
         if (!r->materials[m].forward.program) {
             snprintf(err, n, "material \"%s\": its program failed to compile (see above)", s->materials[m].name);
             return false;
@@ -541,6 +582,7 @@ void sl_renderer_destroy(sl_app *app) {
     free(r->lights);
     free(r->prev_world);
     free(r->seen_debug_view);
+    for (int i = 0; i < r->blamed_count; i++) free(r->blamed[i].why);
     free(r);
     app->renderer = NULL;
 }

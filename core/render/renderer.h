@@ -56,9 +56,11 @@ void sl_renderer_explain(struct sl_app *app, FILE *f);
 /* Host-interface implementations (see sdk/include/shadelab/host.h). */
 sl_program *sl_renderer_load_program(struct sl_app *app, int owner, const sl_program_desc *desc);
 unsigned sl_renderer_program_id(sl_program *p);
-/* A plugin whose program failed its first (lazy) compile: its index, the program's error in
- * err; -1 when none. Each program is reported once. Hot-reload failures keep the last good
- * program and are not reported here. */
+/* A plugin whose GLSL failed to compile: a material program its chunks broke, or its own
+ * program's first (lazy) compile. Its index, the error (naming file:line) in err; -1 when none.
+ * Each plugin's material failure and each program is reported once. Hot-reload failures keep the
+ * last good program and are not reported here; a hot reload gives plugins switched off for their
+ * GLSL (sl_plugin_rec.glsl_failed) another chance. */
 int sl_renderer_failed_plugin(struct sl_app *app, char *err, size_t n);
 unsigned sl_renderer_pass_texture(struct sl_app *app, sl_pass_ctx *ctx, const char *name);
 sl_status sl_renderer_bind_outputs(struct sl_app *app, sl_pass_ctx *ctx, int layer);

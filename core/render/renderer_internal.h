@@ -21,7 +21,7 @@ typedef struct material_rt {
     sl_forward_variant forward, depth;
     override_variant overrides[8]; /* SL_DRAW_MATERIALS variants, composed on first use */
     int override_count;
-    unsigned textures[16];
+    unsigned textures[SL_TEXTURE_UNIT_MATERIAL_COUNT];
 } material_rt;
 
 typedef struct resource {
@@ -103,6 +103,12 @@ typedef struct sl_renderer {
     unsigned display_fbo;
     /* the pass being executed, for draw_scene */
     sl_pass_ctx *current;
+    /* plugins whose material GLSL failed to compile, with the first message, until app.c switches
+     * them off (sl_renderer_failed_plugin); a hot reload keeps last good programs instead */
+    struct { int plugin; char *why; } blamed[64];
+    int blamed_count;
+    bool reloading;        /* in a hot reload: failures keep the last good program ... */
+    uint64_t retried;      /* ... but of the plugins it switched on again (bit k: plugin k) */
 } sl_renderer;
 
 #define R(app) ((sl_renderer *)(app)->renderer)
@@ -118,6 +124,8 @@ int sl_gpu_light_block_capacity(void);
  * (enabled or not, so a toggle never changes it), else from a storage buffer. */
 bool sl_gpu_lights_in_uniform_block(sl_app *app);
 void sl_gpu_compose_all(sl_app *app);        /* every material's programs and textures */
+/* renderer.c: plugin k's GLSL broke a material program (message err); reported once per plugin */
+void sl_renderer_blame_plugin(sl_app *app, int k, const char *err);
 /* Which materials a draw takes: every one (blended ones last, back to front: plugins' draw_scene),
  * the opaque and masked ones (the forward pass) or the blended ones (the forward-blend pass). */
 typedef enum sl_gpu_draw_set { SL_GPU_DRAW_ALL, SL_GPU_DRAW_OPAQUE, SL_GPU_DRAW_BLENDED } sl_gpu_draw_set;
@@ -125,8 +133,8 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
 /* glTF alphaMode BLEND: the material carries alpha_blend = true; whether any material does */
 bool sl_gpu_material_blended(sl_app *app, int m);
 bool sl_gpu_scene_has_blended(sl_app *app);
-/* the texture unit of "depth" in the forward-blend pass (above the units plugins reserve, 16..63) */
-#define SL_BLEND_DEPTH_UNIT 64
+/* the texture unit of "depth" in the forward-blend pass (host.h's layout) */
+#define SL_BLEND_DEPTH_UNIT SL_TEXTURE_UNIT_CORE
 
 /* graph_targets.c */
 resource *sl_graph_find(sl_renderer *r, const char *name);

@@ -317,17 +317,35 @@ const sl_light_info *sl_renderer_lights(sl_app *app, int *count) {
 
 /* ------------------------------------------------------------------ materials ------- */
 
-void sl_gpu_compose_all(sl_app *app) {
+/* A material program that did not compose or compile (issue 41: one failure policy). Its plugin
+ * is switched off between frames with one message (sl_renderer_failed_plugin, app.c), except in a
+ * hot reload that keeps the variant's last good program; an error no plugin can be blamed for
+ * (the core's own GLSL) is logged as it is. */
+static void compose_failed(sl_app *app, const sl_forward_variant *v, const char *err) {
+    sl_renderer *r = R(app);
+    int k = v->failed_plugin;
+    bool keep_last_good = r->reloading && v->program && !(k < 64 && (r->retried >> k & 1));
+    if (k >= 1 && !keep_last_good) sl_renderer_blame_plugin(app, k, err);
+    else SL_ERROR("%s", err);
+}
+
+static void compose(sl_app *app, int m, sl_variant_kind kind, const char *model, const char *fragment, bool fullscreen,
+                    sl_forward_variant *v) {
     sl_renderer *r = R(app);
     char err[16384];
+    if (!sl_forward_compose_custom(app, m, kind, model, fragment, fullscreen, v, &r->cache, &r->cache_count, err, sizeof err))
+        compose_failed(app, v, err);
+}
+
+void sl_gpu_compose_all(sl_app *app) {
+    sl_renderer *r = R(app);
     for (int m = 0; m < app->scene.material_count; m++) {
         material_rt *mr = &r->materials[m];
-        sl_forward_compose(app, m, SL_VARIANT_FORWARD, NULL, &mr->forward, &r->cache, &r->cache_count, err, sizeof err);
-        sl_forward_compose(app, m, SL_VARIANT_DEPTH, NULL, &mr->depth, &r->cache, &r->cache_count, err, sizeof err);
+        compose(app, m, SL_VARIANT_FORWARD, NULL, NULL, false, &mr->forward);
+        compose(app, m, SL_VARIANT_DEPTH, NULL, NULL, false, &mr->depth);
         for (int k = 0; k < mr->override_count; k++)
-            sl_forward_compose_custom(app, m, SL_VARIANT_FORWARD, mr->overrides[k].model, mr->overrides[k].fragment,
-                                      mr->overrides[k].fullscreen, &mr->overrides[k].v, &r->cache, &r->cache_count, err,
-                                      sizeof err);
+            compose(app, m, SL_VARIANT_FORWARD, mr->overrides[k].model, mr->overrides[k].fragment, mr->overrides[k].fullscreen,
+                    &mr->overrides[k].v);
         for (int t = 0; t < mr->forward.texture_count; t++) {
             const sl_param *q = &app->params.items[mr->forward.texture_params[t]];
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);
@@ -466,9 +484,7 @@ static const sl_forward_variant *override_variant_of(sl_app *app, int m, const c
     o->model = model ? strdup(model) : NULL;
     o->fragment = fragment ? strdup(fragment) : NULL;
     o->fullscreen = fullscreen;
-    char err[16384];
-    sl_forward_compose_custom(app, m, SL_VARIANT_FORWARD, model, fragment, fullscreen, &o->v, &R(app)->cache,
-                              &R(app)->cache_count, err, sizeof err);
+    compose(app, m, SL_VARIANT_FORWARD, model, fragment, fullscreen, &o->v);
     return &o->v;
 }
 

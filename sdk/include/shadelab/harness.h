@@ -8,7 +8,8 @@
  *   sl_harness_eval_glsl(h, &eval, out, err, sizeof err);  // GLSL unit tests
  *   sl_harness_destroy(h);
  *
- * One harness (one GL context) at a time per process. Renders use OSMesa unless
+ * One harness (one GL context) at a time per process: sl_harness_create refuses a second one
+ * while the first exists (NULL, with a message saying so). Renders use OSMesa unless
  * SHADELAB_TEST_BACKEND names another backend. */
 #ifndef SHADELAB_HARNESS_H
 #define SHADELAB_HARNESS_H

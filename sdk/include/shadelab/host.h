@@ -62,6 +62,23 @@ typedef struct sl_light_info {
     int index;                 /* index in the GLSL light buffer; -1 when disabled */
 } sl_light_info;
 
+/* Texture units: the one layout, for the core and every plugin (GL 4.5 guarantees 80 combined
+ * units, MAX_COMBINED_TEXTURE_IMAGE_UNITS; one program still samples at most
+ * MAX_TEXTURE_IMAGE_UNITS of them).
+ *   [0, 16)   a material program's textures (sl_mat_<key>, in the order of its keys), bound by the
+ *             core at each material's draw. A pass's own programs may bind their inputs here: the
+ *             core rebinds them before every material draw (draw_scene) and keeps nothing there
+ *             between passes. A material carrying more texture keys is an error naming the 17th.
+ *   [16, 64)  handed out by reserve_texture_unit, from 16 up, each to one plugin for the whole
+ *             run: textures bound there stay bound (a plugin's chunk samples them in every material
+ *             program). A pass must not bind anything on another plugin's unit.
+ *   64        the core's own (the forward-blend pass's "depth"). */
+#define SL_TEXTURE_UNIT_MATERIAL_FIRST 0
+#define SL_TEXTURE_UNIT_MATERIAL_COUNT 16
+#define SL_TEXTURE_UNIT_PLUGIN_FIRST 16
+#define SL_TEXTURE_UNIT_PLUGIN_COUNT 48
+#define SL_TEXTURE_UNIT_CORE 64
+
 typedef struct sl_host sl_host;
 struct sl_host {
     uint32_t struct_size;      /* sizeof(sl_host) as the host knows it */
@@ -88,7 +105,8 @@ struct sl_host {
                                    void (*bind)(void *user, unsigned program, int material, const sl_frame *frame),
                                    void *user);
     /* A texture unit reserved for this plugin for the whole run (textures it binds in
-     * begin_frame/bind stay bound). */
+     * begin_frame/bind stay bound), from the plugin range of SL_TEXTURE_UNIT_* below; -1 with an
+     * error naming the plugin when the range is used up. */
     int (*reserve_texture_unit)(const sl_host *host);
 
     /* ---- queries: any time after create() ---- */
@@ -111,6 +129,12 @@ struct sl_host {
     bool (*is_gpu)(const sl_host *host);  /* false on llvmpipe/OSMesa */
 
     /* ---- programs and passes: GL context current ---- */
+    /* A stand-alone program from the plugin's files (shader.h, sl_program_desc). It receives no
+     * uniform from the core by itself: not the plugin's parameters, not sl_time (set them with
+     * glProgramUniform* from sl_frame and get_param; composed material programs are the ones that
+     * get them). Drawn by draw_scene SL_DRAW_PROGRAM, the core sets only the per-draw ones listed
+     * there (pass.h); draw_fullscreen sets none. Compiled at its first program_id(); a failure
+     * switches the plugin off (one message naming file:line). */
     sl_program *(*load_program)(const sl_host *host, const sl_program_desc *desc);
     unsigned (*program_id)(const sl_host *host, sl_program *program); /* 0 if never compiled */
     /* Inside execute(): GL texture of an input or output resource by name. */

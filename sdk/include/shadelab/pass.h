@@ -7,17 +7,26 @@
  *   "color"  RGBA16F (RGBA32F with --float), viewport size: linear HDR radiance. Written by the
  *            core's forward pass (stage OPAQUE). A POST pass that lists "color" both as input and
  *            output gets two different textures (ping-pong); later passes see its output.
- *   "depth"  DEPTH32F, viewport size, from the forward pass.
+ *   "depth"  DEPTH32F, from the forward pass, at the forward pass's size: the viewport times
+ *            core.ssaa (k × k depth samples per "color" pixel when core.ssaa = k > 1; size a pass's
+ *            own reads with glGetTextureLevelParameteriv, not from sl_frame). Convention: OpenGL
+ *            window depth d in [0, 1], cleared to 1 (far, also where nothing is drawn), nearer is
+ *            smaller (GL_LESS), NDC z = 2d − 1 of the camera's projection (sl_frame.proj): not
+ *            reversed-Z, not linear. View-space distance along the view direction, perspective:
+ *            proj[14] / (2d − 1 + proj[10]) (column-major indices).
  *   "motion" RG16F (ABI 1.6), from the forward pass, only while an active pass lists it as an
  *            input (otherwise the forward programs do not compute it): per pixel, this frame's
  *            screen position minus the previous frame's of the surface seen there, in UV units
  *            ([0,1] across the viewport), both without projection jitter. Covers camera motion
  *            and VERTEX hooks (evaluated at the previous frame's sl_time too); background
  *            pixels (nothing drawn) hold 0. Same size as "depth".
- * After the last POST pass the core's display pass clamps to [0,1] and applies the sRGB
- * encoding (a tone-mapping plugin runs before it, at stage POST). ABI 1.8: when the last
+ * After the last pass on "color" the core's display pass clamps to [0,1] and applies the sRGB
+ * encoding (a tone-mapping plugin runs before it, at SL_STAGE_TONEMAP). ABI 1.8: when the last
  * writers of "color" are declared display_on_write, they write "display" directly instead
  * (see sl_pass_desc) and no display pass runs; with no post pass that is the forward pass.
+ *
+ * Texture units a pass may use: host.h, SL_TEXTURE_UNIT_* (its own programs: the material range
+ * [0, 16) or units it reserved; never another plugin's).
  */
 #ifndef SHADELAB_PASS_H
 #define SHADELAB_PASS_H
@@ -172,9 +181,11 @@ typedef struct sl_pass_desc {
 typedef enum sl_draw_mode {
     SL_DRAW_DEPTH_ONLY = 1, /* core depth program (vertex hooks applied); for shadow maps */
     SL_DRAW_PROGRAM,        /* the given program; the core sets per-object uniforms
-                               sl_model (mat4), sl_normal_matrix (mat3) and the camera uniforms,
-                               and binds attributes 0 position, 1 normal, 2 tangent (xyz+w),
-                               3 uv */
+                               sl_model (mat4), sl_normal_matrix (mat3), the camera uniforms
+                               (sl_view, sl_proj, sl_view_proj, sl_camera_pos of the desc's view),
+                               sl_time, sl_frame_index, sl_sample_index, sl_sample_count,
+                               sl_viewport_size and sl_uv_space, and binds attributes
+                               0 position, 1 normal, 2 tangent (xyz+w), 3 uv */
     SL_DRAW_MATERIALS       /* ABI 1.2: every material's own composed program (its surface
                                hooks, the scene's lights, its uniforms) with the shading model
                                replaced by model_override — e.g. a model returning irradiance
@@ -199,8 +210,11 @@ typedef struct sl_draw_scene_desc {
      * directory) holding main() and its own outputs, composed into each material's program in
      * place of the core's forward main. Everything the forward fragment stage has is declared
      * before it: SlSurface sl_surface_from_varyings(), sl_run_surface_hooks(s),
-     * sl_shade_surface(s), sl_direct_lighting(s), sl_shading_model(s, l, E), sl_lights[] and the
-     * material's uniforms (a G-buffer writer, a deferred lighting pass). With `fragment`,
+     * sl_shade_surface(s), sl_direct_lighting(s), sl_shading_model(s, l, E), sl_lights[], the
+     * material's uniforms and, for materials with alpha_cutoff or alpha_blend (#if
+     * defined(SL_MAT_HAS_ALPHA_CUTOFF) || defined(SL_ALPHA_BLENDED)), float sl_coverage(s), the
+     * coverage the core's main cuts out and blends by (a G-buffer writer, a deferred lighting
+     * pass). With `fragment`,
      * model_override may be NULL (the material's own model) and the program defines
      * SL_CUSTOM_MAIN. NULL = the core's main. */
     const char *fragment;
