@@ -6,7 +6,8 @@
 #
 # Environment: SHARED (default ../shared beside the repository: bench/baseline_ggx.c for the
 # hand-written floor, assets/ for the head scene; rows that need it are skipped without it),
-# OUT (default docs/benchmarks.md; "-" prints to stdout).
+# OUT (default docs/benchmarks.md; "-" prints to stdout), EXTRAS_BUILD (a build tree of extras/
+# searched for many-lights' many_lights_chart besides BUILD_DIR).
 # Start-up rows are medians over ROUNDS interleaved rounds with fresh caches ("cold": empty Mesa
 # shader cache and shadelab cache) or the same caches again ("warm"). About 3-4 minutes on two
 # idle cores. A benchmark: it prints figures and asserts nothing.
@@ -133,7 +134,7 @@ else
 fi
 
 note "many lights"
-chart=$(find "$BUILD" -name many_lights_chart -type f -perm -u+x 2>/dev/null | head -1)
+chart=$(find "$BUILD" ${EXTRAS_BUILD:+"$EXTRAS_BUILD"} -name many_lights_chart -type f -perm -u+x 2>/dev/null | head -1)
 if [ -n "$chart" ]; then
     args="--interleave $ROUNDS --size 1280x720 --max-brute 1 --counts 1,1024 --methods brute,tiled,clustered"
     # shellcheck disable=SC2086
@@ -144,7 +145,7 @@ if [ -n "$chart" ]; then
         note "many_lights_chart failed: $(tail -2 "$TMP/ml")"
     fi
 else
-    SKIPPED+=("many lights (\`many_lights_chart\` is not in the build tree)")
+    SKIPPED+=("many lights (\`many_lights_chart\` is not built; EXTRAS_BUILD names an extras build tree)")
 fi
 
 T1=$(date +%s) LOAD1=$(cut -d' ' -f1-3 /proc/loadavg)
