@@ -273,10 +273,25 @@ static void print_row(FILE *f, const char *name, const char *material, const xc_
             s->mean_ratio, s->mean_test, s->mean_ref, checked ? "" : "  (not cross-checked)");
 }
 
+/* s as a JSON string (quotes, backslashes and control characters escaped). */
+static void json_string(FILE *f, const char *s) {
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\') fprintf(f, "\\%c", *s);
+        else if ((unsigned char)*s < 0x20) fprintf(f, "\\u%04x", (unsigned char)*s);
+        else fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
 static void json_stats(FILE *f, const char *name, const char *material, const xc_stats *s, bool checked, bool last) {
-    fprintf(f, "    {\"name\": \"%s\", \"material\": \"%s\", \"pixels\": %ld, \"rel_rms\": %.6g, \"mean_ratio\": %.6g, "
-               "\"mean_shadelab\": %.6g, \"mean_cycles\": %.6g, \"cross_checked\": %s}%s\n",
-            name, material, s->pixels, isfinite(s->rel_rms) ? s->rel_rms : -1, isfinite(s->mean_ratio) ? s->mean_ratio : -1,
+    fprintf(f, "    {\"name\": ");
+    json_string(f, name);
+    fprintf(f, ", \"material\": ");
+    json_string(f, material);
+    fprintf(f, ", \"pixels\": %ld, \"rel_rms\": %.6g, \"mean_ratio\": %.6g, \"mean_shadelab\": %.6g, "
+               "\"mean_cycles\": %.6g, \"cross_checked\": %s}%s\n",
+            s->pixels, isfinite(s->rel_rms) ? s->rel_rms : -1, isfinite(s->mean_ratio) ? s->mean_ratio : -1,
             s->mean_test, s->mean_ref, checked ? "true" : "false", last ? "" : ",");
 }
 
@@ -307,10 +322,12 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     fprintf(txt, "compared before tone mapping, on each object's interior (its pixels whose four neighbours are it too)\n\n");
     fprintf(txt, "  %-24s %-18s %8s  %8s  %8s  %10s  %10s\n", "object", "material", "pixels", "rel-RMS", "ratio",
             "shadelab", "Cycles");
-    fprintf(json, "{\n  \"scene\": \"%s\", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d,\n"
+    fprintf(json, "{\n  \"scene\": ");
+    json_string(json, r->o->scene);
+    fprintf(json, ", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d,\n"
                   "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n"
                   "  \"objects\": [\n",
-            r->o->scene, w, h, r->o->samples, r->o->bounces, r->blender_version, (unsigned long long)r->key,
+            w, h, r->o->samples, r->o->bounces, r->blender_version, (unsigned long long)r->key,
             r->cycles_seconds, r->shadelab_ms);
     for (int i = 0; i < ex->object_count; i++) {
         const xc_object *ob = &ex->objects[i];
@@ -363,9 +380,8 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     if (ex->note_count) fprintf(txt, "\n");
     for (int i = 0; i < ex->note_count; i++) {
         fprintf(txt, "%s\n", ex->notes[i]);
-        fprintf(json, "%s\n    \"", i ? "," : "");
-        for (const char *c = ex->notes[i]; *c; c++) fprintf(json, *c == '"' || *c == '\\' ? "\\%c" : "%c", *c);
-        fprintf(json, "\"");
+        fprintf(json, "%s\n    ", i ? "," : "");
+        json_string(json, ex->notes[i]);
     }
     fprintf(json, "]\n}\n");
     free(mask);

@@ -1,0 +1,83 @@
+/* shadelab against Cycles on the default scene and the IBL spheres (issue 40 item 4): each
+ * object's distance from the reference may not grow beyond today's. Bounds are today's figures
+ * (160×90, 32 Cycles samples, 8 bounces, the reference cached) with a margin for the shadelab
+ * side's run-to-run spread: relative RMS ≤ 1.15 × today + 0.02 and |1 − mean ratio| ≤ today's +
+ * 0.03. Better is always allowed; a regression fails and names the object. Blender missing:
+ * exit 77 (skipped). */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "test_tmp.h"
+
+#define SKIP 77
+
+typedef struct bound { const char *object; double rel_rms, ratio; } bound;
+
+/* today's figures (shadelab-xcheck --size 160x90 --samples 32) */
+static const bound default_scene[] = {
+    {"floor", 0.564, 1.018}, {"teapot", 0.453, 0.826}, {"rough_95", 0.417, 0.619}, {"rough_65", 0.316, 0.684},
+    {"rough_35", 0.265, 0.739}, {"rough_10", 0.600, 0.678}, {"gold", 0.411, 0.689}, {NULL, 0, 0}};
+static const bound ibl_spheres[] = {
+    {"floor", 0.405, 0.993}, {"sd0", 0.729, 0.603}, {"sd1", 0.276, 0.804}, {"sd2", 0.249, 0.835},
+    {"sd3", 0.221, 0.809},   {"sg0", 0.978, 0.442}, {"sg1", 0.557, 0.911}, {"sg2", 0.680, 0.852},
+    {"sg3", 0.675, 0.916},   {"smirror", 0.355, 0.916}, {"swhite", 0.195, 0.825}, {NULL, 0, 0}};
+
+static char *read_text(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *t = malloc((size_t)n + 1);
+    if (t && fread(t, 1, (size_t)n, f) == (size_t)n) t[n] = 0;
+    else { free(t); t = NULL; }
+    fclose(f);
+    return t;
+}
+
+static void check_scene(const char *scene, const bound *bounds) {
+    char out[4096], cmd[9000], report[4200];
+    const char *base = strrchr(scene, '/') + 1;
+    snprintf(out, sizeof out, "%s/%.*s", sl_test_dir(), (int)(strlen(base) - 5), base);
+    snprintf(cmd, sizeof cmd, "'%s' --size 160x90 --samples 32 --out '%s' '%s/%s'", SL_XCHECK_EXE, out, SL_SOURCE_DIR, scene);
+    int status = system(cmd);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == SKIP) {
+        fprintf(stderr, "SKIPPED: Blender is not installed (tools/install-deps.sh --with-tests installs it)\n");
+        exit(SKIP);
+    }
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 0, "%s: shadelab-xcheck failed (%d)", scene, status);
+    snprintf(report, sizeof report, "%s/report.json", out);
+    char *text = read_text(report);
+    cJSON *doc = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    CHECK_MSG(doc, "%s: no readable %s", scene, report);
+    const cJSON *objects = cJSON_GetObjectItemCaseSensitive(doc, "objects");
+    for (const bound *b = bounds; b->object; b++) {
+        const cJSON *o = NULL, *it;
+        cJSON_ArrayForEach(it, objects) {
+            const cJSON *name = cJSON_GetObjectItemCaseSensitive(it, "name");
+            if (cJSON_IsString(name) && !strcmp(name->valuestring, b->object)) o = it;
+        }
+        CHECK_MSG(o, "%s: object %s missing from the report", scene, b->object);
+        if (!o) continue;
+        double rr = cJSON_GetObjectItemCaseSensitive(o, "rel_rms")->valuedouble;
+        double ratio = cJSON_GetObjectItemCaseSensitive(o, "mean_ratio")->valuedouble;
+        double rr_max = 1.15 * b->rel_rms + 0.02, off_max = fabs(1 - b->ratio) + 0.03;
+        printf("%-22s %-9s rel-RMS %.3f (bound %.3f)  mean ratio %.3f (|1 - r| bound %.3f)\n", scene, b->object, rr,
+               rr_max, ratio, off_max);
+        CHECK_MSG(rr >= 0 && rr <= rr_max, "%s: %s: relative RMS %.4f above %.4f", scene, b->object, rr, rr_max);
+        CHECK_MSG(fabs(1 - ratio) <= off_max, "%s: %s: mean ratio %.4f, more than %.3f from 1", scene, b->object, ratio,
+                  off_max);
+    }
+    cJSON_Delete(doc);
+}
+
+int main(void) {
+    check_scene("scenes/default.json", default_scene);
+    check_scene("scenes/ibl_spheres.json", ibl_spheres);
+    return check_result();
+}
