@@ -8,6 +8,7 @@
 #include "check.h"
 #include "image/image.h"
 #include "metrics.h"
+#include "orbit.h"
 #include "test_tmp.h"
 #include <math.h>
 #include <stdlib.h>
@@ -270,6 +271,32 @@ static void test_noise(void) {
     free(grey); free(black); free(white); free(alt);
 }
 
+/* --orbit's statistics: quantiles by interpolation between order statistics, and flicker, the
+ * frame-to-frame change of the error against the truth. */
+static void test_orbit_numbers(void) {
+    double v[] = {5, 1, 4, 2, 3}; /* sorted 1..5: q 0.5 -> 3; q 0.95 -> index 3.8 -> 4.8 */
+    CHECK(sl_orbit_quantile(v, 5, 0.5) == 3);
+    CHECK_NEAR(sl_orbit_quantile(v, 5, 0.95), 4.8, 1e-12);
+    CHECK(sl_orbit_quantile(v, 5, 1) == 5 && sl_orbit_quantile(v, 5, 0) == 1);
+    CHECK(isnan(sl_orbit_quantile(v, 0, 0.5)));
+    const int w = 4, h = 2;
+    float *h0 = image(w, h, 0.2f, 0.2f, 0.2f), *h1 = image(w, h, 0.2f, 0.2f, 0.2f);
+    float *f0 = image(w, h, 0.2f, 0.2f, 0.2f), *f1 = image(w, h, 0.2f, 0.2f, 0.2f);
+    /* the truth changes between the cameras (motion) and the frames change with it: 0 */
+    for (int c = 0; c < 3; c++) h1[c] = f1[c] = 1.0f;
+    CHECK(sl_orbit_flicker(f0, f1, h0, h1, w, h) == 0.0);
+    /* a steady error (the same in both frames, pixels 1-7) does not flicker: 0 */
+    for (int i = 1; i < w * h; i++) f0[4 * i + 1] = f1[4 * i + 1] = 0.5f;
+    CHECK(sl_orbit_flicker(f0, f1, h0, h1, w, h) == 0.0);
+    /* one pixel's red goes black -> white in the frames while its truth stays black: the
+     * display changes by 1 in one of 3 x 8 values, sqrt(1 / 24) = 0.204124 */
+    for (int i = 1; i < w * h; i++) f0[4 * i + 1] = f1[4 * i + 1] = 0.2f;
+    for (int c = 0; c < 3; c++) h1[c] = f1[c] = 0.2f;
+    f0[4 * 5] = 0, f1[4 * 5] = 1, h0[4 * 5] = h1[4 * 5] = 0;
+    CHECK_NEAR(sl_orbit_flicker(f0, f1, h0, h1, w, h), 0.204124, 1e-6);
+    free(h0); free(h1); free(f0); free(f1);
+}
+
 static void test_pareto(void) {
     /*            A     B    C    D    E    F    G    H */
     double c[] = {1,    2,   3,   4,   2,   5,   NAN, 0.5};
@@ -498,6 +525,7 @@ int main(void) {
     test_flip_step_edge();
     test_flip_viewing_distance();
     test_noise();
+    test_orbit_numbers();
     test_pareto();
     test_choose();
     test_outputs();

@@ -19,3 +19,11 @@ set_tests_properties(bench_cli bench_cli_bad_plugin bench_cli_bad_vary PROPERTIE
                      ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300 LABELS bench)
 set_tests_properties(bench_cli_bad_plugin PROPERTIES WILL_FAIL TRUE)
 set_tests_properties(bench_cli_bad_vary PROPERTIES PASS_REGULAR_EXPRESSION "not a quality knob of core")
+
+# --orbit end to end on the bare scene: the truth is the orbit's own settings (--orbit-hq ""), so
+# the converged still at a captured camera must equal it exactly: the cameras line up.
+add_test(NAME bench_cli_orbit COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_in_tmpdir.sh bench_cli_orbit $<TARGET_FILE:shadelab-bench>
+         --orbit 1.5 --scene ${PROJECT_SOURCE_DIR}/scenes/basic.json --size 32x24 --orbit-points 2 --orbit-hq ""
+         --out @TMP@/orbit -q)
+set_tests_properties(bench_cli_orbit PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300 LABELS bench
+                     PASS_REGULAR_EXPRESSION "frame ms: p50 [0-9.]+  p95 [0-9.]+  p99 [0-9.]+.*mean of 2 frame pairs.*converged still \\([ 0-9]+ f\\): FLIP 0.0000  RMSE 0\n")

@@ -1,5 +1,9 @@
 /* shadelab-bench: error versus time for a plugin's quality knobs (docs/benchmarks.md). */
 #include "bench.h"
+#include "orbit.h"
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <sys/stat.h>
 #include <shadelab/input.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,6 +47,16 @@ static const char *usage =
     "  --images                  also write PREFIX-<setting>.png and PREFIX-reference.png\n"
     "  --no-chart                no PNG chart\n"
     "  --list                    print the settings that would be measured, then exit\n"
+    "  --orbit SECONDS           instead of a sweep: a slow orbit of the camera driven by the wall\n"
+    "                            clock, as a user's drag; frame-time p50/p95/p99, the fraction over\n"
+    "                            --budget, FLIP/RMSE of motion frames and of the still against the\n"
+    "                            highest-quality still, flicker; the built-in scene and, when its\n"
+    "                            data is found, scenes/head.json (or each --scene); PREFIX.json\n"
+    "  --budget MS               frame-time budget of --orbit (default 66)\n"
+    "  --orbit-speed DEG         degrees per second (default 10)\n"
+    "  --orbit-points N          frame pairs compared with the truth (default 4)\n"
+    "  --orbit-hq \"A=1 B=2\"      the highest-quality still (default \"core.ssaa=4\": 4x4 supersampled,\n"
+    "                            with the scene's TAA still)\n"
     "  --data DIR                asset directory (also SHADELAB_DATA)\n"
     "  --float                   RGBA32F colour targets\n"
     "  -q, --quiet | -v, --verbose | --help\n";
@@ -54,6 +68,99 @@ static int die(const char *msg) {
 
 #define MAXN 256
 
+/* "--orbit 20": a number in [lo, hi], or an error naming the option. */
+static bool parse_number(const char *opt, const char *v, double lo, double hi, double *out, char *err, size_t n) {
+    char *end = NULL;
+    *out = v ? strtod(v, &end) : NAN;
+    if (!v || *end || !(*out >= lo && *out <= hi)) {
+        snprintf(err, n, "%s %s: expected a number in [%g, %g]", opt, v ? v : "(nothing)", lo, hi);
+        return false;
+    }
+    return true;
+}
+
+static void print_orbit(const sl_orbit_result *r) {
+    printf("orbit of %s, %dx%d, %s (%s): %.0f s, %.0f degrees, %d frames\n", r->scene, r->width, r->height, r->backend,
+           r->renderer, r->seconds, r->degrees, r->frames);
+    printf("  frame ms: p50 %.1f  p95 %.1f  p99 %.1f  mean %.1f  max %.1f; over the %.0f ms budget: %.1f %%\n", r->p50_ms,
+           r->p95_ms, r->p99_ms, r->mean_ms, r->max_ms, r->budget_ms, 100 * r->over_budget);
+    printf("  against the highest-quality still (%s), mean of %d frame pairs:\n", r->hq_settings, r->points);
+    printf("    motion frames:          FLIP %.4f  RMSE %.4g\n", r->motion_flip, r->motion_rmse);
+    printf("    converged still (%2d f): FLIP %.4f  RMSE %.4g\n", r->still_frames, r->still_flip, r->still_rmse);
+    printf("    flicker (RMS, sRGB):    mean %.4f  largest %.4f\n", r->flicker, r->flicker_max);
+}
+
+static cJSON *orbit_json(const sl_orbit_result *r) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "scene", r->scene);
+    cJSON_AddNumberToObject(o, "width", r->width);
+    cJSON_AddNumberToObject(o, "height", r->height);
+    cJSON_AddStringToObject(o, "backend", r->backend ? r->backend : "");
+    cJSON_AddStringToObject(o, "renderer", r->renderer ? r->renderer : "");
+    cJSON_AddNumberToObject(o, "seconds", r->seconds);
+    cJSON_AddNumberToObject(o, "degrees", r->degrees);
+    cJSON_AddNumberToObject(o, "frames", r->frames);
+    cJSON_AddNumberToObject(o, "budget_ms", r->budget_ms);
+    const char *keys[] = {"p50_ms", "p95_ms", "p99_ms", "mean_ms", "max_ms", "over_budget", "motion_flip", "motion_rmse",
+                          "still_flip", "still_rmse", "flicker", "flicker_max"};
+    const double vals[] = {r->p50_ms, r->p95_ms, r->p99_ms, r->mean_ms, r->max_ms, r->over_budget, r->motion_flip,
+                           r->motion_rmse, r->still_flip, r->still_rmse, r->flicker, r->flicker_max};
+    for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
+        cJSON_AddItemToObject(o, keys[i], isfinite(vals[i]) ? cJSON_CreateNumber(vals[i]) : cJSON_CreateNull());
+    cJSON_AddNumberToObject(o, "points", r->points);
+    cJSON_AddNumberToObject(o, "still_frames", r->still_frames);
+    cJSON_AddStringToObject(o, "hq_settings", r->hq_settings);
+    return o;
+}
+
+/* The data directory holding head/ (--data, SHADELAB_DATA, else ../shared/assets), or NULL. */
+static const char *head_data(const char *data_dir) {
+    const char *dirs[] = {data_dir, getenv("SHADELAB_DATA"), "../shared/assets"};
+    for (int i = 0; i < 3; i++) {
+        char path[4200];
+        struct stat st;
+        if (!dirs[i] || !*dirs[i]) continue;
+        snprintf(path, sizeof path, "%s/head/LeePerrySmith.glb", dirs[i]);
+        if (!stat(path, &st)) return dirs[i];
+        if (i < 2) break; /* a directory the user named: no guessing past it */
+    }
+    return NULL;
+}
+
+/* --orbit: the given scene, or the built-in one and the head when its data is there. */
+static int run_orbits(sl_orbit_options *oo, const char *prefix, char *err, size_t n) {
+    const char *scenes[2] = {oo->scene_path, NULL};
+    const char *data[2] = {oo->data_dir, NULL};
+    int count = 1;
+    struct stat st;
+    if (!oo->scene_path) {
+        const char *hd = head_data(oo->data_dir);
+        if (hd && !stat("scenes/head.json", &st)) scenes[count] = "scenes/head.json", data[count++] = hd;
+        else fprintf(stderr, "shadelab-bench: note: the head scene is left out (scenes/head.json and its data "
+                             "head/LeePerrySmith.glb under --data, SHADELAB_DATA or ../shared/assets not found)\n");
+    }
+    cJSON *root = cJSON_CreateObject(), *runs = cJSON_AddArrayToObject(root, "orbits");
+    cJSON_AddStringToObject(root, "format", "shadelab-orbit/1");
+    int rc = 0;
+    for (int i = 0; i < count; i++) {
+        oo->scene_path = scenes[i];
+        oo->data_dir = data[i];
+        sl_orbit_result r;
+        if (!sl_orbit_run(oo, &r, err, n)) rc = die(err);
+        else print_orbit(&r), cJSON_AddItemToArray(runs, orbit_json(&r));
+        sl_orbit_result_free(&r);
+    }
+    char path[4200], *text = cJSON_Print(root);
+    snprintf(path, sizeof path, "%s.json", prefix);
+    FILE *f = fopen(path, "w");
+    if (!f || fputs(text, f) < 0) rc = die("cannot write the orbit's JSON");
+    else fprintf(stderr, "wrote %s\n", path);
+    if (f) fclose(f);
+    free(text);
+    cJSON_Delete(root);
+    return rc;
+}
+
 int main(int argc, char **argv) {
     sl_bench_options o = {.warmup = 5, .frames = 30, .progress = true, .backend = SL_BACKEND_OSMESA};
     const char *plugins[64], *base[128], *settings[MAXN], *vary[64];
@@ -62,6 +169,7 @@ int main(int argc, char **argv) {
     sl_metric metrics[SL_METRIC_COUNT];
     int nm = 0;
     bool chart = true, list = false, images = false;
+    sl_orbit_options oo = {.progress = true};
     char err[8192];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -127,7 +235,18 @@ int main(int argc, char **argv) {
                 return die(err);
             }
             nm++;
-        } else if (!strcmp(a, "--images")) images = true;
+        } else if (!strcmp(a, "--orbit")) {
+            if (!parse_number(a, NEXT(), 0.1, 3600, &oo.seconds, err, sizeof err)) return die(err);
+        } else if (!strcmp(a, "--budget")) {
+            if (!parse_number(a, NEXT(), 0.1, 1e6, &oo.budget_ms, err, sizeof err)) return die(err);
+        } else if (!strcmp(a, "--orbit-speed")) {
+            if (!parse_number(a, NEXT(), 0.01, 360, &oo.degrees_per_second, err, sizeof err)) return die(err);
+        } else if (!strcmp(a, "--orbit-points")) {
+            double v;
+            if (!parse_number(a, NEXT(), 1, 64, &v, err, sizeof err)) return die(err);
+            oo.points = (int)v;
+        } else if (!strcmp(a, "--orbit-hq")) NEED(oo.hq_settings = NEXT());
+        else if (!strcmp(a, "--images")) images = true;
         else if (!strcmp(a, "--no-chart")) chart = false;
         else if (!strcmp(a, "--list")) list = true;
         else if (!strcmp(a, "--data")) NEED(o.data_dir = NEXT());
@@ -137,6 +256,11 @@ int main(int argc, char **argv) {
         else { snprintf(err, sizeof err, "unknown option %s (see --help)", a); return die(err); }
 #undef NEXT
 #undef NEED
+    }
+    if (oo.seconds > 0) {
+        oo.scene_path = o.scene_path, oo.data_dir = o.data_dir, oo.width = o.width, oo.height = o.height;
+        oo.backend = o.backend, oo.settings = base, oo.setting_count = nb, oo.progress = o.progress;
+        return run_orbits(&oo, out ? out : "bench-orbit", err, sizeof err);
     }
     if (!o.plugin) return die("--plugin NAME is required (\"core\" for the core's own knobs); see --help");
     if (o.reference_scale > 1) { /* every size derived from a user number is checked before use */
