@@ -81,18 +81,8 @@ static bool set_light_value(sl_app *app, int li, const char *key, const char *te
     sl_param tmp = *q;
     tmp.full_id = what;
     if (!sl_param_parse(&tmp, text, &v, err, n)) return false;
-    if (!strcmp(key, "enabled")) L->enabled = v.b;
-    else if (!strcmp(key, "cast_shadows")) L->cast_shadows = v.b;
-    else if (!strcmp(key, "intensity")) L->intensity = v.f[0];
-    else if (!strcmp(key, "color")) memcpy(L->color, v.f, 12);
-    else if (!strcmp(key, "position")) memcpy(L->position, v.f, 12);
-    else if (!strcmp(key, "animate")) L->animate = (sl_light_animation)v.i;
-    else if (!strcmp(key, "animate_speed")) L->animate_speed = v.f[0];
-    else if (!strcmp(key, "animate_amount")) L->animate_amount = v.f[0];
-    else if (!strcmp(key, "direction")) {
-        float len = sqrtf(v.f[0] * v.f[0] + v.f[1] * v.f[1] + v.f[2] * v.f[2]);
-        if (!(len > 0)) { snprintf(err, n, "%s: direction must not be zero", what); return false; }
-        for (int i = 0; i < 3; i++) L->direction[i] = v.f[i] / len;
+    if (sl_core_light_key(key)) {
+        if (!sl_core_light_set(L, key, &v, what, err, n)) return false;
     } else {
         int slot = q->desc.light_slot;
         int comps = q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3 ? 3 : 1;
@@ -181,18 +171,27 @@ bool sl_app_set(sl_app *app, const char *assignment, sl_param_source src, char *
     return sl_params_set(&app->params, id, value, src, err, n);
 }
 
-/* ---- standard material inputs of imported assets (SL_MATERIAL_INPUT_NAMES) ---------------- */
+/* ---- standard material inputs of imported assets (sdk params.h, "standard material inputs") -- */
 
-static bool plugin_declares_input(const sl_plugin_rec *r, const char *input) {
-    if (!r->ok || !r->desc.material_inputs) return false;
-    for (int k = 0; r->desc.material_inputs[k] && k < 256; k++)
-        if (!strcmp(r->desc.material_inputs[k], input)) return true;
+/* Is `input` taken by a plugin already here: a created one by its keys' schema (material_input;
+ * the core's own keys among them), one loaded but not yet created by its descriptor's list? */
+static bool input_declared(const sl_app *app, const char *input) {
+    for (int i = 0; i < app->params.count; i++) {
+        const sl_param *q = &app->params.items[i];
+        if (q->desc.scope == SL_SCOPE_MATERIAL && q->desc.material_input && !strcmp(q->desc.material_input, input))
+            return true;
+    }
+    for (int i = 0; i < app->plugins.count; i++) {
+        const sl_plugin_rec *r = app->plugins.items[i];
+        for (int k = 0; r->ok && !r->live && r->desc.material_inputs && r->desc.material_inputs[k] && k < 256; k++)
+            if (!strcmp(r->desc.material_inputs[k], input)) return true;
+    }
     return false;
 }
 
-/* Loads the plugins the scene's imported materials need: for each standard input no loaded
- * plugin declares, the first installed plugin whose descriptor does (before create_all). An
- * input nobody declares is reported when the material is applied. */
+/* Loads the plugins the scene's imported materials need: for each standard input no plugin here
+ * declares, the first installed plugin whose descriptor does (before create_all). An input
+ * nobody declares is reported when the material is applied. */
 static void load_plugins_for_inputs(sl_app *app) {
     const sl_scene *s = &app->scene;
     char missing[32][64];
@@ -201,8 +200,7 @@ static void load_plugins_for_inputs(sl_app *app) {
         const sl_material *mat = &s->materials[m];
         for (int k = 0; k < mat->inputs.count; k++) {
             const char *input = mat->inputs.items[k].key;
-            bool handled = false, known_missing = false;
-            for (int i = 0; i < app->plugins.count && !handled; i++) handled = plugin_declares_input(app->plugins.items[i], input);
+            bool handled = input_declared(app, input), known_missing = false;
             for (int i = 0; i < nmissing && !known_missing; i++) known_missing = !strcmp(missing[i], input);
             if (handled || known_missing) continue;
             char id[256], why[512];
@@ -468,6 +466,7 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     sl_plugins_add_builtin(&app->plugins, &sl_core_plugin);
     free(app->plugins.items[0]->resource_dir);
     app->plugins.items[0]->resource_dir = strdup(sl_shader_dir());
+    sl_plugins_create(&app->plugins, 0); /* its keys declare the material inputs it takes */
     for (int i = 0; i < opt->plugin_count; i++) sl_plugins_load(&app->plugins, opt->plugins[i], "command line", true);
     for (int i = 0; i < app->scene.plugin_count; i++) sl_plugins_load(&app->plugins, app->scene.plugins[i], "scene", false);
     /* Plugins on by default are those whose descriptor says so (the bundled aa: antialiasing on,

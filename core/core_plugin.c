@@ -2,8 +2,111 @@
  * same host interface plugins use: one path for everything, and the core is the first example
  * of the API. Its GLSL lives in shaders/. */
 #include "core_plugin.h"
+#include "log.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
 
-static const char *const animations[] = {"none", "orbit", "wobble", NULL};
+/* ---- the light keys every light has ---------------------------------------------------------
+ * One table: each key is a field of the light record (sl_light, scene/scene.h) of the same name;
+ * its schema is registered below, and sl_core_light_get/set read and write the field. */
+
+static const char *const animations[] = {"none", "orbit", "wobble", NULL}; /* sl_light_animation */
+
+typedef enum field_kind { FIELD_BOOL, FIELD_FLOAT, FIELD_FLOAT3, FIELD_ANIMATION } field_kind;
+
+typedef struct light_key {
+    sl_param_desc desc;
+    size_t offset;    /* of the field in sl_light */
+    field_kind field; /* the field's C type, from the field itself */
+    bool unit_vector; /* normalised on write; zero refused */
+} light_key;
+
+#define FIELD_KIND(f) _Generic(((sl_light *)0)->f, bool: FIELD_BOOL, float: FIELD_FLOAT, float *: FIELD_FLOAT3, \
+                               sl_light_animation: FIELD_ANIMATION)
+#define LIGHT_KEY_(f, unit, ...)                                                                         \
+    {.desc = {.struct_size = sizeof(sl_param_desc), .id = #f, .scope = SL_SCOPE_LIGHT, .group = "light", __VA_ARGS__}, \
+     .offset = offsetof(sl_light, f), .field = FIELD_KIND(f), .unit_vector = unit}
+#define LIGHT_KEY(f, ...) LIGHT_KEY_(f, false, __VA_ARGS__)
+#define UNIT_VECTOR_KEY(f, ...) LIGHT_KEY_(f, true, __VA_ARGS__)
+
+static const light_key light_keys[] = {
+    LIGHT_KEY(enabled, .type = SL_PARAM_BOOL, .default_value = {.b = true}, .description = "Per-light on/off."),
+    LIGHT_KEY(intensity, .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = 0, .max = 1e10f,
+              .description = "Directional: irradiance E at normal incidence (W/m²); point/spot: intensity I (E = I/d²)."),
+    LIGHT_KEY(color, .type = SL_PARAM_COLOR, .default_value = {.f = {1, 1, 1}},
+              .description = "Linear RGB tint, multiplied by intensity."),
+    LIGHT_KEY(position, .type = SL_PARAM_VEC3, .unit = "m", .description = "World position (point and spot lights)."),
+    UNIT_VECTOR_KEY(direction, .type = SL_PARAM_VEC3, .default_value = {.f = {0, -1, 0}},
+                    .description = "Direction light travels (directional and spot lights); normalised."),
+    LIGHT_KEY(cast_shadows, .type = SL_PARAM_BOOL,
+              .description = "Whether a shadow plugin renders a shadow map for this light."),
+    LIGHT_KEY(animate, .type = SL_PARAM_ENUM, .enum_values = animations,
+              .description = "orbit: position and direction circle the world Y axis (a directional light rotates); "
+                             "wobble: the direction swings about the horizontal axis across it."),
+    LIGHT_KEY(animate_speed, .type = SL_PARAM_FLOAT, .default_value = {.f = {0.5f}}, .min = -100, .max = 100,
+              .unit = "rad/s", .description = "Angular speed of the animation."),
+    LIGHT_KEY(animate_amount, .type = SL_PARAM_FLOAT, .default_value = {.f = {15}}, .min = 0, .max = 90,
+              .unit = "deg", .description = "Wobble amplitude."),
+};
+#define LIGHT_KEY_COUNT (sizeof light_keys / sizeof *light_keys)
+
+/* The schema's type must describe the field (a bool key on a float field would write garbage). */
+static bool light_key_valid(const light_key *k) {
+    sl_param_type t = k->desc.type;
+    bool ok = k->field == FIELD_BOOL ? t == SL_PARAM_BOOL
+            : k->field == FIELD_FLOAT ? t == SL_PARAM_FLOAT
+            : k->field == FIELD_FLOAT3 ? t == SL_PARAM_COLOR || t == SL_PARAM_VEC3
+            : t == SL_PARAM_ENUM;
+    if (!ok) SL_ERROR("core light key %s: its schema type does not match the sl_light field's type", k->desc.id);
+    return ok;
+}
+
+static const light_key *find_light_key(const char *key) {
+    for (size_t i = 0; i < LIGHT_KEY_COUNT; i++)
+        if (!strcmp(light_keys[i].desc.id, key)) return &light_keys[i];
+    return NULL;
+}
+
+bool sl_core_light_key(const char *key) { return find_light_key(key) != NULL; }
+
+bool sl_core_light_get(const sl_light *L, const char *key, sl_value *out) {
+    const light_key *k = find_light_key(key);
+    if (!k) return false;
+    const char *field = (const char *)L + k->offset;
+    memset(out, 0, sizeof *out);
+    switch (k->field) {
+    case FIELD_BOOL: out->b = *(const bool *)field; break;
+    case FIELD_FLOAT: out->f[0] = *(const float *)field; break;
+    case FIELD_FLOAT3: memcpy(out->f, field, 3 * sizeof(float)); break;
+    case FIELD_ANIMATION: out->i = (int)*(const sl_light_animation *)field; break;
+    }
+    return true;
+}
+
+bool sl_core_light_set(sl_light *L, const char *key, const sl_value *v, const char *what, char *err, size_t n) {
+    const light_key *k = find_light_key(key);
+    if (!k) { snprintf(err, n, "%s: not a key of every light", what); return false; }
+    char *field = (char *)L + k->offset;
+    switch (k->field) {
+    case FIELD_BOOL: *(bool *)field = v->b; break;
+    case FIELD_FLOAT: *(float *)field = v->f[0]; break;
+    case FIELD_ANIMATION: *(sl_light_animation *)field = (sl_light_animation)v->i; break;
+    case FIELD_FLOAT3: {
+        float f[3] = {v->f[0], v->f[1], v->f[2]};
+        if (k->unit_vector) {
+            float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+            if (!(len > 0)) { snprintf(err, n, "%s: a %s must not be zero", what, key); return false; }
+            for (int i = 0; i < 3; i++) f[i] /= len;
+        }
+        memcpy(field, f, sizeof f);
+        break;
+    }
+    }
+    return true;
+}
+
+/* ---- registration --------------------------------------------------------------------------- */
 
 static sl_status core_create(const sl_host *host, void **user) {
     static const sl_param_desc params[] = {
@@ -63,34 +166,11 @@ static sl_status core_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_param_desc), .id = "occlusion_strength", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {1}}, .min = 0, .max = 1, .group = "material", .material_input = "occlusion_strength",
          .description = "glTF occlusionTexture.strength: ao = 1 + strength · (texel.r − 1)."},
-        /* light keys every light has (they map onto the light record's own fields) */
-        {.struct_size = sizeof(sl_param_desc), .id = "enabled", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
-         .default_value = {.b = true}, .group = "light", .description = "Per-light on/off."},
-        {.struct_size = sizeof(sl_param_desc), .id = "intensity", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT,
-         .default_value = {.f = {1}}, .min = 0, .max = 1e10f, .group = "light",
-         .description = "Directional: irradiance E at normal incidence (W/m²); point/spot: intensity I (E = I/d²)."},
-        {.struct_size = sizeof(sl_param_desc), .id = "color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_LIGHT,
-         .default_value = {.f = {1, 1, 1}}, .group = "light", .description = "Linear RGB tint, multiplied by intensity."},
-        {.struct_size = sizeof(sl_param_desc), .id = "position", .type = SL_PARAM_VEC3, .scope = SL_SCOPE_LIGHT,
-         .group = "light", .unit = "m", .description = "World position (point and spot lights)."},
-        {.struct_size = sizeof(sl_param_desc), .id = "direction", .type = SL_PARAM_VEC3, .scope = SL_SCOPE_LIGHT,
-         .default_value = {.f = {0, -1, 0}}, .group = "light",
-         .description = "Direction light travels (directional and spot lights); normalised."},
-        {.struct_size = sizeof(sl_param_desc), .id = "cast_shadows", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_LIGHT,
-         .group = "light", .description = "Whether a shadow plugin renders a shadow map for this light."},
-        {.struct_size = sizeof(sl_param_desc), .id = "animate", .type = SL_PARAM_ENUM, .scope = SL_SCOPE_LIGHT,
-         .enum_values = animations, .group = "light",
-         .description = "orbit: position and direction circle the world Y axis (a directional light rotates); "
-                        "wobble: the direction swings about the horizontal axis across it."},
-        {.struct_size = sizeof(sl_param_desc), .id = "animate_speed", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT,
-         .default_value = {.f = {0.5f}}, .min = -100, .max = 100, .unit = "rad/s", .group = "light",
-         .description = "Angular speed of the animation."},
-        {.struct_size = sizeof(sl_param_desc), .id = "animate_amount", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT,
-         .default_value = {.f = {15}}, .min = 0, .max = 90, .unit = "deg", .group = "light",
-         .description = "Wobble amplitude."},
     };
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
+    for (size_t i = 0; i < LIGHT_KEY_COUNT; i++)
+        if (!light_key_valid(&light_keys[i]) || host->add_param(host, &light_keys[i].desc) != SL_OK) return SL_ERR_FAILED;
 
     static const sl_shader_chunk_desc chunks[] = {
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SHADING_MODEL, .file = "lambert.glsl",
@@ -120,16 +200,10 @@ static sl_status core_create(const sl_host *host, void **user) {
     return SL_OK;
 }
 
-/* the standard material inputs of imported assets the core's keys take */
-static const char *const core_inputs[] = {"base_color", "base_color_texture", "emissive", "emissive_texture",
-                                          "emissive_strength", "occlusion_texture", "occlusion_strength", "opacity",
-                                          "alpha_cutoff", "alpha_blend", "double_sided", "unlit", NULL};
-
 const sl_plugin_desc sl_core_plugin = {
     SL_PLUGIN_HEADER,
     .id = "core",
     .version = SL_VERSION,
     .description = "Lambert shading, directional and point lights, debug views (built in).",
     .create = core_create,
-    .material_inputs = core_inputs,
 };

@@ -32,6 +32,10 @@ sl_test_plugin(tp-fail-create test_plugin.glsl DEFS TP_FAIL_CREATE)
 sl_test_plugin(tp-requires test_plugin.glsl DEFS TP_REQUIRES="tp-nonexistent")
 sl_test_plugin(tp-requires-good test_plugin.glsl DEFS TP_REQUIRES="tp-good")
 sl_test_plugin(tp-conflicts test_plugin.glsl DEFS TP_CONFLICTS="tp-good")
+# material inputs: a key's input the descriptor does not list, a listed one no key takes, both agreeing
+sl_test_plugin(tp-input-unlisted test_plugin.glsl DEFS TP_KEY_INPUT="tp_input")
+sl_test_plugin(tp-input-unclaimed test_plugin.glsl DEFS TP_LISTED_INPUT="tp_input")
+sl_test_plugin(tp-input-agreed test_plugin.glsl DEFS TP_KEY_INPUT="tp_input" TP_LISTED_INPUT="tp_input")
 
 foreach(t core_render core_glsl core_bad_input core_plugins core_zero_cost)
   sl_add_test(${t} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_${t}.c)

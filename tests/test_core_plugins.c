@@ -3,6 +3,7 @@
  * plugin names, shader compile errors naming the plugin file and line. */
 #include "check.h"
 #include "app.h"
+#include "core_plugin.h"
 #include "log.h"
 #include "render/renderer.h"
 #include "test_tmp.h"
@@ -56,6 +57,91 @@ static void expect_disabled(const char *path, const char *fragment1, const char 
     sl_app_shutdown(&app);
 }
 
+/* Text and JSON of a value in range for light key q, unlike its default. */
+static void light_test_value(const sl_param *q, char *text, char *json, size_t n) {
+    switch (q->desc.type) {
+    case SL_PARAM_BOOL:
+        snprintf(text, n, "%s", q->desc.default_value.b ? "false" : "true");
+        snprintf(json, n, "%s", text);
+        break;
+    case SL_PARAM_FLOAT:
+        snprintf(text, n, "%.9g", q->desc.min + 0.375 * (q->desc.max - q->desc.min));
+        snprintf(json, n, "%s", text);
+        break;
+    case SL_PARAM_ENUM: {
+        int last = 0;
+        while (q->desc.enum_values[last + 1]) last++;
+        snprintf(text, n, "%s", q->desc.enum_values[last]);
+        snprintf(json, n, "\"%s\"", text);
+        break;
+    }
+    case SL_PARAM_COLOR:
+        snprintf(text, n, "0.25,0.5,0.75");
+        snprintf(json, n, "[0.25, 0.5, 0.75]");
+        break;
+    default: /* VEC3: a unit vector, so that a normalised key keeps it */
+        snprintf(text, n, "0,0.6,-0.8");
+        snprintf(json, n, "[0, 0.6, -0.8]");
+    }
+}
+
+static bool same_value(const sl_param *q, const sl_value *a, const sl_value *b) {
+    switch (q->desc.type) {
+    case SL_PARAM_BOOL: return a->b == b->b;
+    case SL_PARAM_ENUM: case SL_PARAM_INT: return a->i == b->i;
+    case SL_PARAM_FLOAT: return fabsf(a->f[0] - b->f[0]) <= 1e-6f * fabsf(b->f[0]);
+    default: return fabsf(a->f[0] - b->f[0]) + fabsf(a->f[1] - b->f[1]) + fabsf(a->f[2] - b->f[2]) <= 1e-6f;
+    }
+}
+
+/* The light keys every light has are one table (core_plugin.c): each key the core declares is
+ * a field of the light record, written by --set and by the scene file alike, read back by the
+ * panel's getter, and never stored in the plugin slots. */
+static void core_light_keys(void) {
+    sl_app app;
+    bool ok;
+    load(&app, (const char *[]){NULL}, NULL, true, &ok);
+    CHECK_MSG(ok, "%s", err);
+    int keys = 0;
+    for (int i = 0; ok && i < app.params.count; i++) {
+        const sl_param *q = &app.params.items[i];
+        if (q->desc.scope != SL_SCOPE_LIGHT || strcmp(q->owner, "core")) continue;
+        keys++;
+        const char *key = q->full_id;
+        CHECK_MSG(sl_core_light_key(key), "core light key %s is not a field of the light record", key);
+        char text[64], json[64], set[128], why[512];
+        light_test_value(q, text, json, sizeof text);
+        sl_value want, got = {0};
+        CHECK(sl_param_parse(q, text, &want, why, sizeof why));
+        /* --set light.sun.KEY=VALUE */
+        snprintf(set, sizeof set, "light.sun.%s=%s", key, text);
+        CHECK_MSG(sl_app_set(&app, set, SL_SRC_CLI, why, sizeof why), "%s: %s", set, why);
+        CHECK(sl_core_light_get(&app.scene.lights[0], key, &got));
+        CHECK_MSG(same_value(q, &got, &want), "--set %s did not reach the light record", set);
+        for (int s = 0; s < 8; s++) CHECK_MSG(app.light_params[0][s] == 0, "%s wrote plugin slot %d", key, s);
+        /* the same key in the scene file */
+        char scene_json[1024];
+        snprintf(scene_json, sizeof scene_json,
+                 "{\"nodes\": [{\"name\": \"n\", \"mesh\": {\"primitive\": \"cube\"}}],\n"
+                 " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"%s\": %s}]}\n", key, json);
+        sl_app from_file;
+        bool loaded;
+        load(&from_file, (const char *[]){NULL}, scene_json, true, &loaded);
+        CHECK_MSG(loaded, "light key %s in a scene file: %s", key, err);
+        if (loaded) {
+            memset(&got, 0, sizeof got);
+            CHECK(sl_core_light_get(&from_file.scene.lights[0], key, &got));
+            CHECK_MSG(same_value(q, &got, &want), "scene key %s: %s differs from --set's value", key, json);
+        }
+        sl_app_shutdown(&from_file);
+    }
+    CHECK(keys >= 9); /* enabled … animate_amount */
+    char why[512];
+    CHECK(!sl_app_set(&app, "light.sun.direction=0,0,0", SL_SRC_CLI, why, sizeof why));
+    CHECK_CONTAINS(why, "light.sun.direction: a direction must not be zero");
+    sl_app_shutdown(&app);
+}
+
 int main(void) {
     setenv("SHADELAB_PLUGIN_PATH", SL_TEST_PLUGIN_DIR, 1);
     sl_app app;
@@ -95,6 +181,19 @@ int main(void) {
         }
         expect_disabled(path, "not a shared library", NULL);
     }
+
+    /* a plugin is found for an imported material by its descriptor's material_inputs, so that
+     * list and its keys' material_input must agree: either one alone is refused, naming it */
+    expect_disabled(TP("tp-input-unlisted"), "create() failed", NULL); /* its add_param was refused */
+    CHECK_CONTAINS(logbuf, "material key tp_scale takes the material input \"tp_input\", which its descriptor's "
+                           "material_inputs does not list");
+    expect_disabled(TP("tp-input-unclaimed"), "material_inputs lists \"tp_input\", which none of its material keys "
+                                              "takes", NULL);
+    r = load(&app, (const char *[]){"tp-input-agreed", NULL}, NULL, true, &ok);
+    CHECK_MSG(ok && r && r->ok, "%s", err);
+    sl_app_shutdown(&app);
+
+    core_light_keys();
 
     /* requires pulls in the dependency by name, in order */
     r = load(&app, (const char *[]){"tp-requires-good", NULL}, NULL, false, &ok);

@@ -2,6 +2,7 @@
  * per-pass times, all generated from the schema and the registry. See panel.h. */
 #include "gui/panel.h"
 #include "gui/gui.h"
+#include "core_plugin.h"
 #include "log.h"
 #include "render/renderer.h"
 #include <math.h>
@@ -236,23 +237,15 @@ static void section_materials(sl_panel *p) {
 static sl_value light_value(sl_app *app, int li, const sl_param *q) {
     const sl_light *L = &app->scene.lights[li];
     sl_value v = {0};
-    const char *k = q->full_id;
-    if (!strcmp(k, "enabled")) v.b = L->enabled;
-    else if (!strcmp(k, "cast_shadows")) v.b = L->cast_shadows;
-    else if (!strcmp(k, "intensity")) v.f[0] = L->intensity;
-    else if (!strcmp(k, "color")) memcpy(v.f, L->color, 12);
-    else if (!strcmp(k, "position")) memcpy(v.f, L->position, 12);
-    else if (!strcmp(k, "direction")) memcpy(v.f, L->direction, 12);
-    else {
-        const float *s = app->light_params[li];
-        int slot = q->desc.light_slot;
-        int comps = q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3 ? 3 : 1;
-        if (slot < 0 || slot + comps > 8) return v;
-        switch (q->desc.type) {
-        case SL_PARAM_BOOL: v.b = s[slot] != 0; break;
-        case SL_PARAM_INT: case SL_PARAM_ENUM: v.i = (int)s[slot]; break;
-        default: for (int c = 0; c < comps; c++) v.f[c] = s[slot + c];
-        }
+    if (sl_core_light_get(L, q->full_id, &v)) return v;
+    const float *s = app->light_params[li];
+    int slot = q->desc.light_slot;
+    int comps = q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3 ? 3 : 1;
+    if (slot < 0 || slot + comps > 8) return v;
+    switch (q->desc.type) {
+    case SL_PARAM_BOOL: v.b = s[slot] != 0; break;
+    case SL_PARAM_INT: case SL_PARAM_ENUM: v.i = (int)s[slot]; break;
+    default: for (int c = 0; c < comps; c++) v.f[c] = s[slot + c];
     }
     return v;
 }

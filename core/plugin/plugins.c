@@ -21,8 +21,28 @@ static bool in_create(sl_plugins *P, int owner, const char *what) {
     return true;
 }
 
+/* Does the NULL-terminated list hold s? */
+static bool listed(const char *const *list, const char *s) {
+    for (int k = 0; list && list[k] && k < 256; k++)
+        if (!strcmp(list[k], s)) return true;
+    return false;
+}
+
+/* A plugin loaded from a file is found for an imported material by its descriptor's
+ * material_inputs (read without create()), so that list and the material_input of its keys must
+ * be the same set: a key's input the list lacks is refused here, a listed input no key takes in
+ * create_one. (The built-in core is never searched for; its keys alone declare its inputs.) */
+static bool material_input_listed(const sl_plugin_rec *r, const sl_param_desc *d) {
+    const char *input = d->struct_size >= offsetof(sl_param_desc, material_input) + sizeof(char *) ? d->material_input : NULL;
+    if (!r->dl || d->scope != SL_SCOPE_MATERIAL || !input || listed(r->desc.material_inputs, input)) return true;
+    SL_ERROR("%s: material key %s takes the material input \"%s\", which its descriptor's material_inputs does not list "
+             "(imported materials find plugins by that list)", r->id, d->id ? d->id : "?", input);
+    return false;
+}
+
 sl_status sl_plugins_add_param(sl_plugins *P, int owner, const sl_param_desc *d) {
     if (!in_create(P, owner, "add_param")) return SL_ERR_INVALID;
+    if (!material_input_listed(P->items[owner], d)) return SL_ERR_INVALID;
     char err[512];
     sl_status st = sl_params_add(P->params, P->items[owner]->id, d, err, sizeof err);
     if (st != SL_OK) {
@@ -464,7 +484,23 @@ static void remove_registrations(sl_plugins *P, int owner) {
     pp->count = w;
 }
 
+/* The first input plugin i's descriptor lists that none of its material keys takes, or NULL. */
+static const char *unclaimed_input(const sl_plugins *P, int i) {
+    const char *const *list = P->items[i]->desc.material_inputs;
+    for (int k = 0; list && list[k] && k < 256; k++) {
+        bool taken = false;
+        for (int j = 0; j < P->params->count && !taken; j++) {
+            const sl_param *q = &P->params->items[j];
+            taken = q->desc.scope == SL_SCOPE_MATERIAL && (q->declared_by >> (i & 63) & 1) && q->desc.material_input &&
+                    !strcmp(q->desc.material_input, list[k]);
+        }
+        if (!taken) return list[k];
+    }
+    return NULL;
+}
+
 static void create_one(sl_plugins *P, int i, int depth) {
+    const char *unclaimed;
     sl_plugin_rec *r = P->items[i];
     if (!r->ok || r->user || depth > 32) return;
     /* conflicts */
@@ -517,10 +553,17 @@ static void create_one(sl_plugins *P, int i, int depth) {
         if (r->desc.destroy) r->desc.destroy(user);
         remove_registrations(P, i);
         disable(r, "a registration was refused during create() (see the messages above)");
+    } else if ((unclaimed = unclaimed_input(P, i))) {
+        if (r->desc.destroy) r->desc.destroy(user);
+        remove_registrations(P, i);
+        disable(r, "its descriptor's material_inputs lists \"%s\", which none of its material keys takes "
+                   "(material_input)", unclaimed);
     } else {
         r->ok = r->live = true;
     }
 }
+
+void sl_plugins_create(sl_plugins *P, int index) { create_one(P, index, 0); }
 
 void sl_plugins_create_all(sl_plugins *P) {
     for (int i = 0; i < P->count; i++) create_one(P, i, 0);

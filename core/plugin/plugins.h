@@ -55,6 +55,8 @@ typedef struct sl_plugins {
 bool sl_plugins_add_builtin(sl_plugins *P, const sl_plugin_desc *desc);
 /* Loads NAME or PATH; returns the record index (also for a disabled record). */
 int sl_plugins_load(sl_plugins *P, const char *name_or_path, const char *requested_by, bool allow_path);
+/* Creates plugin `index` (and what it requires) now, unless it was created already. */
+void sl_plugins_create(sl_plugins *P, int index);
 /* Resolves requires/conflicts, creates every loaded plugin in dependency order, rolls back the
  * registrations of plugins whose create() fails or whose shading models clash. */
 void sl_plugins_create_all(sl_plugins *P);

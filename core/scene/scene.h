@@ -55,8 +55,8 @@ typedef struct sl_material {
     bool cast_shadows;      /* default true */
     sl_prop_list props;     /* everything else: base_color, base_color_map, alpha, … */
     int line;
-    /* Imported materials: the standard material inputs the asset gives (SL_MATERIAL_INPUT_NAMES
-     * in <shadelab/params.h>: "brdf", "metallic", "normal_texture"…), which the app writes into
+    /* Imported materials: the standard material inputs the asset gives (<shadelab/params.h>:
+     * "brdf", "metallic", "normal_texture"…), which the app writes into
      * the keys plugins declare for them (props above win), and the asset file they came from
      * (messages name it; NULL for materials the scene file defines). */
     sl_prop_list inputs;

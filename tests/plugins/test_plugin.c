@@ -16,6 +16,11 @@ void tp_function_that_does_not_exist(void);
 #ifdef TP_DEPENDENCY
 int tp_dependency_value(void);
 #endif
+/* TP_KEY_INPUT: the standard material input tp_scale takes; TP_LISTED_INPUT: the one the
+ * descriptor's material_inputs lists (the host refuses a plugin whose two disagree) */
+#ifndef TP_KEY_INPUT
+#define TP_KEY_INPUT NULL
+#endif
 
 typedef struct tp {
     const sl_host *host;
@@ -92,7 +97,8 @@ static sl_status tp_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_param_desc), .id = "tp_mark", .type = SL_PARAM_BOOL, .scope = SL_SCOPE_MATERIAL,
          .description = "Materials with this key get the tint surface hook."},
         {.struct_size = sizeof(sl_param_desc), .id = "tp_scale", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
-         .default_value = {.f = {1}}, .description = "Scales the test model (a key shared by every variant)."},
+         .default_value = {.f = {1}}, .material_input = TP_KEY_INPUT,
+         .description = "Scales the test model (a key shared by every variant)."},
         {.struct_size = sizeof(sl_param_desc), .id = "tp_lift", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL,
          .description = "Materials with this key get the vertex hook: object-space y raised by it."},
         {.struct_size = sizeof(sl_param_desc), .id = "override_pass", .type = SL_PARAM_BOOL,
@@ -146,6 +152,9 @@ static const char *const tp_requires[] = {TP_REQUIRES, NULL};
 #ifdef TP_CONFLICTS
 static const char *const tp_conflicts[] = {TP_CONFLICTS, NULL};
 #endif
+#ifdef TP_LISTED_INPUT
+static const char *const tp_inputs[] = {TP_LISTED_INPUT, NULL};
+#endif
 
 static const sl_plugin_desc tp_desc = {
     SL_PLUGIN_HEADER,
@@ -157,6 +166,9 @@ static const sl_plugin_desc tp_desc = {
 #endif
 #ifdef TP_CONFLICTS
     .conflicts = tp_conflicts,
+#endif
+#ifdef TP_LISTED_INPUT
+    .material_inputs = tp_inputs,
 #endif
     .create = tp_create,
     .activate = tp_activate,

@@ -73,7 +73,7 @@ typedef struct sl_param_desc {
     int light_slot;
     /* LIGHT scope: the light type this key belongs to ("spot"); NULL = every light. */
     const char *light_type;
-    /* ABI 1.6, MATERIAL scope: the standard material input (SL_MATERIAL_INPUT_NAMES below) this
+    /* ABI 1.6, MATERIAL scope: the standard material input (the names below) this
      * key receives from imported assets (glTF, OBJ…), or NULL. The importer publishes inputs by
      * these names only; the host writes each into the key that declares it, so the core never
      * names a plugin's key. List the same names in sl_plugin_desc.material_inputs. */
@@ -81,7 +81,9 @@ typedef struct sl_param_desc {
 } sl_param_desc;
 
 /* ABI 1.6: the standard material inputs an importer publishes, named after the glTF 2.0
- * material model (KHR spec, "Materials"). Values arrive in the schema's own text form.
+ * material model (KHR spec, "Materials"). Values arrive in the schema's own text form. Which
+ * plugin key takes which input is what the keys declare (material_input; --dump-params shows
+ * it), never a list in the host.
  *   brdf                      the BRDF the asset asks for: "metallic-roughness" (glTF 2.0,
  *                             appendix B). The plugin whose key declares it provides the shading
  *                             model the material uses (its SHADING_MODEL chunk); the value is
@@ -97,14 +99,9 @@ typedef struct sl_param_desc {
  *   emissive_strength, ior    floats (KHR_materials_emissive_strength, KHR_materials_ior)
  *   alpha_cutoff              float: alphaMode MASK's alphaCutoff (absent: not masked)
  *   double_sided              bool: glTF doubleSided (back faces drawn, not culled)
+ *   alpha_blend               bool: alphaMode BLEND (sorted, blended over what is behind)
  *   unlit                     bool (ABI 1.7): KHR_materials_unlit (the base colour, unlit)
  * ior (KHR_materials_ior) is the dielectric's index of refraction: glTF's F0 = ((ior − 1)/(ior + 1))². */
-#define SL_MATERIAL_INPUT_NAMES                                                                       \
-    "brdf", "base_color", "base_color_texture", "opacity", "metallic", "roughness",                   \
-        "metallic_roughness_texture", "normal_texture", "normal_scale", "occlusion_texture",          \
-        "occlusion_strength", "emissive", "emissive_texture", "emissive_strength", "ior", "alpha_cutoff", \
-        "double_sided", "unlit"
-
 #ifdef __cplusplus
 }
 #endif

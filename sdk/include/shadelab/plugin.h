@@ -46,9 +46,10 @@ typedef struct sl_plugin_desc {
     /* Extensions this plugin offers to others, by id with revision ("shadelab.shadow-maps/1");
      * NULL when not provided. May be NULL. */
     const void *(*get_extension)(void *user, const char *id);
-    /* ABI 1.6: NULL-terminated standard material inputs (params.h, SL_MATERIAL_INPUT_NAMES) that
-     * this plugin's material keys receive, or NULL. The host reads it from the descriptor without
-     * calling create(), to load the plugins an imported material needs, and no more. */
+    /* ABI 1.6: NULL-terminated standard material inputs (params.h) that this plugin's material
+     * keys receive, or NULL. The host reads it from the descriptor without calling create(), to
+     * load the plugins an imported material needs, and no more. It must be the set of the keys'
+     * material_input: the host refuses a plugin whose list and keys disagree, naming the input. */
     const char *const *material_inputs;
     /* ABI 1.6: when the host loads this plugin without being asked (SL_PLUGIN_DEFAULT_* bits; 0 =
      * only when named), read from the descriptor without calling create(). The core names no
