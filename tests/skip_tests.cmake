@@ -3,4 +3,6 @@
 sl_add_test_plugin(tp-deps DIR ${SL_TP_DIR} PREFIX tp_ SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/plugins/tp_deps.c)
 sl_add_test(pass_skip SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_pass_skip.c TIMEOUT 300)
 target_compile_definitions(test_pass_skip PRIVATE SL_TEST_PLUGIN_DIR="${SL_TP_DIR}")
-add_dependencies(test_pass_skip tp_tp-deps tp_tp-good plugin_sss plugin_spotlight-shadow plugin_tonemap plugin_ggx)
+target_compile_definitions(test_pass_skip PRIVATE SL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+add_dependencies(test_pass_skip tp_tp-deps tp_tp-good plugin_sss plugin_spotlight-shadow plugin_tonemap plugin_ggx
+                 plugin_envmap plugin_normal-map plugin_aa)

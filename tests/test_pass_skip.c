@@ -6,9 +6,13 @@
  * 2. Images: with sss (texture space) and spotlight-shadow, a frame in which the texture-space
  *    passes and the shadow maps were skipped (nothing changed; then the camera moved; then a
  *    parameter of a plugin without shader chunks changed) equals a fresh start's first frame,
- *    which runs every pass; a light change re-runs them and still equals a fresh start. */
+ *    which runs every pass; a light change re-runs them and still equals a fresh start.
+ * 3. The built-in default scene as shipped (aa's TAA on): its shadow map is rendered by the first
+ *    frame only, not by the frames of a still (a jittered camera each), nor while the camera
+ *    orbits; moving the sun renders it again, once. */
 #include "check.h"
 #include <shadelab/harness.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -246,9 +250,45 @@ static void test_images(void) {
     }
 }
 
+/* ------------------------------------------------------------------ the default scene --- */
+
+/* the pass records of the project's own graph (harness structure), not a driver's counters */
+static int shadow_runs(sl_harness *h, int frames, bool orbit) {
+    int runs = 0;
+    for (int k = 0; k < frames; k++) {
+        if (orbit) {
+            float a = 0.3f * (float)(k + 1), eye[3] = {6.9f * sinf(a), 2.3f, 6.9f * cosf(a)};
+            CHECK(sl_harness_set_camera(h, eye, (const float[]){0, 0.65f, 0}));
+        }
+        CHECK(sl_harness_render(h, NULL));
+        runs += ran_pass(h, "shadow-maps");
+    }
+    return runs;
+}
+
+static void test_default_scene(void) {
+    char err[4096];
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 48, .height = 32,
+                                                          .scene_file = SL_SOURCE_DIR "/scenes/default.json", .strict = true},
+                                      err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    if (!h) return;
+    char method[32] = "";
+    CHECK(sl_harness_get(h, "aa.method", method, sizeof method) && !strcmp(method, "taa"));
+    int first = shadow_runs(h, 1, false), still = shadow_runs(h, 6, false), orbit = shadow_runs(h, 4, true);
+    set(h, "light.sun.direction=0.7,-0.6,0.3");
+    int moved = shadow_runs(h, 1, false), after = shadow_runs(h, 3, false);
+    printf("default scene, shadow-map runs: first frame %d, 6 still frames %d, 4 orbiting frames %d, "
+           "the sun moved %d, 3 frames after %d\n", first, still, orbit, moved, after);
+    CHECK_MSG(first == 1 && still == 0 && orbit == 0 && moved == 1 && after == 0,
+              "shadow maps rendered when nothing they show changed (or not rendered when the sun moved)");
+    sl_harness_destroy(h);
+}
+
 int main(void) {
     setenv("SHADELAB_PLUGIN_PATH", SL_TEST_PLUGIN_DIR, 1);
     test_counts();
     test_images();
+    test_default_scene();
     return check_result();
 }
