@@ -197,30 +197,42 @@ static void test_through_json(void) {
 }
 
 static void test_bad_files(void) {
-    /* a corrupt file gets assimp's reason, named with the path */
-    char path[1024];
+    /* a corrupt glTF gets the glTF reader's reason, a corrupt file of another format assimp's;
+     * both named with the path */
+    char path[1024], ply[1024];
     snprintf(path, sizeof path, "%s/scene_test_corrupt.glb", sl_test_dir());
+    snprintf(ply, sizeof ply, "%s/scene_test_corrupt.ply", sl_test_dir());
     FILE *f = fopen(path, "wb");
     CHECK(f != NULL);
     if (f) {
         fputs("glTF this is not a binary glTF file at all", f);
         fclose(f);
     }
+    f = fopen(ply, "wb");
+    CHECK(f != NULL);
+    if (f) {
+        fputs("ply\nformat nonsense 9.9\nend_header\n", f);
+        fclose(f);
+    }
     sl_scene s = {0};
     CHECK(!sl_scene_import_file(&s, path, -1, err, sizeof err));
-    CHECK_CONTAINS(err, "scene_test_corrupt.glb: assimp could not import it: ");
+    CHECK_CONTAINS(err, "scene_test_corrupt.glb: GLB container version ");
     CHECK(s.mesh_count == 0);
+    sl_scene_free(&s);
+    CHECK(!sl_scene_import_file(&s, ply, -1, err, sizeof err));
+    CHECK_CONTAINS(err, "scene_test_corrupt.ply: assimp could not import it: ");
     sl_scene_free(&s);
 
     /* the same through a scene file: error names the scene file, line and node */
     char scene_text[2048];
     snprintf(scene_text, sizeof scene_text,
-             "{ \"nodes\": [\n  { \"name\": \"broken\", \"mesh\": { \"file\": \"%s\" } } ] }", path);
+             "{ \"nodes\": [\n  { \"name\": \"broken\", \"mesh\": { \"file\": \"%s\" } } ] }", ply);
     CHECK(!sl_scene_load_text(&s, scene_text, "corrupt.json", NULL, NULL, err, sizeof err));
     CHECK_CONTAINS(err, "corrupt.json:2:");
     CHECK_CONTAINS(err, "mesh of node 'broken'");
     CHECK_CONTAINS(err, "assimp could not import it");
     unlink(path);
+    unlink(ply);
 
     /* a missing file: every place looked in, with the reason */
     CHECK(!sl_scene_load_text(&s, "{ \"nodes\": [ { \"mesh\": { \"file\": \"nowhere/x.glb\" } } ] }",

@@ -268,6 +268,27 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
  * tone mapping and frames the camera). sl_scene_load_file calls it when the file's content is
  * not a shadelab scene. On failure *scene is untouched. */
 bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t err_size);
+/* glTF files go to the project's own reader (core/scene/gltf_*.c; glTF by its name or its
+ * content): the file's materials, meshes, nodes, cameras and lights keep their glTF identity
+ * (material i of the file is one scene material, whatever its name), every accessor is checked
+ * against glTF 2.0 §3.6 and every constrained value (finite transforms, camera ranges, index and
+ * key ranges); errors name the file, the JSON pointer and the cause ("model.glb: /accessors/7:
+ * …"), and what is dropped or replaced is named in one warning. Same contract as above. */
+bool sl_scene_import_gltf(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
+/* Whether the file is a glTF by its content (the GLB magic, or JSON with "asset" near the start). */
+bool sl_file_is_gltf(const char *path);
+
+/* The glTF extensions the reader knows of and what it does with each (one list: the reader's
+ * checks and --list-gltf-extensions). An extension not listed is not read: refused when a file
+ * requires it, ignored with a warning when it only uses it. */
+typedef enum sl_gltf_support { SL_GLTF_RENDERED, SL_GLTF_APPROXIMATED, SL_GLTF_IGNORED } sl_gltf_support;
+typedef struct sl_gltf_extension {
+    const char *name;
+    sl_gltf_support support;
+    const char *what;       /* what the viewer shows of it */
+} sl_gltf_extension;
+const sl_gltf_extension *sl_gltf_extensions(int *count);
+
 /* Generates tangents (xyz + handedness w) from positions, normals and uvs; degenerate UVs
  * fall back to an arbitrary tangent orthogonal to the normal. */
 void sl_mesh_generate_tangents(sl_mesh_data *m);

@@ -1,10 +1,11 @@
-/* Mesh files (glTF 2.0, OBJ and everything else assimp reads) imported into the scene graph.
+/* Mesh files assimp reads (PLY, FBX, Collada, 3DS…; glTF has the project's own reader,
+ * core/scene/gltf_*.c, and OBJ too, core/scene/obj_reader.c) imported into the scene graph.
  *
  * What comes along: the node hierarchy with its transforms, triangle meshes (positions,
  * normals, UVs, tangents), materials (base colour factor and texture, normal texture,
- * metallic/roughness factors, opacity), KHR_lights_punctual lights and cameras.
+ * metallic/roughness factors, opacity), lights and cameras.
  *
- * UVs: assimp hands out UVs with v = 0 at the BOTTOM of the image (it flips glTF's on import);
+ * UVs: assimp hands out UVs with v = 0 at the BOTTOM of the image;
  * the scene convention is v = 0 at the top (scene.h), so v becomes 1 − v here. Tangent frames
  * (and normals a file lacks) are the project's own (core/scene/tangents.c), not assimp's.
  *
@@ -20,7 +21,6 @@
 #include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/config.h>
-#include <assimp/GltfMaterial.h>
 #include <assimp/light.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -38,18 +38,6 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* gltf_ext.c: what assimp does not expose, from the glTF JSON: extensionsRequired/extensionsUsed
- * (an error naming the unsupported required ones), material extensions by material index */
-void *sl_gltf_read_json(const char *path);
-void sl_gltf_free_json(void *json);
-bool sl_gltf_check_extensions(const void *json, const char *path, char *err, size_t err_size);
-void sl_gltf_material_inputs(const void *json, unsigned index, sl_prop_list *inputs);
-void sl_gltf_uv_mappings(const void *json, unsigned index, sl_material *m, bool *unsupported_texcoord);
-bool sl_gltf_import_animations(const void *json, const char *path, sl_scene *scene, const int *node_map, int node_count);
-int sl_gltf_node_count(const void *json);
-int sl_gltf_scene_roots(const void *json, int *roots, int max);
-int sl_gltf_node_children(const void *json, int node, int *children, int max, const char **name);
-
 typedef struct importer {
     sl_scene *scene;
     const struct aiScene *ai;
@@ -57,7 +45,6 @@ typedef struct importer {
     char stem[256];
     char dir[4096];     /* absolute directory of the file */
     char prefix[512];
-    bool is_gltf;       /* .gltf/.glb: cameras follow the glTF spec (see import_cameras) */
     int *mesh_map;      /* ai mesh index → scene mesh index (−1: skipped) */
     int *material_map;  /* ai material index → scene material index */
     const struct aiNode **ai_nodes; /* visited ai nodes … */
@@ -66,7 +53,6 @@ typedef struct importer {
     char *err;
     size_t err_size;
     unsigned unsupported; /* UNSUPPORTED_* bits: what of the file is not rendered as authored */
-    void *gltf;           /* the glTF JSON (cJSON) for what assimp does not expose; NULL if none */
     int warned_raw;
 } importer;
 
@@ -104,36 +90,7 @@ static void normalize(float v[3]) {
 
 /* ---- materials --------------------------------------------------------------------------- */
 
-/* Records the texture's sampler (glTF: wrap modes and filters, OpenGL's enum values) under its
- * texture value; a texture value used with two different samplers keeps the first (noted). */
-static void record_sampler(importer *im, const struct aiMaterial *mat, enum aiTextureType type,
-                           const enum aiTextureMapMode modes[2], const char *value) {
-    static const int wrap[] = {[aiTextureMapMode_Wrap] = 0x2901 /* GL_REPEAT */,
-                               [aiTextureMapMode_Clamp] = 0x812F /* GL_CLAMP_TO_EDGE */,
-                               [aiTextureMapMode_Decal] = 0x812F,
-                               [aiTextureMapMode_Mirror] = 0x8370 /* GL_MIRRORED_REPEAT */};
-    sl_texture_sampler smp = {.texture = (char *)value};
-    for (int k = 0; k < 2; k++) {
-        int w = (unsigned)modes[k] < sizeof wrap / sizeof *wrap ? wrap[modes[k]] : 0;
-        if (k) smp.wrap_t = w;
-        else smp.wrap_s = w;
-    }
-    int f = 0;
-    unsigned n = 1;
-    if (aiGetMaterialIntegerArray(mat, AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), &f, &n) == aiReturn_SUCCESS &&
-        (f == 0x2600 || f == 0x2601)) /* GL_NEAREST, GL_LINEAR */
-        smp.mag_filter = f;
-    n = 1;
-    if (aiGetMaterialIntegerArray(mat, AI_MATKEY_GLTF_MAPPINGFILTER_MIN(type, 0), &f, &n) == aiReturn_SUCCESS &&
-        (f == 0x2600 || f == 0x2601 || (f >= 0x2700 && f <= 0x2703))) /* …_MIPMAP_… */
-        smp.min_filter = f;
-    if (!smp.wrap_s && !smp.wrap_t && !smp.mag_filter && !smp.min_filter) return;
-    if (!sl_scene_set_sampler(im->scene, &smp))
-        SL_WARN("%s: texture %s is used with two different samplers; the first one is used", im->path, value);
-}
-
-/* The texture value for an embedded image (a .glb buffer view or a data: URI, which assimp
- * hands out as "*N"): the image's bytes join the scene under "<file>#image<N>.<format>", the
+/* The texture value for an embedded image (assimp hands them out as "*N"): the image's bytes join the scene under "<file>#image<N>.<format>", the
  * name the renderer decodes it by (sl_scene_find_image). NULL when the image is unusable. */
 static const char *embedded_texture(importer *im, const char *ref, char *out, size_t size) {
     const struct aiScene *ai = im->ai;
@@ -175,18 +132,16 @@ static const char *embedded_texture(importer *im, const char *ref, char *out, si
 static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiTextureType type,
                          char *out, size_t size) {
     struct aiString p;
-    enum aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
     unsigned uv = 0;
     if (aiGetMaterialTextureCount(mat, type) == 0) return false;
-    if (aiGetMaterialTexture(mat, type, 0, &p, NULL, &uv, NULL, NULL, modes, NULL) != aiReturn_SUCCESS)
+    if (aiGetMaterialTexture(mat, type, 0, &p, NULL, &uv, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
         return false;
     if (p.length == 0) return false;
-    if (uv != 0 && !im->is_gltf) im->unsupported |= UNSUPPORTED_TEXCOORD1; /* glTF's: sl_gltf_uv_mappings */
+    if (uv != 0) im->unsupported |= UNSUPPORTED_TEXCOORD1;
     if (p.data[0] == '*' || im->ai->mNumTextures) {
         char name[1200];
         if (embedded_texture(im, p.data, name, sizeof name)) {
             snprintf(out, size, "%s", name);
-            if (im->is_gltf) record_sampler(im, mat, type, modes, out);
             return true;
         }
         if (p.data[0] == '*') return false;
@@ -200,7 +155,6 @@ static bool texture_path(importer *im, const struct aiMaterial *mat, enum aiText
         if (errno == ENOENT) SL_WARN("%s: texture '%s' not found (%s)", im->path, out, p.data);
         else SL_WARN("%s: texture '%s' (%s) cannot be read: %s", im->path, out, p.data, why);
     }
-    if (im->is_gltf) record_sampler(im, mat, type, modes, out);
     return true;
 }
 
@@ -254,26 +208,16 @@ static int material_for(importer *im, unsigned i) {
     bool has_metal = false, has_rough = false, found;
     float metal = material_float(mat, AI_MATKEY_METALLIC_FACTOR, 1.0f, &has_metal);
     float rough = material_float(mat, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f, &has_rough);
-    if (im->is_gltf || has_metal || has_rough) {
+    if (has_metal || has_rough) {
         sl_prop_set_string(in, "brdf", "metallic-roughness", 0);
         sl_prop_set_number(in, "metallic", fminf(fmaxf(metal, 0.0f), 1.0f), 0);
         sl_prop_set_number(in, "roughness", fminf(fmaxf(rough, 0.0f), 1.0f), 0);
-        /* assimp 5.2's glTF importer files it under UNKNOWN (AI_MATKEY_GLTF_…_METALLICROUGHNESS_TEXTURE) */
-        if (texture_path(im, mat, aiTextureType_UNKNOWN, tex, sizeof tex) ||
-            texture_path(im, mat, aiTextureType_DIFFUSE_ROUGHNESS, tex, sizeof tex)) {
+        if (texture_path(im, mat, aiTextureType_DIFFUSE_ROUGHNESS, tex, sizeof tex)) {
             sl_prop_set_string(in, "metallic_roughness_texture", tex, 0); /* B = metal, G = rough */
         }
     }
-    if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) {
-        sl_prop_set_string(in, "normal_texture", tex, 0);
-        float scale = material_float(mat, AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), 1.0f, &found);
-        if (found && scale != 1.0f) sl_prop_set_number(in, "normal_scale", scale, 0);
-    }
-    if (texture_path(im, mat, aiTextureType_LIGHTMAP, tex, sizeof tex)) {
-        sl_prop_set_string(in, "occlusion_texture", tex, 0);
-        float strength = material_float(mat, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_LIGHTMAP, 0), 1.0f, &found);
-        if (found) sl_prop_set_number(in, "occlusion_strength", strength, 0);
-    }
+    if (texture_path(im, mat, aiTextureType_NORMALS, tex, sizeof tex)) sl_prop_set_string(in, "normal_texture", tex, 0);
+    if (texture_path(im, mat, aiTextureType_LIGHTMAP, tex, sizeof tex)) sl_prop_set_string(in, "occlusion_texture", tex, 0);
     if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS && (c.r > 0 || c.g > 0 || c.b > 0)) {
         float rgb[3] = {c.r, c.g, c.b};
         sl_prop_set_vec(in, "emissive", rgb, 3, 0);
@@ -281,23 +225,9 @@ static int material_for(importer *im, unsigned i) {
         if (found && strength != 1.0f) sl_prop_set_number(in, "emissive_strength", strength, 0);
     }
     if (texture_path(im, mat, aiTextureType_EMISSIVE, tex, sizeof tex)) sl_prop_set_string(in, "emissive_texture", tex, 0);
-    if (im->gltf) {
-        sl_gltf_material_inputs(im->gltf, i, in);
-        bool texcoord2 = false; /* texCoord and KHR_texture_transform per texture slot */
-        sl_gltf_uv_mappings(im->gltf, i, &im->scene->materials[mi], &texcoord2);
-        if (texcoord2) im->unsupported |= UNSUPPORTED_TEXCOORD1;
-    }
     if (!sl_prop_find(in, "opacity")) {
         float opacity = material_float(mat, AI_MATKEY_OPACITY, 1.0f, &found);
         if (found && opacity < 1.0f && opacity >= 0.0f) sl_prop_set_number(in, "opacity", opacity, 0);
-    }
-    struct aiString mode;
-    if (aiGetMaterialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
-        if (!strcmp(mode.data, "MASK")) /* cut out by the core (alpha_cutoff; glTF default 0.5) */
-            sl_prop_set_number(in, "alpha_cutoff",
-                               fminf(fmaxf(material_float(mat, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f, NULL), 0.0f), 1.0f), 0);
-        if (!strcmp(mode.data, "BLEND")) /* sorted and blended by the core (alpha_blend) */
-            sl_prop_set_bool(in, "alpha_blend", true, 0);
     }
     int two_sided = 0;
     unsigned n = 1;
@@ -423,37 +353,6 @@ static const float *node_world(importer *im, const struct aiString *name) {
     return identity;
 }
 
-/* glTF node gn is the ai node an (assimp 5.2 keeps the file's hierarchy and child order): records
- * an's scene node for it and walks the children in step; a name or child count that differs
- * stops the walk there (those nodes stay unmapped). */
-static void map_gltf_nodes(importer *im, int gn, const struct aiNode *an, int *map, int count, int depth) {
-    int children[256];
-    const char *name = NULL;
-    int nc = sl_gltf_node_children(im->gltf, gn, children, 256, &name);
-    if (gn < 0 || gn >= count || depth > SL_SCENE_MAX_DEPTH || (name && strcmp(name, an->mName.data))) return;
-    for (int i = 0; i < im->node_count; i++)
-        if (im->ai_nodes[i] == an) map[gn] = im->scene_nodes[i];
-    if (nc != (int)an->mNumChildren) return;
-    for (int k = 0; k < nc; k++) map_gltf_nodes(im, children[k], an->mChildren[k], map, count, depth + 1);
-}
-
-/* Node TRS animations of a glTF file (its first animation), read from the JSON. */
-static bool import_animations(importer *im) {
-    int count = sl_gltf_node_count(im->gltf), roots[256];
-    if (count <= 0) return false;
-    int *map = malloc(sizeof(int) * (size_t)count);
-    if (!map) return false;
-    for (int i = 0; i < count; i++) map[i] = -1;
-    int nr = sl_gltf_scene_roots(im->gltf, roots, 256);
-    const struct aiNode *root = im->ai->mRootNode;
-    if (nr == 1) map_gltf_nodes(im, roots[0], root, map, count, 0);
-    else if (nr > 1 && (int)root->mNumChildren == nr) /* several roots: under assimp's "ROOT" */
-        for (int k = 0; k < nr; k++) map_gltf_nodes(im, roots[k], root->mChildren[k], map, count, 1);
-    bool played = sl_gltf_import_animations(im->gltf, im->path, im->scene, map, count);
-    free(map);
-    return played;
-}
-
 /* ---- lights and cameras ------------------------------------------------------------------- */
 
 static bool import_lights(importer *im) {
@@ -514,13 +413,6 @@ static bool import_cameras(importer *im) {
         float p[3] = {ac->mPosition.x, ac->mPosition.y, ac->mPosition.z};
         float look[3] = {ac->mLookAt.x, ac->mLookAt.y, ac->mLookAt.z};
         float up[3] = {ac->mUp.x, ac->mUp.y, ac->mUp.z};
-        if (im->is_gltf) {
-            /* glTF cameras sit at their node's origin looking down its −Z, +Y up. assimp 5.2
-             * also copies the node's translation into mPosition (applying it twice). */
-            p[0] = p[1] = p[2] = 0;
-            look[0] = look[1] = 0, look[2] = -1;
-            up[0] = up[2] = 0, up[1] = 1;
-        }
         float dir[3];
         mat_vec(w, p, 1.0f, c->position);
         mat_vec(w, look, 0.0f, dir);
@@ -529,13 +421,12 @@ static bool import_cameras(importer *im) {
         normalize(c->up);
         for (int k = 0; k < 3; k++) c->target[k] = c->position[k] + dir[k];
         /* assimp documents mHorizontalFOV as the HALF horizontal angle; mAspect = width/height
-         * (0 when unknown). Its glTF importer (5.2) instead stores yfov · aspectRatio, so for
-         * glTF yfov = mHorizontalFOV / mAspect exactly. */
+         * (0 when unknown) */
         double hfov = ac->mHorizontalFOV, aspect = ac->mAspect > 0 ? ac->mAspect : 1.0;
-        double vfov = im->is_gltf ? hfov / aspect : 2.0 * atan(tan(hfov) / aspect);
+        double vfov = 2.0 * atan(tan(hfov) / aspect);
         vfov *= 180.0 / M_PI;
         if (vfov > 0.5 && vfov < 179.0) c->fov_y_deg = (float)vfov;
-        /* orthographic (assimp 5.2: mOrthographicWidth = xmag, mAspect = xmag / ymag, hfov 0) */
+        /* orthographic (assimp 5.2: mOrthographicWidth = half width, mAspect = width / height, hfov 0) */
         if (ac->mOrthographicWidth > 0 && isfinite(ac->mOrthographicWidth)) {
             c->orthographic = true;
             c->xmag = ac->mOrthographicWidth;
@@ -553,7 +444,7 @@ static void warn_unsupported(importer *im) {
         if (im->ai->mMeshes[i]->mNumBones) im->unsupported |= UNSUPPORTED_SKIN;
         if (im->ai->mMeshes[i]->mNumAnimMeshes) im->unsupported |= UNSUPPORTED_MORPH;
     }
-    if (im->ai->mNumAnimations && !(im->gltf && import_animations(im))) im->unsupported |= UNSUPPORTED_ANIMATION;
+    if (im->ai->mNumAnimations) im->unsupported |= UNSUPPORTED_ANIMATION;
     static const char *const what[] = {
         "texCoord beyond 1 (those textures sample UV set 0)",
         "(unused)",
@@ -573,36 +464,12 @@ static void warn_unsupported(importer *im) {
 }
 
 
-/* glTF by content, whatever the name: the GLB magic, or JSON with "asset" near the start. */
-static bool sniff_gltf(const char *path) {
-    int fd = sl_open_input_file(path, NULL, 0); /* never blocks on a FIFO */
-    FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
-    if (!f) {
-        if (fd >= 0) close(fd);
-        return false;
-    }
-    char head[4096];
-    size_t n = fread(head, 1, sizeof head - 1, f);
-    fclose(f);
-    head[n] = 0;
-    if (n >= 4 && !memcmp(head, "glTF", 4)) return true;
-    size_t i = 0;
-    while (i < n && (head[i] == ' ' || head[i] == '\t' || head[i] == '\r' || head[i] == '\n')) i++;
-    return i < n && head[i] == '{' && strstr(head, "\"asset\"") != NULL;
-}
-
-/* A glTF found by content under another name (a .glb called "model", a .gltf called ".json"):
- * assimp picks its glTF reader by the extension, so the file is offered to it under an alias
- * beside it ("<path>.glb"), which this file system maps back; every other file (a .gltf's
- * buffers and images, relative to the same directory) opens as named. */
-/* assimp's file access (every file it opens): a glTF by content under an alias, and the special
- * files it was refused, each warned about once (assimp asks for a file several times) */
-typedef struct alias_io {
-    char alias[4200];
-    const char *real;
+/* assimp's file access (every file it opens): the special files it was refused, each warned
+ * about once (assimp asks for a file several times) */
+typedef struct refused_io {
     struct { dev_t dev; ino_t ino; } refused[8];
     int refused_count;
-} alias_io;
+} refused_io;
 
 static size_t io_read(struct aiFile *f, char *buf, size_t size, size_t count) {
     return fread(buf, size, count, (FILE *)f->UserData);
@@ -622,10 +489,10 @@ static enum aiReturn io_seek(struct aiFile *f, size_t offset, enum aiOrigin orig
 }
 static void io_flush(struct aiFile *f) { (void)f; }
 static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode) {
-    alias_io *a = (alias_io *)io->UserData;
-    const char *path = !strcmp(name, a->alias) ? a->real : name;
+    refused_io *a = (refused_io *)io->UserData;
+    const char *path = name;
     if (strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+')) return NULL; /* an importer only reads */
-    /* every file assimp opens (the model, a glTF's buffers and images, an OBJ's .mtl) is
+    /* every file assimp opens (the model and the files it names) is
      * refused unless regular, without blocking on a FIFO (<shadelab/input.h>) */
     char why[600];
     int fd = sl_open_input_file(path, why, sizeof why);
@@ -660,50 +527,6 @@ static void io_close(struct aiFileIO *io, struct aiFile *f) {
 
 /* ---- entry ------------------------------------------------------------------------------- */
 
-bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t err_size) {
-    if (err && err_size) err[0] = 0;
-    sl_scene s;
-    memset(&s, 0, sizeof s);
-    char *abs = realpath(path, NULL);
-    s.path = strdup(path);
-    s.dir = strdup(abs ? abs : path);
-    free(abs);
-    char *slash = s.dir ? strrchr(s.dir, '/') : NULL;
-    if (slash) *slash = 0;
-    s.environment.intensity = 1.0f;
-    s.from_model = true;
-    const char *base = strrchr(path, '/');
-    char stem[256];
-    snprintf(stem, sizeof stem, "%s", base ? base + 1 : path);
-    char *dot = strrchr(stem, '.');
-    if (dot && dot != stem) *dot = 0;
-    int node = s.path && s.dir ? sl_scene_add_node(&s, stem, -1) : -1;
-    bool ok = node >= 0;
-    if (!ok && err && err_size) snprintf(err, err_size, "%s: out of memory", path);
-    if (ok) {
-        sl_scene_update_transforms(&s);
-        ok = sl_scene_import_file(&s, path, node, err, err_size);
-    }
-    if (!ok) {
-        sl_scene_free(&s);
-        return false;
-    }
-    sl_scene_update_transforms(&s);
-    *scene = s;
-    return true;
-}
-
-
-
-/* OBJ by name goes to the project's own reader (core/scene/obj_reader.c: streamed, bounded,
- * linear; assimp's took 330-740 s and 5.8 GB for 10 M triangles, the reader 33 s and 0.5 GB). */
-bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
-    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    if (dot && (!slash || dot > slash) && !strcasecmp(dot, ".obj"))
-        return sl_scene_import_obj(scene, path, parent_node, err, err_size);
-    return sl_scene_import_assimp(scene, path, parent_node, err, err_size);
-}
-
 bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
     if (err && err_size) err[0] = 0;
     importer im = {.scene = scene, .path = path, .err = err, .err_size = err_size};
@@ -713,15 +536,6 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
     base = base ? base + 1 : path;
     snprintf(im.stem, sizeof im.stem, "%s", base);
     char *dot = strrchr(im.stem, '.');
-    bool named_gltf = dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
-    im.is_gltf = named_gltf || sniff_gltf(path);
-    if (im.is_gltf) {
-        im.gltf = sl_gltf_read_json(path);
-        if (!sl_gltf_check_extensions(im.gltf, path, err, err_size)) {
-            sl_gltf_free_json(im.gltf);
-            return false;
-        }
-    }
     if (dot && dot != im.stem) *dot = 0;
     char *abs = realpath(path, NULL);
     snprintf(im.dir, sizeof im.dir, "%s", abs ? abs : path);
@@ -734,9 +548,6 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
     struct aiPropertyStore *store = aiCreatePropertyStore();
     if (store) /* drop the point and line primitives SortByPType splits off */
         aiSetImportPropertyInteger(store, AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    /* FindInvalidData drops a UV set whose values are all equal, which renumbers the sets after it:
-     * glTF textures name their set (texCoord), so the sets stay as the file has them */
-    if (store && im.is_gltf) aiSetImportPropertyInteger(store, AI_CONFIG_PP_FID_IGNORE_TEXTURECOORDS, 1);
     /* Only what assimp must do. Normals a file lacks and every tangent frame come from the
      * project's own code (sl_mesh_generate_tangents: area-weighted normals over the indexed
      * triangles, Lengyel tangents), linear in the mesh: assimp's GenSmoothNormals and
@@ -744,31 +555,20 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
      * binary PLY take 97 s and 3.9 GB (issue 14; tools/import/bench_import.sh measures it). */
     unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                      aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
-    /* glTF meshes arrive indexed already: joining identical vertices (a sort of every vertex)
-     * finds nothing to join and costs a third of the import (tools/gltf/make_big_glb.py, 2 M
-     * triangles, on 2 busy cores, interleaved: 25.3 s with it, 16.6 s without, medians of 3) */
-    /* binary PLY arrives indexed too (its faces index a vertex list): the same holds */
+    /* binary PLY arrives indexed (its faces index a vertex list): joining identical vertices (a
+     * sort of every vertex) finds nothing to join and costs a third of the import (measured on
+     * 2 M-triangle glTF files before glTF had its own reader: 25.3 s with it, 16.6 s without) */
     const char *ext = strrchr(path, '.');
-    bool indexed_format = im.is_gltf || (ext && !strcasecmp(ext, ".ply"));
-    if (indexed_format) flags &= ~(unsigned)aiProcess_JoinIdenticalVertices;
-    /* a glTF by content whose name assimp would not recognise: import it under an alias */
-    alias_io alias = {.real = path};
-    struct aiFileIO io = {.OpenProc = io_open, .CloseProc = io_close, .UserData = (aiUserData)&alias};
-    bool aliased = im.is_gltf && !named_gltf;
-    if (aliased) {
-        FILE *f = fopen(path, "rb");
-        char magic[4] = "";
-        bool binary = f && fread(magic, 1, 4, f) == 4 && !memcmp(magic, "glTF", 4);
-        if (f) fclose(f);
-        snprintf(alias.alias, sizeof alias.alias, "%s.%s", path, binary ? "glb" : "gltf");
-    }
+    if (ext && !strcasecmp(ext, ".ply")) flags &= ~(unsigned)aiProcess_JoinIdenticalVertices;
+    refused_io refused = {0};
+    struct aiFileIO io = {.OpenProc = io_open, .CloseProc = io_close, .UserData = (aiUserData)&refused};
     /* progress for large files: what is being read, and how long it took */
     struct stat fst;
     bool large = stat(path, &fst) == 0 && fst.st_size > (16 << 20);
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     if (large) SL_INFO("%s: importing %.1f MB with assimp…", path, fst.st_size / 1048576.0);
-    im.ai = aiImportFileExWithProperties(aliased ? alias.alias : path, flags, &io, store);
+    im.ai = aiImportFileExWithProperties(path, flags, &io, store);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     unsigned long long tris = 0;
     for (unsigned i = 0; im.ai && i < im.ai->mNumMeshes; i++) tris += im.ai->mMeshes[i]->mNumFaces;
@@ -776,7 +576,6 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
         aiReleaseImport(im.ai);
         im.ai = NULL;
         if (store) aiReleasePropertyStore(store);
-        sl_gltf_free_json(im.gltf);
         char why[200];
         snprintf(why, sizeof why, "%llu triangles, over the import budget of %d (SL_IMPORT_MAX_TRIANGLES, about 3 GB "
                  "with the GPU copy): refused", tris, SL_IMPORT_MAX_TRIANGLES);
@@ -788,7 +587,6 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
     }
     if (store) aiReleasePropertyStore(store);
     if (!im.ai) {
-        sl_gltf_free_json(im.gltf);
         const char *why = aiGetErrorString();
         if (why && strstr(why, "No meshes remaining")) /* assimp's words for: every mesh was dropped */
             return fail(&im, "%s: %s", "no mesh left to draw: every mesh holds points or lines only (shadelab draws "
@@ -822,6 +620,5 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
     free(im.ai_nodes);
     free(im.scene_nodes);
     aiReleaseImport(im.ai);
-    sl_gltf_free_json(im.gltf);
     return ok;
 }

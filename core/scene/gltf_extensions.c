@@ -1,0 +1,85 @@
+/* The glTF extensions shadelab knows of and what it does with each: the one list that
+ * --list-gltf-extensions prints and the reader checks a file's extensionsRequired and
+ * extensionsUsed against (glTF 2.0 §3.12: a file requiring an extension a reader does not
+ * support must not be loaded as if it were understood). An extension not listed is not read. */
+#include "log.h"
+#include "scene/gltf.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const sl_gltf_extension extensions[] = {
+    {"KHR_lights_punctual", SL_GLTF_APPROXIMATED,
+     "directional, point and spot lights (spot fall-off as the extension gives it); range is not applied"},
+    {"KHR_materials_emissive_strength", SL_GLTF_RENDERED, "emissiveFactor scaled by emissiveStrength"},
+    {"KHR_materials_ior", SL_GLTF_RENDERED, "the dielectric's F0 from ior (ggx)"},
+    {"KHR_materials_unlit", SL_GLTF_RENDERED, "the base colour, unlit"},
+    {"KHR_texture_transform", SL_GLTF_APPROXIMATED,
+     "offset, rotation, scale and texCoord per texture; normal maps keep UV set 0's tangent frame"},
+    {"KHR_mesh_quantization", SL_GLTF_RENDERED, "8- and 16-bit integer positions, normals, tangents and UVs"},
+    {"KHR_materials_pbrSpecularGlossiness", SL_GLTF_APPROXIMATED,
+     "diffuse as base colour, metallic 0, roughness 1 - glossiness; the specular colour and its texture are "
+     "not rendered"},
+    {"KHR_materials_clearcoat", SL_GLTF_IGNORED, "the base layer only"},
+    {"KHR_materials_sheen", SL_GLTF_IGNORED, "the base layer only"},
+    {"KHR_materials_specular", SL_GLTF_IGNORED, "F0 from ior only"},
+    {"KHR_materials_transmission", SL_GLTF_IGNORED, "opaque"},
+    {"KHR_materials_volume", SL_GLTF_IGNORED, "opaque"},
+    {"KHR_materials_iridescence", SL_GLTF_IGNORED, "no thin film"},
+    {"KHR_materials_anisotropy", SL_GLTF_IGNORED, "isotropic"},
+    {"KHR_materials_dispersion", SL_GLTF_IGNORED, "no dispersion"},
+    {"KHR_materials_variants", SL_GLTF_IGNORED, "the default materials"},
+    {"KHR_animation_pointer", SL_GLTF_IGNORED, "those channels are not played"},
+    {"KHR_draco_mesh_compression", SL_GLTF_IGNORED, "refused when required; the uncompressed fallback otherwise"},
+    {"EXT_meshopt_compression", SL_GLTF_IGNORED, "refused when required; the uncompressed fallback otherwise"},
+    {"KHR_texture_basisu", SL_GLTF_IGNORED, "refused when required; the fallback image otherwise"},
+    {"EXT_texture_webp", SL_GLTF_IGNORED, "refused when required; the fallback image otherwise"},
+    {"EXT_mesh_gpu_instancing", SL_GLTF_IGNORED, "one instance, at the node"},
+    {"KHR_xmp_json_ld", SL_GLTF_IGNORED, "metadata, nothing to render"},
+};
+
+const sl_gltf_extension *sl_gltf_extensions(int *count) {
+    *count = (int)(sizeof extensions / sizeof *extensions);
+    return extensions;
+}
+
+bool gltf_extension_read(const char *name) {
+    for (size_t i = 0; i < sizeof extensions / sizeof *extensions; i++)
+        if (!strcmp(extensions[i].name, name)) return extensions[i].support != SL_GLTF_IGNORED;
+    return false;
+}
+
+/* Lists the names in `arr` that shadelab does not read into out ("A, B"); their count. */
+static int not_read(const cJSON *arr, char *out, size_t size) {
+    int count = 0;
+    size_t u = 0;
+    out[0] = 0;
+    const cJSON *e;
+    cJSON_ArrayForEach(e, arr) {
+        if (!cJSON_IsString(e) || gltf_extension_read(e->valuestring)) continue;
+        if (u < size) u += snprintf(out + u, size - u, "%s%.100s", count ? ", " : "", e->valuestring);
+        count++;
+    }
+    return count;
+}
+
+bool gltf_check_extensions(gltf_doc *d) {
+    const cJSON *required, *used;
+    if (!gltf_get_array(d, d->root, "", "extensionsRequired", &required) ||
+        !gltf_get_array(d, d->root, "", "extensionsUsed", &used))
+        return false;
+    char list[1024];
+    int n = not_read(required, list, sizeof list);
+    if (n)
+        return gltf_fail(d, NULL, "the file requires glTF extension%s shadelab does not support: %s", n > 1 ? "s" : "", list);
+    if (not_read(used, list, sizeof list))
+        SL_WARN("%s: uses glTF extensions shadelab does not render (ignored, the file shows without them): %s", d->path, list);
+    return true;
+}
+
+bool gltf_uses_extension(const gltf_doc *d, const char *name) {
+    const cJSON *e;
+    cJSON_ArrayForEach(e, cJSON_GetObjectItemCaseSensitive(d->root, "extensionsUsed"))
+        if (cJSON_IsString(e) && !strcmp(e->valuestring, name)) return true;
+    return false;
+}
