@@ -79,7 +79,7 @@ option(SL_SANITIZE_ALL_TESTS "The ASan+UBSan test runs every test, plugins' too 
 # The core's tests: the core library, scenes, images, the CLI (with lazy programs: a plugin
 # disabled by a failing compile is still destroyed), the viewer's keys and hot reload, the
 # scene-parser regression inputs.
-set(SL_SANITIZE_CORE_TESTS "^(core_.*|cli_scenes|cli_lazy_programs|image|scene.*|stability_core|gui_keys|gui_hot_reload|fuzz_regress)$")
+set(SL_SANITIZE_CORE_TESTS "^(core_.*|cli_scenes|cli_lazy_programs|image|scene.*|stability_core|gui_keys|gui_hot_reload|fuzz_regress|gltf_hostile|gltf_models)$")
 if(SL_SANITIZE_TEST AND NOT SL_SANITIZE)
   add_test(NAME sanitize COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DBIN=${PROJECT_BINARY_DIR}/sanitize
                                  -DCMAKE_CTEST_COMMAND=${CMAKE_CTEST_COMMAND} -DALL=${SL_SANITIZE_ALL_TESTS}

@@ -149,7 +149,10 @@ bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_o
         if (err && err_size) snprintf(err, err_size, "%s: is a directory, not a scene file", path);
         return false;
     }
-    if (S_ISREG(st.st_mode) && is_model_head(path)) return sl_scene_load_model(scene, path, err, err_size);
+    const char *ext = strrchr(path, '.'), *base = strrchr(path, '/');
+    bool gltf_name = ext && (!base || ext > base) && (!strcasecmp(ext, ".gltf") || !strcasecmp(ext, ".glb"));
+    if (S_ISREG(st.st_mode) && (gltf_name || is_model_head(path))) /* the glTF reader names its JSON errors */
+        return sl_scene_load_model(scene, path, err, err_size);
     if (st.st_size > (off_t)MAX_SCENE_FILE_BYTES) {
         if (err && err_size)
             snprintf(err, err_size, "%s: %lld bytes is too large for a scene file (limit %u MiB)", path,
