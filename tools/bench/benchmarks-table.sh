@@ -176,4 +176,9 @@ EOF
     echo "How \`shadelab-bench\` sweeps quality knobs and computes each metric: [tools/bench](../tools/bench/README.md)."
     echo "Each plugin's own error-versus-time charts are in its README."
 } > "$TMP/out.md"
+# the cross-check's section (tools/xcheck/xcheck-table.sh regenerates it) is kept as it was
+if [ "$OUT" != - ] && [ -f "$OUT" ]; then
+    sed -n '/^<!-- xcheck-table begin/,/^<!-- xcheck-table end -->/p' "$OUT" > "$TMP/xcheck.md"
+    [ -s "$TMP/xcheck.md" ] && { echo; cat "$TMP/xcheck.md"; } >> "$TMP/out.md"
+fi
 if [ "$OUT" = - ]; then cat "$TMP/out.md"; else cp "$TMP/out.md" "$OUT" && note "wrote $OUT"; fi

@@ -24,6 +24,21 @@ long xc_region_mask(const float *index_rgba, int w, int h, int index, unsigned c
     return count;
 }
 
+long xc_interior_mask(const float *index_rgba, int w, int h, unsigned char *mask) {
+    long count = 0;
+#define IDX(x, y) ((int)lroundf(index_rgba[((size_t)(y) * w + (x)) * 4]))
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int i = IDX(x, y);
+            bool in = x > 0 && y > 0 && x < w - 1 && y < h - 1 && IDX(x - 1, y) == i && IDX(x + 1, y) == i &&
+                      IDX(x, y - 1) == i && IDX(x, y + 1) == i;
+            mask[(size_t)y * w + x] = in;
+            count += in;
+        }
+#undef IDX
+    return count;
+}
+
 void xc_region_stats(const float *test, const float *ref, const unsigned char *mask, int w, int h, xc_stats *s) {
     double diff2 = 0, ref2 = 0, lt = 0, lr = 0;
     long count = 0;

@@ -17,6 +17,10 @@ typedef struct xc_stats {
  * count. index_rgba: the index pass (R channel). */
 long xc_region_mask(const float *index_rgba, int w, int h, int index, unsigned char *mask);
 
+/* Every pixel whose four neighbours have its object index (the background's included): the image
+ * less its silhouettes. Returns the count. */
+long xc_interior_mask(const float *index_rgba, int w, int h, unsigned char *mask);
+
 /* Statistics over the masked pixels (mask NULL: every pixel). */
 void xc_region_stats(const float *test, const float *ref, const unsigned char *mask, int w, int h, xc_stats *s);
 

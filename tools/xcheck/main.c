@@ -31,6 +31,8 @@ static const char usage[] =
     "  --data DIR         data directory for scene assets\n"
     "  --frames N         shadelab frames rendered (TAA converges; default 8); the last is compared\n"
     "  --reference-only   export and render Cycles only (DIR/cycles.exr, DIR/index.exr)\n"
+    "  --eevee N[,N...]   also render with EEVEE at these sample counts (under xvfb-run without a\n"
+    "                     display) and report its error and time beside shadelab's\n"
     "  --blender PATH     the Blender executable (default $SHADELAB_BLENDER or blender)\n"
     "  --cache DIR        reference cache (default $SHADELAB_CACHE, $XDG_CACHE_HOME/shadelab or\n"
     "                     ~/.cache/shadelab; references under DIR/xcheck/)\n"
@@ -47,6 +49,7 @@ typedef struct options {
     double max_rel_rms;
     const char *settings[128]; int setting_count;
     const char *plugins[64]; int plugin_count;
+    int eevee[16]; int eevee_count;
 } options;
 
 static bool parse(int argc, char **argv, options *o) {
@@ -83,6 +86,17 @@ static bool parse(int argc, char **argv, options *o) {
             char *end;
             o->max_rel_rms = strtod(v, &end);
             if (*end || !(o->max_rel_rms >= 0)) { fprintf(stderr, "shadelab-xcheck: --max-rel-rms %s: expected a number >= 0\n", v); return false; }
+        } else if (!strcmp(a, "--eevee")) {
+            const char *v = NEXT();
+            char *end;
+            for (const char *p = v; *p; p = *end == ',' ? end + 1 : end) {
+                long x = strtol(p, &end, 10);
+                if (end == p || (*end && *end != ',') || x < 1 || x > 4096 || o->eevee_count == 16) {
+                    fprintf(stderr, "shadelab-xcheck: --eevee %s: expected up to 16 sample counts 1..4096, comma-separated\n", v);
+                    return false;
+                }
+                o->eevee[o->eevee_count++] = (int)x;
+            }
         } else if (!strcmp(a, "--out")) o->out = NEXT();
         else if (!strcmp(a, "--blender")) o->blender = NEXT();
         else if (!strcmp(a, "--cache")) o->cache = NEXT();
@@ -235,6 +249,40 @@ static bool cycles_reference(const options *o, const char *dir, uint64_t key, co
     return true;
 }
 
+/* EEVEE's render of the exported scene at `samples` samples into DIR/eevee-N.exr; *ms = the timed
+ * render (after a one-sample render that compiles its shaders). Under xvfb-run when there is no
+ * display: EEVEE needs an OpenGL context even in background mode. */
+static bool eevee_render(const char *dir, const char *blender, int samples, double *ms, char *err, size_t n) {
+    char render_dir[4200], script[4300], log[4300], qb[4200], qs[4400], qr[4400], ql[4400], cmd[20000];
+    snprintf(render_dir, sizeof render_dir, "%s/blender/eevee-%d", dir, samples);
+    snprintf(script, sizeof script, "%s/blender/scene.py", dir);
+    snprintf(log, sizeof log, "%s/eevee-%d.log", dir, samples);
+    shell_quote(blender, qb, sizeof qb);
+    shell_quote(script, qs, sizeof qs);
+    shell_quote(render_dir, qr, sizeof qr);
+    shell_quote(log, ql, sizeof ql);
+    const char *display = getenv("DISPLAY");
+    snprintf(cmd, sizeof cmd, "%s%s -b --factory-startup --python-exit-code 1 --python %s -- %s --eevee %d > %s 2>&1",
+             display && *display ? "" : "xvfb-run -a ", qb, qs, qr, samples, ql);
+    fprintf(stderr, "[xcheck] EEVEE: %d samples (log: %s)\n", samples, log);
+    int status = system(cmd);
+    char img[4300], out[4300];
+    snprintf(img, sizeof img, "%s/eevee_0001.exr", render_dir);
+    snprintf(out, sizeof out, "%s/eevee-%d.exr", dir, samples);
+    struct stat st;
+    if (status != 0 || stat(img, &st) != 0) {
+        snprintf(err, n, "EEVEE failed (exit status %d; xvfb-run is needed without a display); its output is in %s",
+                 WIFEXITED(status) ? WEXITSTATUS(status) : -1, log);
+        return false;
+    }
+    *ms = NAN;
+    FILE *f = fopen(log, "r");
+    char line[512];
+    while (f && fgets(line, sizeof line, f)) sscanf(line, "xcheck-blender: eevee %*d samples %lf ms", ms);
+    if (f) fclose(f);
+    return copy_file(img, out, err, n);
+}
+
 /* ------------------------------------------------------------------------------ shadelab -- */
 
 static int cmp_double(const void *a, const void *b) {
@@ -305,6 +353,7 @@ typedef struct report_ctx {
     double cycles_seconds, shadelab_ms;
     bool cached;
     uint64_t key;
+    const float *eevee[16]; double eevee_ms[16]; /* one per o->eevee sample count */
 } report_ctx;
 
 /* Prints and writes the report; returns the largest relative RMS of a cross-checked object. */
@@ -324,6 +373,14 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
             "shadelab", "Cycles");
     fprintf(json, "{\n  \"scene\": ");
     json_string(json, r->o->scene);
+    fprintf(json, ", \"plugins\": \"");
+    for (int i = 0, first = 1; i < r->app->plugins.count; i++) {
+        const sl_plugin_rec *p = r->app->plugins.items[i];
+        if (!p->ok || !strcmp(p->id, "core")) continue;
+        fprintf(json, "%s%s", first ? "" : ", ", p->id);
+        first = 0;
+    }
+    fprintf(json, "\"");
     fprintf(json, ", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d,\n"
                   "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n"
                   "  \"objects\": [\n",
@@ -369,13 +426,33 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     xc_region_mask(r->index, w, h, 0, mask);
     xc_region_stats(r->test, r->ref, mask, w, h, &bg);
     xc_region_stats(r->test, r->ref, NULL, w, h, &all);
+    xc_stats inner;
+    xc_interior_mask(r->index, w, h, mask);
+    xc_region_stats(r->test, r->ref, mask, w, h, &inner);
     fprintf(txt, "\n");
     print_row(txt, "(background)", "", &bg, true);
     print_row(txt, "(whole image)", "", &all, true);
+    print_row(txt, "(interiors)", "", &inner, true);
     fprintf(json, "  ],\n  \"background\": ");
     json_stats(json, "(background)", "", &bg, true, true);
     fprintf(json, "  , \"whole_image\": ");
     json_stats(json, "(whole image)", "", &all, true, true);
+    fprintf(json, "  , \"interiors\": ");
+    json_stats(json, "(interiors)", "", &inner, true, true);
+    if (r->o->eevee_count) {
+        fprintf(txt, "\nEEVEE against Cycles (the same interiors; shadelab: rel-RMS %.4f, ratio %.4f, %.2f ms):\n",
+                inner.rel_rms, inner.mean_ratio, r->shadelab_ms);
+        fprintf(json, "  , \"eevee\": [\n");
+    }
+    for (int k = 0; k < r->o->eevee_count; k++) {
+        xc_stats e;
+        xc_region_stats(r->eevee[k], r->ref, mask, w, h, &e);
+        fprintf(txt, "  %4d samples: rel-RMS %.4f, ratio %.4f, %.1f ms per render (%.1fx shadelab's frame)\n",
+                r->o->eevee[k], e.rel_rms, e.mean_ratio, r->eevee_ms[k], r->eevee_ms[k] / r->shadelab_ms);
+        fprintf(json, "    {\"samples\": %d, \"ms\": %.3f, \"interiors\": {\"rel_rms\": %.6g, \"mean_ratio\": %.6g}}%s\n",
+                r->o->eevee[k], r->eevee_ms[k], e.rel_rms, e.mean_ratio, k + 1 < r->o->eevee_count ? "," : "");
+    }
+    if (r->o->eevee_count) fprintf(json, "  ]\n");
     fprintf(json, "  , \"notes\": [");
     if (ex->note_count) fprintf(txt, "\n");
     for (int i = 0; i < ex->note_count; i++) {
@@ -519,6 +596,16 @@ int main(int argc, char **argv) {
     snprintf(path, sizeof path, "%s/side_by_side.png", out);
     if (!sl_image_write(path, side, o.width * 3, o.height, true, err, sizeof err)) goto fail;
 
+    report_ctx r = {&o, &app, &ex, test, ref.pixels, index.pixels, o.width, o.height, version, cycles_s, ms, cached, key,
+                    {NULL}, {0}};
+    sl_image eevee[16];
+    memset(eevee, 0, sizeof eevee);
+    for (int k = 0; k < o.eevee_count; k++) {
+        if (!eevee_render(out, blender, o.eevee[k], &r.eevee_ms[k], err, sizeof err)) goto fail_eevee;
+        snprintf(path, sizeof path, "%s/eevee-%d.exr", out, o.eevee[k]);
+        if (!load_exr(path, &eevee[k], o.width, o.height, err, sizeof err)) goto fail_eevee;
+        r.eevee[k] = eevee[k].pixels;
+    }
     char txt_path[4300], json_path[4300];
     snprintf(txt_path, sizeof txt_path, "%s/report.txt", out);
     snprintf(json_path, sizeof json_path, "%s/report.json", out);
@@ -527,12 +614,12 @@ int main(int argc, char **argv) {
         snprintf(err, sizeof err, "%s: cannot write: %s", !txt ? txt_path : json_path, strerror(errno));
         if (txt) fclose(txt);
         if (json) fclose(json);
-        goto fail;
+        goto fail_eevee;
     }
-    report_ctx r = {&o, &app, &ex, test, ref.pixels, index.pixels, o.width, o.height, version, cycles_s, ms, cached, key};
     double worst = report(&r, txt, json);
     fclose(txt);
     fclose(json);
+    for (int k = 0; k < o.eevee_count; k++) sl_image_free(&eevee[k]);
     FILE *again = fopen(txt_path, "r");
     if (again) {
         char buf[4096];
@@ -548,6 +635,8 @@ int main(int argc, char **argv) {
         rc = 1;
     }
     goto done;
+fail_eevee:
+    for (int k = 0; k < o.eevee_count; k++) sl_image_free(&eevee[k]);
 fail:
     fprintf(stderr, "shadelab-xcheck: %s\n", err);
     rc = 1;

@@ -188,7 +188,7 @@ def make_material(d, m):
     tree = mat.node_tree
     tree.nodes.clear()
     nodes = Nodes(tree, d)
-    out = nodes.new("ShaderNodeOutputMaterial", target="CYCLES")
+    out = nodes.new("ShaderNodeOutputMaterial", target="ALL")
     normal = nodes.normal(m["normal_map"]) if "normal_map" in m else None
     kind = m["kind"]
     shader = None
@@ -265,12 +265,15 @@ def spot_falloff(light, spec):
     tree.links.new(f, em.inputs["Strength"])
 
 
-def make_light(l, root):
+def make_light(l, root, eevee):
     kind = l["blender_type"]
+    if eevee and "spot" in l:
+        kind = "SPOT"  # EEVEE has no light node trees: Blender's own spot, its edge approximated
     data = bpy.data.lights.new(l["name"], kind)
     data.color = l["color"]
     data.energy = l["energy"]
     data.cycles.cast_shadow = l["shadow"]
+    data.use_shadow = l["shadow"]
     data.cycles.max_bounces = 1024
     if kind == "SUN":
         data.angle = l.get("angle", 0.0)
@@ -278,6 +281,14 @@ def make_light(l, root):
         data.shadow_soft_size = l.get("radius", 0.0)
         if "spot" in l:
             spot_falloff(data, l["spot"])
+    elif kind == "SPOT":
+        spot = l["spot"]
+        outer = spot["cone"] * (1.1 if spot["falloff"] == "linear" else 1.0)
+        inner = spot["cone"] * 0.9 if spot["falloff"] == "linear" else math.acos(min(1.0, (1.0 - spot["offset"]) / spot["scale"]))
+        data.spot_size = min(2 * outer, math.pi)
+        data.spot_blend = max(0.0, min(1.0, 1.0 - inner / outer))
+        data.shadow_soft_size = l.get("radius", 0.0)
+        data.use_shadow = l["shadow"]
     elif kind == "AREA":
         data.shape = l["shape"]
         data.size, data.size_y = l["size"]
@@ -407,6 +418,29 @@ def import_gltf(d, g, out_dir):
         json.dump({"objects": listed}, f, indent=1)
 
 
+def setup_eevee(S, samples, out_dir):
+    """EEVEE as a peer: the same scene, soft shadows, ambient occlusion and screen-space
+    reflections on, `samples` anti-aliasing samples, the linear image to OUT/eevee_0001.exr."""
+    sc = bpy.context.scene
+    sc.render.engine = "BLENDER_EEVEE"
+    ee = sc.eevee
+    ee.taa_render_samples = samples
+    ee.use_soft_shadows = True
+    ee.use_gtao = True
+    ee.use_ssr = True
+    ee.shadow_cube_size = "1024"
+    ee.shadow_cascade_size = "2048"
+    sc.render.filter_size = 1.0
+    tree = sc.node_tree
+    fo = [n for n in tree.nodes if n.bl_idname == "CompositorNodeOutputFile"][0]
+    fo.base_path = out_dir
+    if len(fo.inputs) > 1:  # EEVEE has no object-index pass: the Cycles one serves
+        for link_ in list(fo.inputs[1].links):
+            tree.links.remove(link_)
+        fo.file_slots.remove(fo.inputs[1])
+    fo.file_slots[0].path = "eevee_"
+
+
 def main():
     d = os.environ.get("XCHECK_DIR") or os.path.dirname(os.path.abspath(__file__))
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
@@ -428,12 +462,23 @@ def main():
         link(obj, root)
     if "gltf" in S:
         import_gltf(d, S["gltf"], out_dir)
+    eevee = int(argv[argv.index("--eevee") + 1]) if "--eevee" in argv else 0
     for l in S["lights"]:
-        make_light(l, root)
+        make_light(l, root, eevee > 0)
     bpy.context.scene.world = make_world(d, S["world"])
     make_camera(S["camera"], root)
     setup_render(S, out_dir)
     if argv[1:2] == ["--no-render"]:
+        return
+    if eevee:
+        # the first render compiles EEVEE's shaders: one sample, untimed; then the timed one
+        setup_eevee(S, 1, out_dir)
+        bpy.ops.render.render(write_still=False)
+        setup_eevee(S, eevee, out_dir)
+        t0 = time.time()
+        bpy.ops.render.render(write_still=False)
+        print("xcheck-blender: eevee %d samples %.3f ms" % (eevee, 1000 * (time.time() - t0)))
+        sys.stdout.flush()
         return
     t0 = time.time()
     bpy.ops.render.render(write_still=False)
