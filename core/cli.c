@@ -67,6 +67,11 @@ static sl_cli_result start_time(sl_cli *c, const char *v, char *err, size_t n) {
     snprintf(err, n, "--time %s: expected seconds, a finite number within +-1e9", v);
     return SL_CLI_ERROR;
 }
+static sl_cli_result still_budget(sl_cli *c, const char *v, char *err, size_t n) {
+    if (sl_parse_double(v, 0.001, 1e6, &c->still_budget)) return SL_CLI_RUN;
+    snprintf(err, n, "--still-budget %s: expected seconds, 0.001 to 1e6", v);
+    return SL_CLI_ERROR;
+}
 static sl_cli_result plugin(sl_cli *c, const char *v, char *err, size_t n) {
     if (c->opt.plugin_count == 64) { snprintf(err, n, "too many --plugin (64 at most)"); return SL_CLI_ERROR; }
     c->opt.plugins[c->opt.plugin_count++] = v;
@@ -87,6 +92,9 @@ static const option options[] = {
     {"--size", NULL, "WxH", "viewport size (default 1280x720)", CALL(size)},
     {"--frames", NULL, "N", "render N frames, then write `--output` and exit (headless default: the frames a still "
      "needs)", WHOLE(frames, 1, 1000000)},
+    {"--still-budget", NULL, "SECONDS", "a headless still (no `--frames`) stops when SECONDS have passed since its "
+     "first frame, or earlier once no display value changes by 1/255 from one frame to the next; default: no "
+     "budget", CALL(still_budget)},
     {"--output", NULL, "FILE", "`.png` (display-encoded) or `.exr` (linear HDR); headless default `out.png`",
      TEXT(output)},
     {"--turntable", NULL, "N", "N frames orbiting the camera once around the scene, written as `OUT-000.png` …; "

@@ -14,6 +14,7 @@ typedef struct sl_cli {
     int turntable;    /* 0: no turntable */
     bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys, list_cameras;
     double start_time;
+    double still_budget; /* seconds; 0: none (core/still.h) */
 } sl_cli;
 
 typedef enum sl_cli_result {

@@ -5,6 +5,7 @@
 #include "log.h"
 #include "render/renderer.h"
 #include "startup.h"
+#include "still.h"
 #include "turntable.h"
 #include "viewer.h"
 #include <cjson/cJSON.h>
@@ -421,9 +422,12 @@ int main(int argc, char **argv) {
         recorder rec = {0};
         double first_frame_ms = 0;
         double last_report = now_ms();
-        /* Without --frames, a still: as many frames as a plugin's still image needs (TAA's
-         * history, host set_still_frames; 1 otherwise), all at the start time. */
-        for (int f = 0; f < frames || (c.frames < 0 && f < sl_renderer_still_frames(&app)); f++) {
+        /* Without --frames, a still: the frames a plugin's still image needs (TAA's history, host
+         * set_still_frames; 1 otherwise), all at the start time, until it is done (still.h). */
+        sl_still still;
+        sl_still_begin(&still, c.still_budget);
+        bool done = false;
+        for (int f = 0; !done; f++) {
             app.time = c.start_time + (c.frames < 0 ? 0 : f * app.opt.fixed_dt);
             sl_app_render_frame(&app);
             if (f == 0) {
@@ -431,10 +435,11 @@ int main(int argc, char **argv) {
                 first_frame_ms = now_ms() - start;
                 SL_DEBUG("start-up to the first complete frame: %.0f ms", first_frame_ms);
             }
+            done = c.frames < 0 ? sl_still_done(&still, &app) : f + 1 >= frames;
             if (sl_startup_recording()) {
                 sl_startup_mark("frame %d: outside the passes", f);
                 /* the first two frames: the second shows what the first paid once */
-                if (f == 1 || !(f + 1 < frames || (c.frames < 0 && f + 1 < sl_renderer_still_frames(&app)))) {
+                if (f == 1 || done) {
                     sl_startup_end();
                     log_startup();
                 }
@@ -446,6 +451,10 @@ int main(int argc, char **argv) {
                 last_report = now_ms();
             }
         }
+        if (c.frames < 0 && strcmp(still.stopped, "complete"))
+            SL_INFO("still: %d of %d frames, stopped: %s", still.frames, still.needed,
+                    !strcmp(still.stopped, "budget") ? "--still-budget ran out" : "no display value changed by 1/255");
+        sl_still_end(&still);
         if (c.output) {
             if (!sl_app_save(&app, c.output, err, sizeof err)) rc = die(err);
             else SL_INFO("wrote %s (%dx%d, %s%s)", c.output, app.backend.width, app.backend.height, app.backend.name,

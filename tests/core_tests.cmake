@@ -80,3 +80,7 @@ set_tests_properties(cli_warm_start PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIME
 add_test(NAME cli_lazy_oiio COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_lazy_oiio
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_lazy_oiio.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
 set_tests_properties(cli_lazy_oiio PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 120)
+
+# Headless stills stop when they are done (core/still.h): converged (no display value changes by
+# 1/255), or the budget ran out; a scene with hard edges runs its still to the end.
+sl_add_test(still_stop SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_still_stop.c)
