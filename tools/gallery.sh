@@ -1,90 +1,167 @@
 #!/usr/bin/env bash
-# The gallery (docs/gallery.md): one small image per bundled scene (scenes/*.json) and one per
-# bundled plugin (plugins/*/), each with the command that made it. Images are 320x180 PNG in
-# docs/gallery/ (about 2 MB in all), rendered headless (OSMesa on this machine).
-#   usage: tools/gallery.sh [BUILD_DIR] [OUT_DIR]      (defaults: build, docs)
-# Scenes that need the data directory (head, shadow_head, skin_head) are rendered when
-# SHADELAB_DATA or ../shared/assets has it, else listed as skipped. Re-running overwrites.
+# The gallery (docs/gallery.md), made from the scenes' own metadata; this script names no scene
+# and no plugin. For each scene (scenes/*.json, then extras/*/scenes/*.json):
+#   - one image, captioned with the first sentence of the scene's "comment";
+#   - one more per entry of its "gallery" array, {"caption": "…", "args": ["--set", "…", …]}:
+#     the same scene with those command-line arguments (a debug view, a plugin switched off);
+#   - scenes/default.json is the built-in default and is rendered without --scene.
+# Then, per plugin (plugins/*/, extras/*/), links to the images of the scenes that name it.
+# A scene is skipped, with the reason in the gallery, when a plugin it names cannot be loaded
+# (an extra not built) or a file it names is missing (the data directory, SHADELAB_DATA or
+# ../shared/assets, or a generated file its comment explains). Images are 320x180 PNG in
+# docs/gallery/, rendered headless. Needs jq.
+#   usage: tools/gallery.sh [BUILD_DIR] [OUT_DIR]   (defaults: build, docs)
+#          tools/gallery.sh --plan [BUILD_DIR]     check the metadata and print what would be
+#                                                  rendered, rendering nothing (test gallery_plan)
 set -uo pipefail
+plan=false
+if [ "${1:-}" = --plan ]; then plan=true; shift; fi
 root=$(cd "$(dirname "$0")/.." && pwd)
+command -v jq >/dev/null || { echo "gallery.sh: needs jq (apt-get install jq)" >&2; exit 1; }
 build=$(cd "${1:-$root/build}" && pwd) || { echo "gallery.sh: no build directory ${1:-$root/build}" >&2; exit 1; }
 out=${2:-$root/docs}
 exe=$build/shadelab
 [ -x "$exe" ] || { echo "gallery.sh: $exe not built (./build.sh)" >&2; exit 1; }
 [ -z "${SHADELAB_DATA:-}" ] && [ -d "$root/../shared/assets" ] && export SHADELAB_DATA=$(cd "$root/../shared/assets" && pwd)
 size=${GALLERY_SIZE:-320x180}
-mkdir -p "$out/gallery"
 md=$out/gallery.md
 fails=0
+declare -A loadable=()      # plugin id -> yes/no
+declare -A shown_by=()      # plugin id -> markdown links to the images of scenes naming it
+declare -A skipped_for=()   # plugin id -> a scene naming it was skipped
+declare -A used=()          # image names given out
 
-# render NAME CAPTION ARGS...: docs/gallery/NAME.png and a gallery.md entry with the command
-# (paths relative to the repository, as a reader types them from its root)
+# The "gallery" entries must be {"caption": string, "args": [string, …]}.
+valid_metadata() {
+    jq -e '(.gallery // []) | type == "array" and all(.[]; type == "object" and (.caption | type) == "string"
+           and (.args | type) == "array" and all(.args[]; type == "string"))' "$1" >/dev/null 2>&1
+}
+
+can_load() { # plugin id: loads with --strict (cached)
+    local p=$1
+    if [ -z "${loadable[$p]:-}" ]; then
+        if "$exe" --headless --strict -q --list-plugins --scene "$root/scenes/basic.json" --plugin "$p" >/dev/null 2>&1
+        then loadable[$p]=yes; else loadable[$p]=no; fi
+    fi
+    [ "${loadable[$p]}" = yes ]
+}
+
+missing_file() { # scene: prints the first file it names that exists neither beside it nor in the data directory
+    local s=$1 dir f
+    dir=$(dirname "$s")
+    while IFS= read -r f; do
+        [ -e "$dir/$f" ] || [ -e "$f" ] || { [ -n "${SHADELAB_DATA:-}" ] && [ -e "$SHADELAB_DATA/$f" ]; } || { echo "$f"; return; }
+    done < <(jq -r '[.. | objects | to_entries[] | select(.key != "comment" and (.value | type) == "string") | .value
+                     | select(test("\\.(jpe?g|png|tga|bmp|hdr|exr|glb|gltf|obj|fbx|ply|bin)$"; "i"))] | unique | .[]' "$s")
+}
+
+caption_of() { # the scene's "comment", first sentence (without a closing colon)
+    jq -r '.comment // ""' "$1" | sed 's/\([.:]\) .*/\1/; s/:$//'
+}
+
+# render NAME CAPTION SCENE ARGS...: docs/gallery/NAME.png and a gallery.md entry with the
+# command (paths relative to the repository, as a reader types them from its root)
 render() {
-    local name=$1 caption=$2; shift 2
+    local name=$1 caption=$2 scene=$3; shift 3
+    local args=("$@") p
+    [ -n "$scene" ] && args=(--scene "$scene" "${args[@]}")
+    if [ -n "${used[$name]:-}" ]; then
+        echo "gallery.sh: two images would be named $name (${used[$name]} and ${scene:-the default scene})" >&2
+        fails=$((fails + 1))
+        return
+    fi
+    used[$name]=${scene:-the default scene}
+    if $plan; then
+        echo "$name: ${args[*]}"
+        return
+    fi
     local t0=$SECONDS
-    if (cd "$root" && "$exe" --headless -q --size $size "$@" --output "$out/gallery/$name.png"); then
-        printf '%-28s %3ds\n' "$name" $((SECONDS - t0)) >&2
+    if (cd "$root" && "$exe" --headless -q --size "$size" "${args[@]}" --output "$out/gallery/$name.png"); then
+        printf '%-36s %3ds\n' "$name" $((SECONDS - t0)) >&2
         { echo "### $caption"
           echo
           echo "![$name](gallery/$name.png)"
           echo
           echo '```'
-          echo "./build/shadelab --headless --size $size ${*:+$* }--output $name.png"
+          echo "./build/shadelab --headless --size $size ${args[*]:+${args[*]} }--output $name.png"
           echo '```'
           echo; } >> "$md.tmp"
     else
-        echo "gallery.sh: $name failed: $exe $*" >&2
+        echo "gallery.sh: $name failed: $exe ${args[*]}" >&2
         fails=$((fails + 1))
+        return 1
     fi
 }
 
-comment() { # the scene's "comment", first sentence
-    sed -n 's/^ *"comment": *"\([^"]*\)".*/\1/p' "$1" | head -1 | sed 's/\([.:]\) .*/\1/'
-}
+note() { $plan && echo "skip: $1" || { echo "### $1"; echo; } >> "$md.tmp"; }
 
-{
-echo "# Gallery"
-echo
-echo "One image per bundled scene and per bundled plugin, $size, made by \`tools/gallery.sh\`"
-echo "(headless, OSMesa/llvmpipe; re-run it after changing a scene or a plugin). Each image has the"
-echo "command that made it, run from the repository root (the head scenes read the data directory:"
-echo "\`SHADELAB_DATA\` or \`--data ../shared/assets\`)."
-echo
-echo "## Scenes"
-echo
-} > "$md.tmp"
+if ! $plan; then
+    mkdir -p "$out/gallery"
+    { echo "# Gallery"
+      echo
+      echo "One image per bundled scene, and more where a scene's \`gallery\` entry asks for them, $size,"
+      echo "made by \`tools/gallery.sh\` from the scenes' own metadata (headless; re-run it after changing"
+      echo "a scene or a plugin). Each image has the command that made it, run from the repository root."
+      echo
+      echo "## Scenes"
+      echo; } > "$md.tmp"
+fi
 
-render default "The built-in default scene (no file): every bundled plugin together"
-for s in "$root"/scenes/*.json; do
-    name=$(basename "$s" .json)
-    [ "$name" = default ] && continue
-    if grep -q '"head/' "$s" && { [ -z "${SHADELAB_DATA:-}" ] || [ ! -d "$SHADELAB_DATA/head" ]; }; then
-        { echo "### scenes/$name.json — skipped: needs the data directory (\`--data\`, head/)"; echo; } >> "$md.tmp"
+# the built-in default first, then the bundled scenes, then the extras' scenes
+scenes=("$root/scenes/default.json")
+for s in "$root"/scenes/*.json "$root"/extras/*/scenes/*.json; do
+    [ -f "$s" ] && [ "$s" != "${scenes[0]}" ] && scenes+=("$s")
+done
+for s in "${scenes[@]}"; do
+    rel=${s#"$root/"}
+    stem=$(basename "$s" .json)
+    [[ $rel == extras/* ]] && stem="${rel#extras/}" && stem="${stem%%/*}-$(basename "$s" .json)"
+    if ! valid_metadata "$s"; then
+        echo "gallery.sh: $rel: \"gallery\" must be an array of {\"caption\": string, \"args\": [strings]}" >&2
+        fails=$((fails + 1))
         continue
     fi
-    render "scene-$name" "scenes/$name.json — $(comment "$s")" --scene "scenes/$name.json"
+    mapfile -t plugins < <(jq -r '.plugins // [] | .[]' "$s")
+    why=""
+    for p in "${plugins[@]}"; do can_load "$p" || { why="needs plugin $p, which does not load here (built?)"; break; }; done
+    if [ -z "$why" ] && f=$(missing_file "$s") && [ -n "$f" ]; then
+        why="needs $f (the data directory, --data or SHADELAB_DATA, or a file its comment says how to make)"
+    fi
+    if [ -n "$why" ]; then
+        note "$rel — skipped: $why"
+        for p in "${plugins[@]}"; do skipped_for[$p]=1; done
+        continue
+    fi
+    if [ "$rel" = scenes/default.json ]; then
+        name=default scene="" title="$rel, built in (no --scene)"
+    else
+        name="scene-$stem" scene=$rel title=$rel
+    fi
+    if render "$name" "$title — $(caption_of "$s")" "$scene"; then
+        for p in "${plugins[@]}"; do shown_by[$p]+="${shown_by[$p]:+, }[$rel](gallery/$name.png)"; done
+    fi
+    count=$(jq '.gallery // [] | length' "$s")
+    for ((k = 0; k < count; k++)); do
+        mapfile -t extra < <(jq -r ".gallery[$k].args[]" "$s")
+        render "$name-$((k + 1))" "$title — $(jq -r ".gallery[$k].caption" "$s")" "$scene" "${extra[@]}"
+    done
 done
 
-{ echo "## Plugins"; echo; echo "Each on the built-in default scene unless a scene of its own shows it better."; echo; } >> "$md.tmp"
-for dir in "$root"/plugins/*/; do
-    p=$(basename "$dir")
-    case $p in
-    aa)    render plugin-aa "aa — antialiasing (TAA by default) on its edge scene; --set aa.enabled=false for the aliased image" \
-               --scene scenes/aa_edges.json ;;
-    envmap) render plugin-envmap "envmap — the procedural sky's image-based light alone (sun and spot off)" \
-               --set light.sun.enabled=false --set light.spot.enabled=false ;;
-    ggx)   render plugin-ggx "ggx — its debug view ggx-d: the GGX distribution D(h) of each material" --debug-view ggx-d ;;
-    normal-map) render plugin-normal-map "normal-map — the world normal after the procedural waves map (final-normal)" \
-               --debug-view final-normal ;;
-    phong) render plugin-phong "phong — the gloss-map assignment: normalised Blinn-Phong, gloss and AO maps" \
-               --scene scenes/gloss_ao.json ;;
-    spotlight-shadow) render plugin-spotlight-shadow "spotlight-shadow — the shadowed sun and the spot light alone (the sky's light off)" \
-               --set envmap.enabled=false ;;
-    sss)   render plugin-sss "sss — subsurface scattering on the procedural skin stand-in" --scene scenes/skin_standin.json ;;
-    tonemap) render plugin-tonemap "tonemap — false colour: exposure in stops around middle grey" --set tonemap.false_color=true ;;
-    *)     echo "gallery.sh: plugin $p has no gallery entry: add one to tools/gallery.sh" >&2; fails=$((fails + 1)) ;;
-    esac
-done
-mv "$md.tmp" "$md"
-du -ch "$out"/gallery/*.png | tail -1 >&2
+if ! $plan; then
+    { echo "## Plugins"
+      echo
+      echo "The scenes that name each plugin (\`\"plugins\"\`), linked to their images."
+      echo
+      for dir in "$root"/plugins/*/ "$root"/extras/*/; do
+          [ -f "$dir/CMakeLists.txt" ] || continue
+          p=$(basename "$dir")
+          readme=${dir#"$root/"}README.md
+          if [ -n "${shown_by[$p]:-}" ]; then echo "- [$p](../$readme): ${shown_by[$p]}"
+          elif [ -n "${skipped_for[$p]:-}" ]; then echo "- [$p](../$readme): its scenes were skipped (above)"
+          else echo "- [$p](../$readme): no scene names it"; fi
+      done
+      echo; } >> "$md.tmp"
+    mv "$md.tmp" "$md"
+    du -ch "$out"/gallery/*.png | tail -1 >&2
+fi
 [ $fails -eq 0 ]

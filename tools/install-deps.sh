@@ -28,6 +28,7 @@ PKGS=(
   libcglm-dev             # vector/matrix math
   libimgui-dev            # GUI (C++ adapter only)
   gnuplot-nox             # benchmark charts
+  jq                      # tools/gallery.sh reads the scenes' gallery metadata
   xvfb xauth              # GUI smoke test
   clang libclang-rt-14-dev  # fuzzing (libFuzzer) and sanitizers
 )

@@ -14,8 +14,9 @@ extern const char sl_default_scene_json[]; /* generated from scenes/default.json
 
 /* ---- entry points ----------------------------------------------------------------------- */
 
+/* "gallery" is tools/gallery.sh's (scenes/README.md); the viewer ignores it */
 static const char *const top_keys[] = {"plugins", "params", "cameras", "materials", "nodes",
-                                       "lights", "environment"};
+                                       "lights", "environment", "gallery"};
 
 static bool load(loader *L, const char *dir) {
     const char *text = L->text;
