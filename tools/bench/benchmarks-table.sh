@@ -113,6 +113,25 @@ else
     note "shadelab-bench failed: $(tail -2 "$TMP/ssaa.log")"
 fi
 
+note "orbit"
+ORBIT="shadelab-bench --orbit 10 --size 320x180"
+[ -f "$SHARED/assets/head/LeePerrySmith.glb" ] || SKIPPED+=("the head scene's orbit (needs \`$SHARED/assets\`)")
+# shellcheck disable=SC2086
+if "$BUILD/shadelab-bench" ${ORBIT#shadelab-bench } --data "$SHARED/assets" --out "$TMP/orbit" -q > "$TMP/orbit.log" 2>&1; then
+    python3 - "$TMP/orbit.json" > "$TMP/orbit.rows" <<'PY'
+import json, sys
+for o in json.load(open(sys.argv[1]))["orbits"]:
+    name = "the built-in default scene" if o["scene"].startswith("<") else "`%s`" % o["scene"]
+    print("orbit of %s, %dx%d, %.0f s at 10°/s|%d frames: p50 %.0f ms, p95 %.0f, p99 %.0f, %.0f %% over %.0f ms; "
+          "FLIP against ssaa 4: motion %.3f, converged still %.3f; flicker %.4f"
+          % (name, o["width"], o["height"], o["seconds"], o["frames"], o["p50_ms"], o["p95_ms"], o["p99_ms"],
+             100 * o["over_budget"], o["budget_ms"], o["motion_flip"], o["still_flip"], o["flicker"]))
+PY
+    while IFS='|' read -r label value; do row "$label" "$value" "$ORBIT --data DIR"; done < "$TMP/orbit.rows"
+else
+    note "shadelab-bench --orbit failed: $(tail -2 "$TMP/orbit.log")"
+fi
+
 note "the hand-written floor"
 if [ -f "$SHARED/bench/baseline_ggx.c" ]; then
     if "$ROOT/tools/bench/ratio.sh" --build "$BUILD" --shared "$SHARED" --sizes 1280x720 --lights 1,64 \
