@@ -8,6 +8,7 @@
 #include "render/composer.h"
 #include "render/renderer.h"
 #include <shadelab/gl.h>
+#include <shadelab/input.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -292,6 +293,76 @@ static void model_defaults(sl_app *app) {
     load_defaults(app, SL_PLUGIN_DEFAULT_MODEL_FILE, "default of a model file");
 }
 
+/* --env FILE: the scene's environment map replaced (checked here, decoded by whoever reads it). */
+static bool environment_option(sl_app *app, char *err, size_t n) {
+    char why[600];
+    if (sl_input_file_problem(app->opt.env_map, why, sizeof why)) {
+        snprintf(err, n, "--env %s: %s", app->opt.env_map, why);
+        return false;
+    }
+    char *path = realpath(app->opt.env_map, NULL);
+    if (!path) {
+        snprintf(err, n, "--env %s: out of memory", app->opt.env_map);
+        return false;
+    }
+    free(app->scene.environment.map);
+    app->scene.environment.map = path;
+    return true;
+}
+
+/* --ground: a grey floor (the standard base_color input, Lambert) at the bottom of the bounds,
+ * 2.5 times their horizontal extent, that receives shadows and casts none. */
+static bool ground_option(sl_app *app, char *err, size_t n) {
+    sl_scene *s = &app->scene;
+    float ex = s->bounds_max[0] - s->bounds_min[0], ez = s->bounds_max[2] - s->bounds_min[2];
+    float size = 2.5f * fmaxf(fmaxf(ex, ez), 1e-3f);
+    sl_mesh_data plane;
+    int mi = sl_scene_add_material(s, "ground", "lambert"), node = sl_scene_add_node(s, "ground", -1);
+    if (mi < 0 || node < 0 || !sl_mesh_plane(&plane, size, size, 1)) {
+        snprintf(err, n, "--ground: out of memory");
+        return false;
+    }
+    const float grey[3] = {0.5f, 0.5f, 0.5f};
+    s->materials[mi].cast_shadows = false;
+    sl_prop_set_vec(&s->materials[mi].inputs, "base_color", grey, 3, 0);
+    int mesh = sl_scene_add_mesh(s, "ground", &plane, mi);
+    if (mesh < 0 || !sl_scene_node_add_mesh(s, node, mesh)) {
+        snprintf(err, n, "--ground: out of memory");
+        return false;
+    }
+    const float at[3] = {0.5f * (s->bounds_min[0] + s->bounds_max[0]), s->bounds_min[1], 0.5f * (s->bounds_min[2] + s->bounds_max[2])};
+    const float turn[4] = {0, 0, 0, 1}, one[3] = {1, 1, 1};
+    sl_mat4_from_trs(s->nodes[node].local, at, turn, one);
+    sl_scene_update_transforms(s);
+    return true;
+}
+
+/* --shadows: every light casts them; a key light from the upper front left (E = 3) casts them too. */
+static bool shadows_option(sl_app *app, char *err, size_t n) {
+    sl_scene *s = &app->scene;
+    for (int i = 0; i < s->light_count; i++) s->lights[i].cast_shadows = true;
+    int li = sl_scene_add_light(s, "key", "directional");
+    if (li < 0) {
+        snprintf(err, n, "--shadows: out of memory");
+        return false;
+    }
+    const float dir[3] = {0.45f, -0.7f, -0.55f};
+    float l = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    for (int c = 0; c < 3; c++) s->lights[li].direction[c] = dir[c] / l;
+    s->lights[li].intensity = 3;
+    s->lights[li].cast_shadows = true;
+    return true;
+}
+
+/* A model needs no JSON scene: --env, --ground and --shadows change the scene loaded. The
+ * default camera frames what was loaded, not the floor. */
+static bool scene_options(sl_app *app, char *err, size_t n) {
+    memcpy(app->frame_min, app->scene.bounds_min, sizeof app->frame_min);
+    memcpy(app->frame_max, app->scene.bounds_max, sizeof app->frame_max);
+    return (!app->opt.env_map || environment_option(app, err, n)) && (!app->opt.ground || ground_option(app, err, n)) &&
+           (!app->opt.shadows || shadows_option(app, err, n));
+}
+
 /* Validates and applies material/light props from the scene against the plugins' schema. */
 static bool apply_scene_values(sl_app *app, char *err, size_t n) {
     sl_scene *s = &app->scene;
@@ -393,12 +464,11 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
 }
 
 static void default_camera(sl_app *app) {
-    sl_scene *s = &app->scene;
     sl_camera c = {.fov_y_deg = 45, .znear = 0.05f, .zfar = 100, .up = {0, 1, 0}};
     float radius = 0;
     for (int i = 0; i < 3; i++) {
-        c.target[i] = 0.5f * (s->bounds_min[i] + s->bounds_max[i]);
-        float e = s->bounds_max[i] - s->bounds_min[i];
+        c.target[i] = 0.5f * (app->frame_min[i] + app->frame_max[i]);
+        float e = app->frame_max[i] - app->frame_min[i];
         radius += e * e;
     }
     radius = sqrtf(radius) * 0.5f;
@@ -449,7 +519,8 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     if (!app->opt.data_dir) app->opt.data_dir = getenv("SHADELAB_DATA");
     sl_params_init(&app->params);
 
-    sl_scene_load_opts lo = {.data_dir = app->opt.data_dir};
+    sl_scene_load_opts lo = {.data_dir = app->opt.data_dir, .gltf_variant = opt->gltf_variant,
+                             .gltf_animation = opt->gltf_animation};
     bool ok;
     if (opt->scene_path) ok = sl_scene_load_file(&app->scene, opt->scene_path, &lo, err, n);
     else if (opt->scene_text) ok = sl_scene_load_text(&app->scene, opt->scene_text, "<text>", ".", &lo, err, n);
@@ -457,6 +528,7 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
     if (!ok) return false;
     app->scene_loaded = true;
     sl_scene_update_transforms(&app->scene);
+    if (!scene_options(app, err, n)) return false;
     sl_startup_mark("scene file (JSON, meshes)");
 
     /* plugins: the core first, then the command line, then the scene's names */
@@ -473,6 +545,8 @@ bool sl_app_init(sl_app *app, const sl_app_options *opt, char *err, size_t n) {
      * issue 20); X.enabled=false switches one off and it costs nothing. */
     if (!opt->no_default_plugins) load_defaults(app, SL_PLUGIN_DEFAULT_EVERY_SCENE, "loaded by default");
     model_defaults(app);
+    if (opt->env_map) load_defaults(app, SL_PLUGIN_DEFAULT_MODEL_ENVIRONMENT, "--env");
+    if (opt->shadows) load_defaults(app, SL_PLUGIN_DEFAULT_SHADOWS, "--shadows");
     load_plugins_for_inputs(app);
     sl_plugins_create_all(&app->plugins);
     sl_startup_mark("plugins loaded and created");

@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "backend/backend.h"
 #include "log.h"
+#include "scene/scene.h"
 #include <shadelab/input.h>
 #include <shadelab/shadelab.h>
 #include <string.h>
@@ -72,6 +73,14 @@ static sl_cli_result still_budget(sl_cli *c, const char *v, char *err, size_t n)
     snprintf(err, n, "--still-budget %s: expected seconds, 0.001 to 1e6", v);
     return SL_CLI_ERROR;
 }
+static sl_cli_result list_gltf_extensions(sl_cli *c, const char *v, char *err, size_t n) {
+    static const char *const support[] = {"rendered", "approximated", "not rendered"};
+    int count;
+    const sl_gltf_extension *e = sl_gltf_extensions(&count);
+    for (int i = 0; i < count; i++) printf("%-38s %-13s %s\n", e[i].name, support[e[i].support], e[i].what);
+    printf("(any other extension: not rendered; a file that requires one is refused)\n");
+    return SL_CLI_DONE;
+}
 static sl_cli_result plugin(sl_cli *c, const char *v, char *err, size_t n) {
     if (c->opt.plugin_count == 64) { snprintf(err, n, "too many --plugin (64 at most)"); return SL_CLI_ERROR; }
     c->opt.plugins[c->opt.plugin_count++] = v;
@@ -104,6 +113,15 @@ static const option options[] = {
     {"--plugin", NULL, "NAME|PATH", "load a plugin (repeatable)", CALL(plugin)},
     {"--set", NULL, "ID=VALUE", "set a parameter: `plugin.param`, `material.NAME.key`, `light.NAME.key` "
      "(repeatable)", CALL(setting)},
+    {"--env", NULL, "FILE", "an environment map (`.hdr`, `.exr`: lat-long) lighting the scene, in place of its own",
+     TEXT(opt.env_map)},
+    {"--ground", NULL, NULL, "a grey floor under the scene's bounds that receives its shadows", FLAG(opt.ground)},
+    {"--shadows", NULL, NULL, "every light casts shadows, and a key light that casts them is added", FLAG(opt.shadows)},
+    {"--variant", NULL, "NAME", "the glTF `KHR_materials_variants` variant shown (name or index)", TEXT(opt.gltf_variant)},
+    {"--animation", NULL, "N|NAME", "the glTF animation played (index or name; default the first)",
+     TEXT(opt.gltf_animation)},
+    {"--list-gltf-extensions", NULL, NULL, "the glTF extensions shadelab knows: rendered, approximated or not",
+     CALL(list_gltf_extensions)},
     {"--camera", NULL, "NAME", "start from a scene camera (a model's first camera by default)", TEXT(opt.camera)},
     {"--list-cameras", NULL, NULL, "the scene's cameras with position and field of view", FLAG(list_cameras)},
     {"--debug-view", NULL, "NAME", "replace the output with a debug view (`--list-debug-views`)",

@@ -284,7 +284,7 @@ static int run_turntable(sl_app *app, const sl_cli *c, const char *ffmpeg, recor
     int rc = 0;
     char first[4300] = "";
     for (int k = 0; k < n && !rc; k++) {
-        sl_turntable_camera(&start_cam, app->scene.bounds_min, app->scene.bounds_max, k, n, &app->camera);
+        sl_turntable_camera(&start_cam, app->frame_min, app->frame_max, k, n, &app->camera);
         float p[3];
         sl_camera_position(&app->camera, p);
         SL_DEBUG("turntable frame %d: camera at %.4f %.4f %.4f, yaw %.4f rad", k, p[0], p[1], p[2], app->camera.yaw);

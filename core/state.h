@@ -32,6 +32,12 @@ typedef struct sl_app_options {
     bool keep_color;             /* "color" must hold the final linear image after each frame (EXR
                                     output, readers of sl_app_read_color): no display-on-write */
     int accumulate;              /* frames averaged per output frame (references), >= 1 */
+    /* A model needs no JSON scene: */
+    const char *env_map;         /* --env FILE: the environment map (replaces the scene's) */
+    bool ground;                 /* --ground: a floor under the bounds that receives shadows */
+    bool shadows;                /* --shadows: every light casts them, plus a key light */
+    const char *gltf_variant;    /* --variant NAME (KHR_materials_variants) */
+    const char *gltf_animation;  /* --animation N|NAME */
     double fixed_dt;             /* seconds per frame for sl_time in headless runs */
 } sl_app_options;
 
@@ -60,6 +66,8 @@ typedef struct sl_app {
     char *debug_view;            /* NULL = final render */
     double time;
     uint64_t frame_index;
+    float frame_min[3], frame_max[3]; /* what the default camera and turntables frame: the scene's
+                                         bounds before --ground added its floor */
     bool environment_read;       /* a plugin asked for the scene's environment (sl_host.environment) */
     char *strict_failure;        /* --strict: why the run must fail (a plugin's program did not compile) */
 } sl_app;

@@ -45,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     sl_scene scene;
     memset(&scene, 0, sizeof scene);
     char err[4096] = "";
-    if (sl_scene_import_gltf(&scene, path, -1, err, sizeof err)) {
+    if (sl_scene_import_gltf(&scene, path, -1, NULL, err, sizeof err)) {
         sl_scene_update_transforms(&scene);
         check_meshes(&scene);
         for (int c = 0; c < scene.anim_channel_count; c++) sl_scene_animate(&scene, 0.37 * c);

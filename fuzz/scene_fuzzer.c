@@ -1,6 +1,6 @@
 /* libFuzzer target for shadelab's own scene parser: sl_scene_load_text (core/scene/scene_json.c
  * and the primitive generators it calls), not assimp's. Mesh files named by a scene are not
- * imported here (sl_scene_import_file and sl_scene_load_model are stubbed below), so the fuzzer never reads files and
+ * imported here (sl_scene_import_model and sl_scene_load_model are stubbed below), so the fuzzer never reads files and
  * only our code is exercised. Build and run: see fuzz/README.md. */
 #include "scene/scene.h"
 #include "log.h"
@@ -11,12 +11,13 @@
 
 const char sl_default_scene_json[] = "{}";
 
-bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t n) {
+bool sl_scene_import_model(sl_scene *scene, const char *path, int parent_node, const sl_scene_load_opts *opts,
+                           char *err, size_t n) {
     snprintf(err, n, "%s: mesh import is disabled in the fuzzer", path);
     return false;
 }
 
-bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t n) {
+bool sl_scene_load_model(sl_scene *scene, const char *path, const sl_scene_load_opts *opts, char *err, size_t n) {
     (void)scene;
     snprintf(err, n, "%s: model import is disabled in the fuzzer", path);
     return false;

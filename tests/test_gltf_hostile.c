@@ -262,7 +262,7 @@ static void test_fuzz_corpus(void) {
         snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
         sl_scene s = {0};
         sl_log_capture(logbuf, sizeof logbuf);
-        bool ok = sl_scene_import_gltf(&s, path, -1, err, sizeof err);
+        bool ok = sl_scene_import_gltf(&s, path, -1, NULL, err, sizeof err);
         sl_log_capture(NULL, 0);
         files++, opened += ok;
         if (!ok) CHECK_MSG(strstr(err, path) == err, "%s: the error does not name the file: %s", e->d_name, err);

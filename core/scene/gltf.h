@@ -128,6 +128,7 @@ typedef struct gltf_import {
     int *parents;           /* glTF node → its parent glTF node (−1: a root) */
     long long triangles, vertices; /* import budget spent (SL_IMPORT_MAX_TRIANGLES) */
     long long keys;         /* animation keys read (GLTF_MAX_KEYS) */
+    int variant;            /* KHR_materials_variants variant shown, −1: the default materials */
     unsigned unrendered;    /* GLTF_UNRENDERED_* bits for the file's one warning */
 } gltf_import;
 
@@ -144,7 +145,8 @@ enum {
 bool gltf_import_mesh(gltf_import *im, int index, int range[2]);
 /* gltf_material.c: the scene material for glTF material `index` (−1: the default material). */
 int gltf_import_material(gltf_import *im, int index);
-/* gltf_animation.c: animation `which` (−1: the first) as node channels. */
+/* gltf_animation.c: animation `which` (−1: the first, noted when the file has more) as node
+ * channels. */
 bool gltf_import_animation(gltf_import *im, int which);
 /* gltf_extensions.c: false (an error naming them) when extensionsRequired names one not read;
  * a warning for used ones not rendered. */

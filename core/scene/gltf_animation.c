@@ -116,6 +116,7 @@ static bool channel(gltf_import *im, const cJSON *ch, const cJSON *samplers, con
 bool gltf_import_animation(gltf_import *im, int which) {
     gltf_doc *d = &im->doc;
     int count = gltf_count(d, "animations");
+    if (which < 0 && count > 1) gltf_note(d, "/animations", "%d animations: the first is played (--animation picks another)", count);
     if (which < 0) which = 0;
     if (which >= count) return true;
     char at[48];
@@ -124,7 +125,6 @@ bool gltf_import_animation(gltf_import *im, int which) {
     if (!cJSON_IsObject(anim)) return gltf_fail(d, at, "must be an object");
     if (!gltf_get_array(d, anim, at, "channels", &channels) || !gltf_get_array(d, anim, at, "samplers", &samplers)) return false;
     if (!channels || !samplers) return gltf_fail(d, at, "channels and samplers are required");
-    if (count > 1) gltf_note(d, "/animations", "%d animations: animation %d is played", count, which);
     int k = 0;
     cJSON_ArrayForEach(ch, channels) if (!channel(im, ch, samplers, at, k++)) return false;
     return true;

@@ -28,7 +28,7 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_iridescence", SL_GLTF_IGNORED, "no thin film"},
     {"KHR_materials_anisotropy", SL_GLTF_IGNORED, "isotropic"},
     {"KHR_materials_dispersion", SL_GLTF_IGNORED, "no dispersion"},
-    {"KHR_materials_variants", SL_GLTF_IGNORED, "the default materials"},
+    {"KHR_materials_variants", SL_GLTF_RENDERED, "the default materials, or the variant --variant NAME names"},
     {"KHR_animation_pointer", SL_GLTF_IGNORED, "those channels are not played"},
     {"KHR_draco_mesh_compression", SL_GLTF_IGNORED, "refused when required; the uncompressed fallback otherwise"},
     {"EXT_meshopt_compression", SL_GLTF_IGNORED, "refused when required; the uncompressed fallback otherwise"},

@@ -350,9 +350,61 @@ static void warn_unrendered(gltf_import *im) {
     if (u) SL_WARN("%s: not rendered as authored: %s", im->doc.path, list);
 }
 
-static bool import(gltf_import *im, int parent) {
+/* The names of `array`'s elements at the JSON pointer `at` ("0 \"walk\", 1 \"run\""). */
+static void list_names(const cJSON *array, char *out, size_t size) {
+    const cJSON *e, *name;
+    size_t u = 0;
+    int i = 0;
+    out[0] = 0;
+    cJSON_ArrayForEach(e, array) {
+        name = cJSON_GetObjectItemCaseSensitive(e, "name");
+        if (u < size)
+            u += snprintf(out + u, size - u, "%s%d%s%.60s%s", i ? ", " : "", i, cJSON_IsString(name) ? " \"" : "",
+                          cJSON_IsString(name) ? name->valuestring : "", cJSON_IsString(name) ? "\"" : "");
+        i++;
+    }
+    if (!i) snprintf(out, size, "none");
+}
+
+/* The element of `array` named `which` (its name, or its index as a number); −1 after gltf_fail. */
+static int choose(gltf_doc *d, const cJSON *array, const char *at, const char *what, const char *which) {
+    const cJSON *e, *name;
+    int i = 0;
+    cJSON_ArrayForEach(e, array) {
+        name = cJSON_GetObjectItemCaseSensitive(e, "name");
+        if (cJSON_IsString(name) && !strcmp(name->valuestring, which)) return i;
+        i++;
+    }
+    char *end;
+    long n = strtol(which, &end, 10);
+    if (*which && !*end && n >= 0 && n < cJSON_GetArraySize(array)) return (int)n;
+    char names[1024];
+    list_names(array, names, sizeof names);
+    gltf_fail(d, at, "no %s \"%.100s\" (the file has: %s)", what, which, names);
+    return -1;
+}
+
+/* --variant and --animation against what the file has. */
+static bool choices(gltf_import *im, const sl_scene_load_opts *opts, int *animation) {
     gltf_doc *d = &im->doc;
-    if (!gltf_check_extensions(d)) return false;
+    im->variant = -1, *animation = -1; /* −1: the first, named in the warning when there are more */
+    if (opts && opts->gltf_variant) {
+        const cJSON *variants = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(
+            cJSON_GetObjectItemCaseSensitive(d->root, "extensions"), "KHR_materials_variants"), "variants");
+        if ((im->variant = choose(d, variants, "/extensions/KHR_materials_variants/variants", "variant", opts->gltf_variant)) < 0)
+            return false;
+    }
+    if (opts && opts->gltf_animation &&
+        (*animation = choose(d, cJSON_GetObjectItemCaseSensitive(d->root, "animations"), "/animations", "animation",
+                             opts->gltf_animation)) < 0)
+        return false;
+    return true;
+}
+
+static bool import(gltf_import *im, int parent, const sl_scene_load_opts *opts) {
+    gltf_doc *d = &im->doc;
+    int animation;
+    if (!gltf_check_extensions(d) || !choices(im, opts, &animation)) return false;
     int nm = gltf_count(d, "materials"), nmesh = gltf_count(d, "meshes"), nn = gltf_count(d, "nodes");
     im->materials = malloc(sizeof(int) * (size_t)(nm + 1));
     im->meshes = malloc(sizeof *im->meshes * (size_t)(nmesh + 1));
@@ -364,14 +416,15 @@ static bool import(gltf_import *im, int parent) {
     for (int i = 0; i < nn; i++) im->nodes[i] = -1, im->parents[i] = -1;
     int meshes = im->scene->mesh_count, lights = im->scene->light_count, cameras = im->scene->camera_count;
     if (!read_hierarchy(im) || !make_scene(im, parent) || !place_cameras_and_lights(im)) return false;
-    if (gltf_count(d, "animations") && !gltf_import_animation(im, -1)) return false;
+    if (gltf_count(d, "animations") && !gltf_import_animation(im, animation)) return false;
     if (meshes == im->scene->mesh_count && lights == im->scene->light_count && cameras == im->scene->camera_count)
         SL_WARN("%s: the file contains no triangle meshes", d->path);
     warn_unrendered(im);
     return true;
 }
 
-bool sl_scene_import_gltf(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
+bool sl_scene_import_gltf(sl_scene *scene, const char *path, int parent_node, const sl_scene_load_opts *opts,
+                          char *err, size_t err_size) {
     gltf_import im = {.scene = scene, .default_material = -1};
     if (parent_node < -1 || parent_node >= scene->node_count) {
         snprintf(err, err_size, "%s: invalid parent node", path);
@@ -379,7 +432,7 @@ bool sl_scene_import_gltf(sl_scene *scene, const char *path, int parent_node, ch
     }
     bool ok = gltf_open(&im.doc, path, err, err_size);
     snprintf(im.prefix, sizeof im.prefix, "%s", parent_node >= 0 ? scene->nodes[parent_node].name : im.doc.stem);
-    ok = ok && import(&im, parent_node);
+    ok = ok && import(&im, parent_node, opts);
     if (ok) sl_scene_update_transforms(scene);
     gltf_close(&im.doc);
     free(im.materials), free(im.meshes), free(im.nodes), free(im.parents);

@@ -95,6 +95,31 @@ static bool morph(gltf_import *im, primitive *p, const cJSON *prim, const cJSON 
     return true;
 }
 
+/* The primitive's material: the default one, or the variant's (KHR_materials_variants). */
+static bool primitive_material(gltf_import *im, const cJSON *prim, const char *at, int *material) {
+    gltf_doc *d = &im->doc;
+    if (!gltf_get_index(d, prim, at, "material", "materials", false, material)) return false;
+    const cJSON *ext, *kv = NULL, *mappings = NULL, *m;
+    char ep[160], kp[200];
+    snprintf(ep, sizeof ep, "%s/extensions", at);
+    snprintf(kp, sizeof kp, "%s/KHR_materials_variants", ep);
+    if (im->variant < 0 || !gltf_get_object(d, prim, at, "extensions", &ext) ||
+        (ext && !gltf_get_object(d, ext, ep, "KHR_materials_variants", &kv)) ||
+        (kv && !gltf_get_array(d, kv, kp, "mappings", &mappings)))
+        return !d->failed;
+    int k = 0;
+    cJSON_ArrayForEach(m, mappings) {
+        char mp[240];
+        snprintf(mp, sizeof mp, "%s/mappings/%d", kp, k++);
+        const cJSON *variants, *v;
+        int mat = -1;
+        if (!gltf_get_index(d, m, mp, "material", "materials", true, &mat) || !gltf_get_array(d, m, mp, "variants", &variants))
+            return false;
+        cJSON_ArrayForEach(v, variants) if (cJSON_IsNumber(v) && v->valuedouble == im->variant) *material = mat;
+    }
+    return true;
+}
+
 /* Reads the primitive at p->at; false after gltf_fail, true with tri_count 0 when it is dropped. */
 static bool read_primitive(gltf_import *im, const cJSON *prim, const cJSON *weights, primitive *p) {
     gltf_doc *d = &im->doc;
@@ -211,8 +236,7 @@ bool gltf_import_mesh(gltf_import *im, int index, int range[2]) {
         primitive p = {0};
         snprintf(p.at, sizeof p.at, "%s/primitives/%d", at, pi);
         int material = -1;
-        bool ok = read_primitive(im, prim, weights, &p) &&
-                  gltf_get_index(d, prim, p.at, "material", "materials", false, &material);
+        bool ok = read_primitive(im, prim, weights, &p) && primitive_material(im, prim, p.at, &material);
         if (ok && p.tri_count) drop_nonfinite(im, &p);
         if (ok && p.pos && !p.tri_count) gltf_note(d, p.at, "no triangle left: not drawn");
         sl_mesh_data m = {0};

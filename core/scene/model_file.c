@@ -10,13 +10,22 @@
 #include <string.h>
 #include <strings.h>
 
-bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
+bool sl_scene_import_model(sl_scene *scene, const char *path, int parent_node, const sl_scene_load_opts *opts,
+                           char *err, size_t err_size) {
     const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
     bool named = dot && (!slash || dot > slash);
-    if (named && !strcasecmp(dot, ".obj")) return sl_scene_import_obj(scene, path, parent_node, err, err_size);
     if ((named && (!strcasecmp(dot, ".gltf") || !strcasecmp(dot, ".glb"))) || sl_file_is_gltf(path))
-        return sl_scene_import_gltf(scene, path, parent_node, err, err_size);
+        return sl_scene_import_gltf(scene, path, parent_node, opts, err, err_size);
+    if (opts && (opts->gltf_variant || opts->gltf_animation)) {
+        snprintf(err, err_size, "%s: --%s applies to glTF files only", path, opts->gltf_variant ? "variant" : "animation");
+        return false;
+    }
+    if (named && !strcasecmp(dot, ".obj")) return sl_scene_import_obj(scene, path, parent_node, err, err_size);
     return sl_scene_import_assimp(scene, path, parent_node, err, err_size);
+}
+
+bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size) {
+    return sl_scene_import_model(scene, path, parent_node, NULL, err, err_size);
 }
 
 /* A model opened directly must show something and stay where float32 positions hold. */
@@ -36,7 +45,8 @@ static bool check_model(const sl_scene *s, const char *path, char *err, size_t e
     return true;
 }
 
-bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t err_size) {
+bool sl_scene_load_model(sl_scene *scene, const char *path, const sl_scene_load_opts *opts, char *err,
+                         size_t err_size) {
     if (err && err_size) err[0] = 0;
     sl_scene s;
     memset(&s, 0, sizeof s);
@@ -58,7 +68,7 @@ bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t er
     if (!ok && err && err_size) snprintf(err, err_size, "%s: out of memory", path);
     if (ok) {
         sl_scene_update_transforms(&s);
-        ok = sl_scene_import_file(&s, path, node, err, err_size);
+        ok = sl_scene_import_model(&s, path, node, opts, err, err_size);
     }
     if (ok) {
         sl_scene_update_transforms(&s);

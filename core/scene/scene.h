@@ -212,6 +212,10 @@ typedef struct sl_embedded_image {
  * data_dir (--data DIR or SHADELAB_DATA). */
 typedef struct sl_scene_load_opts {
     const char *data_dir;   /* may be NULL */
+    /* glTF files, opened or imported (--variant, --animation): the KHR_materials_variants
+     * variant shown (NULL: the default materials) and the animation played ("2" or its name;
+     * NULL: the first). A variant or animation the file lacks is an error naming the file's. */
+    const char *gltf_variant, *gltf_animation;
 } sl_scene_load_opts;
 
 /* Loads a JSON scene file (format: scenes/README.md). On failure returns false and writes a
@@ -259,6 +263,10 @@ bool sl_mesh_teapot(sl_mesh_data *m, float size, int tessellation);
  * to place lights and cameras. On failure err says why ("path: assimp could not import it:
  * …") and the scene may hold part of the file (a loader then discards the whole scene). */
 bool sl_scene_import_file(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
+/* The same with the glTF choices of opts (may be NULL); a choice given for a file that is not
+ * glTF is an error. */
+bool sl_scene_import_model(sl_scene *scene, const char *path, int parent_node, const sl_scene_load_opts *opts,
+                           char *err, size_t err_size);
 /* The two readers behind it, the same contract (tests compare them on the same OBJ files): the
  * project's streaming OBJ reader (errors "path:line: cause"), and assimp for any format. */
 bool sl_scene_import_obj(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
@@ -267,14 +275,16 @@ bool sl_scene_import_assimp(sl_scene *scene, const char *path, int parent_node, 
  * after the file holding its contents, from_model set (the app adds a default environment and
  * tone mapping and frames the camera). sl_scene_load_file calls it when the file's content is
  * not a shadelab scene. On failure *scene is untouched. */
-bool sl_scene_load_model(sl_scene *scene, const char *path, char *err, size_t err_size);
+bool sl_scene_load_model(sl_scene *scene, const char *path, const sl_scene_load_opts *opts, char *err,
+                         size_t err_size);
 /* glTF files go to the project's own reader (core/scene/gltf_*.c; glTF by its name or its
  * content): the file's materials, meshes, nodes, cameras and lights keep their glTF identity
  * (material i of the file is one scene material, whatever its name), every accessor is checked
  * against glTF 2.0 §3.6 and every constrained value (finite transforms, camera ranges, index and
  * key ranges); errors name the file, the JSON pointer and the cause ("model.glb: /accessors/7:
  * …"), and what is dropped or replaced is named in one warning. Same contract as above. */
-bool sl_scene_import_gltf(sl_scene *scene, const char *path, int parent_node, char *err, size_t err_size);
+bool sl_scene_import_gltf(sl_scene *scene, const char *path, int parent_node, const sl_scene_load_opts *opts,
+                          char *err, size_t err_size);
 /* Whether the file is a glTF by its content (the GLB magic, or JSON with "asset" near the start). */
 bool sl_file_is_gltf(const char *path);
 

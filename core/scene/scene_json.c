@@ -82,7 +82,7 @@ static bool load_common(sl_scene *out, const char *text, size_t len, const char 
     if (err && err_size) err[0] = 0;
     sl_scene scene;
     memset(&scene, 0, sizeof scene);
-    loader L = {.scene = &scene, .text = text, .len = len, .file = name ? name : "<scene>",
+    loader L = {.scene = &scene, .text = text, .len = len, .file = name ? name : "<scene>", .opts = opts,
                 .data_dir = opts && opts->data_dir && opts->data_dir[0] ? opts->data_dir : getenv("SHADELAB_DATA"),
                 .err = err, .err_size = err_size, .default_material = -1};
     bool ok = load(&L, dir);
@@ -153,7 +153,7 @@ bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_o
     const char *ext = strrchr(path, '.'), *base = strrchr(path, '/');
     bool gltf_name = ext && (!base || ext > base) && (!strcasecmp(ext, ".gltf") || !strcasecmp(ext, ".glb"));
     if (S_ISREG(st.st_mode) && (gltf_name || is_model_head(path))) /* the glTF reader names its JSON errors */
-        return sl_scene_load_model(scene, path, err, err_size);
+        return sl_scene_load_model(scene, path, opts, err, err_size);
     if (st.st_size > (off_t)MAX_SCENE_FILE_BYTES) {
         if (err && err_size)
             snprintf(err, err_size, "%s: %lld bytes is too large for a scene file (limit %u MiB)", path,
@@ -165,7 +165,7 @@ bool sl_scene_load_file(sl_scene *scene, const char *path, const sl_scene_load_o
     if (!text) return false;
     if (is_gltf_json(text, len)) { /* a .gltf document, whatever its name */
         free(text);
-        return sl_scene_load_model(scene, path, err, err_size);
+        return sl_scene_load_model(scene, path, opts, err, err_size);
     }
     /* relative assets resolve against the scene file's directory (made absolute) */
     char *copy = strdup(path);

@@ -37,6 +37,7 @@ typedef struct loader {
     size_t len;
     const char *file; /* name used in messages */
     const char *data_dir;
+    const sl_scene_load_opts *opts; /* the caller's (glTF choices), or NULL */
     char *err;
     size_t err_size;
     bool failed;

@@ -133,7 +133,7 @@ static bool load_mesh(loader *L, const cJSON *mesh, int node, int material, cons
     if (!path) return sj_failf(L, file, "%s: mesh file %s", ctx, why);
     int first_material = L->scene->material_count, first_mesh = L->scene->mesh_count;
     sl_scene_update_transforms(L->scene); /* imported lights/cameras need this node's world */
-    bool ok = sl_scene_import_file(L->scene, path, node, why, sizeof why);
+    bool ok = sl_scene_import_model(L->scene, path, node, L->opts, why, sizeof why);
     free(path);
     if (!ok) return sj_failf(L, file, "%s: %s", ctx, why);
     for (int i = first_mesh; i < L->scene->mesh_count; i++) {

@@ -670,6 +670,7 @@ static const sl_plugin_desc ss_desc = {
     .deactivate = ss_deactivate,
     .destroy = ss_destroy,
     .get_extension = get_extension,
+    .default_for = SL_PLUGIN_DEFAULT_SHADOWS,
 };
 
 SL_DEFINE_PLUGIN(ss_desc)

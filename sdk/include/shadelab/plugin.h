@@ -61,7 +61,10 @@ typedef struct sl_plugin_desc {
 #define SL_PLUGIN_DEFAULT_EVERY_SCENE 1u        /* loaded for every scene (aa: antialiasing on) */
 #define SL_PLUGIN_DEFAULT_MODEL_FILE 2u         /* loaded when a model file is opened directly */
 #define SL_PLUGIN_DEFAULT_MODEL_ENVIRONMENT 4u  /* ... and it lights it (envmap's sky); without one
-                                                   the core adds a neutral studio light */
+                                                   the core adds a neutral studio light; also
+                                                   loaded for --env FILE */
+#define SL_PLUGIN_DEFAULT_SHADOWS 8u            /* loaded for --shadows: it draws the shadows of lights
+                                                   with cast_shadows (hosts before it ignore the bit) */
 
 #if defined(__GNUC__)
 #define SL_EXPORT __attribute__((visibility("default")))
