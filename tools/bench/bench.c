@@ -5,6 +5,7 @@
  * uploads) are excluded as warm-up. Timed frames advance the clock as the viewer does, so
  * passes that skip unchanged work skip here too; the image that is compared with the reference
  * is rendered afterwards at time 0, as the reference is. */
+#define _XOPEN_SOURCE 700 /* nftw */
 #include "bench.h"
 #include <shadelab/gl.h>
 #include <dirent.h>
@@ -14,6 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <ftw.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -176,6 +179,10 @@ static bool open_app(const sl_bench_options *o, const char *settings, int accumu
                  idx >= 0 && b->app.plugins.items[idx]->disabled_reason ? b->app.plugins.items[idx]->disabled_reason : "");
         return false;
     }
+    /* against Cycles every render is compared before tone mapping, as shadelab-xcheck does */
+    if (o->reference_cycles && sl_plugins_find(&b->app.plugins, "tonemap") >= 0 &&
+        !sl_app_set(&b->app, "tonemap.enabled=false", SL_SRC_CLI, err, n))
+        return false;
     if (gl) {
         if (!sl_app_start_gl(&b->app, err, n)) return false;
         b->started = true;
@@ -537,7 +544,110 @@ static void box_filter(const float *big, int w, int h, int k, float *out) {
             }
 }
 
+/* Single-quotes s for /bin/sh into out (n bytes); false when it does not fit. */
+static bool shell_quote(const char *s, char *out, size_t n) {
+    size_t u = 0;
+    if (u + 1 >= n) return false;
+    out[u++] = '\'';
+    for (; *s; s++) {
+        const char *piece = *s == '\'' ? "'\\''" : NULL;
+        size_t len = piece ? 4 : 1;
+        if (u + len + 2 >= n) return false;
+        if (piece) memcpy(out + u, piece, len);
+        else out[u] = *s;
+        u += len;
+    }
+    out[u++] = '\'';
+    out[u] = 0;
+    return true;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw) {
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+/* rm -r dir (its own files only: no symlink is followed). */
+static void remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
+
+/* --reference cycles: shadelab-xcheck (beside this executable) exports the scene with the base
+ * settings and renders it with Cycles, cached by its own key; its linear image is the reference. */
+static bool cycles_reference(const sl_bench_options *o, sl_bench_result *res, char *err, size_t n) {
+    if (!o->scene_path) {
+        snprintf(err, n, "--reference cycles needs --scene (the built-in scene is scenes/default.json)");
+        return false;
+    }
+    int w = o->width > 0 ? o->width : 320, h = o->height > 0 ? o->height : 180;
+    int samples = o->cycles_samples > 0 ? o->cycles_samples : 256;
+    char exe[4096], dir[4200], cmd[32768], q[8300];
+    ssize_t k = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (k <= 0) { snprintf(err, n, "cannot find this executable's directory"); return false; }
+    exe[k] = 0;
+    *strrchr(exe, '/') = 0;
+    snprintf(dir, sizeof dir, "%s/shadelab-bench-cycles.XXXXXX", getenv("TMPDIR") && *getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+    if (!mkdtemp(dir)) { snprintf(err, n, "%s: %s", dir, strerror(errno)); return false; }
+    size_t u = 0;
+    bool fits = shell_quote(strcat(exe, "/shadelab-xcheck"), q, sizeof q);
+    u += snprintf(cmd + u, sizeof cmd - u, "%s --reference-only --size %dx%d --samples %d", q, w, h, samples);
+    const char *args[2][2] = {{"--out", dir}, {"--data", o->data_dir}};
+    for (int i = 0; i < 2; i++)
+        if (args[i][1] && (fits &= shell_quote(args[i][1], q, sizeof q)) && u < sizeof cmd)
+            u += snprintf(cmd + u, sizeof cmd - u, " %s %s", args[i][0], q);
+    if (o->cache_dir && (fits &= shell_quote(o->cache_dir, q, sizeof q)) && u < sizeof cmd)
+        u += snprintf(cmd + u, sizeof cmd - u, " --cache %s", q);
+    if (o->no_cache && u < sizeof cmd) u += snprintf(cmd + u, sizeof cmd - u, " --no-cache");
+    if (o->plugin && strcmp(o->plugin, "core") && (fits &= shell_quote(o->plugin, q, sizeof q)) && u < sizeof cmd)
+        u += snprintf(cmd + u, sizeof cmd - u, " --plugin %s", q);
+    for (int i = 0; i < o->plugin_count; i++)
+        if ((fits &= shell_quote(o->plugins[i], q, sizeof q)) && u < sizeof cmd)
+            u += snprintf(cmd + u, sizeof cmd - u, " --plugin %s", q);
+    for (int i = 0; i < o->base_setting_count; i++) {
+        tokens base;
+        if (!split_settings(o->base_settings[i], &base, err, n)) { free(base.buf); return false; }
+        for (int j = 0; j < base.count; j++)
+            if ((fits &= shell_quote(base.items[j], q, sizeof q)) && u < sizeof cmd)
+                u += snprintf(cmd + u, sizeof cmd - u, " --set %s", q);
+        free(base.buf);
+    }
+    if ((fits &= shell_quote(o->scene_path, q, sizeof q)) && u < sizeof cmd) u += snprintf(cmd + u, sizeof cmd - u, " %s", q);
+    if (!fits || u >= sizeof cmd - 1) { snprintf(err, n, "--reference cycles: the command line is too long"); return false; }
+    if (o->progress) fprintf(stderr, "[bench] reference: Cycles, %d samples (shadelab-xcheck)\n", samples);
+    double t0 = now_s();
+    int status = system(cmd);
+    res->reference.render_s = now_s() - t0;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        snprintf(err, n, WIFEXITED(status) && WEXITSTATUS(status) == 77
+                             ? "--reference cycles: Blender is not installed (tools/install-deps.sh --with-tests)"
+                             : "--reference cycles: shadelab-xcheck failed (exit status %d)",
+                 WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+        return false;
+    }
+    char path[4300];
+    snprintf(path, sizeof path, "%s/cycles.exr", dir);
+    sl_image img = {0};
+    if (!sl_image_load(&img, path, err, n)) return false;
+    if (img.width != w || img.height != h) {
+        snprintf(err, n, "%s: %dx%d, expected %dx%d", path, img.width, img.height, w, h);
+        sl_image_free(&img);
+        return false;
+    }
+    if (o->progress) fprintf(stderr, "[bench] reference: Cycles, %.1f s\n", res->reference.render_s);
+    res->reference.pixels = img.pixels; /* owned by the result now */
+    img.pixels = NULL;
+    sl_image_free(&img);
+    char settings[64];
+    snprintf(settings, sizeof settings, "cycles:%d", samples);
+    res->reference.settings = strdup(settings);
+    res->reference.description = strdup("Blender's Cycles through shadelab-xcheck (docs/xcheck.md), before tone mapping");
+    res->reference.accumulate = 1;
+    res->reference.scale = 1;
+    snprintf(res->reference.key, sizeof res->reference.key, "cycles-%d", samples);
+    remove_tree(dir); /* the export and its render (the reference itself is in xcheck's cache) */
+    return true;
+}
+
 static bool render_reference(const sl_bench_options *o, sl_bench_result *res, char *err, size_t n) {
+    if (o->reference_cycles) return cycles_reference(o, res, err, n);
     /* the declared reference, read from a GL-less app */
     bench_app b;
     if (!open_app(o, "", 1, 1, false, &b, err, n)) { close_app(&b); return false; }

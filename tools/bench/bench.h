@@ -34,6 +34,11 @@ typedef struct sl_bench_options {
     int frames, warmup;              /* timed frames (default 30) after warm-up (default 5) */
     int rounds;                      /* > 1: time the settings in turn, frames/rounds each time */
     const char *reference_settings;  /* NULL: the plugin's declared reference settings */
+    /* true: the reference is Blender's Cycles, rendered through shadelab-xcheck (beside this
+     * executable) at cycles_samples (0: 256) samples per pixel, and every render is compared
+     * before tone mapping (tonemap is switched off) */
+    bool reference_cycles;
+    int cycles_samples;
     int reference_accumulate;        /* 0: the declared accumulation (or 1) */
     /* > 1: render the reference at scale× the size and box-filter it down (scale² more samples
      * per pixel; for methods whose result does not depend on the pixel size). */

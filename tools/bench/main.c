@@ -28,6 +28,9 @@ static const char *usage =
     "  --warmup N                frames rendered before timing (default 5)\n"
     "  --rounds R                time every setting R times, frames/R each, in turn (default 1;\n"
     "                            evens out bursts of load on a shared machine)\n"
+    "  --reference cycles        the reference is Blender's Cycles (shadelab-xcheck, docs/xcheck.md):\n"
+    "                            every render is compared before tone mapping; needs --scene\n"
+    "  --cycles-samples N        Cycles samples per pixel for --reference cycles (default 256)\n"
     "  --reference-settings S    override the declared reference settings\n"
     "  --reference-accumulate N  override the declared reference accumulation (CI: small)\n"
     "  --reference-scale K       render the reference at K times the size, box-filtered down\n"
@@ -224,6 +227,25 @@ int main(int argc, char **argv) {
                 return die(err);
             }
         } else if (!strcmp(a, "--reference-settings")) NEED(o.reference_settings = NEXT());
+        else if (!strcmp(a, "--reference")) {
+            const char *v = NEXT();
+            NEED(v);
+            if (strcmp(v, "cycles")) {
+                snprintf(err, sizeof err, "--reference %s: the one other reference is \"cycles\"", v);
+                return die(err);
+            }
+            o.reference_cycles = true;
+        } else if (!strcmp(a, "--cycles-samples")) {
+            const char *v = NEXT();
+            NEED(v);
+            char *end;
+            long x = strtol(v, &end, 10);
+            if (*end || x < 1 || x > 1 << 20) {
+                snprintf(err, sizeof err, "--cycles-samples %s: expected an integer in [1, %d]", v, 1 << 20);
+                return die(err);
+            }
+            o.cycles_samples = (int)x;
+        }
         else if (!strcmp(a, "--cache")) NEED(o.cache_dir = NEXT());
         else if (!strcmp(a, "--no-cache")) o.no_cache = true;
         else if (!strcmp(a, "--out")) NEED(out = NEXT());
