@@ -87,6 +87,7 @@ static bool timed_orbit(const sl_orbit_options *o, sl_app *app, double speed, or
     const sl_camera_state start = app->camera;
     int cap = 256, next = 0, taking = -1;
     *ms = malloc(sizeof **ms * cap);
+    if (!*ms) return false;
     *frames = 0;
     app->time = 0;
     /* warm-up: two frames at rest, two moving (programs compiled, uploads done, TAA's motion
@@ -97,7 +98,9 @@ static bool timed_orbit(const sl_orbit_options *o, sl_app *app, double speed, or
     }
     glFinish();
     double t0 = now_s();
-    for (double t = 0; t < o->seconds; t = now_s() - t0) {
+    /* past the end, go on until every pair is taken: a stalled frame (a busy machine) may
+     * skip moments, and the comparison needs them all */
+    for (double t = 0; t < o->seconds || taking >= 0 || next < points; t = now_s() - t0) {
         unsigned long long version = app->camera.version;
         app->camera = start;
         app->camera.version = version;
@@ -105,7 +108,11 @@ static bool timed_orbit(const sl_orbit_options *o, sl_app *app, double speed, or
         double f0 = now_s();
         if (!sl_app_render_frame(app)) return false;
         glFinish();
-        if (*frames == cap) *ms = realloc(*ms, sizeof **ms * (cap *= 2));
+        if (*frames == cap) {
+            double *grown = realloc(*ms, sizeof **ms * (cap *= 2));
+            if (!grown) return false;
+            *ms = grown;
+        }
         (*ms)[(*frames)++] = (now_s() - f0) * 1e3;
         /* a pair starts at the first frame past its moment, (k + 1/2)/points of the orbit */
         int slot = taking >= 0 ? 1 : 0;
@@ -208,7 +215,7 @@ bool sl_orbit_run(const sl_orbit_options *o, sl_orbit_result *res, char *err, si
     int points = o->points > 0 ? o->points : SL_ORBIT_POINTS;
     const char *hq = o->hq_settings ? o->hq_settings : SL_ORBIT_HQ_SETTINGS;
     res->scene = strdup(o->scene_path ? o->scene_path : "<built-in default scene>");
-    res->hq_settings = strdup(*hq ? hq : "(the orbit's own settings)");
+    res->hq_settings = strdup(*hq ? hq : "the orbit's own settings");
     res->seconds = o->seconds;
     res->degrees = dps * o->seconds;
     res->budget_ms = o->budget_ms > 0 ? o->budget_ms : SL_ORBIT_BUDGET_MS;
