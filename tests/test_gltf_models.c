@@ -1,17 +1,26 @@
-/* The glTF2 test models Debian ships (package assimp-testmodels, installed by
- * tools/install-deps.sh with the test dependencies), each opened directly as a scene, against a
- * committed table of what must happen (tests/data/gltf_models.tsv): opens with N meshes, M
- * textures (distinct texture values of its materials), C cameras and L lights, or fails with an
- * error containing a stated cause. Model by model, so a change in what any one file does shows.
+/* The glTF conformance table (tests/data/gltf_models.tsv): one row per glTF2 model Debian ships
+ * (package assimp-testmodels, installed by tools/install-deps.sh with the test dependencies) and
+ * one per feature file this test writes from the specification (tests/gltf_writer.h), each opened
+ * directly as a scene: it opens with N meshes, M textures (distinct texture values of its
+ * materials), C cameras and L lights, or fails with an error containing a stated cause.
+ *
+ * A feature file states its expectation in itself (asset.extras.expect, computed here from the
+ * specification's formulas, not by the reader): the corners of mesh 0's triangles (positions,
+ * normals, UVs; a triangle may start at any of its corners, its winding may not change), a
+ * texture slot's UV mapping, the first camera, the first light. The table's last column names
+ * the expectations the file met, so a change in what any one file does shows.
  *
  *   test_gltf_models                 check every row (a model missing from the table, or a row
  *                                    whose file is gone, fails too)
  *   test_gltf_models --print         print the table as the code sees it (to review a change) */
 #include "check.h"
+#include "gltf_writer.h"
 #include "log.h"
 #include "scene/scene.h"
+#include "test_tmp.h"
 
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +29,8 @@
 #define MODELS "/usr/share/assimp/models/glTF2"
 #define TABLE SL_TEST_DATA_DIR "/gltf_models.tsv"
 
-static char paths[256][1024];
-static int npaths;
+static char keys[320][1024], files[320][1200];
+static int nkeys;
 
 static void find(const char *dir, int depth) {
     DIR *d = opendir(dir);
@@ -37,26 +46,398 @@ static void find(const char *dir, int depth) {
         if (stat(p, &st) != 0) continue;
         if (S_ISDIR(st.st_mode)) find(p, depth + 1);
         size_t n = strlen(p);
-        if (S_ISREG(st.st_mode) && npaths < 256 &&
-            ((n > 5 && !strcmp(p + n - 5, ".gltf")) || (n > 4 && !strcmp(p + n - 4, ".glb"))))
-            snprintf(paths[npaths++], sizeof paths[0], "%s", p + strlen(MODELS) + 1);
+        if (S_ISREG(st.st_mode) && nkeys < 256 &&
+            ((n > 5 && !strcmp(p + n - 5, ".gltf")) || (n > 4 && !strcmp(p + n - 4, ".glb")))) {
+            snprintf(keys[nkeys], sizeof keys[0], "%s", p + strlen(MODELS) + 1);
+            snprintf(files[nkeys++], sizeof files[0], "%s", p);
+        }
     }
     closedir(d);
 }
 
-static int cmp(const void *a, const void *b) { return strcmp(a, b); }
+/* ---- feature files, from the specification ------------------------------------------------ */
 
-/* "ok\tmeshes\ttextures\tcameras\tlights" or "error\t<message without the path>" */
-static void outcome(const char *rel, char *out, size_t size) {
-    char path[1200], err[4096] = "";
-    snprintf(path, sizeof path, "%s/%s", MODELS, rel);
+/* the base quad (gw_quad): corners of triangles (0, 1, 2) and (0, 2, 3) */
+static const float quad_p[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+static const float quad_uv[4][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+static const int quad_tris[6] = {0, 1, 2, 0, 2, 3};
+
+/* asset.extras.expect.<key> = the values of `corners` (count × comps floats) */
+static void expect_array(gw_doc *g, const char *key, const float *v, int n) {
+    char *text = malloc((size_t)n * 24 + 16), ptr[96];
+    size_t u = (size_t)sprintf(text, "[");
+    for (int i = 0; i < n; i++) u += (size_t)sprintf(text + u, "%s%.9g", i ? ", " : "", v[i]);
+    sprintf(text + u, "]");
+    snprintf(ptr, sizeof ptr, "/asset/extras/expect/%s", key);
+    gw_set(g, ptr, text);
+    free(text);
+}
+
+/* The expectation of a quad whose triangle corners are tris (vertex indices) of p / uv / normals. */
+static void expect_quad(gw_doc *g, const float (*p)[3], const int *tris, int ntris, const float (*n)[3]) {
+    float c[3 * 12], nn[3 * 12], uv[2 * 12];
+    for (int i = 0; i < 3 * ntris; i++) {
+        memcpy(c + 3 * i, p[tris[i]], 12);
+        memcpy(uv + 2 * i, quad_uv[tris[i] % 4], 8);
+        const float z[3] = {0, 0, 1};
+        memcpy(nn + 3 * i, n ? n[i] : z, 12);
+    }
+    expect_array(g, "corners", c, 9 * ntris);
+    expect_array(g, "normals", nn, 9 * ntris);
+    if (!n) expect_array(g, "uvs", uv, 6 * ntris);
+}
+
+static void f_baseline(gw_doc *g) { expect_quad(g, quad_p, quad_tris, 2, NULL); }
+
+static void f_indices_u8(gw_doc *g) {
+    const uint8_t idx[6] = {0, 1, 2, 0, 2, 3};
+    char s[16];
+    snprintf(s, sizeof s, "%d", gw_data(g, idx, sizeof idx, 5121, 6, "SCALAR"));
+    gw_set(g, "/meshes/0/primitives/0/indices", s);
+    expect_quad(g, quad_p, quad_tris, 2, NULL);
+}
+
+static void f_indices_u32(gw_doc *g) {
+    gw_set(g, "/meshes/0/primitives/0/indices", "6"); /* gw_quad's u32 copy */
+    expect_quad(g, quad_p, quad_tris, 2, NULL);
+}
+
+/* POSITION and NORMAL interleaved in one bufferView, byteStride 24 (§3.6.2.4) */
+static void f_interleaved(gw_doc *g) {
+    float v[24];
+    for (int i = 0; i < 4; i++) memcpy(v + 6 * i, quad_p[i], 12), v[6 * i + 3] = 0, v[6 * i + 4] = 0, v[6 * i + 5] = 1;
+    int view = gw_view(g, gw_append(g, v, sizeof v), sizeof v, 24);
+    char a[160];
+    snprintf(a, sizeof a, "{\"bufferView\": %d, \"byteOffset\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}", view);
+    gw_set(g, "/accessors/0", a);
+    snprintf(a, sizeof a, "{\"bufferView\": %d, \"byteOffset\": 12, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}", view);
+    gw_set(g, "/accessors/1", a);
+    expect_quad(g, quad_p, quad_tris, 2, NULL);
+}
+
+/* a sparse accessor (§3.6.2.3): vertex 2 of the positions substituted by (2, 2, 0) */
+static void sparse_positions(gw_doc *g, int count, const uint16_t *idx, const float *values, bool zeros) {
+    size_t ia = gw_append(g, idx, sizeof(uint16_t) * (size_t)count), va = gw_append(g, values, 12 * (size_t)count);
+    char s[300];
+    snprintf(s, sizeof s, "{\"count\": %d, \"indices\": {\"bufferView\": %d, \"componentType\": 5123}, \"values\": "
+             "{\"bufferView\": %d}}", count, gw_view(g, ia, sizeof(uint16_t) * (size_t)count, 0), gw_view(g, va, 12 * (size_t)count, 0));
+    gw_set(g, "/accessors/0/sparse", s);
+    if (zeros) gw_set(g, "/accessors/0/bufferView", NULL);
+}
+static void f_sparse(gw_doc *g) {
+    const uint16_t idx[1] = {2};
+    const float v[3] = {2, 2, 0};
+    sparse_positions(g, 1, idx, v, false);
+    float p[4][3];
+    memcpy(p, quad_p, sizeof p);
+    memcpy(p[2], v, 12);
+    expect_quad(g, (const float (*)[3])p, quad_tris, 2, NULL);
+}
+static void f_sparse_without_view(gw_doc *g) { /* zeros, then all four corners substituted */
+    const uint16_t idx[4] = {0, 1, 2, 3};
+    sparse_positions(g, 4, idx, &quad_p[0][0], true);
+    expect_quad(g, quad_p, quad_tris, 2, NULL);
+}
+
+/* TEXCOORD_0 as normalized unsigned bytes / shorts: c / 255, c / 65535 (§3.11) */
+static void f_uv_normalized(gw_doc *g, bool shorts) {
+    const uint8_t b[8] = {51, 204, 255, 204, 255, 0, 51, 0};
+    const uint16_t s[8] = {13107, 52428, 65535, 52428, 65535, 0, 13107, 0};
+    char a[200];
+    size_t at = shorts ? gw_append(g, s, sizeof s) : gw_append(g, b, sizeof b);
+    snprintf(a, sizeof a, "{\"bufferView\": %d, \"componentType\": %d, \"normalized\": true, \"count\": 4, \"type\": \"VEC2\"}",
+             gw_view(g, at, shorts ? sizeof s : sizeof b, 0), shorts ? 5123 : 5121);
+    gw_set(g, "/accessors/2", a);
+    float uv[12];
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 2; c++) uv[2 * i + c] = shorts ? s[2 * quad_tris[i] + c] / 65535.0f : b[2 * quad_tris[i] + c] / 255.0f;
+    expect_quad(g, quad_p, quad_tris, 2, NULL);
+    expect_array(g, "uvs", uv, 12);
+}
+static void f_uv_u8n(gw_doc *g) { f_uv_normalized(g, false); }
+static void f_uv_u16n(gw_doc *g) { f_uv_normalized(g, true); }
+
+/* KHR_mesh_quantization: positions as shorts, normalized (max(c / 32767, −1)) or not, stride 8 */
+static void quantized(gw_doc *g, bool normalized) {
+    const int16_t q[16] = {-32767, -32767, 0, 0, 32767, -16384, 0, 0, 16384, 32767, 0, 0, -32768, 100, 0, 0};
+    char a[200];
+    int view = gw_view(g, gw_append(g, q, sizeof q), sizeof q, 8);
+    snprintf(a, sizeof a, "{\"bufferView\": %d, \"componentType\": 5122%s, \"count\": 4, \"type\": \"VEC3\"}", view,
+             normalized ? ", \"normalized\": true" : "");
+    gw_set(g, "/accessors/0", a);
+    gw_set(g, "/extensionsUsed", "[\"KHR_mesh_quantization\"]");
+    gw_set(g, "/extensionsRequired", "[\"KHR_mesh_quantization\"]");
+    float p[4][3];
+    for (int i = 0; i < 4; i++)
+        for (int c = 0; c < 3; c++) p[i][c] = normalized ? fmaxf(q[4 * i + c] / 32767.0f, -1.0f) : (float)q[4 * i + c];
+    expect_quad(g, (const float (*)[3])p, quad_tris, 2, NULL); /* still planar: NORMAL's +Z stands */
+}
+static void f_quantized_i16n(gw_doc *g) { quantized(g, true); }
+static void f_quantized_i16(gw_doc *g) { quantized(g, false); }
+
+/* modes 5 and 6 (§3.7.2.1): strip triangle i = (v_i, v_{i+1+i%2}, v_{i+2−i%2}), fan (v_{i+1}, v_{i+2}, v_0) */
+static void strip_or_fan(gw_doc *g, int mode) {
+    const uint16_t strip[4] = {0, 1, 3, 2}, fan[4] = {0, 1, 2, 3};
+    const uint16_t *list = mode == 5 ? strip : fan;
+    char s[32];
+    snprintf(s, sizeof s, "%d", gw_data(g, list, 8, 5123, 4, "SCALAR"));
+    gw_set(g, "/meshes/0/primitives/0/indices", s);
+    snprintf(s, sizeof s, "%d", mode);
+    gw_set(g, "/meshes/0/primitives/0/mode", s);
+    int tris[6];
+    for (int i = 0; i < 2; i++) {
+        const int *t = mode == 5 ? (int[3]){list[i], list[i + 1 + i % 2], list[i + 2 - i % 2]}
+                                 : (int[3]){list[i + 1], list[i + 2], list[0]};
+        memcpy(tris + 3 * i, t, sizeof(int) * 3);
+    }
+    expect_quad(g, quad_p, tris, 2, NULL);
+}
+static void f_strip(gw_doc *g) { strip_or_fan(g, 5); }
+static void f_fan(gw_doc *g) { strip_or_fan(g, 6); }
+
+/* no indices: vertices 0, 1, 2 and 0, 2, 3 written out */
+static void f_non_indexed(gw_doc *g) {
+    float p[18], n[18], uv[12];
+    for (int i = 0; i < 6; i++)
+        memcpy(p + 3 * i, quad_p[quad_tris[i]], 12), memcpy(uv + 2 * i, quad_uv[quad_tris[i]], 8), n[3 * i] = n[3 * i + 1] = 0,
+                                                                                                  n[3 * i + 2] = 1;
+    char s[160];
+    snprintf(s, sizeof s, "{\"POSITION\": %d, \"NORMAL\": %d, \"TEXCOORD_0\": %d}", gw_data(g, p, sizeof p, 5126, 6, "VEC3"),
+             gw_data(g, n, sizeof n, 5126, 6, "VEC3"), gw_data(g, uv, sizeof uv, 5126, 6, "VEC2"));
+    gw_set(g, "/meshes/0/primitives/0/attributes", s);
+    gw_set(g, "/meshes/0/primitives/0/indices", NULL);
+    expect_quad(g, quad_p, quad_tris, 2, NULL);
+}
+
+/* no NORMAL: flat normals (§3.7.2.1), the quad folded so its two triangles differ */
+static void f_flat_normals(gw_doc *g) {
+    float p[4][3];
+    memcpy(p, quad_p, sizeof p);
+    p[3][2] = 1; /* vertex 3 forward */
+    char s[64];
+    snprintf(s, sizeof s, "%d", gw_data(g, p, sizeof p, 5126, 4, "VEC3"));
+    gw_set(g, "/meshes/0/primitives/0/attributes/POSITION", s);
+    gw_set(g, "/meshes/0/primitives/0/attributes/NORMAL", NULL);
+    float n[6][3];
+    for (int t = 0; t < 2; t++) {
+        const float *a = p[quad_tris[3 * t]], *b = p[quad_tris[3 * t + 1]], *c = p[quad_tris[3 * t + 2]];
+        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double x[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < 3; i++) n[3 * t + k][i] = (float)(x[i] / l);
+    }
+    expect_quad(g, (const float (*)[3])p, quad_tris, 2, (const float (*)[3])n);
+}
+
+/* a morph target moving every vertex by (0.5, 0, 0), the mesh's default weight 0.5 (§3.7.2.2) */
+static void f_morph_default_weights(gw_doc *g) {
+    const float d[12] = {0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 0, 0};
+    char s[96];
+    snprintf(s, sizeof s, "[{\"POSITION\": %d}]", gw_data(g, d, sizeof d, 5126, 4, "VEC3"));
+    gw_set(g, "/meshes/0/primitives/0/targets", s);
+    gw_set(g, "/meshes/0/weights", "[0.5]");
+    float p[4][3];
+    memcpy(p, quad_p, sizeof p);
+    for (int i = 0; i < 4; i++) p[i][0] += 0.25f;
+    expect_quad(g, (const float (*)[3])p, quad_tris, 2, NULL);
+}
+
+/* a base colour texture on UV set 1 with KHR_texture_transform (the extension's texCoord wins) */
+static void f_texture_transform(gw_doc *g) {
+    static const unsigned char png[] = {0x89, 'P', 'N', 'G', 13, 10, 26, 10}; /* only its bytes are kept */
+    char s[256];
+    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, png, sizeof png), sizeof png, 0));
+    gw_set(g, "/images", s);
+    gw_set(g, "/textures", "[{\"source\": 0}]");
+    gw_set(g, "/extensionsUsed", "[\"KHR_texture_transform\"]");
+    gw_set(g, "/materials/0/pbrMetallicRoughness/baseColorTexture", "{\"index\": 0, \"texCoord\": 0, \"extensions\": "
+           "{\"KHR_texture_transform\": {\"offset\": [0.25, -0.5], \"rotation\": 0.75, \"scale\": [2, 3], \"texCoord\": 1}}}");
+    gw_set(g, "/meshes/0/primitives/0/attributes/TEXCOORD_1", "2");
+    gw_set(g, "/asset/extras/expect/uv_map", "{\"input\": \"base_color_texture\", \"texcoord\": 1, \"offset\": [0.25, -0.5], "
+           "\"rotation\": 0.75, \"scale\": [2, 3]}");
+}
+
+/* cameras (§3.10): at node "eye" (0, 0, 3), looking down −Z */
+static void f_camera_perspective(gw_doc *g) {
+    gw_set(g, "/cameras/0", "{\"type\": \"perspective\", \"perspective\": {\"yfov\": 0.6, \"aspectRatio\": 1.5, \"znear\": 0.25, \"zfar\": 40}}");
+    char s[200];
+    snprintf(s, sizeof s, "{\"fov_y_deg\": %.9g, \"znear\": 0.25, \"zfar\": 40, \"orthographic\": false, \"position\": [0, 0, 3], "
+             "\"target\": [0, 0, 2]}", 0.6 * 180 / M_PI);
+    gw_set(g, "/asset/extras/expect/camera", s);
+}
+static void f_camera_orthographic(gw_doc *g) {
+    gw_set(g, "/cameras/0", "{\"type\": \"orthographic\", \"orthographic\": {\"xmag\": 2, \"ymag\": 1.5, \"znear\": 0, \"zfar\": 9}}");
+    gw_set(g, "/asset/extras/expect/camera", "{\"ymag\": 1.5, \"znear\": 0, \"zfar\": 9, \"orthographic\": true, "
+           "\"position\": [0, 0, 3], \"target\": [0, 0, 2]}");
+}
+
+/* KHR_lights_punctual: a spot at node "eye", its cone half-angles in degrees, glTF's fall-off */
+static void f_light_spot(gw_doc *g) {
+    gw_set(g, "/extensionsUsed", "[\"KHR_lights_punctual\"]");
+    gw_set(g, "/extensions", "{\"KHR_lights_punctual\": {\"lights\": [{\"type\": \"spot\", \"color\": [1, 0.5, 0.25], "
+           "\"intensity\": 20, \"spot\": {\"innerConeAngle\": 0.25, \"outerConeAngle\": 0.5}}]}}");
+    gw_set(g, "/nodes/1/extensions", "{\"KHR_lights_punctual\": {\"light\": 0}}");
+    char s[240];
+    snprintf(s, sizeof s, "{\"type\": \"spot\", \"intensity\": 20, \"color\": [1, 0.5, 0.25], \"cone_angle\": %.9g, "
+             "\"inner_cone_angle\": %.9g, \"position\": [0, 0, 3], \"direction\": [0, 0, -1]}", 0.5 * 180 / M_PI, 0.25 * 180 / M_PI);
+    gw_set(g, "/asset/extras/expect/light", s);
+}
+
+static const struct { const char *name; void (*build)(gw_doc *g); } features[] = {
+    {"baseline", f_baseline},
+    {"indices_u8", f_indices_u8},
+    {"indices_u32", f_indices_u32},
+    {"interleaved_stride", f_interleaved},
+    {"sparse", f_sparse},
+    {"sparse_without_bufferview", f_sparse_without_view},
+    {"texcoord_u8_normalized", f_uv_u8n},
+    {"texcoord_u16_normalized", f_uv_u16n},
+    {"quantized_positions_i16_normalized", f_quantized_i16n},
+    {"quantized_positions_i16", f_quantized_i16},
+    {"triangle_strip", f_strip},
+    {"triangle_fan", f_fan},
+    {"non_indexed", f_non_indexed},
+    {"flat_normals", f_flat_normals},
+    {"morph_default_weights", f_morph_default_weights},
+    {"texture_transform", f_texture_transform},
+    {"camera_perspective", f_camera_perspective},
+    {"camera_orthographic", f_camera_orthographic},
+    {"light_spot", f_light_spot},
+};
+
+static void write_features(void) {
+    for (size_t i = 0; i < sizeof features / sizeof *features && nkeys < 320; i++) {
+        gw_doc g;
+        CHECK(gw_quad(&g));
+        features[i].build(&g);
+        snprintf(keys[nkeys], sizeof keys[0], "feature/%s", features[i].name);
+        snprintf(files[nkeys], sizeof files[0], "%s/%s.glb", sl_test_dir(), features[i].name);
+        CHECK_MSG(gw_write(&g, files[nkeys], GW_GLB), "writing %s", files[nkeys]);
+        nkeys++;
+        gw_free(&g);
+    }
+}
+
+/* ---- the expectation a file states, against the scene read ------------------------------- */
+
+/* asset.extras.expect of a GLB, parsed (NULL when it states none). */
+static cJSON *stated_expectation(const char *file) {
+    FILE *f = fopen(file, "rb");
+    unsigned char h[20];
+    if (!f || fread(h, 1, 20, f) != 20 || memcmp(h, "glTF", 4)) {
+        if (f) fclose(f);
+        return NULL;
+    }
+    uint32_t len = (uint32_t)h[12] | (uint32_t)h[13] << 8 | (uint32_t)h[14] << 16 | (uint32_t)h[15] << 24;
+    char *text = malloc(len + 1);
+    bool ok = text && fread(text, 1, len, f) == len;
+    fclose(f);
+    cJSON *root = ok ? cJSON_ParseWithLength(text, len) : NULL, *expect = NULL;
+    free(text);
+    expect = cJSON_DetachItemFromObject(cJSON_GetObjectItem(cJSON_GetObjectItem(root, "asset"), "extras"), "expect");
+    cJSON_Delete(root);
+    return expect;
+}
+
+static bool near_values(const cJSON *arr, const float *got, int n, double tol) {
+    if (cJSON_GetArraySize(arr) != n) return false;
+    for (int i = 0; i < n; i++)
+        if (!(fabs(cJSON_GetArrayItem(arr, i)->valuedouble - got[i]) <= tol)) return false;
+    return true;
+}
+
+/* mesh 0's triangle corners: attribute `attr` (positions/normals/uvs) against the stated ones,
+ * each triangle at any starting corner (its winding kept) */
+static bool corners_match(const sl_mesh_data *m, const cJSON *expect, const char *key, int comps) {
+    const cJSON *want = cJSON_GetObjectItem(expect, key);
+    const float *attr = !strcmp(key, "corners") ? m->positions : !strcmp(key, "normals") ? m->normals : m->uvs;
+    if (cJSON_GetArraySize(want) != m->index_count * comps) return false;
+    for (int t = 0; t < m->index_count / 3; t++) {
+        bool any = false;
+        for (int r = 0; r < 3 && !any; r++) {
+            float got[9];
+            for (int k = 0; k < 3; k++) memcpy(got + comps * k, attr + comps * m->indices[3 * t + (k + r) % 3], sizeof(float) * (size_t)comps);
+            bool ok = true;
+            for (int i = 0; i < 3 * comps && ok; i++)
+                ok = fabs(cJSON_GetArrayItem(want, 3 * comps * t + i)->valuedouble - got[i]) <= 1e-6;
+            any = ok;
+        }
+        if (!any) return false;
+    }
+    return true;
+}
+
+static bool uv_map_matches(const sl_scene *s, const cJSON *want) {
+    const sl_material *m = &s->materials[s->meshes[0].material];
+    const char *input = cJSON_GetObjectItem(want, "input")->valuestring;
+    for (int i = 0; i < m->uv_map_count; i++) {
+        const sl_uv_mapping *u = &m->uv_maps[i];
+        if (strcmp(u->input, input)) continue;
+        return u->texcoord == cJSON_GetObjectItem(want, "texcoord")->valueint &&
+               near_values(cJSON_GetObjectItem(want, "offset"), u->offset, 2, 1e-7) &&
+               fabs(u->rotation - cJSON_GetObjectItem(want, "rotation")->valuedouble) < 1e-7 &&
+               near_values(cJSON_GetObjectItem(want, "scale"), u->scale, 2, 1e-7);
+    }
+    return false;
+}
+
+static bool camera_matches(const sl_scene *s, const cJSON *want) {
+    if (s->camera_count < 1) return false;
+    const sl_camera *c = &s->cameras[0];
+    const cJSON *v;
+    bool ok = cJSON_IsTrue(cJSON_GetObjectItem(want, "orthographic")) == c->orthographic &&
+              near_values(cJSON_GetObjectItem(want, "position"), c->position, 3, 1e-6) &&
+              near_values(cJSON_GetObjectItem(want, "target"), c->target, 3, 1e-6) &&
+              fabs(cJSON_GetObjectItem(want, "znear")->valuedouble - c->znear) < 1e-6 &&
+              fabs(cJSON_GetObjectItem(want, "zfar")->valuedouble - c->zfar) < 1e-5;
+    if ((v = cJSON_GetObjectItem(want, "fov_y_deg"))) ok = ok && fabs(v->valuedouble - c->fov_y_deg) < 1e-4;
+    if ((v = cJSON_GetObjectItem(want, "ymag"))) ok = ok && fabs(v->valuedouble - c->ymag) < 1e-6;
+    return ok;
+}
+
+static bool light_matches(const sl_scene *s, const cJSON *want) {
+    if (s->light_count < 1) return false;
+    const sl_light *l = &s->lights[0];
+    const sl_prop *cone = sl_prop_find(&l->props, "cone_angle"), *inner = sl_prop_find(&l->props, "inner_cone_angle");
+    return !strcmp(l->type, cJSON_GetObjectItem(want, "type")->valuestring) &&
+           fabs(l->intensity - cJSON_GetObjectItem(want, "intensity")->valuedouble) < 1e-5 &&
+           near_values(cJSON_GetObjectItem(want, "color"), l->color, 3, 1e-6) &&
+           near_values(cJSON_GetObjectItem(want, "position"), l->position, 3, 1e-6) &&
+           near_values(cJSON_GetObjectItem(want, "direction"), l->direction, 3, 1e-6) && cone && inner &&
+           fabs(cone->v[0] - cJSON_GetObjectItem(want, "cone_angle")->valuedouble) < 1e-4 &&
+           fabs(inner->v[0] - cJSON_GetObjectItem(want, "inner_cone_angle")->valuedouble) < 1e-4;
+}
+
+/* "\t" + the stated expectations met, comma-separated ("!" before one that is not) */
+static void check_expectation(const sl_scene *s, const char *file, char *out, size_t size) {
+    cJSON *expect = stated_expectation(file), *e;
+    size_t u = 0;
+    if (!expect) return;
+    cJSON_ArrayForEach(e, expect) {
+        const char *k = e->string;
+        bool ok = s->mesh_count > 0;
+        if (!strcmp(k, "corners") || !strcmp(k, "normals")) ok = ok && corners_match(&s->meshes[0].data, expect, k, 3);
+        else if (!strcmp(k, "uvs")) ok = ok && corners_match(&s->meshes[0].data, expect, k, 2);
+        else if (!strcmp(k, "uv_map")) ok = ok && uv_map_matches(s, e);
+        else if (!strcmp(k, "camera")) ok = camera_matches(s, e);
+        else if (!strcmp(k, "light")) ok = light_matches(s, e);
+        else ok = false;
+        u += (size_t)snprintf(out + u, u < size ? size - u : 0, "%s%s%s", u ? "," : "\t", ok ? "" : "!", k);
+    }
+    cJSON_Delete(expect);
+}
+
+/* "ok\tmeshes\ttextures\tcameras\tlights[\texpectations]" or "error\t<message without the path>" */
+static void outcome(const char *file, char *out, size_t size) {
+    char err[4096] = "";
     sl_scene s = {0};
     static char logbuf[1 << 16];
     sl_log_capture(logbuf, sizeof logbuf); /* warnings are the files' own business here */
-    bool ok = sl_scene_load_file(&s, path, NULL, err, sizeof err);
+    bool ok = sl_scene_load_file(&s, file, NULL, err, sizeof err);
     sl_log_capture(NULL, 0);
     if (!ok) {
-        const char *why = strstr(err, path) == err ? err + strlen(path) : err;
+        const char *why = strstr(err, file) == err ? err + strlen(file) : err;
         while (*why == ':' || *why == ' ') why++;
         char clean[300];
         snprintf(clean, sizeof clean, "%.*s", (int)strcspn(why, "\t\n"), why);
@@ -73,7 +454,8 @@ static void outcome(const char *rel, char *out, size_t size) {
             for (int t = 0; t < ntex && !seen; t++) seen = !strcmp(tex[t], p->str);
             if (!seen && ntex < 256) tex[ntex++] = p->str;
         }
-    snprintf(out, size, "ok\t%d\t%d\t%d\t%d", s.mesh_count, ntex, s.camera_count, s.light_count);
+    int n = snprintf(out, size, "ok\t%d\t%d\t%d\t%d", s.mesh_count, ntex, s.camera_count, s.light_count);
+    if (n > 0 && (size_t)n < size) check_expectation(&s, file, out + n, size - (size_t)n);
     sl_scene_free(&s);
 }
 
@@ -85,13 +467,21 @@ int main(int argc, char **argv) {
         return 1;
     }
     find(MODELS, 0);
-    qsort(paths, npaths, sizeof paths[0], cmp);
+    for (int i = 0; i < nkeys; i++) /* sorted by key, files alongside */
+        for (int j = i + 1; j < nkeys; j++)
+            if (strcmp(keys[j], keys[i]) < 0) {
+                char t[1200];
+                memcpy(t, keys[i], sizeof keys[i]), memcpy(keys[i], keys[j], sizeof keys[i]), memcpy(keys[j], t, sizeof keys[i]);
+                memcpy(t, files[i], sizeof files[i]), memcpy(files[i], files[j], sizeof files[i]), memcpy(files[j], t, sizeof files[i]);
+            }
+    write_features();
     if (print) {
-        printf("# model (under %s)\toutcome\tmeshes|cause\ttextures\tcameras\tlights\n", MODELS);
-        for (int i = 0; i < npaths; i++) {
+        printf("# model (under %s, or feature/NAME: written by the test)\toutcome\tmeshes|cause\ttextures\tcameras\tlights"
+               "\texpectations met\n", MODELS);
+        for (int i = 0; i < nkeys; i++) {
             char o[600];
-            outcome(paths[i], o, sizeof o);
-            printf("%s\t%s\n", paths[i], o);
+            outcome(files[i], o, sizeof o);
+            printf("%s\t%s\n", keys[i], o);
         }
         return 0;
     }
@@ -99,7 +489,7 @@ int main(int argc, char **argv) {
     CHECK_MSG(f, "cannot read %s", TABLE);
     if (!f) return check_result();
     char line[2048];
-    bool listed[256] = {false};
+    bool listed[320] = {false};
     int rows = 0;
     while (fgets(line, sizeof line, f)) {
         line[strcspn(line, "\n")] = 0;
@@ -107,23 +497,24 @@ int main(int argc, char **argv) {
         char *tab = strchr(line, '\t');
         if (!tab) continue;
         *tab = 0;
-        const char *rel = line, *want = tab + 1;
+        const char *key = line, *want = tab + 1;
         int i = 0;
-        while (i < npaths && strcmp(paths[i], rel)) i++;
-        CHECK_MSG(i < npaths, "%s: in the table but not installed", rel);
-        if (i == npaths) continue;
+        while (i < nkeys && strcmp(keys[i], key)) i++;
+        CHECK_MSG(i < nkeys, "%s: in the table but neither installed nor written by the test", key);
+        if (i == nkeys) continue;
         listed[i] = true;
         rows++;
         char got[600];
-        outcome(rel, got, sizeof got);
+        outcome(files[i], got, sizeof got);
         if (!strncmp(want, "error\t", 6)) /* the stated cause must be in the message */
             CHECK_MSG(!strncmp(got, "error\t", 6) && strstr(got, want + 6), "%s: expected an error containing \"%s\", got %s",
-                      rel, want + 6, got);
+                      key, want + 6, got);
         else
-            CHECK_MSG(!strcmp(got, want), "%s: expected %s, got %s", rel, want, got);
+            CHECK_MSG(!strcmp(got, want), "%s: expected %s, got %s", key, want, got);
+        CHECK_MSG(!strchr(want, '!'), "%s: the table records an expectation the file does not meet", key);
     }
     fclose(f);
-    for (int i = 0; i < npaths; i++) CHECK_MSG(listed[i], "%s: installed but not in %s", paths[i], TABLE);
-    printf("%d models checked against %s\n", rows, TABLE);
+    for (int i = 0; i < nkeys; i++) CHECK_MSG(listed[i], "%s: not in %s", keys[i], TABLE);
+    printf("%d models and feature files checked against %s\n", rows, TABLE);
     return check_result();
 }
