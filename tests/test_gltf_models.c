@@ -7,7 +7,7 @@
  * A feature file states its expectation in itself (asset.extras.expect, computed here from the
  * specification's formulas, not by the reader): the corners of mesh 0's triangles (positions,
  * normals, UVs; a triangle may start at any of its corners, its winding may not change), a
- * texture slot's UV mapping, the first camera, the first light. The table's last column names
+ * texture slot's UV mapping, each mesh's material values, the first camera, the first light. The table's last column names
  * the expectations the file met, so a change in what any one file does shows.
  *
  *   test_gltf_models                 check every row (a model missing from the table, or a row
@@ -284,6 +284,48 @@ static void f_light_spot(gw_doc *g) {
     gw_set(g, "/asset/extras/expect/light", s);
 }
 
+/* Three meshes, three materials all named "paint", each with its own KHR_materials_ior,
+ * emissive strength and texture offset, listed in the file in another order than the meshes use
+ * them: every mesh must get its own primitive's material (the file's index, whatever the name). */
+static void f_material_identity(gw_doc *g) {
+    static const unsigned char png[] = {0x89, 'P', 'N', 'G', 13, 10, 26, 10};
+    char s[600];
+    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, png, sizeof png), sizeof png, 0));
+    gw_set(g, "/images", s);
+    gw_set(g, "/textures", "[{\"source\": 0}]");
+    gw_set(g, "/extensionsUsed", "[\"KHR_texture_transform\", \"KHR_materials_ior\", \"KHR_materials_emissive_strength\"]");
+    const double ior[3] = {1.2, 1.9, 2.6}, strength[3] = {2, 5, 9}, offset[3] = {0.1, 0.4, 0.7};
+    for (int m = 0; m < 3; m++) {
+        snprintf(s, sizeof s, "{\"name\": \"paint\", \"emissiveFactor\": [1, 1, 1], \"pbrMetallicRoughness\": "
+                 "{\"baseColorTexture\": {\"index\": 0, \"extensions\": {\"KHR_texture_transform\": {\"offset\": [%g, 0]}}}}, "
+                 "\"extensions\": {\"KHR_materials_ior\": {\"ior\": %g}, \"KHR_materials_emissive_strength\": "
+                 "{\"emissiveStrength\": %g}}}", offset[m], ior[m], strength[m]);
+        char ptr[32];
+        snprintf(ptr, sizeof ptr, "/materials/%d", m);
+        gw_set(g, ptr, s);
+    }
+    /* meshes 0, 1, 2 use materials 2, 0, 1; nodes 0, 2, 3 show them side by side */
+    for (int k = 0; k < 3; k++) {
+        char ptr[32];
+        snprintf(s, sizeof s, "{\"name\": \"quad%d\", \"primitives\": [{\"attributes\": {\"POSITION\": 0, \"NORMAL\": 1, "
+                 "\"TEXCOORD_0\": 2}, \"indices\": 3, \"material\": %d}]}", k, (k + 2) % 3);
+        snprintf(ptr, sizeof ptr, "/meshes/%d", k);
+        gw_set(g, ptr, s);
+        snprintf(s, sizeof s, "{\"mesh\": %d, \"translation\": [%d, 0, 0]}", k, 3 * k);
+        snprintf(ptr, sizeof ptr, "/nodes/%d", k == 0 ? 0 : k + 1);
+        gw_set(g, ptr, s);
+    }
+    gw_set(g, "/scenes/0/nodes", "[0, 1, 2, 3]");
+    size_t u = (size_t)snprintf(s, sizeof s, "[");
+    for (int k = 0; k < 3; k++) {
+        int m = (k + 2) % 3;
+        u += (size_t)snprintf(s + u, sizeof s - u, "%s{\"ior\": %g, \"emissive_strength\": %g, \"offset\": %g}", k ? ", " : "",
+                              ior[m], strength[m], offset[m]);
+    }
+    snprintf(s + u, sizeof s - u, "]");
+    gw_set(g, "/asset/extras/expect/materials", s);
+}
+
 static const struct { const char *name; void (*build)(gw_doc *g); } features[] = {
     {"baseline", f_baseline},
     {"indices_u8", f_indices_u8},
@@ -304,6 +346,7 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"camera_perspective", f_camera_perspective},
     {"camera_orthographic", f_camera_orthographic},
     {"light_spot", f_light_spot},
+    {"material_identity", f_material_identity},
 };
 
 static void write_features(void) {
@@ -382,6 +425,21 @@ static bool uv_map_matches(const sl_scene *s, const cJSON *want) {
     return false;
 }
 
+/* Mesh k's material has the stated ior, emissive strength and base colour texture offset. */
+static bool materials_match(const sl_scene *s, const cJSON *want) {
+    if (s->mesh_count != cJSON_GetArraySize(want)) return false;
+    for (int k = 0; k < s->mesh_count; k++) {
+        const cJSON *w = cJSON_GetArrayItem(want, k);
+        const sl_material *m = &s->materials[s->meshes[k].material];
+        const sl_prop *ior = sl_prop_find(&m->inputs, "ior"), *es = sl_prop_find(&m->inputs, "emissive_strength");
+        if (!ior || !es || m->uv_map_count != 1 || fabs(ior->v[0] - cJSON_GetObjectItem(w, "ior")->valuedouble) > 1e-6 ||
+            fabs(es->v[0] - cJSON_GetObjectItem(w, "emissive_strength")->valuedouble) > 1e-6 ||
+            fabs(m->uv_maps[0].offset[0] - cJSON_GetObjectItem(w, "offset")->valuedouble) > 1e-6)
+            return false;
+    }
+    return true;
+}
+
 static bool camera_matches(const sl_scene *s, const cJSON *want) {
     if (s->camera_count < 1) return false;
     const sl_camera *c = &s->cameras[0];
@@ -422,6 +480,7 @@ static void check_expectation(const sl_scene *s, const char *file, char *out, si
         else if (!strcmp(k, "uv_map")) ok = ok && uv_map_matches(s, e);
         else if (!strcmp(k, "camera")) ok = camera_matches(s, e);
         else if (!strcmp(k, "light")) ok = light_matches(s, e);
+        else if (!strcmp(k, "materials")) ok = materials_match(s, e);
         else ok = false;
         u += (size_t)snprintf(out + u, u < size ? size - u : 0, "%s%s%s", u ? "," : "\t", ok ? "" : "!", k);
     }
