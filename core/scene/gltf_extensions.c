@@ -33,7 +33,7 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_draco_mesh_compression", SL_GLTF_IGNORED, "refused when required; the uncompressed fallback otherwise"},
     {"EXT_meshopt_compression", SL_GLTF_IGNORED, "refused when required; the uncompressed fallback otherwise"},
     {"KHR_texture_basisu", SL_GLTF_IGNORED, "refused when required; the fallback image otherwise"},
-    {"EXT_texture_webp", SL_GLTF_IGNORED, "refused when required; the fallback image otherwise"},
+    {"EXT_texture_webp", SL_GLTF_RENDERED, "WebP images (decoded by OpenImageIO), in place of the fallback"},
     {"EXT_mesh_gpu_instancing", SL_GLTF_IGNORED, "one instance, at the node"},
     {"KHR_xmp_json_ld", SL_GLTF_IGNORED, "metadata, nothing to render"},
 };

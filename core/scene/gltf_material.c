@@ -120,7 +120,8 @@ static bool record_sampler(gltf_import *im, int sampler, const char *value) {
     return true;
 }
 
-/* Texture `t` (§3.8.4) as a texture value; *usable false (noted) when it has no image read. */
+/* Texture `t` (§3.8.4) as a texture value; *usable false (noted) when it has no image read.
+ * EXT_texture_webp's source wins over the fallback `source` (OpenImageIO decodes WebP). */
 static bool texture_value(gltf_import *im, int t, char *out, size_t size, bool *usable) {
     gltf_doc *d = &im->doc;
     char at[48];
@@ -129,8 +130,14 @@ static bool texture_value(gltf_import *im, int t, char *out, size_t size, bool *
     int source = -1, sampler = -1;
     *usable = false;
     if (!cJSON_IsObject(tex)) return gltf_fail(d, at, "must be an object");
+    const cJSON *ext, *webp = NULL;
+    char ep[80], wp[120];
+    snprintf(ep, sizeof ep, "%s/extensions", at);
+    snprintf(wp, sizeof wp, "%s/EXT_texture_webp", ep);
     if (!gltf_get_index(d, tex, at, "source", "images", false, &source) ||
-        !gltf_get_index(d, tex, at, "sampler", "samplers", false, &sampler))
+        !gltf_get_index(d, tex, at, "sampler", "samplers", false, &sampler) || !gltf_get_object(d, tex, at, "extensions", &ext) ||
+        (ext && !gltf_get_object(d, ext, ep, "EXT_texture_webp", &webp)) ||
+        (webp && !gltf_get_index(d, webp, wp, "source", "images", true, &source)))
         return false;
     if (source < 0) {
         gltf_note(d, at, "no image shadelab reads (an extension's source only): not used");
