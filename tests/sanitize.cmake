@@ -1,20 +1,27 @@
-# ASan + UBSan run of the test suite (issue 3, hardening).
+# ASan + UBSan runs of the test suite (issue 3, hardening; issue 43: the subset).
 #
-# Included by tests/CMakeLists.txt it registers the test `sanitize`; run with `cmake -P` (what
-# the test does) it configures a second build tree with -DSL_SANITIZE=ON (AddressSanitizer +
-# UndefinedBehaviorSanitizer, -fno-sanitize-recover), builds it and runs the core's tests there
-# (SL_SANITIZE_CORE_TESTS below). With -DSL_SANITIZE_ALL_TESTS=ON it runs every test instead
-# (the bundled plugins' too), minus those that cannot or need not run instrumented: sdk_install
-# and extras load the instrumented harness into uninstrumented executables (the extras are built
-# out of tree against the installed SDK; "ASan runtime does not come first"), gui_smoke runs under Xvfb
-# (covered uninstrumented; the GLX driver's leaks come from unloaded modules LSan cannot
-# attribute), fuzz_scene is instrumented already. Leaks inside the GL drivers are suppressed
-# (tests/sanitizers/lsan.supp, with one of OpenImageIO's); leaks in shadelab are failures.
-# Cost on 2 idle cores: about 2 minutes to build the tree, about 1 minute for the core tests
-# (every test: about 7 more); later runs are incremental.
-# By hand:  ctest --test-dir build -R '^sanitize$' --output-on-failure
-#     or:   cmake -B build-asan -DSL_SANITIZE=ON && cmake --build build-asan -j2 && \
-#           ctest --test-dir build-asan -E '^(gui_smoke|sdk_install|extras|fuzz_scene)$'   # everything
+# Included by tests/CMakeLists.txt it registers two tests; run with `cmake -P` (what they do) it
+# configures a second build tree with -DSL_SANITIZE=ON (AddressSanitizer +
+# UndefinedBehaviorSanitizer, -fno-sanitize-recover), builds what the selected tests need and runs
+# them there, one at a time:
+#   sanitize      (label hardening)       a representative subset, SL_SANITIZE_TESTS below: the
+#                                         core's library, plugin loader, scene and image readers,
+#                                         parser regressions, the CLI's plugin lifecycle, the
+#                                         viewer's keys and hot reload. Builds only their targets.
+#   sanitize_all  (labels hardening;long) every test, minus those that cannot or need not run
+#                                         instrumented: sdk_install (and the extras, not built
+#                                         there) load the instrumented harness into
+#                                         uninstrumented executables ("ASan runtime does not
+#                                         come first"), gui_smoke runs
+#                                         under Xvfb (covered uninstrumented; the GLX driver's
+#                                         leaks come from unloaded modules LSan cannot attribute),
+#                                         fuzz_scene is instrumented already.
+# Both use one tree (build/sanitize; RESOURCE_LOCK keeps them apart), incremental between runs.
+# Leaks inside the GL drivers are suppressed (tests/sanitizers/lsan.supp, with one of
+# OpenImageIO's); leaks in shadelab are failures.
+# By hand:  ctest --test-dir build -R '^sanitize$' --output-on-failure     (ctest -L long: all)
+#     or:   cmake -B build-asan -DSL_SANITIZE=ON -DSL_BUILD_EXTRAS=OFF && cmake --build build-asan -j2 && \
+#           ctest --test-dir build-asan -E '^(gui_smoke|sdk_install|fuzz_scene)$'
 if(CMAKE_SCRIPT_MODE_FILE)
   foreach(v SRC BIN)
     if(NOT DEFINED ${v})
@@ -27,22 +34,28 @@ if(CMAKE_SCRIPT_MODE_FILE)
   # configure and build quietly (their output, thousands of lines, would bury a failing test's
   # in a log that readers see only the ends of): shown only when they fail
   message(STATUS "sanitize: configuring and building ${BIN} (ASan + UBSan)")
-  execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SRC}" -B "${BIN}" -DSL_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SRC}" -B "${BIN}" -DSL_SANITIZE=ON -DSL_BUILD_EXTRAS=OFF
+                          -DCMAKE_BUILD_TYPE=RelWithDebInfo
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(rc)
     message("${out}")
     message(FATAL_ERROR "sanitize: configure failed (${rc})")
   endif()
-  execute_process(COMMAND "${CMAKE_COMMAND}" --build "${BIN}" -j2 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  # TARGETS: what the selected tests need (empty: everything)
+  set(targets "")
+  if(TARGETS)
+    set(targets --target ${TARGETS})
+  endif()
+  execute_process(COMMAND "${CMAKE_COMMAND}" --build "${BIN}" -j2 ${targets} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(rc)
     message("${out}")
     message(FATAL_ERROR "sanitize: build failed (${rc})")
   endif()
   message(STATUS "sanitize: built; running the tests")
-  if(ALL)
-    set(select -E "^(gui_smoke|sdk_install|extras|fuzz_scene)$")
+  if(SELECT)
+    set(select -R "${SELECT}")
   else()
-    set(select -R "${CORE_TESTS}")
+    set(select -E "^(gui_smoke|sdk_install|extras|fuzz_scene)$")
   endif()
   # One test at a time, so that each failure's output is its own. The sanitizers' options are the
   # tests' environment in that tree (tests/CMakeLists.txt, SL_SANITIZE).
@@ -74,15 +87,25 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-option(SL_SANITIZE_TEST "Register the ASan+UBSan test (builds a second tree)" ON)
-option(SL_SANITIZE_ALL_TESTS "The ASan+UBSan test runs every test, plugins' too (slower)" OFF)
-# The core's tests: the core library, scenes, images, the CLI (with lazy programs: a plugin
-# disabled by a failing compile is still destroyed), the viewer's keys and hot reload, the
-# scene-parser regression inputs.
-set(SL_SANITIZE_CORE_TESTS "^(core_.*|cli_scenes|cli_lazy_programs|image|scene.*|stability_core|gui_keys|gui_hot_reload|fuzz_regress|gltf_hostile|gltf_models)$")
+option(SL_SANITIZE_TEST "Register the ASan+UBSan tests (they build a second tree)" ON)
+# The representative subset (test names); each C test's target is built, and the viewer with the
+# bundled plugins for the command-line ones. cli_scenes (every bundled scene, 3-4 min under ASan
+# on 2 cores) and the plugins' own tests run in sanitize_all.
+set(SL_SANITIZE_TESTS core_render core_glsl core_bad_input core_plugins core_zero_cost cli_lazy_programs
+    image scene scene_geometry scene_import stability_core gui_keys gui_hot_reload fuzz_regress gltf_hostile
+    gltf_models)
 if(SL_SANITIZE_TEST AND NOT SL_SANITIZE)
-  add_test(NAME sanitize COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DBIN=${PROJECT_BINARY_DIR}/sanitize
-                                 -DCMAKE_CTEST_COMMAND=${CMAKE_CTEST_COMMAND} -DALL=${SL_SANITIZE_ALL_TESTS}
-                                 "-DCORE_TESTS=${SL_SANITIZE_CORE_TESTS}" -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(sanitize PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 1500 LABELS hardening)
+  list(JOIN SL_SANITIZE_TESTS "|" sl_select)
+  set(sl_targets shadelab bundled_plugins)
+  foreach(t ${SL_SANITIZE_TESTS})
+    list(APPEND sl_targets "$<TARGET_NAME_IF_EXISTS:test_${t}>")
+  endforeach()
+  set(sl_sanitize_command ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DBIN=${PROJECT_BINARY_DIR}/sanitize
+      -DCMAKE_CTEST_COMMAND=${CMAKE_CTEST_COMMAND})
+  add_test(NAME sanitize COMMAND ${sl_sanitize_command} "-DSELECT=^(${sl_select})$" "-DTARGETS=${sl_targets}"
+           -P ${CMAKE_CURRENT_LIST_FILE})
+  sl_add_long_test(sanitize_all COMMAND ${sl_sanitize_command} -P ${CMAKE_CURRENT_LIST_FILE}
+                   LABELS hardening TIMEOUT 5400 RESOURCE_LOCK sanitize_tree)
+  set_tests_properties(sanitize PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 1800 LABELS hardening
+                       RESOURCE_LOCK sanitize_tree)
 endif()

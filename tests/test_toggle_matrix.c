@@ -1,22 +1,32 @@
-/* The toggle matrix (issue 13): every feature toggles live, alone and in pairs, and a live change
- * gives the frame a fresh start with the same setting gives.
+/* The toggle matrix (issue 13, issue 43): every feature toggles live, and a live change gives the
+ * frame a fresh start with the same setting gives.
  *
- * For every bundled scene (scenes/NAME.json; those that need ../shared/assets only when it is there)
- * and every plugin the scene loads:
+ *   usage: test_toggle_matrix [--exhaustive] [--scene NAME] SCENE_DIR...
+ *
+ * For every scene (SCENE_DIR/NAME.json, named NAME.json for the first directory and
+ * MODULE/NAME.json for a MODULE/scenes after it; those that need ../shared/assets only when it is
+ * there)
+ * and the plugins it loads:
  *   1. render (frame 0);
- *   2. switch the plugin off live (sl_harness_set, the path the GUI, keys and script take), render
- *      frame 0 again, and compare with a fresh harness created with the plugin off (the setting
+ *   2. switch a set of plugins off live (sl_harness_set, the path the GUI, keys and script take),
+ *      render frame 0 again, and compare with a fresh harness created with them off (the setting
  *      given at creation): the same passes, draw calls and program hashes, and display pixels
  *      within 1/255;
- *   3. switch it back on live and compare with the first render.
- * Scenes that load three or more plugins also switch every pair off together. Then every plugin's
- * key bindings and debug views must change the image on at least one scene and give finite pixels
- * on every scene that loads the plugin; every other global parameter is switched too, and each
- * change must give finite pixels (parameters that change nothing on any bundled scene are listed)
- * and, on the first scene that loads its plugin, the same frame as a fresh start given it.
+ *   3. switch them back on live and compare with the first render.
+ * Which sets (the cells): by default a pairwise design over the scene's plugins, each an on/off
+ * factor: for every two plugins A and B some cell has A off with B on, one B off with A on, and
+ * one both off (pairwise_cells; 3 cells for 2 or 3 plugins, 4 for 4, 5 for up to 10). With
+ * --exhaustive (ctest -L long): every plugin off alone and every two off together.
+ * Then every plugin's key bindings and debug views must change the image on at least one scene
+ * and give finite pixels; every other global parameter is switched too, and each change must give
+ * finite pixels (parameters that change nothing on any scene are listed) and, on the first scene
+ * that loads its plugin, the same frame as a fresh start given it. Scenes run smallest first
+ * (fewest plugins, then fewest draw calls), so that first scene is the smallest one. By default a
+ * plugin's features run on the scenes that load it until each has run and each key and view has
+ * changed the image; with --exhaustive on every scene that loads it.
  *
  * A failing cell names the scene, the plugin(s) and what differs (the pass list, the program of a
- * material, or the pixels). Small images keep the whole matrix inside the CI budget. */
+ * material, or the pixels). Small images keep it quick. */
 #include "check.h"
 #include <shadelab/harness.h>
 #include <dirent.h>
@@ -24,6 +34,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define W 48
 #define H 32
@@ -39,8 +50,7 @@ typedef struct frame {
     bool ok;
 } frame;
 
-static const char *scenes_dir = SL_SCENES_DIR;
-static bool have_data;
+static bool have_data, exhaustive;
 
 /* Settings every harness of the matrix starts with: small texture-space work for sss, and sss's
  * disk cache off: a fresh start that loads the diffusion's result draws fewer calls than a live
@@ -198,17 +208,32 @@ static int pending_count;
 
 static int cells, failed_cells, params_checked;
 
-static void toggle_cell(const char *scene, const char *path, const char **ids, int nids, const char *off_a,
-                        const char *off_b, sl_harness **live, const frame *first) {
-    char why[512], err[2048], set_a[128], set_b[128] = "";
-    const char *settings[8];
-    int k = base_settings(ids, nids, settings);
-    snprintf(set_a, sizeof set_a, "%s.enabled=false", off_a);
-    settings[k++] = set_a;
-    if (off_b) snprintf(set_b, sizeof set_b, "%s.enabled=false", off_b), settings[k++] = set_b;
+/* Switches the plugins of `off` (a bit per index into ids) to `value` live; false and `err` on failure. */
+static bool set_enabled(sl_harness *h, const char **ids, int nids, unsigned off, bool value, char *err, size_t n) {
+    for (int i = 0; i < nids; i++) {
+        char set[128];
+        snprintf(set, sizeof set, "%s.enabled=%s", ids[i], value ? "true" : "false");
+        if ((off >> i & 1) && !sl_harness_set(h, set, err, n)) return false;
+    }
+    return true;
+}
+
+/* One cell: the plugins of `off` switched off live against a fresh start with them off, then back
+ * on against the first render. */
+static void toggle_cell(const char *scene, const char *path, const char **ids, int nids, unsigned off,
+                        sl_harness **live, const frame *first) {
+    char why[512], err[2048], sets[MAX_PLUGINS][128], cell[1024];
+    const char *settings[8 + MAX_PLUGINS];
+    int k = base_settings(ids, nids, settings), base = k;
+    int w = snprintf(cell, sizeof cell, "%s:", scene);
+    for (int i = 0; i < nids; i++)
+        if (off >> i & 1) {
+            snprintf(sets[i], sizeof sets[i], "%s.enabled=false", ids[i]);
+            settings[k++] = sets[i];
+            w += snprintf(cell + w, sizeof cell - (size_t)w, " %s", ids[i]);
+        }
+    snprintf(cell + w, sizeof cell - (size_t)w, " off");
     settings[k] = NULL;
-    char cell[256];
-    snprintf(cell, sizeof cell, "%s: %s%s%s off", scene, off_a, off_b ? " + " : "", off_b ? off_b : "");
     cells++;
 
     /* the fresh start with the plugin(s) off; one harness at a time, so the live one closes */
@@ -227,7 +252,7 @@ static void toggle_cell(const char *scene, const char *path, const char **ids, i
     CHECK_MSG(nonfinite(fresh) == 0, "%s: finite pixels", cell);
 
     /* the live path: on → off → compare → on → compare with the first render */
-    settings[k - 1 - (off_b ? 1 : 0)] = NULL;
+    settings[base] = NULL;
     *live = open_scene(path, settings, err, sizeof err);
     if (!*live) {
         printf("FAIL %s: reopening the scene: %s\n", cell, err);
@@ -235,15 +260,14 @@ static void toggle_cell(const char *scene, const char *path, const char **ids, i
         goto done;
     }
     capture(*live, now); /* a frame with everything on, so the toggle happens on a warm renderer */
-    bool ok = sl_harness_set(*live, set_a, err, sizeof err) && (!off_b || sl_harness_set(*live, set_b, err, sizeof err));
+    bool ok = set_enabled(*live, ids, nids, off, false, err, sizeof err);
     CHECK_MSG(ok, "%s: live set: %s", cell, ok ? "" : err);
     capture(*live, now);
     bool same_off = same_frame(now, fresh, why, sizeof why);
     if (!same_off) printf("FAIL %s: live differs from a fresh start: %s\n", cell, why);
     CHECK_MSG(same_off, "%s: live == fresh", cell);
-    snprintf(set_a, sizeof set_a, "%s.enabled=true", off_a);
-    if (off_b) snprintf(set_b, sizeof set_b, "%s.enabled=true", off_b);
-    ok = sl_harness_set(*live, set_a, err, sizeof err) && (!off_b || sl_harness_set(*live, set_b, err, sizeof err));
+    ok = set_enabled(*live, ids, nids, off, true, err, sizeof err);
+    CHECK_MSG(ok, "%s: live set back on: %s", cell, ok ? "" : err);
     capture(*live, now);
     bool same_on = same_frame(now, first, why, sizeof why);
     if (!same_on) printf("FAIL %s, switched back on: differs from the first render: %s\n", cell, why);
@@ -252,6 +276,48 @@ static void toggle_cell(const char *scene, const char *path, const char **ids, i
 done:
     free(fresh);
     free(now);
+}
+
+/* The cells of a pairwise (strength-2) design over n on/off factors, the first render being the
+ * all-on case: each plugin gets a distinct set ("code") of the cells it is off in, all of one
+ * size above half the cell count. Two such codes share a cell (both off: together they would
+ * need more cells than there are) and neither contains the other (same size), so each has a cell
+ * without the other (one off, the other on). The fewest cells R with C(R, R/2+1) >= n codes.
+ * Writes the cells as bit sets of plugins off; returns how many. */
+static int pairwise_cells(int n, unsigned cells_off[8]) {
+    if (n <= 0) return 0;
+    int R = 1;
+    for (;; R++) {
+        int weight = R / 2 + 1, codes = 0;
+        for (unsigned m = 0; m < 1u << R; m++) codes += __builtin_popcount(m) == weight;
+        if (codes >= n || R == 8) break;
+    }
+    for (int r = 0; r < R; r++) cells_off[r] = 0;
+    int plugin = 0;
+    for (unsigned m = 0; m < 1u << R && plugin < n; m++)
+        if (__builtin_popcount(m) == R / 2 + 1) {
+            for (int r = 0; r < R; r++)
+                if (m >> r & 1) cells_off[r] |= 1u << plugin;
+            plugin++;
+        }
+    int count = 0; /* drop a cell that switches nothing off */
+    for (int r = 0; r < R; r++)
+        if (cells_off[r]) cells_off[count++] = cells_off[r];
+    return count;
+}
+
+/* Whether the cells cover every pair of n plugins in the three off/on cases. */
+static bool covers_pairs(int n, const unsigned *cells_off, int count) {
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++) {
+            int seen = 0; /* bit 0: both off; 1: a off, b on; 2: b off, a on */
+            for (int c = 0; c < count; c++) {
+                bool oa = cells_off[c] >> a & 1, ob = cells_off[c] >> b & 1;
+                seen |= (oa && ob) << 0 | (oa && !ob) << 1 | (ob && !oa) << 2;
+            }
+            if (seen != 7) return false;
+        }
+    return true;
 }
 
 /* Keys, debug views and parameters of one plugin on one scene (live, on a warm harness). */
@@ -308,109 +374,211 @@ static void cover_plugin(const char *scene, sl_harness *h, const char *plugin, c
     free(f);
 }
 
-static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-
-int main(int argc, char **argv) {
-    const char *only = argc > 1 ? argv[1] : NULL; /* run one scene: test_toggle_matrix NAME.json */
-    have_data = getenv("SHADELAB_DATA") && *getenv("SHADELAB_DATA");
-    DIR *d = opendir(scenes_dir);
-    CHECK_MSG(d != NULL, "open %s", scenes_dir);
-    if (!d) return check_result();
-    char *names[256];
-    int count = 0;
-    for (struct dirent *e; (e = readdir(d)) && count < 256;) {
+/* The scene files of `dir` (NAME.json), sorted, appended to paths[*count] with their names:
+ * NAME.json for the first directory, MODULE/NAME.json for MODULE/scenes after it (extras). The
+ * caller frees both. */
+static void list_scenes(const char *dir, bool first_dir, char **paths, char **names, int *count, int max) {
+    DIR *d = opendir(dir);
+    CHECK_MSG(d != NULL, "open %s", dir);
+    if (!d) return;
+    char module[256] = "";
+    if (!first_dir) {
+        char copy[1024];
+        snprintf(copy, sizeof copy, "%s", dir);
+        char *slash = strrchr(copy, '/');
+        if (slash && slash != copy) *slash = 0;
+        slash = strrchr(copy, '/');
+        snprintf(module, sizeof module, "%s/", slash ? slash + 1 : copy);
+    }
+    int start = *count;
+    for (struct dirent *e; (e = readdir(d)) && *count < max;) {
         size_t len = strlen(e->d_name);
-        if (len > 5 && !strcmp(e->d_name + len - 5, ".json")) names[count++] = strdup(e->d_name);
+        if (len > 5 && !strcmp(e->d_name + len - 5, ".json")) {
+            char path[2048], name[512];
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+            snprintf(name, sizeof name, "%s%s", module, e->d_name);
+            paths[*count] = strdup(path);
+            names[(*count)++] = strdup(name);
+        }
     }
     closedir(d);
-    qsort(names, count, sizeof *names, cmp_str);
-
-    for (int s = 0; s < count; s++) {
-        if (only && strcmp(only, names[s])) continue;
-        char path[1024], err[2048];
-        snprintf(path, sizeof path, "%s/%s", scenes_dir, names[s]);
-        /* which plugins the scene loads, and the settings that keep it small */
-        sl_harness *h = open_scene(path, NULL, err, sizeof err);
-        if (!h) {
-            bool needs_data = strstr(err, "not found") || strstr(err, "No such file") || strstr(err, "cannot open");
-            if (!have_data && needs_data) {
-                printf("skip %s: needs the data directory (../shared/assets): %s\n", names[s], err);
-                continue;
-            }
-            CHECK_MSG(0, "%s: opens: %s", names[s], err);
-            continue;
+    /* sorted by name (paths and names together) */
+    for (int i = start + 1; i < *count; i++)
+        for (int j = i; j > start && strcmp(names[j - 1], names[j]) > 0; j--) {
+            char *t = names[j]; names[j] = names[j - 1]; names[j - 1] = t;
+            t = paths[j]; paths[j] = paths[j - 1]; paths[j - 1] = t;
         }
-        const char *ids[MAX_PLUGINS];
-        char idbuf[MAX_PLUGINS][64];
-        int nids = sl_harness_plugins(h, ids, MAX_PLUGINS);
-        if (nids > MAX_PLUGINS) nids = MAX_PLUGINS;
-        for (int i = 0; i < nids; i++) snprintf(idbuf[i], sizeof idbuf[i], "%s", ids[i]), ids[i] = idbuf[i];
-        sl_harness_destroy(h);
-        /* aa is loaded for every scene by default (antialiasing on, plugins/aa/README.md): it stays
-         * on while the scene's own plugins toggle; its own cells run on the scenes that name it
-         * (aa_edges.json), which keeps the matrix inside its time budget */
-        if (!names_plugin(path, "aa"))
-            for (int i = 0; i < nids; i++)
-                if (!strcmp(ids[i], "aa")) {
-                    for (int j = i; j + 1 < nids; j++) snprintf(idbuf[j], sizeof idbuf[j], "%s", idbuf[j + 1]);
-                    nids--;
-                    break;
-                }
-        const char *settings[8];
-        settings[base_settings(ids, nids, settings)] = NULL;
-        h = open_scene(path, settings, err, sizeof err);
-        CHECK_MSG(h != NULL, "%s: opens small: %s", names[s], err);
-        if (!h) continue;
-        frame *first = calloc(1, sizeof *first);
-        capture(h, first);
-        CHECK_MSG(first->ok && nonfinite(first) == 0, "%s: first render, finite pixels", names[s]);
-        printf("%s: %d plugin(s):", names[s], nids);
-        for (int i = 0; i < nids; i++) printf(" %s", ids[i]);
-        printf("\n");
-        fflush(stdout);
+}
 
-        for (int i = 0; i < nids; i++) toggle_cell(names[s], path, ids, nids, ids[i], NULL, &h, first);
-        if (nids >= 3)
-            for (int i = 0; i < nids; i++)
-                for (int j = i + 1; j < nids; j++) toggle_cell(names[s], path, ids, nids, ids[i], ids[j], &h, first);
-        if (!h) h = open_scene(path, settings, err, sizeof err);
-        for (int i = 0; h && i < nids; i++) cover_plugin(names[s], h, ids[i], first);
-        sl_harness_destroy(h);
-        /* each parameter changed live (on the first scene that loads its plugin) equals a fresh
-         * start given the same setting */
-        for (int i = 0; i < pending_count; i++) {
-            pending *p = &pendings[i];
-            const char *with[10];
-            int k = base_settings(ids, nids, with);
-            with[k++] = p->set;
-            with[k] = NULL;
-            frame *f = calloc(1, sizeof *f);
-            char why[512];
-            h = open_scene(path, with, err, sizeof err);
-            CHECK_MSG(h != NULL, "%s: a fresh start with %s opens: %s", names[s], p->set, err);
-            if (h) {
-                capture(h, f);
-                sl_harness_destroy(h);
-                bool same = same_frame(p->live, f, why, sizeof why);
-                if (!same) printf("FAIL %s: %s live differs from a fresh start: %s\n", names[s], p->set, why);
-                CHECK_MSG(same, "%s: %s live == fresh", names[s], p->set);
-                params_checked++;
-            }
-            free(f);
-            free(p->live);
+/* Whether this run covers the plugin's keys, views and parameters on another scene: always with
+ * --exhaustive; else until they have run once and every key and view has changed the image. */
+static bool wants_cover(const char *plugin) {
+    if (exhaustive) return true;
+    bool seen = false;
+    for (int i = 0; i < feature_count; i++)
+        if (!strcmp(features[i].plugin, plugin)) {
+            seen = true;
+            if (features[i].must_change && !features[i].changed) return true;
         }
-        pending_count = 0;
-        free(first);
+    return !seen;
+}
+
+/* Each parameter changed live (on the first scene that loads its plugin) equals a fresh start
+ * given the same setting. */
+static void check_pending(const char *name, const char *path, const char **ids, int nids) {
+    char err[2048], why[512];
+    for (int i = 0; i < pending_count; i++) {
+        pending *p = &pendings[i];
+        const char *with[10];
+        int k = base_settings(ids, nids, with);
+        with[k++] = p->set;
+        with[k] = NULL;
+        frame *f = calloc(1, sizeof *f);
+        sl_harness *h = open_scene(path, with, err, sizeof err);
+        CHECK_MSG(h != NULL, "%s: a fresh start with %s opens: %s", name, p->set, err);
+        if (h) {
+            capture(h, f);
+            sl_harness_destroy(h);
+            bool same = same_frame(p->live, f, why, sizeof why);
+            if (!same) printf("FAIL %s: %s live differs from a fresh start: %s\n", name, p->set, why);
+            CHECK_MSG(same, "%s: %s live == fresh", name, p->set);
+            params_checked++;
+        }
+        free(f);
+        free(p->live);
     }
+    pending_count = 0;
+}
 
-    printf("\n%d toggle cells, %d failed; %d parameters set live compared with a fresh start\n", cells, failed_cells,
-           params_checked);
+/* A scene of the run, the plugins it loads (aa only where the scene names it: aa is loaded for
+ * every scene by default, antialiasing on, plugins/aa/README.md; it stays on while the scene's
+ * own plugins toggle, and its own cells run on the scenes that name it, aa_edges.json) and its
+ * first render with everything on. */
+typedef struct matrix_scene {
+    const char *path, *name;
+    int nids;
+    char ids[MAX_PLUGINS][64];
+    frame *first;
+} matrix_scene;
+
+static int scene_settings(const matrix_scene *sc, const char **ids, const char **settings) {
+    for (int i = 0; i < sc->nids; i++) ids[i] = sc->ids[i];
+    int k = base_settings(ids, sc->nids, settings);
+    settings[k] = NULL;
+    return k;
+}
+
+/* Opens the scene for its plugins, then with the matrix's settings for its first render; false
+ * when it cannot open (skipped or failed). */
+static bool open_first(matrix_scene *sc) {
+    char err[2048];
+    sl_harness *h = open_scene(sc->path, NULL, err, sizeof err);
+    if (!h) {
+        bool needs_data = strstr(err, "not found") || strstr(err, "No such file") || strstr(err, "cannot open");
+        if (!have_data && needs_data) printf("skip %s: needs the data directory (../shared/assets): %s\n", sc->name, err);
+        else CHECK_MSG(0, "%s: opens: %s", sc->name, err);
+        return false;
+    }
+    const char *ids[MAX_PLUGINS], *settings[8];
+    int n = sl_harness_plugins(h, ids, MAX_PLUGINS);
+    if (n > MAX_PLUGINS) n = MAX_PLUGINS;
+    sc->nids = 0;
+    for (int i = 0; i < n; i++)
+        if (strcmp(ids[i], "aa") || names_plugin(sc->path, "aa")) snprintf(sc->ids[sc->nids++], 64, "%s", ids[i]);
+    sl_harness_destroy(h);
+    scene_settings(sc, ids, settings);
+    h = open_scene(sc->path, settings, err, sizeof err);
+    CHECK_MSG(h != NULL, "%s: opens small: %s", sc->name, err);
+    if (!h) return false;
+    sc->first = calloc(1, sizeof *sc->first);
+    capture(h, sc->first);
+    sl_harness_destroy(h);
+    CHECK_MSG(sc->first->ok && nonfinite(sc->first) == 0, "%s: first render, finite pixels", sc->name);
+    return true;
+}
+
+/* Smaller scenes first: fewer plugins, then fewer draw calls (then by name), so that a plugin's
+ * features are covered, and its parameters compared with fresh starts, on the smallest scene
+ * that loads it. */
+static int cmp_scene(const void *a, const void *b) {
+    const matrix_scene *x = a, *y = b;
+    if (x->nids != y->nids) return x->nids - y->nids;
+    if (x->first->draw_calls != y->first->draw_calls) return x->first->draw_calls - y->first->draw_calls;
+    return strcmp(x->name, y->name);
+}
+
+static double now_s(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+static void run_scene(const matrix_scene *sc) {
+    double t0 = now_s();
+    const char *path = sc->path, *name = sc->name, *ids[MAX_PLUGINS], *settings[8];
+    int nids = sc->nids;
+    char err[2048];
+    scene_settings(sc, ids, settings);
+    printf("%s: %d plugin(s):", name, nids);
+    for (int i = 0; i < nids; i++) printf(" %s", ids[i]);
+    printf("\n");
+    fflush(stdout);
+
+    unsigned off[MAX_PLUGINS * MAX_PLUGINS];
+    int count = 0;
+    if (exhaustive) {
+        for (int i = 0; i < nids; i++) off[count++] = 1u << i;
+        for (int i = 0; i < nids; i++)
+            for (int j = i + 1; j < nids; j++) off[count++] = 1u << i | 1u << j;
+    } else {
+        count = pairwise_cells(nids, off);
+    }
+    CHECK_MSG(covers_pairs(nids, off, count), "%s: the %d cells cover every pair of its %d plugins", name, count, nids);
+    sl_harness *h = NULL;
+    for (int c = 0; c < count; c++) toggle_cell(name, path, ids, nids, off[c], &h, sc->first);
+    bool cover = false;
+    for (int i = 0; i < nids; i++) cover |= wants_cover(ids[i]);
+    if (cover && !h) h = open_scene(path, settings, err, sizeof err);
+    for (int i = 0; h && i < nids; i++)
+        if (wants_cover(ids[i])) cover_plugin(name, h, ids[i], sc->first);
+    sl_harness_destroy(h);
+    check_pending(name, path, ids, nids);
+    printf("%s: %d cell(s), %.1f s\n", name, count, now_s() - t0);
+}
+
+int main(int argc, char **argv) {
+    const char *only = NULL; /* --scene NAME: that scene only */
+    char *paths[512], *names[512];
+    int count = 0, dirs = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--exhaustive")) exhaustive = true;
+        else if (!strcmp(argv[i], "--scene") && i + 1 < argc) only = argv[++i];
+        else list_scenes(argv[i], dirs++ == 0, paths, names, &count, 512);
+    }
+    if (!count) {
+        fprintf(stderr, "usage: test_toggle_matrix [--exhaustive] [--scene NAME] SCENE_DIR...\n");
+        return 2;
+    }
+    have_data = getenv("SHADELAB_DATA") && *getenv("SHADELAB_DATA");
+    matrix_scene *scenes = calloc((size_t)count, sizeof *scenes);
+    int nscenes = 0;
+    for (int s = 0; s < count; s++) {
+        matrix_scene *sc = &scenes[nscenes];
+        sc->path = paths[s], sc->name = names[s];
+        if ((!only || !strcmp(only, sc->name)) && open_first(sc)) nscenes++;
+    }
+    qsort(scenes, (size_t)nscenes, sizeof *scenes, cmp_scene);
+    for (int s = 0; s < nscenes; s++) run_scene(&scenes[s]);
+    for (int s = 0; s < nscenes; s++) free(scenes[s].first);
+    free(scenes);
+    printf("\n%d toggle cells (%s), %d failed; %d parameters set live compared with a fresh start\n", cells,
+           exhaustive ? "every plugin off alone and every two together" : "pairwise", failed_cells, params_checked);
     for (int i = 0; i < feature_count; i++) {
         feature *f = &features[i];
         if (!f->tried) continue;
-        if (f->must_change && !only) CHECK_MSG(f->changed, "%s %s changes the image on at least one bundled scene", f->plugin, f->what);
-        else if (!f->changed) printf("note: %s %s changes nothing on any bundled scene at %dx%d\n", f->plugin, f->what, W, H);
+        if (f->must_change && !only) CHECK_MSG(f->changed, "%s %s changes the image on at least one scene", f->plugin, f->what);
+        else if (!f->changed) printf("note: %s %s changes nothing on any scene at %dx%d\n", f->plugin, f->what, W, H);
     }
-    for (int i = 0; i < count; i++) free(names[i]);
+    for (int i = 0; i < count; i++) free(paths[i]), free(names[i]);
     return check_result();
 }

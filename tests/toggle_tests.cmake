@@ -1,4 +1,14 @@
-# The toggle matrix (issue 13): every bundled scene × every plugin it loads, switched off and on
-# live, against a fresh start with the same setting; keys and debug views must change the image.
-sl_add_test(toggle_matrix SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_toggle_matrix.c TIMEOUT 1200 LABELS toggle)
-target_compile_definitions(test_toggle_matrix PRIVATE SL_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
+# The toggle matrix (issue 13): every scene × the plugins it loads, switched off and on live,
+# against a fresh start with the same setting; keys and debug views must change the image.
+# `toggle_matrix`: a pairwise design over each scene's plugins; `toggle_matrix_exhaustive`
+# (label long): every plugin off alone and every two together, every feature on every scene.
+# The bundled scenes, and the extras' scenes where the build makes their plugins.
+set(SL_TOGGLE_SCENE_DIRS ${PROJECT_SOURCE_DIR}/scenes)
+if(SL_BUILD_EXTRAS)
+  file(GLOB SL_EXTRA_SCENE_DIRS LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/extras/*/scenes)
+  list(APPEND SL_TOGGLE_SCENE_DIRS ${SL_EXTRA_SCENE_DIRS})
+endif()
+sl_add_test(toggle_matrix SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_toggle_matrix.c ARGS ${SL_TOGGLE_SCENE_DIRS}
+            TIMEOUT 1800 LABELS toggle)
+sl_add_long_test(toggle_matrix_exhaustive COMMAND $<TARGET_FILE:test_toggle_matrix> --exhaustive ${SL_TOGGLE_SCENE_DIRS}
+                 LABELS toggle)
