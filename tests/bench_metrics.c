@@ -7,7 +7,7 @@
 #include "bench.h"
 #include "check.h"
 #include "image/image.h"
-#include "metrics.h"
+#include "bench/metrics.h"
 #include "orbit.h"
 #include "test_tmp.h"
 #include <math.h>

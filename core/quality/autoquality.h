@@ -40,7 +40,7 @@ struct sl_app; /* core/app.h */
 /* ------------------------------------------------------------------ metrics by name ---- */
 
 /* Lower-is-better metrics by name, for charts, Pareto fronts and budgets (their definitions:
- * tools/bench/metrics.h, docs/benchmarks.md). */
+ * tools/bench/include/bench/metrics.h, docs/benchmarks.md). */
 typedef enum sl_metric {
     SL_METRIC_RMSE, SL_METRIC_RELMSE, SL_METRIC_DSSIM, SL_METRIC_PSNR, SL_METRIC_FLIP, SL_METRIC_NOISE, SL_METRIC_COUNT
 } sl_metric;

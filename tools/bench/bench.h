@@ -6,7 +6,7 @@
 #ifndef SL_BENCH_H
 #define SL_BENCH_H
 #include "toolkit.h"
-#include "metrics.h"
+#include "bench/metrics.h"
 #include <stdint.h>
 
 #ifdef __cplusplus

@@ -1,6 +1,6 @@
 /* Error metrics (see metrics.h for the exact definitions). RMSE and PSNR come from the core's
  * image comparison; relMSE and SSIM are here. */
-#include "metrics.h"
+#include "bench/metrics.h"
 #include "toolkit.h"
 #include <math.h>
 #include <stdlib.h>

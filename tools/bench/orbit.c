@@ -1,6 +1,6 @@
 /* shadelab-bench --orbit (see orbit.h). */
 #include "orbit.h"
-#include "metrics.h"
+#include "bench/metrics.h"
 #include <shadelab/gl.h>
 #include <math.h>
 #include <stdio.h>

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench/metrics.h"
 #include "toolkit.h"
 
 double xc_luminance(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
@@ -60,6 +61,7 @@ void xc_region_stats(const float *test, const float *ref, const unsigned char *m
     s->mean_ratio = lr > 0 ? lt / lr : (lt > 0 ? INFINITY : 1);
     s->mean_test = count ? lt / count : 0;
     s->mean_ref = count ? lr / count : 0;
+    s->flip = NAN;
 }
 
 void xc_error_map(const float *test, const float *ref, int w, int h, float *out) {
@@ -85,17 +87,41 @@ static int cmp_double(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
-void xc_side_by_side(const float *test, const float *ref, const float *error_map, int w, int h, float *out) {
+double xc_display_scale(const float *ref, int w, int h) {
     size_t n = (size_t)w * h;
-    double *lum = malloc(n * sizeof *lum);
-    double scale = 1;
-    if (lum) {
-        for (size_t p = 0; p < n; p++) lum[p] = xc_luminance(ref + p * 4);
-        qsort(lum, n, sizeof *lum, cmp_double);
-        double p99 = lum[(size_t)(0.99 * (n - 1))];
-        if (p99 > 0 && isfinite(p99)) scale = 1 / p99;
-        free(lum);
+    double *lum = malloc(n * sizeof *lum), scale = 1;
+    if (!lum) return 1;
+    for (size_t p = 0; p < n; p++) lum[p] = xc_luminance(ref + p * 4);
+    qsort(lum, n, sizeof *lum, cmp_double);
+    double p99 = lum[(size_t)(0.99 * (n - 1))];
+    if (p99 > 0 && isfinite(p99)) scale = 1 / p99;
+    free(lum);
+    return scale;
+}
+
+double xc_flip_map(const float *test, const float *ref, int w, int h, double scale, float *map) {
+    size_t n = (size_t)w * h * 4;
+    float *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    double mean = NAN;
+    if (a && b) {
+        for (size_t i = 0; i < n; i++) a[i] = (float)(test[i] * scale), b[i] = (float)(ref[i] * scale);
+        mean = sl_metric_flip(a, b, w, h, 0, map);
     }
+    free(a);
+    free(b);
+    return mean;
+}
+
+double xc_masked_mean(const float *map, const unsigned char *mask, int w, int h) {
+    double sum = 0;
+    long count = 0;
+    for (size_t p = 0; p < (size_t)w * h; p++)
+        if (!mask || mask[p]) sum += map[p], count++;
+    return count ? sum / count : NAN;
+}
+
+void xc_side_by_side(const float *test, const float *ref, const float *error_map, int w, int h, float *out) {
+    double scale = xc_display_scale(ref, w, h);
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             size_t p = (size_t)y * w + x;

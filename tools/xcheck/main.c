@@ -317,8 +317,8 @@ static void print_row(FILE *f, const char *name, const char *material, const xc_
         fprintf(f, "  %-24s %-18s %8s  (not visible)\n", name, material, "");
         return;
     }
-    fprintf(f, "  %-24s %-18s %8ld  %8.4f  %8.4f  %10.4g  %10.4g%s\n", name, material, s->pixels, s->rel_rms,
-            s->mean_ratio, s->mean_test, s->mean_ref, checked ? "" : "  (not cross-checked)");
+    fprintf(f, "  %-24s %-18s %8ld  %8.4f  %8.4f  %8.4f  %10.4g  %10.4g%s\n", name, material, s->pixels, s->rel_rms,
+            s->mean_ratio, s->flip, s->mean_test, s->mean_ref, checked ? "" : "  (not cross-checked)");
 }
 
 /* s as a JSON string (quotes, backslashes and control characters escaped). */
@@ -337,10 +337,10 @@ static void json_stats(FILE *f, const char *name, const char *material, const xc
     json_string(f, name);
     fprintf(f, ", \"material\": ");
     json_string(f, material);
-    fprintf(f, ", \"pixels\": %ld, \"rel_rms\": %.6g, \"mean_ratio\": %.6g, \"mean_shadelab\": %.6g, "
+    fprintf(f, ", \"pixels\": %ld, \"rel_rms\": %.6g, \"mean_ratio\": %.6g, \"flip\": %.6g, \"mean_shadelab\": %.6g, "
                "\"mean_cycles\": %.6g, \"cross_checked\": %s}%s\n",
             s->pixels, isfinite(s->rel_rms) ? s->rel_rms : -1, isfinite(s->mean_ratio) ? s->mean_ratio : -1,
-            s->mean_test, s->mean_ref, checked ? "true" : "false", last ? "" : ",");
+            isfinite(s->flip) ? s->flip : -1, s->mean_test, s->mean_ref, checked ? "true" : "false", last ? "" : ",");
 }
 
 typedef struct report_ctx {
@@ -363,14 +363,20 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     unsigned char *mask = malloc((size_t)w * h);
     xc_stats *objects = calloc(ex->object_count + 1, sizeof *objects);
     double worst = 0;
+    /* FLIP reads the display range: both images at one exposure (Cycles' 99th percentile at 1) */
+    double scale = xc_display_scale(r->ref, w, h);
+    float *flip = malloc((size_t)w * h * sizeof *flip);
+    if (flip && !isfinite(xc_flip_map(r->test, r->ref, w, h, scale, flip))) { free(flip); flip = NULL; }
+#define FLIP_OF(stats, m) ((stats).flip = flip ? xc_masked_mean(flip, (m), w, h) : NAN)
     fprintf(txt, "shadelab-xcheck %s: %dx%d, Cycles (%s) %d samples, %d bounces%s\n", r->o->scene, w, h,
             r->blender_version, r->o->samples, r->o->bounces,
             r->cached ? ", reference from the cache" : "");
     if (!r->cached) fprintf(txt, "Cycles: %.1f s (Blender start-up included)\n", r->cycles_seconds);
     fprintf(txt, "shadelab: %.2f ms per frame (median)\n", r->shadelab_ms);
-    fprintf(txt, "compared before tone mapping, on each object's interior (its pixels whose four neighbours are it too)\n\n");
-    fprintf(txt, "  %-24s %-18s %8s  %8s  %8s  %10s  %10s\n", "object", "material", "pixels", "rel-RMS", "ratio",
-            "shadelab", "Cycles");
+    fprintf(txt, "compared before tone mapping, on each object's interior (its pixels whose four neighbours are it too);\n"
+                 "FLIP: LDR-FLIP of both images at one exposure (Cycles' 99th-percentile luminance at 1)\n\n");
+    fprintf(txt, "  %-24s %-18s %8s  %8s  %8s  %8s  %10s  %10s\n", "object", "material", "pixels", "rel-RMS", "ratio",
+            "FLIP", "shadelab", "Cycles");
     fprintf(json, "{\n  \"scene\": ");
     json_string(json, r->o->scene);
     fprintf(json, ", \"plugins\": \"");
@@ -390,14 +396,15 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
         const xc_object *ob = &ex->objects[i];
         xc_region_mask(r->index, w, h, i + 1, mask);
         xc_region_stats(r->test, r->ref, mask, w, h, &objects[i]);
+        FLIP_OF(objects[i], mask);
         const char *mat = ob->material;
         print_row(txt, ob->name, mat, &objects[i], ob->checked);
         json_stats(json, ob->name, mat, &objects[i], ob->checked, i == ex->object_count - 1);
         if (ob->checked && objects[i].pixels && !(objects[i].rel_rms <= worst)) worst = objects[i].rel_rms;
     }
     fprintf(json, "  ],\n  \"materials\": [\n");
-    fprintf(txt, "\n  %-24s %-18s %8s  %8s  %8s  %10s  %10s\n", "material", "", "pixels", "rel-RMS", "ratio",
-            "shadelab", "Cycles");
+    fprintf(txt, "\n  %-24s %-18s %8s  %8s  %8s  %8s  %10s  %10s\n", "material", "", "pixels", "rel-RMS", "ratio",
+            "FLIP", "shadelab", "Cycles");
     bool first = true;
     unsigned char *one = malloc((size_t)w * h);
     for (int i = 0; one && i < ex->object_count; i++) {
@@ -416,6 +423,7 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
         }
         xc_stats s;
         xc_region_stats(r->test, r->ref, mask, w, h, &s);
+        FLIP_OF(s, mask);
         print_row(txt, m, "", &s, checked);
         fprintf(json, "%s", first ? "" : ",\n");
         json_stats(json, m, "", &s, checked, true);
@@ -425,10 +433,13 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     xc_stats bg, all;
     xc_region_mask(r->index, w, h, 0, mask);
     xc_region_stats(r->test, r->ref, mask, w, h, &bg);
+    FLIP_OF(bg, mask);
     xc_region_stats(r->test, r->ref, NULL, w, h, &all);
+    FLIP_OF(all, NULL);
     xc_stats inner;
     xc_interior_mask(r->index, w, h, mask);
     xc_region_stats(r->test, r->ref, mask, w, h, &inner);
+    FLIP_OF(inner, mask);
     fprintf(txt, "\n");
     print_row(txt, "(background)", "", &bg, true);
     print_row(txt, "(whole image)", "", &all, true);
@@ -440,17 +451,20 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     fprintf(json, "  , \"interiors\": ");
     json_stats(json, "(interiors)", "", &inner, true, true);
     if (r->o->eevee_count) {
-        fprintf(txt, "\nEEVEE against Cycles (the same interiors; shadelab: rel-RMS %.4f, ratio %.4f, %.2f ms):\n",
-                inner.rel_rms, inner.mean_ratio, r->shadelab_ms);
+        fprintf(txt, "\nEEVEE against Cycles (the same interiors; shadelab: rel-RMS %.4f, ratio %.4f, FLIP %.4f, %.2f ms):\n",
+                inner.rel_rms, inner.mean_ratio, inner.flip, r->shadelab_ms);
         fprintf(json, "  , \"eevee\": [\n");
     }
     for (int k = 0; k < r->o->eevee_count; k++) {
         xc_stats e;
         xc_region_stats(r->eevee[k], r->ref, mask, w, h, &e);
-        fprintf(txt, "  %4d samples: rel-RMS %.4f, ratio %.4f, %.1f ms per render (%.1fx shadelab's frame)\n",
-                r->o->eevee[k], e.rel_rms, e.mean_ratio, r->eevee_ms[k], r->eevee_ms[k] / r->shadelab_ms);
-        fprintf(json, "    {\"samples\": %d, \"ms\": %.3f, \"interiors\": {\"rel_rms\": %.6g, \"mean_ratio\": %.6g}}%s\n",
-                r->o->eevee[k], r->eevee_ms[k], e.rel_rms, e.mean_ratio, k + 1 < r->o->eevee_count ? "," : "");
+        e.flip = flip && isfinite(xc_flip_map(r->eevee[k], r->ref, w, h, scale, flip)) ? xc_masked_mean(flip, mask, w, h) : NAN;
+        fprintf(txt, "  %4d samples: rel-RMS %.4f, ratio %.4f, FLIP %.4f, %.1f ms per render (%.1fx shadelab's frame)\n",
+                r->o->eevee[k], e.rel_rms, e.mean_ratio, e.flip, r->eevee_ms[k], r->eevee_ms[k] / r->shadelab_ms);
+        fprintf(json, "    {\"samples\": %d, \"ms\": %.3f, \"interiors\": {\"rel_rms\": %.6g, \"mean_ratio\": %.6g, "
+                      "\"flip\": %.6g}}%s\n",
+                r->o->eevee[k], r->eevee_ms[k], e.rel_rms, e.mean_ratio, isfinite(e.flip) ? e.flip : -1,
+                k + 1 < r->o->eevee_count ? "," : "");
     }
     if (r->o->eevee_count) fprintf(json, "  ]\n");
     fprintf(json, "  , \"notes\": [");
@@ -461,6 +475,8 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
         json_string(json, ex->notes[i]);
     }
     fprintf(json, "]\n}\n");
+#undef FLIP_OF
+    free(flip);
     free(mask);
     free(objects);
     return worst;

@@ -1,4 +1,6 @@
-/* Error metrics of shadelab-bench: how far a rendered image is from its reference.
+/* Error metrics of shadelab-bench: how far a rendered image is from its reference. The public
+ * header of the library shadelab_metrics (tools/bench/metrics.c), which other tools link too
+ * (shadelab-xcheck's FLIP).
  *
  * Images are linear HDR radiance, RGBA float, width*height*4, row 0 at the top (what
  * sl_app_read_color returns). Only R, G, B enter the metrics; alpha is ignored.
