@@ -6,6 +6,7 @@
 #include "log.h"
 #include "startup.h"
 #include "render/composer.h"
+#include "render/forward.h"
 #include "render/renderer.h"
 #include <shadelab/gl.h>
 #include <shadelab/input.h>
@@ -459,6 +460,18 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
         if (!provided)
             SL_WARN("%s:%d: light \"%s\": type \"%s\" is not provided by any loaded plugin; the light is ignored",
                     s->path, L->line, L->name, L->type);
+    }
+    /* the forward programs specialise on the set of light types (render/forward.h) */
+    const char *types[SL_MAX_LIGHT_TYPES + 1];
+    if (sl_forward_light_types(app, types, SL_MAX_LIGHT_TYPES + 1) > SL_MAX_LIGHT_TYPES) {
+        for (int li = 0; li < s->light_count; li++)
+            if (!strcmp(s->lights[li].type, types[SL_MAX_LIGHT_TYPES])) {
+                snprintf(err, n, "%s:%d: light \"%s\": type \"%s\" is one light type too many: a scene has at most %d "
+                         "(render/forward.h, SL_MAX_LIGHT_TYPES)", s->path, s->lights[li].line, s->lights[li].name,
+                         s->lights[li].type, SL_MAX_LIGHT_TYPES);
+                break;
+            }
+        return false;
     }
     return true;
 }

@@ -20,6 +20,14 @@ layout(location = 0) out vec4 o_color;
 in vec4 v_clip_now, v_clip_prev;
 layout(location = 1) out vec2 o_motion; // "motion": UV now minus UV in the previous frame
 #endif
+#ifdef SL_NORMAL_TARGET
+layout(location = SL_NORMAL_LOCATION) out vec4 o_normal; // "normal" (pass.h, ABI 1.13)
+#endif
+
+// What "normal" holds (pass.h, ABI 1.13): the shading normal after the surface hooks in view space
+// (unit, on the viewer's side of the surface), and in w the GGX α the surface hooks left (1 where
+// none sets it). The forward pass and the depth pre-pass (prepass.frag) write the same.
+vec4 sl_normal_target(SlSurface s) { return vec4(normalize(mat3(sl_view) * s.normal), s.alpha); }
 
 #ifndef SL_FULLSCREEN_MATERIAL
 SlSurface sl_surface_from_varyings() {
@@ -109,6 +117,9 @@ void main() {
     o_color = vec4(mix(c, vec3(SL_MAX_RADIANCE), greaterThan(c, vec3(SL_MAX_RADIANCE))), alpha);
 #ifdef SL_MOTION_VECTORS
     o_motion = 0.5 * (v_clip_now.xy / v_clip_now.w - v_clip_prev.xy / v_clip_prev.w);
+#endif
+#ifdef SL_NORMAL_TARGET
+    o_normal = sl_normal_target(s);
 #endif
 }
 #endif

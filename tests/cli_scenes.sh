@@ -39,6 +39,11 @@ expect_error "outside the valid range" --set core.ssaa=0
 expect_error "--size 0x0" --size 0x0
 expect_error "unknown option" --frobnicate
 expect_error "--strict" --plugin no-such-plugin --strict
+# the composer's limits are errors naming what overflowed (forward.h): a 33rd light type
+{ printf '{"nodes": [{"name": "n", "mesh": {"primitive": "sphere"}}], "lights": ['
+  for i in $(seq 0 32); do printf '%s{"name": "l%d", "type": "type%d"}' "$([ $i -gt 0 ] && echo ,)" $i $i; done
+  printf ']}\n'; } > "$out/light_types.json"
+expect_error 'light "l32": type "type32" is one light type too many' --scene "$out/light_types.json"
 # A render that printed an error writes its image and exits 2 (issue 41): a missing texture is
 # drawn with a magenta stand-in, which a script must be able to tell from a clean render.
 printf '{"materials": [{"name": "m", "base_color_map": "no-such-texture.png"}],\n "nodes": [{"name": "n", "mesh": {"primitive": "sphere"}, "material": "m"}]}\n' > "$out/missing_texture.json"

@@ -68,6 +68,11 @@ PLUGIN=$T/ex/plugins/example/example.so
 "$VIEWER" --headless --size 160x90 --strict --plugin "$PLUGIN" --output "$T/cm.png" 2>/dev/null
 "$IMGDIFF" "$T/pc.png" "$T/cm.png" --same 0                   # pkg-config build = CMake build
 
+step "find_package(shadelab): the ssao example (depth, normals, pre-pass, pass views) out of tree"
+"$CMAKE" -S "$SRC/sdk/example/ssao" -B "$T/ssao" -DCMAKE_PREFIX_PATH="$PFX" -DCMAKE_BUILD_TYPE=RelWithDebInfo >"$T/ssao.log" \
+  && "$CMAKE" --build "$T/ssao" >>"$T/ssao.log" 2>&1 || { cat "$T/ssao.log"; fail "ssao: configure and build"; }
+(cd "$T/ssao" && ctest --output-on-failure) || fail "the ssao example's harness test"
+
 step "each feature of the example visibly changes the image (installed viewer, --plugin PATH)"
 r() { local out=$1; shift; "$VIEWER" --headless --size 160x90 --strict --plugin "$PLUGIN" "$@" --output "$out" 2>"$out.log" \
         || { cat "$out.log"; fail "render $out"; }; }

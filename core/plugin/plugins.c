@@ -79,6 +79,14 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
         SL_ERROR("%s: shader chunk %s: tess_level is for DISPLACEMENT hooks only", id, d.file);
         return SL_ERR_INVALID;
     }
+    if ((d.flags & SL_CHUNK_PASS_VIEW) && (d.hook != SL_HOOK_DEBUG_VIEW || !d.resource || !*d.resource)) {
+        SL_ERROR("%s: shader chunk %s: SL_CHUNK_PASS_VIEW is for DEBUG_VIEW chunks and needs a resource", id, d.file);
+        return SL_ERR_INVALID;
+    }
+    if (d.resource && !(d.flags & SL_CHUNK_PASS_VIEW)) {
+        SL_ERROR("%s: shader chunk %s: resource is for SL_CHUNK_PASS_VIEW views only", id, d.file);
+        return SL_ERR_INVALID;
+    }
     bool named = d.hook == SL_HOOK_SHADING_MODEL || d.hook == SL_HOOK_MODEL_AMBIENT ||
                  d.hook == SL_HOOK_LIGHT || d.hook == SL_HOOK_DEBUG_VIEW || d.hook == SL_HOOK_DEBUG_VIEW_LIGHT;
     if (named && (!d.name || !*d.name)) {
@@ -113,7 +121,24 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     r->d.when_node_tag = dup0(d.when_node_tag);
     r->d.tess_level = dup0(d.tess_level);
     r->d.description = dup0(d.description);
+    r->d.resource = dup0(d.resource);
     return SL_OK;
+}
+
+/* The pass's own copies of its inputs and outputs (the plugin's arrays need not outlive the call). */
+static void set_pass_io(sl_pass_reg *r, const char *const *inputs, const sl_target_desc *outputs, int output_count) {
+    int nin = 0;
+    while (inputs && inputs[nin]) nin++;
+    r->inputs = calloc(nin + 1, sizeof *r->inputs);
+    for (int i = 0; i < nin; i++) r->inputs[i] = strdup(inputs[i]);
+    r->d.inputs = r->inputs;
+    r->outputs = calloc(output_count ? output_count : 1, sizeof *r->outputs);
+    for (int i = 0; i < output_count; i++) {
+        r->outputs[i] = outputs[i];
+        r->outputs[i].name = strdup(outputs[i].name);
+    }
+    r->d.outputs = r->outputs;
+    r->d.output_count = output_count;
 }
 
 sl_status sl_plugins_add_pass(sl_plugins *P, int owner, const sl_pass_desc *in) {
@@ -137,18 +162,49 @@ sl_status sl_plugins_add_pass(sl_plugins *P, int owner, const sl_pass_desc *in) 
     r->d = d;
     r->d.struct_size = sizeof d;
     r->d.name = strdup(d.name);
-    int nin = 0;
-    while (d.inputs && d.inputs[nin]) nin++;
-    r->inputs = calloc(nin + 1, sizeof *r->inputs);
-    for (int i = 0; i < nin; i++) r->inputs[i] = strdup(d.inputs[i]);
-    r->d.inputs = r->inputs;
-    r->outputs = calloc(d.output_count ? d.output_count : 1, sizeof *r->outputs);
-    for (int i = 0; i < d.output_count; i++) {
-        r->outputs[i] = d.outputs[i];
-        r->outputs[i].name = strdup(d.outputs[i].name);
-    }
-    r->d.outputs = r->outputs;
+    set_pass_io(r, d.inputs, d.outputs, d.output_count);
     return SL_OK;
+}
+
+static bool same_io(const sl_pass_reg *r, const char *const *inputs, const sl_target_desc *outputs, int output_count) {
+    int n = 0;
+    for (; inputs && inputs[n]; n++)
+        if (!r->inputs[n] || strcmp(r->inputs[n], inputs[n])) return false;
+    if (r->inputs[n] || output_count != r->d.output_count) return false;
+    for (int i = 0; i < output_count; i++) {
+        const sl_target_desc *a = &r->outputs[i], *b = &outputs[i];
+        if (!b->name || strcmp(a->name, b->name) || a->format != b->format || a->width != b->width ||
+            a->height != b->height || a->scale != b->scale || a->layers != b->layers || a->compare != b->compare)
+            return false;
+    }
+    return true;
+}
+
+bool sl_plugins_update_pass_io(sl_plugins *P, int i) {
+    sl_pass_reg *r = &P->passes[i];
+    if (!r->d.io) return false;
+    const char *const *inputs = NULL;
+    const sl_target_desc *outputs = NULL;
+    int output_count = 0;
+    r->d.io(r->d.user, &inputs, &outputs, &output_count);
+    if (output_count < 0 || (output_count && !outputs)) {
+        SL_ERROR("%s: pass \"%s\": io() gave %d outputs%s; the registered ones are kept", P->items[r->owner]->id,
+                 r->d.name, output_count, outputs ? "" : " and no array");
+        return false;
+    }
+    for (int k = 0; k < output_count; k++)
+        if (!outputs[k].name) {
+            SL_ERROR("%s: pass \"%s\": io() gave an output without a name; the registered ones are kept",
+                     P->items[r->owner]->id, r->d.name);
+            return false;
+        }
+    if (same_io(r, inputs, outputs, output_count)) return false;
+    for (const char **s = r->inputs; s && *s; s++) free((char *)*s);
+    free(r->inputs);
+    for (int k = 0; k < r->d.output_count; k++) free((char *)r->outputs[k].name);
+    free(r->outputs);
+    set_pass_io(r, inputs, outputs, output_count);
+    return true;
 }
 
 sl_status sl_plugins_add_key(sl_plugins *P, int owner, const sl_key_desc *in) {
@@ -338,6 +394,12 @@ int sl_plugins_load(sl_plugins *P, const char *name, const char *requested_by, b
     }
     sl_plugin_rec *r = new_record(P, name, requested_by);
     int index = P->count - 1;
+    /* a program's set of plugins is a 64-bit mask (forward.c, sl_forward_variant.owners) */
+    if (index >= SL_MAX_PLUGINS) {
+        disable(r, "too many plugins: at most %d can be loaded, the core included (plugins.h, SL_MAX_PLUGINS)",
+                SL_MAX_PLUGINS);
+        return index;
+    }
     char path[2048] = "";
     if (is_path) {
         if (!allow_path) {
@@ -444,6 +506,7 @@ static void free_chunk(sl_chunk_reg *c) {
     free((char *)c->d.when_material_has); free((char *)c->d.description); free((char *)c->d.when_model);
     free((char *)c->d.when_node_tag);
     free((char *)c->d.tess_level);
+    free((char *)c->d.resource);
 }
 
 static void free_pass(sl_pass_reg *r) {

@@ -11,6 +11,10 @@
 #include <shadelab/shadelab.h>
 #include "params.h"
 
+/* Plugins a process loads, the core included: the sets of plugins a program draws on are 64-bit
+ * masks. A plugin beyond is a disabled record saying so. */
+#define SL_MAX_PLUGINS 64
+
 typedef struct sl_chunk_reg { int owner; sl_shader_chunk_desc d; } sl_chunk_reg;
 typedef struct sl_pass_reg { int owner; sl_pass_desc d; sl_target_desc *outputs; const char **inputs; } sl_pass_reg;
 typedef struct sl_key_reg { int owner; sl_key_desc d; } sl_key_reg;
@@ -71,6 +75,9 @@ void sl_plugins_shutdown(sl_plugins *P);             /* deactivate (GL current) 
 sl_status sl_plugins_add_param(sl_plugins *P, int owner, const sl_param_desc *d);
 sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_desc *d);
 sl_status sl_plugins_add_pass(sl_plugins *P, int owner, const sl_pass_desc *d);
+/* Asks pass i for its inputs and outputs now (sl_pass_desc.io, ABI 1.13) and keeps copies; true
+ * when they changed (the graph must be planned again). */
+bool sl_plugins_update_pass_io(sl_plugins *P, int i);
 sl_status sl_plugins_add_key(sl_plugins *P, int owner, const sl_key_desc *d);
 sl_status sl_plugins_set_reference(sl_plugins *P, int owner, const sl_reference_desc *d);
 int sl_plugins_reserve_unit(sl_plugins *P, int owner);

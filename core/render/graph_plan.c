@@ -4,6 +4,7 @@
 #include "log.h"
 #include <shadelab/gl.h>
 #include <stdlib.h>
+#include <limits.h>
 #include <string.h>
 
 
@@ -12,7 +13,8 @@ static const sl_target_desc core_color32 = {.name = "color", .format = SL_FORMAT
 static const sl_target_desc core_depth = {.name = "depth", .format = SL_FORMAT_DEPTH32F};
 static const sl_target_desc core_display = {.name = "display", .format = SL_FORMAT_RGBA8};
 static const sl_target_desc core_motion = {.name = "motion", .format = SL_FORMAT_RG16F};
-static sl_target_desc forward_outputs[3];
+static const sl_target_desc core_normal = {.name = "normal", .format = SL_FORMAT_RGBA16F};
+static sl_target_desc forward_outputs[4];
 static const char *resolve_inputs[] = {"forward.ssaa", NULL};
 static sl_target_desc resolve_outputs[1];
 static sl_pass_desc resolve_pass = {.struct_size = sizeof(sl_pass_desc), .name = "ssaa-resolve", .stage = SL_STAGE_OPAQUE,
@@ -28,8 +30,13 @@ static sl_pass_desc blend_pass = {.struct_size = sizeof(sl_pass_desc), .name = "
                                   .inputs = blend_inputs, .outputs = blend_outputs, .output_count = 1};
 static const char *display_inputs[] = {"color", NULL};
 static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
-                                    .outputs = forward_outputs, .output_count = 2, /* 3 with "motion" */
+                                    .outputs = forward_outputs, .output_count = 2, /* + "motion", "normal" */
                                     .display_on_write = true};
+/* The depth pre-pass (ABI 1.13, pass.h): "depth" and "normal" before the forward pass, for the
+ * passes between them that read either (screen-space ambient occlusion feeding the forward pass). */
+static sl_target_desc prepass_outputs[2];
+static sl_pass_desc prepass_pass = {.struct_size = sizeof(sl_pass_desc), .name = "depth-prepass",
+                                    .stage = SL_STAGE_DEPTH_PREPASS, .outputs = prepass_outputs, .output_count = 2};
 /* The separate display pass runs only on frames where no pass wrote "display" on the fly. */
 static bool display_active(void *user, const sl_frame *f) {
     (void)f;
@@ -45,46 +52,66 @@ static int cmp_stage(const void *a, const void *b) {
     return 0;
 }
 
-/* Orders passes, checks inputs, allocates targets. */
-bool sl_graph_wants_motion(sl_app *app) {
-    for (int i = 0; i < app->plugins.pass_count; i++)
-        if (sl_plugin_enabled(&app->plugins, app->plugins.passes[i].owner) &&
-            sl_graph_lists(app->plugins.passes[i].d.inputs, "motion"))
+/* Whether an enabled plugin's pass reads `name`, at a stage in [from, to). */
+static bool read_between(sl_app *app, const char *name, int from, int to) {
+    for (int i = 0; i < app->plugins.pass_count; i++) {
+        const sl_pass_reg *p = &app->plugins.passes[i];
+        if (sl_plugin_enabled(&app->plugins, p->owner) && (int)p->d.stage >= from && (int)p->d.stage < to &&
+            sl_graph_lists(p->d.inputs, name))
             return true;
+    }
     return false;
 }
+
+bool sl_graph_wants_motion(sl_app *app) { return read_between(app, "motion", INT_MIN, INT_MAX); }
+
+bool sl_graph_wants_prepass(sl_app *app) {
+    return read_between(app, "depth", INT_MIN, SL_STAGE_OPAQUE) || read_between(app, "normal", INT_MIN, SL_STAGE_OPAQUE);
+}
+
+bool sl_graph_wants_normal(sl_app *app) { return !sl_graph_wants_prepass(app) && read_between(app, "normal", INT_MIN, INT_MAX); }
 
 void sl_graph_plan(sl_app *app) {
     sl_renderer *r = R(app);
     sl_graph_free(r);
+    for (int i = 0; i < app->plugins.pass_count; i++) sl_plugins_update_pass_io(&app->plugins, i); /* ABI 1.13 */
     /* core.ssaa > 1: the forward pass renders "forward.ssaa" at k× the viewport and the resolve
      * pass box-filters it into the viewport-sized "color" everything downstream sees. */
     sl_param *ssaa = sl_params_find(&app->params, "core.ssaa");
     r->ssaa = ssaa && ssaa->value.i > 1 ? ssaa->value.i : 1;
     forward_outputs[0] = app->opt.float32 ? core_color32 : core_color;
     forward_outputs[1] = core_depth;
-    /* "motion" (pass.h, ABI 1.6) only while an enabled plugin's pass reads it: the forward
-     * programs then compute it (SL_MOTION_VECTORS), so they are recomposed when that changes */
-    bool motion = sl_graph_wants_motion(app);
-    forward_outputs[2] = core_motion;
-    forward_pass.output_count = motion ? 3 : 2;
-    if (motion != r->motion) {
+    /* "motion" (pass.h, ABI 1.6) and "normal" (ABI 1.13) only while an enabled plugin's pass reads
+     * them: the forward programs then compute them (SL_MOTION_VECTORS, SL_NORMAL_TARGET), so they are
+     * recomposed when that changes. A pass before the forward pass that reads "depth" or "normal"
+     * brings the depth pre-pass, which writes both; the forward pass then leaves "normal" alone. */
+    bool motion = sl_graph_wants_motion(app), normal = sl_graph_wants_normal(app);
+    r->prepass = sl_graph_wants_prepass(app);
+    forward_pass.output_count = 2;
+    if (motion) forward_outputs[forward_pass.output_count++] = core_motion;
+    if (normal) forward_outputs[forward_pass.output_count++] = core_normal;
+    prepass_outputs[0] = core_depth;
+    prepass_outputs[1] = core_normal;
+    if (motion != r->motion || normal != r->normal) {
         r->motion = motion;
+        r->normal = normal;
         sl_gpu_compose_all(app);
     }
     resolve_outputs[0] = forward_outputs[0];
     /* "color" drawn over, not read: its latest texture is bound, no ping-pong */
     blend_outputs[0] = forward_outputs[0];
     r->blend_planned = sl_gpu_scene_has_blended(app);
-    if (r->ssaa > 1) {
+    if (r->ssaa > 1) { /* "depth", "motion" and "normal" at the forward pass's size */
         forward_outputs[0].name = "forward.ssaa";
-        forward_outputs[0].scale = forward_outputs[1].scale = forward_outputs[2].scale = (float)r->ssaa;
+        for (int k = 0; k < 4; k++) forward_outputs[k].scale = (float)r->ssaa;
+        prepass_outputs[0].scale = prepass_outputs[1].scale = (float)r->ssaa;
     }
     r->display_desc = display_pass; /* its own copy: is_active reads this renderer (harnesses coexist) */
     r->display_desc.user = r;
     r->color_final = true;
-    int total = app->plugins.pass_count + 4;
+    int total = app->plugins.pass_count + 5;
     r->passes = calloc(total, sizeof *r->passes);
+    if (r->prepass) r->passes[r->pass_count++] = (graph_pass){.d = &prepass_pass, .owner = -1, .core_prepass = true};
     r->passes[r->pass_count++] = (graph_pass){.d = &forward_pass, .owner = -1, .core_forward = true};
     if (r->ssaa > 1) r->passes[r->pass_count++] = (graph_pass){.d = &resolve_pass, .owner = -1, .core_resolve = true};
     if (r->blend_planned) r->passes[r->pass_count++] = (graph_pass){.d = &blend_pass, .owner = -1, .core_blend = true};
@@ -151,7 +178,8 @@ void sl_graph_route_display(sl_app *app, int first, bool keep_color) {
         if (w && (rd || start < 0)) start = i;
         else if (rd) last_reader = i;
     }
-    bool ok = !keep_color && start >= first && last_reader < start;
+    /* a pass view (SL_CHUNK_PASS_VIEW) is written by the display pass itself */
+    bool ok = !keep_color && !sl_graph_pass_view(app) && start >= first && last_reader < start;
     for (int i = start; ok && i >= 0 && i < r->pass_count; i++)
         if (runs[i] && writes(&r->passes[i], "color") && !r->passes[i].d->display_on_write) ok = false;
     for (int i = 0; i < r->pass_count; i++) {

@@ -22,9 +22,25 @@ static void run_forward(sl_app *app, sl_pass_ctx *ctx) {
     glDepthMask(GL_TRUE);
     glClearNamedFramebufferfv(ctx->pass->fbo, GL_COLOR, 0, bg);
     glClearNamedFramebufferfi(ctx->pass->fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    static const float still[4] = {0, 0, 0, 0};
-    if (r->motion) glClearNamedFramebufferfv(ctx->pass->fbo, GL_COLOR, 1, still); /* background: no motion */
+    static const float none[4] = {0, 0, 0, 0};
+    if (r->motion) glClearNamedFramebufferfv(ctx->pass->fbo, GL_COLOR, 1, none); /* background: no motion */
+    if (r->normal) glClearNamedFramebufferfv(ctx->pass->fbo, GL_COLOR, r->motion ? 2 : 1, none); /* nor normal */
     sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
+    memcpy(d.view, r->frame.view, sizeof d.view);
+    memcpy(d.proj, r->frame.proj, sizeof d.proj);
+    sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_OPAQUE);
+}
+
+/* The depth pre-pass (pass.h, ABI 1.13): the opaque materials with their surface hooks, writing
+ * "depth" and "normal" (shaders/prepass.frag) as the forward pass would; background 0. */
+static void run_prepass(sl_app *app, sl_pass_ctx *ctx) {
+    sl_renderer *r = R(app);
+    if (sl_renderer_bind_outputs(app, ctx, 0) != SL_OK) return;
+    static const float none[4] = {0, 0, 0, 0};
+    glDepthMask(GL_TRUE);
+    glClearNamedFramebufferfv(ctx->pass->fbo, GL_COLOR, 0, none);
+    glClearNamedFramebufferfi(ctx->pass->fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    sl_draw_scene_desc d = {.struct_size = sizeof d, .mode = SL_DRAW_MATERIALS, .cull = 1, .fragment = "sl:prepass.frag"};
     memcpy(d.view, r->frame.view, sizeof d.view);
     memcpy(d.proj, r->frame.proj, sizeof d.proj);
     sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_OPAQUE);
@@ -124,9 +140,59 @@ static void run_blend(sl_app *app, sl_pass_ctx *ctx) {
     glBindTextureUnit(SL_BLEND_DEPTH_UNIT, 0);
 }
 
+const sl_chunk_reg *sl_graph_pass_view(sl_app *app) {
+    for (int i = 0; app->debug_view && i < app->plugins.chunk_count; i++) {
+        const sl_chunk_reg *c = &app->plugins.chunks[i];
+        if (c->d.hook == SL_HOOK_DEBUG_VIEW && (c->d.flags & SL_CHUNK_PASS_VIEW) && !strcmp(c->d.name, app->debug_view) &&
+            sl_plugin_enabled(&app->plugins, c->owner))
+            return c;
+    }
+    return NULL;
+}
+
+/* A pass view's display program (shader.h, SL_CHUNK_PASS_VIEW): the full-screen triangle, the
+ * plugin's file and a main writing its function's value. Made again when the view or the programs
+ * (a hot reload) change; a compile error switches the plugin off like any of its GLSL. */
+static sl_program *pass_view_program(sl_app *app, const sl_chunk_reg *v) {
+    sl_renderer *r = R(app);
+    uint64_t key = sl_hash64(v->d.name, strlen(v->d.name), r->programs_version + 1);
+    if (r->view_key == key) return r->view_prog;
+    sl_program_free(r->view_prog);
+    r->view_key = key;
+    sl_program *p = r->view_prog = calloc(1, sizeof *p);
+    char err[16384], path[2048], text[1024];
+    snprintf(text, sizeof text, "debug view \"%s\" (%s)", v->d.name, app->plugins.items[v->owner]->id);
+    p->label = strdup(text);
+    p->owner = v->owner;
+    sl_sb_append(&p->vs.text, "#version 450 core\n");
+    bool ok = sl_source_include(&p->vs, "sl:fullscreen.vert", err, sizeof err);
+    sl_sb_append(&p->fs.text, "#version 450 core\n");
+    ok = ok && sl_source_include(&p->fs, "sl:common.glsl", err, sizeof err);
+    snprintf(path, sizeof path, "%s/%s", app->plugins.items[v->owner]->resource_dir, v->d.file);
+    ok = ok && sl_source_include_from(&p->fs, path, v->owner, err, sizeof err);
+    snprintf(text, sizeof text,
+             "in vec2 v_uv;\nuniform sampler2D sl_view_source;\nlayout(location = 0) out vec4 o_color;\n"
+             "void main() {\n    vec3 c = %s(sl_view_source, v_uv);\n"
+             "    o_color = vec4(clamp(mix(c, vec3(0.0), isnan(c)), 0.0, 1.0), 1.0);\n}\n", v->d.function);
+    if (ok) sl_source_generated(&p->fs, text);
+    if (ok) ok = sl_program_build(p, err, sizeof err);
+    if (!ok) sl_renderer_blame_plugin(app, v->owner, err);
+    return p;
+}
+
 static void run_display(sl_app *app, sl_pass_ctx *ctx) {
     sl_renderer *r = R(app);
     sl_renderer_bind_outputs(app, ctx, 0);
+    const sl_chunk_reg *view = sl_graph_pass_view(app);
+    sl_program *shown = view ? pass_view_program(app, view) : NULL;
+    if (shown && shown->id) { /* a pass's resource as it is (ABI 1.13) */
+        resource *e = sl_graph_find(r, view->d.resource);
+        glUseProgram(shown->id);
+        glBindTextureUnit(0, e ? e->tex[e->current] : 0);
+        glUniform1i(glGetUniformLocation(shown->id, "sl_view_source"), 0);
+        sl_renderer_draw_fullscreen(app, ctx);
+        return;
+    }
     unsigned prog = sl_program_id(r->display_prog);
     if (!prog) return;
     glUseProgram(prog);
@@ -155,6 +221,7 @@ static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
     else if (g->core_display) run_display(app, &ctx);
     else if (g->core_resolve) run_resolve(app, &ctx);
     else if (g->core_blend) run_blend(app, &ctx);
+    else if (g->core_prepass) run_prepass(app, &ctx);
     else g->d->execute(g->d->user, &ctx, &r->frame);
     r->current = NULL;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -40,7 +40,7 @@ void sl_renderer_blame_plugin(sl_app *app, int k, const char *err) {
     sl_renderer *r = R(app);
     for (int i = 0; i < r->blamed_count; i++)
         if (r->blamed[i].plugin == k) return; /* the same chunk breaks every material: one message */
-    if (r->blamed_count == 64) return;
+    if (r->blamed_count == SL_MAX_PLUGINS) return; /* one entry per plugin at most */
     r->blamed[r->blamed_count].plugin = k;
     r->blamed[r->blamed_count++].why = strdup(err);
 }
@@ -98,7 +98,7 @@ int sl_renderer_reload_shaders(sl_app *app) {
     }
     /* composed programs: recompose everything; failures keep the previous variant program */
     int before = sl_log_count(SL_LOG_ERROR);
-    for (int i = 0; i < r->cache_count; i++) r->cache[i]->stale = true; /* compiled from old files */
+    for (int i = 0; i < r->cache.count; i++) r->cache.items[i]->stale = true; /* compiled from old files */
     sl_gpu_compose_all(app);
     r->reloading = false;
     r->retried = 0;
@@ -106,8 +106,8 @@ int sl_renderer_reload_shaders(sl_app *app) {
     /* Stamp the files' current mtimes on every source, including programs whose rebuild failed
      * and cache entries no longer in use: otherwise their stale mtimes make the poll reload (and
      * re-print the error) every time, forever. A later edit changes the mtime again. */
-    for (int i = 0; i < r->program_count + r->cache_count; i++) {
-        sl_program *p = i < r->program_count ? r->programs[i] : r->cache[i - r->program_count];
+    for (int i = 0; i < r->program_count + r->cache.count; i++) {
+        sl_program *p = i < r->program_count ? r->programs[i] : r->cache.items[i - r->program_count];
         sl_source *src[4] = {&p->vs, &p->fs, &p->tcs, &p->tes};
         for (int k = 0; k < 4; k++)
             for (int f = 1; f < src[k]->file_count; f++) {
@@ -121,9 +121,9 @@ int sl_renderer_reload_shaders(sl_app *app) {
 static bool any_source_changed(sl_renderer *r) {
     for (int i = 0; i < r->program_count; i++)
         if (sl_source_changed(&r->programs[i]->vs) || sl_source_changed(&r->programs[i]->fs)) return true;
-    for (int i = 0; i < r->cache_count; i++)
-        if (sl_source_changed(&r->cache[i]->vs) || sl_source_changed(&r->cache[i]->fs) ||
-            sl_source_changed(&r->cache[i]->tcs) || sl_source_changed(&r->cache[i]->tes))
+    for (int i = 0; i < r->cache.count; i++)
+        if (sl_source_changed(&r->cache.items[i]->vs) || sl_source_changed(&r->cache.items[i]->fs) ||
+            sl_source_changed(&r->cache.items[i]->tcs) || sl_source_changed(&r->cache.items[i]->tes))
             return true;
     return false;
 }
@@ -178,6 +178,9 @@ static void refresh(sl_app *app) {
         uint64_t key = plan_key(app);
         if (key != r->plan_key) r->plan_dirty = true;
         r->plan_key = key;
+        /* passes whose inputs or outputs follow their parameters (sl_pass_desc.io, ABI 1.13) */
+        for (int i = 0; i < app->plugins.pass_count; i++)
+            if (sl_plugins_update_pass_io(&app->plugins, i)) r->plan_dirty = true;
         r->seen_param_version = app->params.version;
         sl_gpu_apply_anisotropy(app);
     }
@@ -472,7 +475,7 @@ void sl_renderer_explain(sl_app *app, FILE *f) {
                 mr->forward.program ? (unsigned long long)mr->forward.program->hash : 0ull, mr->forward.chunks ? mr->forward.chunks : "");
     }
     int distinct = 0;
-    for (int i = 0; i < r->cache_count; i++) distinct += r->cache[i]->id != 0;
+    for (int i = 0; i < r->cache.count; i++) distinct += r->cache.items[i]->id != 0;
     fprintf(f, "composed programs compiled: %d; draw calls last frame: %d; frame %.3f ms\n", distinct, r->stats.draw_calls,
             r->stats.frame_ms);
     fprintf(f, "plugins:\n");
@@ -520,6 +523,7 @@ bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
     /* known before the first composition, so that the plan does not compose every material
      * again with motion vectors (a second GLSL compile of each program at start-up) */
     r->motion = sl_graph_wants_motion(app);
+    r->normal = sl_graph_wants_normal(app);
     sl_gpu_compose_all(app);
     sl_texture_prefetch_finish(app); /* every texture the scene uses is loaded: join, free the rest */
     r->seen_recompile = app->params.recompile_version;
@@ -571,11 +575,11 @@ void sl_renderer_destroy(sl_app *app) {
         }
     }
     free(r->materials);
-    for (int i = 0; i < r->cache_count; i++) sl_program_free(r->cache[i]);
-    free(r->cache);
+    for (int i = 0; i < r->cache.count; i++) sl_program_free(r->cache.items[i]);
+    free(r->cache.items);
     for (int i = 0; i < r->program_count; i++) sl_program_free(r->programs[i]);
+    sl_program_free(r->view_prog);
     free(r->programs);
-    free(r->program_owner);
     glDeleteVertexArrays(1, &r->empty_vao);
     if (r->light_buffer) glDeleteBuffers(1, &r->light_buffer);
     glDeleteQueries(64, r->queries);

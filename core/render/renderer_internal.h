@@ -9,6 +9,7 @@
 #include "render/renderer.h"
 #include "state.h"
 #include "render/forward.h"
+#include "plugin/plugins.h"
 
 /* center: the object-space bounds' centre (blended draws sort on its view depth) */
 typedef struct gpu_mesh { unsigned vao, vbo[5], ibo; int index_count; float center[3]; } gpu_mesh;
@@ -17,10 +18,14 @@ typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 /* model: NULL = the material's own; fragment (ABI 1.7): a plugin's main, resolved path */
 typedef struct override_variant { char *model; sl_forward_variant v; char *fragment; bool fullscreen; } override_variant;
 
+/* SL_DRAW_MATERIALS variants a material keeps (model overrides, plugins' mains), composed on first use */
+#define SL_MAX_OVERRIDE_VARIANTS 8
+
 typedef struct material_rt {
     sl_forward_variant forward, depth;
-    override_variant overrides[8]; /* SL_DRAW_MATERIALS variants, composed on first use */
+    override_variant overrides[SL_MAX_OVERRIDE_VARIANTS];
     int override_count;
+    bool override_overflow_reported;
     unsigned textures[SL_TEXTURE_UNIT_MATERIAL_COUNT];
 } material_rt;
 
@@ -37,7 +42,7 @@ typedef struct resource {
 typedef struct graph_pass {
     const sl_pass_desc *d;
     int owner;            /* plugin index; -1 = core pass */
-    bool core_forward, core_display, core_resolve, core_blend;
+    bool core_forward, core_display, core_resolve, core_blend, core_prepass;
     unsigned fbo;
     uint64_t last_signature; bool has_run;
     uint64_t last_depends; /* key of sl_pass_desc.depends when it last ran (graph_run.c) */
@@ -50,41 +55,57 @@ typedef struct graph_pass {
 struct sl_pass_ctx { graph_pass *pass; int out_slot[8]; int in_slot[16]; };
 
 typedef struct sl_renderer {
+    /* ---- the scene on the GPU (scene_gpu.c) ---- */
     gpu_mesh *meshes;
     gpu_texture *textures; int texture_count;
     material_rt *materials;
-    sl_program **cache; int cache_count;          /* composed forward/depth programs */
-    sl_program **programs; int program_count;     /* stand-alone programs (plugins, core) */
-    int *program_owner;
-    sl_program *display_prog, *accum_prog, *resolve_prog;
-    int ssaa;
     int anisotropy;                               /* core.anisotropy applied to the material textures */
-    unsigned empty_vao, light_buffer;
+    unsigned empty_vao;                           /* for attribute-less full-screen triangles */
+
+    /* ---- lights (scene_gpu.c): the light buffer, packed by type, and what plugins see ---- */
+    unsigned light_buffer;
     sl_light_info *lights; int light_count;
-    int type_range[32][2], shadowed_range[32][2]; const char *types[32]; int ntypes;
+    const char *types[SL_MAX_LIGHT_TYPES]; int ntypes; /* the scene's light types, packing order */
+    int type_range[SL_MAX_LIGHT_TYPES][2];        /* each type's [first, end) in the buffer */
+    int shadowed_range[SL_MAX_LIGHT_TYPES][2];    /* its shadow casters' [first, end), packed first */
+    double seen_light_time;   /* app->time of the packed lights (animated lights repack) */
+    uint64_t lights_packed;   /* bumps each time the lights are packed */
+
+    /* ---- programs (renderer.c; composition: forward.c) ---- */
+    sl_program_cache cache;                       /* composed forward/depth programs */
+    sl_program **programs; int program_count;     /* stand-alone programs (plugins, core) */
+    sl_program *display_prog, *accum_prog, *resolve_prog;
+    sl_program *view_prog; uint64_t view_key; /* the chosen pass view's display program (graph_run.c) */
+    uint64_t programs_version; /* bumps on a hot reload or a new debug view (in params_version) */
+    uint64_t compiled_ahead;  /* the forward programs compile_ahead last drew (graph_run.c) */
+    /* plugins whose material GLSL failed to compile, with the first message, until app.c switches
+     * them off (sl_renderer_failed_plugin); a hot reload keeps last good programs instead */
+    struct { int plugin; char *why; } blamed[SL_MAX_PLUGINS];
+    int blamed_count;
+    bool reloading;        /* in a hot reload: failures keep the last good program ... */
+    uint64_t retried;      /* ... but of the plugins it switched on again (bit k: plugin k) */
+
+    /* ---- the render graph (graph_plan.c, graph_targets.c, graph_run.c) ---- */
     resource *res; int res_count;
     graph_pass *passes; int pass_count;
     bool plan_dirty;
     uint64_t plan_key;       /* plugins on/off and core settings the plan was made with (renderer.c) */
     int width, height;
-    uint64_t seen_recompile, seen_materials, seen_lights_version, seen_param_version;
-    double seen_light_time;   /* app->time of the packed lights (animated lights repack) */
-    uint64_t lights_packed;   /* bumps each time the lights are packed */
-    char *seen_debug_view;
-    bool finish_timing;   /* when timing: glFinish around each pass (CPU rasterisers) */
-    bool timing;          /* this frame's passes are timed (--bench, --stats, the panel asked) */
-    bool timing_next;     /* sl_renderer_request_timing: time the next frame */
-    bool color_final;     /* "color" holds the frame's final linear colour (no pass wrote display) */
+    int ssaa;                 /* core.ssaa the plan was made with */
+    bool blend_planned;       /* the plan holds the "forward-blend" pass (a blended material exists) */
     sl_pass_desc display_desc; /* the core's display pass (graph_plan.c), active while color_final */
+    bool color_final;     /* "color" holds the frame's final linear colour (no pass wrote display) */
     uint64_t shadow_runs;     /* runs of passes before SL_STAGE_PREPASS (SL_DEPENDS_LIGHTS) */
-    unsigned queries[64];
+    sl_pass_ctx *current;     /* the pass being executed, for draw_scene */
+
+    /* ---- what the last frame saw (renderer.c): a change recomposes or re-plans ---- */
+    uint64_t seen_recompile, seen_materials, seen_lights_version, seen_param_version;
+    char *seen_debug_view;
+
+    /* ---- the frame and its sample (renderer.c) ---- */
     sl_frame frame;
-    /* temporal antialiasing (ABI 1.6): the jitter plugins asked for this frame, the frames a still
-     * needs, whether the forward pass writes "motion", and the previous frame's camera */
-    float jitter_req[2];
-    uint64_t compiled_ahead;  /* the forward programs compile_ahead last drew (graph_run.c) */
-    uint64_t programs_version; /* bumps on a hot reload or a new debug view (in params_version) */
-    int still_frames;
+    float jitter_req[2];      /* the jitter plugins asked for this frame (ABI 1.6) */
+    int still_frames;         /* the frames a still needs (set_still_frames) */
     /* ABI 1.9 sample index: frames since the view or an edit last changed, and what it compares */
     int still_run;
     uint64_t still_key, still_last_frame, frames_run;
@@ -93,22 +114,23 @@ typedef struct sl_renderer {
      * starts forced so far (part of edits_version) */
     int forced_index, forced_count;
     uint64_t forced_starts;
+
+    /* ---- what the forward pass writes besides "color" and "depth" when a pass reads it: "normal"
+     * (ABI 1.13, or the depth pre-pass writes it), motion vectors (ABI 1.6) and the previous frame ---- */
+    bool normal;
+    bool prepass;
     bool motion;
     bool have_prev;
     float prev_view_proj[16], prev_unjittered_vp[16];
     double prev_time;
-    float (*prev_world)[16]; int prev_world_count; /* each node's world matrix last frame (motion) */
-    bool blend_planned;       /* the plan holds the "forward-blend" pass (a blended material exists) */
+    float (*prev_world)[16]; int prev_world_count; /* each node's world matrix last frame */
+
+    /* ---- timing and statistics (graph_run.c) ---- */
+    bool finish_timing;   /* when timing: glFinish around each pass (CPU rasterisers) */
+    bool timing;          /* this frame's passes are timed (--bench, --stats, the panel asked) */
+    bool timing_next;     /* sl_renderer_request_timing: time the next frame */
+    unsigned queries[64]; /* GL timer queries (GPU), each read back before it is reused */
     sl_frame_stats stats;
-    unsigned display_fbo;
-    /* the pass being executed, for draw_scene */
-    sl_pass_ctx *current;
-    /* plugins whose material GLSL failed to compile, with the first message, until app.c switches
-     * them off (sl_renderer_failed_plugin); a hot reload keeps last good programs instead */
-    struct { int plugin; char *why; } blamed[64];
-    int blamed_count;
-    bool reloading;        /* in a hot reload: failures keep the last good program ... */
-    uint64_t retried;      /* ... but of the plugins it switched on again (bit k: plugin k) */
 } sl_renderer;
 
 #define R(app) ((sl_renderer *)(app)->renderer)
@@ -150,7 +172,13 @@ void sl_graph_plan(sl_app *app);
 void sl_graph_route_display(sl_app *app, int first, bool keep_color);
 /* An enabled pass reads "motion": the forward programs compute it (SL_MOTION_VECTORS). */
 bool sl_graph_wants_motion(sl_app *app);
+/* A pass before the forward pass reads "depth" or "normal": the depth pre-pass runs (ABI 1.13). */
+bool sl_graph_wants_prepass(sl_app *app);
+/* A pass reads "normal" and no pre-pass writes it: the forward programs do (SL_NORMAL_TARGET). */
+bool sl_graph_wants_normal(sl_app *app);
 
+/* graph_run.c: the chosen debug view when it shows a pass's resource (SL_CHUNK_PASS_VIEW), or NULL */
+const sl_chunk_reg *sl_graph_pass_view(sl_app *app);
 /* graph_run.c: runs passes [begin, end), timing each */
 void sl_graph_run_range(sl_app *app, int begin, int end);
 double sl_now_ms(void);

@@ -259,7 +259,7 @@ void sl_gpu_pack_lights(sl_app *app) {
     free(r->lights);
     r->lights = calloc(s->light_count + 1, sizeof *r->lights);
     r->light_count = s->light_count;
-    r->ntypes = sl_forward_light_types(app, r->types, 32);
+    r->ntypes = sl_forward_light_types(app, r->types, SL_MAX_LIGHT_TYPES);
     gpu_light *buf = calloc(s->light_count + 1, sizeof *buf);
     int k = 0;
     /* the enabled shadow casters of the types with an l/E pair first, in ranges of their own
@@ -333,7 +333,8 @@ static void compose(sl_app *app, int m, sl_variant_kind kind, const char *model,
                     sl_forward_variant *v) {
     sl_renderer *r = R(app);
     char err[16384];
-    if (!sl_forward_compose_custom(app, m, kind, model, fragment, fullscreen, v, &r->cache, &r->cache_count, err, sizeof err))
+    sl_variant_request req = {.kind = kind, .model_override = model, .fragment = fragment, .fullscreen = fullscreen};
+    if (!sl_forward_compose(app, m, &req, v, &r->cache, err, sizeof err))
         compose_failed(app, v, err);
 }
 
@@ -438,7 +439,7 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
         snprintf(name, sizeof name, "sl_mat_%s", q->full_id);
         set_value_uniform(prog, name, q, &ms->values[i].v);
     }
-    for (int t = 0; t < var->texture_count; t++) glBindTextureUnit(t, r->materials[m].textures[t]);
+    for (int t = 0; t < var->texture_count; t++) glBindTextureUnit(SL_TEXTURE_UNIT_MATERIAL_FIRST + t, r->materials[m].textures[t]);
     for (int i = 0; i < app->params.count; i++) {
         const sl_param *q = &app->params.items[i];
         if (q->desc.scope != SL_SCOPE_GLOBAL || (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE)) continue;
@@ -478,7 +479,15 @@ static const sl_forward_variant *override_variant_of(sl_app *app, int m, const c
         if (same_name(mr->overrides[k].model, model) && same_name(mr->overrides[k].fragment, fragment) &&
             mr->overrides[k].fullscreen == fullscreen)
             return &mr->overrides[k].v;
-    if (mr->override_count == 8) return NULL;
+    if (mr->override_count == SL_MAX_OVERRIDE_VARIANTS) {
+        if (!mr->override_overflow_reported)
+            SL_ERROR("material \"%s\": draw_scene asked for a program variant too many (model %s, fragment %s): a "
+                     "material keeps at most %d (renderer_internal.h, SL_MAX_OVERRIDE_VARIANTS); not drawn there",
+                     app->scene.materials[m].name, model ? model : "its own", fragment ? fragment : "none",
+                     SL_MAX_OVERRIDE_VARIANTS);
+        mr->override_overflow_reported = true;
+        return NULL;
+    }
     override_variant *o = &mr->overrides[mr->override_count++];
     memset(o, 0, sizeof *o);
     o->model = model ? strdup(model) : NULL;

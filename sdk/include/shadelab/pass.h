@@ -20,6 +20,15 @@
  *            ([0,1] across the viewport), both without projection jitter. Covers camera motion
  *            and VERTEX hooks (evaluated at the previous frame's sl_time too); background
  *            pixels (nothing drawn) hold 0. Same size as "depth".
+ *   "normal" RGBA16F (ABI 1.13), same size as "depth", only while an active pass lists it as an
+ *            input: xyz the shading normal after the SURFACE hooks in view space (unit, on the
+ *            viewer's side), w the GGX α the surface hooks left (1 where none sets it); 0 where
+ *            nothing was drawn. GLSL: vec4 sl_normal_target(SlSurface s) in a custom main.
+ * The depth pre-pass (ABI 1.13): while an enabled pass at a stage below SL_STAGE_OPAQUE lists
+ * "depth" or "normal" as an input, the core's "depth-prepass" runs at SL_STAGE_DEPTH_PREPASS and
+ * writes both (every opaque material with its VERTEX and SURFACE hooks, no lighting), so a pass
+ * between it and the forward pass can feed the forward pass (ambient occlusion). The forward pass
+ * still writes "depth" itself; "normal" keeps the pre-pass's values.
  * After the last pass on "color" the core's display pass clamps to [0,1] and applies the sRGB
  * encoding (a tone-mapping plugin runs before it, at SL_STAGE_TONEMAP). ABI 1.8: when the last
  * writers of "color" are declared display_on_write, they write "display" directly instead
@@ -41,6 +50,8 @@ extern "C" {
  * valid. The bundled plugins' values are listed in sdk/docs/plugin-guide.md ("Pass order"). */
 typedef enum sl_stage {
     SL_STAGE_SHADOW = 100,   /* light-space passes (shadow maps): spotlight-shadow */
+    SL_STAGE_DEPTH_PREPASS = 190, /* ABI 1.13 name: the core's "depth-prepass" ("depth", "normal"), only
+                                     while a pass before SL_STAGE_OPAQUE reads one of them */
     SL_STAGE_PREPASS = 200,  /* anything the forward pass samples (texture-space lighting): sss */
     SL_STAGE_OPAQUE = 300,   /* the core's forward pass; plugins may add passes after it (envmap's background) */
     SL_STAGE_BLEND = 380,    /* ABI 1.8 name: the core's "forward-blend" pass (materials with alpha_blend,
@@ -175,6 +186,15 @@ typedef struct sl_pass_desc {
      * it ahead of its turn (host->compile_ahead) so that a CPU renderer compiles its programs while
      * an earlier pass waits. false (the default): never run but in its turn. */
     bool draws_only;
+    /* ABI 1.13, optional: the pass's inputs and outputs as they are now, for a pass whose targets or
+     * inputs follow its parameters (a half-resolution option: an output's `scale`; a mode that reads
+     * "normal"). Called when the graph is planned and after every parameter edit, GL context
+     * current, before begin_frame: sets *inputs (NULL-terminated, or NULL), *outputs and
+     * *output_count (arrays the core copies; they need not outlive the call). When they differ
+     * from the plan's, the core plans the graph again before the frame: targets re-allocated
+     * (their contents lost), passes checked and ordered, and "motion", "normal" and the depth
+     * pre-pass produced as the new inputs need. NULL: `inputs` and `outputs` above, always. */
+    void (*io)(void *user, const char *const **inputs, const sl_target_desc **outputs, int *output_count);
 } sl_pass_desc;
 
 /* host->draw_scene: draw every visible mesh of the scene with a view. */

@@ -185,6 +185,9 @@ typedef struct sl_shader_chunk_desc {
     /* ABI 1.7, DISPLACEMENT only: the chunk's edge tessellation level function
      * float LEVEL(vec3 a, vec3 b) (see "Displacement" above); NULL = about 8-pixel edges. */
     const char *tess_level;
+    /* ABI 1.13, DEBUG_VIEW with SL_CHUNK_PASS_VIEW only: the render-graph resource the view shows
+     * ("my-plugin.ao", "normal"). */
+    const char *resource;
 } sl_shader_chunk_desc;
 
 typedef enum sl_chunk_flags {
@@ -199,7 +202,17 @@ typedef enum sl_chunk_flags {
      * material's model, e.g. for sampling points on the light) and test SL_MODEL_<NAME> to use
      * a closed form for a model it knows. The SHADOW hook is not applied (the light handles its
      * own visibility) and per-light debug views (DEBUG_VIEW_LIGHT) get nothing from it. */
-    SL_CHUNK_LIGHT_RADIANCE = 1u << 1
+    SL_CHUNK_LIGHT_RADIANCE = 1u << 1,
+    /* ABI 1.13, DEBUG_VIEW: a view of a render-graph resource a pass wrote, not of the materials
+     * (a pass's own visualisation, shown as it is, not through tone mapping). `resource` names it;
+     * `file` holds
+     *     vec3 FN(sampler2D resource, vec2 uv)       uv in [0, 1] over the viewport
+     * While the view is chosen every pass runs as usual and the material programs are unchanged;
+     * the core's display pass then writes FN's value, clamped to [0, 1], straight into the 8-bit
+     * output: no tone mapping and no sRGB encoding (0.5 is the code value 128). A resource no
+     * pass wrote this frame shows black. Listed, chosen (--debug-view, the GUI, keys) and named
+     * like every debug view. */
+    SL_CHUNK_PASS_VIEW = 1u << 2
 } sl_chunk_flags;
 
 /* A stand-alone program (for passes: shadow maps, blurs, post effects). Files are relative to
