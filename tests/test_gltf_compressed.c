@@ -2,7 +2,12 @@
  *  - webp: EXT_texture_webp. A 32×32 WebP of four flat 16×16 blocks (written through
  *    OpenImageIO, lossy) as the texture's extension source, a grey PNG as its fallback source;
  *    the quad fills an orthographic camera's view, and at each block's centre the "diffuse-texture"
- *    debug view shows that block's sRGB-decoded colour (within the codec's loss), not the grey. */
+ *    debug view shows that block's sRGB-decoded colour (within the codec's loss), not the grey.
+ *  - meshopt: EXT_meshopt_compression. The quad's positions and UVs (ATTRIBUTES), its normals as
+ *    8-bit octahedral vectors (ATTRIBUTES + OCTAHEDRAL, with KHR_mesh_quantization) and its
+ *    indices (TRIANGLES, decoded to 16 bits), encoded by meshoptimizer into buffer 0 while the
+ *    bufferViews name a fallback buffer that holds nothing: the mesh read equals the
+ *    uncompressed file's corner for corner (normals within the 8-bit encoding's step). */
 #define SL_IMAGE_INTERNAL /* sl_oiio_write: OpenImageIO writes the WebP */
 #include "check.h"
 #include "gltf_writer.h"
@@ -13,6 +18,7 @@
 #include <shadelab/harness.h>
 
 #include <math.h>
+#include <meshoptimizer.h>
 
 #define W 64
 static char err[8192];
@@ -90,7 +96,77 @@ static void test_webp(void) {
     free(img);
 }
 
+/* A meshopt bufferView: the encoded bytes appended to buffer 0, the view on fallback buffer 1. */
+static int meshopt_view(gw_doc *g, const unsigned char *enc, size_t enc_len, size_t count, size_t stride, const char *mode,
+                        const char *filter, size_t *fallback_at) {
+    size_t at = gw_append(g, enc, enc_len);
+    char s[400];
+    snprintf(s, sizeof s, "{\"buffer\": 1, \"byteOffset\": %zu, \"byteLength\": %zu, \"extensions\": {\"EXT_meshopt_compression\": "
+             "{\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": %zu, \"byteStride\": %zu, \"count\": %zu, \"mode\": \"%s\", "
+             "\"filter\": \"%s\"}}}", *fallback_at, count * stride, at, enc_len, stride, count, mode, filter);
+    *fallback_at += (count * stride + 3) / 4 * 4;
+    cJSON *views = cJSON_GetObjectItem(g->json, "bufferViews");
+    cJSON_AddItemToArray(views, cJSON_Parse(s));
+    return cJSON_GetArraySize(views) - 1;
+}
+
+static void test_meshopt(void) {
+    const float pos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, uv[8] = {0, 1, 1, 1, 1, 0, 0, 0};
+    const float nrm4[16] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const unsigned idx[6] = {0, 1, 2, 0, 2, 3};
+    signed char oct[16];
+    meshopt_encodeFilterOct(oct, 4, 4, 8, nrm4);
+    unsigned char enc[4][512];
+    size_t n_pos = meshopt_encodeVertexBuffer(enc[0], sizeof enc[0], pos, 4, 12);
+    size_t n_uv = meshopt_encodeVertexBuffer(enc[1], sizeof enc[1], uv, 4, 8);
+    size_t n_nrm = meshopt_encodeVertexBuffer(enc[2], sizeof enc[2], oct, 4, 4);
+    size_t n_idx = meshopt_encodeIndexBuffer(enc[3], sizeof enc[3], idx, 6);
+    CHECK(n_pos && n_uv && n_nrm && n_idx);
+    gw_doc g;
+    CHECK(gw_quad(&g));
+    size_t fallback = 0;
+    int vp = meshopt_view(&g, enc[0], n_pos, 4, 12, "ATTRIBUTES", "NONE", &fallback);
+    int vu = meshopt_view(&g, enc[1], n_uv, 4, 8, "ATTRIBUTES", "NONE", &fallback);
+    int vn = meshopt_view(&g, enc[2], n_nrm, 4, 4, "ATTRIBUTES", "OCTAHEDRAL", &fallback);
+    int vi = meshopt_view(&g, enc[3], n_idx, 6, 2, "TRIANGLES", "NONE", &fallback);
+    char s[300];
+    snprintf(s, sizeof s, "{\"byteLength\": %zu, \"extensions\": {\"EXT_meshopt_compression\": {\"fallback\": true}}}", fallback);
+    gw_set(&g, "/buffers/1", s);
+    snprintf(s, sizeof s, "{\"bufferView\": %d, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}", vp);
+    gw_set(&g, "/accessors/0", s);
+    snprintf(s, sizeof s, "{\"bufferView\": %d, \"componentType\": 5120, \"normalized\": true, \"count\": 4, \"type\": \"VEC3\"}", vn);
+    gw_set(&g, "/accessors/1", s);
+    snprintf(s, sizeof s, "{\"bufferView\": %d, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC2\"}", vu);
+    gw_set(&g, "/accessors/2", s);
+    snprintf(s, sizeof s, "{\"bufferView\": %d, \"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"}", vi);
+    gw_set(&g, "/accessors/3", s);
+    gw_set(&g, "/extensionsUsed", "[\"EXT_meshopt_compression\", \"KHR_mesh_quantization\"]");
+    gw_set(&g, "/extensionsRequired", "[\"EXT_meshopt_compression\", \"KHR_mesh_quantization\"]");
+    char path[4200];
+    snprintf(path, sizeof path, "%s/meshopt.glb", sl_test_dir());
+    CHECK(gw_write(&g, path, GW_GLB));
+    gw_free(&g);
+    sl_scene s1 = {0};
+    bool ok = sl_scene_load_file(&s1, path, NULL, err, sizeof err);
+    CHECK_MSG(ok, "meshopt: %s", err);
+    if (ok && s1.mesh_count == 1) {
+        const sl_mesh_data *m = &s1.meshes[0].data;
+        CHECK(m->index_count == 6 && m->vertex_count == 4);
+        double worst_n = 0;
+        for (int i = 0; i < m->index_count && m->index_count == 6; i++) {
+            int v = (int)m->indices[i], want = (int)idx[i];
+            for (int c = 0; c < 3; c++) CHECK(m->positions[3 * v + c] == pos[3 * want + c]);
+            for (int c = 0; c < 2; c++) CHECK(m->uvs[2 * v + c] == uv[2 * want + c]);
+            for (int c = 0; c < 3; c++) worst_n = fmax(worst_n, fabs(m->normals[3 * v + c] - nrm4[4 * want + c]));
+        }
+        printf("meshopt: positions, UVs and indices exact, normals within %.4f\n", worst_n);
+        CHECK(worst_n <= 1.0 / 127);
+    }
+    sl_scene_free(&s1);
+}
+
 int main(void) {
     test_webp();
+    test_meshopt();
     return check_result();
 }

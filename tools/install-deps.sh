@@ -23,7 +23,8 @@ PKGS=(
   libpng-dev              # PNG output without loading OpenImageIO (core/image/image.c)
   libjpeg-dev libopenexr-dev  # native JPEG and EXR decoding (core/image/image_native.c; OpenEXRCore only)
   libcjson-dev            # JSON scenes
-  libassimp-dev           # glTF / OBJ meshes
+  libassimp-dev           # meshes other than glTF and OBJ (PLY, FBX, Collada, …)
+  libmeshoptimizer-dev    # glTF EXT_meshopt_compression
   assimp-testmodels       # test data: Debian's glTF2 sample models (ctest gltf_models), so it never skips
   libcglm-dev             # vector/matrix math
   libimgui-dev            # GUI (C++ adapter only)

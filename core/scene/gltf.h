@@ -31,6 +31,8 @@ enum {
 /* The most elements an accessor without a bufferView (all zeros, or sparse) may declare: such
  * an accessor costs memory without costing file size. */
 #define GLTF_MAX_ZERO_ELEMENTS (1 << 26)
+/* The most bytes one compressed bufferView may decode to (EXT_meshopt_compression). */
+#define GLTF_MAX_DECODED_BYTES (1LL << 30)
 /* The most notes the file's warning lists (it counts the rest). */
 #define GLTF_MAX_NOTES 12
 /* The most animation keys one file may hold (all channels): 16 bytes per key and more. */
@@ -53,6 +55,8 @@ typedef struct gltf_doc {
     size_t bin_size;
     gltf_buffer *buffers;
     int buffer_count;
+    unsigned char **decoded;   /* per bufferView: its EXT_meshopt_compression data decoded, or NULL */
+    int view_count;
     char *err;                 /* the first error */
     size_t err_size;
     bool failed;
@@ -112,6 +116,10 @@ float *gltf_read_floats(gltf_doc *d, int index, const char *type, unsigned allow
 uint32_t *gltf_read_indices(gltf_doc *d, int index, const char *use, int *count);
 /* bufferView `index`'s bytes, bounds-checked inside its buffer, and its byteStride (0: none). */
 bool gltf_buffer_view(gltf_doc *d, int index, const unsigned char **data, size_t *len, size_t *stride);
+/* gltf_meshopt.c: the bytes of bufferView `index` whose EXT_meshopt_compression object is ext
+ * (decoded once, kept in d->decoded), and its stride (ATTRIBUTES: the extension's byteStride,
+ * which the view's must equal when given; indices: 0). false after gltf_fail. */
+bool gltf_meshopt_view(gltf_doc *d, int index, const cJSON *ext, const unsigned char **data, size_t *len, size_t *stride);
 /* The element count of accessor `index` without reading it (−1 after gltf_fail). */
 int gltf_accessor_count(gltf_doc *d, int index);
 

@@ -54,6 +54,10 @@ bool gltf_buffer_view(gltf_doc *d, int i, const unsigned char **data, size_t *le
         return false;
     if (length < 0) return gltf_fail(d, at, "byteLength is missing (required)");
     if (st % 4) return gltf_fail(d, at, "byteStride %lld is not a multiple of 4", st);
+    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(v, "extensions"),
+                                                        "EXT_meshopt_compression");
+    if (ext) /* the bytes are the extension's, decoded; the view's own buffer is a fallback */
+        return gltf_meshopt_view(d, i, ext, data, len, stride);
     const gltf_buffer *b = gltf_buffer_at(d, buffer);
     if (!b) return false;
     if ((unsigned long long)offset + (unsigned long long)length > b->size)

@@ -161,10 +161,12 @@ bool gltf_open(gltf_doc *d, const char *path, char *err, size_t err_size) {
 
 void gltf_close(gltf_doc *d) {
     for (int i = 0; i < d->buffer_count; i++) free(d->buffers[i].owned);
+    for (int i = 0; i < d->view_count; i++) free(d->decoded[i]);
+    free(d->decoded);
     free(d->buffers);
     cJSON_Delete(d->root);
     free(d->glb);
-    d->buffers = NULL, d->root = NULL, d->glb = NULL;
+    d->buffers = NULL, d->root = NULL, d->glb = NULL, d->decoded = NULL;
 }
 
 /* ---- members ------------------------------------------------------------------------------ */
@@ -367,7 +369,10 @@ static bool load_buffer(gltf_doc *d, int i, gltf_buffer *b) {
     char p[80];
     snprintf(p, sizeof p, "%s/uri", at);
     if (!uri) {
-        if (!d->bin) return gltf_fail(d, at, "has no uri and the file has no GLB BIN chunk to refer to");
+        if (!d->bin) return gltf_fail(d, at, "has no uri and the file has no GLB BIN chunk to refer to%s",
+                                  cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(buf, "extensions"),
+                                                                   "EXT_meshopt_compression")
+                                      ? " (a meshopt fallback buffer, read by a bufferView without the extension)" : "");
         if (i != 0) return gltf_fail(d, at, "has no uri, which only buffer 0 of a .glb may (its BIN chunk)");
         if (d->bin_size < b->size)
             return gltf_fail(d, at, "byteLength %zu is more than the BIN chunk's %zu bytes", b->size, d->bin_size);
