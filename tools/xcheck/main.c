@@ -356,27 +356,24 @@ typedef struct report_ctx {
     const float *eevee[16]; double eevee_ms[16]; /* one per o->eevee sample count */
 } report_ctx;
 
-/* Prints and writes the report; returns the largest relative RMS of a cross-checked object. */
-static double report(const report_ctx *r, FILE *txt, FILE *json) {
-    const xc_export *ex = r->ex;
-    int w = r->w, h = r->h;
-    unsigned char *mask = malloc((size_t)w * h);
-    xc_stats *objects = calloc(ex->object_count + 1, sizeof *objects);
-    double worst = 0;
-    /* FLIP reads the display range: both images at one exposure (Cycles' 99th percentile at 1) */
-    double scale = xc_display_scale(r->ref, w, h);
-    float *flip = malloc((size_t)w * h * sizeof *flip);
-    if (flip && !isfinite(xc_flip_map(r->test, r->ref, w, h, scale, flip))) { free(flip); flip = NULL; }
-#define FLIP_OF(stats, m) ((stats).flip = flip ? xc_masked_mean(flip, (m), w, h) : NAN)
-    fprintf(txt, "shadelab-xcheck %s: %dx%d, Cycles (%s) %d samples, %d bounces%s\n", r->o->scene, w, h,
-            r->blender_version, r->o->samples, r->o->bounces,
-            r->cached ? ", reference from the cache" : "");
+/* A region's statistics, its FLIP from the map (when there is one), as a row of both reports. */
+static xc_stats region_row(const report_ctx *r, FILE *txt, FILE *json, const float *flip, const unsigned char *mask,
+                           const char *name, const char *material, bool checked, bool last) {
+    xc_stats s;
+    xc_region_stats(r->test, r->ref, mask, r->w, r->h, &s);
+    s.flip = flip ? xc_masked_mean(flip, mask, r->w, r->h) : NAN;
+    print_row(txt, name, material, &s, checked);
+    json_stats(json, name, material, &s, checked, last);
+    return s;
+}
+
+static void report_header(const report_ctx *r, FILE *txt, FILE *json) {
+    fprintf(txt, "shadelab-xcheck %s: %dx%d, Cycles (%s) %d samples, %d bounces%s\n", r->o->scene, r->w, r->h,
+            r->blender_version, r->o->samples, r->o->bounces, r->cached ? ", reference from the cache" : "");
     if (!r->cached) fprintf(txt, "Cycles: %.1f s (Blender start-up included)\n", r->cycles_seconds);
     fprintf(txt, "shadelab: %.2f ms per frame (median)\n", r->shadelab_ms);
     fprintf(txt, "compared before tone mapping, on each object's interior (its pixels whose four neighbours are it too);\n"
-                 "FLIP: LDR-FLIP of both images at one exposure (Cycles' 99th-percentile luminance at 1)\n\n");
-    fprintf(txt, "  %-24s %-18s %8s  %8s  %8s  %8s  %10s  %10s\n", "object", "material", "pixels", "rel-RMS", "ratio",
-            "FLIP", "shadelab", "Cycles");
+                 "FLIP: LDR-FLIP of both images at one exposure (Cycles' 99th-percentile luminance at 1)\n");
     fprintf(json, "{\n  \"scene\": ");
     json_string(json, r->o->scene);
     fprintf(json, ", \"plugins\": \"");
@@ -386,79 +383,84 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
         fprintf(json, "%s%s", first ? "" : ", ", p->id);
         first = 0;
     }
-    fprintf(json, "\"");
-    fprintf(json, ", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d,\n"
-                  "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n"
-                  "  \"objects\": [\n",
-            w, h, r->o->samples, r->o->bounces, r->blender_version, (unsigned long long)r->key,
-            r->cycles_seconds, r->shadelab_ms);
-    for (int i = 0; i < ex->object_count; i++) {
-        const xc_object *ob = &ex->objects[i];
-        xc_region_mask(r->index, w, h, i + 1, mask);
-        xc_region_stats(r->test, r->ref, mask, w, h, &objects[i]);
-        FLIP_OF(objects[i], mask);
-        const char *mat = ob->material;
-        print_row(txt, ob->name, mat, &objects[i], ob->checked);
-        json_stats(json, ob->name, mat, &objects[i], ob->checked, i == ex->object_count - 1);
-        if (ob->checked && objects[i].pixels && !(objects[i].rel_rms <= worst)) worst = objects[i].rel_rms;
+    fprintf(json, "\", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d,\n"
+                  "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n",
+            r->w, r->h, r->o->samples, r->o->bounces, r->blender_version, (unsigned long long)r->key, r->cycles_seconds,
+            r->shadelab_ms);
+}
+
+static void table_heading(FILE *txt, const char *first, const char *second) {
+    fprintf(txt, "\n  %-24s %-18s %8s  %8s  %8s  %8s  %10s  %10s\n", first, second, "pixels", "rel-RMS", "ratio", "FLIP",
+            "shadelab", "Cycles");
+}
+
+/* Per object; returns the largest relative RMS of a cross-checked one. */
+static double report_objects(const report_ctx *r, FILE *txt, FILE *json, const float *flip, unsigned char *mask) {
+    double worst = 0;
+    table_heading(txt, "object", "material");
+    fprintf(json, "  \"objects\": [\n");
+    for (int i = 0; i < r->ex->object_count; i++) {
+        const xc_object *ob = &r->ex->objects[i];
+        xc_region_mask(r->index, r->w, r->h, i + 1, mask);
+        xc_stats s = region_row(r, txt, json, flip, mask, ob->name, ob->material, ob->checked, i == r->ex->object_count - 1);
+        if (ob->checked && s.pixels && !(s.rel_rms <= worst)) worst = s.rel_rms;
     }
-    fprintf(json, "  ],\n  \"materials\": [\n");
-    fprintf(txt, "\n  %-24s %-18s %8s  %8s  %8s  %8s  %10s  %10s\n", "material", "", "pixels", "rel-RMS", "ratio",
-            "FLIP", "shadelab", "Cycles");
-    bool first = true;
-    unsigned char *one = malloc((size_t)w * h);
-    for (int i = 0; one && i < ex->object_count; i++) {
-        /* each material once, on the union of its objects' interiors */
+    fprintf(json, "  ],\n");
+    return worst;
+}
+
+/* Per material: each once, on the union of its objects' interiors. */
+static void report_materials(const report_ctx *r, FILE *txt, FILE *json, const float *flip, unsigned char *mask) {
+    const xc_export *ex = r->ex;
+    size_t n = (size_t)r->w * r->h;
+    unsigned char *one = malloc(n);
+    table_heading(txt, "material", "");
+    fprintf(json, "  \"materials\": [\n");
+    for (int i = 0, first = 1; one && i < ex->object_count; i++) {
         const char *m = ex->objects[i].material;
-        bool seen = false;
+        bool seen = false, checked = true;
         for (int k = 0; k < i; k++) seen |= !strcmp(ex->objects[k].material, m);
         if (seen || !m[0]) continue;
-        memset(mask, 0, (size_t)w * h);
-        bool checked = true;
+        memset(mask, 0, n);
         for (int k = i; k < ex->object_count; k++) {
             if (strcmp(ex->objects[k].material, m)) continue;
             checked &= ex->objects[k].checked;
-            xc_region_mask(r->index, w, h, k + 1, one);
-            for (size_t p = 0; p < (size_t)w * h; p++) mask[p] |= one[p];
+            xc_region_mask(r->index, r->w, r->h, k + 1, one);
+            for (size_t p = 0; p < n; p++) mask[p] |= one[p];
         }
-        xc_stats s;
-        xc_region_stats(r->test, r->ref, mask, w, h, &s);
-        FLIP_OF(s, mask);
-        print_row(txt, m, "", &s, checked);
         fprintf(json, "%s", first ? "" : ",\n");
-        json_stats(json, m, "", &s, checked, true);
-        first = false;
+        region_row(r, txt, json, flip, mask, m, "", checked, true);
+        first = 0;
     }
+    fprintf(json, "  ],\n");
     free(one);
-    xc_stats bg, all;
-    xc_region_mask(r->index, w, h, 0, mask);
-    xc_region_stats(r->test, r->ref, mask, w, h, &bg);
-    FLIP_OF(bg, mask);
-    xc_region_stats(r->test, r->ref, NULL, w, h, &all);
-    FLIP_OF(all, NULL);
-    xc_stats inner;
-    xc_interior_mask(r->index, w, h, mask);
-    xc_region_stats(r->test, r->ref, mask, w, h, &inner);
-    FLIP_OF(inner, mask);
+}
+
+/* The background, the whole image and the interiors (left in mask); returns the interiors'. */
+static xc_stats report_regions(const report_ctx *r, FILE *txt, FILE *json, const float *flip, unsigned char *mask) {
     fprintf(txt, "\n");
-    print_row(txt, "(background)", "", &bg, true);
-    print_row(txt, "(whole image)", "", &all, true);
-    print_row(txt, "(interiors)", "", &inner, true);
-    fprintf(json, "  ],\n  \"background\": ");
-    json_stats(json, "(background)", "", &bg, true, true);
+    xc_region_mask(r->index, r->w, r->h, 0, mask);
+    fprintf(json, "  \"background\": ");
+    region_row(r, txt, json, flip, mask, "(background)", "", true, true);
     fprintf(json, "  , \"whole_image\": ");
-    json_stats(json, "(whole image)", "", &all, true, true);
+    region_row(r, txt, json, flip, NULL, "(whole image)", "", true, true);
+    xc_interior_mask(r->index, r->w, r->h, mask);
     fprintf(json, "  , \"interiors\": ");
-    json_stats(json, "(interiors)", "", &inner, true, true);
-    if (r->o->eevee_count) {
-        fprintf(txt, "\nEEVEE against Cycles (the same interiors; shadelab: rel-RMS %.4f, ratio %.4f, FLIP %.4f, %.2f ms):\n",
-                inner.rel_rms, inner.mean_ratio, inner.flip, r->shadelab_ms);
-        fprintf(json, "  , \"eevee\": [\n");
-    }
+    return region_row(r, txt, json, flip, mask, "(interiors)", "", true, true);
+}
+
+/* EEVEE's renders over the interiors (mask), beside shadelab's figures. */
+static void report_eevee(const report_ctx *r, FILE *txt, FILE *json, const xc_stats *inner, double scale, float *flip,
+                         const unsigned char *mask) {
+    if (!r->o->eevee_count) return;
+    fprintf(txt, "\nEEVEE against Cycles (the same interiors; shadelab: rel-RMS %.4f, ratio %.4f, FLIP %.4f, %.2f ms):\n",
+            inner->rel_rms, inner->mean_ratio, inner->flip, r->shadelab_ms);
+    fprintf(json, "  , \"eevee\": [\n");
     for (int k = 0; k < r->o->eevee_count; k++) {
         xc_stats e;
-        xc_region_stats(r->eevee[k], r->ref, mask, w, h, &e);
-        e.flip = flip && isfinite(xc_flip_map(r->eevee[k], r->ref, w, h, scale, flip)) ? xc_masked_mean(flip, mask, w, h) : NAN;
+        xc_region_stats(r->eevee[k], r->ref, mask, r->w, r->h, &e);
+        if (flip && isfinite(xc_flip_map(r->eevee[k], r->ref, r->w, r->h, scale, flip)))
+            e.flip = xc_masked_mean(flip, mask, r->w, r->h);
         fprintf(txt, "  %4d samples: rel-RMS %.4f, ratio %.4f, FLIP %.4f, %.1f ms per render (%.1fx shadelab's frame)\n",
                 r->o->eevee[k], e.rel_rms, e.mean_ratio, e.flip, r->eevee_ms[k], r->eevee_ms[k] / r->shadelab_ms);
         fprintf(json, "    {\"samples\": %d, \"ms\": %.3f, \"interiors\": {\"rel_rms\": %.6g, \"mean_ratio\": %.6g, "
@@ -466,7 +468,10 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
                 r->o->eevee[k], r->eevee_ms[k], e.rel_rms, e.mean_ratio, isfinite(e.flip) ? e.flip : -1,
                 k + 1 < r->o->eevee_count ? "," : "");
     }
-    if (r->o->eevee_count) fprintf(json, "  ]\n");
+    fprintf(json, "  ]\n");
+}
+
+static void report_notes(const xc_export *ex, FILE *txt, FILE *json) {
     fprintf(json, "  , \"notes\": [");
     if (ex->note_count) fprintf(txt, "\n");
     for (int i = 0; i < ex->note_count; i++) {
@@ -475,10 +480,24 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
         json_string(json, ex->notes[i]);
     }
     fprintf(json, "]\n}\n");
-#undef FLIP_OF
+}
+
+/* Prints and writes the report; returns the largest relative RMS of a cross-checked object. */
+static double report(const report_ctx *r, FILE *txt, FILE *json) {
+    unsigned char *mask = malloc((size_t)r->w * r->h);
+    float *flip = malloc((size_t)r->w * r->h * sizeof *flip);
+    if (!mask) return INFINITY;
+    /* FLIP reads the display range: both images at one exposure (Cycles' 99th percentile at 1) */
+    double scale = xc_display_scale(r->ref, r->w, r->h);
+    if (flip && !isfinite(xc_flip_map(r->test, r->ref, r->w, r->h, scale, flip))) { free(flip); flip = NULL; }
+    report_header(r, txt, json);
+    double worst = report_objects(r, txt, json, flip, mask);
+    report_materials(r, txt, json, flip, mask);
+    xc_stats inner = report_regions(r, txt, json, flip, mask);
+    report_eevee(r, txt, json, &inner, scale, flip, mask);
+    report_notes(r->ex, txt, json);
     free(flip);
     free(mask);
-    free(objects);
     return worst;
 }
 
@@ -521,10 +540,102 @@ static bool load_exr(const char *path, sl_image *img, int w, int h, char *err, s
     return true;
 }
 
+/* The app as the viewer would load the scene, with tonemap off (compared before tone mapping; a
+ * note says the tone curve is not cross-checked). */
+static bool open_app(const options *o, sl_app *app, char *err, size_t n) {
+    sl_app_options opt = {0};
+    opt.scene_path = o->scene;
+    opt.data_dir = o->data;
+    opt.backend = SL_BACKEND_OSMESA;
+    opt.width = o->width;
+    opt.height = o->height;
+    opt.keep_color = true;
+    opt.timings = true;
+    opt.accumulate = 1;
+    opt.fixed_dt = 1.0 / 60;
+    opt.camera = o->camera;
+    for (int i = 0; i < o->plugin_count; i++) opt.plugins[opt.plugin_count++] = o->plugins[i];
+    for (int i = 0; i < o->setting_count; i++) opt.settings[opt.setting_count++] = o->settings[i];
+    memset(app, 0, sizeof *app);
+    if (!sl_app_init(app, &opt, err, n)) return false;
+    return sl_plugins_find(&app->plugins, "tonemap") < 0 || sl_app_set(app, "tonemap.enabled=false", SL_SRC_CLI, err, n);
+}
+
+/* The Cycles reference (rendered or cached) and its object-index pass, read into ref and index. */
+static bool reference(const options *o, const char *out, const char *blender, uint64_t key, xc_export *ex,
+                      sl_image *ref, sl_image *index, bool *cached, double *seconds, char *err, size_t n) {
+    char path[4300];
+    if (!cycles_reference(o, out, key, blender, ex->gltf, cached, seconds, err, n)) return false;
+    snprintf(path, sizeof path, "%s/objects.json", out);
+    if (ex->gltf && !xc_export_read_objects(ex, path, err, n)) return false;
+    snprintf(path, sizeof path, "%s/cycles.exr", out);
+    if (!load_exr(path, ref, o->width, o->height, err, n)) return false;
+    snprintf(path, sizeof path, "%s/index.exr", out);
+    return load_exr(path, index, o->width, o->height, err, n);
+}
+
+/* OUT/shadelab.exr, OUT/error.png and OUT/side_by_side.png. */
+static bool write_images(const char *out, const float *test, const float *ref, int w, int h, char *err, size_t n) {
+    size_t px = (size_t)w * h * 4;
+    float *emap = malloc(px * sizeof *emap), *side = malloc(px * 3 * sizeof *side);
+    char path[4300];
+    bool ok = emap && side;
+    if (!ok) snprintf(err, n, "out of memory");
+    snprintf(path, sizeof path, "%s/shadelab.exr", out);
+    ok = ok && sl_image_write(path, test, w, h, false, err, n);
+    if (ok) xc_error_map(test, ref, w, h, emap);
+    snprintf(path, sizeof path, "%s/error.png", out);
+    ok = ok && sl_image_write(path, emap, w, h, true, err, n);
+    if (ok) xc_side_by_side(test, ref, emap, w, h, side);
+    snprintf(path, sizeof path, "%s/side_by_side.png", out);
+    ok = ok && sl_image_write(path, side, w * 3, h, true, err, n);
+    free(emap);
+    free(side);
+    return ok;
+}
+
+/* EEVEE at each --eevee sample count: images into eevee[], times into r. */
+static bool render_eevee(const options *o, const char *out, const char *blender, sl_image *eevee, report_ctx *r,
+                         char *err, size_t n) {
+    char path[4300];
+    for (int k = 0; k < o->eevee_count; k++) {
+        if (!eevee_render(out, blender, o->eevee[k], &r->eevee_ms[k], err, n)) return false;
+        snprintf(path, sizeof path, "%s/eevee-%d.exr", out, o->eevee[k]);
+        if (!load_exr(path, &eevee[k], o->width, o->height, err, n)) return false;
+        r->eevee[k] = eevee[k].pixels;
+    }
+    return true;
+}
+
+/* OUT/report.txt (printed too) and OUT/report.json; *worst as report() returns it. */
+static bool write_report(const char *out, const report_ctx *r, double *worst, char *err, size_t n) {
+    char txt_path[4300], json_path[4300];
+    snprintf(txt_path, sizeof txt_path, "%s/report.txt", out);
+    snprintf(json_path, sizeof json_path, "%s/report.json", out);
+    FILE *txt = fopen(txt_path, "w"), *json = fopen(json_path, "w");
+    if (!txt || !json) {
+        snprintf(err, n, "%s: cannot write: %s", !txt ? txt_path : json_path, strerror(errno));
+        if (txt) fclose(txt);
+        if (json) fclose(json);
+        return false;
+    }
+    *worst = report(r, txt, json);
+    bool ok = fclose(json) == 0;
+    ok &= fclose(txt) == 0;
+    if (!ok) { snprintf(err, n, "%s: cannot write", out); return false; }
+    FILE *again = fopen(txt_path, "r");
+    char buf[4096];
+    size_t k;
+    while (again && (k = fread(buf, 1, sizeof buf, again)) > 0) fwrite(buf, 1, k, stdout);
+    if (again) fclose(again);
+    printf("\nimages: %s/side_by_side.png (shadelab | Cycles | error: red brighter, blue darker, full at 2x)\n", out);
+    return true;
+}
+
 int main(int argc, char **argv) {
     options o;
     if (!parse(argc, argv, &o)) return 1;
-    char out[4096], err[8192] = "", builder[4096], version[256] = "";
+    char out[4096], err[8192] = "", builder[4096], version[256] = "", blender_dir[4200];
     if (o.out) snprintf(out, sizeof out, "%s", o.out);
     else default_out(o.scene, out, sizeof out);
     const char *blender = blender_path(&o);
@@ -538,128 +649,41 @@ int main(int argc, char **argv) {
         fprintf(stderr, "shadelab-xcheck: %s: the Blender builder script is missing\n", builder);
         return 1;
     }
-
-    sl_app_options opt = {0};
-    opt.scene_path = o.scene;
-    opt.data_dir = o.data;
-    opt.backend = SL_BACKEND_OSMESA;
-    opt.width = o.width;
-    opt.height = o.height;
-    opt.keep_color = true;
-    opt.timings = true;
-    opt.accumulate = 1;
-    opt.fixed_dt = 1.0 / 60;
-    opt.camera = o.camera;
-    for (int i = 0; i < o.plugin_count; i++) opt.plugins[opt.plugin_count++] = o.plugins[i];
-    for (int i = 0; i < o.setting_count; i++) opt.settings[opt.setting_count++] = o.settings[i];
     sl_app app;
-    memset(&app, 0, sizeof app);
-    if (!sl_app_init(&app, &opt, err, sizeof err)) {
-        fprintf(stderr, "shadelab-xcheck: %s\n", err);
-        return 1;
-    }
-    /* compare before tone mapping: the tone curve is not cross-checked (a note says so) */
-    if (sl_plugins_find(&app.plugins, "tonemap") >= 0 && !sl_app_set(&app, "tonemap.enabled=false", SL_SRC_CLI, err, sizeof err)) {
-        fprintf(stderr, "shadelab-xcheck: %s\n", err);
-        sl_app_shutdown(&app);
-        return 1;
-    }
-
-    char blender_dir[4200];
+    xc_export ex = {0};
+    sl_image ref = {0}, index = {0}, eevee[16];
+    memset(eevee, 0, sizeof eevee);
+    float *test = NULL;
+    bool ok = open_app(&o, &app, err, sizeof err);
     snprintf(blender_dir, sizeof blender_dir, "%s/blender", out);
     xc_export_options eo = {.width = o.width, .height = o.height, .samples = o.samples, .bounces = o.bounces,
                             .builder = builder};
-    xc_export ex;
-    int rc = 1;
-    float *test = NULL, *emap = NULL, *side = NULL;
-    sl_image ref = {0}, index = {0};
-    if (!xc_mkdirs(out, err, sizeof err) || !xc_export_scene(&app, &eo, blender_dir, &ex, err, sizeof err)) {
-        fprintf(stderr, "shadelab-xcheck: %s\n", err);
-        sl_app_shutdown(&app);
-        return 1;
-    }
+    ok = ok && xc_mkdirs(out, err, sizeof err) && xc_export_scene(&app, &eo, blender_dir, &ex, err, sizeof err);
     uint64_t key = sl_tool_hash64(version, strlen(version), ex.hash);
-    bool cached = false;
-    double cycles_s = 0, ms = NAN;
-    char path[4300];
-    if (!cycles_reference(&o, out, key, blender, ex.gltf, &cached, &cycles_s, err, sizeof err)) goto fail;
-    snprintf(path, sizeof path, "%s/objects.json", out);
-    if (ex.gltf && !xc_export_read_objects(&ex, path, err, sizeof err)) goto fail;
-    snprintf(path, sizeof path, "%s/cycles.exr", out);
-    if (!load_exr(path, &ref, o.width, o.height, err, sizeof err)) goto fail;
-    snprintf(path, sizeof path, "%s/index.exr", out);
-    if (!load_exr(path, &index, o.width, o.height, err, sizeof err)) goto fail;
-    if (o.reference_only) {
-        printf("shadelab-xcheck: Cycles reference %s/cycles.exr (%s)\n", out,
-               cached ? "from the cache" : "rendered");
+    report_ctx r = {.o = &o, .app = &app, .ex = &ex, .w = o.width, .h = o.height, .blender_version = version, .key = key,
+                    .shadelab_ms = NAN};
+    ok = ok && reference(&o, out, blender, key, &ex, &ref, &index, &r.cached, &r.cycles_seconds, err, sizeof err);
+    double worst = 0;
+    if (ok && o.reference_only) {
+        printf("shadelab-xcheck: Cycles reference %s/cycles.exr (%s)\n", out, r.cached ? "from the cache" : "rendered");
         for (int i = 0; i < ex.note_count; i++) printf("%s\n", ex.notes[i]);
-        rc = 0;
-        goto done;
+    } else if (ok) {
+        test = malloc((size_t)o.width * o.height * 4 * sizeof *test);
+        if (!test) snprintf(err, sizeof err, "out of memory");
+        r.test = test, r.ref = ref.pixels, r.index = index.pixels;
+        ok = test && render_shadelab(&app, &o, test, &r.shadelab_ms, err, sizeof err) &&
+             write_images(out, test, ref.pixels, o.width, o.height, err, sizeof err) &&
+             render_eevee(&o, out, blender, eevee, &r, err, sizeof err) && write_report(out, &r, &worst, err, sizeof err);
     }
-
-    size_t px = (size_t)o.width * o.height * 4;
-    test = malloc(px * sizeof *test);
-    emap = malloc(px * sizeof *emap);
-    side = malloc(px * 3 * sizeof *side);
-    if (!test || !emap || !side) { snprintf(err, sizeof err, "out of memory"); goto fail; }
-    if (!render_shadelab(&app, &o, test, &ms, err, sizeof err)) goto fail;
-    snprintf(path, sizeof path, "%s/shadelab.exr", out);
-    if (!sl_image_write(path, test, o.width, o.height, false, err, sizeof err)) goto fail;
-    xc_error_map(test, ref.pixels, o.width, o.height, emap);
-    snprintf(path, sizeof path, "%s/error.png", out);
-    if (!sl_image_write(path, emap, o.width, o.height, true, err, sizeof err)) goto fail;
-    xc_side_by_side(test, ref.pixels, emap, o.width, o.height, side);
-    snprintf(path, sizeof path, "%s/side_by_side.png", out);
-    if (!sl_image_write(path, side, o.width * 3, o.height, true, err, sizeof err)) goto fail;
-
-    report_ctx r = {&o, &app, &ex, test, ref.pixels, index.pixels, o.width, o.height, version, cycles_s, ms, cached, key,
-                    {NULL}, {0}};
-    sl_image eevee[16];
-    memset(eevee, 0, sizeof eevee);
-    for (int k = 0; k < o.eevee_count; k++) {
-        if (!eevee_render(out, blender, o.eevee[k], &r.eevee_ms[k], err, sizeof err)) goto fail_eevee;
-        snprintf(path, sizeof path, "%s/eevee-%d.exr", out, o.eevee[k]);
-        if (!load_exr(path, &eevee[k], o.width, o.height, err, sizeof err)) goto fail_eevee;
-        r.eevee[k] = eevee[k].pixels;
-    }
-    char txt_path[4300], json_path[4300];
-    snprintf(txt_path, sizeof txt_path, "%s/report.txt", out);
-    snprintf(json_path, sizeof json_path, "%s/report.json", out);
-    FILE *txt = fopen(txt_path, "w"), *json = fopen(json_path, "w");
-    if (!txt || !json) {
-        snprintf(err, sizeof err, "%s: cannot write: %s", !txt ? txt_path : json_path, strerror(errno));
-        if (txt) fclose(txt);
-        if (json) fclose(json);
-        goto fail_eevee;
-    }
-    double worst = report(&r, txt, json);
-    fclose(txt);
-    fclose(json);
-    for (int k = 0; k < o.eevee_count; k++) sl_image_free(&eevee[k]);
-    FILE *again = fopen(txt_path, "r");
-    if (again) {
-        char buf[4096];
-        size_t k;
-        while ((k = fread(buf, 1, sizeof buf, again)) > 0) fwrite(buf, 1, k, stdout);
-        fclose(again);
-    }
-    printf("\nimages: %s/side_by_side.png (shadelab | Cycles | error: red brighter, blue darker, full at 2x)\n", out);
-    rc = 0;
-    if (o.max_rel_rms >= 0 && worst > o.max_rel_rms) {
+    int rc = ok ? 0 : 1;
+    if (!ok) fprintf(stderr, "shadelab-xcheck: %s\n", err);
+    if (ok && o.max_rel_rms >= 0 && worst > o.max_rel_rms) {
         fprintf(stderr, "shadelab-xcheck: a cross-checked object's relative RMS %.4f exceeds --max-rel-rms %.4f\n", worst,
                 o.max_rel_rms);
         rc = 1;
     }
-    goto done;
-fail_eevee:
-    for (int k = 0; k < o.eevee_count; k++) sl_image_free(&eevee[k]);
-fail:
-    fprintf(stderr, "shadelab-xcheck: %s\n", err);
-    rc = 1;
-done:
+    for (int k = 0; k < 16; k++) sl_image_free(&eevee[k]);
     free(test);
-    free(emap);
-    free(side);
     sl_image_free(&ref);
     sl_image_free(&index);
     xc_export_free(&ex);
