@@ -16,6 +16,9 @@ sl_add_test(gltf_hostile SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_hostile.c L
 # A model needs no JSON: --variant, --animation, --ground, --shadows, --env (tests/test_gltf_options.c).
 sl_add_test(gltf_options SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_options.c LABELS scene gltf TIMEOUT 300)
 add_dependencies(test_gltf_options plugin_envmap plugin_ggx plugin_spotlight-shadow plugin_tonemap plugin_aa)
-# Compressed content on files the test writes: EXT_texture_webp (tests/test_gltf_compressed.c).
-sl_add_test(gltf_compressed SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_compressed.c LABELS scene gltf TIMEOUT 300)
-add_dependencies(test_gltf_compressed plugin_envmap plugin_ggx plugin_tonemap plugin_aa)
+# Compressed content on files the test writes: EXT_texture_webp, EXT_meshopt_compression,
+# KHR_draco_mesh_compression (tests/test_gltf_compressed.c).
+sl_add_test(gltf_compressed SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_compressed.c ${CMAKE_CURRENT_LIST_DIR}/draco_encode.cpp
+            LABELS scene gltf TIMEOUT 300)
+target_link_libraries(test_gltf_compressed PRIVATE draco::draco meshoptimizer::meshoptimizer) # the test's own encoders
+add_dependencies(test_gltf_compressed plugin_envmap plugin_ggx plugin_tonemap plugin_aa shadelab_draco)

@@ -7,7 +7,11 @@
  *    8-bit octahedral vectors (ATTRIBUTES + OCTAHEDRAL, with KHR_mesh_quantization) and its
  *    indices (TRIANGLES, decoded to 16 bits), encoded by meshoptimizer into buffer 0 while the
  *    bufferViews name a fallback buffer that holds nothing: the mesh read equals the
- *    uncompressed file's corner for corner (normals within the 8-bit encoding's step). */
+ *    uncompressed file's corner for corner (normals within the 8-bit encoding's step).
+ *  - draco: KHR_draco_mesh_compression. The quad encoded by libdraco (tests/draco_encode.cpp, no
+ *    quantization) in a bufferView, its accessors without bufferViews: every triangle of the
+ *    file comes back with its corners' positions, normals and UVs exactly (Draco may reorder
+ *    points and faces and start a triangle at another corner; the winding must stay). */
 #define SL_IMAGE_INTERNAL /* sl_oiio_write: OpenImageIO writes the WebP */
 #include "check.h"
 #include "gltf_writer.h"
@@ -165,8 +169,70 @@ static void test_meshopt(void) {
     sl_scene_free(&s1);
 }
 
+unsigned char *sl_test_draco_encode(const float *pos, const float *nrm, const float *uv, const unsigned *idx, int faces,
+                                    int ids[3], size_t *size);
+
+/* Whether triangle t of m has corners a, b, c's values (attributes as in the quad arrays). */
+static bool same_triangle(const sl_mesh_data *m, int t, const int want[3], const float *pos, const float *nrm, const float *uv) {
+    for (int r = 0; r < 3; r++) {
+        bool ok = true;
+        for (int k = 0; k < 3 && ok; k++) {
+            uint32_t v = m->indices[3 * t + (k + r) % 3];
+            for (int c = 0; c < 3; c++) ok = ok && m->positions[3 * v + c] == pos[3 * want[k] + c] && m->normals[3 * v + c] == nrm[3 * want[k] + c];
+            for (int c = 0; c < 2; c++) ok = ok && m->uvs[2 * v + c] == uv[2 * want[k] + c];
+        }
+        if (ok) return true;
+    }
+    return false;
+}
+
+static void test_draco(void) {
+    const float pos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, nrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const float uv[8] = {0, 1, 1, 1, 1, 0, 0, 0};
+    const unsigned idx[6] = {0, 1, 2, 0, 2, 3};
+    int ids[3];
+    size_t n = 0;
+    unsigned char *enc = sl_test_draco_encode(pos, nrm, uv, idx, 2, ids, &n);
+    CHECK(enc && n);
+    if (!enc) return;
+    gw_doc g;
+    CHECK(gw_quad(&g));
+    char s[400];
+    snprintf(s, sizeof s, "{\"KHR_draco_mesh_compression\": {\"bufferView\": %d, \"attributes\": {\"POSITION\": %d, "
+             "\"NORMAL\": %d, \"TEXCOORD_0\": %d}}}", gw_view(&g, gw_append(&g, enc, n), n, 0), ids[0], ids[1], ids[2]);
+    free(enc);
+    gw_set(&g, "/meshes/0/primitives/0/extensions", s);
+    for (int a = 0; a < 4; a++) { /* the accessors describe the decoded data and have no bufferView */
+        char ptr[48];
+        snprintf(ptr, sizeof ptr, "/accessors/%d/bufferView", a);
+        gw_set(&g, ptr, NULL);
+    }
+    gw_set(&g, "/extensionsUsed", "[\"KHR_draco_mesh_compression\"]");
+    gw_set(&g, "/extensionsRequired", "[\"KHR_draco_mesh_compression\"]");
+    char path[4200];
+    snprintf(path, sizeof path, "%s/draco.glb", sl_test_dir());
+    CHECK(gw_write(&g, path, GW_GLB));
+    gw_free(&g);
+    sl_scene sc = {0};
+    bool ok = sl_scene_load_file(&sc, path, NULL, err, sizeof err);
+    CHECK_MSG(ok, "draco: %s", err);
+    if (ok && sc.mesh_count == 1) {
+        const sl_mesh_data *m = &sc.meshes[0].data;
+        CHECK(m->index_count == 6);
+        int found = 0;
+        for (int t = 0; t < 2 && m->index_count == 6; t++) {
+            const int want[3] = {(int)idx[3 * t], (int)idx[3 * t + 1], (int)idx[3 * t + 2]};
+            found += same_triangle(m, 0, want, pos, nrm, uv) || same_triangle(m, 1, want, pos, nrm, uv);
+        }
+        CHECK_MSG(found == 2, "draco: %d of the quad's 2 triangles came back with their corners", found);
+        printf("draco: %d of 2 triangles with every corner's position, normal and UV exact\n", found);
+    }
+    sl_scene_free(&sc);
+}
+
 int main(void) {
     test_webp();
     test_meshopt();
+    test_draco();
     return check_result();
 }

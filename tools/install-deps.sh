@@ -25,6 +25,7 @@ PKGS=(
   libcjson-dev            # JSON scenes
   libassimp-dev           # meshes other than glTF and OBJ (PLY, FBX, Collada, …)
   libmeshoptimizer-dev    # glTF EXT_meshopt_compression
+  libdraco-dev            # glTF KHR_draco_mesh_compression (a module: core/scene/gltf_draco.cpp)
   assimp-testmodels       # test data: Debian's glTF2 sample models (ctest gltf_models), so it never skips
   libcglm-dev             # vector/matrix math
   libimgui-dev            # GUI (C++ adapter only)

@@ -1,7 +1,7 @@
 /* Opens the image modules on first use and forwards image.h's internal calls to them: the
  * OpenImageIO adapter (shadelab-oiio.so, image_oiio.cpp: the sl_oiio_* calls) and the OpenEXR C++
  * adapter (shadelab-exr.so, image_exr.cpp: sl_exr_read). Why modules: see image.h. Where a module
- * is looked for, in order:
+ * (these, and the glTF reader's Draco adapter: sl_module_open, module.h) is looked for, in order:
  *   $SHADELAB_OIIO_MODULE / $SHADELAB_EXR_MODULE (a path to the .so);
  *   beside the object holding this code, and in its ../LIBDIR/shadelab/ (installed: bin/shadelab
  *   → lib/shadelab/, lib/libshadelab_harness.so → lib/shadelab/);
@@ -11,6 +11,7 @@
 #define SL_IMAGE_INTERNAL
 #include "image/image.h"
 #include "log.h"
+#include "module.h"
 
 #include <dlfcn.h>
 #include <libgen.h>
@@ -40,16 +41,14 @@ static void *try_open(const char *path, char *tried, size_t n) {
     return h;
 }
 
-/* dlopen()s module `name` (see the top of this file) and returns its `symbol`'s table, or NULL with
- * why it could not in `why`. */
-static const void *open_module(const char *name, const char *env_var, const char *build_copy, const char *symbol,
+const void *sl_module_open(const char *name, const char *env_var, const char *build_copy, const char *symbol,
                                unsigned min_size, char *why, size_t why_size) {
     char tried[1500] = "", path[1200];
     void *h = NULL;
     const char *env = getenv(env_var);
     if (env && *env) h = try_open(env, tried, sizeof tried);
     Dl_info self;
-    if (!h && dladdr((void *)&open_module, &self) && self.dli_fname && self.dli_fname[0]) {
+    if (!h && dladdr((void *)&sl_module_open, &self) && self.dli_fname && self.dli_fname[0]) {
         char copy[1024];
         /* the executable's own entry may be a bare name: /proc/self/exe is the real file */
         if (!strchr(self.dli_fname, '/')) {
@@ -87,12 +86,12 @@ static const sl_exr_api *exr_api;
 static char why[2048], exr_why[2048];
 
 static void load(void) {
-    api = open_module("shadelab-oiio.so", "SHADELAB_OIIO_MODULE", SL_BUILD_OIIO_MODULE, "sl_oiio_module_api",
+    api = sl_module_open("shadelab-oiio.so", "SHADELAB_OIIO_MODULE", SL_BUILD_OIIO_MODULE, "sl_oiio_module_api",
                       sizeof(sl_oiio_api), why, sizeof why);
 }
 
 static void load_exr(void) {
-    exr_api = open_module("shadelab-exr.so", "SHADELAB_EXR_MODULE", SL_BUILD_EXR_MODULE, "sl_exr_module_api",
+    exr_api = sl_module_open("shadelab-exr.so", "SHADELAB_EXR_MODULE", SL_BUILD_EXR_MODULE, "sl_exr_module_api",
                           sizeof(sl_exr_api), exr_why, sizeof exr_why);
 }
 

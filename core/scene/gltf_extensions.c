@@ -30,7 +30,7 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_dispersion", SL_GLTF_IGNORED, "no dispersion"},
     {"KHR_materials_variants", SL_GLTF_RENDERED, "the default materials, or the variant --variant NAME names"},
     {"KHR_animation_pointer", SL_GLTF_IGNORED, "those channels are not played"},
-    {"KHR_draco_mesh_compression", SL_GLTF_IGNORED, "refused when required; the uncompressed fallback otherwise"},
+    {"KHR_draco_mesh_compression", SL_GLTF_RENDERED, "decoded with Debian's libdraco (a module loaded for the first one)"},
     {"EXT_meshopt_compression", SL_GLTF_RENDERED, "decoded with meshoptimizer: every mode and filter"},
     {"KHR_texture_basisu", SL_GLTF_IGNORED, "refused when required; the fallback image otherwise"},
     {"EXT_texture_webp", SL_GLTF_RENDERED, "WebP images (decoded by OpenImageIO), in place of the fallback"},

@@ -6,6 +6,7 @@
  * the image top, the scene convention). Attribute formats follow §3.7.2.1's table, widened by
  * KHR_mesh_quantization when the file uses it. */
 #include "scene/gltf.h"
+#include "scene/gltf_draco.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -18,10 +19,53 @@ typedef struct primitive {
     float *pos, *nrm, *tan, *uv0, *uv1;
     uint32_t *tris;          /* 3 per triangle */
     int tri_count;
+    /* KHR_draco_mesh_compression: the decoded mesh, its points and the attributes it holds */
+    const sl_draco_api *draco;
+    void *draco_mesh;
+    const cJSON *draco_attrs;
+    int draco_points, draco_faces;
 } primitive;
 
 static void primitive_free(primitive *p) {
     free(p->pos), free(p->nrm), free(p->tan), free(p->uv0), free(p->uv1), free(p->tris);
+    if (p->draco_mesh) p->draco->free(p->draco_mesh);
+}
+
+/* Attribute `name` from the Draco mesh (its accessor gives the count, which must be the points'). */
+static bool draco_attribute(gltf_import *im, primitive *p, int index, const char *name, const char *type, const char *at,
+                            float **out) {
+    gltf_doc *d = &im->doc;
+    const cJSON *id = cJSON_GetObjectItemCaseSensitive(p->draco_attrs, name);
+    int comps = type[3] - '0', count = gltf_accessor_count(d, index);
+    if (count < 0) return false;
+    if (!cJSON_IsNumber(id) || id->valuedouble < 0 || id->valuedouble > 1e9)
+        return gltf_fail(d, at, "its KHR_draco_mesh_compression id is not a non-negative integer");
+    if (count != p->draco_points)
+        return gltf_fail(d, at, "its accessor says %d elements, the Draco mesh has %d points", count, p->draco_points);
+    if (!(*out = malloc(sizeof(float) * (size_t)comps * (size_t)count))) return gltf_fail(d, at, "out of memory");
+    if (!p->draco->attribute(p->draco_mesh, id->valueint, comps, *out))
+        return gltf_fail(d, at, "the Draco mesh has no attribute %d of %d components", id->valueint, comps);
+    return true;
+}
+
+/* KHR_draco_mesh_compression (on the primitive at p->at): its bufferView decoded by the Draco
+ * module; attributes and indices then come from it. */
+static bool open_draco(gltf_import *im, primitive *p, const cJSON *ext) {
+    gltf_doc *d = &im->doc;
+    char at[160], why[600];
+    snprintf(at, sizeof at, "%s/extensions/KHR_draco_mesh_compression", p->at);
+    int view = -1;
+    const unsigned char *bytes;
+    size_t len, stride;
+    if (!cJSON_IsObject(ext)) return gltf_fail(d, at, "must be an object");
+    if (!gltf_get_index(d, ext, at, "bufferView", "bufferViews", true, &view) ||
+        !gltf_get_object(d, ext, at, "attributes", &p->draco_attrs) || !gltf_buffer_view(d, view, &bytes, &len, &stride))
+        return false;
+    if (!p->draco_attrs) return gltf_fail(d, at, "attributes is missing (required)");
+    if (!(p->draco = sl_draco(why, sizeof why))) return gltf_fail(d, at, "%s", why);
+    if (!(p->draco_mesh = p->draco->decode(bytes, len, &p->draco_points, &p->draco_faces, why, sizeof why)))
+        return gltf_fail(d, at, "%s", why);
+    return true;
 }
 
 /* Attribute `name` of the primitive (absent: *out NULL); its count must be the vertex count. */
@@ -34,7 +78,12 @@ static bool attribute(gltf_import *im, primitive *p, const cJSON *attrs, const c
     if (!gltf_get_index(&im->doc, attrs, at, name, "accessors", false, &index)) return false;
     if (index < 0) return true;
     snprintf(at, sizeof at, "%s/attributes/%s", p->at, name);
-    if (!(*out = gltf_read_floats(&im->doc, index, type, allowed, at, &count))) return false;
+    if (p->draco_mesh && cJSON_GetObjectItemCaseSensitive(p->draco_attrs, name)) {
+        if (!draco_attribute(im, p, index, name, type, at, out)) return false;
+        count = p->draco_points;
+    } else if (!(*out = gltf_read_floats(&im->doc, index, type, allowed, at, &count))) {
+        return false;
+    }
     if (p->vertex_count && count != p->vertex_count)
         return gltf_fail(&im->doc, at, "%d elements, but POSITION has %d (all attributes of a primitive have one count)",
                          count, p->vertex_count);
@@ -142,6 +191,12 @@ static bool read_primitive(gltf_import *im, const cJSON *prim, const cJSON *weig
         gltf_note(d, p->at, "no POSITION: not drawn");
         return true;
     }
+    const cJSON *ext, *draco = NULL;
+    char ep[140];
+    snprintf(ep, sizeof ep, "%s/extensions", p->at);
+    if (!gltf_get_object(d, prim, p->at, "extensions", &ext) ||
+        (ext && !gltf_get_object(d, ext, ep, "KHR_draco_mesh_compression", &draco)) || (draco && !open_draco(im, p, draco)))
+        return false;
     if (!attribute(im, p, attrs, "POSITION", "VEC3", GLTF_F32 | (q ? quantized : 0), &p->pos) ||
         !attribute(im, p, attrs, "NORMAL", "VEC3", GLTF_F32 | (q ? GLTF_I8N | GLTF_I16N : 0), &p->nrm) ||
         !attribute(im, p, attrs, "TANGENT", "VEC4", GLTF_F32 | (q ? GLTF_I8N | GLTF_I16N : 0), &p->tan) ||
@@ -157,7 +212,13 @@ static bool read_primitive(gltf_import *im, const cJSON *prim, const cJSON *weig
     int n = p->vertex_count;
     char ip[128];
     snprintf(ip, sizeof ip, "%s/indices", p->at);
-    if (indices >= 0 && !(idx = gltf_read_indices(d, indices, ip, &n))) return false;
+    if (p->draco_mesh) { /* the Draco mesh's faces: a triangle list whatever the mode says */
+        if (!(idx = malloc(sizeof(uint32_t) * 3 * (size_t)(p->draco_faces + 1)))) return gltf_fail(d, ip, "out of memory");
+        p->draco->indices(p->draco_mesh, idx);
+        n = 3 * p->draco_faces, mode = 4;
+    } else if (indices >= 0 && !(idx = gltf_read_indices(d, indices, ip, &n))) {
+        return false;
+    }
     bool ok = triangles(im, p, (int)mode, idx, n) && morph(im, p, prim, weights, q);
     free(idx);
     if (ok && im->triangles + p->tri_count > SL_IMPORT_MAX_TRIANGLES)
