@@ -248,21 +248,37 @@ static void drop_nonfinite(gltf_import *im, primitive *p) {
     p->tri_count = kept;
 }
 
-/* The scene mesh data: indexed as read, or one vertex per corner with flat normals (no NORMAL). */
+/* The vertices the triangles use, in the file's order: source[new] = old, map[old] = new. Two
+ * primitives sharing one vertex accessor (one per material, say) each keep only their own. */
+static int compact(const primitive *p, int *source, uint32_t *map) {
+    memset(map, 0xFF, sizeof(uint32_t) * (size_t)p->vertex_count);
+    for (int i = 0; i < 3 * p->tri_count; i++) map[p->tris[i]] = 0;
+    int n = 0;
+    for (int v = 0; v < p->vertex_count; v++)
+        if (map[v] == 0) source[n] = v, map[v] = (uint32_t)n++;
+    return n;
+}
+
+/* The scene mesh data: the used vertices as indexed, or one vertex per corner with flat normals
+ * (no NORMAL). */
 static bool to_mesh(gltf_import *im, primitive *p, sl_mesh_data *m) {
     bool flat = !p->nrm;
-    int nv = flat ? 3 * p->tri_count : p->vertex_count;
-    if (!sl_mesh_alloc(m, nv, 3 * p->tri_count)) return gltf_fail(&im->doc, p->at, "out of memory (%d vertices)", nv);
-    if (p->uv1 && !(m->uvs1 = calloc((size_t)nv * 2, sizeof(float)))) return gltf_fail(&im->doc, p->at, "out of memory");
-    for (int v = 0; v < nv; v++) {
-        int s = flat ? (int)p->tris[v] : v;
+    int *source = flat ? NULL : malloc(sizeof(int) * (size_t)p->vertex_count);
+    uint32_t *map = flat ? NULL : malloc(sizeof(uint32_t) * (size_t)p->vertex_count);
+    if (!flat && (!source || !map)) return free(source), free(map), gltf_fail(&im->doc, p->at, "out of memory");
+    int nv = flat ? 3 * p->tri_count : compact(p, source, map);
+    bool ok = sl_mesh_alloc(m, nv, 3 * p->tri_count) && (!p->uv1 || (m->uvs1 = calloc((size_t)nv * 2, sizeof(float))));
+    for (int v = 0; ok && v < nv; v++) {
+        int s = flat ? (int)p->tris[v] : source[v];
         memcpy(m->positions + 3 * v, p->pos + 3 * s, 3 * sizeof(float));
         if (p->nrm) memcpy(m->normals + 3 * v, p->nrm + 3 * s, 3 * sizeof(float));
         if (p->tan) memcpy(m->tangents + 4 * v, p->tan + 4 * s, 4 * sizeof(float));
         if (p->uv0) memcpy(m->uvs + 2 * v, p->uv0 + 2 * s, 2 * sizeof(float));
         if (p->uv1) memcpy(m->uvs1 + 2 * v, p->uv1 + 2 * s, 2 * sizeof(float));
     }
-    for (int i = 0; i < 3 * p->tri_count; i++) m->indices[i] = flat ? (uint32_t)i : p->tris[i];
+    for (int i = 0; ok && i < 3 * p->tri_count; i++) m->indices[i] = flat ? (uint32_t)i : map[p->tris[i]];
+    free(source), free(map);
+    if (!ok) return gltf_fail(&im->doc, p->at, "out of memory (%d vertices)", nv);
     if (flat) /* the face normal at each corner */
         for (int t = 0; t < p->tri_count; t++) {
             const float *a = m->positions + 9 * t, *b = a + 3, *c = a + 6;
