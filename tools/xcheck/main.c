@@ -554,6 +554,7 @@ static bool open_app(const options *o, sl_app *app, char *err, size_t n) {
     opt.accumulate = 1;
     opt.fixed_dt = 1.0 / 60;
     opt.camera = o->camera;
+    opt.strict = true; /* a plugin that fails to load would make both sides judge a different scene */
     for (int i = 0; i < o->plugin_count; i++) opt.plugins[opt.plugin_count++] = o->plugins[i];
     for (int i = 0; i < o->setting_count; i++) opt.settings[opt.setting_count++] = o->settings[i];
     memset(app, 0, sizeof *app);

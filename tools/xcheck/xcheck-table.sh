@@ -56,7 +56,8 @@ for item in sys.argv[11:]:
                        for e in ee)
     ee_ms = ", ".join("%.0f (%d)" % (e["ms"], e["samples"]) for e in ee)
     if len(ee) > 1 and ee[-1]["samples"] > ee[0]["samples"]:  # what one more sample costs, set-up left out
-        ee_ms += "; %.0f a sample" % ((ee[-1]["ms"] - ee[0]["ms"]) / (ee[-1]["samples"] - ee[0]["samples"]))
+        per = (ee[-1]["ms"] - ee[0]["ms"]) / (ee[-1]["samples"] - ee[0]["samples"])
+        ee_ms += "; %.0f a sample" % per if per > 0 else "; a sample: lost in the load's noise"
     # EEVEE's time at the fewest samples whose error is at most shadelab's, over shadelab's frame
     match = [e for e in ee if e["interiors"]["rel_rms"] <= s_err]
     if match:
