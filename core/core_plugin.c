@@ -177,6 +177,8 @@ static sl_status core_create(const sl_host *host, void **user) {
          .function = "sl_model_lambert", .name = "lambert"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_MODEL_AMBIENT, .file = "lambert.glsl",
          .function = "sl_model_lambert_ambient", .name = "lambert"},
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_MODEL_LOBES, .file = "lambert.glsl",
+         .function = "sl_model_lambert_lobes", .name = "lambert"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_LIGHT, .file = "lights.glsl",
          .function = "sl_light_directional", .name = "directional"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_LIGHT, .file = "lights.glsl",

@@ -38,6 +38,36 @@ struct SlSurface {
                            // sl_uv_<key>(s): their UV set and KHR_texture_transform
 };
 
+// ABI 1.14, the lobe contract (sdk/docs/plugin-guide.md, "Lobes"): how a shading model's
+// response looks to a light integrator (environment maps, area lights) that does not know the
+// model. A MODEL_LOBES hook returns it; the generated sl_model_lobes(s) returns it for the
+// material's model, or the fallback (a Lambert diffuse of s.base_color, no lobe) when the model
+// gives none. Radiance from incident radiance L_i(l):
+//   L_o ≈ ∫ L_i(l) [diffuse/π · w_d(l) + Σ_k weight_k · f_GGX(v, l; α_k, F_k)] (n·l) dl
+// with f_GGX the microfacet GGX BRDF (Smith G) and F_k Schlick between f0 and f90, or the exact
+// dielectric Fresnel with eta when eta > 0. w_d = 1, or 1 − F_0(l·h) with diffuse_coupled (glTF
+// 2.0 appendix B: the diffuse under lobe 0's Fresnel). Lobes are isotropic.
+const int SL_MAX_LOBES = 2;
+struct SlLobe {
+    vec3 f0;      // Fresnel at normal incidence of the microfacets (colour)
+    vec3 f90;     // … at grazing incidence (1 for Schlick's usual form)
+    float alpha;  // GGX α, the lobe's shape (≥ 0)
+    float weight; // scale of the lobe (≥ 0; 0 switches it off)
+    float eta;    // > 0: exact dielectric Fresnel with η = n₁/n₂ instead of Schlick (f0 kept as
+                  // Schlick's F0 for integrators that tabulate Schlick)
+};
+struct SlLobes {
+    vec3 diffuse;          // Lambert albedo (radiance = diffuse/π × irradiance)
+    bool diffuse_coupled;  // the diffuse is weighted by 1 − F of lobe 0 (see above)
+    int count;             // lobes in use, 0 … SL_MAX_LOBES
+    SlLobe lobe[SL_MAX_LOBES];
+};
+// An empty description: no diffuse, no lobe; a hook starts from it.
+SlLobes sl_lobes_none() {
+    SlLobe z = SlLobe(vec3(0.0), vec3(1.0), 1.0, 0.0, 0.0);
+    return SlLobes(vec3(0.0), false, 0, SlLobe[SL_MAX_LOBES](z, z));
+}
+
 // One light as packed by the core (std430, 80 bytes).
 struct SlLight {
     vec4 position;   // xyz world

@@ -7,3 +7,10 @@ vec3 sl_model_lambert(SlSurface s, vec3 l, vec3 E) {
 vec3 sl_model_lambert_ambient(SlSurface s, vec3 E_ambient) {
     return s.base_color * SL_INV_PI * E_ambient * s.ao;
 }
+
+// Its lobes (ABI 1.14): the diffuse albedo alone.
+SlLobes sl_model_lambert_lobes(SlSurface s) {
+    SlLobes L = sl_lobes_none();
+    L.diffuse = s.base_color;
+    return L;
+}

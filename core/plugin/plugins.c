@@ -63,7 +63,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     sl_shader_chunk_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
     const char *id = P->items[owner]->id;
-    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_DISPLACEMENT) {
+    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_MODEL_LOBES) {
         SL_ERROR("%s: shader chunk %s: unknown hook %d", id, d.file ? d.file : "?", (int)d.hook);
         return SL_ERR_INVALID;
     }
@@ -87,7 +87,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
         SL_ERROR("%s: shader chunk %s: resource is for SL_CHUNK_PASS_VIEW views only", id, d.file);
         return SL_ERR_INVALID;
     }
-    bool named = d.hook == SL_HOOK_SHADING_MODEL || d.hook == SL_HOOK_MODEL_AMBIENT ||
+    bool named = d.hook == SL_HOOK_SHADING_MODEL || d.hook == SL_HOOK_MODEL_AMBIENT || d.hook == SL_HOOK_MODEL_LOBES ||
                  d.hook == SL_HOOK_LIGHT || d.hook == SL_HOOK_DEBUG_VIEW || d.hook == SL_HOOK_DEBUG_VIEW_LIGHT;
     if (named && (!d.name || !*d.name)) {
         SL_ERROR("%s: shader chunk %s: this hook needs a name", id, d.file);

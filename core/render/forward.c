@@ -234,7 +234,7 @@ typedef struct composition {
     const sl_variant_request *req;
     /* choose_model_and_view, choose_lights */
     const char *model;                                 /* the shading model's name */
-    const sl_chunk_reg *model_chunk, *model_ambient, *view, *shadow, *loop;
+    const sl_chunk_reg *model_chunk, *model_ambient, *model_lobes, *view, *shadow, *loop;
     const char *types[SL_MAX_LIGHT_TYPES];             /* the scene's light types, packing order */
     const sl_chunk_reg *light_chunks[SL_MAX_LIGHT_TYPES];
     int ntypes;
@@ -245,8 +245,8 @@ typedef struct composition {
     const char *node_tags[SL_MAX_NODE_TAGS];           /* when_node_tag of the VERTEX hooks, bit order */
     int node_tag_count;
     /* list_fragment_chunks: the fragment stage's chunks in include order (at most every hook of two
-     * kinds, a chunk per light type and five single ones), and every plugin involved */
-    const sl_chunk_reg *list[2 * SL_MAX_HOOKS + SL_MAX_LIGHT_TYPES + 5];
+     * kinds, a chunk per light type and six single ones), and every plugin involved */
+    const sl_chunk_reg *list[2 * SL_MAX_HOOKS + SL_MAX_LIGHT_TYPES + 6];
     int count;
     uint64_t owners;                                   /* bit i: plugin i (sl_plugins_load keeps i < 64) */
     /* write_prelude */
@@ -286,6 +286,7 @@ static void choose_model_and_view(composition *c) {
         c->model = "lambert";
     }
     c->model_ambient = find_named(app, SL_HOOK_MODEL_AMBIENT, c->model);
+    c->model_lobes = find_named(app, SL_HOOK_MODEL_LOBES, c->model); /* ABI 1.14 */
     if (app->debug_view && !c->req->model_override) {
         c->view = find_named(app, SL_HOOK_DEBUG_VIEW, app->debug_view);
         if (!c->view) c->view = find_named(app, SL_HOOK_DEBUG_VIEW_LIGHT, app->debug_view);
@@ -368,16 +369,16 @@ static void add_owner(composition *c, const sl_chunk_reg *chunk) { c->owners |= 
  * become the program's uniforms, their bind callbacks run when it is bound). */
 static void list_fragment_chunks(composition *c) {
     c->owners = 1; /* the core */
-    const sl_chunk_reg *single[] = {c->shadow, c->model_chunk, c->model_ambient, c->loop, c->view};
+    const sl_chunk_reg *single[] = {c->shadow, c->model_chunk, c->model_ambient, c->model_lobes, c->loop, c->view};
     if (c->req->kind == SL_VARIANT_FORWARD) {
         for (int i = 0; i < c->ns; i++) c->list[c->count++] = c->surface[i];
         if (single[0]) c->list[c->count++] = single[0];
         for (int t = 0; t < c->ntypes; t++)
             if (c->light_chunks[t]) c->list[c->count++] = c->light_chunks[t];
-        for (int k = 1; k < 4; k++)
+        for (int k = 1; k < 5; k++)
             if (single[k]) c->list[c->count++] = single[k];
         for (int i = 0; i < c->na; i++) c->list[c->count++] = c->ambient[i];
-        if (single[4]) c->list[c->count++] = single[4];
+        if (single[5]) c->list[c->count++] = single[5];
     }
     for (int i = 0; i < c->count; i++) add_owner(c, c->list[i]);
     for (int i = 0; i < c->nv; i++) {
@@ -402,6 +403,7 @@ static void write_defines(composition *c) {
     char model_id[128]; /* SL_MODEL_<NAME>: lets a chunk shared by several models specialise */
     sl_glsl_ident(c->model, model_id, sizeof model_id, true);
     if (!c->bare_depth) sl_sb_printf(pre, "#define SL_MODEL_%s 1\n", model_id);
+    if (c->model_lobes && req->kind == SL_VARIANT_FORWARD) sl_sb_append(pre, "#define SL_MODEL_HAS_LOBES 1\n");
     if ((c->model_chunk->d.flags & SL_CHUNK_MASKS_FACING_AWAY) && !c->bare_depth)
         sl_sb_append(pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");
     if (req->fragment) sl_sb_append(pre, "#define SL_CUSTOM_MAIN 1\n"); /* a plugin's main (draw_scene fragment, ABI 1.7) */
@@ -580,7 +582,8 @@ static void write_fragment_declarations(composition *c, sl_program *p) {
     else
         sl_sb_append(&decl, "layout(std430, binding = 0) readonly buffer SlLightBuffer { SlLight sl_lights[]; };\n");
     sl_sb_append(&decl, "uniform vec3 sl_ambient_irradiance; // π × constant environment radiance\n"
-                        "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E); // the material's model (ABI 1.6)\n");
+                        "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E); // the material's model (ABI 1.6)\n"
+                        "SlLobes sl_model_lobes(SlSurface s); // its lobes or the fallback (ABI 1.14)\n");
     for (int t = 0; t < c->ntypes; t++) {
         char id[128];
         sl_glsl_ident(c->types[t], id, sizeof id, false);
@@ -730,6 +733,28 @@ static void emit_shade_surface(const composition *c, sl_strbuf *gen) {
 
 /* The forward fragment stage: declarations, material.glsl, the chunks, the generated functions
  * tying them together, forward.frag (or a plugin's main). */
+/* sl_model_lobes (shader.h, ABI 1.14): the model's MODEL_LOBES hook, or the fallback (a Lambert
+ * diffuse of s.base_color, no lobe). A model without lobes that an integrator lights (an AMBIENT
+ * hook or an area light in the program) is named once per run. */
+static void emit_model_lobes(const composition *c, sl_strbuf *gen) {
+    if (c->model_lobes) {
+        sl_sb_printf(gen, "SlLobes sl_model_lobes(SlSurface s) { return %s(s); }\n", c->model_lobes->d.function);
+        return;
+    }
+    sl_sb_append(gen, "SlLobes sl_model_lobes(SlSurface s) { SlLobes L = sl_lobes_none(); L.diffuse = s.base_color; return L; }\n");
+    bool integrated = c->na > 0;
+    for (int t = 0; t < c->ntypes; t++)
+        integrated |= c->light_chunks[t] && (c->light_chunks[t]->d.flags & SL_CHUNK_LIGHT_RADIANCE);
+    static char warned[32][64];
+    static int nwarned;
+    if (!integrated) return;
+    for (int i = 0; i < nwarned; i++)
+        if (!strncmp(warned[i], c->model, sizeof warned[i] - 1)) return;
+    if (nwarned < 32) snprintf(warned[nwarned++], sizeof warned[0], "%s", c->model);
+    SL_WARN("shading model \"%s\" (plugin %s) describes no lobes (MODEL_LOBES): environment and area lights "
+            "light it with the fallback, a Lambert diffuse of its base_color", c->model, c->P->items[c->model_chunk->owner]->id);
+}
+
 static bool compose_forward_fragment(composition *c, sl_program *p) {
     write_fragment_declarations(c, p);
     bool ok = sl_source_include(&p->fs, "sl:material.glsl", c->err, c->n);
@@ -741,6 +766,7 @@ static bool compose_forward_fragment(composition *c, sl_program *p) {
     emit_direct_lighting(c, &gen);
     sl_sb_printf(&gen, "vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E) { return %s(s, l, E); }\n",
                  c->model_chunk->d.function);
+    emit_model_lobes(c, &gen);
     emit_shade_surface(c, &gen);
     sl_source_generated(&p->fs, gen.s);
     sl_sb_free(&gen);

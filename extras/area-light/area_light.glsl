@@ -5,13 +5,14 @@
 // The light emits radiance L.color.rgb (colour × intensity, W/m²/sr) along L.direction (one-sided)
 // or on both faces (two_sided).
 //
-//   ggx model:   diffuse by Lambert's formula, specular by the LTC fitted to the ggx plugin's BRDF
-//                (ltc_fit.c; Heitz et al. 2016); Fresnel: Schlick's split for the schlick and
-//                metallic-roughness modes, the exact dielectric Fresnel at the lobe's mean angle
-//                for exact (see README)
-//   lambert:     Lambert's formula: exact for the polygon
-//   other models: the model evaluated once, at the direction of the polygon's vector irradiance
-//                with its magnitude (exact for Lambertian terms; an approximation otherwise)
+//   every model through the SDK's lobe contract (sl_model_lobes, ABI 1.14), naming none: the
+//                diffuse albedo by Lambert's formula (exact for the polygon), each GGX lobe by the
+//                LTC fitted to the GGX BRDF (ltc_fit.c; Heitz et al. 2016) × its weight; Fresnel:
+//                Schlick's split between F0 and F90, the exact dielectric Fresnel at the lobe's
+//                mean angle for a lobe with eta (see README)
+//   a model without lobes (SL_MODEL_HAS_LOBES undefined): the model evaluated once, at the
+//                direction of the polygon's vector irradiance with its magnitude (exact for
+//                Lambertian terms; an approximation otherwise)
 //   method = reference: Monte Carlo over the light's surface with the model itself (no visibility)
 #include "area_polygon.glsl"
 #include "sl:ggx_brdf.glsl" // the SDK's GGX terms (ggx_fresnel_exact)
@@ -201,17 +202,24 @@ vec3 area_light_reference(SlLight L, SlSurface s, vec3 c, vec3 nl, vec3 ex, vec3
 }
 #endif
 
-#ifdef SL_MODEL_GGX
-// F0 of the ggx plugin's Fresnel modes, from the material keys this plugin shares with it
-// (fresnel, eta, metallic): Schlick's F0 = ((1 − η)/(1 + η))², mix(0.04, base, metallic) for
-// metallic-roughness.
-vec3 area_light_f0(SlSurface s) {
-#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    return mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic);
-#else
-    float r = (1.0 - sl_mat_eta) / (1.0 + sl_mat_eta);
-    return vec3(r * r);
-#endif
+#if defined(SL_MODEL_HAS_LOBES)
+// One GGX lobe of the contract over the polygon: the LTC's integral (a fraction of the lobe)
+// × its Fresnel-weighted norm (∫ F f cos / ∫ D_ltc, Schlick split: F0·(n − f) + F90·f, exact
+// for Schlick; see ltc.h) × weight. Textured lights read the texture through the lobe's LTC.
+vec3 area_light_lobe(SlLobe lobe, AreaLightPolygon poly, mat3 frame, float ndv, int layer, vec3 rel, vec3 hx, vec3 hy) {
+    float alpha = max(lobe.alpha, 2e-3);
+    vec2 tc = (vec2(sqrt(alpha), sqrt(1.0 - ndv)) * (area_light_ltc_size - 1.0) + 0.5) / area_light_ltc_size;
+    vec4 m = texture(area_light_ltc_m, tc);
+    vec2 nf = texture(area_light_ltc_n, tc).xy;
+    mat3 minv = mat3(vec3(m.x, 0.0, m.z), vec3(0.0, 1.0, 0.0), vec3(m.y, 0.0, m.w)); // columns
+    float spec = area_light_vector_irradiance(poly, minv * frame).z * SL_INV_PI;
+    vec3 Ts = layer >= 0 ? area_light_tex_filtered(layer, minv * frame, rel, hx, hy) : vec3(1.0);
+    vec3 fs = lobe.f0 * (nf.x - nf.y) + lobe.f90 * nf.y;
+    if (lobe.eta > 0.0) { // exact dielectric Fresnel at the lobe's mean Schlick argument: (1 − c)⁵ = fresnel / norm
+        float c5 = clamp(nf.y / max(nf.x, 1e-8), 0.0, 1.0);
+        fs = vec3(nf.x * ggx_fresnel_exact(1.0 - pow(c5, 0.2), lobe.eta));
+    }
+    return lobe.weight * fs * spec * Ts;
 }
 #endif
 
@@ -227,33 +235,22 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
                                                     L.params[0].z > 0.5, AREA_LIGHT_DISK_SEGMENTS);
     mat3 frame = area_light_frame(s.normal, s.view);
     vec3 phi = area_light_vector_irradiance(poly, frame); // local frame; phi.z = ∫ cos dω
-    vec3 Le = L.color.rgb, Td = vec3(1.0), Ts = vec3(1.0);
+    vec3 Le = L.color.rgb, Td = vec3(1.0);
     int layer = area_light_tex_layer(L);
     vec3 hx = ex * (0.5 * L.params[0].x), hy = ey * (0.5 * L.params[0].y);
     if (layer >= 0) Td = area_light_tex_filtered(layer, frame, c - s.position, hx, hy);
-#if defined(SL_MODEL_GGX)
-    float alpha = max(s.alpha, 2e-3), ndv = clamp(dot(s.normal, s.view), 0.0, 1.0);
-    vec2 tc = (vec2(sqrt(alpha), sqrt(1.0 - ndv)) * (area_light_ltc_size - 1.0) + 0.5) / area_light_ltc_size;
-    vec4 m = texture(area_light_ltc_m, tc);
-    vec2 nf = texture(area_light_ltc_n, tc).xy;
-    mat3 minv = mat3(vec3(m.x, 0.0, m.z), vec3(0.0, 1.0, 0.0), vec3(m.y, 0.0, m.w)); // columns
-    float spec = area_light_vector_irradiance(poly, minv * frame).z * SL_INV_PI;
-    if (layer >= 0) Ts = area_light_tex_filtered(layer, minv * frame, c - s.position, hx, hy);
-    vec3 f0 = area_light_f0(s);
-#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_SCHLICK || SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    vec3 fs = f0 * (nf.x - nf.y) + nf.y; // ∫ F f cos / ∫ D_ltc, Schlick split (exact for Schlick; see ltc.h)
-#else
-    // exact dielectric Fresnel at the lobe's mean Schlick argument: (1 − c)⁵ = fresnel / norm
-    float c5 = clamp(nf.y / max(nf.x, 1e-8), 0.0, 1.0);
-    vec3 fs = vec3(nf.x * ggx_fresnel_exact(1.0 - pow(c5, 0.2), sl_mat_eta));
-#endif
-    if (ndv <= 0.0) fs = vec3(0.0);      // the model's masking: no specular facing away
-#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    vec3 kd = (1.0 - f0) * (1.0 - s.metallic); // (1 − F) approximated by (1 − F0)
-#else
-    vec3 kd = vec3(1.0);
-#endif
-    return Le * (kd * s.base_color * SL_INV_PI * phi.z * Td + s.specular * fs * spec * Ts);
+#if defined(SL_MODEL_HAS_LOBES)
+    SlLobes lobes = sl_model_lobes(s);
+    float ndv = clamp(dot(s.normal, s.view), 0.0, 1.0);
+    vec3 kd = lobes.diffuse, spec = vec3(0.0);
+    for (int k = 0; k < lobes.count && k < SL_MAX_LOBES; ++k) {
+        // diffuse_coupled: (1 − F) of lobe 0 approximated by (1 − F0)
+        if (k == 0 && lobes.diffuse_coupled) kd *= 1.0 - lobes.lobe[0].f0;
+        // no specular for a normal facing away (the contract's lobes are masked there)
+        if (lobes.lobe[k].weight > 0.0 && dot(s.normal, s.view) > 0.0)
+            spec += area_light_lobe(lobes.lobe[k], poly, frame, ndv, layer, c - s.position, hx, hy);
+    }
+    return Le * (kd * SL_INV_PI * phi.z * Td + spec);
 #else
     // Lambert exactly (model(s, l̂, |Φ|) = k_d/π |Φ| n·l̂ = k_d/π Φ·n); any other model once, at
     // the vector irradiance's direction

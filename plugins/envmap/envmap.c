@@ -102,6 +102,8 @@ static const sl_param_desc params[] = {
 static const sl_shader_chunk_desc chunks[] = {
     C(.hook = SL_HOOK_SHADING_MODEL, .file = "envmap_shading.glsl", .function = "envmap_model_none", .name = "mirror"),
     C(.hook = SL_HOOK_SHADING_MODEL, .file = "envmap_shading.glsl", .function = "envmap_model_none", .name = "environment"),
+    C(.hook = SL_HOOK_MODEL_LOBES, .file = "envmap_shading.glsl", .function = "envmap_mirror_lobes", .name = "mirror"),
+    C(.hook = SL_HOOK_MODEL_LOBES, .file = "envmap_shading.glsl", .function = "envmap_environment_lobes", .name = "environment"),
     C(.hook = SL_HOOK_AMBIENT, .file = "envmap_shading.glsl", .function = "envmap_ambient"),
 };
 

@@ -1,12 +1,14 @@
 // envmap's forward chunks: the "mirror" and "environment" shading models and the AMBIENT hook
-// that lights every material from the environment. The hook specialises on the material's model
-// (SL_MODEL_<NAME>, defined by the composer):
-//   ggx         split sum: diffuse irradiance (SH or convolved cube) + prefiltered specular chain
-//               × environment BRDF (F0·A + B); or, with envmap.mode = reference, Monte Carlo
-//               integration of the source environment with the ggx plugin's exact BRDF
+// that lights every material from the environment. Every model is lit through the SDK's lobe
+// contract (sl_model_lobes, ABI 1.14: a diffuse albedo and GGX lobes), naming none:
+//   split sum   diffuse irradiance (SH or convolved cube) × the diffuse albedo + per lobe the
+//               prefiltered specular chain × environment BRDF (F0·A + F90·B) × weight; a model
+//               without lobes gets the contract's fallback (Lambert with base_color)
+//   reference   Monte Carlo integration of the source environment with the model's own f
+//               (sl_shading_model), the lobes only choosing where to sample
+// envmap's own models (it may name them):
 //   mirror      L(reflect(−v, n)), tinted by base_color when the material gives one
 //   environment L(n), likewise
-//   any other   Lambert: base_color × E(n)/π × ao (reference: cosine-sampled)
 #include "envmap_common.glsl"
 #include "sl:ggx_brdf.glsl"
 
@@ -97,26 +99,10 @@ vec2 envmap_xi(uint i, vec2 rot) {
     return fract(envmap_r2(uint(sl_sample_index) * k + i) + rot);
 }
 
-vec3 envmap_lambert_reference(SlSurface s) {
-    vec3 t, b;
-    envmap_frame(s.normal, t, b);
-    vec2 rot = envmap_hash2(uvec2(gl_FragCoord.xy));
-    vec3 sum = vec3(0.0);
-    int i = 0; // do-whiles (reference_samples >= 1), as the fis loop below
-    do {
-        vec3 l = envmap_sample_cosine(envmap_xi(uint(i), rot));
-        sum += envmap_source(t * l.x + b * l.y + s.normal * l.z, 0.0);
-    } while (++i < envmap_reference_samples);
-    return s.base_color * s.ao * sum / float(envmap_reference_samples);
-}
-
-#if defined(SL_MODEL_GGX)
-float envmap_zero_specular() {
-#if defined(GGX_ZERO_SPECULAR) && GGX_ZERO_SPECULAR
-    return 0.0;
-#else
-    return 1.0;
-#endif
+// Schlick's Fresnel between f0 and f90 (the lobe contract's F), c = l·h.
+vec3 envmap_schlick(float c, vec3 f0, vec3 f90) {
+    float m = clamp(1.0 - c, 0.0, 1.0), m2 = m * m;
+    return f0 + (f90 - f0) * (m2 * m2 * m);
 }
 
 // Horizon occlusion for normal-mapped normals (Russell 2015, "Horizon occlusion for normal mapped
@@ -171,7 +157,7 @@ float envmap_specular_occlusion(float n_dot_v, float ao, float alpha) {
 // 1 = fis, 0 = the control variate alone (= specular=dominant, no sample taken); specular=hybrid
 // fades it out towards rough α (envmap_hybrid_beta). Returns the specular radiance (albedo included).
 uniform float envmap_accumulated; // frames averaged into the image shown (sl_sample_count)
-vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo, float beta) {
+vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 f90, vec3 albedo, float beta) {
     vec3 n = s.normal, v = s.view;
     vec3 t, b;
     envmap_frame(n, t, b);
@@ -199,7 +185,7 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 albedo,
         vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
         if (i >= count || ll.z <= 0.0) continue; // weight 0 (G1(l) = 0): contributes 0 to the mean
         vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
-        vec3 w = ggx_fresnel_schlick(dot(l, h), f0) * (ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v);
+        vec3 w = envmap_schlick(dot(l, h), f0, f90) * (ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v);
         // pdf(l) = G1(v) D(h) / (4 n·v) for visible-normal sampling
         float pdf = g1v * ggx_D(hl.z, alpha) / (4.0 * vl.z);
         // the estimate's samples are all frames' (the R2 points continue across an accumulated
@@ -232,96 +218,115 @@ float envmap_hybrid_beta(float alpha) { return clamp((envmap_hybrid_alpha - alph
 uniform float envmap_fis_weight;
 #endif
 
-vec3 envmap_ggx_split_sum(SlSurface s) {
+// The split sum over the material's lobes (the lobe contract): per lobe the prefiltered chain
+// (or fis) × the environment BRDF F0·A + F90·B × weight, and the diffuse albedo × E(n)/π. With
+// diffuse_coupled (glTF 2.0 appendix B) the diffuse is weighted by 1 − F(v·h) of lobe 0 per light
+// direction; over the cosine lobe that is exactly 1 − F0 − (F90 − F0)·C(μ), C from the LUT
+// (envmap_lut.frag), split from the irradiance as Karis 2013 splits the specular. (1 − F(n·v))
+// instead — Schlick at the view angle — goes to 0 at the rim where the true weight stays ≈ 0.93:
+// dielectric spheres were 4 % too dark on average and 60 % at μ = 0.1 (measured, bench/terms.sh).
+// A lobe with exact dielectric Fresnel (eta) is approximated by Schlick with its F0.
+vec3 envmap_split_sum(SlSurface s) {
+    SlLobes L = sl_model_lobes(s);
     vec3 n = s.normal, v = s.view;
     float mu = clamp(dot(n, v), 1e-4, 1.0);
-    float alpha = max(s.alpha, GGX_MIN_ALPHA);
-    vec3 abc = envmap_brdf(mu, alpha);
-    vec2 ab = abc.xy;
-#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    vec3 f0 = mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic);
-    float ks = 1.0;
-    // The diffuse weight: glTF 2.0 appendix B (as ggx's direct light and the reference below)
-    // weights the diffuse lobe by 1 − F(v·h) per light direction; over the cosine lobe that is
-    // (1 − F0)(1 − C(μ)) exactly, C from the LUT (envmap_lut.frag), split from the irradiance as
-    // Karis 2013 splits the specular. (1 − F(n·v)) instead — Schlick at the view angle — goes to
-    // 0 at the rim where the true weight stays ≈ 0.93: dielectric spheres were 4 % too dark on
-    // average and 60 % at μ = 0.1 (measured, bench/terms.sh).
-    vec3 kd = (1.0 - f0) * (1.0 - abc.z) * (1.0 - s.metallic) * s.base_color;
-#else
-    // exact dielectric Fresnel is approximated by Schlick with the same F0 (a split-sum error)
-    vec3 f0 = vec3(ggx_f0_from_eta(sl_mat_eta));
-    float ks = s.specular;
-    vec3 kd = s.base_color;
-#endif
-    vec3 spec = f0 * ab.x + ab.y;
-    if (envmap_multiscatter) // Fdez-Agüera 2019: the energy single scattering loses, F0-tinted
-        spec *= 1.0 + f0 * (1.0 / max(ab.x + ab.y, 1e-3) - 1.0);
     vec3 r = reflect(-v, n);
-    // a (normal-mapped) normal facing away from the viewer is masked, G1(v) = 0: no specular,
-    // as in the reference below and in ggx's direct term (ggx leaves such normals unbent)
+    // a (normal-mapped) normal facing away from the viewer is masked, G1(v) = 0: no specular, as
+    // in the reference below
     float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
+    vec3 kd = L.diffuse, lit = vec3(0.0);
+    for (int k = 0; k < L.count && k < SL_MAX_LOBES; ++k) {
+        SlLobe lobe = L.lobe[k];
+        float alpha = max(lobe.alpha, GGX_MIN_ALPHA);
+        vec3 abc = envmap_brdf(mu, alpha);
+        if (k == 0 && L.diffuse_coupled) kd *= 1.0 - lobe.f0 - (lobe.f90 - lobe.f0) * abc.z;
+        if (!(lobe.weight > 0.0)) continue;
+        vec3 albedo = lobe.f0 * abc.x + lobe.f90 * abc.y;
+        vec3 spec = albedo;
+        if (envmap_multiscatter) // Fdez-Agüera 2019: the energy single scattering loses, F0-tinted
+            spec *= 1.0 + lobe.f0 * (1.0 / max(abc.x + abc.y, 1e-3) - 1.0);
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
-    float beta = envmap_hybrid_beta(alpha) * envmap_fis_weight;
+        float beta = envmap_hybrid_beta(alpha) * envmap_fis_weight;
 #else
-    float beta = 1.0;
+        float beta = 1.0;
 #endif
-    // fis estimates the single-scattering specular itself (albedo f0·A + B inside); multiscatter
-    // scales it as it scales the split sum's
-    vec3 specular = envmap_fis_specular(s, alpha, r, f0, f0 * ab.x + ab.y, beta) * (spec / max(f0 * ab.x + ab.y, vec3(1e-6)));
+        // fis estimates the single-scattering specular itself (albedo inside); multiscatter
+        // scales it as it scales the split sum's
+        vec3 specular = envmap_fis_specular(s, alpha, r, lobe.f0, lobe.f90, albedo, beta) * (spec / max(albedo, vec3(1e-6)));
 #else
-    vec3 d = envmap_lookup_dir(n, r, alpha);
-    vec3 specular = spec * envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
+        vec3 d = envmap_lookup_dir(n, r, alpha);
+        vec3 specular = spec * envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
 #endif
-    visible *= envmap_specular_occlusion(mu, s.ao, alpha);
-    return kd * envmap_diffuse(n) * s.ao + ks * envmap_zero_specular() * visible * specular;
+        lit += lobe.weight * visible * envmap_specular_occlusion(mu, s.ao, alpha) * specular;
+    }
+    return kd * envmap_diffuse(n) * s.ao + lit;
 }
 
-// Monte Carlo with the exact BRDF: specular by GGX visible-normal sampling (f·cos/pdf =
-// F·G(v,l)/G1(v)), diffuse by cosine sampling; the source map read at full resolution.
-vec3 envmap_ggx_reference(SlSurface s) {
+// The reference: Monte Carlo with the model's own f (sl_shading_model, no lobe approximation).
+// Each iteration takes one direction per strategy: cosine-distributed when the model has a
+// diffuse albedo (or no lobe), and GGX visible normals (Heitz 2018; pdf(l) = G1(v) D(h)/(4 n·v))
+// per lobe of non-zero weight, weighted by the balance heuristic (Veach 1997, one sample per
+// strategy: f L cos / Σ_j pdf_j(l)), so any f is integrated without bias — GGX lobes and the
+// cosine lobe each cover the hemisphere — and the lobes only steer the samples. With a metal's
+// single lobe this is visible-normal sampling alone, f cos/pdf = F G(v,l)/G1(v) ≤ 1. pdf and f
+// take h = normalize(l + v) in world space alike (D at α → 0 is too steep for two roundings).
+// The source map is read at full resolution; light from under the geometric surface (normal
+// maps) is blocked for all but the contract's diffuse term (as the split sum's irradiance);
+// s.ao scales the result.
+float envmap_reference_pdf(vec3 l, SlSurface s, SlLobes L, int lobes, bool cosine) {
+    float ndl = dot(s.normal, l), ndv = dot(s.normal, s.view);
+    float pdf = cosine ? max(ndl, 0.0) * SL_INV_PI : 0.0;
+    vec3 h = normalize(l + s.view);
+    float ndh = dot(s.normal, h);
+    for (int j = 0; j < lobes; ++j) {
+        float a = max(L.lobe[j].alpha, GGX_MIN_ALPHA);
+        if (L.lobe[j].weight > 0.0 && ndh > 0.0) pdf += envmap_smith_g1(ndv, a) * ggx_D(ndh, a) / (4.0 * ndv);
+    }
+    return pdf;
+}
+// The contract's diffuse term alone, f_d(l) cos (common.glsl): diffuse/π, under 1 − F of lobe 0
+// with diffuse_coupled.
+vec3 envmap_lobes_diffuse(SlLobes L, vec3 l, SlSurface s) {
+    vec3 d = L.diffuse * SL_INV_PI * max(dot(s.normal, l), 0.0);
+    if (L.diffuse_coupled && L.count > 0) d *= 1.0 - envmap_schlick(dot(l, normalize(l + s.view)), L.lobe[0].f0, L.lobe[0].f90);
+    return d;
+}
+vec3 envmap_reference(SlSurface s) {
+    SlLobes L = sl_model_lobes(s);
     vec3 n = s.normal, v = s.view;
     vec3 t, b;
     envmap_frame(n, t, b);
     vec3 vl = vec3(dot(v, t), dot(v, b), dot(v, n));
-    float alpha = max(s.alpha, GGX_MIN_ALPHA);
+    int lobes = vl.z > 0.0 ? min(L.count, SL_MAX_LOBES) : 0;
+    bool any_lobe = false;
+    for (int k = 0; k < lobes; ++k) any_lobe = any_lobe || L.lobe[k].weight > 0.0;
+    bool cosine = max(L.diffuse.r, max(L.diffuse.g, L.diffuse.b)) > 0.0 || !any_lobe;
     vec2 rot = envmap_hash2(uvec2(gl_FragCoord.xy));
-#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    float ks = 1.0;
-#else
-    float ks = s.specular;
-#endif
-    ks *= envmap_zero_specular();
-    vec3 spec = vec3(0.0), diff = vec3(0.0);
-    int i = 0;
+    vec3 sum = vec3(0.0);
+    int i = 0; // a do-while (reference_samples >= 1), as the fis loop above
     do {
         vec2 xi = envmap_xi(uint(i), rot);
-        if (vl.z > 0.0) {
-            vec3 hl = envmap_sample_vndf(vl, alpha, xi);
-            vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
-            if (ll.z > 0.0) {
-                vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
-                float g = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / envmap_smith_g1(vl.z, alpha);
-                // light from under the geometric surface (normal-mapped normals) is blocked
-                spec += ggx_fresnel(dot(l, h), s) * g * envmap_above(l, s.geometric_normal) * envmap_source(l, 0.0);
+        for (int k = -1; k < lobes; ++k) {
+            vec3 ll;
+            if (k < 0) {
+                if (!cosine) continue;
+                ll = envmap_sample_cosine(fract(xi + vec2(0.5, 0.25)));
+            } else {
+                if (!(L.lobe[k].weight > 0.0)) continue;
+                vec3 hl = envmap_sample_vndf(vl, max(L.lobe[k].alpha, GGX_MIN_ALPHA), fract(xi + vec2(0.375, 0.625) * float(k)));
+                ll = 2.0 * dot(vl, hl) * hl - vl;
             }
+            if (ll.z <= 0.0) continue;
+            vec3 l = t * ll.x + b * ll.y + n * ll.z;
+            vec3 Li = envmap_source(l, 0.0);
+            vec3 f = sl_shading_model(s, l, Li), fd = envmap_lobes_diffuse(L, l, s) * Li;
+            f = fd + (f - fd) * envmap_above(l, s.geometric_normal);
+            sum += f / envmap_reference_pdf(l, s, L, lobes, cosine);
         }
-        vec3 lc = envmap_sample_cosine(fract(xi + vec2(0.5, 0.25)));
-        vec3 l = t * lc.x + b * lc.y + n * lc.z;
-#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-        vec3 h = normalize(l + v);
-        vec3 kd = (1.0 - ggx_fresnel(dot(l, h), s)) * (1.0 - s.metallic) * s.base_color;
-#else
-        vec3 kd = s.base_color;
-#endif
-        diff += kd * envmap_source(l, 0.0);
     } while (++i < envmap_reference_samples);
-    // the same specular occlusion from s.ao as the split sum (an input, not something to integrate)
-    ks *= envmap_specular_occlusion(vl.z, s.ao, alpha);
-    return (ks * spec + diff * s.ao) / float(envmap_reference_samples);
+    return s.ao * sum / float(envmap_reference_samples);
 }
-#endif
 
 vec3 envmap_tint(SlSurface s) {
 #if defined(SL_MAT_HAS_BASE_COLOR) || defined(SL_MAT_HAS_BASE_COLOR_MAP)
@@ -334,6 +339,16 @@ vec3 envmap_tint(SlSurface s) {
 // The per-light part of "mirror" and "environment": a perfect mirror sees a punctual light only
 // as a delta, and "environment" shows the map along n; neither reacts to lights.
 vec3 envmap_model_none(SlSurface s, vec3 l, vec3 E) { return vec3(0.0); }
+// Their lobes (the SDK's lobe contract, for other integrators such as area lights): "mirror" is
+// one lobe of the smallest α with Fresnel 1 tinted like its environment reflection;
+// "environment" shows the map and ignores every light: none.
+SlLobes envmap_mirror_lobes(SlSurface s) {
+    SlLobes L = sl_lobes_none();
+    L.count = 1;
+    L.lobe[0] = SlLobe(envmap_tint(s), envmap_tint(s), GGX_MIN_ALPHA, 1.0, 0.0);
+    return L;
+}
+SlLobes envmap_environment_lobes(SlSurface s) { return sl_lobes_none(); }
 
 vec3 envmap_ambient(SlSurface s) {
     // screen-space footprint of the lookup direction, before any branch (derivatives)
@@ -345,17 +360,9 @@ vec3 envmap_ambient(SlSurface s) {
     float footprint = max(length(dFdx(d)), length(dFdy(d)));
 #if defined(SL_MODEL_MIRROR) || defined(SL_MODEL_ENVIRONMENT)
     return envmap_tint(s) * envmap_source(d, envmap_source_lod(footprint));
-#elif defined(SL_MODEL_GGX)
-#if ENVMAP_MODE == ENVMAP_MODE_REFERENCE
-    return envmap_ggx_reference(s);
+#elif ENVMAP_MODE == ENVMAP_MODE_REFERENCE
+    return envmap_reference(s);
 #else
-    return envmap_ggx_split_sum(s);
-#endif
-#else
-#if ENVMAP_MODE == ENVMAP_MODE_REFERENCE
-    return envmap_lambert_reference(s);
-#else
-    return s.base_color * envmap_diffuse(s.normal) * s.ao;
-#endif
+    return envmap_split_sum(s);
 #endif
 }

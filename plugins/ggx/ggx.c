@@ -58,6 +58,7 @@ static const sl_shader_chunk_desc chunks[] = {
      * normal maps leave them unbent for this model (README, "Numerical guards") */
     C(.hook = SL_HOOK_SHADING_MODEL, .file = "ggx_model.glsl", .function = "ggx_model", .name = "ggx",
       .flags = SL_CHUNK_MASKS_FACING_AWAY),
+    C(.hook = SL_HOOK_MODEL_LOBES, .file = "ggx_model.glsl", .function = "ggx_lobes", .name = "ggx"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_alpha", .when_material_has = "alpha"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_roughness",
       .when_material_has = "roughness", .order = 1),

@@ -43,6 +43,34 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
 #endif
 }
 
+// The model's lobes (ABI 1.14, the SDK's lobe contract): the ggx BRDF is one GGX microfacet lobe
+// plus Lambert, so the description is exact: α, F0 (Schlick's from η, or glTF's
+// mix(0.04, base, metallic) with the diffuse under 1 − F), F90 = 1, weight k_s; with
+// fresnel = exact the exact dielectric Fresnel (eta). GGX_ZERO_SPECULAR switches the lobe off.
+SlLobes ggx_lobes(SlSurface s) {
+    SlLobes L = sl_lobes_none();
+    L.count = 1;
+    L.lobe[0].alpha = max(s.alpha, GGX_MIN_ALPHA);
+    L.lobe[0].f90 = vec3(1.0);
+#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+    L.diffuse = (1.0 - s.metallic) * s.base_color;
+    L.diffuse_coupled = true;
+    L.lobe[0].f0 = mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic);
+    L.lobe[0].weight = 1.0;
+#else
+    L.diffuse = s.base_color;
+    L.lobe[0].f0 = vec3(ggx_f0_from_eta(sl_mat_eta));
+    L.lobe[0].weight = s.specular;
+#if SL_MAT_FRESNEL != SL_MAT_FRESNEL_SCHLICK
+    L.lobe[0].eta = sl_mat_eta;
+#endif
+#endif
+#if GGX_ZERO_SPECULAR
+    L.lobe[0].weight = 0.0;
+#endif
+    return L;
+}
+
 // Debug views (the head assignment's modes 4–6), summed over the lights.
 vec3 ggx_debug_D(SlSurface s, vec3 l, vec3 E) {
     vec3 n = s.normal, v = s.view;

@@ -222,6 +222,7 @@ static sl_status phong_create(const sl_host *host, void **user) {
         CHUNK(.hook = SL_HOOK_MODEL_AMBIENT, .function = "phong_model_classic_ambient", .name = "phong"),
         CHUNK(.hook = SL_HOOK_SHADING_MODEL, .function = "phong_model_blinn_gloss", .name = "blinn-gloss"),
         CHUNK(.hook = SL_HOOK_MODEL_AMBIENT, .function = "phong_model_blinn_gloss_ambient", .name = "blinn-gloss"),
+        CHUNK(.hook = SL_HOOK_MODEL_LOBES, .function = "phong_blinn_gloss_lobes", .name = "blinn-gloss"),
         CHUNK(.hook = SL_HOOK_SURFACE, .function = "phong_surface_gloss", .when_model = "blinn-gloss", .order = -100),
         CHUNK(.hook = SL_HOOK_SURFACE, .function = "phong_surface", .when_material_has = "property_map", .order = 20),
         CHUNK(.hook = SL_HOOK_DEBUG_VIEW, .function = "phong_debug_gloss", .name = "effective-gloss",

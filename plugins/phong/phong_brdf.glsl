@@ -76,6 +76,18 @@ vec3 phong_blinn_gloss_ambient(vec3 n, vec3 v, vec3 albedo, float ao, vec3 Ea) {
     return (1.0 - phong_schlick(dot(n, v))) * albedo * ao * Ea * SL_INV_PI;
 }
 
+// The GGX-lobe weight that makes a GGX microfacet lobe (Smith G, constant Fresnel c) match the
+// blinn-gloss specular F·k_s·(p+1)/(2π)·(n·h)^p·(n·l) at the lobe's centre (README, "Lobes"):
+// with D_GGX(α) ≈ the normalised Blinn D = (p+2)/(2π)(n·h)^p (Walter et al. 2007, α = √(2/(p+2))),
+// the specular is c·(p+1)/(p+2)·D·(n·l), the GGX lobe c·D·G₁(v)G₁(l)/(4 n·v); at l = the mirror
+// direction (n·l = n·v = μ) their ratio is 4μ²(p+1) / ((p+2)·G₁(μ)²). 0 for μ ≤ 0.
+float phong_lobe_weight(float mu, float p, float alpha) {
+    if (mu <= 0.0) return 0.0;
+    float c2 = mu * mu;
+    float g1 = 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * (1.0 - c2) / c2));
+    return 4.0 * c2 * (p + 1.0) / ((p + 2.0) * g1 * g1);
+}
+
 // Classic Phong, one light: L = E/π · (k_d·(n·l) + k_s·max(0, r·v)^shininess) for n·l > 0,
 // r = reflect(−l, n). The specular term is not multiplied by n·l (the classic model), so it
 // is cut at the terminator; 0 for light behind the surface.

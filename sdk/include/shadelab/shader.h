@@ -27,6 +27,11 @@
  *             sample sequence that continues across a TAA still's frames and accumulated frames).
  *   function (ABI 1.6, fragment stage of forward programs):
  *             vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E)   the material's SHADING_MODEL
+ *   lobes (ABI 1.14, common.glsl): struct SlLobe, struct SlLobes, SL_MAX_LOBES, sl_lobes_none(),
+ *             and in forward programs  SlLobes sl_model_lobes(SlSurface s)  the material's
+ *             MODEL_LOBES description, or the fallback (Lambert diffuse of s.base_color, no
+ *             lobe; SL_MODEL_HAS_LOBES undefined). Integrators (AMBIENT hooks, radiance LIGHTs)
+ *             light every model through it and name none (plugin-guide.md, "Lobes").
  *
  * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX),
  * and "#define SL_MODEL_MASKS_FACING_AWAY 1" when that model's chunk carries
@@ -105,6 +110,11 @@
  *                                                                loop. One provider (the
  *                                                                first enabled); absent, the
  *                                                                programs are unchanged
+ *   MODEL_LOBES      SlLobes FN(SlSurface s)                     ABI 1.14: the model `name`
+ *                                                                described as a diffuse albedo
+ *                                                                and up to SL_MAX_LOBES GGX
+ *                                                                lobes at s.view (common.glsl);
+ *                                                                defines SL_MODEL_HAS_LOBES
  *   DISPLACEMENT     float FN(SlVertex v)                        ABI 1.7: height along the
  *                                                                object-space normal at a
  *                                                                tessellated vertex (v after the
@@ -156,7 +166,8 @@ typedef enum sl_hook {
     SL_HOOK_LIBRARY,
     SL_HOOK_SHADOW,         /* ABI 1.1 (shadow maps); an older host refuses the chunk */
     SL_HOOK_LIGHT_LOOP,     /* ABI 1.7 (light culling); an older host refuses the chunk */
-    SL_HOOK_DISPLACEMENT    /* ABI 1.7 (tessellation, see above); an older host refuses it */
+    SL_HOOK_DISPLACEMENT,   /* ABI 1.7 (tessellation, see above); an older host refuses it */
+    SL_HOOK_MODEL_LOBES     /* ABI 1.14 (the lobe contract); an older host refuses it */
 } sl_hook;
 
 typedef struct sl_shader_chunk_desc {
@@ -164,7 +175,7 @@ typedef struct sl_shader_chunk_desc {
     sl_hook hook;
     const char *file;      /* GLSL file relative to the plugin's resource directory */
     const char *function;  /* entry function (see the signatures above); NULL for LIBRARY */
-    /* SHADING_MODEL / MODEL_AMBIENT: the model name materials select ("ggx").
+    /* SHADING_MODEL / MODEL_AMBIENT / MODEL_LOBES: the model name materials select ("ggx").
      * LIGHT: the light type ("spot"). DEBUG_VIEW(_LIGHT): the view name ("ggx-d"). */
     const char *name;
     /* VERTEX/SURFACE/AMBIENT: include the chunk only for materials carrying this material
@@ -199,8 +210,8 @@ typedef enum sl_chunk_flags {
      * lights) and returns outgoing radiance instead of a direction and an irradiance. Signature
      *     vec3 FN(SlLight L, SlSurface s)        radiance towards s.view, added to the light loop
      * It may call sl_shading_model(s, l, E) (declared in every forward program, ABI 1.6: the
-     * material's model, e.g. for sampling points on the light) and test SL_MODEL_<NAME> to use
-     * a closed form for a model it knows. The SHADOW hook is not applied (the light handles its
+     * material's model, e.g. for sampling points on the light) and sl_model_lobes(s) (ABI 1.14,
+     * the lobe contract) to integrate any model without naming it. The SHADOW hook is not applied (the light handles its
      * own visibility) and per-light debug views (DEBUG_VIEW_LIGHT) get nothing from it. */
     SL_CHUNK_LIGHT_RADIANCE = 1u << 1,
     /* ABI 1.13, DEBUG_VIEW: a view of a render-graph resource a pass wrote, not of the materials
