@@ -46,7 +46,7 @@ static bool ground_hit(const cam *c, int px, int py, double half, al_v3 *hit) {
 
 static sl_harness *make(const char *json, const char *const *settings, int accumulate) {
     char err[4096];
-    const char *plugins[] = {AREA_LIGHT_PLUGIN, "ggx", NULL};
+    const char *plugins[] = {AREA_LIGHT_PLUGIN, "ggx", "phong", NULL};
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
         .scene_json = json, .plugins = plugins, .settings = settings, .float32 = true, .strict = true,
         .accumulate = accumulate}, err, sizeof err);
@@ -301,6 +301,7 @@ static double rel_rmse(const float *a, const float *b, double *peak) {
     return sqrt(s / (3.0 * W * H)) / fmax(m, 1e-9);
 }
 
+#define BLINN_GLOSS_BOUND 0.03 /* ggx's bound (test_ggx) */
 static void test_ggx(void) {
     const char *const ref[] = {"area-light.method=reference", "area-light.reference_samples=8", "area-light.reference_visibility=false", NULL};
     const char *const mats[] = {
@@ -316,6 +317,27 @@ static void test_ggx(void) {
         double peak, e = rel_rmse(img, img2, &peak);
         printf("ggx %d: LTC vs reference RMSE %.3f%% of the peak %.3f\n", i, 100 * e, peak);
         CHECK(e < 0.03, "ggx material %d: LTC vs reference RMSE %.3g of the peak", i, e);
+        CHECK(sl_harness_count_nonfinite(img, W, H) == 0, "non-finite pixels");
+    }
+}
+
+/* phong's blinn-gloss through the lobe contract (one GGX lobe, α = √(2/(p+2)), phong/README.md
+ * "Lobes"): the LTC image against the reference, which evaluates blinn-gloss itself per point */
+static void test_blinn_gloss(void) {
+    const char *const ref[] = {"area-light.method=reference", "area-light.reference_samples=8", "area-light.reference_visibility=false", NULL};
+    const char *const mats[] = {
+        "{\"name\": \"m\", \"model\": \"blinn-gloss\", \"base_color\": [0.2, 0.2, 0.2], \"gloss\": 0.3}",
+        "{\"name\": \"m\", \"model\": \"blinn-gloss\", \"base_color\": [0.2, 0.2, 0.2], \"gloss\": 0.5}",
+        "{\"name\": \"m\", \"model\": \"blinn-gloss\", \"base_color\": [0.2, 0.2, 0.2], \"gloss\": 0.7}",
+    };
+    for (int i = 0; i < 3; i++) {
+        char json[4096];
+        snprintf(json, sizeof json, SCENE("%s", RECT), mats[i]);
+        render(json, NULL, 1, img);
+        render(json, ref, 16, img2);
+        double peak, e = rel_rmse(img, img2, &peak);
+        printf("blinn-gloss gloss %.1f: LTC vs reference RMSE %.3f%% of the peak %.3f\n", 0.3 + 0.2 * i, 100 * e, peak);
+        CHECK(e < BLINN_GLOSS_BOUND, "blinn-gloss %d: LTC vs reference RMSE %.3g of the peak", i, e);
         CHECK(sl_harness_count_nonfinite(img, W, H) == 0, "non-finite pixels");
     }
 }
@@ -606,6 +628,7 @@ int main(int argc, char **argv) {
     if (!*only || !strcmp(only, "table")) test_table();
     if (!*only || !strcmp(only, "lambert")) test_lambert_and_reference();
     if (!*only || !strcmp(only, "ggx")) test_ggx();
+    if (!*only || !strcmp(only, "blinn-gloss")) test_blinn_gloss();
     if (!*only || !strcmp(only, "sides")) test_sides_and_stability();
     if (!*only || !strcmp(only, "texture")) test_texture();
     if (!*only || !strcmp(only, "visibility")) test_visibility();
