@@ -8,6 +8,7 @@
 #include "render/composer.h"
 #include "render/forward.h"
 #include "render/renderer.h"
+#include "render/post.h"
 #include <shadelab/gl.h>
 #include <shadelab/input.h>
 #include <math.h>
@@ -750,6 +751,7 @@ void sl_app_shutdown(sl_app *app) {
         }
         sl_renderer_destroy(app);
     }
+    sl_post_free(app);
     sl_plugins_shutdown(&app->plugins);
     if (app->gl_ready) sl_backend_destroy(&app->backend);
     sl_host_set_gl_app(NULL);

@@ -166,7 +166,7 @@ void sl_harness_structure_of(sl_harness *h, sl_harness_structure *out) {
     out->effect_draw_calls = st->draw_calls + st->reused_draw_calls;
     for (int i = 0; i < st->pass_count; i++) {
         if (st->passes[i].ran && out->pass_count < 64) out->passes[out->pass_count++] = intern_pass_name(st->passes[i].name);
-        if ((st->passes[i].ran || st->passes[i].reused) && out->effect_count < 64)
+        if ((st->passes[i].ran || st->passes[i].reused || st->passes[i].fused_into) && out->effect_count < 64)
             out->in_effect[out->effect_count++] = intern_pass_name(st->passes[i].name);
     }
     out->program_count = st->program_count;

@@ -70,6 +70,7 @@ typedef struct sl_app {
                                          bounds before --ground added its floor */
     bool environment_read;       /* a plugin asked for the scene's environment (sl_host.environment) */
     char *strict_failure;        /* --strict: why the run must fail (a plugin's program did not compile) */
+    struct sl_post *post;        /* fused full-screen passes (render/post.h, ext/post.h); NULL: none registered */
 } sl_app;
 
 /* A material's value for a key, or NULL when the key is not in the schema. */

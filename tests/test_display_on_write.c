@@ -9,7 +9,7 @@
  *     clamped to [0,1], computed here on the CPU (an independent closed form), within 1/255;
  *   - alpha is 1.
  * Configurations: the forward pass alone, the forward pass with envmap's background drawn in place,
- * TAA, tonemap (dithered), tonemap + FXAA, supersampling (the resolve pass writes the display),
+ * TAA, TAA with tonemap fused into its draw (ext/post.h), tonemap (dithered), tonemap + FXAA, supersampling (the resolve pass writes the display),
  * accumulated frames (only post passes may write it), and RGBA32F colour. */
 #include "check.h"
 #include <shadelab/harness.h>
@@ -98,6 +98,7 @@ int main(void) {
         {.name = "envmap background", .scene = "env_sky.json", .settings = {"aa.method=none", "tonemap.enabled=false"},
          .must_run = "envmap-background"},
         {.name = "taa", .frames = 3, .must_run = "aa-taa"},
+        {.name = "taa + tonemap (fused)", .plugins = {"tonemap"}, .frames = 3, .must_run = "aa-taa"},
         {.name = "tonemap (dither)", .plugins = {"tonemap"}, .settings = {"aa.method=none", "tonemap.exposure=1"},
          .frames = 2, .must_run = "tonemap"},
         {.name = "tonemap + fxaa", .plugins = {"tonemap"}, .settings = {"aa.method=fxaa"}, .must_run = "aa-fxaa"},

@@ -6,6 +6,7 @@
 #include "log.h"
 #include "render/renderer.h"
 #include "render/composer.h"
+#include "render/post.h"
 #include "image/image.h"
 #include <stdarg.h>
 #include <stdlib.h>
@@ -57,7 +58,23 @@ static sl_status host_set_reference(const sl_host *h, const sl_reference_desc *d
     return sl_plugins_set_reference(&HOST_APP(h)->plugins, HOST_IDX(h), d);
 }
 static int host_reserve_unit(const sl_host *h) { return sl_plugins_reserve_unit(&HOST_APP(h)->plugins, HOST_IDX(h)); }
+/* Extensions the core provides itself (checked before the plugins'). */
+static sl_status post_add_pointwise(const sl_host *h, const sl_pointwise_desc *d) {
+    return sl_post_add_pointwise(HOST_APP(h), HOST_IDX(h), d);
+}
+static sl_status post_accept(const sl_host *h, const char *pass) { return sl_post_accept(HOST_APP(h), HOST_IDX(h), pass); }
+static sl_program *post_load_program(const sl_host *h, const sl_program_desc *d) {
+    return sl_post_load_program(HOST_APP(h), HOST_IDX(h), d);
+}
+static sl_status post_bind_outputs_with(const sl_host *h, sl_pass_ctx *c, int layer, const unsigned *t, int count) {
+    return sl_post_bind_outputs_with(HOST_APP(h), c, layer, t, count);
+}
+static const sl_ext_post post_ext = {.struct_size = sizeof post_ext, .add_pointwise = post_add_pointwise,
+                                     .accept_pointwise = post_accept, .load_program = post_load_program,
+                                     .bind_outputs_with = post_bind_outputs_with};
+
 static const void *host_get_extension(const sl_host *h, const char *id) {
+    if (id && !strcmp(id, SL_EXT_POST)) return &post_ext;
     return sl_plugins_extension(&HOST_APP(h)->plugins, id);
 }
 
@@ -114,7 +131,7 @@ static bool host_is_gpu(const sl_host *h) { return HOST_APP(h)->backend.is_gpu; 
 static sl_program *host_load_program(const sl_host *h, const sl_program_desc *d) {
     return sl_renderer_load_program(HOST_APP(h), HOST_IDX(h), d);
 }
-static unsigned host_program_id(const sl_host *h, sl_program *p) { return sl_renderer_program_id(p); }
+static unsigned host_program_id(const sl_host *h, sl_program *p) { return sl_post_program_id(HOST_APP(h), p); }
 static unsigned host_pass_texture(const sl_host *h, sl_pass_ctx *c, const char *name) {
     return sl_renderer_pass_texture(HOST_APP(h), c, name);
 }
@@ -124,7 +141,10 @@ static sl_status host_bind_outputs(const sl_host *h, sl_pass_ctx *c, int layer) 
 static void host_draw_scene(const sl_host *h, sl_pass_ctx *c, const sl_draw_scene_desc *d) {
     sl_renderer_draw_scene(HOST_APP(h), c, d);
 }
-static void host_draw_fullscreen(const sl_host *h, sl_pass_ctx *c) { sl_renderer_draw_fullscreen(HOST_APP(h), c); }
+static void host_draw_fullscreen(const sl_host *h, sl_pass_ctx *c) {
+    sl_post_bind_fused(HOST_APP(h)); /* the uniforms of passes fused into this one (ext/post.h) */
+    sl_renderer_draw_fullscreen(HOST_APP(h), c);
+}
 static unsigned host_material_texture(const sl_host *h, int m, const char *key) {
     return sl_renderer_material_texture(HOST_APP(h), m, key);
 }

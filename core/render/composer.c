@@ -299,6 +299,30 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
     return true;
 }
 
+/* The fused pointwise functions (ext/post.h) before the fragment file: each one's defines and
+ * file, then sl_pointwise_epilogue calling them in order. */
+static bool compose_epilogue(sl_program *p, sl_source *fs, char *err, size_t n) {
+    sl_strbuf chain = {0};
+    sl_sb_append(&chain, "vec3 sl_pointwise_epilogue(vec3 color, ivec2 pixel) {\n");
+    for (int i = 0; i < p->point_count; i++) {
+        const sl_epilogue_point *e = &p->points[i];
+        if (e->defines && *e->defines) {
+            sl_strbuf d = {0};
+            char *copy = strdup(e->defines), *save = NULL;
+            for (char *l = strtok_r(copy, "\n", &save); l; l = strtok_r(NULL, "\n", &save)) sl_sb_printf(&d, "#define %s\n", l);
+            free(copy);
+            sl_source_generated(fs, d.s ? d.s : "");
+            sl_sb_free(&d);
+        }
+        if (!sl_source_include_from(fs, e->file, e->owner, err, n)) { sl_sb_free(&chain); return false; }
+        sl_sb_printf(&chain, "    color = %s(color, pixel);\n", e->function);
+    }
+    sl_sb_append(&chain, "    return color;\n}\n");
+    sl_source_generated(fs, chain.s);
+    sl_sb_free(&chain);
+    return true;
+}
+
 static bool compose_files(sl_program *p, const char *dir, char *err, size_t n) {
     sl_source_free(&p->vs);
     sl_source_free(&p->fs);
@@ -316,6 +340,7 @@ static bool compose_files(sl_program *p, const char *dir, char *err, size_t n) {
         sl_sb_append(&srcs[k]->text, head.s);
         sl_sb_free(&head);
         ensure_generated_slot(srcs[k]);
+        if (k == 1 && p->epilogue && !compose_epilogue(p, srcs[k], err, n)) return false;
         char full[2048];
         if (!strncmp(paths[k], "sl:", 3) || paths[k][0] == '/' || !dir || !*dir) snprintf(full, sizeof full, "%s", paths[k]);
         else snprintf(full, sizeof full, "%s/%s", dir, paths[k]);
@@ -364,6 +389,35 @@ unsigned sl_program_id(sl_program *p) {
     return p->id;
 }
 
+sl_program *sl_program_epilogue_variant(const sl_program *base, const char *dir, const sl_epilogue_point *points,
+                                        int count, char *err, size_t n) {
+    sl_program *p = calloc(1, sizeof *p);
+    p->vs_path = strdup(base->vs_path);
+    p->fs_path = strdup(base->fs_path);
+    p->defines = base->defines ? strdup(base->defines) : NULL;
+    p->owner = base->owner;
+    p->epilogue = true;
+    for (int i = 0; i < count && i < SL_EPILOGUE_MAX; i++, p->point_count++) {
+        p->points[i].file = strdup(points[i].file);
+        p->points[i].owner = points[i].owner;
+        p->points[i].function = strdup(points[i].function);
+        p->points[i].defines = points[i].defines ? strdup(points[i].defines) : NULL;
+    }
+    sl_strbuf label = {0};
+    sl_sb_printf(&label, "%s", base->label ? base->label : base->fs_path);
+    for (int i = 0; i < p->point_count; i++) sl_sb_printf(&label, " + %s()", p->points[i].function);
+    p->label = label.s;
+    if (!compose_files(p, dir, err, n)) {
+        p->error = strdup(err);
+        p->error_owner = p->point_count ? p->points[0].owner : p->owner; /* a missing file: which one */
+        for (int i = 0; i < p->point_count; i++)
+            if (strstr(err, p->points[i].file)) p->error_owner = p->points[i].owner;
+        return p;
+    }
+    sl_program_build(p, err, n);
+    return p;
+}
+
 bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t n) {
     sl_program tmp = *p;
     memset(&tmp.vs, 0, sizeof tmp.vs);
@@ -402,5 +456,6 @@ void sl_program_free(sl_program *p) {
     sl_source_free(&p->tcs);
     sl_source_free(&p->tes);
     free(p->label); free(p->error); free(p->vs_path); free(p->fs_path); free(p->defines);
+    for (int i = 0; i < p->point_count; i++) free(p->points[i].file), free(p->points[i].function), free(p->points[i].defines);
     free(p);
 }

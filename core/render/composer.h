@@ -38,6 +38,11 @@ void sl_source_map_log(const sl_source *s, const char *log, char *out, size_t n)
  * when none does or it is generated text. */
 int sl_source_log_owner(const sl_source *s, const char *log);
 
+/* One fused pointwise function of an epilogue program (ext/post.h): a plugin's file (absolute
+ * path; errors in it are blamed on `owner`), its function and the defines it is composed with. */
+#define SL_EPILOGUE_MAX 4
+typedef struct sl_epilogue_point { char *file; int owner; char *function; char *defines; } sl_epilogue_point;
+
 struct sl_program {
     uint64_t hash;          /* of vertex + fragment (+ tessellation) source */
     unsigned id;            /* GL program; 0 until compiled successfully */
@@ -55,6 +60,10 @@ struct sl_program {
     bool failure_reported;  /* a failed first compile was handled (sl_renderer_failed_plugin) */
     bool deferred;          /* sources read, not compiled yet: built at the first sl_program_id()
                                (lazy creation: a program whose pass never runs costs no compile) */
+    /* sl_ext_post (ext/post.h): the fragment stage gets vec3 sl_pointwise_epilogue(vec3, ivec2),
+     * composed of `points` in order (the identity when there are none) before the fragment file */
+    bool epilogue;
+    sl_epilogue_point points[SL_EPILOGUE_MAX]; int point_count;
 };
 
 /* Compiles and links; on failure keeps any previous id and stores the mapped error. */
@@ -69,6 +78,10 @@ sl_program *sl_program_from_files_deferred(const char *dir, const char *vs, cons
 /* The GL id, compiling a deferred program first (once: a failure is logged as an error and
  * the program stays 0 until a reload fixes its files). NULL gives 0. */
 unsigned sl_program_id(sl_program *p);
+/* A program with base's files and defines whose epilogue runs `points` (copied), composed now and
+ * compiled now; on failure id 0 with p->error and p->error_owner set (err holds the message). */
+sl_program *sl_program_epilogue_variant(const sl_program *base, const char *dir, const sl_epilogue_point *points,
+                                        int count, char *err, size_t n);
 /* Re-reads the files; a deferred program is only recomposed (it compiles when first used). */
 bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t n);
 bool sl_source_changed(const sl_source *s);

@@ -1,6 +1,7 @@
 /* Executing the render graph: the core's own passes, change signatures, per-pass timing.
  * See renderer_internal.h. */
 #include "render/renderer_internal.h"
+#include "render/post.h"
 #include "log.h"
 #include "startup.h"
 #include <shadelab/gl.h>
@@ -224,6 +225,7 @@ static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
     else if (g->core_prepass) run_prepass(app, &ctx);
     else g->d->execute(g->d->user, &ctx, &r->frame);
     r->current = NULL;
+    sl_post_end_pass(app, g->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(0);
     if (g->to_display) { /* it wrote "display" through the sRGB view instead of "color" (graph_plan.c) */
@@ -371,8 +373,14 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
             st->owner = g->owner >= 0 ? app->plugins.items[g->owner]->id : "core";
             st->ms = 0;
             st->ran = st->reused = false;
+            st->fused_into = NULL;
         }
         if (g->broken) continue;
+        int into = sl_post_fused_into(app, i);
+        if (into >= 0) { /* its function runs inside that pass's draw (render/post.h) */
+            if (st) st->fused_into = r->passes[into].d->name;
+            continue;
+        }
         if (g->d->is_active && !g->d->is_active(g->d->user, &r->frame)) continue;
         if (unchanged(app, g)) { /* its declared inputs and its signature did not move */
             if (st) st->reused = true;

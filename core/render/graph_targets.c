@@ -95,9 +95,8 @@ unsigned sl_renderer_pass_texture(sl_app *app, sl_pass_ctx *ctx, const char *nam
 
 /* "display" seen as sRGB (a view of the same RGBA8 storage, GL 4.3 texture views): writes through
  * it with GL_FRAMEBUFFER_SRGB enabled are clamped and encoded (IEC 61966-2-1) by the hardware,
- * while readers of "display" keep seeing the RGBA8 code values. Alpha starts at 1 and is
- * masked off while a plugin's pass writes through it, as the display pass writes alpha 1 (the
- * core's own passes write alpha 1 themselves: see sl_renderer_bind_outputs). */
+ * while readers of "display" keep seeing the RGBA8 code values. Its alpha is whatever the
+ * passes wrote: readers take it as 1 (sl_renderer_read), as the display pass writes it. */
 static unsigned display_view(sl_renderer *r) {
     resource *d = sl_graph_find(r, "display");
     if (!d) return 0;
@@ -144,15 +143,11 @@ sl_status sl_renderer_bind_outputs(sl_app *app, sl_pass_ctx *ctx, int layer) {
     }
     glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
     glViewport(0, 0, w, h);
-    if (display_slot >= 0) { /* undone after the pass (graph_run.c) */
-        glEnable(GL_FRAMEBUFFER_SRGB);
-        /* The core's forward and resolve passes write alpha 1 (opaque materials, an opaque clear):
-         * no mask for them. A colour mask costs llvmpipe a read-modify-write of every pixel the
-         * pass touches and turns the forward pass's clear into a masked full-screen write (3-4 ns
-         * a pixel: the forward pass of scenes/ratio_sphere.json at 1080p, 15.6 -> 8.3 CPU ms with
-         * a flat shader; docs/design-notes.md, "The light loop"). */
-        if (!g->core_forward && !g->core_resolve) glColorMaski(display_slot, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
-    }
+    /* undone after the pass (graph_run.c). No colour mask on alpha: a mask costs llvmpipe a
+     * read-modify-write of every pixel the pass touches (3-4 ns a pixel: the forward pass of
+     * scenes/ratio_sphere.json at 1080p, 15.6 -> 8.3 CPU ms with a flat shader; a TAA draw at
+     * 256x256 about a fifth of its cost); the readers of "display" take alpha as 1 instead. */
+    if (display_slot >= 0) glEnable(GL_FRAMEBUFFER_SRGB);
     return SL_OK;
 }
 

@@ -2,6 +2,7 @@
  * See renderer.h (its interface) and renderer_internal.h (how its files divide the work). */
 #include "render/texture_prefetch.h"
 #include "render/renderer_internal.h"
+#include "render/post.h"
 #include "log.h"
 #include "startup.h"
 #include <shadelab/gl.h>
@@ -322,6 +323,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         if (r->passes[i].d->stage >= SL_STAGE_POST) { post_begin = i; break; }
     /* which passes write "display" directly this frame (accumulated frames: only post passes) */
     sl_graph_route_display(app, count > 1 ? post_begin : 0, app->opt.keep_color);
+    sl_post_route(app, count > 1 ? post_begin : 0); /* pointwise passes fused into the pass before */
     if (count == 1) {
         sl_graph_run_range(app, 0, r->pass_count);
     } else {
@@ -432,6 +434,10 @@ bool sl_renderer_read(sl_app *app, const char *name, float *rgba) {
     glGetTextureImage(e->tex[e->current], 0, GL_RGBA, GL_FLOAT, (int)(row * e->h * sizeof(float)), tmp);
     for (int y = 0; y < e->h; y++) memcpy(rgba + row * y, tmp + row * (e->h - 1 - y), row * sizeof(float));
     free(tmp);
+    /* the display is opaque: passes writing it on the fly leave alpha as they wrote it (no mask,
+     * graph_targets.c) */
+    if (!strcmp(name, "display"))
+        for (size_t i = 0; i < (size_t)e->w * e->h; i++) rgba[i * 4 + 3] = 1.0f;
     return true;
 }
 
@@ -464,6 +470,11 @@ void sl_renderer_explain(sl_app *app, FILE *f) {
         for (int k = 0; k < r->stats.pass_count; k++)
             if (!strcmp(r->stats.passes[k].name, g->d->name)) st = &r->stats.passes[k];
         bool ran = st && st->ran;
+        if (st && st->fused_into) {
+            fprintf(f, "  %-24s %-18s fused into %s (its function runs in that pass's draw)\n", g->d->name,
+                    g->owner >= 0 ? app->plugins.items[g->owner]->id : "core", st->fused_into);
+            continue;
+        }
         fprintf(f, "  %-24s %-18s %s %8.3f ms%s\n", g->d->name, g->owner >= 0 ? app->plugins.items[g->owner]->id : "core",
                 g->broken ? "BROKEN " : ran ? "ran    " : "skipped", ran ? st->ms : g->last_ms,
                 ran || g->broken ? "" : g->has_run ? " (when it last ran; unchanged since)" : " (inactive: never ran)");

@@ -38,6 +38,7 @@ bool sl_renderer_read(struct sl_app *app, const char *resource, float *rgba);
 typedef struct sl_pass_stat {
     const char *name; const char *owner; double ms; bool ran;
     bool reused; /* skipped: nothing it declared (or its signature) changed, its outputs are this frame's */
+    const char *fused_into; /* not run: its function ran inside this pass's draw (render/post.h) */
 } sl_pass_stat;
 typedef struct sl_frame_stats {
     sl_pass_stat passes[64]; int pass_count;

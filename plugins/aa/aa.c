@@ -3,6 +3,7 @@
  * core's projection jitter and motion vectors. The reference is the core's 8x8 supersampling.
  * See README.md. */
 #include <shadelab/shadelab.h>
+#include <shadelab/ext/post.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include <shadelab/matrix.h>
@@ -46,12 +47,16 @@ static const sl_param_desc params[] = {
 
 typedef struct aa {
     const sl_host *host;
-    sl_program *fxaa, *taa_copy, *taa_copy_out; /* the copy into our history, into the output */
-    sl_program *taa[2][2]; /* the resolve per [clamp][reject] (taa.frag's AA_CLAMP, AA_REJECT) */
+    const sl_ext_post *post; /* the core's shadelab.post/1: history and output in one draw, tone
+                                mapping (a pointwise pass after TAA) fused into it */
+    sl_program *fxaa;
+    sl_program *taa_copy;  /* a frame without a history, and a converged still's history, as it is */
+    sl_program *taa_still; /* a still: the running mean (taa.frag's AA_STILL) */
+    sl_program *taa[2][2]; /* in motion: the resolve per [clamp][reject] (taa.frag's AA_CLAMP, AA_REJECT) */
     int unit[5];
     unsigned sampler_linear, sampler_nearest;
     /* TAA: the history (rgb + frames in alpha) as a ping-pong pair, the last frame's depth */
-    unsigned history[2], prev_depth, fbo, depth_fbo[2];
+    unsigned history[2], prev_depth, depth_fbo[2];
     int current, hw, hh, dw, dh, hformat;
     uint64_t frames_begun, taa_ran_at; /* begin_frame count; its value when TAA last ran */
     bool history_valid;
@@ -178,21 +183,51 @@ static void bind_tex(aa *a, unsigned prog, int slot, const char *name, unsigned 
     glUniform1i(glGetUniformLocation(prog, name), a->unit[slot]);
 }
 
-/* taa_copy.frag from src into the framebuffer bound */
-static void copy_draw(aa *a, sl_pass_ctx *ctx, unsigned prog, unsigned src) {
-    glUseProgram(prog);
-    bind_tex(a, prog, 0, "aa_src", src, a->sampler_nearest);
-    a->host->draw_fullscreen(a->host, ctx);
-    glBindSampler(a->unit[0], 0);
+/* The program of this frame's TAA draw and its inputs: a frame without a history copies "color";
+ * a still averages (no neighbourhood: nothing moved, so the history is this pixel's own frames);
+ * in motion the resolve reprojects, clips and rejects. */
+static unsigned taa_program(aa *a, const sl_frame *f, bool valid, unsigned color, unsigned depth, unsigned motion) {
+    const sl_host *h = a->host;
+    if (!valid) {
+        unsigned p = h->program_id(h, a->taa_copy);
+        if (p) glUseProgram(p), bind_tex(a, p, 0, "aa_src", color, a->sampler_nearest);
+        return p;
+    }
+    if (a->still >= 0) {
+        unsigned p = h->program_id(h, a->taa_still);
+        if (!p) return 0;
+        glUseProgram(p);
+        bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
+        bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_nearest);
+        glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
+        return p;
+    }
+    float inv[16], prev_inv[16];
+    if (!sl_mat4_invert(f->view_proj, inv) || !sl_mat4_invert(f->prev_view_proj, prev_inv))
+        return taa_program(a, f, false, color, depth, motion);
+    unsigned p = h->program_id(h, a->taa[param(a, "taa_clamp").b][param(a, "taa_reject").b]);
+    if (!p) return 0;
+    glUseProgram(p);
+    bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
+    bind_tex(a, p, 1, "aa_depth", depth, a->sampler_nearest);
+    bind_tex(a, p, 2, "aa_motion", motion, a->sampler_nearest);
+    bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
+    bind_tex(a, p, 4, "aa_prev_depth", a->prev_depth, a->sampler_nearest);
+    glUniformMatrix4fv(glGetUniformLocation(p, "aa_inv_view_proj"), 1, GL_FALSE, inv);
+    glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
+    glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
+    glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
+    return p;
 }
 
+/* One full-screen draw per frame: the new history (our target) and "color" (the output, through
+ * the functions of the pointwise passes fused into this pass: tone mapping) together. */
 static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     aa *a = user;
     const sl_host *h = a->host;
-    unsigned copy = h->program_id(h, a->taa_copy), copy_out = h->program_id(h, a->taa_copy_out);
     unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth"),
              motion = h->pass_texture(h, ctx, "motion");
-    if (!copy || !copy_out || !color || !depth || !motion) return;
+    if (!color || !depth || !motion) return;
     int w, hh, dw, dh, format;
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_WIDTH, &w);
@@ -203,62 +238,32 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     /* the history continues only from the frame just before (not after the method was off, a
      * pause or a resize) */
     bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun && !a->restart;
-    if (a->converged && valid) { /* a converged still: the history as it is */
-        if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy_out, a->history[a->current]);
-        a->taa_ran_at = a->frames_begun;
+    a->taa_ran_at = a->frames_begun;
+    if (a->converged && valid) { /* a converged still: the history as it is, kept */
+        unsigned p = h->program_id(h, a->taa_copy);
+        if (!p || h->bind_outputs(h, ctx, 0) != SL_OK) return;
+        glUseProgram(p);
+        bind_tex(a, p, 0, "aa_src", a->history[a->current], a->sampler_nearest);
+        h->draw_fullscreen(h, ctx);
+        glBindSampler(a->unit[0], 0);
         return;
     }
-    float inv[16], prev_inv[16];
-    if (!sl_mat4_invert(f->view_proj, inv) || !sl_mat4_invert(f->prev_view_proj, prev_inv)) valid = false;
     int next = 1 - a->current;
-    glNamedFramebufferTexture(a->fbo, GL_COLOR_ATTACHMENT0, a->history[next], 0);
-    /* A still (nothing moved: the history is this pixel's own earlier frames) is the exact mean:
-     * no clip, which would pull the mean of noisy shading (stochastic sampling) towards the
-     * current frame's neighbourhood (envmap fis on courtyard.exr: sphere means -1..-3 %); nor
-     * disocclusion rejection: nothing moved, yet at silhouettes (where the jitter alternates
-     * between the surface and the empty background) the rejection dropped the history of some
-     * pixels (the last frame's point not found again in the 3x3 neighbourhood; which case exactly
-     * was not pinned down): their still was then a mean of the last frames only (envmap
-     * bench/rim.sh --still, courtyard metal alpha 0.4: the reference still 0.128 from the C
-     * quadrature with rejection, 0.028 without). Each combination is a program of its own: on
-     * llvmpipe a uniform switch runs the code it switches off anyway, under a mask. */
-    bool clamp = param(a, "taa_clamp").b && a->still < 0, reject = param(a, "taa_reject").b && a->still < 0;
-    unsigned p = valid ? h->program_id(h, a->taa[clamp][reject]) : 0;
-    if (!valid) {
-        /* 1: no history (a first frame, a cut, a restarted still): the frame as it is, with a
-         * history of one frame; the resolve program is not needed (nor compiled) for it */
-        glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
-        glViewport(0, 0, w, hh);
-        copy_draw(a, ctx, copy, color);
-    } else if (p) {
-        glUseProgram(p);
-        bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
-        bind_tex(a, p, 1, "aa_depth", depth, a->sampler_nearest);
-        bind_tex(a, p, 2, "aa_motion", motion, a->sampler_nearest);
-        bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
-        bind_tex(a, p, 4, "aa_prev_depth", a->prev_depth, a->sampler_nearest);
-        glUniformMatrix4fv(glGetUniformLocation(p, "aa_inv_view_proj"), 1, GL_FALSE, inv);
-        glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
-        glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
-        glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
-        /* 1: the new history into our own target */
-        glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
-        glViewport(0, 0, w, hh);
-        h->draw_fullscreen(h, ctx);
-        for (int i = 0; i < 5; i++) glBindSampler(a->unit[i], 0);
-    } else {
-        return; /* the resolve failed to compile (the host reported it): the frame stays as it is */
+    unsigned p = taa_program(a, f, valid, color, depth, motion);
+    if (!p) return; /* a program failed to compile (the host reported it): the frame stays as it is */
+    if (a->post->bind_outputs_with(h, ctx, 0, &a->history[next], 1) != SL_OK) return;
+    h->draw_fullscreen(h, ctx);
+    for (int i = 0; i < 5; i++) glBindSampler(a->unit[i], 0);
+    /* this frame's depth is the next frame's previous depth (disocclusion, in motion). A still's
+     * frames after its first differ only by the jitter: the first one's depth serves */
+    if (a->still <= 0) {
+        glNamedFramebufferTexture(a->depth_fbo[0], GL_DEPTH_ATTACHMENT, depth, 0);
+        glNamedFramebufferTexture(a->depth_fbo[1], GL_DEPTH_ATTACHMENT, a->prev_depth, 0);
+        glBlitNamedFramebuffer(a->depth_fbo[0], a->depth_fbo[1], 0, 0, dw, dh, 0, 0, dw, dh, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     }
-    /* 2: the new history copied into "color" (alpha 1) */
-    if (h->bind_outputs(h, ctx, 0) == SL_OK) copy_draw(a, ctx, copy_out, a->history[next]);
-    /* this frame's depth is the next frame's previous depth */
-    glNamedFramebufferTexture(a->depth_fbo[0], GL_DEPTH_ATTACHMENT, depth, 0);
-    glNamedFramebufferTexture(a->depth_fbo[1], GL_DEPTH_ATTACHMENT, a->prev_depth, 0);
-    glBlitNamedFramebuffer(a->depth_fbo[0], a->depth_fbo[1], 0, 0, dw, dh, 0, 0, dw, dh, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     a->current = next;
     a->history_valid = true;
-    a->taa_ran_at = a->frames_begun;
 }
 
 /* ------------------------------------------------------------------ plugin ---------- */
@@ -279,6 +284,10 @@ static sl_status create(const sl_host *host, void **user) {
     aa *a = calloc(1, sizeof *a);
     a->host = host;
     *user = a;
+    if (!(a->post = host->get_extension(host, SL_EXT_POST))) {
+        host->log(host, SL_LOG_ERROR, "the host does not provide %s (history and output in one draw)", SL_EXT_POST);
+        return SL_ERR_FAILED;
+    }
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc fxaa = {.struct_size = sizeof fxaa, .name = "aa-fxaa", .stage = AA_STAGE_FXAA,
@@ -292,6 +301,7 @@ static sl_status create(const sl_host *host, void **user) {
                               .depends = SL_DEPENDS_EVERY_FRAME, /* its history moves every frame */
                               .display_on_write = true};
     if (host->add_pass(host, &taa) != SL_OK) return SL_ERR_FAILED;
+    if (a->post->accept_pointwise(host, "aa-taa") != SL_OK) return SL_ERR_FAILED; /* tone mapping in our draw */
     static const sl_key_desc key = {.struct_size = sizeof(sl_key_desc), .key = "X", .param = "method",
                                     .description = "next antialiasing method (none, taa, fxaa)"};
     if (host->add_key(host, &key) != SL_OK) return SL_ERR_FAILED;
@@ -309,21 +319,22 @@ static sl_status activate(void *user) {
     if (!sl_gl_load(a->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
     a->fxaa = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                   .vertex = "sl:fullscreen.vert", .fragment = "fxaa.frag"});
+    /* TAA's programs write "color" through the fused pointwise passes (ext/post.h) */
     bool resolves = true;
     for (int c = 0; c < 2; c++)
         for (int r = 0; r < 2; r++) {
             char defines[64];
             snprintf(defines, sizeof defines, "AA_CLAMP %d\nAA_REJECT %d", c, r);
-            a->taa[c][r] = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                               .vertex = "sl:fullscreen.vert",
-                                                                               .fragment = "taa.frag", .defines = defines});
+            a->taa[c][r] = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                             .vertex = "sl:fullscreen.vert",
+                                                                             .fragment = "taa.frag", .defines = defines});
             resolves = resolves && a->taa[c][r];
         }
-    a->taa_copy = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+    a->taa_still = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                       .vertex = "sl:fullscreen.vert", .fragment = "taa.frag",
+                                                                       .defines = "AA_STILL 1"});
+    a->taa_copy = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                       .vertex = "sl:fullscreen.vert", .fragment = "taa_copy.frag"});
-    a->taa_copy_out = a->host->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                          .vertex = "sl:fullscreen.vert", .fragment = "taa_copy.frag"});
-    glCreateFramebuffers(1, &a->fbo);
     glCreateFramebuffers(2, a->depth_fbo);
     for (int i = 0; i < 2; i++) glNamedFramebufferDrawBuffer(a->depth_fbo[i], GL_NONE), glNamedFramebufferReadBuffer(a->depth_fbo[i], GL_NONE);
     glCreateSamplers(1, &a->sampler_nearest);
@@ -339,18 +350,17 @@ static sl_status activate(void *user) {
     /* Not compiled here: the host compiles each program at its first program_id() (in the pass
      * that uses it), so the mode not in use (fxaa while TAA runs) costs no compile. A missing
      * file is already an error (load_program returns a program that never gets an id). */
-    return a->fxaa && resolves && a->taa_copy && a->taa_copy_out ? SL_OK : SL_ERR_GL;
+    return a->fxaa && resolves && a->taa_still && a->taa_copy ? SL_OK : SL_ERR_GL;
 }
 
 static void deactivate(void *user) {
     aa *a = user;
     glDeleteSamplers(1, &a->sampler_linear);
     glDeleteSamplers(1, &a->sampler_nearest);
-    glDeleteFramebuffers(1, &a->fbo);
     glDeleteFramebuffers(2, a->depth_fbo);
     if (a->history[0]) glDeleteTextures(2, a->history);
     if (a->prev_depth) glDeleteTextures(1, &a->prev_depth);
-    a->sampler_linear = a->sampler_nearest = a->fbo = a->history[0] = a->history[1] = a->prev_depth = 0;
+    a->sampler_linear = a->sampler_nearest = a->history[0] = a->history[1] = a->prev_depth = 0;
     a->hw = a->hh = a->dw = a->dh = a->hformat = 0;
 }
 

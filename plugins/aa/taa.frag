@@ -11,9 +11,14 @@
 //     exact mean of taa_frames jittered frames, the box filter the reference computes), later
 //     frames have weight 1/taa_frames. Blended in linear radiance; Karis's luminance weighting
 //     against HDR flicker is left out because it biases the mean away from the box filter.
-// Output: rgb, and the number of frames in the history in alpha (the new history; taa_copy.frag
-// copies it into the pass's "color" output). A frame without a history (the first, or after a cut)
-// does not run this program: taa_copy.frag copies the frame as it is into both.
+// Outputs, in one draw: the new history (rgb, and the number of frames in it in alpha) and the
+// pass's "color" output, through the pointwise passes fused into TAA's pass (tone mapping:
+// sl_pointwise_epilogue, ext/post.h). A frame without a history (the first, or after a cut) does
+// not run this program: taa_copy.frag copies the frame as it is into both.
+// AA_STILL 1: the program of a still (nothing moved since the history began, so the history at
+// this pixel is this pixel's own earlier frames: no reprojection, neighbourhood or rejection),
+// the running mean alone; its value equals the resolve's without clip and rejection, where the
+// motion is 0.
 #include "sl:common.glsl"
 in vec2 v_uv;
 uniform sampler2D aa_color;       // this frame, jittered (nearest)
@@ -26,8 +31,28 @@ uniform vec3 aa_camera_pos;
 uniform int aa_frames;
 // AA_CLAMP, AA_REJECT (0 or 1): the neighbourhood clip and the disocclusion test, a permutation
 // (aa.c): a still runs neither, and on llvmpipe a uniform switch would run both under a mask.
-layout(location = 0) out vec4 o_color;
+layout(location = 0) out vec4 o_color;   // the pass's "color" output
+layout(location = 1) out vec4 o_history; // the new history
 
+void aa_write(vec3 c, float frames) {
+    o_history = vec4(c, frames);
+    o_color = vec4(sl_pointwise_epilogue(c, ivec2(gl_FragCoord.xy)), 1.0);
+}
+
+#if defined(AA_STILL)
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec3 c = texelFetch(aa_color, p, 0).rgb;
+    if (any(isnan(c))) { // a shading bug stays visible, not averaged away (the next frame drops it)
+        aa_write(c, 0.0);
+        return;
+    }
+    vec4 hist = texelFetch(aa_history, p, 0);
+    bool bad = any(isnan(hist));
+    float n = min((bad ? 0.0 : hist.a) + 1.0, float(aa_frames));
+    aa_write(mix(bad ? c : hist.rgb, c, 1.0 / n), n);
+}
+#else
 vec3 aa_ycocg(vec3 c) {
     return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
 }
@@ -53,7 +78,7 @@ void main() {
     vec2 uv = (vec2(p) + 0.5) / vec2(size);
     vec3 c = texelFetch(aa_color, p, 0).rgb;
     if (any(isnan(c))) { // a shading bug stays visible, not averaged away (the next frame drops it)
-        o_color = vec4(c, 0.0);
+        aa_write(c, 0.0);
         return;
     }
 
@@ -109,5 +134,6 @@ void main() {
 #endif
     }
     float n = min(frames + 1.0, float(aa_frames));
-    o_color = vec4(mix(h, c, 1.0 / n), n);
+    aa_write(mix(h, c, 1.0 / n), n);
 }
+#endif

@@ -2,8 +2,11 @@
  * Reinhard, ACES fitted, AgX or Khronos PBR Neutral), optional dithering and a false-colour
  * exposure view. The core's display encoding (clamp + sRGB) follows it: on the fly as it writes
  * when it is the last pass (display_on_write), else the core's display pass. The operators
- * are tonemap_ops.glsl; shadelab-tonemap-curves plots them. See README.md. */
+ * are tonemap_ops.glsl; shadelab-tonemap-curves plots them. The per-pixel map is also offered to
+ * the pass before it (shadelab.post/1: TAA's draw runs it, and this pass does not run). See
+ * README.md. */
 #include <shadelab/shadelab.h>
+#include <shadelab/ext/post.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include <stdio.h>
@@ -33,6 +36,7 @@ typedef struct tonemap {
     const sl_host *host;
     sl_program *prog[OPERATORS + 1][2];
     int unit;
+    char defines[128]; /* this frame's permutation (tonemap_point.glsl) */
 } tonemap;
 
 static sl_value param(tonemap *t, const char *id) {
@@ -48,21 +52,49 @@ static bool active(void *user, const sl_frame *f) {
            param(t, "false_color").b;
 }
 
+/* The permutation of tonemap_point.glsl the settings select: [operator, or OPERATORS for the
+ * false-colour view][dither]. */
+static void permutation(tonemap *t, int *op, int *dither) {
+    *op = param(t, "operator").i;
+    if (*op < 0 || *op >= OPERATORS) *op = 0;
+    if (param(t, "false_color").b) *op = OPERATORS;
+    *dither = param(t, "dither").b;
+}
+
+static const char *defines_of(int m, int d, char *buf, size_t n) {
+    snprintf(buf, n, "TONEMAP_OPERATOR %d\nTONEMAP_FALSE_COLOR %d\nTONEMAP_DITHER %d", m < OPERATORS ? m : 0, m == OPERATORS, d);
+    return buf;
+}
+
+/* the uniforms of tonemap_point.glsl, in this pass's program or in one it is fused into */
+static void bind_point(void *user, unsigned p, const sl_frame *f) {
+    tonemap *t = user;
+    glUniform1f(glGetUniformLocation(p, "tonemap_exposure_ev"), param(t, "exposure").f[0]);
+    glUniform1f(glGetUniformLocation(p, "tonemap_white_point"), param(t, "white").f[0]);
+    glUniform1i(glGetUniformLocation(p, "tonemap_frame"), (int)(f->index & 0x7fffffff));
+}
+
+static const char *point_defines(void *user, const sl_frame *f) {
+    (void)f;
+    tonemap *t = user;
+    int m, d;
+    permutation(t, &m, &d);
+    return defines_of(m, d, t->defines, sizeof t->defines);
+}
+
 static void execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     tonemap *t = user;
     const sl_host *h = t->host;
     unsigned src = h->pass_texture(h, ctx, "color");
     if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
-    int op = param(t, "operator").i;
-    if (op < 0 || op >= OPERATORS) op = 0;
-    unsigned p = h->program_id(h, t->prog[param(t, "false_color").b ? OPERATORS : op][param(t, "dither").b]);
+    int m, d;
+    permutation(t, &m, &d);
+    unsigned p = h->program_id(h, t->prog[m][d]);
     if (!p) return;
     glUseProgram(p);
     glBindTextureUnit(t->unit, src);
     glUniform1i(glGetUniformLocation(p, "tonemap_src"), t->unit);
-    glUniform1f(glGetUniformLocation(p, "tonemap_exposure_ev"), param(t, "exposure").f[0]);
-    glUniform1f(glGetUniformLocation(p, "tonemap_white_point"), param(t, "white").f[0]);
-    glUniform1i(glGetUniformLocation(p, "tonemap_frame"), (int)(f->index & 0x7fffffff));
+    bind_point(t, p, f);
     h->draw_fullscreen(h, ctx);
 }
 
@@ -81,6 +113,13 @@ static sl_status create(const sl_host *host, void **user) {
                                .display_on_write = true /* ABI 1.8: as the last pass it writes the display */,
                                .draws_only = true /* ABI 1.12: compiled ahead (host->compile_ahead) */};
     if (host->add_pass(host, &pass) != SL_OK) return SL_ERR_FAILED;
+    /* the map alone, for a pass before this one to run in its own draw (TAA): one full-screen
+     * read and write of the image less */
+    const sl_ext_post *post = host->get_extension(host, SL_EXT_POST);
+    const sl_pointwise_desc point = {.struct_size = sizeof point, .pass = "tonemap", .file = "tonemap_point.glsl",
+                                     .function = "tonemap_point", .defines = point_defines, .bind = bind_point,
+                                     .user = t};
+    if (post && post->add_pointwise(host, &point) != SL_OK) return SL_ERR_FAILED;
     static const sl_key_desc keys[] = {
         {.struct_size = sizeof(sl_key_desc), .key = "O", .param = "operator", .description = "next tone-mapping operator"},
         {.struct_size = sizeof(sl_key_desc), .key = "K", .param = "false_color", .description = "false-colour exposure view"},
@@ -99,8 +138,7 @@ static sl_status activate(void *user) {
     for (int m = 0; m <= OPERATORS; m++)
         for (int d = 0; d < 2; d++) {
             char defines[128];
-            snprintf(defines, sizeof defines, "TONEMAP_OPERATOR %d\nTONEMAP_FALSE_COLOR %d\nTONEMAP_DITHER %d",
-                     m < OPERATORS ? m : 0, m == OPERATORS, d);
+            defines_of(m, d, defines, sizeof defines);
             t->prog[m][d] = t->host->load_program(t->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                                .vertex = "sl:fullscreen.vert",
                                                                                .fragment = "tonemap.frag", .defines = defines});

@@ -134,17 +134,26 @@ fi
 
 note "the hand-written floor"
 if [ -f "$SHARED/bench/baseline_ggx.c" ]; then
-    if "$ROOT/tools/bench/ratio.sh" --build "$BUILD" --shared "$SHARED" --sizes 1280x720 --lights 1,64 \
+    RATIO="tools/bench/ratio.sh --sizes 256x256,1280x720 --lights 1,64 --rounds $ROUNDS"
+    if "$ROOT/tools/bench/ratio.sh" --build "$BUILD" --shared "$SHARED" --sizes 256x256,1280x720 --lights 1,64 \
         --rounds "$ROUNDS" > "$TMP/ratio" 2>&1; then
-        for n in 1 64; do
-            r=$(awk -F'|' -v n=" $n " '$2 == " 1280x720 " && $3 == n {gsub(/[* ]/, "", $4); gsub(/[* ]/, "", $5);
-                                                                          gsub(/[* ]/, "", $6); print $4 "|" $5 "|" $6}' "$TMP/ratio")
-            IFS='|' read -r b s x <<< "$r"
-            row "frame against the hand-written floor, 1280×720, $n of 64 lights" \
-                "**${x}×** (shadelab $s ms, floor $b ms)" "tools/bench/ratio.sh --sizes 1280x720 --lights 1,64 --rounds $ROUNDS"
-        done
-        p=$(awk -F'|' '$2 == " 1280x720 " && NF == 6 {gsub(/[* ]/, "", $5); print $5}' "$TMP/ratio" | tail -1)
-        row "per-light cost against the floor, 1280×720 (slope from 1 to 64 lights)" "**${p}×**" ""
+        # | size | lights | aa | baseline | shadelab | ratio | forward | forward/baseline | TAA share | ...
+        awk -F'|' 'NF >= 12 && $3 ~ /[0-9]/ {for (i = 2; i <= 10; i++) gsub(/[* ]/, "", $i);
+                   print $2 "|" $3 "|" $4 "|" $5 "|" $6 "|" $7 "|" $9 "|" $10}' "$TMP/ratio" |
+        while IFS='|' read -r size n aa b s x f taa; do
+            extra=""
+            [ "$aa" != off ] && extra=", TAA ${taa/\%/ %} of the frame"
+            echo "frame against the hand-written floor, ${size/x/×}, $n of 64 lights, aa $aa|**${x}×** (shadelab $s ms, floor $b ms; forward pass alone **${f}×**$extra)"
+        done > "$TMP/ratio.rows"
+        first=1
+        while IFS='|' read -r fig value; do
+            if [ $first = 1 ]; then row "$fig" "$value" "$RATIO"; first=0; else row "$fig" "$value" ""; fi
+        done < "$TMP/ratio.rows"
+        awk -F'|' 'NF == 7 && $2 ~ /x/ {for (i = 2; i <= 6; i++) gsub(/[* ]/, "", $i); print $2 "|" $3 "|" $6}' "$TMP/ratio" |
+        while IFS='|' read -r size aa p; do
+            echo "per-light cost against the floor, ${size/x/×}, aa $aa (slope from 1 to 64 lights)|**${p}×**"
+        done > "$TMP/slope.rows"
+        while IFS='|' read -r fig value; do row "$fig" "$value" ""; done < "$TMP/slope.rows"
     else
         note "ratio.sh failed: $(tail -2 "$TMP/ratio")"
     fi

@@ -73,9 +73,10 @@ typedef struct sl_harness_structure {
                                         destroyed: compare structures of different harnesses) */
     int program_count;
     uint64_t program_hashes[256];    /* one per material, in material order */
-    /* ABI 1.8: the passes whose outputs this frame uses, in order: those that ran and those
-     * skipped because nothing they depend on changed (pass.h, sl_depends). A live change and a
-     * fresh start have the same passes in effect, though the live frame may run fewer. */
+    /* ABI 1.8: the passes whose outputs this frame uses, in order: those that ran, those
+     * skipped because nothing they depend on changed (pass.h, sl_depends) and those whose
+     * function ran fused into another pass's draw (ext/post.h). A live change and a fresh start
+     * have the same passes in effect, though the live frame may run fewer. */
     int effect_count;
     const char *in_effect[64];
     int effect_draw_calls;           /* ABI 1.8: draw calls of the passes in effect (a skipped
