@@ -55,7 +55,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   if(SELECT)
     set(select -R "${SELECT}")
   else()
-    set(select -E "^(gui_smoke|sdk_install|extras|fuzz_scene)$")
+    set(select -E "^(gui_smoke|sdk_install|fuzz_scene)$")
   endif()
   # One test at a time, so that each failure's output is its own. The sanitizers' options are the
   # tests' environment in that tree (tests/CMakeLists.txt, SL_SANITIZE).

@@ -34,7 +34,7 @@
 typedef struct cascades {
     const sl_host *host;
     const sl_ext_shadow_maps *sm;
-    bool installed;
+    bool installed, install_failed;
 } cascades;
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
@@ -206,20 +206,34 @@ static int views(void *user, const sl_frame *f, int light, int map_size, sl_shad
     return n;
 }
 
-static sl_status cs_activate(void *user) {
-    cascades *c = user;
+/* Installs the view provider into spotlight-shadow; false (logged) when it cannot. */
+static bool install(cascades *c) {
     c->sm = c->host->get_extension(c->host, SL_EXT_SHADOW_MAPS_2);
     if (!c->sm || c->sm->struct_size < offsetof(sl_ext_shadow_maps, set_view_provider) + sizeof c->sm->set_view_provider) {
         c->host->log(c->host, SL_LOG_ERROR, "cascades: spotlight-shadow does not provide %s (too old?)", SL_EXT_SHADOW_MAPS_2);
-        return SL_ERR_FAILED;
+        return false;
     }
     const sl_shadow_view_provider p = {.struct_size = sizeof p, .user = c, .views = views};
     if (!c->sm->set_view_provider(c->sm->ctx, &p)) {
         c->host->log(c->host, SL_LOG_ERROR, "cascades: another plugin already supplies the directional shadow views");
-        return SL_ERR_FAILED;
+        return false;
     }
     c->installed = true;
-    return SL_OK;
+    return true;
+}
+
+/* A spotlight-shadow switched off at start offers no extension (host.h: enabled plugins only);
+ * cascades is off with it (a dependency) and installs at its first frame once it is switched on,
+ * as a start with it on would have at activate. */
+static sl_status cs_activate(void *user) {
+    cascades *c = user;
+    if (!c->host->plugin_enabled(c->host, "spotlight-shadow")) return SL_OK;
+    return install(c) ? SL_OK : SL_ERR_FAILED;
+}
+
+static void cs_begin_frame(void *user, const sl_frame *frame) {
+    cascades *c = user;
+    if (!c->installed && !c->install_failed) c->install_failed = !install(c);
 }
 
 static void cs_deactivate(void *user) {
@@ -258,6 +272,7 @@ static const sl_plugin_desc cs_desc = {
     .dependencies = (const char *const[]){"spotlight-shadow", NULL},
     .create = cs_create,
     .activate = cs_activate,
+    .begin_frame = cs_begin_frame,
     .deactivate = cs_deactivate,
     .destroy = cs_destroy,
 };
