@@ -411,9 +411,16 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
             const sl_chunk_reg *ch = &app->plugins.chunks[c];
             provided |= ch->d.hook == SL_HOOK_SHADING_MODEL && !strcmp(ch->d.name, mat->model) && app->plugins.items[ch->owner]->ok;
         }
-        if (!provided)
+        if (!provided) {
+            /* the plugin that provides it, from the installed descriptors (never the model's name) */
+            char provider[64], hint[128];
+            if (sl_plugin_for_model(mat->model, provider, sizeof provider))
+                snprintf(hint, sizeof hint, "load it with --plugin %s", provider);
+            else
+                snprintf(hint, sizeof hint, "no installed plugin provides it: see --list-plugins");
             SL_WARN("%s:%d: material \"%s\": shading model \"%s\" is not provided by any loaded plugin; using lambert "
-                    "(load it with --plugin %s)", s->path, mat->line, mat->name, mat->model, mat->model);
+                    "(%s)", s->path, mat->line, mat->name, mat->model, hint);
+        }
     }
     app->light_params = calloc(s->light_count + 1, sizeof *app->light_params);
     for (int li = 0; li < s->light_count; li++) {

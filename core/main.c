@@ -331,6 +331,19 @@ static int run_turntable(sl_app *app, const sl_cli *c, const char *ffmpeg, recor
     return 0;
 }
 
+/* A plugin named on the command line that does not exist is an error, not a disabled record (a
+ * typo would otherwise render without it); the loader has said where it looked. */
+static bool named_plugins_found(const sl_app *app, char *err, size_t n) {
+    for (int i = 0; i < app->plugins.count; i++) {
+        const sl_plugin_rec *r = app->plugins.items[i];
+        if (r->not_found && !strcmp(r->requested_by, "command line")) {
+            snprintf(err, n, "--plugin %s: no such plugin (--list-plugins lists those installed)", r->id);
+            return false;
+        }
+    }
+    return true;
+}
+
 int main(int argc, char **argv) {
     sl_startup_huge_pages(argv);
     double start = now_ms();
@@ -352,7 +365,7 @@ int main(int argc, char **argv) {
     int nref = 0;
     char *ref_copy = NULL;
     sl_app app;
-    if (!sl_app_init(&app, &c.opt, err, sizeof err)) {
+    if (!sl_app_init(&app, &c.opt, err, sizeof err) || !named_plugins_found(&app, err, sizeof err)) {
         sl_app_shutdown(&app);
         return die(err);
     }

@@ -38,12 +38,22 @@ expect_error 'did you mean "core.ssaa"' --set core.ssa=2
 expect_error "outside the valid range" --set core.ssaa=0
 expect_error "--size 0x0" --size 0x0
 expect_error "unknown option" --frobnicate
-expect_error "--strict" --plugin no-such-plugin --strict
 # the composer's limits are errors naming what overflowed (forward.h): a 33rd light type
 { printf '{"nodes": [{"name": "n", "mesh": {"primitive": "sphere"}}], "lights": ['
   for i in $(seq 0 32); do printf '%s{"name": "l%d", "type": "type%d"}' "$([ $i -gt 0 ] && echo ,)" $i $i; done
   printf ']}\n'; } > "$out/light_types.json"
 expect_error 'light "l32": type "type32" is one light type too many' --scene "$out/light_types.json"
+# a material whose model no loaded plugin provides: the hint names the plugin that provides it
+# (from the installed descriptors' shading_models), not the model's name
+printf '{"materials": [{"name": "m", "model": "blinn-gloss"}],\n "nodes": [{"name": "n", "mesh": {"primitive": "sphere"}, "material": "m"}]}\n' > "$out/model_hint.json"
+msg=$("$exe" --headless --size 16x16 --scene "$out/model_hint.json" --output "$out/model_hint.png" 2>&1)
+check grep -qF 'shading model "blinn-gloss" is not provided by any loaded plugin; using lambert (load it with --plugin phong)' <<<"$msg"
+# a plugin named on the command line that does not exist is an error (exit 1), naming where it looked
+expect_error 'plugin "no-such-plugin" not found; looked for' --plugin no-such-plugin
+"$exe" --headless --size 16x16 --plugin no-such-plugin --output "$out/none.png" >/dev/null 2>&1
+check test $? -eq 1
+check test ! -e "$out/none.png"
+expect_error "plugin file $out/none.so does not exist" --plugin "$out/none.so"
 # A render that printed an error writes its image and exits 2 (issue 41): a missing texture is
 # drawn with a magenta stand-in, which a script must be able to tell from a clean render.
 printf '{"materials": [{"name": "m", "base_color_map": "no-such-texture.png"}],\n "nodes": [{"name": "n", "mesh": {"primitive": "sphere"}, "material": "m"}]}\n' > "$out/missing_texture.json"

@@ -193,6 +193,16 @@ int main(void) {
     CHECK_MSG(ok && r && r->ok, "%s", err);
     sl_app_shutdown(&app);
 
+    /* likewise the shading models (ABI 1.15): the host names the plugin that provides a model by
+     * its descriptor's shading_models, read without create() */
+    expect_disabled(TP("tp-model-unlisted"), "create() failed", NULL);
+    CHECK_CONTAINS(logbuf, "shading model \"tp-model-unlisted-model\" is not in its descriptor's shading_models");
+    expect_disabled(TP("tp-model-unprovided"), "shading_models lists \"tp-phantom-model\", which none of its "
+                                               "shading-model chunks provides", NULL);
+    char provider[64] = "";
+    CHECK(sl_plugin_for_model("tp-other-model", provider, sizeof provider) && !strcmp(provider, "tp-other"));
+    CHECK(!sl_plugin_for_model("no-such-model", provider, sizeof provider));
+
     core_light_keys();
 
     /* requires pulls in the dependency by name, in order */

@@ -40,17 +40,27 @@ static int sorted_entries(const char *path, char *names[256]) {
     return count;
 }
 
-/* Does the descriptor of the plugin file declare `input`? The library is opened lazily and
- * closed again: nothing of it runs but its entry function. */
-static bool declares(const char *path, const char *input) {
+/* The descriptor's list of standard material inputs or of shading models (NULL when it has none
+ * or is too old to have that field). */
+typedef enum { LIST_MATERIAL_INPUTS, LIST_SHADING_MODELS } desc_list;
+
+static const char *const *desc_list_of(const sl_plugin_desc *d, desc_list which) {
+    if (!d || d->abi_major != SL_ABI_MAJOR || d->abi_minor > SL_ABI_MINOR) return NULL;
+    if (which == LIST_MATERIAL_INPUTS)
+        return d->struct_size >= offsetof(sl_plugin_desc, material_inputs) + sizeof(void *) ? d->material_inputs : NULL;
+    return d->abi_minor >= 15 && d->struct_size >= offsetof(sl_plugin_desc, shading_models) + sizeof(void *)
+               ? d->shading_models : NULL;
+}
+
+/* Does the descriptor of the plugin file list `name` (a material input or a shading model)? The
+ * library is opened lazily and closed again: nothing of it runs but its entry function. */
+static bool declares(const char *path, desc_list which, const char *name) {
     void *dl = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
     if (!dl) return false;
     bool found = false;
     sl_plugin_entry_fn entry = (sl_plugin_entry_fn)dlsym(dl, SL_PLUGIN_ENTRY_SYMBOL);
-    const sl_plugin_desc *d = entry ? entry() : NULL;
-    if (d && d->abi_major == SL_ABI_MAJOR && d->abi_minor <= SL_ABI_MINOR &&
-        d->struct_size >= offsetof(sl_plugin_desc, material_inputs) + sizeof(void *) && d->material_inputs)
-        for (int k = 0; d->material_inputs[k] && k < 256 && !found; k++) found = !strcmp(d->material_inputs[k], input);
+    const char *const *list = desc_list_of(entry ? entry() : NULL, which);
+    for (int k = 0; list && list[k] && k < 256 && !found; k++) found = !strcmp(list[k], name);
     dlclose(dl);
     return found;
 }
@@ -86,7 +96,8 @@ int sl_plugin_defaults(unsigned bits, char ids[][64], int max) {
     return found;
 }
 
-bool sl_plugin_for_input(const char *input, char *id, size_t n) {
+/* The first plugin (directory order, then by name) whose descriptor lists `name`. */
+static bool plugin_declaring(desc_list which, const char *name, char *id, size_t n) {
     char dirs[16][1024];
     int nd = sl_plugin_search_dirs(dirs, 16);
     for (int i = 0; i < nd; i++) {
@@ -95,7 +106,7 @@ bool sl_plugin_for_input(const char *input, char *id, size_t n) {
         bool found = false;
         for (int k = 0; k < count; k++) {
             char path[2200];
-            if (!found && names[k] && plugin_file(dirs[i], names[k], path, sizeof path) && declares(path, input)) {
+            if (!found && names[k] && plugin_file(dirs[i], names[k], path, sizeof path) && declares(path, which, name)) {
                 snprintf(id, n, "%s", names[k]);
                 found = true;
             }
@@ -104,4 +115,56 @@ bool sl_plugin_for_input(const char *input, char *id, size_t n) {
         if (found) return true;
     }
     return false;
+}
+
+bool sl_plugin_for_input(const char *input, char *id, size_t n) {
+    return plugin_declaring(LIST_MATERIAL_INPUTS, input, id, n);
+}
+
+bool sl_plugin_for_model(const char *model, char *id, size_t n) {
+    return plugin_declaring(LIST_SHADING_MODELS, model, id, n);
+}
+
+/* The description and the shading models in the plugin file's descriptor (empty when it cannot
+ * be read). */
+static void describe(const char *path, char *text, size_t n, char *models, size_t m) {
+    text[0] = models[0] = 0;
+    void *dl = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
+    if (!dl) return;
+    sl_plugin_entry_fn entry = (sl_plugin_entry_fn)dlsym(dl, SL_PLUGIN_ENTRY_SYMBOL);
+    const sl_plugin_desc *d = entry ? entry() : NULL;
+    if (d && d->abi_major == SL_ABI_MAJOR && d->description) snprintf(text, n, "%s", d->description);
+    sl_plugin_models_text(desc_list_of(d, LIST_SHADING_MODELS), models, m);
+    dlclose(dl);
+}
+
+void sl_plugin_models_text(const char *const *list, char *out, size_t n) {
+    size_t used = 0;
+    out[0] = 0;
+    for (int k = 0; list && list[k] && k < 256 && used < n; k++)
+        used += (size_t)snprintf(out + used, n - used, "%s%s", k ? ", " : "", list[k]);
+}
+
+void sl_plugin_print_available(const sl_plugins *P, FILE *f) {
+    char dirs[16][1024], listed[256][64];
+    int nd = sl_plugin_search_dirs(dirs, 16), count = 0;
+    for (int i = 0; i < nd; i++) {
+        char *names[256];
+        int n = sorted_entries(dirs[i], names);
+        for (int k = 0; k < n; k++) {
+            char path[2200], text[512], models[512];
+            bool seen = false; /* loaded, or found in an earlier directory */
+            for (int j = 0; j < P->count && !seen; j++) seen = !strcmp(P->items[j]->id, names[k]);
+            for (int j = 0; j < count && !seen; j++) seen = !strcmp(listed[j], names[k]);
+            if (!seen && count < 256 && plugin_file(dirs[i], names[k], path, sizeof path)) {
+                if (!count) fprintf(f, "available (--plugin NAME):\n");
+                snprintf(listed[count++], 64, "%s", names[k]);
+                describe(path, text, sizeof text, models, sizeof models);
+                fprintf(f, "%-20s          %s\n", names[k], path);
+                if (*text) fprintf(f, "    %s\n", text);
+                if (*models) fprintf(f, "    shading models: %s\n", models);
+            }
+            free(names[k]);
+        }
+    }
 }

@@ -58,6 +58,19 @@ sl_status sl_plugins_add_param(sl_plugins *P, int owner, const sl_param_desc *d)
 
 static char *dup0(const char *s) { return s ? strdup(s) : NULL; }
 
+/* The host finds the plugin that provides a model by its descriptor's shading_models (ABI 1.15,
+ * read without create()), so that list and its SHADING_MODEL chunks must be the same set: a chunk
+ * the list lacks is refused here, a listed model no chunk provides in create_one. Plugins built
+ * for an older ABI have no list and are not checked; neither is the built-in core. */
+static bool declares_models(const sl_plugin_rec *r) { return r->dl && r->desc.abi_minor >= 15; }
+
+static bool model_listed(const sl_plugin_rec *r, const sl_shader_chunk_desc *d) {
+    if (d->hook != SL_HOOK_SHADING_MODEL || !declares_models(r) || listed(r->desc.shading_models, d->name)) return true;
+    SL_ERROR("%s: shading model \"%s\" is not in its descriptor's shading_models (the host names the plugin that "
+             "provides a model by that list)", r->id, d->name);
+    return false;
+}
+
 sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_desc *in) {
     if (!in_create(P, owner, "add_shader_chunk")) return SL_ERR_INVALID;
     sl_shader_chunk_desc d = {0};
@@ -93,6 +106,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
         SL_ERROR("%s: shader chunk %s: this hook needs a name", id, d.file);
         return SL_ERR_INVALID;
     }
+    if (!model_listed(P->items[owner], &d)) return SL_ERR_INVALID;
     if (named) {
         for (int i = 0; i < P->chunk_count; i++) {
             sl_chunk_reg *c = &P->chunks[i];
@@ -409,7 +423,7 @@ int sl_plugins_load(sl_plugins *P, const char *name, const char *requested_by, b
         snprintf(path, sizeof path, "%s", name);
         if (!file_exists(path)) {
             struct stat st;
-            if (stat(path, &st) != 0) disable(r, "plugin file %s does not exist", path);
+            if (stat(path, &st) != 0) r->not_found = true, disable(r, "plugin file %s does not exist", path);
             else if (S_ISDIR(st.st_mode)) disable(r, "%s is a directory, not a plugin file (name the .so inside it)", path);
             else disable(r, "%s is not a regular file (a device, FIFO or socket), not a plugin", path);
             return index;
@@ -424,6 +438,7 @@ int sl_plugins_load(sl_plugins *P, const char *name, const char *requested_by, b
                 bool valid = true;
                 for (const char *l = lower; *l; l++)
                     valid &= (*l >= 'a' && *l <= 'z') || (*l >= '0' && *l <= '9') || *l == '-' || *l == '_';
+                r->not_found = true;
                 disable(r, "invalid plugin name \"%s\" (lower-case letters, digits, '-' only)%s%s%s", name,
                         valid ? "; did you mean \"" : "", valid ? lower : "", valid ? "\"?" : "");
                 return index;
@@ -438,6 +453,7 @@ int sl_plugins_load(sl_plugins *P, const char *name, const char *requested_by, b
             snprintf(looked + u, sizeof looked - u, "%s%s", u ? ", " : "", cand);
         }
         if (!path[0]) {
+            r->not_found = true;
             disable(r, "plugin \"%s\" not found; looked for %s (set SHADELAB_PLUGIN_PATH or pass a path)", name, looked);
             return index;
         }
@@ -547,6 +563,20 @@ static void remove_registrations(sl_plugins *P, int owner) {
     pp->count = w;
 }
 
+/* The first model plugin i's descriptor lists that none of its chunks provides, or NULL. */
+static const char *unprovided_model(const sl_plugins *P, int i) {
+    if (!declares_models(P->items[i])) return NULL;
+    const char *const *list = P->items[i]->desc.shading_models;
+    for (int k = 0; list && list[k] && k < 256; k++) {
+        bool provided = false;
+        for (int c = 0; c < P->chunk_count && !provided; c++)
+            provided = P->chunks[c].owner == i && P->chunks[c].d.hook == SL_HOOK_SHADING_MODEL &&
+                       !strcmp(P->chunks[c].d.name, list[k]);
+        if (!provided) return list[k];
+    }
+    return NULL;
+}
+
 /* The first input plugin i's descriptor lists that none of its material keys takes, or NULL. */
 static const char *unclaimed_input(const sl_plugins *P, int i) {
     const char *const *list = P->items[i]->desc.material_inputs;
@@ -621,6 +651,11 @@ static void create_one(sl_plugins *P, int i, int depth) {
         remove_registrations(P, i);
         disable(r, "its descriptor's material_inputs lists \"%s\", which none of its material keys takes "
                    "(material_input)", unclaimed);
+    } else if ((unclaimed = unprovided_model(P, i))) {
+        if (r->desc.destroy) r->desc.destroy(user);
+        remove_registrations(P, i);
+        disable(r, "its descriptor's shading_models lists \"%s\", which none of its shading-model chunks provides",
+                unclaimed);
     } else {
         r->ok = r->live = true;
     }
@@ -639,9 +674,13 @@ void sl_plugins_print(const sl_plugins *P, FILE *f) {
         fprintf(f, "%-20s %-8s %s%s%s\n", r->id, state, r->path ? r->path : "-",
                 r->desc.version ? "  v" : "", r->desc.version ? r->desc.version : "");
         if (r->desc.description && r->ok) fprintf(f, "    %s\n", r->desc.description);
+        char models[512];
+        sl_plugin_models_text(r->desc.abi_minor >= 15 ? r->desc.shading_models : NULL, models, sizeof models);
+        if (*models && r->ok) fprintf(f, "    shading models: %s\n", models);
         if (!r->ok) fprintf(f, "    reason: %s\n", r->disabled_reason ? r->disabled_reason : "?");
         fprintf(f, "    requested by: %s\n", r->requested_by);
     }
+    sl_plugin_print_available(P, f);
     char dirs[16][1024];
     int nd = sl_plugin_search_dirs(dirs, 16);
     fprintf(f, "search path:");

@@ -32,6 +32,8 @@ typedef struct sl_plugin_rec {
     bool live;             /* create() succeeded: destroy() is owed at shutdown, also after the
                             * plugin was disabled later (activate() or a lazy compile failed) */
     char *disabled_reason; /* why it is not ok */
+    bool not_found;        /* no such plugin: the name found no file (or is not a valid name), or
+                            * the path does not exist */
     bool glsl_failed;      /* switched off because its GLSL did not compile (a hot reload retries it) */
     void *user;
     sl_host *host;         /* made by sl_plugins.make_host (core/host), freed with the record */
@@ -93,4 +95,12 @@ bool sl_plugin_available(const char *id);
  * descriptor's default_for has any of `bits` (SL_PLUGIN_DEFAULT_*); returns how many. */
 int sl_plugin_defaults(unsigned bits, char ids[][64], int max);
 bool sl_plugin_for_input(const char *input, char *id, size_t n);
+/* The id of the first plugin (directory order, then by name) whose descriptor lists the shading
+ * model `model` in shading_models (ABI 1.15, read without create()). */
+bool sl_plugin_for_model(const char *model, char *id, size_t n);
+/* A descriptor's NULL-terminated list as "a, b, c" (empty for NULL). */
+void sl_plugin_models_text(const char *const *list, char *out, size_t n);
+/* --list-plugins: the plugins in the search directories that P has not loaded, with the
+ * description their descriptor gives (read without create()). */
+void sl_plugin_print_available(const sl_plugins *P, FILE *f);
 #endif

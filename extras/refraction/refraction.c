@@ -166,6 +166,7 @@ static void rf_destroy(void *user) { free(user); }
 
 static const char *const deps[] = {"envmap", NULL};
 
+static const char *const models[] = {"dielectric", NULL};
 static const sl_plugin_desc desc = {
     SL_PLUGIN_HEADER,
     .id = "refraction",
@@ -176,5 +177,6 @@ static const sl_plugin_desc desc = {
     .create = rf_create,
     .activate = rf_activate,
     .destroy = rf_destroy,
+    .shading_models = models,
 };
 SL_DEFINE_PLUGIN(desc)

@@ -958,6 +958,7 @@ static const void *envmap_get_extension(void *user, const char *id) {
 
 static const char *const requires_[] = {"ggx", NULL};
 
+static const char *const envmap_models[] = {"mirror", "environment", NULL};
 static const sl_plugin_desc envmap_desc = {
     SL_PLUGIN_HEADER,
     .id = "envmap",
@@ -972,6 +973,7 @@ static const sl_plugin_desc envmap_desc = {
     .destroy = envmap_destroy,
     .get_extension = envmap_get_extension,
     .default_for = SL_PLUGIN_DEFAULT_MODEL_FILE | SL_PLUGIN_DEFAULT_MODEL_ENVIRONMENT, /* a model's sky */
+    .shading_models = envmap_models,
 };
 
 SL_DEFINE_PLUGIN(envmap_desc)

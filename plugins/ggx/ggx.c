@@ -105,6 +105,7 @@ static sl_status ggx_create(const sl_host *host, void **user) {
  * glTF materials load this plugin (the host reads this list without calling create). */
 static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metallic_roughness_texture", "ior", NULL};
 
+static const char *const ggx_models[] = {"ggx", NULL};
 static const sl_plugin_desc ggx_desc = {
     SL_PLUGIN_HEADER,
     .id = "ggx",
@@ -112,6 +113,7 @@ static const sl_plugin_desc ggx_desc = {
     .description = "Cook-Torrance GGX microfacet BRDF: exact/Schlick/metallic-roughness Fresnel, D/G/F debug views.",
     .create = ggx_create,
     .material_inputs = ggx_inputs,
+    .shading_models = ggx_models,
 };
 
 SL_DEFINE_PLUGIN(ggx_desc)

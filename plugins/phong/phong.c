@@ -269,6 +269,7 @@ static void phong_deactivate(void *user) {
 
 static void phong_destroy(void *user) { free(user); }
 
+static const char *const phong_models[] = {"phong", "blinn-gloss", NULL};
 static const sl_plugin_desc phong_desc = {
     SL_PLUGIN_HEADER,
     .id = "phong",
@@ -278,5 +279,6 @@ static const sl_plugin_desc phong_desc = {
     .activate = phong_activate,
     .deactivate = phong_deactivate,
     .destroy = phong_destroy,
+    .shading_models = phong_models,
 };
 SL_DEFINE_PLUGIN(phong_desc)

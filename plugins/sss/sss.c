@@ -974,6 +974,8 @@ static void sss_destroy(void *user) { free(user); }
 
 static const char *const sss_requires[] = {"ggx", NULL};
 
+/* skin for materials; the other two are the texture-space passes' own models */
+static const char *const sss_models[] = {"skin", "sss-irradiance", "sss-stretch", NULL};
 static const sl_plugin_desc sss_desc = {
     SL_PLUGIN_HEADER,
     .id = "sss",
@@ -986,6 +988,7 @@ static const sl_plugin_desc sss_desc = {
     .begin_frame = begin_frame,
     .deactivate = sss_deactivate,
     .destroy = sss_destroy,
+    .shading_models = sss_models,
 };
 
 SL_DEFINE_PLUGIN(sss_desc)

@@ -156,6 +156,15 @@ static const char *const tp_conflicts[] = {TP_CONFLICTS, NULL};
 static const char *const tp_inputs[] = {TP_LISTED_INPUT, NULL};
 #endif
 
+/* TP_UNLISTED_MODEL: a descriptor that lists no model though create() registers one;
+ * TP_UNPROVIDED_MODEL: one that lists a model no chunk provides (the host refuses both) */
+#if defined(TP_UNLISTED_MODEL)
+static const char *const tp_models[] = {NULL};
+#elif defined(TP_UNPROVIDED_MODEL)
+static const char *const tp_models[] = {TP_MODEL, "tp-phantom-model", NULL};
+#else
+static const char *const tp_models[] = {TP_MODEL, NULL};
+#endif
 static const sl_plugin_desc tp_desc = {
     SL_PLUGIN_HEADER,
     .id = TP_ID,
@@ -173,6 +182,7 @@ static const sl_plugin_desc tp_desc = {
     .create = tp_create,
     .activate = tp_activate,
     .destroy = tp_destroy,
+    .shading_models = tp_models,
 };
 
 #ifndef TP_NO_ENTRY

@@ -55,6 +55,12 @@ typedef struct sl_plugin_desc {
      * only when named), read from the descriptor without calling create(). The core names no
      * plugin: what is on by default is what installed plugins declare here. */
     unsigned default_for;
+    /* ABI 1.15: NULL-terminated names of the shading models this plugin's SHADING_MODEL chunks
+     * provide, or NULL. The host reads it from the descriptor without calling create(), to name
+     * the plugin that provides a model a material asks for and to list models in --list-plugins.
+     * It must be the set of those chunks' names: the host refuses a plugin (built for 1.15 or
+     * later) whose list and chunks disagree, naming the model. */
+    const char *const *shading_models;
 } sl_plugin_desc;
 
 /* sl_plugin_desc.default_for bits (ABI 1.6). */
