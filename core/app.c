@@ -9,6 +9,7 @@
 #include "render/forward.h"
 #include "render/renderer.h"
 #include "render/post.h"
+#include "budget/budget.h"
 #include <shadelab/gl.h>
 #include <shadelab/input.h>
 #include <math.h>
@@ -686,7 +687,24 @@ static char *glsl_reason(const char *why) {
     return strdup(buf);
 }
 
+/* core.render_scale: the renderer's size is that fraction of the window's (the present scales up). */
+static void render_size(sl_app *app, int *w, int *h) {
+    sl_param *q = sl_params_find(&app->params, "core.render_scale");
+    double s = q ? q->value.f[0] : 1;
+    *w = (int)lround(app->backend.width * s), *h = (int)lround(app->backend.height * s);
+    if (*w < 1) *w = 1;
+    if (*h < 1) *h = 1;
+}
+
+static void apply_render_scale(sl_app *app) {
+    int w, h;
+    render_size(app, &w, &h);
+    sl_renderer_resize(app, w, h);
+}
+
 bool sl_app_render_frame(sl_app *app) {
+    sl_budget_before_frame(app); /* the render scale and knob settings of this frame (core.budget) */
+    apply_render_scale(app);
     bool ok = sl_renderer_frame(app, 0, app->opt.accumulate);
     /* Plugins' programs compile at their first use (lazy creation, docs/design-notes.md). One
      * that fails disables its plugin, as a failing activate() does, and the frame is rendered
@@ -723,8 +741,34 @@ bool sl_app_render_frame(sl_app *app) {
     return ok;
 }
 
-bool sl_app_read_color(sl_app *app, float *rgba) { return sl_renderer_read(app, "color", rgba); }
-bool sl_app_read_display(sl_app *app, float *rgba) { return sl_renderer_read(app, "display", rgba); }
+/* A target at the window's size: scaled up bilinearly (pixel centres, clamped at the edges, as the
+ * window's GL_LINEAR present) when core.render_scale < 1. */
+static bool read_at_window_size(sl_app *app, const char *name, float *rgba) {
+    int w, h, W = app->backend.width, H = app->backend.height;
+    render_size(app, &w, &h);
+    if (w == W && h == H) return sl_renderer_read(app, name, rgba);
+    float *src = malloc((size_t)w * h * 4 * sizeof(float));
+    bool ok = src && sl_renderer_read(app, name, src);
+    for (int y = 0; ok && y < H; y++) {
+        double fy = fmin(fmax((y + 0.5) * h / H - 0.5, 0), h - 1);
+        int y0 = (int)fy, y1 = y0 + 1 < h ? y0 + 1 : y0;
+        for (int x = 0; x < W; x++) {
+            double fx = fmin(fmax((x + 0.5) * w / W - 0.5, 0), w - 1);
+            int x0 = (int)fx, x1 = x0 + 1 < w ? x0 + 1 : x0;
+            double ax = fx - x0, ay = fy - y0;
+            for (int c = 0; c < 4; c++) {
+                double top = src[((size_t)y0 * w + x0) * 4 + c] * (1 - ax) + src[((size_t)y0 * w + x1) * 4 + c] * ax;
+                double bot = src[((size_t)y1 * w + x0) * 4 + c] * (1 - ax) + src[((size_t)y1 * w + x1) * 4 + c] * ax;
+                rgba[((size_t)y * W + x) * 4 + c] = (float)(top * (1 - ay) + bot * ay);
+            }
+        }
+    }
+    free(src);
+    return ok;
+}
+
+bool sl_app_read_color(sl_app *app, float *rgba) { return read_at_window_size(app, "color", rgba); }
+bool sl_app_read_display(sl_app *app, float *rgba) { return read_at_window_size(app, "display", rgba); }
 
 bool sl_app_save(sl_app *app, const char *path, char *err, size_t n) {
     int w = app->backend.width, h = app->backend.height;
@@ -743,7 +787,7 @@ bool sl_app_save(sl_app *app, const char *path, char *err, size_t n) {
 void sl_app_resize(sl_app *app, int w, int h) {
     app->backend.width = w;
     app->backend.height = h;
-    sl_renderer_resize(app, w, h);
+    apply_render_scale(app);
 }
 
 void sl_app_shutdown(sl_app *app) {
@@ -759,6 +803,7 @@ void sl_app_shutdown(sl_app *app) {
         sl_renderer_destroy(app);
     }
     sl_post_free(app);
+    sl_budget_free(app);
     sl_plugins_shutdown(&app->plugins);
     if (app->gl_ready) sl_backend_destroy(&app->backend);
     sl_host_set_gl_app(NULL);

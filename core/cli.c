@@ -81,6 +81,21 @@ static sl_cli_result list_gltf_extensions(sl_cli *c, const char *v, char *err, s
     printf("(any other extension: not rendered; a file that requires one is refused)\n");
     return SL_CLI_DONE;
 }
+/* --budget 66ms (or 66, or off): the setting core.budget, as --set would give it */
+static sl_cli_result budget(sl_cli *c, const char *v, char *err, size_t n) {
+    char num[64];
+    size_t l = strlen(v);
+    snprintf(num, sizeof num, "%.*s", (int)(l > 2 && !strcasecmp(v + l - 2, "ms") ? l - 2 : l), v);
+    double ms = 0;
+    if (strcasecmp(v, "off") && !sl_parse_double(num, 0, 10000, &ms)) {
+        snprintf(err, n, "--budget %s: expected milliseconds (66ms, 66) from 0 to 10000, or off", v);
+        return SL_CLI_ERROR;
+    }
+    if (c->opt.setting_count == 128) { snprintf(err, n, "too many --set (128 at most)"); return SL_CLI_ERROR; }
+    snprintf(c->budget_setting, sizeof c->budget_setting, "core.budget=%g", ms);
+    c->opt.settings[c->opt.setting_count++] = c->budget_setting;
+    return SL_CLI_RUN;
+}
 static sl_cli_result plugin(sl_cli *c, const char *v, char *err, size_t n) {
     if (c->opt.plugin_count == 64) { snprintf(err, n, "too many --plugin (64 at most)"); return SL_CLI_ERROR; }
     c->opt.plugins[c->opt.plugin_count++] = v;
@@ -104,6 +119,9 @@ static const option options[] = {
     {"--still-budget", NULL, "SECONDS", "a headless still (no `--frames`) stops when SECONDS have passed since its "
      "first frame, or earlier once no display value changes by 1/255 from one frame to the next; default: no "
      "budget", CALL(still_budget)},
+    {"--budget", NULL, "MS", "frame-time budget of the window (default `66ms`; `off`): while the view moves, the "
+     "render scale and the plugins' quality knobs are chosen per frame for the least predicted error within it; a "
+     "still refines to the best settings (`core.budget`, docs/budget.md)", CALL(budget)},
     {"--output", NULL, "FILE", "`.png` (display-encoded) or `.exr` (linear HDR); headless default `out.png`",
      TEXT(output)},
     {"--turntable", NULL, "N", "N frames orbiting the camera once around the scene, written as `OUT-000.png` …; "

@@ -15,6 +15,7 @@ typedef struct sl_cli {
     bool headless, list_plugins, list_views, dump_params, explain, bench, help_keys, list_cameras;
     double start_time;
     double still_budget; /* seconds; 0: none (core/still.h) */
+    char budget_setting[64]; /* --budget as the setting core.budget=MS */
 } sl_cli;
 
 typedef enum sl_cli_result {

@@ -3,6 +3,7 @@
  * of the API. Its GLSL lives in shaders/. */
 #include "core_plugin.h"
 #include "log.h"
+#include <shadelab/ext/budget.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -119,6 +120,16 @@ static sl_status core_create(const sl_host *host, void **user) {
          .description = "Maximum anisotropic filtering of material textures. References set 1: anisotropic taps "
                         "average a normal map along the view direction, a prefilter a ground truth must not have. "
                         "(Not a swept quality knob: a reference setting.)"},
+        {.struct_size = sizeof(sl_param_desc), .id = "budget", .type = SL_PARAM_FLOAT, .min = 0, .max = 10000,
+         .step = 1, .unit = "ms", .group = "budget",
+         .description = "Frame-time budget: while anything moves, the render scale and the plugins' quality knobs "
+                        "are chosen per frame for the least predicted error within it; a still view refines to the "
+                        "best settings. 0 = off (headless default); the window starts at 66 (--budget). See "
+                        "docs/budget.md."},
+        {.struct_size = sizeof(sl_param_desc), .id = "render_scale", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}},
+         .min = 0.25f, .max = 1, .step = 0.05f, .unit = "x", .group = "quality", .flags = SL_PARAM_QUALITY_KNOB,
+         .description = "Render at this fraction of the window per axis; the window shows it scaled up (bilinear). "
+                        "The budget lowers it while the view moves."},
         /* material keys */
         {.struct_size = sizeof(sl_param_desc), .id = "base_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material", .material_input = "base_color",
@@ -171,6 +182,16 @@ static sl_status core_create(const sl_host *host, void **user) {
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
     for (size_t i = 0; i < LIGHT_KEY_COUNT; i++)
         if (!light_key_valid(&light_keys[i]) || host->add_param(host, &light_keys[i].desc) != SL_OK) return SL_ERR_FAILED;
+    /* the render scale's model for the budget: cost the pixels' share (s²); error the RMSE of the
+     * default scene rendered at s and scaled up bilinearly against the full size (docs/budget.md) */
+    static const char *const scales[] = {"0.35", "0.5", "0.6", "0.7", "0.85", "1"};
+    static const float scale_cost[] = {0.1225f, 0.25f, 0.36f, 0.49f, 0.7225f, 1};
+    static const float scale_error[] = {0.0274f, 0.0218f, 0.0181f, 0.0166f, 0.0145f, 0};
+    const sl_ext_budget *budget = host->get_extension(host, SL_EXT_BUDGET);
+    const sl_quality_model scale = {.struct_size = sizeof scale, .param = "render_scale", .count = 6, .values = scales,
+                                    .cost = scale_cost, .error = scale_error,
+                                    .measured_with = "docs/budget.md: the default scene at 1280x720, RMSE of linear radiance"};
+    if (!budget || budget->add_quality_model(host, &scale) != SL_OK) return SL_ERR_FAILED;
 
     static const sl_shader_chunk_desc chunks[] = {
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SHADING_MODEL, .file = "lambert.glsl",

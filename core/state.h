@@ -71,6 +71,7 @@ typedef struct sl_app {
     bool environment_read;       /* a plugin asked for the scene's environment (sl_host.environment) */
     char *strict_failure;        /* --strict: why the run must fail (a plugin's program did not compile) */
     struct sl_post *post;        /* fused full-screen passes (render/post.h, ext/post.h); NULL: none registered */
+    struct sl_budget_state *budget; /* the frame-time budget (budget/budget.h); NULL: no model registered */
 } sl_app;
 
 /* A material's value for a key, or NULL when the key is not in the schema. */

@@ -1,6 +1,7 @@
 /* The interactive window viewer: camera controls, keys (with conflict resolution), the GUI
  * panel, hot reload with on-screen errors, screenshots, and a script hook for tests. */
 #include "viewer.h"
+#include "budget/budget.h"
 #include "gui/gui.h"
 #include "gui/panel.h"
 #include "image/image.h"
@@ -16,6 +17,9 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+
+/* The window's frame-time budget when none is given (core.budget, --budget): 15 frames a second. */
+#define SL_VIEWER_BUDGET_MS 66
 
 /* render/renderer.c: re-reads shader files whose modification time changed (not in its header) */
 bool sl_renderer_poll_reload(sl_app *app);
@@ -284,6 +288,7 @@ static void save_screenshot(viewer *v) {
      * "color" (graph_plan.c): the screenshot's frames keep it for the EXR. */
     bool keep = v->app->opt.keep_color;
     v->app->opt.keep_color = true;
+    sl_budget_settle(v->app); /* the best settings, as the window settles on when still */
     int still = sl_renderer_still_frames(v->app);
     for (int k = 0; k < (still > 1 ? still : 1); k++) sl_app_render_frame(v->app);
     v->app->opt.keep_color = keep;
@@ -340,6 +345,10 @@ static void script_step(viewer *v, script *s) {
             int code = !strcasecmp(k, "esc") ? GLFW_KEY_ESCAPE : parse_key(k, norm, sizeof norm);
             if (code < 0) fprintf(stderr, "script: unknown key %s\n", k);
             else handle_key(v, code, mods);
+        } else if (!strncmp(cmd, "orbit ", 6)) {
+            float yaw = 0, pitch = 0;
+            if (sscanf(cmd + 6, "%f %f", &yaw, &pitch) >= 1) sl_camera_orbit(&v->app->camera, yaw, pitch);
+            else fprintf(stderr, "script: orbit expects YAW [PITCH] in radians\n");
         } else if (!strncmp(cmd, "wait ", 5)) {
             s->wait = atoi(cmd + 5) - 1;
             return;
@@ -364,7 +373,7 @@ static void script_step(viewer *v, script *s) {
             v->quit = true;
             return;
         } else {
-            fprintf(stderr, "script: unknown command \"%s\" (set, view, key, wait, waitfile, grab, quit)\n", cmd);
+            fprintf(stderr, "script: unknown command \"%s\" (set, view, key, orbit, wait, waitfile, grab, quit)\n", cmd);
         }
         return; /* one command per frame */
     }
@@ -408,6 +417,14 @@ int sl_viewer_run(sl_app *app, double start_time) {
             sl_panel_set_shader_error(v->panel, text);
             free(text);
         }
+    }
+    /* the window keeps a frame-time budget unless the scene or the command line chose one
+     * (--budget): 66 ms, 15 frames a second */
+    sl_param *budget = sl_params_find(&app->params, "core.budget");
+    if (budget && budget->source == SL_SRC_DEFAULT) {
+        sl_value v = budget->value;
+        v.f[0] = SL_VIEWER_BUDGET_MS;
+        sl_params_set_value(&app->params, budget, v, SL_SRC_DEFAULT);
     }
     script sc = {0};
     const char *st = getenv("SHADELAB_VIEWER_SCRIPT");

@@ -16,6 +16,7 @@
  *   set ID=VALUE   as a panel widget change (sl_panel_apply: the --set path, source GUI)
  *   view NAME      debug view, as the panel's selector ("final" for none)
  *   key NAME       a key press: "P", "F5", "1", "Shift+2"
+ *   orbit YAW [PITCH]  the camera orbits by these radians, as a left drag does
  *   wait N         render N frames
  *   waitfile PATH  render frames until PATH exists (gives up after 120 s)
  *   grab FILE      write the window's framebuffer, panel included, to FILE (PNG)

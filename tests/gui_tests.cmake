@@ -33,3 +33,7 @@ set_tests_properties(gui_smoke PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 9
 # Real key presses for the smoke test (XTEST, loaded at run time).
 add_executable(sl-xkey ${CMAKE_CURRENT_LIST_DIR}/gui_xkey.c)
 target_link_libraries(sl-xkey PRIVATE ${CMAKE_DL_LIBS})
+
+# The window's frame-time budget: chooses while moving, converges to the headless still when still.
+add_test(NAME gui_budget COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_budget.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff>)
+set_tests_properties(gui_budget PROPERTIES LABELS "gui" TIMEOUT 900 SKIP_RETURN_CODE 77 ENVIRONMENT "${SL_TEST_ENV}")

@@ -2,6 +2,7 @@
  * per-pass times, all generated from the schema and the registry. See panel.h. */
 #include "gui/panel.h"
 #include "gui/gui.h"
+#include "budget/budget.h"
 #include "core_plugin.h"
 #include "log.h"
 #include "render/renderer.h"
@@ -24,6 +25,7 @@ struct sl_panel {
     text_field *fields; int field_count;  /* edit buffers of texture fields */
     pass_avg avg[64]; int avg_count;      /* smoothed per-pass times */
     double interval_avg;                  /* smoothed seconds per frame */
+    unsigned timing_tick;                 /* frames drawn with the timing view open */
 };
 
 /* ------------------------------------------------------------------ applying changes ---- */
@@ -312,11 +314,16 @@ static void section_view(sl_panel *p, sl_panel_actions *act) {
 static void section_timing(sl_panel *p, double dt) {
     sl_app *app = p->app;
     const sl_frame_stats *st = sl_renderer_stats(app);
-    sl_renderer_request_timing(app); /* pass times only while this view is open */
+    /* pass times only while this view is open, and one frame in ten: timing brackets every pass
+     * with glFinish, which serialises a CPU rasteriser's frame */
+    if (++p->timing_tick % 10 == 0) sl_renderer_request_timing(app);
     if (dt > 1e-4) p->interval_avg = p->interval_avg > 0 ? 0.9 * p->interval_avg + 0.1 * dt : dt;
     sl_ui_text("%s  %dx%d  %.1f fps", app->backend.name, app->backend.width, app->backend.height,
                p->interval_avg > 0 ? 1.0 / p->interval_avg : 0.0);
+    const char *budget = sl_budget_status(app);
+    if (*budget) sl_ui_text("budget %s", budget);
     if (!st) return;
+    bool timed = st->timing_mode && strcmp(st->timing_mode, "off");
     sl_ui_text("frame %.2f ms (CPU), %d draw calls, %d programs", st->frame_ms, st->draw_calls, st->program_count);
     sl_ui_text_disabled("pass times: %s%s", st->timing_mode ? st->timing_mode : "?",
                         st->timing_mode && !strcmp(st->timing_mode, "glfinish") ? " (CPU rasteriser: honest, serialising)" : "");
@@ -333,7 +340,7 @@ static void section_timing(sl_panel *p, double dt) {
             snprintf(a->name, sizeof a->name, "%s", ps->name);
             a->ms = ps->ms;
         }
-        if (a && ps->ran) a->ms = 0.9 * a->ms + 0.1 * ps->ms;
+        if (a && ps->ran && timed) a->ms = 0.7 * a->ms + 0.3 * ps->ms;
         sl_ui_table_next_row();
         sl_ui_table_next_column();
         sl_ui_text("%s", ps->name);

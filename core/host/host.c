@@ -7,6 +7,7 @@
 #include "render/renderer.h"
 #include "render/composer.h"
 #include "render/post.h"
+#include "budget/budget.h"
 #include "image/image.h"
 #include <stdarg.h>
 #include <stdlib.h>
@@ -73,8 +74,14 @@ static const sl_ext_post post_ext = {.struct_size = sizeof post_ext, .add_pointw
                                      .accept_pointwise = post_accept, .load_program = post_load_program,
                                      .bind_outputs_with = post_bind_outputs_with};
 
+static sl_status budget_add_model(const sl_host *h, const sl_quality_model *m) {
+    return sl_budget_add_model(HOST_APP(h), HOST_IDX(h), m);
+}
+static const sl_ext_budget budget_ext = {.struct_size = sizeof budget_ext, .add_quality_model = budget_add_model};
+
 static const void *host_get_extension(const sl_host *h, const char *id) {
     if (id && !strcmp(id, SL_EXT_POST)) return &post_ext;
+    if (id && !strcmp(id, SL_EXT_BUDGET)) return &budget_ext;
     return sl_plugins_extension(&HOST_APP(h)->plugins, id);
 }
 

@@ -405,7 +405,10 @@ void sl_renderer_present(sl_app *app) {
     unsigned src;
     glCreateFramebuffers(1, &src);
     glNamedFramebufferTexture(src, GL_COLOR_ATTACHMENT0, disp->tex[disp->current], 0);
-    glBlitNamedFramebuffer(src, 0, 0, 0, disp->w, disp->h, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    /* the window's size: larger than the image when core.render_scale < 1 (scaled up, bilinear) */
+    int w = app->backend.width, h = app->backend.height;
+    bool same = w == disp->w && h == disp->h;
+    glBlitNamedFramebuffer(src, 0, 0, 0, disp->w, disp->h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, same ? GL_NEAREST : GL_LINEAR);
     glDeleteFramebuffers(1, &src);
 }
 

@@ -1,0 +1,157 @@
+/* The frame-time budget's controller (core/budget/controller.h) on synthetic cost models: no GL,
+ * no timing (frame times are what the synthetic model says).
+ *   1. choose: over many random models and budgets, the choice is predicted within the budget
+ *      whenever any choice is, it has the lowest predicted error of all such choices (a brute
+ *      force over every combination here), and it is the cheapest choice when none fits;
+ *   2. the online fit: frames drawn from a known model (fixed + unit × work, with noise) give that
+ *      model back; after the load doubles, the prediction follows within a few frames;
+ *   3. the loop: while moving, the frames the true model gives for the choices stay within the
+ *      budget once the model has been observed; a still of SL_BUDGET_STILL_FRAMES frames goes to
+ *      every knob's best and stays there; moving again comes back within the budget;
+ *   4. hysteresis: an unchanged model does not make the choice alternate. */
+#include "check.h"
+#include "budget/controller.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static unsigned rng = 12345;
+static double uniform(void) {
+    rng = rng * 1664525u + 1013904223u;
+    return (rng >> 8) / 16777216.0;
+}
+
+/* the render scale as the core declares it (cost s^2) and two plugin-like knobs */
+static void add_knobs(sl_budget *b) {
+    sl_budget_knob scale = {.id = "core.render_scale", .count = 5};
+    const double s[] = {0.35, 0.5, 0.7, 0.85, 1};
+    for (int i = 0; i < 5; i++) {
+        snprintf(scale.value[i], sizeof scale.value[i], "%g", s[i]);
+        scale.cost[i] = s[i] * s[i];
+        scale.error[i] = 0.02 * (1 / s[i] - 1);
+    }
+    CHECK(sl_budget_add_knob(b, &scale));
+    sl_budget_knob pcf = {.id = "shadow.pcf", .count = 3, .value = {"1", "3", "5"}, .cost = {0.8, 0.9, 1},
+                          .error = {0.004, 0.0015, 0}};
+    CHECK(sl_budget_add_knob(b, &pcf));
+    sl_budget_knob taps = {.id = "env.samples", .count = 4, .value = {"0", "4", "8", "16"}, .cost = {0.5, 0.7, 0.8, 1},
+                           .error = {0.01, 0.004, 0.002, 0}};
+    CHECK(sl_budget_add_knob(b, &taps));
+}
+
+static void random_knobs(sl_budget *b) {
+    int n = 1 + (int)(uniform() * 4);
+    for (int k = 0; k < n; k++) {
+        sl_budget_knob kn = {.count = 1 + (int)(uniform() * 5)};
+        snprintf(kn.id, sizeof kn.id, "k%d", k);
+        double c = 1, e = 0;
+        for (int i = kn.count - 1; i >= 0; i--) { /* best last: cost 1, error 0; cheaper ones worse */
+            kn.cost[i] = c, kn.error[i] = e;
+            c *= 0.3 + 0.7 * uniform();
+            e += 0.01 * uniform();
+        }
+        CHECK(sl_budget_add_knob(b, &kn));
+    }
+}
+
+static void test_choose(void) {
+    int violations = 0, suboptimal = 0, not_cheapest = 0, cases = 0;
+    for (int t = 0; t < 2000; t++) {
+        sl_budget b;
+        sl_budget_init(&b, 1);
+        random_knobs(&b);
+        b.fixed_ms = 20 * uniform();
+        b.unit_ms = 10 + 200 * uniform();
+        double budget = 5 + 150 * uniform();
+        int c[SL_BUDGET_MAX_KNOBS];
+        sl_budget_choose(&b, budget, c);
+        /* brute force over every combination */
+        int o[SL_BUDGET_MAX_KNOBS] = {0};
+        double min_err = INFINITY, min_ms = INFINITY;
+        bool any = false;
+        for (;;) {
+            double ms = sl_budget_predict_ms(&b, o), err = sl_budget_error(&b, o);
+            min_ms = fmin(min_ms, ms);
+            if (ms <= budget) any = true, min_err = fmin(min_err, err);
+            int k = 0;
+            while (k < b.knob_count && ++o[k] == b.knobs[k].count) o[k++] = 0;
+            if (k == b.knob_count) break;
+        }
+        double ms = sl_budget_predict_ms(&b, c), err = sl_budget_error(&b, c);
+        violations += any && ms > budget;
+        suboptimal += any && err > min_err + 1e-12;
+        not_cheapest += !any && ms > min_ms + 1e-9;
+        cases++;
+    }
+    printf("choose: %d random models; over budget though a choice fits: %d, not the lowest error within: %d, "
+           "not the cheapest when none fits: %d\n", cases, violations, suboptimal, not_cheapest);
+    CHECK(violations == 0 && suboptimal == 0 && not_cheapest == 0);
+    sl_budget b;
+    sl_budget_init(&b, 1);
+    sl_budget_knob bad = {.id = "x", .count = 2, .cost = {0.5, 0.9}};
+    CHECK_MSG(!sl_budget_add_knob(&b, &bad), "a knob whose best does not cost 1 is refused");
+}
+
+/* the true frame time of a choice: fixed + unit × work, times 1 ± 3 % noise */
+static double frame_ms(const sl_budget *b, const int *c, double fixed, double unit) {
+    return (fixed + unit * sl_budget_work(b, c)) * (0.97 + 0.06 * uniform());
+}
+
+static void test_fit(void) {
+    sl_budget b;
+    sl_budget_init(&b, 66);
+    add_knobs(&b);
+    int c[SL_BUDGET_MAX_KNOBS];
+    for (int f = 0; f < 60; f++) { /* the choices vary, as they do while the controller works */
+        for (int k = 0; k < b.knob_count; k++) c[k] = (int)(uniform() * b.knobs[k].count);
+        sl_budget_observe(&b, c, frame_ms(&b, c, 6, 600));
+    }
+    printf("fit: fixed %.2f ms (true 6), unit %.1f ms (true 600)\n", b.fixed_ms, b.unit_ms);
+    CHECK_MSG(fabs(b.fixed_ms - 6) < 3 && fabs(b.unit_ms - 600) < 30, "fixed %g unit %g", b.fixed_ms, b.unit_ms);
+    for (int f = 0; f < 15; f++) { /* the machine gets twice as busy */
+        for (int k = 0; k < b.knob_count; k++) c[k] = (int)(uniform() * b.knobs[k].count);
+        sl_budget_observe(&b, c, frame_ms(&b, c, 12, 1200));
+    }
+    for (int k = 0; k < b.knob_count; k++) c[k] = b.knobs[k].count - 1;
+    double pred = sl_budget_predict_ms(&b, c);
+    printf("fit after the load doubled (15 frames): best settings predicted %.0f ms (true 1212)\n", pred);
+    CHECK_MSG(fabs(pred - 1212) < 0.1 * 1212, "%g", pred);
+}
+
+static void test_loop(void) {
+    sl_budget b;
+    sl_budget_init(&b, 66);
+    add_knobs(&b);
+    const double fixed = 4, unit = 700; /* the best settings: 704 ms a frame, 10x the budget */
+    int over = 0, changes = 0, moving_frames = 0;
+    double worst = 0;
+    for (int f = 0; f < 200; f++) {
+        bool moving = !(f >= 100 && f < 130); /* a pause of 30 frames in the middle */
+        changes += sl_budget_step(&b, moving);
+        double ms = frame_ms(&b, b.choice, fixed, unit);
+        sl_budget_observe(&b, b.choice, ms);
+        if (f >= 100 && f < 130 && f - 100 >= SL_BUDGET_STILL_FRAMES) {
+            for (int k = 0; k < b.knob_count; k++)
+                CHECK_MSG(b.choice[k] == b.knobs[k].count - 1, "frame %d, still: knob %s not at its best", f, b.knobs[k].id);
+        }
+        if (moving && (f >= 10 && (f < 100 || f >= 135))) { /* after a few frames to learn (and re-learn) */
+            moving_frames++;
+            over += ms > 66;
+            worst = fmax(worst, ms);
+        }
+    }
+    printf("loop: %d moving frames after learning, %d over the budget of 66 ms (worst %.1f ms); %d changes of "
+           "choice in 200 frames; moving choice: scale %s, pcf %s, samples %s\n", moving_frames, over, worst, changes,
+           b.knobs[0].value[b.choice[0]], b.knobs[1].value[b.choice[1]], b.knobs[2].value[b.choice[2]]);
+    CHECK(over == 0);
+    CHECK_MSG(changes <= 12, "the choice changed %d times (hysteresis)", changes);
+    CHECK_MSG(sl_budget_predict_ms(&b, b.choice) <= 66, "moving again: within the budget");
+}
+
+int main(void) {
+    test_choose();
+    test_fit();
+    test_loop();
+    return check_result();
+}
