@@ -63,11 +63,16 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
 
 /* Loads a material texture: colour textures decode sRGB in the sampler (8-bit) or on the CPU
  * (16-bit); data textures stay linear. */
-/* core.anisotropy onto every material texture (a parameter change reaches the loaded ones too). */
+/* core.anisotropy onto every material texture (a parameter change reaches the loaded ones too).
+ * 0 (the default) is what looks right on the backend: 8 on a GPU; 1 on a CPU renderer, whose
+ * anisotropic filter (llvmpipe: the same image for 2…16) draws a checker edge seen at a grazing
+ * angle as a stack of disks — scallops — where isotropic filtering keeps it straight
+ * (tests/test_core_render.c, test_anisotropy_default). */
 void sl_gpu_apply_anisotropy(sl_app *app) {
     sl_renderer *r = R(app);
     const sl_param *p = sl_params_find(&app->params, "core.anisotropy");
-    int a = p ? p->value.i : 8;
+    int a = p ? p->value.i : 0;
+    if (a == 0) a = app->backend.is_gpu ? 8 : 1;
     a = a < 1 ? 1 : a > 16 ? 16 : a;
     if (a == r->anisotropy) return;
     r->anisotropy = a;
