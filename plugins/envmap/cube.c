@@ -352,6 +352,122 @@ void em_sh9_diffuse_coefficients(const double sh[9][3], float out[9][3]) {
         for (int c = 0; c < 3; c++) out[k][c] = (float)(band_factor[k] * sh[k][c] * norm[k]);
 }
 
+/* ---------------------------------------------------------------- environment importance sampling */
+
+static double luminance(const float *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+bool em_env_distribution_build(const em_image *img, int max_width, em_env_distribution *d) {
+    memset(d, 0, sizeof *d);
+    int k = 1;
+    while (img->w / k > max_width && img->w / k > 2) k *= 2; /* box blocks of k × k texels */
+    int w = (img->w + k - 1) / k, h = (img->h + k - 1) / k;
+    d->conditional = malloc((size_t)w * h * sizeof(float));
+    d->pdf = malloc((size_t)w * h * sizeof(float));
+    d->marginal = malloc((size_t)h * sizeof(float));
+    double *lum = calloc((size_t)w * h, sizeof(double)), *rows = calloc((size_t)h, sizeof(double));
+    if (!d->conditional || !d->pdf || !d->marginal || !lum || !rows) {
+        free(lum), free(rows), em_env_distribution_free(d);
+        return false;
+    }
+    d->w = w, d->h = h;
+    for (int y = 0; y < img->h; y++)
+        for (int x = 0; x < img->w; x++) lum[(size_t)(y / k) * w + x / k] += luminance(img->px + ((size_t)y * img->w + x) * 4);
+    double mean = 0; /* the map's mean luminance over the sphere (each cell by its solid angle) */
+    for (int y = 0; y < h; y++) {
+        int rows_in = (y + 1) * k <= img->h ? k : img->h - y * k;
+        double omega = (2 * M_PI / w) * (cos(M_PI * y / h) - cos(M_PI * (y + 1) / h));
+        for (int x = 0; x < w; x++) {
+            int cols_in = (x + 1) * k <= img->w ? k : img->w - x * k;
+            double *l = lum + (size_t)y * w + x;
+            *l /= rows_in * cols_in; /* the block's mean */
+            mean += *l * omega / (4 * M_PI);
+        }
+    }
+    /* each cell's weight: the largest luminance of its 3 × 3 neighbourhood (u wraps), minus the
+     * mean. The largest, because lookups are bilinear: next to a bright cell the radiance read
+     * is partly the bright cell's, and a cell sampled by its own dim value would turn those
+     * lookups into fireflies (L/pdf with a small pdf; BRDF samples there, at MIS weight ≈ 1,
+     * likewise). */
+    double *dil = malloc((size_t)w * h * sizeof(double));
+    if (!dil) {
+        free(lum), free(rows), em_env_distribution_free(d);
+        return false;
+    }
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double m = 0;
+            for (int j = y > 0 ? y - 1 : 0; j <= (y + 1 < h ? y + 1 : h - 1); j++)
+                for (int i = -1; i <= 1; i++) {
+                    double l = lum[(size_t)j * w + (x + i + w) % w];
+                    m = l > m ? l : m;
+                }
+            /* MIS compensation; within 1 % of the mean (a constant map and its rounding) is even */
+            dil[(size_t)y * w + x] = m > 1.01 * mean ? m - mean : 0;
+        }
+    memcpy(lum, dil, (size_t)w * h * sizeof(double));
+    free(dil);
+    for (int y = 0; y < h; y++) {
+        double omega = (2 * M_PI / w) * (cos(M_PI * y / h) - cos(M_PI * (y + 1) / h)), sum = 0;
+        for (int x = 0; x < w; x++) sum += lum[(size_t)y * w + x];
+        double run = 0;
+        for (int x = 0; x < w; x++) {
+            run += lum[(size_t)y * w + x];
+            d->conditional[(size_t)y * w + x] = sum > 0 ? (float)(run / sum) : (float)(x + 1) / w;
+        }
+        d->conditional[(size_t)y * w + w - 1] = 1;
+        rows[y] = sum * omega;
+        d->total += rows[y];
+    }
+    double run = 0;
+    for (int y = 0; y < h; y++) {
+        run += rows[y];
+        d->marginal[y] = d->total > 0 ? (float)(run / d->total) : (float)(y + 1) / h;
+        for (int x = 0; x < w; x++)
+            d->pdf[(size_t)y * w + x] = d->total > 0 ? (float)(lum[(size_t)y * w + x] / d->total) : 0.0f;
+    }
+    d->marginal[h - 1] = 1;
+    free(lum), free(rows);
+    return true;
+}
+
+void em_env_distribution_free(em_env_distribution *d) {
+    free(d->conditional), free(d->pdf), free(d->marginal);
+    memset(d, 0, sizeof *d);
+}
+
+/* the first index whose CDF value exceeds xi (the GLSL's binary search) */
+static int cdf_search(const float *cdf, int n, double xi) {
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (cdf[mid] > xi) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}
+
+double em_env_distribution_sample(const em_env_distribution *d, double xi1, double xi2, double dir[3]) {
+    int y = cdf_search(d->marginal, d->h, xi1);
+    double m0 = y ? d->marginal[y - 1] : 0, m1 = d->marginal[y];
+    double t = m1 > m0 ? (xi1 - m0) / (m1 - m0) : 0.5;
+    const float *row = d->conditional + (size_t)y * d->w;
+    int x = cdf_search(row, d->w, xi2);
+    double c0 = x ? row[x - 1] : 0, c1 = row[x];
+    double s = c1 > c0 ? (xi2 - c0) / (c1 - c0) : 0.5;
+    double ct0 = cos(M_PI * y / d->h), ct1 = cos(M_PI * (y + 1) / d->h), ct = ct0 + t * (ct1 - ct0);
+    em_latlong_dir((x + s) / d->w, acos(ct < -1 ? -1 : ct > 1 ? 1 : ct) / M_PI, dir);
+    return d->pdf[(size_t)y * d->w + x];
+}
+
+double em_env_distribution_pdf(const em_env_distribution *d, const double dir[3]) {
+    double u, v;
+    em_dir_latlong(dir, &u, &v);
+    int x = (int)(u * d->w), y = (int)(v * d->h);
+    x = x < 0 ? 0 : x >= d->w ? d->w - 1 : x;
+    y = y < 0 ? 0 : y >= d->h ? d->h - 1 : y;
+    return d->pdf[(size_t)y * d->w + x];
+}
+
 /* ---------------------------------------------------------------- procedural sky */
 
 void em_sky_default(em_sky *s) {
@@ -359,6 +475,7 @@ void em_sky_default(em_sky *s) {
     s->sun_azimuth_deg = 60;
     s->sun_irradiance = 3;
     s->sun_radius_deg = 1.5f;
+    s->ground[0] = 0.10f, s->ground[1] = 0.09f, s->ground[2] = 0.08f;
 }
 
 static void sun_dir(const em_sky *s, double d[3]) {
@@ -368,10 +485,13 @@ static void sun_dir(const em_sky *s, double d[3]) {
     d[2] = cos(e) * cos(a);
 }
 
-/* A simple analytic clear sky: zenith-to-horizon gradient, a brighter halo around the sun, a
- * dim ground below the horizon and the sun as a disk of uniform radiance E/Ω. */
+/* A simple analytic clear sky: zenith-to-horizon gradient, a brighter halo around the sun, the
+ * ground (em_sky.ground) below the horizon, reached through a haze that continues the horizon's
+ * colour (continuous at the horizon: a darker line there showed as a dark band under it), and
+ * the sun as a disk of uniform radiance E/Ω. */
 void em_sky_radiance(const em_sky *s, const double d[3], double out[3]) {
-    static const double zenith[3] = {0.16, 0.30, 0.72}, horizon[3] = {0.70, 0.78, 0.92}, ground[3] = {0.10, 0.09, 0.08};
+    static const double zenith[3] = {0.16, 0.30, 0.72}, horizon[3] = {0.70, 0.78, 0.92};
+    const float *ground = s->ground;
     double sd[3];
     sun_dir(s, sd);
     double y = d[1];
@@ -384,7 +504,7 @@ void em_sky_radiance(const em_sky *s, const double d[3], double out[3]) {
             sky = zenith[c] * (1 - t) + horizon[c] * t;
         } else {
             double t = exp(y * 25); /* a soft horizon line */
-            sky = ground[c] * (1 - t) + horizon[c] * 0.6 * t;
+            sky = ground[c] * (1 - t) + horizon[c] * t;
         }
         double halo = (y > -0.05 ? 1.0 : 0.0) * (0.6 * exp(-angle * 8) + 0.15 * exp(-angle * 1.5));
         static const double halo_col[3] = {1.0, 0.9, 0.75};
@@ -406,8 +526,9 @@ typedef struct {
     bool halo_on;
 } sky_row;
 
-static void sky_row_init(double y, sky_row *r) {
-    static const double zenith[3] = {0.16, 0.30, 0.72}, horizon[3] = {0.70, 0.78, 0.92}, ground[3] = {0.10, 0.09, 0.08};
+static void sky_row_init(const em_sky *s, double y, sky_row *r) {
+    static const double zenith[3] = {0.16, 0.30, 0.72}, horizon[3] = {0.70, 0.78, 0.92};
+    const float *ground = s->ground;
     r->y = y;
     r->halo_on = y > -0.05;
     for (int c = 0; c < 3; c++) {
@@ -416,7 +537,7 @@ static void sky_row_init(double y, sky_row *r) {
             r->sky[c] = zenith[c] * (1 - t) + horizon[c] * t;
         } else {
             double t = exp(y * 25);
-            r->sky[c] = ground[c] * (1 - t) + horizon[c] * 0.6 * t;
+            r->sky[c] = ground[c] * (1 - t) + horizon[c] * t;
         }
     }
 }
@@ -441,7 +562,7 @@ void em_sky_latlong(const em_sky *s, int w, int h, em_image *out) {
     for (int y = 0; y < h; y++) {
         double theta = M_PI * ((y + 0.5) / h), st = sin(theta), ct = cos(theta);
         sky_row row;
-        sky_row_init(ct, &row);
+        sky_row_init(s, ct, &row);
         for (int x = 0; x < w; x++) {
             double d[3] = {st * col_x[x], ct, st * col_z[x]}, c[3] = {0, 0, 0};
             double cs = d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2];

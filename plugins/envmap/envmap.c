@@ -28,7 +28,7 @@
 #define CONSTANT_CUBE 8 /* a constant environment prefilters to itself: no need for a big cube */
 
 static const char *const modes[] = {"split-sum", "reference", NULL};
-static const char *const speculars[] = {"mirror", "dominant", "fis", "hybrid", NULL};
+static const char *const speculars[] = {"mirror", "dominant", "fis", "hybrid", "filtered", NULL};
 static const char *const irradiance_methods[] = {"sh", "convolved", NULL};
 static const char *const level_maps[] = {"sqrt", "log", NULL}; /* em_level_map's order */
 
@@ -61,6 +61,14 @@ static const sl_param_desc params[] = {
       .group = "lighting",
       .description = "Bias added to specular=fis's per-sample mip level (1/2 log2 of the sample's solid angle over the base "
                      "texel's); Krivanek & Colbert use +1, chosen here from the measured error."),
+    P(.id = "filtered_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 64, .group = "lighting",
+      .flags = SL_PARAM_QUALITY_KNOB,
+      .description = "Samples per pixel of specular=filtered: one fixed set shared by every pixel and frame "
+                     "(deterministic); error falls with cost (bench/first.sh)."),
+    P(.id = "filtered_lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {0.5f}}, .min = -3, .max = 3, .step = 0.25f,
+      .group = "lighting",
+      .description = "specular=filtered: each sample reads the prefiltered chain at the roughness whose lobe covers its "
+                     "share of the real lobe, times 2^bias (0: the sub-lobes just tile it; more: smoother, blurrier)."),
     P(.id = "irradiance", .type = SL_PARAM_ENUM, .enum_values = irradiance_methods,
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
       .description = "Diffuse irradiance: order-2 spherical harmonics (9 coefficients) or a convolved cube."),
@@ -86,6 +94,12 @@ static const sl_param_desc params[] = {
       .description = "Multiple-scattering compensation of the split-sum specular (Fdez-Aguera 2019)."),
     P(.id = "reference_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 4096,
       .group = "reference", .description = "Samples per pixel and frame of the Monte Carlo reference."),
+    P(.id = "reference_env_sampling", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "reference",
+      .description = "The reference samples a lat-long environment by its luminance too, combined with BRDF sampling by "
+                     "multiple importance sampling (off: BRDF sampling alone, to compare)."),
+    P(.id = "reference_seed", .type = SL_PARAM_INT, .min = 0, .max = 1 << 20, .group = "reference",
+      .description = "Starts the reference's sample sequence elsewhere: renders with different seeds are independent "
+                     "estimates (their spread is the reference's noise)."),
     P(.id = "cache", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "prefilter",
       .description = "Keep prefiltered cubes on disk ($SHADELAB_CACHE, else ~/.cache/shadelab), keyed by input and parameters."),
     P(.id = "seamless", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "prefilter",
@@ -96,6 +110,9 @@ static const sl_param_desc params[] = {
       .group = "sky", .description = "Procedural sky: sun azimuth, 0 towards +Z, 90 towards +X."),
     P(.id = "sun_irradiance", .type = SL_PARAM_FLOAT, .default_value = {.f = {3}}, .min = 0, .max = EM_SKY_IRRADIANCE_MAX, .unit = "W/m2",
       .group = "sky", .description = "Procedural sky: irradiance of the sun disk (1.5 deg radius) at normal incidence; 0 = no sun."),
+    P(.id = "ground_color", .type = SL_PARAM_COLOR, .default_value = {.f = {0.10f, 0.09f, 0.08f}}, .group = "sky",
+      .description = "Procedural sky: radiance below the horizon, the ground beyond the scene (a scene whose floor ends "
+                     "sets it to the floor's lit radiance, so no band shows between floor and sky)."),
 };
 
 #define C(...) {.struct_size = sizeof(sl_shader_chunk_desc), __VA_ARGS__}
@@ -110,6 +127,7 @@ static const sl_shader_chunk_desc chunks[] = {
 typedef struct envmap {
     const sl_host *host;
     int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut, unit_base; /* unit_cube = unit_2d + 1 (em_gpu) */
+    int unit_dist, unit_marginal; /* the reference's environment distribution */
     em_gpu gpu;
     sl_program *progs[6];
     sl_program *bg_prog[2], *bg_in_place_prog[2]; /* [1]: a cube source (ENVMAP_SOURCE_CUBE) */
@@ -130,6 +148,12 @@ typedef struct envmap {
     int base_size, spec_levels, lut_size;
     uint64_t base_key, spec_key, irr_key;
     bool spec_from_chain;
+    /* the reference's environment importance sampling (a lat-long source): RG32F (conditional
+     * CDF, pdf) and R32F marginal CDF, em_env_distribution's arrays; dist_total 0 = none */
+    unsigned dist, marginal;
+    int dist_w, dist_h;
+    double dist_total;
+    uint64_t dist_key;
     float sh[9][3];
     bool sh_valid;
     /* a lat-long source's SH projection, made on the CPU from the pixels as loaded (src_sh_valid):
@@ -305,7 +329,10 @@ static void free_derived(envmap *e) {
     delete_tex(&e->spec); /* ours, also when it came from a precomputed chain */
     e->spec_from_chain = false;
     delete_tex(&e->irr);
-    e->base_key = e->spec_key = e->irr_key = 0;
+    delete_tex(&e->dist);
+    delete_tex(&e->marginal);
+    e->dist_total = 0;
+    e->base_key = e->spec_key = e->irr_key = e->dist_key = 0;
     e->sh_valid = false;
 }
 
@@ -440,6 +467,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
         sky.sun_elevation_deg = param(e, "sun_elevation").f[0];
         sky.sun_azimuth_deg = param(e, "sun_azimuth").f[0];
         sky.sun_irradiance = param(e, "sun_irradiance").f[0];
+        memcpy(sky.ground, param(e, "ground_color").f, sizeof sky.ground);
         loaded.kind = EM_ENV_LATLONG;
         em_sky_latlong(&sky, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
         name = "procedural sky";
@@ -575,6 +603,49 @@ static void ensure_irradiance(envmap *e) {
     e->irr_key = key;
 }
 
+/* The reference's environment distribution, the first time a reference program reads it: the
+ * lat-long read back at the mip level ≤ DIST_WIDTH wide (reference mode only, where a read-back
+ * is nothing beside the integration), em_env_distribution_build, two float textures. A cube
+ * source gets none (the reference then samples the BRDF alone). */
+#define DIST_WIDTH 1024
+static void ensure_distribution(envmap *e) {
+    if (e->dist_key == e->src_hash && (e->dist || e->kind != EM_ENV_LATLONG)) return;
+    delete_tex(&e->dist);
+    delete_tex(&e->marginal);
+    e->dist_total = 0;
+    e->dist_key = e->src_hash;
+    if (e->kind != EM_ENV_LATLONG || !e->src_tex) return;
+    int level = 0, w = e->src_w, h = e->src_h;
+    while (w > DIST_WIDTH) w /= 2, h /= 2, level++;
+    em_image img = {w, h, malloc((size_t)w * h * 4 * sizeof(float))};
+    if (!img.px) return;
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(e->src_tex, level, GL_RGBA, GL_FLOAT, (int)((size_t)w * h * 4 * sizeof(float)), img.px);
+    em_env_distribution d;
+    bool ok = em_env_distribution_build(&img, DIST_WIDTH, &d);
+    em_image_free(&img);
+    if (!ok) return;
+    float *rg = malloc((size_t)d.w * d.h * 2 * sizeof(float));
+    if (rg) {
+        for (size_t i = 0; i < (size_t)d.w * d.h; i++) rg[2 * i] = d.conditional[i], rg[2 * i + 1] = d.pdf[i];
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glCreateTextures(GL_TEXTURE_2D, 1, &e->dist);
+        glTextureStorage2D(e->dist, 1, GL_RG32F, d.w, d.h);
+        glTextureSubImage2D(e->dist, 0, 0, 0, d.w, d.h, GL_RG, GL_FLOAT, rg);
+        glCreateTextures(GL_TEXTURE_2D, 1, &e->marginal);
+        glTextureStorage2D(e->marginal, 1, GL_R32F, d.h, 1);
+        glTextureSubImage2D(e->marginal, 0, 0, 0, d.h, 1, GL_RED, GL_FLOAT, d.marginal);
+        for (int i = 0; i < 2; i++) {
+            unsigned t = i ? e->marginal : e->dist;
+            glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        e->dist_w = d.w, e->dist_h = d.h, e->dist_total = d.total;
+        free(rg);
+    }
+    em_env_distribution_free(&d);
+}
+
 static void ensure_lut(envmap *e) {
     int size = param(e, "lut_size").i;
     if (e->lut && e->lut_size == size) return;
@@ -647,9 +718,11 @@ static void envmap_begin_frame(void *user, const sl_frame *f) {
     const char *map = e->host->environment(e->host, env);
     char key[4400];
     bool sky = !map && !(env[0] > 0 || env[1] > 0 || env[2] > 0);
-    snprintf(key, sizeof key, "%s|%g %g %g|%g %g %g", map ? map : "", env[0], env[1], env[2],
+    const float *ground = param(e, "ground_color").f;
+    snprintf(key, sizeof key, "%s|%g %g %g|%g %g %g|%g %g %g", map ? map : "", env[0], env[1], env[2],
              sky ? param(e, "sun_elevation").f[0] : 0.0f, sky ? param(e, "sun_azimuth").f[0] : 0.0f,
-             sky ? param(e, "sun_irradiance").f[0] : 0.0f);
+             sky ? param(e, "sun_irradiance").f[0] : 0.0f, sky ? ground[0] : 0.0f, sky ? ground[1] : 0.0f,
+             sky ? ground[2] : 0.0f);
     if (!e->src_key || strcmp(key, e->src_key)) {
         free(e->src_key);
         e->src_key = strdup(key);
@@ -690,20 +763,30 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     int l_spec = glGetUniformLocation(prog, "envmap_spec"), l_irr = glGetUniformLocation(prog, "envmap_irr");
     int l_sh = glGetUniformLocation(prog, "envmap_sh"), l_lut = glGetUniformLocation(prog, "envmap_lut");
     int l_base = glGetUniformLocation(prog, "envmap_base"); /* specular=fis reads the base cube's mips */
+    int l_dist = glGetUniformLocation(prog, "envmap_dist"); /* the reference's environment sampling */
     /* compute what this program reads, the first time it is needed (a mirror-only scene never
      * prefilters); the forward pass is mid-flight, so GL state is saved and restored */
     bool need_spec = l_spec >= 0 && !e->spec_from_chain, need_irr = l_irr >= 0 || l_sh >= 0, need_lut = l_lut >= 0;
-    bool need_base = l_base >= 0;
-    if (need_spec || need_irr || need_lut || need_base) {
+    bool need_base = l_base >= 0, need_dist = l_dist >= 0;
+    if (need_spec || need_irr || need_lut || need_base || need_dist) {
         gl_state st;
         gpu_work_begin(&st);
         if (need_spec) ensure_spec(e);
         if (need_irr) ensure_irradiance(e);
         if (need_lut) ensure_lut(e);
         if (need_base) ensure_base(e);
+        if (need_dist) ensure_distribution(e);
         gpu_work_end(e, &st);
     }
     bind_source(e, prog);
+    if (need_dist) {
+        glBindTextureUnit(e->unit_dist, e->dist ? e->dist : e->dummy_2d);
+        glBindTextureUnit(e->unit_marginal, e->marginal ? e->marginal : e->dummy_2d);
+        glUniform1i(l_dist, e->unit_dist);
+        glUniform1i(glGetUniformLocation(prog, "envmap_marginal"), e->unit_marginal);
+        glUniform1i(glGetUniformLocation(prog, "envmap_has_dist"), e->dist_total > 0 && param(e, "reference_env_sampling").b);
+        glUniform2i(glGetUniformLocation(prog, "envmap_dist_size"), e->dist_w, e->dist_h);
+    }
     glBindTextureUnit(e->unit_spec, e->spec ? e->spec : e->dummy_cube);
     glBindTextureUnit(e->unit_irr, e->irr ? e->irr : e->dummy_cube);
     glBindTextureUnit(e->unit_lut, e->lut ? e->lut : e->dummy_2d);
@@ -838,15 +921,15 @@ static sl_status envmap_create(const sl_host *host, void **user) {
         .struct_size = sizeof ref, .settings = "envmap.mode=reference envmap.reference_samples=64",
         .accumulate_frames = 64,
         .description = "Monte Carlo integration of the source environment at full resolution with the exact BRDF "
-                       "(GGX visible-normal sampling for the specular lobe, cosine sampling for the diffuse), "
-                       "64 frames x 64 samples per pixel."};
+                       "(GGX visible-normal sampling for the specular lobe, cosine sampling for the diffuse, each "
+                       "combined with environment importance sampling by MIS), 64 frames x 64 samples per pixel."};
     host->set_reference(host, &ref);
     host->set_bind_callback(host, envmap_bind, e);
-    int units[6];
-    for (int i = 0; i < 6; i++)
+    int units[8];
+    for (int i = 0; i < 8; i++)
         if ((units[i] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     e->unit_2d = units[0], e->unit_cube = units[1], e->unit_spec = units[2], e->unit_irr = units[3], e->unit_lut = units[4];
-    e->unit_base = units[5];
+    e->unit_base = units[5], e->unit_dist = units[6], e->unit_marginal = units[7];
     if (e->unit_cube != e->unit_2d + 1) return SL_ERR_FAILED;
     snprintf(e->glsl_dir, sizeof e->glsl_dir, "%s", host->resource_dir(host));
     return SL_OK;

@@ -93,10 +93,15 @@ vec3 envmap_brdf(float mu, float alpha) {
 }
 
 // Per-sample random numbers for the reference: an R2 sequence continued across the frames that
-// are averaged (sl_sample_index, ABI 1.9: accumulated frames and a TAA still's), rotated per pixel.
+// are averaged (sl_sample_index, ABI 1.9: accumulated frames and a TAA still's), rotated per pixel;
+// envmap.reference_seed starts another, independent sequence (noise measured across seeds).
 vec2 envmap_xi(uint i, vec2 rot) {
     uint k = uint(envmap_reference_samples);
     return fract(envmap_r2(uint(sl_sample_index) * k + i) + rot);
+}
+vec2 envmap_reference_rotation() {
+    uint seed = uint(envmap_reference_seed);
+    return envmap_hash2(uvec2(gl_FragCoord.xy) + uvec2(seed * 7919u, seed * 104729u));
 }
 
 // Schlick's Fresnel between f0 and f90 (the lobe contract's F), c = l·h.
@@ -204,6 +209,55 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 f90, ve
 }
 #endif
 
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
+// specular=filtered: filtered importance sampling (Křivánek & Colbert 2007, GPU Gems 3 ch. 20)
+// with one fixed sample set for every pixel and frame, read from the prefiltered GGX chain, so
+// the result is a smooth function of (n, v, α): no per-pixel random pattern, nothing that
+// changes from frame to frame. The set is a Fibonacci spiral on the unit disk,
+// r_i = √((i + ½)/N), φ_i = 2π·frac(i/golden ratio) (the disk's most even N-point set), mapped
+// to the pixel's real lobe by GGX visible-normal sampling (Heitz 2018), whose disk is aligned
+// with the plane of incidence: the pattern turns with the view, and the lobe is stretched and cut
+// by the horizon as the real one is (the split sum's n = v = r lobe is not). Each sample stands
+// for Ω_s = 1/(N·pdf(l)) of the lobe (K&C) and reads the chain at the roughness whose n = v = r
+// lobe covers that much, α_s = 2^bias·√(Ω_s/4π) (the lobe's peak density is 1/(4πα²)), at most
+// α: N smooth sub-lobes tile the real lobe. K&C read box-filtered mips instead; a coarse mip's
+// texel grid lies wherever it lies, and the sub-lobes then read whole quarter faces (a sharp band
+// of the band test was off by 20–45 % that way at N = 16). Weights F(v·h)·G(v,l)/G1(v) per
+// channel; the estimate is the weighted mean Σ w L / Σ w times the environment BRDF (F0·A + F90·B)
+// from the LUT, so a uniform environment gives the LUT exactly for any N (the furnace).
+vec3 envmap_filtered_specular(SlSurface s, float alpha, vec3 f0, vec3 f90, vec3 albedo) {
+    vec3 n = s.normal, v = s.view;
+    vec3 t, b;
+    envmap_frame(n, t, b);
+    vec3 vl = vec3(dot(v, t), dot(v, b), dot(v, n));
+    if (vl.z <= 0.0) return vec3(0.0);
+    int count = clamp(envmap_filtered_samples, 1, 64);
+    float g1v = envmap_smith_g1(vl.z, alpha);
+    float spread = exp2(envmap_filtered_lod_bias) / sqrt(4.0 * ENVMAP_PI * float(count));
+    // The visible-normal sampler lays its disk out from the view's azimuth, which turns all the
+    // way round the point where v = n (the middle of a sphere): the set is turned back by that
+    // azimuth, so it stays put in the surface frame (t, b) there, where the sampler's view-
+    // dependent squeeze vanishes; elsewhere the pattern moves as smoothly as the view does.
+    float turn = (vl.x != 0.0 || vl.y != 0.0) ? atan(vl.x, -vl.y) * (0.5 / ENVMAP_PI) : 0.0;
+    vec3 sum = vec3(0.0), wsum = vec3(0.0);
+    int i = 0; // a do-while: see envmap_fis_specular
+    do {
+        vec2 xi = vec2((float(i) + 0.5) / float(count), fract(float(i) * 0.6180339887498949 - turn));
+        vec3 hl = envmap_sample_vndf(vl, alpha, xi);
+        vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
+        if (ll.z <= 0.0) continue; // below the horizon: weight 0
+        vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
+        vec3 w = envmap_schlick(dot(l, h), f0, f90) * (ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v);
+        float pdf = g1v * ggx_D(hl.z, alpha) / (4.0 * vl.z);
+        float sub_alpha = min(1.0, spread * inversesqrt(max(pdf, 1e-20)));
+        sum += w * envmap_above(l, s.geometric_normal) *
+               textureLod(envmap_spec, envmap_rot * l, envmap_spec_lod(sub_alpha)).rgb;
+        wsum += w;
+    } while (++i < count);
+    return albedo * sum / max(wsum, vec3(1e-6)) * envmap_scale;
+}
+#endif
+
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 // specular=hybrid: fis's correction at full weight up to α = hybrid_alpha − 0.25, fading linearly
 // to none at hybrid_alpha (dominant alone above, where its lobe error is below fis's noise:
@@ -245,7 +299,11 @@ vec3 envmap_split_sum(SlSurface s) {
         vec3 spec = albedo;
         if (envmap_multiscatter) // Fdez-Agüera 2019: the energy single scattering loses, F0-tinted
             spec *= 1.0 + lobe.f0 * (1.0 / max(abc.x + abc.y, 1e-3) - 1.0);
-#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
+        // the filtered lobe estimates the single-scattering specular (albedo inside); multiscatter
+        // scales it as it scales the split sum's
+        vec3 specular = envmap_filtered_specular(s, alpha, lobe.f0, lobe.f90, albedo) * (spec / max(albedo, vec3(1e-6)));
+#elif ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
         float beta = envmap_hybrid_beta(alpha) * envmap_fis_weight;
 #else
@@ -263,12 +321,64 @@ vec3 envmap_split_sum(SlSurface s) {
     return kd * envmap_diffuse(n) * s.ao + lit;
 }
 
+// Environment importance sampling (a lat-long source; em_env_distribution in cube.c builds the
+// arrays, its C twin em_env_distribution_sample is tested against this): a row from the marginal
+// CDF, a cell from the row's conditional CDF (binary searches), a point uniform in (φ, cos θ)
+// inside the cell, so the density over solid angle is the cell's constant pdf.
+uniform sampler2D envmap_dist;     // RG32F, (conditional CDF, pdf) per cell
+uniform sampler2D envmap_marginal; // R32F, h × 1: the CDF over rows
+uniform bool envmap_has_dist;      // false: a cube source or a black map (BRDF sampling alone)
+uniform ivec2 envmap_dist_size;
+int envmap_cdf_row(float xi) {
+    int lo = 0, hi = envmap_dist_size.y - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (texelFetch(envmap_marginal, ivec2(mid, 0), 0).r > xi) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}
+int envmap_cdf_cell(int y, float xi) {
+    int lo = 0, hi = envmap_dist_size.x - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (texelFetch(envmap_dist, ivec2(mid, y), 0).r > xi) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}
+// A world direction distributed as the map's luminance; pdf over solid angle out.
+vec3 envmap_env_sample(vec2 xi, out float pdf) {
+    int y = envmap_cdf_row(xi.x);
+    float m0 = y > 0 ? texelFetch(envmap_marginal, ivec2(y - 1, 0), 0).r : 0.0;
+    float m1 = texelFetch(envmap_marginal, ivec2(y, 0), 0).r;
+    float t = m1 > m0 ? clamp((xi.x - m0) / (m1 - m0), 0.0, 1.0) : 0.5;
+    int x = envmap_cdf_cell(y, xi.y);
+    float c0 = x > 0 ? texelFetch(envmap_dist, ivec2(x - 1, y), 0).r : 0.0;
+    vec2 cell = texelFetch(envmap_dist, ivec2(x, y), 0).rg;
+    float sx = cell.r > c0 ? clamp((xi.y - c0) / (cell.r - c0), 0.0, 1.0) : 0.5;
+    vec2 size = vec2(envmap_dist_size);
+    float ct0 = cos(ENVMAP_PI * float(y) / size.y), ct1 = cos(ENVMAP_PI * float(y + 1) / size.y);
+    float ct = mix(ct0, ct1, t);
+    pdf = cell.g;
+    vec3 m = envmap_latlong_dir(vec2((float(x) + sx) / size.x, acos(clamp(ct, -1.0, 1.0)) / ENVMAP_PI));
+    return transpose(envmap_rot) * m; // map → world
+}
+// The density envmap_env_sample gives world direction d (0 without a distribution).
+float envmap_env_pdf(vec3 d) {
+    if (!envmap_has_dist) return 0.0;
+    vec2 uv = envmap_dir_latlong(envmap_rot * d);
+    ivec2 c = min(ivec2(uv * vec2(envmap_dist_size)), envmap_dist_size - 1);
+    return texelFetch(envmap_dist, c, 0).g;
+}
 // The reference: Monte Carlo with the model's own f (sl_shading_model, no lobe approximation).
 // Each iteration takes one direction per strategy: cosine-distributed when the model has a
 // diffuse albedo (or no lobe), and GGX visible normals (Heitz 2018; pdf(l) = G1(v) D(h)/(4 n·v))
-// per lobe of non-zero weight, weighted by the balance heuristic (Veach 1997, one sample per
+// per lobe of non-zero weight, and (a lat-long source, issue 42) one drawn from the environment's
+// luminance (envmap_env_sample), weighted by the balance heuristic (Veach 1997, one sample per
 // strategy: f L cos / Σ_j pdf_j(l)), so any f is integrated without bias — GGX lobes and the
-// cosine lobe each cover the hemisphere — and the lobes only steer the samples. With a metal's
+// cosine lobe each cover the hemisphere — and the lobes and the map only steer the samples; the
+// environment strategy finds a small bright sun that BRDF sampling hits by chance. With a metal's
 // single lobe this is visible-normal sampling alone, f cos/pdf = F G(v,l)/G1(v) ≤ 1. pdf and f
 // take h = normalize(l + v) in world space alike (D at α → 0 is too steep for two roundings).
 // The source map is read at full resolution; light from under the geometric surface (normal
@@ -276,7 +386,7 @@ vec3 envmap_split_sum(SlSurface s) {
 // s.ao scales the result.
 float envmap_reference_pdf(vec3 l, SlSurface s, SlLobes L, int lobes, bool cosine) {
     float ndl = dot(s.normal, l), ndv = dot(s.normal, s.view);
-    float pdf = cosine ? max(ndl, 0.0) * SL_INV_PI : 0.0;
+    float pdf = (cosine ? max(ndl, 0.0) * SL_INV_PI : 0.0) + envmap_env_pdf(l);
     vec3 h = normalize(l + s.view);
     float ndh = dot(s.normal, h);
     for (int j = 0; j < lobes; ++j) {
@@ -302,14 +412,19 @@ vec3 envmap_reference(SlSurface s) {
     bool any_lobe = false;
     for (int k = 0; k < lobes; ++k) any_lobe = any_lobe || L.lobe[k].weight > 0.0;
     bool cosine = max(L.diffuse.r, max(L.diffuse.g, L.diffuse.b)) > 0.0 || !any_lobe;
-    vec2 rot = envmap_hash2(uvec2(gl_FragCoord.xy));
+    vec2 rot = envmap_reference_rotation();
     vec3 sum = vec3(0.0);
     int i = 0; // a do-while (reference_samples >= 1), as the fis loop above
     do {
         vec2 xi = envmap_xi(uint(i), rot);
-        for (int k = -1; k < lobes; ++k) {
+        for (int k = -2; k < lobes; ++k) {
             vec3 ll;
-            if (k < 0) {
+            if (k == -2) { // the environment's own strategy
+                if (!envmap_has_dist) continue;
+                float pe;
+                vec3 le = envmap_env_sample(fract(xi + vec2(0.25, 0.75)), pe);
+                ll = vec3(dot(le, t), dot(le, b), dot(le, n));
+            } else if (k < 0) {
                 if (!cosine) continue;
                 ll = envmap_sample_cosine(fract(xi + vec2(0.5, 0.25)));
             } else {

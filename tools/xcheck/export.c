@@ -640,6 +640,8 @@ static float *sky_latlong(sl_app *app, int w, int h) {
     sky.sun_elevation_deg = global_float(app, "envmap.sun_elevation", sky.sun_elevation_deg);
     sky.sun_azimuth_deg = global_float(app, "envmap.sun_azimuth", sky.sun_azimuth_deg);
     sky.sun_irradiance = global_float(app, "envmap.sun_irradiance", sky.sun_irradiance);
+    const sl_param *ground = global_param(app, "envmap.ground_color");
+    if (ground) memcpy(sky.ground, ground->value.f, sizeof sky.ground);
     float *px = malloc((size_t)w * h * 4 * sizeof *px);
     if (!px) return NULL;
     for (int y = 0; y < h; y++)

@@ -16,30 +16,53 @@
 #include <string.h>
 #include <time.h>
 
-static const char *methods[][2] = {
+static const char *default_methods[][2] = {
     {"mirror", "envmap.specular=mirror"}, {"dominant", "envmap.specular=dominant"},
     {"fis1", "envmap.specular=fis envmap.fis_samples=1"}, {"fis2", "envmap.specular=fis envmap.fis_samples=2"},
     {"fis4", "envmap.specular=fis envmap.fis_samples=4"}, {"fis8", "envmap.specular=fis envmap.fis_samples=8"},
     {"fis16", "envmap.specular=fis envmap.fis_samples=16"}, {"fis32", "envmap.specular=fis envmap.fis_samples=32"},
     {"hybrid8", "envmap.specular=hybrid envmap.fis_samples=8"}, {"hybrid16", "envmap.specular=hybrid envmap.fis_samples=16"},
+    {"filtered8", "envmap.specular=filtered envmap.filtered_samples=8"},
+    {"filtered16", "envmap.specular=filtered envmap.filtered_samples=16"},
+    {"filtered32", "envmap.specular=filtered envmap.filtered_samples=32"},
 };
-enum { NM = sizeof methods / sizeof *methods, NA = sizeof ibl_alphas / sizeof *ibl_alphas };
+enum { NA = sizeof ibl_alphas / sizeof *ibl_alphas, MAX_METHODS = 64 };
+static const char *methods[MAX_METHODS][2];
+static int NM;
 
 int main(int argc, char **argv) {
     int size = 96, frames = 5, ref_frames = 64;
     const char *envs[8];
     int ne = 0;
+    bool accumulated = true;
+    char *method_args[MAX_METHODS];
+    int nmethod_args = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--size") && i + 1 < argc) size = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--method") && i + 1 < argc && nmethod_args < MAX_METHODS) method_args[nmethod_args++] = argv[++i];
+        else if (!strcmp(argv[i], "--no-accumulated")) accumulated = false;
         else if (!strcmp(argv[i], "--frames") && i + 1 < argc) frames = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--reference-frames") && i + 1 < argc) ref_frames = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--env") && i + 1 < argc && ne < 8) envs[ne++] = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--size N] [--frames N] [--reference-frames N] [--env PATH|sky]...\n", argv[0]);
+            fprintf(stderr, "usage: %s [--size N] [--frames N] [--reference-frames N] [--env PATH|sky]... "
+                            "[--method NAME=\"id=value ...\"]... [--no-accumulated]\n", argv[0]);
             return 2;
         }
     }
     if (!ne) envs[ne++] = "sky";
+    for (int k = 0; k < nmethod_args; k++) { /* NAME=SETTINGS replaces the default list */
+        char *eq = strchr(method_args[k], '=');
+        if (!eq) {
+            fprintf(stderr, "--method %s: expected NAME=\"id=value ...\"\n", method_args[k]);
+            return 2;
+        }
+        *eq = 0;
+        methods[NM][0] = method_args[k], methods[NM++][1] = eq + 1;
+    }
+    if (!nmethod_args)
+        for (size_t k = 0; k < sizeof default_methods / sizeof *default_methods; k++)
+            methods[NM][0] = default_methods[k][0], methods[NM++][1] = default_methods[k][1];
     int n = size * size;
     float *ref = malloc((size_t)NA * n * 16), *img = malloc((size_t)n * 16);
     unsigned char *mask = malloc((size_t)NA * n);
@@ -85,6 +108,7 @@ int main(int argc, char **argv) {
                 }
             }
             sl_harness_destroy(h);
+            if (!accumulated) continue;
             h = ibl_sphere(envs[e], ibl_materials[m][1], size, ref_frames);
             /* the highest setting: fis N = 32 and the convolved irradiance (SH is band-limited) */
             /* (fis_lod_bias −1: the setting measured for this target before the default became 0 for

@@ -549,6 +549,97 @@ static void test_sh_latlong(void) {
     em_image_free(&img);
 }
 
+/* Environment importance sampling (em_env_distribution): on a map with a bright disk, a dimmer
+ * band and a black cap, (1) the density integrates to 1 over the sphere (Σ pdf·Ω over the cells)
+ * and is the compensated weight Y_max(3×3) − Ȳ (0 below 1.01 Ȳ) / Σ weight·Ω, computed here from the
+ * pixels; (2) directions drawn by the sampler land in each cell as often as pdf·Ω_cell says;
+ * (3) the sampler's pdf is em_env_distribution_pdf at the direction it returns; (4) a constant
+ * map has no distribution (MIS compensation: the furnace stays BRDF-sampled); (5) a wide image
+ * is box-averaged to max_width columns. */
+static void dist_fn(const double d[3], double out[3], void *user) {
+    (void)user;
+    double sun[3] = {0.6, 0.5, -0.6245};
+    double c = d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2];
+    double v = d[1] > 0.8 ? 0.0 : c > 0.995 ? 500.0 : fabs(d[1]) < 0.2 ? 2.0 : 0.3;
+    out[0] = v, out[1] = 0.5 * v, out[2] = 0.25 * v;
+}
+static void test_env_distribution(void) {
+    em_image img;
+    make_latlong(&img, 128, 64, 2, dist_fn, NULL);
+    em_env_distribution d;
+    CHECK(em_env_distribution_build(&img, 1024, &d));
+    CHECK(d.w == 128 && d.h == 64);
+    double sum = 0, worst_pdf = 0, mean = 0;
+    static double lum[64][128];
+    for (int y = 0; y < 64; y++)
+        for (int x = 0; x < 128; x++) {
+            const float *p = img.px + ((size_t)y * img.w + x) * 4;
+            lum[y][x] = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            mean += lum[y][x] * (2 * M_PI / 128) * (cos(M_PI * y / 64) - cos(M_PI * (y + 1) / 64)) / (4 * M_PI);
+        }
+    for (int y = 0; y < d.h; y++) {
+        double omega = (2 * M_PI / d.w) * (cos(M_PI * y / d.h) - cos(M_PI * (y + 1) / d.h));
+        for (int x = 0; x < d.w; x++) {
+            double m = 0;
+            for (int j = y - 1; j <= y + 1; j++)
+                for (int i = x - 1; i <= x + 1; i++)
+                    if (j >= 0 && j < 64) m = fmax(m, lum[j][(i + 128) % 128]);
+            sum += d.pdf[y * d.w + x] * omega;
+            worst_pdf = fmax(worst_pdf, fabs(d.pdf[y * d.w + x] - (m > 1.01 * mean ? m - mean : 0) / d.total));
+        }
+    }
+    printf("environment distribution: sum of pdf x solid angle %.6f, max |pdf - (Y_max - mean)/total| %.2e\n", sum, worst_pdf);
+    CHECK_NEAR(sum, 1, 1e-4);
+    CHECK(worst_pdf < 1e-4);
+    /* sampling: counts per cell against pdf·Ω, with the cells' own pdf at each sample */
+    enum { N = 400000 };
+    int *count = calloc((size_t)d.w * d.h, sizeof(int));
+    double worst_mismatch = 0;
+    long on_black = 0;
+    for (int i = 0; i < N; i++) {
+        double xi1 = (i + 0.5) / N, xi2 = (i * 0.7548776662466927) - floor(i * 0.7548776662466927), dir[3], u, v;
+        double pdf = em_env_distribution_sample(&d, xi1, xi2, dir);
+        CHECK_NEAR(sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]), 1, 1e-9);
+        worst_mismatch = fmax(worst_mismatch, fabs(pdf - em_env_distribution_pdf(&d, dir)) / fmax(pdf, 1e-12));
+        on_black += dir[1] > 0.8 + 0.02; /* the black cap (away from its edge row) */
+        em_dir_latlong(dir, &u, &v);
+        count[(int)fmin(v * d.h, d.h - 1) * d.w + (int)fmin(u * d.w, d.w - 1)]++;
+    }
+    double worst_cell = 0;
+    for (int y = 0; y < d.h; y++) {
+        double omega = (2 * M_PI / d.w) * (cos(M_PI * y / d.h) - cos(M_PI * (y + 1) / d.h));
+        for (int x = 0; x < d.w; x++) {
+            double want = (double)N * d.pdf[y * d.w + x] * omega;
+            if (want < 100) continue;
+            worst_cell = fmax(worst_cell, fabs(count[y * d.w + x] - want) / sqrt(want));
+        }
+    }
+    printf("  %d samples: returned pdf vs the pdf at the direction: max relative difference %.2e; "
+           "worst cell |count - N pdf Omega| / sqrt(N pdf Omega) = %.2f; on the black cap %ld\n",
+           N, worst_mismatch, worst_cell, on_black);
+    CHECK(worst_mismatch < 1e-6);
+    CHECK_MSG(worst_cell < 5, "sampled directions do not follow the pdf (%.2f sigma)", worst_cell);
+    CHECK(on_black == 0);
+    free(count);
+    em_env_distribution_free(&d);
+    /* a constant map: nothing stands out, no distribution */
+    em_image flat = {16, 8, malloc(16 * 8 * 16)};
+    for (int i = 0; i < 16 * 8; i++) flat.px[4 * i] = flat.px[4 * i + 1] = flat.px[4 * i + 2] = 3, flat.px[4 * i + 3] = 1;
+    CHECK(em_env_distribution_build(&flat, 1024, &d));
+    CHECK(d.total == 0);
+    em_env_distribution_free(&d);
+    em_image_free(&flat);
+    /* a wide image is averaged down to max_width */
+    CHECK(em_env_distribution_build(&img, 32, &d));
+    CHECK(d.w == 32 && d.h == 16);
+    sum = 0;
+    for (int y = 0; y < d.h; y++)
+        for (int x = 0; x < d.w; x++) sum += d.pdf[y * d.w + x] * (2 * M_PI / d.w) * (cos(M_PI * y / d.h) - cos(M_PI * (y + 1) / d.h));
+    CHECK_NEAR(sum, 1, 1e-4);
+    em_env_distribution_free(&d);
+    em_image_free(&img);
+}
+
 /* em_irradiance_cube's three methods (issue 18 item 6) against closed forms, and the two fast
  * ones against the direct sum:
  *   constant L                    E/π = L (per channel);
@@ -711,6 +802,7 @@ int main(void) {
     test_lut(&g);
     test_irradiance(&g);
     test_sh_latlong();
+    test_env_distribution();
     test_irradiance_methods(&g);
     test_level_maps();
     test_disk(&g, EM_LEVEL_MAP_SQRT);

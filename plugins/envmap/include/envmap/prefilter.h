@@ -98,6 +98,35 @@ void em_sh9_diffuse(const double sh[9][3], const double n[3], double out[3]);
 /* The nine coefficients premultiplied by Â_l/π: what the shader evaluates. */
 void em_sh9_diffuse_coefficients(const double sh[9][3], float out[9][3]);
 
+/* ---------------------------------------------------------------- environment importance sampling */
+
+/* A lat-long's radiance as a distribution of directions (PBRT's piecewise-constant 2D sampling,
+ * Pharr et al. ch. 13.6 / 14.2): cell (x, y) of a w × h grid (the image, box-averaged down to at
+ * most max_width columns) is picked with probability ∝ its weight × its solid angle
+ * Ω_y = (2π/w)(cos θ_y − cos θ_{y+1}) — the sin θ weighting — through a marginal CDF over rows and
+ * a conditional CDF within the row, then a point uniform in (φ, cos θ) inside it, so the density
+ * over solid angle is constant in a cell: pdf = weight / Σ weight·Ω. The weight is the largest
+ * luminance of the cell's 3 × 3 neighbourhood (lookups are bilinear: a cell beside a bright one
+ * reads some of it) above the map's mean, Y_max − Ȳ (0 when Y_max ≤ 1.01 Ȳ): MIS compensation (Karlík et al. 2019, "MIS
+ * compensation: optimizing sampling techniques in multiple importance sampling"), which leaves
+ * what BRDF sampling already does well (the even part of the map) to BRDF sampling and spends
+ * the environment samples on what stands out — a constant map gets no distribution at all
+ * (total 0), so the white furnace stays exact. Cells of weight 0 are never picked (pdf 0: MIS
+ * gives BRDF samples there full weight). The GLSL sampler (envmap_shading.glsl,
+ * envmap_env_sample) reads these arrays as textures. */
+typedef struct em_env_distribution {
+    int w, h;
+    float *conditional; /* w*h: per row, the CDF over its cells, 1 at the last (rows of weight 0: uniform) */
+    float *pdf;         /* w*h: solid-angle density of a direction in the cell (weight / total) */
+    float *marginal;    /* h: the CDF over rows, 1 at the last */
+    double total;       /* Σ weight·Ω; 0 = nothing to sample (a constant map) */
+} em_env_distribution;
+bool em_env_distribution_build(const em_image *latlong, int max_width, em_env_distribution *out);
+void em_env_distribution_free(em_env_distribution *d);
+/* The sampler in C (the GLSL's twin): the map-space direction for (ξ1, ξ2) ∈ [0,1)², and its pdf. */
+double em_env_distribution_sample(const em_env_distribution *d, double xi1, double xi2, double dir[3]);
+double em_env_distribution_pdf(const em_env_distribution *d, const double dir[3]);
+
 /* ---------------------------------------------------------------- procedural sky */
 
 /* The sky's ranges: the envmap.sun_* parameters and "sky:E:A:I" specs alike. */
@@ -108,6 +137,7 @@ typedef struct em_sky {
     float sun_elevation_deg, sun_azimuth_deg; /* azimuth as φ: 0 = +Z, 90 = +X */
     float sun_irradiance;                     /* E of the sun disk at normal incidence */
     float sun_radius_deg;
+    float ground[3]; /* radiance below the horizon (the ground beyond the scene), linear RGB */
 } em_sky;
 void em_sky_default(em_sky *s);
 void em_sky_radiance(const em_sky *s, const double d[3], double out[3]);
