@@ -185,11 +185,11 @@ static sl_status core_create(const sl_host *host, void **user) {
         if (!light_key_valid(&light_keys[i]) || host->add_param(host, &light_keys[i].desc) != SL_OK) return SL_ERR_FAILED;
     /* the render scale's model for the budget: cost the pixels' share (s²); error the RMSE of the
      * default scene rendered at s and scaled up bilinearly against the full size (docs/budget.md) */
-    static const char *const scales[] = {"0.35", "0.5", "0.6", "0.7", "0.85", "1"};
-    static const float scale_cost[] = {0.1225f, 0.25f, 0.36f, 0.49f, 0.7225f, 1};
-    static const float scale_error[] = {0.0274f, 0.0218f, 0.0181f, 0.0166f, 0.0145f, 0};
+    static const char *const scales[] = {"0.25", "0.35", "0.5", "0.6", "0.7", "0.85", "1"};
+    static const float scale_cost[] = {0.0625f, 0.1225f, 0.25f, 0.36f, 0.49f, 0.7225f, 1};
+    static const float scale_error[] = {0.0359f, 0.0274f, 0.0218f, 0.0181f, 0.0166f, 0.0145f, 0};
     const sl_ext_budget *budget = host->get_extension(host, SL_EXT_BUDGET);
-    const sl_quality_model scale = {.struct_size = sizeof scale, .param = "render_scale", .count = 6, .values = scales,
+    const sl_quality_model scale = {.struct_size = sizeof scale, .param = "render_scale", .count = 7, .values = scales,
                                     .cost = scale_cost, .error = scale_error,
                                     .measured_with = "docs/budget.md: the default scene at 1280x720, RMSE of linear radiance"};
     if (!budget || budget->add_quality_model(host, &scale) != SL_OK) return SL_ERR_FAILED;
