@@ -36,13 +36,24 @@ int main(void) {
     const char *b = getenv("SHADELAB_TEST_BACKEND");
     if (b && *b) sl_backend_parse(b, &o.backend);
 
-    /* the knobs the core declares: core.ssaa 1..8 */
+    /* the knobs the core declares: core.ssaa 1..8 and core.render_scale 0.25..1 in 5 steps; one
+     * at a time they are 8 + 5 settings, as a grid (automatic under 64) 8 × 5, the last fastest */
     sl_bench_options e = o;
     e.setting_count = 0;
+    e.sweep = SL_SWEEP_ONE_AT_A_TIME;
     char **list = NULL;
     int count = 0;
     CHECK(sl_bench_enumerate(&e, &list, &count, err, sizeof err));
-    CHECK_MSG(count == 8 && !strcmp(list[0], "core.ssaa=1") && !strcmp(list[7], "core.ssaa=8"), "%d settings", count);
+    CHECK_MSG(count == 13 && !strcmp(list[0], "core.ssaa=1") && !strcmp(list[7], "core.ssaa=8") &&
+                  !strcmp(list[8], "core.render_scale=0.25") && !strcmp(list[12], "core.render_scale=1"),
+              "%d settings, the first %s", count, count ? list[0] : "none");
+    for (int i = 0; i < count; i++) free(list[i]);
+    free(list);
+    e.sweep = SL_SWEEP_AUTO;
+    CHECK(sl_bench_enumerate(&e, &list, &count, err, sizeof err));
+    CHECK_MSG(count == 40 && !strcmp(list[0], "core.ssaa=1 core.render_scale=0.25") &&
+                  !strcmp(list[39], "core.ssaa=8 core.render_scale=1"),
+              "%d settings, the first %s", count, count ? list[0] : "none");
     for (int i = 0; i < count; i++) free(list[i]);
     free(list);
 

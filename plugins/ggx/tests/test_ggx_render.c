@@ -67,8 +67,11 @@ static bool aa_case(float cam_y, const float sun_dir[3], float min_dist, double 
              " \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\", \"size\": 40}, \"material\": \"bumpy\"}],\n"
              " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [%g, %g, %g], \"intensity\": 4}]}",
              cam_y, SL_SCENES_DIR, sun_dir[0], sun_dir[1], sun_dir[2]);
-    const char *const *sets[3] = {(const char *[]){"ggx.specular_aa=true", NULL},
-                                  (const char *[]){"ggx.specular_aa=false", NULL},
+    /* on and off filter the map as a GPU does by default (anisotropy 8): with a CPU renderer's
+     * default of 1 the mip is chosen by the footprint's long axis and blurs the map across it too,
+     * and in the known failure case (6 m, side sun) AA's RMSE is 0.312 against 0.306 off. */
+    const char *const *sets[3] = {(const char *[]){"ggx.specular_aa=true", "core.anisotropy=8", NULL},
+                                  (const char *[]){"ggx.specular_aa=false", "core.anisotropy=8", NULL},
                                   (const char *[]){"ggx.specular_aa=false", "core.ssaa=8", "core.anisotropy=1", "normal-map.lod_bias=-16", NULL}};
     float *outs[3] = {on, off, ref};
     for (int k = 0; k < 3; k++) {
