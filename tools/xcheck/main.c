@@ -30,7 +30,10 @@ static const char usage[] =
     "  --camera NAME      the scene camera to use\n"
     "  --data DIR         data directory for scene assets\n"
     "  --frames N         shadelab frames rendered (TAA converges; default 8); the last is compared\n"
-    "  --reference-only   export and render Cycles only (DIR/cycles.exr, DIR/index.exr)\n"
+    "  --reference-only   export and render Cycles only (DIR/cycles.exr, DIR/index.exr; with --eevee,\n"
+    "                     DIR/eevee-N.exr and their times in DIR/eevee.tsv)\n"
+    "  --export-only      export the Blender scene only (DIR/blender/) and print what is not\n"
+    "                     cross-checked; needs no Blender\n"
     "  --eevee N[,N...]   also render with EEVEE at these sample counts (under xvfb-run without a\n"
     "                     display) and report its error and time beside shadelab's\n"
     "  --blender PATH     the Blender executable (default $SHADELAB_BLENDER or blender)\n"
@@ -45,7 +48,7 @@ static const char usage[] =
 typedef struct options {
     const char *scene, *out, *blender, *cache, *camera, *data;
     int width, height, samples, bounces, frames;
-    bool reference_only, no_cache;
+    bool reference_only, export_only, no_cache;
     double max_rel_rms;
     const char *settings[128]; int setting_count;
     const char *plugins[64]; int plugin_count;
@@ -60,6 +63,7 @@ static bool parse(int argc, char **argv, options *o) {
 #define NEXT() (has_next ? argv[++i] : NULL)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); exit(0); }
         else if (!strcmp(a, "--reference-only")) o->reference_only = true;
+        else if (!strcmp(a, "--export-only")) o->export_only = true;
         else if (!strcmp(a, "--no-cache")) o->no_cache = true;
         else if (a[0] == '-' && a[1] == '-' && !has_next) { fprintf(stderr, "shadelab-xcheck: %s needs a value\n", a); return false; }
         else if (!strcmp(a, "--size")) {
@@ -608,6 +612,21 @@ static bool render_eevee(const options *o, const char *out, const char *blender,
     return true;
 }
 
+/* OUT/eevee.tsv: "samples<TAB>ms per render" a line, for --reference-only's readers (shadelab-bench). */
+static bool write_eevee_times(const char *out, const options *o, const report_ctx *r, char *err, size_t n) {
+    if (!o->eevee_count) return true;
+    char path[4300];
+    snprintf(path, sizeof path, "%s/eevee.tsv", out);
+    FILE *f = fopen(path, "w");
+    if (!f) { snprintf(err, n, "%s: cannot write: %s", path, strerror(errno)); return false; }
+    for (int k = 0; k < o->eevee_count; k++) {
+        fprintf(f, "%d\t%.3f\n", o->eevee[k], r->eevee_ms[k]);
+        printf("EEVEE: %d samples, %.1f ms per render: %s/eevee-%d.exr\n", o->eevee[k], r->eevee_ms[k], out, o->eevee[k]);
+    }
+    if (fclose(f) != 0) { snprintf(err, n, "%s: cannot write", path); return false; }
+    return true;
+}
+
 /* OUT/report.txt (printed too) and OUT/report.json; *worst as report() returns it. */
 static bool write_report(const char *out, const report_ctx *r, double *worst, char *err, size_t n) {
     char txt_path[4300], json_path[4300];
@@ -640,7 +659,8 @@ int main(int argc, char **argv) {
     if (o.out) snprintf(out, sizeof out, "%s", o.out);
     else default_out(o.scene, out, sizeof out);
     const char *blender = blender_path(&o);
-    if (!blender_version(blender, version, sizeof version)) {
+    if (o.export_only) snprintf(version, sizeof version, "(not run)");
+    else if (!blender_version(blender, version, sizeof version)) {
         fprintf(stderr, "shadelab-xcheck: Blender is not installed or does not run (\"%s --version\" failed): "
                         "the cross-check needs it (Debian package blender; tools/install-deps.sh --with-tests)\n",
                 blender);
@@ -663,11 +683,16 @@ int main(int argc, char **argv) {
     uint64_t key = sl_tool_hash64(version, strlen(version), ex.hash);
     report_ctx r = {.o = &o, .app = &app, .ex = &ex, .w = o.width, .h = o.height, .blender_version = version, .key = key,
                     .shadelab_ms = NAN};
-    ok = ok && reference(&o, out, blender, key, &ex, &ref, &index, &r.cached, &r.cycles_seconds, err, sizeof err);
+    ok = ok && (o.export_only ||
+                reference(&o, out, blender, key, &ex, &ref, &index, &r.cached, &r.cycles_seconds, err, sizeof err));
     double worst = 0;
-    if (ok && o.reference_only) {
+    if (ok && o.export_only) {
+        printf("shadelab-xcheck: the Blender scene is in %s\n", blender_dir);
+        for (int i = 0; i < ex.note_count; i++) printf("%s\n", ex.notes[i]);
+    } else if (ok && o.reference_only) {
         printf("shadelab-xcheck: Cycles reference %s/cycles.exr (%s)\n", out, r.cached ? "from the cache" : "rendered");
         for (int i = 0; i < ex.note_count; i++) printf("%s\n", ex.notes[i]);
+        ok = render_eevee(&o, out, blender, eevee, &r, err, sizeof err) && write_eevee_times(out, &o, &r, err, sizeof err);
     } else if (ok) {
         test = malloc((size_t)o.width * o.height * 4 * sizeof *test);
         if (!test) snprintf(err, sizeof err, "out of memory");
