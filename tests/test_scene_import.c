@@ -243,6 +243,18 @@ static void test_bad_files(void) {
     snprintf(expect, sizeof expect, "data directory %s/nowhere/x.glb (No such file or directory)", sl_test_dir());
     CHECK_CONTAINS(err, expect);
 
+    /* a scene whose files are generated names the command that writes them */
+    CHECK(!sl_scene_load_text(&s, "{ \"nodes\": [ { \"mesh\": { \"file\": \"gen/x.obj\" } } ],\n"
+                                  "  \"generated_by\": \"make-x gen\" }",
+                              "generated.json", SL_TEST_DATA_DIR, NULL, err, sizeof err));
+    CHECK_CONTAINS(err, "'gen/x.obj' not found; looked in: scene directory ");
+    CHECK_CONTAINS(err, "This scene's files are generated: run make-x gen");
+    CHECK(!strstr(err, "--data"));
+    CHECK(!sl_scene_load_text(&s, "{ \"generated_by\": 3 }", "generated.json", SL_TEST_DATA_DIR, NULL, err, sizeof err));
+    CHECK_CONTAINS(err, "generated.json:1:");
+    CHECK_CONTAINS(err, "\"generated_by\" must be the command");
+    sl_scene_free(&s);
+
     /* a directory is not a mesh */
     CHECK(!sl_scene_load_text(&s, "{ \"nodes\": [ { \"mesh\": { \"file\": \"scenes\" } } ] }",
                               "dir.json", SL_TEST_DATA_DIR, NULL, err, sizeof err));

@@ -344,6 +344,7 @@ void sl_scene_free(sl_scene *scene) {
     free(scene->anim_nodes);
     free(scene->path);
     free(scene->dir);
+    free(scene->generated_by);
     for (int i = 0; i < scene->material_count; i++) {
         free(scene->materials[i].name);
         free(scene->materials[i].model);
@@ -510,6 +511,9 @@ char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const c
         if (!used)
             snprintf(err, err_size, "'%s' not found: no scene directory and no data directory "
                      "(--data DIR or SHADELAB_DATA) to look in", rel);
+        else if (scene && scene->generated_by && !unusable)
+            snprintf(err, err_size, "'%s' not found; looked in: %s. This scene's files are generated: run %s", rel,
+                     tried, scene->generated_by);
         else
             snprintf(err, err_size, "'%s' %s; looked in: %s%s", rel, unusable ? "cannot be read" : "not found", tried,
                      dirs[1] || unusable ? "" : " (no data directory set: --data DIR or SHADELAB_DATA)");

@@ -151,6 +151,7 @@ typedef struct sl_environment {
 typedef struct sl_scene {
     char *path;             /* file it came from ("<default>" for the built-in one) */
     char *dir;              /* directory used to resolve relative asset paths */
+    char *generated_by;     /* the command that writes the scene's generated files, or NULL */
     sl_material *materials; int material_count;
     sl_mesh *meshes;        int mesh_count;
     sl_node *nodes;         int node_count;

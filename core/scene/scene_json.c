@@ -14,9 +14,10 @@ extern const char sl_default_scene_json[]; /* generated from scenes/default.json
 
 /* ---- entry points ----------------------------------------------------------------------- */
 
-/* "gallery" is tools/gallery.sh's (scenes/README.md); the viewer ignores it */
+/* "gallery" is tools/gallery.sh's (scenes/README.md); the viewer ignores it. "generated_by" is
+ * the command that writes the scene's generated files, named when one is missing. */
 static const char *const top_keys[] = {"plugins", "params", "cameras", "materials", "nodes",
-                                       "lights", "environment", "gallery"};
+                                       "lights", "environment", "gallery", "generated_by"};
 
 static bool load(loader *L, const char *dir) {
     const char *text = L->text;
@@ -53,6 +54,13 @@ static bool load(loader *L, const char *dir) {
         goto done;
     }
     const cJSON *v;
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "generated_by"))) {
+        if (!cJSON_IsString(v) || !v->valuestring[0] || strlen(v->valuestring) > 512)
+            ok = sj_failf(L, v, "\"generated_by\" must be the command (a string of 1-512 characters) that "
+                                "writes the scene's generated files");
+        else if (!(s->generated_by = strdup(v->valuestring)))
+            ok = sj_failf(L, NULL, "out of memory");
+    }
     if (ok && (v = cJSON_GetObjectItemCaseSensitive(root, "plugins"))) ok = sj_load_plugins(L, v);
     if (ok && (v = cJSON_GetObjectItemCaseSensitive(root, "params"))) ok = sj_load_params(L, v);
     if (ok && (v = cJSON_GetObjectItemCaseSensitive(root, "materials"))) ok = sj_load_materials(L, v);
