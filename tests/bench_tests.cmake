@@ -16,7 +16,7 @@ add_test(NAME bench_cli_bad_plugin COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_in_tmpd
          $<TARGET_FILE:shadelab-bench> --plugin no-such-plugin --size 16x16 --no-cache --out @TMP@/bad)
 add_test(NAME bench_cli_bad_vary COMMAND shadelab-bench --plugin core --vary core.nope=1,2 --list)
 set_tests_properties(bench_cli bench_cli_bad_plugin bench_cli_bad_vary PROPERTIES
-                     ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300 LABELS bench)
+                     ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD} LABELS bench)
 set_tests_properties(bench_cli_bad_plugin PROPERTIES WILL_FAIL TRUE)
 set_tests_properties(bench_cli_bad_vary PROPERTIES PASS_REGULAR_EXPRESSION "not a quality knob of core")
 
@@ -25,5 +25,5 @@ set_tests_properties(bench_cli_bad_vary PROPERTIES PASS_REGULAR_EXPRESSION "not 
 add_test(NAME bench_cli_orbit COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_in_tmpdir.sh bench_cli_orbit $<TARGET_FILE:shadelab-bench>
          --orbit 1.5 --scene ${PROJECT_SOURCE_DIR}/scenes/basic.json --size 32x24 --orbit-points 2 --orbit-hq ""
          --out @TMP@/orbit -q)
-set_tests_properties(bench_cli_orbit PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 300 LABELS bench
+set_tests_properties(bench_cli_orbit PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD} LABELS bench
                      PASS_REGULAR_EXPRESSION "frame ms: p50 [0-9.]+  p95 [0-9.]+  p99 [0-9.]+.*mean of 2 frame pairs.*converged still \\([ 0-9]+ f\\): FLIP 0.0000  RMSE 0\n")

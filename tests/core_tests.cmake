@@ -50,7 +50,7 @@ endforeach()
 # non-zero with the cause named.
 add_test(NAME cli_scenes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_scenes
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_scenes.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
-set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 900)
+set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD})
 
 # Pass order by stage value, not load order; dependencies switch off with what they need.
 sl_add_test(pass_order SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_pass_order.c)
@@ -59,7 +59,7 @@ add_dependencies(test_pass_order ${SL_TEST_PLUGINS})
 
 # --explain lists vertex hooks with the fragment chunks of each material's program.
 add_test(NAME explain_vertex_hooks COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/explain_vertex_hooks.sh $<TARGET_FILE:shadelab>)
-set_tests_properties(explain_vertex_hooks PROPERTIES ENVIRONMENT "${SL_TEST_ENV};SHADELAB_PLUGIN_PATH=${SL_TP_DIR}" TIMEOUT 120)
+set_tests_properties(explain_vertex_hooks PROPERTIES ENVIRONMENT "${SL_TEST_ENV};SHADELAB_PLUGIN_PATH=${SL_TP_DIR}" TIMEOUT ${SL_HANG_GUARD})
 
 # --turntable: the orbit's cameras against closed forms (seamless loop), frame names; and the
 # command line end to end (files, frames that differ, frame k depends only on its angle, ffmpeg
@@ -67,24 +67,24 @@ set_tests_properties(explain_vertex_hooks PROPERTIES ENVIRONMENT "${SL_TEST_ENV}
 sl_add_test(turntable SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_turntable.c)
 add_test(NAME cli_turntable COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_turntable
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_turntable.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff> @TMP@)
-set_tests_properties(cli_turntable PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 600)
+set_tests_properties(cli_turntable PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD})
 
 # Lazy program creation (issue 19's cold start): programs of passes that never run are not
 # compiled; those that do run are (the -v list of programs built).
 add_test(NAME cli_lazy_programs COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_lazy_programs
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_lazy_programs.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
-set_tests_properties(cli_lazy_programs PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 120)
+set_tests_properties(cli_lazy_programs PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD})
 # A warm start reuses what the start before it built: far less start-up CPU, and the plugins'
 # own caches hit (measured with --stats and -v; cli_warm_start.sh says why CPU time and the margin).
 add_test(NAME cli_warm_start COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_warm_start
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_warm_start.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
-set_tests_properties(cli_warm_start PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 600)
+set_tests_properties(cli_warm_start PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD})
 add_test(NAME cli_lazy_oiio COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_lazy_oiio
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_lazy_oiio.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
-set_tests_properties(cli_lazy_oiio PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 120)
+set_tests_properties(cli_lazy_oiio PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD})
 
 # Headless stills stop when they are done (core/still.h): converged (no display value changes by
 # 1/255), or the budget ran out; a scene with hard edges runs its still to the end.
 sl_add_test(still_stop SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_still_stop.c)
 # The frame-time budget's controller on synthetic cost models (no GL, no timing).
-sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT 60)
+sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT ${SL_HANG_GUARD})

@@ -9,8 +9,8 @@ if(SL_BUILD_EXTRAS)
     add_test(NAME extras_${module}
              COMMAND ${CMAKE_CTEST_COMMAND} --test-dir ${PROJECT_BINARY_DIR}/extras/${module} --output-on-failure
                      --no-tests=error)
-    set_tests_properties(extras_${module} PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 900 LABELS "extras;sdk")
+    set_tests_properties(extras_${module} PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 3600 LABELS "extras;sdk")
   endforeach()
   add_test(NAME extras_sdk_only COMMAND ${CMAKE_CURRENT_LIST_DIR}/extras.sh ${PROJECT_SOURCE_DIR}/extras)
-  set_tests_properties(extras_sdk_only PROPERTIES LABELS "extras;sdk;architecture" TIMEOUT 60)
+  set_tests_properties(extras_sdk_only PROPERTIES LABELS "extras;sdk;architecture" TIMEOUT ${SL_HANG_GUARD})
 endif()

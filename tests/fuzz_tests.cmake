@@ -87,9 +87,9 @@ endif()
 sl_add_test(fuzz_regress SOURCES ${CMAKE_CURRENT_LIST_DIR}/fuzz_regress.c LABELS hardening)
 add_test(NAME fuzz_scene COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DBIN=${PROJECT_BINARY_DIR}/fuzz
                                  -DSECONDS=20 -P ${CMAKE_CURRENT_LIST_FILE})
-set_tests_properties(fuzz_scene PROPERTIES TIMEOUT 300 LABELS hardening SKIP_REGULAR_EXPRESSION "SKIP: ")
+set_tests_properties(fuzz_scene PROPERTIES TIMEOUT ${SL_HANG_GUARD} LABELS hardening SKIP_REGULAR_EXPRESSION "SKIP: ")
 add_test(NAME fuzz_gltf COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DBIN=${PROJECT_BINARY_DIR}/fuzz
                                 -DSECONDS=20 -DFUZZER=gltf_fuzzer -P ${CMAKE_CURRENT_LIST_FILE})
-set_tests_properties(fuzz_gltf PROPERTIES TIMEOUT 300 LABELS "hardening;gltf" SKIP_REGULAR_EXPRESSION "SKIP: "
+set_tests_properties(fuzz_gltf PROPERTIES TIMEOUT ${SL_HANG_GUARD} LABELS "hardening;gltf" SKIP_REGULAR_EXPRESSION "SKIP: "
                      RESOURCE_LOCK fuzz_build)
 set_tests_properties(fuzz_scene PROPERTIES RESOURCE_LOCK fuzz_build)

@@ -48,7 +48,7 @@ cd "$T/run1"
 SHADELAB_VIEWER_SCRIPT="wait 3; key P; set light.sun.enabled=false; wait 3; key P; grab $T/run1/window1.png; \
 key V; wait 3; key P; set example.enabled=false; wait 1; grab $T/run1/status.png; wait 3; key P; grab $T/run1/after.png; \
 key 1; key Shift+1; key 2; key Shift+P; wait 2; quit" \
-  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" \
+  timeout 900 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" \
     --plugin "$KEYSA" --plugin "$KEYSB" >"$T/run1.out" 2>"$T/run1.err"
 rc=$?
 [ $rc -eq 0 ] || { cat "$T/run1.err"; fail "viewer exited with $rc"; }
@@ -91,7 +91,7 @@ echo "== 2. hot reload: error keeps the last good program and is shown; the fix 
 cd "$T/run2"
 SHADELAB_VIEWER_SCRIPT="wait 2; key P; waitfile $T/broken; key F5; wait 2; key P; grab $T/run2/window-error.png; \
 waitfile $T/fixed; key F5; wait 2; key P; grab $T/run2/window-fixed.png; quit" \
-  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" \
+  timeout 900 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --scene "$BASIC" --size $SIZE --plugin "$PLUGIN" \
     --set example.vignette=false >"$T/run2.out" 2>"$T/run2.err" &
 VPID=$!
 wait_for shadelab-000.png || fail "no first screenshot"
@@ -128,7 +128,7 @@ wait \$pid
 EOS
   SHADELAB_VIEWER_SCRIPT="wait 3; grab $T/run3/ready.png; waitfile $T/keysent; waitfile $T/run3/shadelab-001.exr; \
 wait 3; grab $T/run3/nopanel.png; quit" \
-    timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" bash "$T/run3.sh"
+    timeout 900 xvfb-run -a -s "-screen 0 1280x800x24" bash "$T/run3.sh"
   rc=$?
   if [ $rc -eq 77 ]; then
     echo "SKIP part 4: libX11/libXtst not available"
@@ -147,7 +147,7 @@ echo "== 5. what loading reports (a missing texture) is shown in the window, not
 mkdir -p "$T/run5" && cd "$T/run5"
 echo '{"materials": [{"name": "m", "base_color_map": "no-such-texture.png"}], "nodes": [{"mesh": {"primitive": "sphere"}, "material": "m"}], "lights": [{"type": "directional"}]}' >missing.json
 SHADELAB_VIEWER_SCRIPT="wait 2; key P; grab $T/run5/window.png; quit" \
-  timeout 240 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --size $SIZE --scene missing.json \
+  timeout 900 xvfb-run -a -s "-screen 0 1280x800x24" "$SHADELAB" --backend glfw --size $SIZE --scene missing.json \
     >"$T/run5.out" 2>"$T/run5.err"
 [ $? -eq 0 ] || { cat "$T/run5.err"; fail "part 5: viewer failed"; }
 grep -q "no-such-texture.png" "$T/run5.err" || fail "part 5: stderr lacks the missing texture"

@@ -28,7 +28,7 @@ add_test(NAME gui_smoke
          COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_smoke.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff>
                  ${SL_TEST_EXAMPLE_DIR} $<TARGET_FILE:sl_test_keys-a> $<TARGET_FILE:sl_test_keys-b>
                  $<TARGET_FILE:sl-xkey> ${PROJECT_SOURCE_DIR}/scenes/basic.json)
-set_tests_properties(gui_smoke PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 900 LABELS gui SKIP_RETURN_CODE 77)
+set_tests_properties(gui_smoke PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD} LABELS gui SKIP_RETURN_CODE 77)
 
 # Real key presses for the smoke test (XTEST, loaded at run time).
 add_executable(sl-xkey ${CMAKE_CURRENT_LIST_DIR}/gui_xkey.c)
@@ -36,4 +36,4 @@ target_link_libraries(sl-xkey PRIVATE ${CMAKE_DL_LIBS})
 
 # The window's frame-time budget: chooses while moving, converges to the headless still when still.
 add_test(NAME gui_budget COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_budget.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff>)
-set_tests_properties(gui_budget PROPERTIES LABELS "gui" TIMEOUT 900 SKIP_RETURN_CODE 77 ENVIRONMENT "${SL_TEST_ENV}")
+set_tests_properties(gui_budget PROPERTIES LABELS "gui" TIMEOUT ${SL_HANG_GUARD} SKIP_RETURN_CODE 77 ENVIRONMENT "${SL_TEST_ENV}")

@@ -106,6 +106,6 @@ if(SL_SANITIZE_TEST AND NOT SL_SANITIZE)
            -P ${CMAKE_CURRENT_LIST_FILE})
   sl_add_long_test(sanitize_all COMMAND ${sl_sanitize_command} -P ${CMAKE_CURRENT_LIST_FILE}
                    LABELS hardening TIMEOUT 5400 RESOURCE_LOCK sanitize_tree)
-  set_tests_properties(sanitize PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 1800 LABELS hardening
+  set_tests_properties(sanitize PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 3600 LABELS hardening
                        RESOURCE_LOCK sanitize_tree)
 endif()

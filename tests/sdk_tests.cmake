@@ -7,7 +7,7 @@ target_link_libraries(sl-imgdiff PRIVATE shadelab_core)
 add_test(NAME sdk_install
          COMMAND ${CMAKE_CURRENT_LIST_DIR}/sdk_install.sh ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}
                  $<TARGET_FILE:sl-imgdiff> ${CMAKE_COMMAND})
-set_tests_properties(sdk_install PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 600 LABELS sdk)
+set_tests_properties(sdk_install PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD} LABELS sdk)
 
 # The public headers compile as C++20 (`requires` is a keyword there): a build-time check.
 add_executable(sdk_cxx20 ${CMAKE_CURRENT_LIST_DIR}/sdk_cxx20.cpp)

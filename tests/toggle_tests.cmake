@@ -9,6 +9,6 @@ if(SL_BUILD_EXTRAS)
   list(APPEND SL_TOGGLE_SCENE_DIRS ${SL_EXTRA_SCENE_DIRS})
 endif()
 sl_add_test(toggle_matrix SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_toggle_matrix.c ARGS ${SL_TOGGLE_SCENE_DIRS}
-            TIMEOUT 1800 LABELS toggle)
+            TIMEOUT 3600 LABELS toggle)
 sl_add_long_test(toggle_matrix_exhaustive COMMAND $<TARGET_FILE:test_toggle_matrix> --exhaustive ${SL_TOGGLE_SCENE_DIRS}
                  LABELS toggle)
