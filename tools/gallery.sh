@@ -8,7 +8,7 @@
 # Then, per plugin (plugins/*/, extras/*/), links to the images of the scenes that name it.
 # A scene is skipped, with the reason in the gallery, when a plugin it names cannot be loaded
 # (an extra not built) or a file it names is missing (the data directory, SHADELAB_DATA or
-# ../shared/assets, or a generated file its comment explains). Images are 320x180 PNG in
+# ../shared/assets, or a generated file its "generated_by" names). Images are 320x180 PNG in
 # docs/gallery/, rendered headless. Needs jq.
 #   usage: tools/gallery.sh [BUILD_DIR] [OUT_DIR]   (defaults: build, docs)
 #          tools/gallery.sh --plan [BUILD_DIR]     check the metadata and print what would be
@@ -51,7 +51,7 @@ missing_file() { # scene: prints the first file it names that exists neither bes
     dir=$(dirname "$s")
     while IFS= read -r f; do
         [ -e "$dir/$f" ] || [ -e "$f" ] || { [ -n "${SHADELAB_DATA:-}" ] && [ -e "$SHADELAB_DATA/$f" ]; } || { echo "$f"; return; }
-    done < <(jq -r '[.. | objects | to_entries[] | select(.key != "comment" and (.value | type) == "string") | .value
+    done < <(jq -r '[.. | objects | to_entries[] | select(.key != "comment" and .key != "generated_by" and (.value | type) == "string") | .value
                      | select(test("\\.(jpe?g|png|tga|bmp|hdr|exr|glb|gltf|obj|fbx|ply|bin)$"; "i"))] | unique | .[]' "$s")
 }
 
@@ -125,7 +125,9 @@ for s in "${scenes[@]}"; do
     why=""
     for p in "${plugins[@]}"; do can_load "$p" || { why="needs plugin $p, which does not load here (built?)"; break; }; done
     if [ -z "$why" ] && f=$(missing_file "$s") && [ -n "$f" ]; then
-        why="needs $f (the data directory, --data or SHADELAB_DATA, or a file its comment says how to make)"
+        gen=$(jq -r '.generated_by // ""' "$s")
+        if [ -n "$gen" ]; then why="needs $f, a generated file: run $gen"
+        else why="needs $f (the data directory, --data or SHADELAB_DATA)"; fi
     fi
     if [ -n "$why" ]; then
         note "$rel — skipped: $why"
