@@ -10,7 +10,8 @@
 # nothing but tone mapping or the background left out of the cross-check), DATA (data directory
 # for scenes that need one; default ../shared/assets beside the repository), KEEP (a directory
 # that keeps every row's report and images; default a temporary one), REUSE=1 (a row whose report
-# is in KEEP already is not measured again: an interrupted run resumes), OUT (docs/benchmarks.md;
+# is in KEEP already is not measured again: an interrupted run resumes), LIMIT_MIN (start no new
+# row after this many minutes; the rows left are listed as not measured), OUT (docs/benchmarks.md;
 # "-" prints the section). The section sits between the markers below, replaced in place
 # (appended when absent); tools/bench/benchmarks-table.sh keeps it when it rewrites the file.
 # References are cached (shadelab-xcheck's cache: one per scene, shared by its rows); EEVEE renders
@@ -65,6 +66,7 @@ fi
 
 # row SCENE NAME ARGS...: one shadelab-xcheck run into $WORK/NAME; its report's path on rows.
 : > "$TMP/rows"
+: > "$TMP/not_measured"
 row() {
     local scene=$1 name=$2 status
     shift 2
@@ -72,6 +74,11 @@ row() {
         note "$scene: $name (kept from an earlier run)"
         echo "$scene|$WORK/$name/report.json|$*" >> "$TMP/rows"
         REUSED=$((REUSED + 1))
+        return
+    fi
+    if [ -n "${LIMIT_MIN:-}" ] && [ $(( $(date +%s) - T0 )) -ge $(( LIMIT_MIN * 60 )) ]; then
+        note "$scene: $name not measured (LIMIT_MIN=$LIMIT_MIN)"
+        echo "$scene ($name)" >> "$TMP/not_measured"
         return
     fi
     note "$scene: $name"
@@ -103,10 +110,10 @@ LOAD1=$(cut -d' ' -f1-3 /proc/loadavg) T1=$(date +%s)
 COMMIT=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 CPU=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
 
-python3 - "$TMP/section.md" "$TMP/rows" "$TMP/left_out" "$SIZE" "$SAMPLES" "$EEVEE" "$COMMIT" "$(nproc)" "$CPU" \
+python3 - "$TMP/section.md" "$TMP/rows" "$TMP/left_out" "$TMP/not_measured" "$SIZE" "$SAMPLES" "$EEVEE" "$COMMIT" "$(nproc)" "$CPU" \
     "$LOAD0" "$LOAD1" "$(( (T1 - T0 + 30) / 60 ))" "$REUSED" <<'PY'
 import json, sys, datetime
-out, rows_path, left_path, size, samples, eevee, commit, cores, cpu, load0, load1, minutes, reused = sys.argv[1:14]
+out, rows_path, left_path, skipped_path, size, samples, eevee, commit, cores, cpu, load0, load1, minutes, reused = sys.argv[1:15]
 FACTOR = 20  # the issue's figure: error no worse than EEVEE's at a frame time at least 20x shorter
 
 def verdict(s_err, s_ms, ee, key):
@@ -191,6 +198,9 @@ with open(out, "w") as f:
                                               rms, n, flip, both))
     if left:
         f.write("\nLeft out (the exporter's reason): %s.\n" % "; ".join("`%s`: %s" % (s, why) for s, why in left))
+    skipped = open(skipped_path).read().splitlines()
+    if skipped:
+        f.write("\nNot measured in this run (its time limit, LIMIT_MIN): %s.\n" % "; ".join(skipped))
     f.write("<!-- xcheck-table end -->\n")
 PY
 if [ "$OUT" = - ]; then cat "$TMP/section.md"; exit 0; fi
