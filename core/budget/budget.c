@@ -32,6 +32,7 @@ typedef struct sl_budget_state {
     bool skip_observation;                 /* the previous frame changed settings (re-plan, compiles) */
     unsigned long long seen_camera;
     uint64_t seen_lights, seen_materials, seen_params;
+    double seen_time;
     double last_ms;
     char status[512];
 } sl_budget_state;
@@ -158,13 +159,25 @@ static void apply(sl_app *app, const sl_budget_knob *k, int setting) {
     if (q && sl_param_parse(q, k->value[setting], &v, err, sizeof err)) sl_params_set_value(&app->params, q, v, q->source);
 }
 
+/* The scene plays by itself: animated lights or node animations (glTF) follow the clock. */
+static bool scene_animates(const sl_app *app) {
+    if (app->scene.anim_channel_count) return true;
+    for (int i = 0; i < app->scene.light_count; i++) {
+        const sl_light *L = &app->scene.lights[i];
+        if (L->enabled && L->animate != SL_ANIMATE_NONE && L->animate_speed != 0) return true;
+    }
+    return false;
+}
+
 /* Anything the image depends on moved since the last frame: the camera, lights, materials or a
- * parameter (not counting the budget's own settings, applied after this is read). */
+ * parameter (not counting the budget's own settings, applied after this is read), or the clock
+ * of a scene that animates. */
 static bool moved(sl_app *app, sl_budget_state *s) {
     bool m = app->camera.version != s->seen_camera || app->lights_version != s->seen_lights ||
-             app->materials_version != s->seen_materials || app->params.version != s->seen_params;
+             app->materials_version != s->seen_materials || app->params.version != s->seen_params ||
+             (app->time != s->seen_time && scene_animates(app));
     s->seen_camera = app->camera.version, s->seen_lights = app->lights_version;
-    s->seen_materials = app->materials_version;
+    s->seen_materials = app->materials_version, s->seen_time = app->time;
     return m;
 }
 
@@ -180,7 +193,8 @@ void sl_budget_before_frame(sl_app *app) {
     double t = now_ms();
     if (s->last_start_ms > 0) {
         s->last_ms = t - s->last_start_ms;
-        /* the frame after a change re-plans targets and may compile: not what the settings cost */
+        /* the frame after a change re-plans targets and may compile: not what the settings cost
+         * (the controller itself leaves out frames rendered still) */
         if (!s->skip_observation && s->last_ms < 10000) sl_budget_observe(&s->ctl, s->last_choice, s->last_ms);
     }
     s->last_start_ms = t;

@@ -85,7 +85,7 @@ static void fit(sl_budget *b) {
 }
 
 void sl_budget_observe(sl_budget *b, const int *choice, double ms) {
-    if (!(ms > 0) || !isfinite(ms)) return;
+    if (!(ms > 0) || !isfinite(ms) || b->still > 0) return;
     double x = sl_budget_work(b, choice);
     /* a frame far from the prediction (the load changed, other content on screen): the past
      * counts for less, so the model follows within a few frames */

@@ -50,7 +50,9 @@ double sl_budget_error(const sl_budget *b, const int *choice);
 /* The choice of lowest predicted error among those predicted within `budget_ms` (ties: the
  * cheaper); when none is, the cheapest. Exhaustive over every combination. */
 void sl_budget_choose(const sl_budget *b, double budget_ms, int *choice);
-/* A frame rendered with `choice` took `ms`: updates the cost model. */
+/* A frame rendered with `choice` took `ms`: updates the cost model. Call it before the next
+ * sl_budget_step. A frame rendered while still (b->still > 0) is left out: a still's frames cost
+ * what motion does not (a TAA still's Monte Carlo samples), and the model is motion's. */
 void sl_budget_observe(sl_budget *b, const int *choice, double ms);
 /* Once per frame, before rendering it: whether anything moved since the last frame. Updates
  * b->choice and returns true when it changed. Moving: the best choice within the budget, kept
