@@ -27,3 +27,13 @@ add_test(NAME bench_cli_orbit COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_in_tmpdir.sh
          --out @TMP@/orbit -q)
 set_tests_properties(bench_cli_orbit PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD} LABELS bench
                      PASS_REGULAR_EXPRESSION "frame ms: p50 [0-9.]+  p95 [0-9.]+  p99 [0-9.]+.*mean of 2 frame pairs.*converged still \\([ 0-9]+ f\\): FLIP 0.0000  RMSE 0\n")
+
+# --orbit-variant and --orbit-rounds: with a frame-time budget of 1 ms (the cheapest settings while
+# moving) and without, two rounds each, interleaved: each result pools both rounds' 2 pairs, and
+# the budget's converged still (its best settings) equals the budget-free still exactly.
+add_test(NAME bench_cli_orbit_budget COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_in_tmpdir.sh bench_cli_orbit_budget
+         $<TARGET_FILE:shadelab-bench> --orbit 1.5 --scene ${PROJECT_SOURCE_DIR}/scenes/basic.json --size 32x24
+         --orbit-points 2 --orbit-hq "" --orbit-variant "core.budget=1" --orbit-variant "" --orbit-rounds 2
+         --out @TMP@/orbit -q)
+set_tests_properties(bench_cli_orbit_budget PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD} LABELS bench
+                     PASS_REGULAR_EXPRESSION "variant \"core.budget=1\", 2 round\\(s\\):\n[^\n]*\n[^\n]*\n[^\n]*mean of 4 frame pairs:\n[^\n]*\n[^\n]*converged still \\([ 0-9]+ f\\): FLIP 0.0000  RMSE 0\n.*mean of 4 frame pairs.*converged still \\([ 0-9]+ f\\): FLIP 0.0000  RMSE 0\n")

@@ -1,6 +1,7 @@
 /* shadelab_toolkit (see toolkit.h): the renderer facts tools need, without their including
  * core/render. */
 #include "toolkit.h"
+#include "budget/budget.h"
 #include "render/composer.h"
 #include "render/renderer.h"
 #include <string.h>
@@ -27,6 +28,8 @@ bool sl_tool_render_sample(sl_app *app, int index, int count) {
 }
 
 int sl_tool_still_frames(sl_app *app) { return sl_renderer_still_frames(app); }
+
+void sl_tool_budget_settle(sl_app *app) { sl_budget_settle(app); }
 
 sl_program *sl_tool_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
                                        char *err, size_t n) {

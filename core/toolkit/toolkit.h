@@ -61,6 +61,10 @@ void sl_tool_frame_times_of(sl_app *app, sl_tool_frame_times *out);
 bool sl_tool_render_sample(sl_app *app, int index, int count);
 /* The frames a still needs that the plugins asked for in the last frame (TAA's history), >= 1. */
 int sl_tool_still_frames(sl_app *app);
+/* The frame-time budget (core.budget, docs/budget.md) sets every knob it chose to its best now, as
+ * the window does once the view is still: the next frames render the still the window converges
+ * to. Nothing when the budget is off. */
+void sl_tool_budget_settle(sl_app *app);
 
 /* ------------------------------------------------------------- stand-alone GL programs --- */
 

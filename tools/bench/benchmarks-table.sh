@@ -96,7 +96,7 @@ frame "bare scene, frame at 1280×720" 30 --scene scenes/basic.json
 note "supersampling error against time"
 metrics="--metric rmse --metric dssim"
 "$BUILD/shadelab-bench" --help 2>&1 | grep -qw flip && metrics="$metrics --metric flip"
-SSAA="shadelab-bench --plugin core --scene scenes/teapot.json --size 320x180 --reference-scale 2 --vary core.ssaa=1,2,4 --set aa.enabled=false --frames 15 --rounds 3 $metrics"
+SSAA="shadelab-bench --plugin core --scene scenes/teapot.json --size 320x180 --reference-scale 2 --vary core.ssaa=1,2,4 --vary core.render_scale=1 --set aa.enabled=false --frames 15 --rounds 3 $metrics"
 # shellcheck disable=SC2086
 if "$BUILD/shadelab-bench" ${SSAA#shadelab-bench } --no-cache --no-chart --out "$TMP/ssaa" -q > "$TMP/ssaa.log" 2>&1; then
     # by the CSV header's names: label, ok, frame_ms_median, rmse, dssim[, flip, noise]
@@ -130,6 +130,27 @@ PY
     while IFS='|' read -r label value; do row "$label" "$value" "$ORBIT --data DIR"; done < "$TMP/orbit.rows"
 else
     note "shadelab-bench --orbit failed: $(tail -2 "$TMP/orbit.log")"
+fi
+
+note "orbit with and without the frame-time budget"
+BORBIT="shadelab-bench --orbit 10 --size 1280x720 --scene scenes/default.json --orbit-points 1 --orbit-variant core.budget=66 --orbit-variant core.budget=0 --orbit-rounds 2"
+# shellcheck disable=SC2086
+if "$BUILD/shadelab-bench" ${BORBIT#shadelab-bench } --out "$TMP/borbit" -q > "$TMP/borbit.log" 2>&1; then
+    python3 - "$TMP/borbit.json" > "$TMP/borbit.rows" <<'PY'
+import json, sys
+for o in json.load(open(sys.argv[1]))["orbits"]:
+    how = "with the frame-time budget (`%s`)" % o["variant"] if o["variant"] != "core.budget=0" else "fixed settings (budget off)"
+    print("orbit of the built-in default scene, %dx%d, %s; %d interleaved rounds|%d frames: p50 %.0f ms, p95 %.0f, "
+          "p99 %.0f, %.0f %% over %.0f ms; FLIP against ssaa 4: motion %.3f, converged still %.3f"
+          % (o["width"], o["height"], how, o["rounds"], o["frames"], o["p50_ms"], o["p95_ms"], o["p99_ms"],
+             100 * o["over_budget"], o["budget_ms"], o["motion_flip"], o["still_flip"]))
+PY
+    first=1
+    while IFS='|' read -r label value; do
+        if [ $first = 1 ]; then row "$label" "$value" "$BORBIT"; first=0; else row "$label" "$value" ""; fi
+    done < "$TMP/borbit.rows"
+else
+    note "shadelab-bench --orbit with the budget failed: $(tail -2 "$TMP/borbit.log")"
 fi
 
 note "the hand-written floor"

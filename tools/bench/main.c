@@ -60,6 +60,10 @@ static const char *usage =
     "  --orbit-points N          frame pairs compared with the truth (default 4)\n"
     "  --orbit-hq \"A=1 B=2\"      the highest-quality still (default \"core.ssaa=4\": 4x4 supersampled,\n"
     "                            with the scene's TAA still)\n"
+    "  --orbit-variant \"A=1 B=2\" settings of one orbit on top of --set (repeatable: each scene is\n"
+    "                            orbited once per variant, in turn; \"\" for none)\n"
+    "  --orbit-rounds R          R orbits per scene and variant, interleaved (variant 1, 2, ..., 1,\n"
+    "                            2, ...); one result each, frame times and errors pooled (default 1)\n"
     "  --data DIR                asset directory (also SHADELAB_DATA)\n"
     "  --float                   RGBA32F colour targets\n"
     "  -q, --quiet | -v, --verbose | --help\n";
@@ -130,8 +134,26 @@ static const char *head_data(const char *data_dir) {
     return NULL;
 }
 
-/* --orbit: the given scene, or the built-in one and the head when its data is there. */
-static int run_orbits(sl_orbit_options *oo, const char *prefix, char *err, size_t n) {
+#define MAX_VARIANTS 16
+
+/* One orbit of `oo` with the variant's settings ("a=1 b=2") after oo's own. */
+static bool orbit_variant(const sl_orbit_options *oo, const char *variant, sl_orbit_result *r, char *err, size_t n) {
+    sl_orbit_options o = *oo;
+    const char *settings[256];
+    char buf[4096];
+    int count = 0;
+    for (int i = 0; i < oo->setting_count && count < 256; i++) settings[count++] = oo->settings[i];
+    snprintf(buf, sizeof buf, "%s", variant);
+    char *save = NULL;
+    for (char *t = strtok_r(buf, " \t", &save); t && count < 256; t = strtok_r(NULL, " \t", &save)) settings[count++] = t;
+    o.settings = settings, o.setting_count = count;
+    return sl_orbit_run(&o, r, err, n);
+}
+
+/* --orbit: the given scene, or the built-in one and the head when its data is there; each
+ * variant in turn, `rounds` times. */
+static int run_orbits(sl_orbit_options *oo, const char *const *variants, int variant_count, int rounds,
+                      const char *prefix, char *err, size_t n) {
     const char *scenes[2] = {oo->scene_path, NULL};
     const char *data[2] = {oo->data_dir, NULL};
     int count = 1;
@@ -145,14 +167,35 @@ static int run_orbits(sl_orbit_options *oo, const char *prefix, char *err, size_
     cJSON *root = cJSON_CreateObject(), *runs = cJSON_AddArrayToObject(root, "orbits");
     cJSON_AddStringToObject(root, "format", "shadelab-orbit/1");
     int rc = 0;
-    for (int i = 0; i < count; i++) {
-        oo->scene_path = scenes[i];
-        oo->data_dir = data[i];
-        sl_orbit_result r;
-        if (!sl_orbit_run(oo, &r, err, n)) rc = die(err);
-        else print_orbit(&r), cJSON_AddItemToArray(runs, orbit_json(&r));
-        sl_orbit_result_free(&r);
-    }
+    static const char *const none[] = {""};
+    if (!variant_count) variants = none, variant_count = 1;
+    sl_orbit_result pooled[2][MAX_VARIANTS];
+    memset(pooled, 0, sizeof pooled);
+    for (int round = 0; round < rounds && !rc; round++)
+        for (int i = 0; i < count && !rc; i++)
+            for (int v = 0; v < variant_count && !rc; v++) {
+                oo->scene_path = scenes[i];
+                oo->data_dir = data[i];
+                sl_orbit_result r;
+                if (oo->progress && (rounds > 1 || variant_count > 1))
+                    fprintf(stderr, "[orbit] round %d of %d, variant \"%s\"\n", round + 1, rounds, variants[v]);
+                if (!orbit_variant(oo, variants[v], &r, err, n)) rc = die(err);
+                else if (!sl_orbit_pool(&pooled[i][v], &r)) rc = die("out of memory");
+                sl_orbit_result_free(&r);
+            }
+    for (int i = 0; i < count; i++)
+        for (int v = 0; v < variant_count; v++) {
+            sl_orbit_result *r = &pooled[i][v];
+            if (!rc) {
+                if (*variants[v]) printf("variant \"%s\", %d round(s):\n", variants[v], r->rounds);
+                print_orbit(r);
+                cJSON *o = orbit_json(r);
+                cJSON_AddStringToObject(o, "variant", variants[v]);
+                cJSON_AddNumberToObject(o, "rounds", r->rounds);
+                cJSON_AddItemToArray(runs, o);
+            }
+            sl_orbit_result_free(r);
+        }
     char path[4200], *text = cJSON_Print(root);
     snprintf(path, sizeof path, "%s.json", prefix);
     FILE *f = fopen(path, "w");
@@ -173,6 +216,8 @@ int main(int argc, char **argv) {
     int nm = 0;
     bool chart = true, list = false, images = false;
     sl_orbit_options oo = {.progress = true};
+    const char *variants[MAX_VARIANTS];
+    int variant_count = 0, orbit_rounds = 1;
     char err[8192];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -268,6 +313,14 @@ int main(int argc, char **argv) {
             if (!parse_number(a, NEXT(), 1, 64, &v, err, sizeof err)) return die(err);
             oo.points = (int)v;
         } else if (!strcmp(a, "--orbit-hq")) NEED(oo.hq_settings = NEXT());
+        else if (!strcmp(a, "--orbit-variant")) {
+            if (variant_count == MAX_VARIANTS) return die("at most 16 --orbit-variant");
+            NEED(variants[variant_count++] = NEXT());
+        } else if (!strcmp(a, "--orbit-rounds")) {
+            double v;
+            if (!parse_number(a, NEXT(), 1, 100, &v, err, sizeof err)) return die(err);
+            orbit_rounds = (int)v;
+        }
         else if (!strcmp(a, "--images")) images = true;
         else if (!strcmp(a, "--no-chart")) chart = false;
         else if (!strcmp(a, "--list")) list = true;
@@ -282,7 +335,7 @@ int main(int argc, char **argv) {
     if (oo.seconds > 0) {
         oo.scene_path = o.scene_path, oo.data_dir = o.data_dir, oo.width = o.width, oo.height = o.height;
         oo.backend = o.backend, oo.settings = base, oo.setting_count = nb, oo.progress = o.progress;
-        return run_orbits(&oo, out ? out : "bench-orbit", err, sizeof err);
+        return run_orbits(&oo, variants, variant_count, orbit_rounds, out ? out : "bench-orbit", err, sizeof err);
     }
     if (!o.plugin) return die("--plugin NAME is required (\"core\" for the core's own knobs); see --help");
     if (o.reference_scale > 1) { /* every size derived from a user number is checked before use */

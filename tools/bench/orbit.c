@@ -64,7 +64,8 @@ static bool open_app(const sl_orbit_options *o, const char *extra, char *buf, si
 }
 
 /* The complete still at camera `cam` (the first frame after the move, then the frames the still
- * needs), read into rgba. */
+ * needs), read into rgba. With a frame-time budget the still's frames are at the best settings,
+ * as the window's once it is still (the window waits a few frames first; the image is the same). */
 static bool render_still(sl_app *app, const sl_camera_state *cam, float *rgba) {
     unsigned long long version = app->camera.version;
     app->camera = *cam;
@@ -72,6 +73,7 @@ static bool render_still(sl_app *app, const sl_camera_state *cam, float *rgba) {
     app->time = 0;
     for (int f = 0;; f++) {
         if (!sl_app_render_frame(app)) return false;
+        if (f == 0) sl_tool_budget_settle(app);
         if (f >= sl_tool_still_frames(app)) break;
     }
     return sl_app_read_color(app, rgba);
@@ -135,9 +137,12 @@ static void compare(const float *a, const float *h, int w, int hh, double *flip,
     *rmse += e.rmse;
 }
 
-/* Frame-time statistics of the timed orbit. */
-static void summarise_times(double *ms, sl_orbit_result *res) {
+/* Frame-time statistics of res->frame_ms (sorted on a copy). */
+static bool summarise_times(sl_orbit_result *res) {
     int over = 0;
+    double *ms = malloc(sizeof *ms * (res->frames ? res->frames : 1));
+    if (!ms) return false;
+    memcpy(ms, res->frame_ms, sizeof *ms * res->frames);
     res->mean_ms = 0;
     for (int i = 0; i < res->frames; i++) res->mean_ms += ms[i] / res->frames, over += ms[i] > res->budget_ms;
     res->over_budget = res->frames ? (double)over / res->frames : NAN;
@@ -145,6 +150,8 @@ static void summarise_times(double *ms, sl_orbit_result *res) {
     res->p95_ms = sl_orbit_quantile(ms, res->frames, 0.95);
     res->p99_ms = sl_orbit_quantile(ms, res->frames, 0.99);
     res->max_ms = res->frames ? ms[res->frames - 1] : NAN;
+    free(ms);
+    return true;
 }
 
 /* Each captured pair against the truth (its two cameras' highest-quality stills). */
@@ -194,7 +201,7 @@ static bool orbit_and_stills(const sl_orbit_options *o, double speed, orbit_pair
         ok = timed_orbit(o, &app, speed, pairs, points, &ms, &res->frames);
         if (!ok) snprintf(err, n, "rendering the orbit failed");
     }
-    if (ok) summarise_times(ms, res);
+    if (ok) res->frame_ms = ms, ms = NULL, ok = summarise_times(res);
     size_t px = (size_t)res->width * res->height * 4;
     for (int k = 0; k < points && ok; k++) {
         if (!pairs[k].frame[1]) continue;
@@ -219,14 +226,17 @@ bool sl_orbit_run(const sl_orbit_options *o, sl_orbit_result *res, char *err, si
     res->seconds = o->seconds;
     res->degrees = dps * o->seconds;
     res->budget_ms = o->budget_ms > 0 ? o->budget_ms : SL_ORBIT_BUDGET_MS;
+    res->rounds = 1;
     orbit_pair *pairs = calloc(points, sizeof *pairs);
     bool ok = pairs && orbit_and_stills(o, dps * M_PI / 180, pairs, points, res, err, n);
     if (ok) {
         if (o->progress) fprintf(stderr, "[orbit] %d frames; the truth at the captured frames (%s) …\n", res->frames, res->hq_settings);
         sl_app truth = {0};
         bool inited = false;
-        char buf[4096];
-        ok = open_app(o, hq, buf, sizeof buf, &truth, &inited, err, n);
+        char buf[4096], truth_settings[4096];
+        /* the truth is a still: no frame-time budget, whatever the orbit's settings */
+        snprintf(truth_settings, sizeof truth_settings, "%s core.budget=0", hq);
+        ok = open_app(o, truth_settings, buf, sizeof buf, &truth, &inited, err, n);
         if (ok && !(ok = compare_with_truth(&truth, pairs, points, res))) snprintf(err, n, "rendering the truth failed");
         if (inited) sl_app_shutdown(&truth);
     }
@@ -235,7 +245,34 @@ bool sl_orbit_run(const sl_orbit_options *o, sl_orbit_result *res, char *err, si
     return ok;
 }
 
+/* The mean of a (over na pairs) and b (over nb), over all. */
+static double pooled(double a, int na, double b, int nb) { return na + nb ? (a * na + b * nb) / (na + nb) : 0; }
+
+bool sl_orbit_pool(sl_orbit_result *into, sl_orbit_result *r) {
+    if (!into->rounds) {
+        *into = *r;
+        memset(r, 0, sizeof *r);
+        return true;
+    }
+    double *ms = realloc(into->frame_ms, sizeof *ms * (into->frames + r->frames + 1));
+    if (!ms) return false;
+    memcpy(ms + into->frames, r->frame_ms, sizeof *ms * r->frames);
+    into->frame_ms = ms, into->frames += r->frames;
+    int a = into->points, b = r->points;
+    into->motion_flip = pooled(into->motion_flip, a, r->motion_flip, b);
+    into->motion_rmse = pooled(into->motion_rmse, a, r->motion_rmse, b);
+    into->still_flip = pooled(into->still_flip, a, r->still_flip, b);
+    into->still_rmse = pooled(into->still_rmse, a, r->still_rmse, b);
+    into->flicker = pooled(into->flicker, a, r->flicker, b);
+    into->flicker_max = fmax(into->flicker_max, r->flicker_max);
+    into->points += b, into->rounds += r->rounds;
+    into->seconds += r->seconds, into->degrees += r->degrees;
+    sl_orbit_result_free(r);
+    return summarise_times(into);
+}
+
 void sl_orbit_result_free(sl_orbit_result *res) {
+    free(res->frame_ms);
     free(res->scene);
     free(res->backend);
     free(res->renderer);

@@ -47,6 +47,8 @@ typedef struct sl_orbit_result {
     char *backend, *renderer;
     double seconds, degrees, budget_ms;
     int frames;                      /* timed frames */
+    double *frame_ms;                /* their times in the order rendered (pooled rounds: one after another) */
+    int rounds;                      /* orbits pooled into this result (sl_orbit_pool) */
     double p50_ms, p95_ms, p99_ms, mean_ms, max_ms;
     double over_budget;              /* fraction of frames slower than budget_ms */
     int points;                      /* frame pairs compared */
@@ -60,6 +62,10 @@ typedef struct sl_orbit_result {
 /* Runs the orbit. False with err when the scene, a plugin or GL fails. */
 bool sl_orbit_run(const sl_orbit_options *opt, sl_orbit_result *res, char *err, size_t n);
 void sl_orbit_result_free(sl_orbit_result *res);
+/* Pools another orbit of the same scene and settings into `into` (empty: takes `r` over): frame
+ * times appended and their statistics recomputed over all, errors averaged over every frame pair
+ * of both, seconds and degrees added. `r` is left empty (freed). False when out of memory. */
+bool sl_orbit_pool(sl_orbit_result *into, sl_orbit_result *r);
 /* The q-quantile (0..1) of v (n values) by linear interpolation between order statistics
  * (sorted v[(n-1)q]); NaN when n == 0. v is sorted in place. */
 double sl_orbit_quantile(double *v, int n, double q);
