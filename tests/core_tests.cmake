@@ -86,5 +86,8 @@ set_tests_properties(cli_lazy_oiio PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEO
 # Headless stills stop when they are done (core/still.h): converged (no display value changes by
 # 1/255), or the budget ran out; a scene with hard edges runs its still to the end.
 sl_add_test(still_stop SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_still_stop.c)
+# Frustum culling: instances outside the view cost no draw call and change no pixel; one on the
+# view's edge is drawn.
+sl_add_test(frustum_cull SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_frustum_cull.c)
 # The frame-time budget's controller on synthetic cost models (no GL, no timing).
 sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT ${SL_HANG_GUARD})

@@ -11,8 +11,9 @@
 #include "render/forward.h"
 #include "plugin/plugins.h"
 
-/* center: the object-space bounds' centre (blended draws sort on its view depth) */
-typedef struct gpu_mesh { unsigned vao, vbo[5], ibo; int index_count; float center[3]; } gpu_mesh;
+/* center: the object-space bounds' centre (blended draws sort on its view depth); lo, hi: the
+ * object-space bounds (frustum culling) */
+typedef struct gpu_mesh { unsigned vao, vbo[5], ibo; int index_count; float center[3], lo[3], hi[3]; } gpu_mesh;
 typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 
 /* model: NULL = the material's own; fragment (ABI 1.7): a plugin's main, resolved path */

@@ -56,7 +56,7 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
             if (v == 0 || x < lo[c]) lo[c] = x;
             if (v == 0 || x > hi[c]) hi[c] = x;
         }
-    for (int c = 0; c < 3; c++) g->center[c] = 0.5f * (lo[c] + hi[c]);
+    for (int c = 0; c < 3; c++) g->center[c] = 0.5f * (lo[c] + hi[c]), g->lo[c] = lo[c], g->hi[c] = hi[c];
 }
 
 /* ------------------------------------------------------------------ textures -------- */
@@ -550,9 +550,47 @@ static int cmp_back_to_front(const void *a, const void *b) {
  * bind each), then blended ones sorted back to front by the view depth of each draw's bounds
  * centre (the usual viewer approach: per draw, not per triangle; intersecting or interleaved
  * blended surfaces are approximate). */
-static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set set, draw_item **out) {
+/* Whether the view (proj × view) may skip meshes outside its frustum: not when a plugin's vertex
+ * stage may move vertices beyond their bounds (a VERTEX or DISPLACEMENT hook, a plugin's own
+ * program), nor in UV space (texture-space targets draw every mesh). */
+static bool may_cull(sl_app *app, const sl_draw_scene_desc *d, bool custom) {
+    if (custom || d->uv_space) return false;
+    for (int i = 0; i < app->plugins.chunk_count; i++) {
+        const sl_chunk_reg *c = &app->plugins.chunks[i];
+        if ((c->d.hook == SL_HOOK_VERTEX || c->d.hook == SL_HOOK_DISPLACEMENT) && sl_plugin_enabled(&app->plugins, c->owner))
+            return false;
+    }
+    return true;
+}
+
+/* The mesh's object-space box, placed by `world`, lies wholly outside one of the side planes of
+ * the clip volume whose planes are `planes` (left, right, bottom, top: cglm's order). Only the
+ * sides: a shadow map's casters before its near plane are drawn (depth clamp), and the far plane
+ * saves little. Conservative: a box that may touch the view is kept. */
+static bool outside_frustum(const gpu_mesh *g, const float world[16], vec4 planes[6]) {
+    vec3 box[2] = {{g->lo[0], g->lo[1], g->lo[2]}, {g->hi[0], g->hi[1], g->hi[2]}}, wbox[2];
+    glm_aabb_transform(box, (vec4 *)world, wbox);
+    for (int p = 0; p < 4; p++) {
+        const float *n = planes[p];
+        /* the box's corner farthest along the plane's normal */
+        float x = n[0] > 0 ? wbox[1][0] : wbox[0][0], y = n[1] > 0 ? wbox[1][1] : wbox[0][1];
+        float z = n[2] > 0 ? wbox[1][2] : wbox[0][2];
+        if (n[0] * x + n[1] * y + n[2] * z + n[3] < 0) return true;
+    }
+    return false;
+}
+
+static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set set, bool cull, draw_item **out) {
     sl_renderer *r = R(app);
     sl_scene *s = &app->scene;
+    vec4 planes[6];
+    if (cull) {
+        mat4 vp;
+        glm_mat4_mul((vec4 *)d->proj, (vec4 *)d->view, vp);
+        glm_frustum_planes(vp, planes);
+        for (int p = 0; p < 4 && cull; p++) /* a degenerate matrix: no culling */
+            cull = isfinite(planes[p][0] + planes[p][1] + planes[p][2] + planes[p][3]);
+    }
     int cap = 0;
     for (int ni = 0; ni < s->node_count; ni++) cap += s->nodes[ni].mesh_count;
     draw_item *items = malloc((cap + 1) * sizeof *items);
@@ -573,6 +611,7 @@ static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set s
                 for (int k = 0; k < node->mesh_count; k++) {
                     int mi = node->meshes[k];
                     if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
+                    if (cull && outside_frustum(&r->meshes[mi], (const float *)node->world, planes)) continue;
                     draw_item *it = &items[n++];
                     *it = (draw_item){.m = m, .node = ni, .k = k, .order = order++};
                     if (!blended) continue;
@@ -623,7 +662,7 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
         glUniform1i(glGetUniformLocation(custom->id, "sl_uv_space"), d->uv_space);
     }
     draw_item *items = NULL;
-    int count = draw_list(app, d, set, &items);
+    int count = draw_list(app, d, set, may_cull(app, d, custom != NULL), &items);
     int bound_m = -1;
     unsigned prog = custom ? custom->id : 0;
     const sl_forward_variant *var = NULL;
