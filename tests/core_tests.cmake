@@ -91,3 +91,7 @@ sl_add_test(still_stop SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_still_stop.c)
 sl_add_test(frustum_cull SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_frustum_cull.c)
 # The frame-time budget's controller on synthetic cost models (no GL, no timing).
 sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT ${SL_HANG_GUARD})
+
+# 100 000 overlapping blended quads under TAA: the still completes, each cell's colour is the
+# closed form of its layers.
+sl_add_test(blend_layers SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_blend_layers.c)
