@@ -136,17 +136,10 @@ static const char *head_data(const char *data_dir) {
 
 #define MAX_VARIANTS 16
 
-/* One orbit of `oo` with the variant's settings ("a=1 b=2") after oo's own. */
+/* One orbit of `oo` with the variant's settings ("a=1 b=2") after oo's own (not the truth's). */
 static bool orbit_variant(const sl_orbit_options *oo, const char *variant, sl_orbit_result *r, char *err, size_t n) {
     sl_orbit_options o = *oo;
-    const char *settings[256];
-    char buf[4096];
-    int count = 0;
-    for (int i = 0; i < oo->setting_count && count < 256; i++) settings[count++] = oo->settings[i];
-    snprintf(buf, sizeof buf, "%s", variant);
-    char *save = NULL;
-    for (char *t = strtok_r(buf, " \t", &save); t && count < 256; t = strtok_r(NULL, " \t", &save)) settings[count++] = t;
-    o.settings = settings, o.setting_count = count;
+    o.variant = variant;
     return sl_orbit_run(&o, r, err, n);
 }
 

@@ -188,9 +188,9 @@ static bool orbit_and_stills(const sl_orbit_options *o, double speed, orbit_pair
                              sl_orbit_result *res, char *err, size_t n) {
     sl_app app = {0};
     bool inited = false;
-    char buf[64];
+    char buf[4096];
     double *ms = NULL;
-    bool ok = open_app(o, "", buf, sizeof buf, &app, &inited, err, n);
+    bool ok = open_app(o, o->variant, buf, sizeof buf, &app, &inited, err, n);
     if (ok) {
         res->width = app.backend.width, res->height = app.backend.height;
         res->backend = strdup(app.backend.name);
@@ -234,7 +234,8 @@ bool sl_orbit_run(const sl_orbit_options *o, sl_orbit_result *res, char *err, si
         sl_app truth = {0};
         bool inited = false;
         char buf[4096], truth_settings[4096];
-        /* the truth is a still: no frame-time budget, whatever the orbit's settings */
+        /* the truth is a still without the variant's settings and without a frame-time budget:
+         * one truth for every variant */
         snprintf(truth_settings, sizeof truth_settings, "%s core.budget=0", hq);
         ok = open_app(o, truth_settings, buf, sizeof buf, &truth, &inited, err, n);
         if (ok && !(ok = compare_with_truth(&truth, pairs, points, res))) snprintf(err, n, "rendering the truth failed");

@@ -31,6 +31,7 @@ typedef struct sl_orbit_options {
     const char *scene_path;          /* NULL: the built-in default scene */
     const char *data_dir;
     const char *const *settings; int setting_count; /* "id=value" for every render */
+    const char *variant;             /* "a=1 b=2": the orbit's renders only, not the truth's (NULL: none) */
     int width, height;               /* default 320x180 */
     sl_backend_kind backend;         /* default OSMesa */
     double seconds;                  /* wall-clock length of the orbit, > 0 */
