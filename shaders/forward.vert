@@ -22,12 +22,14 @@ uniform int sl_uv_space; // texture-space passes rasterise at uv*2-1
 // previous one with the VERTEX hooks evaluated at the previous frame's time (forward.c).
 uniform mat4 sl_unjittered_view_proj, sl_prev_view_proj, sl_prev_model;
 out vec4 v_clip_now, v_clip_prev;
+layout(location = 5) in vec3 a_prev_position; // last frame's: a deformed mesh's moved (deform.c)
 #endif
 
 void main() {
     SlVertex v = SlVertex(a_position, a_normal, a_tangent, a_uv);
 #ifdef SL_MOTION_VECTORS
     SlVertex prev = v;
+    prev.position = a_prev_position;
     sl_hook_time = sl_prev_time;
     sl_run_vertex_hooks(prev);
     sl_hook_time = sl_motion_time_now();

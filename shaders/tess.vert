@@ -14,12 +14,14 @@ out vec2 tc_uv;
 out vec3 tc_object_pos; // rest pose (SlSurface.object_position)
 #ifdef SL_MOTION_VECTORS
 out vec3 tc_prev_position; // with the VERTEX hooks at the previous frame's time
+layout(location = 5) in vec3 a_prev_position; // last frame's: a deformed mesh's moved (deform.c)
 #endif
 
 void main() {
     SlVertex v = SlVertex(a_position, a_normal, a_tangent, a_uv);
 #ifdef SL_MOTION_VECTORS
     SlVertex prev = v;
+    prev.position = a_prev_position;
     sl_hook_time = sl_prev_time;
     sl_run_vertex_hooks(prev);
     sl_hook_time = sl_motion_time_now();

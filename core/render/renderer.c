@@ -160,6 +160,7 @@ static void refresh(sl_app *app) {
     r->seen_light_time = app->time;
     /* node TRS animations (glTF): the nodes posed at this frame's time */
     if (app->scene.anim_channel_count) sl_scene_animate(&app->scene, app->time);
+    sl_deform_frame(app); /* skinned and morphing meshes posed for every pass of the frame */
     if (recompose) {
         /* a new debug view changes every program's output without any other version moving */
         if ((r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
@@ -530,7 +531,10 @@ bool sl_renderer_load_scene(sl_app *app, char *err, size_t n) {
     sl_renderer *r = R(app);
     sl_scene *s = &app->scene;
     r->meshes = calloc(s->mesh_count + 1, sizeof *r->meshes);
-    for (int i = 0; i < s->mesh_count; i++) sl_gpu_upload_mesh(&r->meshes[i], &s->meshes[i].data);
+    for (int i = 0; i < s->mesh_count; i++) {
+        sl_gpu_upload_mesh(&r->meshes[i], &s->meshes[i].data);
+        sl_deform_upload(app, i);
+    }
     r->materials = calloc(s->material_count + 1, sizeof *r->materials);
     sl_gpu_pack_lights(app);
     r->seen_lights_version = app->lights_version;
@@ -569,6 +573,7 @@ void sl_renderer_destroy(sl_app *app) {
     sl_graph_free(r);
     for (int i = 0; r->meshes && i < app->scene.mesh_count; i++) {
         gpu_mesh *g = &r->meshes[i];
+        sl_deform_free(g);
         glDeleteVertexArrays(1, &g->vao);
         glDeleteBuffers(5, g->vbo);
         glDeleteBuffers(1, &g->ibo);
@@ -595,6 +600,7 @@ void sl_renderer_destroy(sl_app *app) {
     sl_program_free(r->view_prog);
     free(r->programs);
     glDeleteVertexArrays(1, &r->empty_vao);
+    if (r->deform_prog) glDeleteProgram(r->deform_prog);
     if (r->light_buffer) glDeleteBuffers(1, &r->light_buffer);
     glDeleteQueries(64, r->queries);
     free(r->lights);

@@ -12,8 +12,13 @@
 #include "plugin/plugins.h"
 
 /* center: the object-space bounds' centre (blended draws sort on its view depth); lo, hi: the
- * object-space bounds (frustum culling) */
-typedef struct gpu_mesh { unsigned vao, vbo[5], ibo; int index_count; float center[3], lo[3], hi[3]; } gpu_mesh;
+ * object-space bounds (frustum culling; a deformed mesh is never culled: its pose leaves them) */
+typedef struct gpu_mesh {
+    unsigned vao, vbo[5], ibo;
+    int index_count;
+    float center[3], lo[3], hi[3];
+    struct gpu_deform *deform; /* a deformed mesh's buffers (deform.c), or NULL */
+} gpu_mesh;
 typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 
 /* model: NULL = the material's own; fragment (ABI 1.7): a plugin's main, resolved path */
@@ -62,6 +67,7 @@ typedef struct sl_renderer {
     material_rt *materials;
     int anisotropy;                               /* core.anisotropy applied to the material textures */
     unsigned empty_vao;                           /* for attribute-less full-screen triangles */
+    unsigned deform_prog; bool deform_failed;     /* deform.c's compute program (0: not built yet) */
 
     /* ---- lights (scene_gpu.c): the light buffer, packed by type, and what plugins see ---- */
     unsigned light_buffer;
@@ -138,6 +144,11 @@ typedef struct sl_renderer {
 
 /* scene_gpu.c */
 void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m);
+/* deform.c: mesh mi's deformation buffers (after sl_gpu_upload_mesh; nothing for a static mesh);
+ * each frame, before any pass, every deformed mesh posed at the scene's state; freeing */
+void sl_deform_upload(sl_app *app, int mi);
+void sl_deform_frame(sl_app *app);
+void sl_deform_free(gpu_mesh *g);
 void sl_gpu_apply_anisotropy(sl_app *app);   /* core.anisotropy onto every material texture */
 bool sl_gpu_lights_animated(sl_app *app);
 void sl_gpu_pack_lights(sl_app *app);        /* the light buffer and sl_host.lights, at app->time */

@@ -44,6 +44,12 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
         glVertexArrayAttribBinding(g->vao, 4, 4);
         glEnableVertexArrayAttrib(g->vao, 4);
     }
+    /* the previous frame's positions (motion vectors, forward.vert): a static mesh's own; a
+     * deformed mesh's buffer of them (deform.c) replaces this binding */
+    glVertexArrayVertexBuffer(g->vao, 5, g->vbo[0], 0, 3 * sizeof(float));
+    glVertexArrayAttribFormat(g->vao, 5, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(g->vao, 5, 5);
+    glEnableVertexArrayAttrib(g->vao, 5);
     static const uint32_t no_indices[1];
     glNamedBufferData(g->ibo, m->index_count ? (size_t)m->index_count * 4 : 4, m->index_count ? m->indices : no_indices,
                       GL_STATIC_DRAW);
@@ -611,7 +617,8 @@ static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set s
                 for (int k = 0; k < node->mesh_count; k++) {
                     int mi = node->meshes[k];
                     if (s->meshes[mi].material != m || !r->meshes[mi].index_count) continue;
-                    if (cull && outside_frustum(&r->meshes[mi], (const float *)node->world, planes)) continue;
+                    if (cull && !r->meshes[mi].deform && outside_frustum(&r->meshes[mi], (const float *)node->world, planes))
+                        continue;
                     draw_item *it = &items[n++];
                     *it = (draw_item){.m = m, .node = ni, .k = k, .order = order++};
                     if (!blended) continue;

@@ -35,6 +35,9 @@ enum {
 #define GLTF_MAX_DECODED_BYTES (1LL << 30)
 /* The most notes the file's warning lists (it counts the rest). */
 #define GLTF_MAX_NOTES 12
+/* The most morph target vertices one primitive may hold (targets × vertices): 36 bytes each on
+ * the CPU and the GPU. */
+#define GLTF_MAX_MORPH_VALUES (1 << 24)
 /* The most animation keys one file may hold (all channels): 16 bytes per key and more. */
 #define GLTF_MAX_KEYS (1 << 26)
 
@@ -141,16 +144,19 @@ typedef struct gltf_import {
 } gltf_import;
 
 enum {
-    GLTF_UNRENDERED_SKIN = 1u << 0,
-    GLTF_UNRENDERED_MORPH_ANIMATION = 1u << 1,
-    GLTF_UNRENDERED_COLOR = 1u << 2,
-    GLTF_UNRENDERED_TEXCOORD2 = 1u << 3,
-    GLTF_UNRENDERED_ANIMATIONS = 1u << 4,
+    GLTF_UNRENDERED_COLOR = 1u << 0,
+    GLTF_UNRENDERED_TEXCOORD2 = 1u << 1,
 };
 
-/* gltf_mesh.c: glTF mesh `index`'s primitives as scene meshes (made once; later calls return
- * the same range). false after gltf_fail. */
-bool gltf_import_mesh(gltf_import *im, int index, int range[2]);
+/* gltf_mesh.c: glTF mesh `index`'s primitives as scene meshes for glTF node `node` with glTF skin
+ * `skin` (−1: none): made once and shared by the nodes drawing it, or, with morph targets or a
+ * skin, made for this node (its weights, its pose: sl_mesh_deform, whose skin holds the glTF
+ * skin until gltf_import_skins). false after gltf_fail. */
+bool gltf_import_mesh(gltf_import *im, int index, int node, int skin, int range[2]);
+/* gltf_skin.c: the skins the deformed meshes made since scene mesh `first_mesh` use, as scene
+ * skins (§3.7.3: joints in the scene shown, inverse bind matrices MAT4 float, finite, at least
+ * one per joint); false after gltf_fail. */
+bool gltf_import_skins(gltf_import *im, int first_mesh);
 /* gltf_material.c: the scene material for glTF material `index` (−1: the default material). */
 int gltf_import_material(gltf_import *im, int index);
 /* gltf_animation.c: animation `which` (−1: the first, noted when the file has more) as node

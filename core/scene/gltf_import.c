@@ -131,9 +131,9 @@ static bool make_node(gltf_import *im, int n, int parent, int depth) {
     if (ni < 0) return gltf_fail(d, NULL, "out of memory");
     memcpy(im->scene->nodes[ni].local, local, sizeof local);
     im->nodes[n] = ni;
-    if (skin >= 0) im->unrendered |= GLTF_UNRENDERED_SKIN;
+    if (skin >= 0 && mesh < 0) gltf_note(d, at, "a skin without a mesh: ignored");
     int range[2] = {0, 0};
-    if (mesh >= 0 && !gltf_import_mesh(im, mesh, range)) return false;
+    if (mesh >= 0 && !gltf_import_mesh(im, mesh, n, skin, range)) return false;
     for (int k = 0; k < range[1]; k++)
         if (!sl_scene_node_add_mesh(im->scene, ni, range[0] + k)) return gltf_fail(d, NULL, "out of memory");
     cJSON_ArrayForEach(c, children) if (!make_node(im, c->valueint, ni, depth + 1)) return false;
@@ -336,9 +336,7 @@ static bool make_scene(gltf_import *im, int parent) {
 
 /* The file's one warning: what is not rendered as its author made it. */
 static void warn_unrendered(gltf_import *im) {
-    static const char *const what[] = {
-        "skins (the bind pose is shown)", "morph target animation (the default weights are shown)",
-        "vertex colours (COLOR_0)", "texCoord beyond 1 (those textures sample UV set 0)", "(spare)"};
+    static const char *const what[] = {"vertex colours (COLOR_0)", "texCoord beyond 1 (those textures sample UV set 0)"};
     char list[5000] = "";
     size_t u = 0;
     for (unsigned b = 0; b < sizeof what / sizeof *what; b++)
@@ -415,7 +413,8 @@ static bool import(gltf_import *im, int parent, const sl_scene_load_opts *opts) 
     for (int i = 0; i < nmesh; i++) im->meshes[i][0] = -1, im->meshes[i][1] = 0;
     for (int i = 0; i < nn; i++) im->nodes[i] = -1, im->parents[i] = -1;
     int meshes = im->scene->mesh_count, lights = im->scene->light_count, cameras = im->scene->camera_count;
-    if (!read_hierarchy(im) || !make_scene(im, parent) || !place_cameras_and_lights(im)) return false;
+    if (!read_hierarchy(im) || !make_scene(im, parent) || !gltf_import_skins(im, meshes) || !place_cameras_and_lights(im))
+        return false;
     if (gltf_count(d, "animations") && !gltf_import_animation(im, animation)) return false;
     if (meshes == im->scene->mesh_count && lights == im->scene->light_count && cameras == im->scene->camera_count)
         SL_WARN("%s: the file contains no triangle meshes", d->path);

@@ -358,8 +358,11 @@ void sl_scene_free(sl_scene *scene) {
     for (int i = 0; i < scene->mesh_count; i++) {
         free(scene->meshes[i].name);
         sl_mesh_free(&scene->meshes[i].data);
+        sl_mesh_deform_free(scene->meshes[i].deform);
     }
     free(scene->meshes);
+    for (int i = 0; i < scene->skin_count; i++) free(scene->skins[i].joints), free(scene->skins[i].inverse_bind);
+    free(scene->skins);
     for (int i = 0; i < scene->node_count; i++) {
         free(scene->nodes[i].name);
         free(scene->nodes[i].meshes);
@@ -523,8 +526,15 @@ char *sl_scene_resolve_path(const sl_scene *scene, const char *data_dir, const c
 
 /* ---- node TRS animation (glTF 2.0 §3.11 and appendix C, "Animation interpolation") ---- */
 
-void sl_anim_sample(const sl_anim_channel *c, double t, float out[4]) {
-    int comps = c->path == SL_ANIM_ROTATION ? 4 : 3, n = c->key_count;
+void sl_mesh_deform_free(sl_mesh_deform *d) {
+    if (!d) return;
+    free(d->target_positions), free(d->target_normals), free(d->target_tangents);
+    free(d->weights), free(d->rest_weights), free(d->joints), free(d->joint_weights);
+    free(d);
+}
+
+void sl_anim_sample(const sl_anim_channel *c, double t, float *out) {
+    int comps = c->path == SL_ANIM_WEIGHTS ? c->components : c->path == SL_ANIM_ROTATION ? 4 : 3, n = c->key_count;
     int stride = c->interpolation == SL_ANIM_CUBICSPLINE ? 3 * comps : comps;
     int vo = c->interpolation == SL_ANIM_CUBICSPLINE ? comps : 0; /* the value within a key */
     if (n <= 0) return;
@@ -584,7 +594,7 @@ void sl_scene_animate(sl_scene *scene, double t) {
         memcpy(T, an->t, sizeof T), memcpy(R, an->r, sizeof R), memcpy(S, an->s, sizeof S);
         for (int i = 0; i < scene->anim_channel_count; i++) {
             const sl_anim_channel *c = &scene->anim_channels[i];
-            if (c->node != an->node) continue;
+            if (c->node != an->node || c->path == SL_ANIM_WEIGHTS) continue;
             float v[4];
             sl_anim_sample(c, t, v);
             if (c->path == SL_ANIM_TRANSLATION) memcpy(T, v, sizeof T);
@@ -601,6 +611,16 @@ void sl_scene_animate(sl_scene *scene, double t) {
             m[col * 4 + 3] = 0;
         }
         m[12] = T[0], m[13] = T[1], m[14] = T[2], m[15] = 1;
+    }
+    /* morph target weights: into every deformed mesh the node draws with that many targets */
+    for (int i = 0; i < scene->anim_channel_count; i++) {
+        const sl_anim_channel *c = &scene->anim_channels[i];
+        if (c->path != SL_ANIM_WEIGHTS) continue;
+        const sl_node *node = &scene->nodes[c->node];
+        for (int k = 0; k < node->mesh_count; k++) {
+            sl_mesh_deform *d = scene->meshes[node->meshes[k]].deform;
+            if (d && d->target_count == c->components) sl_anim_sample(c, t, d->weights);
+        }
     }
     sl_scene_update_transforms(scene);
 }

@@ -65,10 +65,43 @@ typedef struct sl_material {
     int uv_map_count;
 } sl_material;
 
+/* How a mesh deforms each frame (glTF 2.0 §3.7.2.2 morph targets, §3.7.3 skins), on the GPU
+ * (core/render/deform.c) into the buffers every draw reads (forward, depth, shadow maps, plugins'
+ * programs), before any pass; a mesh without one is drawn from its static buffers and pays
+ * nothing. Per vertex v, in the drawing node's space (the draw keeps its model matrix):
+ *   p = data.positions[v] + Σ_t (weights[t] − rest_weights[t]) · target_positions[t][v]
+ *   (normals and tangents alike; data holds the shape at rest_weights, normals re-normalised)
+ *   skinned: p' = Σ_k joint_weights[v][k] · N⁻¹ · world(joint j) · inverse_bind[j] · p,
+ *   j = joints[v][k], N the drawing node's world matrix (the node's own transform is ignored, as
+ *   §3.7.3 says); normals by the cofactor of the blended matrix, tangents by the matrix. */
+typedef struct sl_mesh_deform {
+    int node;               /* the scene node drawing the mesh (a deformed mesh has one) */
+    int target_count;       /* morph targets (0: none) */
+    float *target_positions, *target_normals, *target_tangents; /* target_count × vertex_count × 3, or NULL */
+    float *weights;         /* target_count: this frame's (sl_scene_animate writes animated ones) */
+    float *rest_weights;    /* target_count: the weights data.positions/normals/tangents hold */
+    int skin;               /* index into scene.skins, −1: none */
+    int influences;         /* joints per vertex: 4 per JOINTS_n set */
+    uint16_t *joints;       /* vertex_count × influences: indices into the skin's joints */
+    float *joint_weights;   /* vertex_count × influences, each vertex's summing to 1 */
+} sl_mesh_deform;
+
+/* The most JOINTS_n/WEIGHTS_n sets a skinned primitive may have (4 joints each); more is an error
+ * naming the file and attribute. */
+#define SL_MAX_INFLUENCE_SETS 2
+
+/* A glTF skin: the scene nodes of its joints and their inverse bind matrices (column-major). */
+typedef struct sl_skin {
+    int joint_count;
+    int *joints;            /* scene node indices */
+    float *inverse_bind;    /* 16 per joint */
+} sl_skin;
+
 typedef struct sl_mesh {
     char *name;
     sl_mesh_data data;
     int material;           /* index into scene.materials */
+    sl_mesh_deform *deform; /* NULL: static */
 } sl_mesh;
 
 typedef struct sl_node {
@@ -174,15 +207,18 @@ typedef struct sl_scene {
     struct sl_anim_channel *anim_channels; int anim_channel_count;
     struct sl_anim_node *anim_nodes; int anim_node_count;
     float anim_duration;
+    sl_skin *skins; int skin_count;             /* glTF skins (sl_mesh_deform.skin) */
 } sl_scene;
 
 /* One animation channel (glTF 2.0 §3.11): a node's translation (path 0, 3 values), rotation
- * (1, a quaternion x y z w) or scale (2, 3 values), keyed at increasing times; CUBICSPLINE keys
- * hold in-tangent, value, out-tangent. */
-enum { SL_ANIM_TRANSLATION, SL_ANIM_ROTATION, SL_ANIM_SCALE };
+ * (1, a quaternion x y z w), scale (2, 3 values) or morph target weights (3, `components`
+ * values: the weights of the node's deformed meshes), keyed at increasing times; CUBICSPLINE
+ * keys hold in-tangent, value, out-tangent. */
+enum { SL_ANIM_TRANSLATION, SL_ANIM_ROTATION, SL_ANIM_SCALE, SL_ANIM_WEIGHTS };
 enum { SL_ANIM_LINEAR, SL_ANIM_STEP, SL_ANIM_CUBICSPLINE };
 typedef struct sl_anim_channel {
     int node, path, interpolation, key_count;
+    int components; /* SL_ANIM_WEIGHTS: the morph target count (other paths: 3 or 4 by path) */
     float *times;   /* key_count */
     float *values;  /* key_count × components (× 3 for CUBICSPLINE) */
 } sl_anim_channel;
@@ -190,9 +226,11 @@ typedef struct sl_anim_node { int node; float t[3], r[4], s[3]; } sl_anim_node;
 
 /* The animated value of a channel at time t (seconds; clamped to its keys) per the glTF 2.0
  * specification's appendix C: STEP holds the key, LINEAR lerps (rotation: slerp), CUBICSPLINE is
- * the cubic Hermite spline with the keys' tangents scaled by the key interval. out: 3 or 4 floats. */
-void sl_anim_sample(const sl_anim_channel *c, double t, float out[4]);
-/* Poses the animated nodes at time t (looping over anim_duration) and updates world transforms. */
+ * the cubic Hermite spline with the keys' tangents scaled by the key interval. out: 3 or 4
+ * floats, `components` for weights. */
+void sl_anim_sample(const sl_anim_channel *c, double t, float *out);
+/* Poses the animated nodes at time t (looping over anim_duration), writes animated morph
+ * weights into the deformed meshes of their nodes and updates world transforms. */
 void sl_scene_animate(sl_scene *scene, double t);
 
 /* How an imported texture is sampled (glTF 2.0 "samplers", whose values are OpenGL's enums):
@@ -305,6 +343,7 @@ const sl_gltf_extension *sl_gltf_extensions(int *count);
 void sl_mesh_generate_tangents(sl_mesh_data *m);
 void sl_mesh_compute_bounds(sl_mesh_data *m);
 void sl_mesh_free(sl_mesh_data *m);
+void sl_mesh_deform_free(sl_mesh_deform *d); /* NULL is fine */
 
 /* ---- building blocks (used by the loaders; handy for tools and tests) -------------------- */
 
