@@ -7,7 +7,8 @@
  * A feature file states its expectation in itself (asset.extras.expect, computed here from the
  * specification's formulas, not by the reader): the corners of mesh 0's triangles (positions,
  * normals, UVs; a triangle may start at any of its corners, its winding may not change), a
- * texture slot's UV mapping, each mesh's material values, the first camera, the first light. The table's last column names
+ * texture slot's UV mapping, each mesh's material values, the first camera, the first light, mesh 0's
+ * skin and morph targets (sl_mesh_deform). The table's last column names
  * the expectations the file met, so a change in what any one file does shows.
  *
  *   test_gltf_models                 check every row (a model missing from the table, or a row
@@ -243,6 +244,48 @@ static void f_morph_default_weights(gw_doc *g) {
     expect_quad(g, (const float (*)[3])p, quad_tris, 2, NULL);
 }
 
+/* a skin (§3.7.3) of one joint, node 2 at (0, 0, 1), its inverse bind matrix T(0, 0, −1); every
+ * vertex bound to it alone: the reader keeps the joint, the matrix and 4 influences per vertex */
+static void f_skin(gw_doc *g) {
+    const uint8_t j[16] = {0};
+    const float w[16] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    const float ibm[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -1, 1};
+    char s[200];
+    snprintf(s, sizeof s, "%d", gw_data(g, j, sizeof j, 5121, 4, "VEC4"));
+    gw_set(g, "/meshes/0/primitives/0/attributes/JOINTS_0", s);
+    snprintf(s, sizeof s, "%d", gw_data(g, w, sizeof w, 5126, 4, "VEC4"));
+    gw_set(g, "/meshes/0/primitives/0/attributes/WEIGHTS_0", s);
+    snprintf(s, sizeof s, "[{\"joints\": [2], \"inverseBindMatrices\": %d}]", gw_data(g, ibm, sizeof ibm, 5126, 1, "MAT4"));
+    gw_set(g, "/skins", s);
+    gw_set(g, "/nodes/0/skin", "0");
+    gw_set(g, "/nodes/2", "{\"name\": \"joint\", \"translation\": [0, 0, 1]}");
+    gw_set(g, "/scenes/0/nodes/2", "2");
+    expect_quad(g, quad_p, quad_tris, 2, NULL);
+    gw_set(g, "/asset/extras/expect/deform", "{\"joints\": 1, \"influences\": 4, \"targets\": 0, "
+           "\"inverse_bind\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -1, 1]}");
+}
+
+/* two morph targets (§3.7.2.2), mesh weights [0.5, 0] (the shape shown at rest), and a `weights`
+ * channel of 2 keys × 2 weights in place of the translation */
+static void f_morph_animated(gw_doc *g) {
+    const float d[12] = {0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 0, 0}, e[12] = {0, 0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 0, 0, 0.5f, 0};
+    const float w[4] = {0, 0, 1, 1};
+    char s[200];
+    int a = gw_data(g, d, sizeof d, 5126, 4, "VEC3"), b = gw_data(g, e, sizeof e, 5126, 4, "VEC3");
+    snprintf(s, sizeof s, "[{\"POSITION\": %d}, {\"POSITION\": %d}]", a, b);
+    gw_set(g, "/meshes/0/primitives/0/targets", s);
+    gw_set(g, "/meshes/0/weights", "[0.5, 0]");
+    snprintf(s, sizeof s, "%d", gw_data(g, w, sizeof w, 5126, 4, "SCALAR"));
+    gw_set(g, "/animations/0/samplers/0/output", s);
+    gw_set(g, "/animations/0/channels/0/target/path", "\"weights\"");
+    float p[4][3];
+    memcpy(p, quad_p, sizeof p);
+    for (int i = 0; i < 4; i++) p[i][0] += 0.25f;
+    expect_quad(g, (const float (*)[3])p, quad_tris, 2, NULL);
+    gw_set(g, "/asset/extras/expect/deform", "{\"joints\": 0, \"influences\": 0, \"targets\": 2, \"rest_weights\": [0.5, 0], "
+           "\"weights_channel\": 2}");
+}
+
 /* a base colour texture on UV set 1 with KHR_texture_transform (the extension's texCoord wins) */
 static void f_texture_transform(gw_doc *g) {
     static const unsigned char png[] = {0x89, 'P', 'N', 'G', 13, 10, 26, 10}; /* only its bytes are kept */
@@ -342,6 +385,8 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"non_indexed", f_non_indexed},
     {"flat_normals", f_flat_normals},
     {"morph_default_weights", f_morph_default_weights},
+    {"morph_animated", f_morph_animated},
+    {"skin", f_skin},
     {"texture_transform", f_texture_transform},
     {"camera_perspective", f_camera_perspective},
     {"camera_orthographic", f_camera_orthographic},
@@ -467,6 +512,24 @@ static bool light_matches(const sl_scene *s, const cJSON *want) {
            fabs(inner->v[0] - cJSON_GetObjectItem(want, "inner_cone_angle")->valuedouble) < 1e-4;
 }
 
+/* Mesh 0's deformation: its skin's joint count and first inverse bind matrix, influences per
+ * vertex, morph targets, the weights its shape holds and the components of a weights channel. */
+static bool deform_matches(const sl_scene *s, const cJSON *want) {
+    const sl_mesh_deform *d = s->meshes[0].deform;
+    const cJSON *v;
+    if (!d) return false;
+    int joints = d->skin >= 0 ? s->skins[d->skin].joint_count : 0;
+    bool ok = joints == cJSON_GetObjectItem(want, "joints")->valueint &&
+              d->influences == cJSON_GetObjectItem(want, "influences")->valueint &&
+              d->target_count == cJSON_GetObjectItem(want, "targets")->valueint;
+    if ((v = cJSON_GetObjectItem(want, "inverse_bind"))) ok = ok && joints && near_values(v, s->skins[d->skin].inverse_bind, 16, 0);
+    if ((v = cJSON_GetObjectItem(want, "rest_weights"))) ok = ok && near_values(v, d->rest_weights, d->target_count, 0);
+    if ((v = cJSON_GetObjectItem(want, "weights_channel")))
+        ok = ok && s->anim_channel_count == 1 && s->anim_channels[0].path == SL_ANIM_WEIGHTS &&
+             s->anim_channels[0].components == v->valueint;
+    return ok;
+}
+
 /* "\t" + the stated expectations met, comma-separated ("!" before one that is not) */
 static void check_expectation(const sl_scene *s, const char *file, char *out, size_t size) {
     cJSON *expect = stated_expectation(file), *e;
@@ -481,6 +544,7 @@ static void check_expectation(const sl_scene *s, const char *file, char *out, si
         else if (!strcmp(k, "camera")) ok = camera_matches(s, e);
         else if (!strcmp(k, "light")) ok = light_matches(s, e);
         else if (!strcmp(k, "materials")) ok = materials_match(s, e);
+        else if (!strcmp(k, "deform")) ok = ok && deform_matches(s, e);
         else ok = false;
         u += (size_t)snprintf(out + u, u < size ? size - u : 0, "%s%s%s", u ? "," : "\t", ok ? "" : "!", k);
     }

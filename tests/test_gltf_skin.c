@@ -8,12 +8,15 @@
  *    J = world(joint) · inverseBindMatrix; the CPU rasterises that strip (orthographic, 96 px)
  *    and interpolates its UVs, and the core's "uv" debug view must show the same UVs at every
  *    pixel more than 1.5 px inside the strip, and nothing at every pixel more than 1.5 px outside.
+ *    The same strip with a morph target too (its top row raised, weight animated 0 → 1 over 1 s):
+ *    the target applies before the skin, Σ w·J·(v + 0.5·Δ).
  *  - morph: a quad with two targets (top edge up, right edge right), mesh weights [0.5, 0] (the
  *    shape at rest) and a LINEAR `weights` animation from [0, 0] to [1, 1] over 1 s: at t = 0.75 s
  *    the quad is base + 0.75·T0 + 0.75·T1, checked the same way.
  *  - motion: the skinned strip's "motion" (through the tp-motion test plugin) between frames 30 and
  *    31 equals, at the pixels of the parts bound to one joint, the closed-form displacement
  *    J(t₁)·J(t₀)⁻¹ of the point seen there, in UV per frame.
+ *  - shadow: the strip at t = 0.5 s casts its posed shadow on a wall (spotlight-shadow's map).
  *  - hostile: joint indices, weights, sets, inverse bind matrices, joints and morph weights that
  *    break the specification: each refused naming the file, the JSON pointer and the cause. */
 #include "check.h"
@@ -27,8 +30,7 @@
 
 #define W 96
 #define H 96
-#define HALF 1.25                 /* the orthographic camera's half view */
-static const double CX = 1.0, CY = 0.5; /* the view's centre */
+static double HALF = 1.25, CX = 1.0, CY = 0.5; /* the orthographic view: half size, centre */
 
 static char err[8192], logbuf[1 << 16];
 
@@ -96,6 +98,21 @@ static void skinned_strip(gw_doc *g, size_t *joints_at, size_t *weights_at, size
     gw_data(g, turn, sizeof turn, 5126, 2, "VEC4");
 }
 
+/* The strip with a morph target as well (skinned and morphing): the top row 0.2 higher at weight
+ * 1, the weight animated 0 → 1 over 1 s (a third channel). */
+static const float strip_lift = 0.2f;
+static void morph_the_strip(gw_doc *g) {
+    float d[NV][3] = {{0}};
+    for (int v = COLS; v < NV; v++) d[v][1] = strip_lift;
+    const float w[2] = {0, 1};
+    char s[200];
+    snprintf(s, sizeof s, "[{\"POSITION\": %d}]", gw_data(g, d, sizeof d, 5126, NV, "VEC3"));
+    gw_set(g, "/meshes/0/primitives/0/targets", s);
+    snprintf(s, sizeof s, "{\"input\": 7, \"output\": %d}", gw_data(g, w, sizeof w, 5126, 2, "SCALAR"));
+    gw_set(g, "/animations/0/samplers/2", s);
+    gw_set(g, "/animations/0/channels/2", "{\"sampler\": 2, \"target\": {\"node\": 0, \"path\": \"weights\"}}");
+}
+
 /* The morphing quad: accessors 0 POSITION, 1 NORMAL, 2 TEXCOORD_0, 3 indices, 4 and 5 the
  * targets' POSITION, 6 key times, 7 weights (2 per key); *target_at: target 0's offset. */
 static const float quad_pos[4][3] = {{0.2f, 0, 0}, {1.2f, 0, 0}, {1.2f, 0.6f, 0}, {0.2f, 0.6f, 0}};
@@ -152,18 +169,20 @@ static void joint_matrices(double t, mat4d J[2]) {
     J[1] = mul(bone, translate(-1, 0, 0));
 }
 
-/* The strip's vertices (xy) at time t: Σ w·J·v. */
-static void skinned_positions(double t, double out[NV][2], double uv[NV][2]) {
+/* The strip's vertices (xy) at time t: Σ w·J·v, v the rest position plus `morph` × the target. */
+static void skinned_morphed_positions(double t, double morph, double out[NV][2], double uv[NV][2]) {
     mat4d J[2];
     joint_matrices(t, J);
     for (int v = 0; v < NV; v++) {
         float p[3], u[2];
         strip_vertex(v, p, u);
-        double b = bone_weight(p[0]), rest[2] = {p[0], p[1]}, a0[2], a1[2];
+        double b = bone_weight(p[0]), rest[2] = {p[0], p[1] + (v >= COLS ? morph * strip_lift : 0)}, a0[2], a1[2];
         apply(J[0], rest, a0), apply(J[1], rest, a1);
         for (int c = 0; c < 2; c++) out[v][c] = (1 - b) * a0[c] + b * a1[c], uv[v][c] = u[c];
     }
 }
+
+static void skinned_positions(double t, double out[NV][2], double uv[NV][2]) { skinned_morphed_positions(t, 0, out, uv); }
 
 /* ---- rasterising the expectation ---------------------------------------------------------- */
 
@@ -211,18 +230,21 @@ static double compare_uv(const float *img, const double (*p)[2], const double (*
 }
 
 static char scene[16384];
-static void scene_json(const char *model) {
+static const char *const *settings;
+/* The scene: the model under node "m", the orthographic camera; `more`: nodes and members after it. */
+static void scene_with(const char *model, const char *more) {
     snprintf(scene, sizeof scene,
              "{\"cameras\": [{\"name\": \"c\", \"type\": \"orthographic\", \"ymag\": %g, \"xmag\": %g, \"position\": "
              "[%g, %g, 5], \"target\": [%g, %g, 0], \"near\": 0.1, \"far\": 20}],\n"
-             " \"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}]}",
-             HALF, HALF, CX, CY, CX, CY, model);
+             " \"nodes\": [{\"name\": \"m\", \"mesh\": {\"file\": \"%s\"}}%s}",
+             HALF, HALF, CX, CY, CX, CY, model, more ? more : "]");
 }
+static void scene_json(const char *model) { scene_with(model, NULL); }
 
 static sl_harness *harness(const char *const *plugins, const char *view) {
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
                                                          .scene_json = scene, .plugins = plugins, .debug_view = view,
-                                                         .strict = true},
+                                                         .strict = true, .settings = settings},
                                       err, sizeof err);
     CHECK_MSG(h != NULL, "harness: %s", err);
     return h;
@@ -239,12 +261,14 @@ static const uint16_t *strip_triangles(void) {
 
 /* ---- the tests ------------------------------------------------------------------------------ */
 
-static void test_skin(void) {
+/* The skinned strip at t = 0.5 s, morphing too (its target at weight 0.5) when `morph`. */
+static void test_skin_at(bool morph) {
     gw_doc g;
     size_t ja, wa, ia;
     skinned_strip(&g, &ja, &wa, &ia);
+    if (morph) morph_the_strip(&g);
     char path[4200];
-    snprintf(path, sizeof path, "%s/skinned_strip.gltf", sl_test_dir());
+    snprintf(path, sizeof path, "%s/skinned_strip%s.gltf", sl_test_dir(), morph ? "_morph" : "");
     CHECK(gw_write(&g, path, GW_DATA_URI));
     gw_free(&g);
     scene_json(path);
@@ -254,21 +278,26 @@ static void test_skin(void) {
     sl_harness_set_frame(h, 30); /* t = 0.5 s */
     CHECK(sl_harness_render(h, img));
     double p[NV][2], uv[NV][2];
-    skinned_positions(0.5, p, uv);
+    skinned_morphed_positions(0.5, morph ? 0.5 : 0, p, uv);
     long inside, outside, stray;
     double worst = compare_uv(img, (const double (*)[2])p, (const double (*)[2])uv, strip_triangles(), NT, &inside, &outside, &stray);
-    /* the bind pose, to show the comparison can tell */
+    /* the bind pose (unmorphed), to show the comparison can tell */
     double rest[NV][2];
     skinned_positions(0, rest, uv);
     long i2, o2, s2;
     double bind = compare_uv(img, (const double (*)[2])rest, (const double (*)[2])uv, strip_triangles(), NT, &i2, &o2, &s2);
-    printf("skin: UV of the skinned strip at t = 0.5 s off by at most %.2e over %ld px inside (the bind pose: %.2f, "
-           "%ld stray px); %ld of %ld px outside show something\n", worst, inside, bind, s2, stray, outside);
+    printf("skin%s: UV of the skinned strip at t = 0.5 s off by at most %.2e over %ld px inside (the bind pose: %.2f, "
+           "%ld stray px); %ld of %ld px outside show something\n", morph ? " + morph" : "", worst, inside, bind, s2, stray, outside);
     CHECK_MSG(inside > 1000 && worst < 2e-3, "skinned strip: UV off by %g over %ld px", worst, inside);
     CHECK_MSG(outside > 3000 && stray == 0, "skinned strip: %ld of %ld px outside it drawn", stray, outside);
     CHECK_MSG(bind > 0.05 || s2 > 100, "the bind pose is not told apart (%g, %ld)", bind, s2);
     free(img);
     sl_harness_destroy(h);
+}
+
+static void test_skin(void) {
+    test_skin_at(false);
+    test_skin_at(true);
 }
 
 /* One render of the morphing quad at frame f (a fresh harness each: a harness's second render
@@ -362,6 +391,63 @@ static void test_motion(void) {
     sl_harness_destroy(h);
 }
 
+/* Shadows: a sun travelling along (1, 0, −1) (spotlight-shadow's shadow map, drawn through the
+ * core's depth-only path) casts the strip onto a grey wall at z = −1, shifted by +1 in x. At
+ * t = 0.5 s every wall pixel more than 3 px from the shifted skinned strip's outline must be dark
+ * inside it and lit outside it; the bind pose's shadow, shifted alike, would not match. */
+static void test_shadow(void) {
+    gw_doc g;
+    size_t ja, wa, ia;
+    skinned_strip(&g, &ja, &wa, &ia);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/skinned_strip_shadow.gltf", sl_test_dir());
+    CHECK(gw_write(&g, path, GW_DATA_URI));
+    gw_free(&g);
+    HALF = 1.75, CX = 1.5, CY = 0.5;
+    scene_with(path, ", {\"name\": \"wall\", \"translate\": [1.5, 0.5, -1], \"rotate\": [90, 0, 0], \"mesh\": "
+               "{\"primitive\": \"plane\", \"size\": 8}, \"material\": \"wall\"}],\n"
+               " \"materials\": [{\"name\": \"wall\", \"base_color\": [0.5, 0.5, 0.5]}],\n"
+               " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [1, 0, -1], \"intensity\": 2, "
+               "\"cast_shadows\": true}]");
+    const char *plugins[] = {"spotlight-shadow", NULL};
+    sl_harness *h = harness(plugins, NULL);
+    if (!h) return;
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    sl_harness_set_frame(h, 30);
+    CHECK(sl_harness_render(h, img));
+    double p[NV][2], rest[NV][2], uv[NV][2], shifted[NV][2], shifted_rest[NV][2], u[2];
+    skinned_positions(0.5, p, uv);
+    skinned_positions(0, rest, uv);
+    for (int v = 0; v < NV; v++)
+        shifted[v][0] = p[v][0] + 1, shifted[v][1] = p[v][1], shifted_rest[v][0] = rest[v][0] + 1, shifted_rest[v][1] = rest[v][1];
+    const double lit = 0.5 / M_PI * 2 * sqrt(0.5), r = 3.0 * 2 * HALF / W;
+    long shade = 0, light = 0, wrong = 0, wrong_bind = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double x = px_x(i), y = px_y(j);
+            int on_strip = 0, in_shadow = 0, in_bind = 0;
+            for (int k = 0; k < 9; k++) {
+                double a = k * M_PI / 4, xx = x + (k ? r * cos(a) : 0), yy = y + (k ? r * sin(a) : 0);
+                on_strip += uv_at((const double (*)[2])p, (const double (*)[2])uv, strip_triangles(), NT, xx, yy, u);
+                in_shadow += uv_at((const double (*)[2])shifted, (const double (*)[2])uv, strip_triangles(), NT, xx, yy, u);
+                in_bind += uv_at((const double (*)[2])shifted_rest, (const double (*)[2])uv, strip_triangles(), NT, xx, yy, u);
+            }
+            if (on_strip || (in_shadow % 9) != 0) continue; /* the strip itself, or near the shadow's outline */
+            double gval = img[4 * ((size_t)j * W + i) + 1] / lit;
+            bool dark = gval < 0.5;
+            if (in_shadow) shade++; else light++;
+            wrong += dark != (in_shadow == 9);
+            if (in_bind % 9 == 0) wrong_bind += dark != (in_bind == 9);
+        }
+    printf("shadow: the skinned strip's shadow on the wall at t = 0.5 s: %ld px in shadow, %ld lit, %ld not as the "
+           "posed strip casts it (as the bind pose would: %ld)\n", shade, light, wrong, wrong_bind);
+    CHECK_MSG(shade > 200 && light > 2000 && wrong == 0, "skinned shadow: %ld of %ld px wrong", wrong, shade + light);
+    CHECK_MSG(wrong_bind > 100, "the bind pose's shadow is not told apart (%ld px)", wrong_bind);
+    free(img);
+    sl_harness_destroy(h);
+    HALF = 1.25, CX = 1.0, CY = 0.5;
+}
+
 /* ---- hostile files ---------------------------------------------------------------------------- */
 
 typedef struct hcase {
@@ -445,6 +531,12 @@ static void test_hostile(void) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s.gltf", sl_test_dir(), c->name);
         CHECK(gw_write(&g, path, GW_DATA_URI));
+        const char *seeds = getenv("SL_GLTF_SEEDS"); /* the fuzzer's seeds too (fuzz/README.md) */
+        if (seeds) {
+            snprintf(path, sizeof path, "%s/%s.gltf", seeds, c->name);
+            gw_write(&g, path, GW_DATA_URI);
+            snprintf(path, sizeof path, "%s/%s.gltf", sl_test_dir(), c->name);
+        }
         gw_free(&g);
         sl_scene s = {0};
         err[0] = 0;
@@ -476,5 +568,6 @@ int main(void) {
     test_skin();
     test_morph();
     test_motion();
+    test_shadow();
     return check_result();
 }
