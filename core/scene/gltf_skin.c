@@ -51,9 +51,9 @@ static bool make_skin(gltf_import *im, int gs, int *out) {
         }
         for (int i = 0; i < 16 * n; i++)
             if (!isfinite(sk.inverse_bind[i]) || fabsf(sk.inverse_bind[i]) > SL_SCENE_MAX_EXTENT) {
-                free(sk.joints), free(sk.inverse_bind);
-                return gltf_fail(d, p, "matrix %d's element %d (%g) is not finite within ±%g", i / 16, i % 16,
-                                 sk.inverse_bind[i], SL_SCENE_MAX_EXTENT);
+                gltf_fail(d, p, "matrix %d's element %d (%g) is not finite within ±%g", i / 16, i % 16, sk.inverse_bind[i],
+                          SL_SCENE_MAX_EXTENT);
+                return free(sk.joints), free(sk.inverse_bind), false;
             }
     } else if ((sk.inverse_bind = calloc((size_t)n * 16, sizeof(float)))) {
         for (int i = 0; i < n; i++)
