@@ -24,6 +24,6 @@ target_link_libraries(test_gltf_compressed PRIVATE draco::draco meshoptimizer::m
 add_dependencies(test_gltf_compressed plugin_envmap plugin_ggx plugin_tonemap plugin_aa shadelab_draco)
 # Skins and morph targets on the GPU against the specification's formulas on the CPU, their motion
 # vectors and hostile skin/morph files (tests/test_gltf_skin.c).
-sl_add_test(gltf_skin SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_skin.c LABELS scene gltf hostile TIMEOUT 120)
+sl_add_test(gltf_skin SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_skin.c LABELS scene gltf hostile TIMEOUT ${SL_HANG_GUARD})
 target_compile_definitions(test_gltf_skin PRIVATE TP_MOTION_PATH="${PROJECT_BINARY_DIR}/tests/plugins/tp-motion/tp-motion.so")
 add_dependencies(test_gltf_skin tp_tp-motion plugin_spotlight-shadow)
