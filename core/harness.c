@@ -82,6 +82,12 @@ bool sl_harness_get(sl_harness *h, const char *id, char *text, size_t n) {
     return true;
 }
 
+bool sl_harness_render_sample(sl_harness *h, int index, int count, float *rgba) {
+    if (count < 1 || index < 0 || index >= count) return false;
+    sl_renderer_force_sample(&h->app, index, count);
+    return sl_harness_render(h, rgba);
+}
+
 void sl_harness_set_frame(sl_harness *h, uint64_t frame_index) { h->app.frame_index = frame_index; }
 
 bool sl_harness_set_camera(sl_harness *h, const float position[3], const float target[3]) {

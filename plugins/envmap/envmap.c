@@ -41,14 +41,16 @@ static const sl_param_desc params[] = {
     P(.id = "mode", .type = SL_PARAM_ENUM, .enum_values = modes, .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "lighting",
       .description = "split-sum: prefiltered image-based lighting (envmap.specular says how); reference: Monte Carlo "
                      "integration of the source with the exact BRDF (accumulate frames)."),
-    P(.id = "specular", .type = SL_PARAM_ENUM, .enum_values = speculars, .default_value = {.i = 3},
+    P(.id = "specular", .type = SL_PARAM_ENUM, .enum_values = speculars, .default_value = {.i = 1},
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
       .description = "ggx's environment specular in split-sum mode: mirror: the prefiltered chain along the mirror "
-                     "direction (Karis 2013); dominant: along GGX's dominant, off-specular direction (Lagarde & de "
-                     "Rousiers 2014); fis: filtered importance sampling, fis_samples GGX visible-normal samples per "
-                     "pixel from the base cube's mips (Krivanek & Colbert 2007), times the environment BRDF; hybrid "
-                     "(default): fis below hybrid_alpha, dominant above; fis's sequence continues over a TAA still's "
-                     "frames, so a view at rest converges (bench/still.sh)."),
+                     "direction (Karis 2013); dominant (default: deterministic, no noise, the first-frame chart's "
+                     "choice, bench/first.csv): along GGX's dominant, off-specular direction (Lagarde & de Rousiers "
+                     "2014); fis: filtered importance sampling, fis_samples GGX visible-normal samples per pixel "
+                     "from the base cube's mips (Krivanek & Colbert 2007), Monte Carlo, times the environment BRDF; "
+                     "hybrid: fis below hybrid_alpha, dominant above, its sequence continuing over a TAA still's "
+                     "frames (a still converges, its frames are noisy); filtered: deterministic fis with one fixed "
+                     "sample set reading the prefiltered chain."),
     P(.id = "fis_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 32, .group = "lighting",
       .flags = SL_PARAM_QUALITY_KNOB,
       .description = "Samples per pixel of specular=fis and hybrid (1, 2, 4, 8, 16, 32: error falls with cost; the "

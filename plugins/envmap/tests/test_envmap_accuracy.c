@@ -208,7 +208,7 @@ static double block(const float *im, int px, int py) {
     return s / 9;
 }
 
-#define STILL_BOUND 0.035     /* the default's still, α ≥ 0.2: measured 0.010–0.018 (its first frame 0.042–0.051) */
+#define STILL_BOUND 0.035     /* hybrid's still, α ≥ 0.2: measured 0.010–0.018 (its first frame 0.042–0.051) */
 #define STILL_BOUND_005 0.12  /* α = 0.05: measured 0.072, mostly the jitter against pixel-centre values */
 #define FILTERED_BOUND 0.1      /* filtered N = 16 (single frame), α ≥ 0.2: measured 0.045–0.076 */
 #define FILTERED_BOUND_005 0.2  /* α = 0.05: measured 0.155, the band's sharp edges through 16 sub-lobes */
@@ -421,11 +421,11 @@ static bool still(sl_harness *h, int frames, float *first) {
 static void test_still(void) {
     char path[512];
     static float first[W * H * 4];
-    /* 1. furnace, the default specular (hybrid): every frame is exact (the control variate), so
-     * the still is E(μ, α) averaged over the 16 jittered points of each pixel */
+    /* 1. furnace, specular=hybrid: every frame is exact (the control
+     * variate), so the still is E(μ, α) averaged over the 16 jittered points of each pixel */
     snprintf(path, sizeof path, "%s/one.exr", dir);
     write_latlong(path, 64, 32, one_fn);
-    const char *on[] = {"aa.enabled=true", NULL};
+    const char *on[] = {"aa.enabled=true", "envmap.specular=hybrid", NULL};
     sl_harness *h = make(path, on, 1);
     CHECK(h != NULL);
     if (!h) return;
@@ -468,7 +468,7 @@ static void test_still(void) {
         CHECK_MSG(worst < 0.005, "still furnace alpha %.2f: %.4f", alphas[a], worst);
     }
     sl_harness_destroy(h);
-    /* 2. the band, the default: the sample sequence continues over the still's frames
+    /* 2. the band, hybrid: the sample sequence continues over the still's frames
      * (sl_sample_index), so the still averages (n − 1) × 16 samples of the real lobe on top of the
      * dominant lookup, which its first frame shows alone (sample 0, as in motion); with the index
      * stuck at 0 every frame would be that first frame and the still would keep its error
@@ -477,9 +477,9 @@ static void test_still(void) {
      * what α = 0.05 has left, a sharp band edge). */
     snprintf(path, sizeof path, "%s/band.exr", dir);
     write_latlong(path, 256, 128, band_fn);
-    const char *dflt[] = {"aa.enabled=true", NULL};
+    const char *dflt[] = {"aa.enabled=true", "envmap.specular=hybrid", NULL};
     const char *const *cfg[1] = {dflt};
-    const char *names[1] = {"default (hybrid)"};
+    const char *names[1] = {"hybrid"};
     const int nv = sizeof ibl_quadrature_values / sizeof *ibl_quadrature_values;
     for (int m = 0; m < 1; m++) {
         h = make(path, cfg[m], 1);
@@ -502,8 +502,8 @@ static void test_still(void) {
                    alphas[a], rms, n, rms1);
             CHECK(count == 6);
             if (alphas[a] >= 0.2)
-                CHECK_MSG(rms < STILL_BOUND && rms < 0.8 * rms1, "default still alpha %.2f: rms %.4f, first frame %.4f", alphas[a], rms, rms1);
-            else CHECK_MSG(rms < STILL_BOUND_005, "default still alpha %.2f: rms %.4f", alphas[a], rms);
+                CHECK_MSG(rms < STILL_BOUND && rms < 0.8 * rms1, "hybrid still alpha %.2f: rms %.4f, first frame %.4f", alphas[a], rms, rms1);
+            else CHECK_MSG(rms < STILL_BOUND_005, "hybrid still alpha %.2f: rms %.4f", alphas[a], rms);
         }
         sl_harness_destroy(h);
     }

@@ -21,12 +21,13 @@
 
 #define W 32
 #define H 32
-/* relative RMS of the split sum vs the reference (block means), margin over what was measured
- * (README "Lobes"): with a diffuse albedo both models share one bound; the specular lobe alone
- * (black) is where the equivalent GGX lobe shows: ggx 0.060–0.066, blinn-gloss 0.167–0.187
- * (GGX's tails against Blinn's, and the weight off at the rim of wide lobes) */
+/* relative RMS of the split sum (envmap's default specular, dominant) vs the reference (block
+ * means), margin over what was measured (phong README): with a diffuse albedo both models share
+ * one bound (measured 0.008–0.026); the specular lobe alone (black) is where the equivalent GGX
+ * lobe shows: ggx 0.083–0.105, blinn-gloss 0.115–0.196 (GGX's tails against Blinn's, and the
+ * weight off at the rim of wide lobes) */
 #define SPLIT_BOUND 0.04
-#define SPLIT_BOUND_GGX_SPECULAR 0.09
+#define SPLIT_BOUND_GGX_SPECULAR 0.12
 #define SPLIT_BOUND_PHONG_SPECULAR 0.25
 static float img[W * H * 4], ref[W * H * 4];
 static const test_camera cam = {{0, 0, 4}, {0, 0, 0}, 40, W, H};

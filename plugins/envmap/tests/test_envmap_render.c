@@ -406,6 +406,93 @@ static void test_default_horizon(void) {
     sl_harness_destroy(h);
 }
 
+/* ---------------------------------------------------------------- the default has no speckle */
+
+/* scenes/ibl_spheres.json with every default, 320 × 180: shadelab-bench's noise measure
+ * (tools/bench/include/bench/metrics.h) on the rough spheres (roughness 0.55 and 0.8, dielectric
+ * and gold): frames k = 0..15 of a 16-frame still, each rendered on its own
+ * (sl_harness_render_sample: no TAA history), the per-pixel standard deviation of the display
+ * value (sRGB, [0,1]), RMS over R, G, B and the pixels whose 3 × 3 neighbourhood lies on one
+ * rough sphere (n·v > 0.3). What a still averages away shows as speckle while it settles and
+ * in motion. The default (specular=dominant) must stay within 0.002 (half an 8-bit step);
+ * specular=hybrid (Monte Carlo in a still's frames) is measured beside it and must exceed it,
+ * so the measure does see speckle. */
+static int rough_sphere_at(const test_camera *c, int x, int y, const float centres[][3], int count) {
+    float o[3], d[3];
+    test_camera_ray(c, x, y, o, d);
+    int which = -1;
+    for (int k = 0; k < count; k++) {
+        double oc[3] = {o[0] - centres[k][0], o[1] - centres[k][1], o[2] - centres[k][2]};
+        double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+        double disc = b * b - (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - 0.45 * 0.45);
+        if (disc <= 0) continue;
+        double t = -b - sqrt(disc), nv = 0;
+        for (int i = 0; i < 3; i++) nv -= (o[i] + t * d[i] - centres[k][i]) / 0.45 * d[i];
+        if (nv > 0.3) which = k;
+    }
+    return which;
+}
+static bool inside_one_sphere(const int *label, int w, int x, int y) {
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++)
+            if (label[(y + dy) * w + x + dx] != label[y * w + x]) return false;
+    return label[y * w + x] >= 0;
+}
+/* the noise of `samples` frames on the masked pixels; -1 when a frame fails */
+static double still_noise(sl_harness *h, int samples, const int *label, int w, int hgt, float *im) {
+    size_t n = (size_t)w * hgt * 4;
+    double *mean = calloc(n, sizeof *mean), *m2 = calloc(n, sizeof *m2);
+    bool ok = mean && m2;
+    for (int k = 0; k < samples && ok; k++) {
+        ok = sl_harness_render_sample(h, k, samples, NULL) && sl_harness_read_display(h, im);
+        for (size_t i = 0; ok && i < n; i++) { /* Welford */
+            double d = im[i] - mean[i];
+            mean[i] += d / (k + 1);
+            m2[i] += d * (im[i] - mean[i]);
+        }
+    }
+    double sum = 0;
+    long count = 0;
+    for (int y = 1; ok && y < hgt - 1; y++)
+        for (int x = 1; x < w - 1; x++)
+            if (inside_one_sphere(label, w, x, y))
+                for (int c = 0; c < 3; c++) sum += m2[((size_t)y * w + x) * 4 + c] / (samples - 1), count++;
+    free(mean), free(m2);
+    return ok && count > 200 ? sqrt(sum / count) : -1;
+}
+static void test_default_speckle(void) {
+    enum { SW = 320, SH = 180, SAMPLES = 16 };
+    char path[1024], err[4096];
+    snprintf(path, sizeof path, "%s/ibl_spheres.json", SL_SCENES_DIR);
+    const test_camera c = {{0, 1.3f, 7.2f}, {0, 0.65f, 0}, 40, SW, SH};
+    const float rough[4][3] = {{0.6f, 1.55f, -0.6f}, {1.8f, 1.55f, -0.6f}, {0.6f, 0.5f, -0.6f}, {1.8f, 0.5f, -0.6f}};
+    float *im = malloc((size_t)SW * SH * 16);
+    int *label = malloc((size_t)SW * SH * sizeof *label);
+    for (int y = 0; y < SH; y++)
+        for (int x = 0; x < SW; x++) label[y * SW + x] = rough_sphere_at(&c, x, y, rough, 4);
+    double noise[2] = {-1, -1};
+    for (int k = 0; k < 2; k++) {
+        const char *const hybrid[] = {"envmap.specular=hybrid", NULL};
+        sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = SW, .height = SH,
+                                                              .scene_file = path, .settings = k ? hybrid : NULL},
+                                          err, sizeof err);
+        CHECK_MSG(h != NULL, "%s", err);
+        if (!h) continue;
+        if (!k) {
+            char v[32];
+            CHECK(sl_harness_get(h, "envmap.specular", v, sizeof v) && !strcmp(v, "dominant"));
+        }
+        noise[k] = still_noise(h, SAMPLES, label, SW, SH, im);
+        sl_harness_destroy(h);
+    }
+    free(im), free(label);
+    printf("ibl_spheres, rough spheres, noise over a %d-frame still (display values): default %.5f, "
+           "specular=hybrid %.5f\n", SAMPLES, noise[0], noise[1]);
+    CHECK(noise[0] >= 0 && noise[1] >= 0);
+    CHECK_MSG(noise[0] <= 0.002, "the default's frames scatter: noise %.5f", noise[0]);
+    CHECK_MSG(noise[1] > 0.002, "the measure does not see hybrid's Monte Carlo: %.5f", noise[1]);
+}
+
 /* ---------------------------------------------------------------- SH ringing */
 
 /* A sun-only environment (a bright 3° disk on black): order-2 SH rings negative on the far
@@ -898,6 +985,7 @@ int main(void) {
     test_conventions();
     test_probe();
     test_default_horizon();
+    test_default_speckle();
     test_sun_highlight();
     test_procedural();
     test_bad_input();

@@ -61,6 +61,12 @@ int sl_harness_plugin_debug_views(sl_harness *h, const char *plugin, const char 
  * encoding themselves (sl_pass_desc.display_on_write) and the core's display pass is skipped;
  * sl_harness_read_display gives the same image within 1/255. */
 bool sl_harness_render(sl_harness *h, float *rgba);
+/* Renders one frame as sample `index` of `count` (sl_frame.sample_index/count: what frame
+ * `index` of a `count`-frame still or accumulation sees) on its own: temporal methods (TAA)
+ * restart their history, nothing is accumulated, so the frame is shown as rendered. The spread
+ * of samples 0..count-1 is shadelab-bench's noise measure; a deterministic method gives the
+ * same image for every index. False when index is not in [0, count) or the frame fails. */
+bool sl_harness_render_sample(sl_harness *h, int index, int count, float *rgba);
 /* The display-encoded image of the last render (sRGB, [0,1]). */
 bool sl_harness_read_display(sl_harness *h, float *rgba);
 bool sl_harness_save(sl_harness *h, const char *path, char *err, size_t err_size);
