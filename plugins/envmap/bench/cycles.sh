@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# envmap's specular methods against Blender's Cycles (docs/xcheck.md), first frame: a row of
+# white metal spheres (GGX alpha 0.05 / 0.2 / 0.4 / 0.7 / 1, F0 = 1) under Blender's forest.exr,
+# environment only, 480x96, aa off, one frame (no accumulation, no TAA still); relative RMS per
+# sphere interior from shadelab-xcheck, plus EEVEE (1 and 16 samples) against the same Cycles
+# image. Writes bench/cycles.csv (method, alpha, relative RMS, mean ratio). The Cycles image is
+# rendered once (SAMPLES per pixel, ≈ 30 min at 2048 on 2 loaded cores) and cached by xcheck.
+# Usage: plugins/envmap/bench/cycles.sh [BUILD_DIR] [SAMPLES] [OUT_DIR]
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/common.sh"
+samples=${2:-2048}
+out=${3:-$here}
+hdr=$(blender_hdr forest)
+[ -n "$hdr" ] || { echo "cycles.sh: Blender's forest.exr is not installed (Debian blender-data)" >&2; exit 77; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+alphas=(0.05 0.2 0.4 0.7 1.0) names=(005 020 040 070 100) # the scene is written byte for byte as before, so that xcheck's cached Cycles image is found
+{ echo '{'
+  echo '  "comment": "Metal sphere row under Blender'"'"'s forest.exr: GGX alpha 0.05, 0.2, 0.4, 0.7, 1 (white metal, F0 = 1), environment only.",'
+  echo '  "plugins": ["ggx", "envmap"],'
+  echo '  "cameras": [ { "name": "main", "position": [0, 0, 9], "target": [0, 0, 0], "fov_y": 7, "near": 0.5, "far": 50 } ],'
+  echo "  \"environment\": { \"map\": \"$hdr\" },"
+  echo '  "materials": ['
+  for i in 0 1 2 3 4; do
+    printf '    { "name": "a%s", "model": "ggx", "fresnel": "metallic-roughness", "metallic": 1, "base_color": [1, 1, 1], "alpha": %s }%s\n' \
+      "${names[$i]}" "${alphas[$i]}" "$([ $i -lt 4 ] && echo ,)"
+  done
+  echo '  ],'
+  echo '  "nodes": ['
+  for i in 0 1 2 3 4; do
+    printf '    { "name": "s%s", "translate": [%s, 0, 0], "mesh": { "primitive": "sphere", "radius": 0.42, "segments": 96, "rings": 48 }, "material": "a%s" }%s\n' \
+      "${names[$i]}" "$(echo "$i - 2" | bc).0" "${names[$i]}" "$([ $i -lt 4 ] && echo ,)"
+  done
+  echo '  ],'
+  echo '  "lights": []'
+  echo '}'; } > "$tmp/metal_row.json"
+xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles image
+  local name=$1; shift
+  "$build/shadelab-xcheck" "$tmp/metal_row.json" --size 480x96 --samples "$samples" --set aa.enabled=false \
+    --frames 1 --out "$tmp/$name" "$@" > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log" >&2; exit 1; }
+  jq -r --arg m "$name" '.objects[] | [$m, (.name | ltrimstr("s")), .rel_rms, .mean_ratio] | @csv' "$tmp/$name/report.json"
+}
+{ echo "method,alpha,rel_rms,mean_ratio"
+  xcheck dominant --eevee 1,16
+  xcheck mirror --set envmap.specular=mirror
+  xcheck filtered16 --set envmap.specular=filtered
+  xcheck filtered32 --set envmap.specular=filtered --set envmap.filtered_samples=32
+  xcheck filtered64 --set envmap.specular=filtered --set envmap.filtered_samples=64
+  xcheck fis32 --set envmap.specular=fis --set envmap.fis_samples=32
+  xcheck hybrid16 --set envmap.specular=hybrid
+  xcheck hybrid16-still --set envmap.specular=hybrid --set aa.enabled=true --frames 16
+  for e in "$tmp"/dominant/eevee-*.exr; do # EEVEE per sphere, on the interiors xcheck used
+    n=$(basename "$e" .exr)
+    python3 "$here/cycles_objects.py" "$tmp/dominant" "$e" | sed "s/^/$n,/"
+  done; } | tr -d '"' > "$out/cycles.csv"
+echo "$out/cycles.csv" >&2
