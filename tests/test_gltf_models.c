@@ -369,6 +369,35 @@ static void f_material_identity(gw_doc *g) {
     gw_set(g, "/asset/extras/expect/materials", s);
 }
 
+/* One material with one KHR_materials layer (ext: its JSON, with texture 0, a PNG stub, where it
+ * names one); the inputs the reader must publish for it (want: {"input": number | true (a
+ * texture) | false (absent)}), as the ggx keys that take them read them. */
+static void layer_feature(gw_doc *g, const char *name, const char *ext, const char *want) {
+    static const unsigned char png[] = {0x89, 'P', 'N', 'G', 13, 10, 26, 10};
+    char s[1200];
+    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, png, sizeof png), sizeof png, 0));
+    gw_set(g, "/images", s);
+    gw_set(g, "/textures", "[{\"source\": 0}]");
+    snprintf(s, sizeof s, "[\"%s\"]", name);
+    gw_set(g, "/extensionsUsed", s);
+    snprintf(s, sizeof s, "{\"name\": \"layered\", \"extensions\": {\"%s\": %s}}", name, ext);
+    gw_set(g, "/materials/0", s);
+    gw_set(g, "/meshes/0/primitives/0/material", "0");
+    gw_set(g, "/asset/extras/expect/inputs", want);
+}
+static void f_clearcoat(gw_doc *g) {
+    layer_feature(g, "KHR_materials_clearcoat",
+                  "{\"clearcoatFactor\": 0.8, \"clearcoatRoughnessFactor\": 0.25, \"clearcoatTexture\": {\"index\": 0}, "
+                  "\"clearcoatNormalTexture\": {\"index\": 0, \"scale\": 0.5}}",
+                  "{\"clearcoat\": 0.8, \"clearcoat_roughness\": 0.25, \"clearcoat_texture\": true, "
+                  "\"clearcoat_roughness_texture\": false, \"clearcoat_normal_texture\": true, \"clearcoat_normal_scale\": 0.5}");
+}
+/* clearcoatFactor 0 (the default) is no coat, whatever else is given */
+static void f_clearcoat_zero(gw_doc *g) {
+    layer_feature(g, "KHR_materials_clearcoat", "{\"clearcoatRoughnessFactor\": 0.25, \"clearcoatTexture\": {\"index\": 0}}",
+                  "{\"clearcoat\": false, \"clearcoat_roughness\": false, \"clearcoat_texture\": false}");
+}
+
 static const struct { const char *name; void (*build)(gw_doc *g); } features[] = {
     {"baseline", f_baseline},
     {"indices_u8", f_indices_u8},
@@ -392,6 +421,8 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"camera_orthographic", f_camera_orthographic},
     {"light_spot", f_light_spot},
     {"material_identity", f_material_identity},
+    {"clearcoat", f_clearcoat},
+    {"clearcoat_zero", f_clearcoat_zero},
 };
 
 static void write_features(void) {
@@ -485,6 +516,19 @@ static bool materials_match(const sl_scene *s, const cJSON *want) {
     return true;
 }
 
+/* the inputs of mesh 0's material: a number its value, true present, false absent */
+static bool inputs_match(const sl_scene *s, const cJSON *want) {
+    if (s->mesh_count < 1) return false;
+    const sl_material *m = &s->materials[s->meshes[0].material];
+    const cJSON *w;
+    cJSON_ArrayForEach(w, want) {
+        const sl_prop *p = sl_prop_find(&m->inputs, w->string);
+        if (cJSON_IsFalse(w) ? p != NULL : !p) return false;
+        if (cJSON_IsNumber(w) && fabs(p->v[0] - w->valuedouble) > 1e-6) return false;
+    }
+    return true;
+}
+
 static bool camera_matches(const sl_scene *s, const cJSON *want) {
     if (s->camera_count < 1) return false;
     const sl_camera *c = &s->cameras[0];
@@ -545,6 +589,7 @@ static void check_expectation(const sl_scene *s, const char *file, char *out, si
         else if (!strcmp(k, "light")) ok = light_matches(s, e);
         else if (!strcmp(k, "materials")) ok = materials_match(s, e);
         else if (!strcmp(k, "deform")) ok = ok && deform_matches(s, e);
+        else if (!strcmp(k, "inputs")) ok = inputs_match(s, e);
         else ok = false;
         u += (size_t)snprintf(out + u, u < size ? size - u : 0, "%s%s%s", u ? "," : "\t", ok ? "" : "!", k);
     }

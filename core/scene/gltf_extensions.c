@@ -20,7 +20,9 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_pbrSpecularGlossiness", SL_GLTF_APPROXIMATED,
      "diffuse as base colour, metallic 0, roughness 1 - glossiness; the specular colour and its texture are "
      "not rendered"},
-    {"KHR_materials_clearcoat", SL_GLTF_IGNORED, "the base layer only"},
+    {"KHR_materials_clearcoat", SL_GLTF_APPROXIMATED,
+     "a second GGX lobe with its roughness, textures and normal texture (ggx); environment and area lights see "
+     "the coat about the base's normal"},
     {"KHR_materials_sheen", SL_GLTF_IGNORED, "the base layer only"},
     {"KHR_materials_specular", SL_GLTF_IGNORED, "F0 from ior only"},
     {"KHR_materials_transmission", SL_GLTF_IGNORED, "opaque"},

@@ -259,7 +259,28 @@ static bool core_inputs(gltf_import *im, int mi, const cJSON *mat, const char *a
            slot(im, mi, mat, at, "emissiveTexture", "emissive_texture", NULL, NULL);
 }
 
-/* KHR_materials_emissive_strength, _ior, _unlit and (approximated) _pbrSpecularGlossiness. */
+/* KHR_materials_clearcoat: the coat's factor, roughness and textures; a factor of 0 (the
+ * default) is no coat at all, whatever the textures say. */
+static bool clearcoat_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    sl_prop_list *in = &im->scene->materials[mi].inputs;
+    const cJSON *e;
+    char p[160];
+    snprintf(p, sizeof p, "%s/KHR_materials_clearcoat", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_clearcoat", &e)) return false;
+    double weight = 0, rough = 0;
+    if (!e || !factor(d, e, p, "clearcoatFactor", 0, 1, &weight) || !factor(d, e, p, "clearcoatRoughnessFactor", 0, 1, &rough))
+        return e == NULL;
+    if (weight == 0) return true;
+    sl_prop_set_number(in, "clearcoat", (float)weight, 0);
+    sl_prop_set_number(in, "clearcoat_roughness", (float)rough, 0);
+    return slot(im, mi, e, p, "clearcoatTexture", "clearcoat_texture", NULL, NULL) &&
+           slot(im, mi, e, p, "clearcoatRoughnessTexture", "clearcoat_roughness_texture", NULL, NULL) &&
+           slot(im, mi, e, p, "clearcoatNormalTexture", "clearcoat_normal_texture", "scale", "clearcoat_normal_scale");
+}
+
+/* KHR_materials_emissive_strength, _ior, _unlit and (approximated) _pbrSpecularGlossiness;
+ * the layers ggx renders (clearcoat). */
 static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const char *at) {
     gltf_doc *d = &im->doc;
     sl_prop_list *in = &im->scene->materials[mi].inputs;
@@ -282,6 +303,7 @@ static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const ch
     if (e) sl_prop_set_number(in, "ior", (float)ior, 0);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_unlit", &e)) return false;
     if (e) sl_prop_set_bool(in, "unlit", true, 0);
+    if (!clearcoat_inputs(im, mi, ext, ep)) return false;
     snprintf(p, sizeof p, "%s/KHR_materials_pbrSpecularGlossiness", ep);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_pbrSpecularGlossiness", &e)) return false;
     if (!e) return true;

@@ -24,6 +24,8 @@ static const sl_param_desc params[] = {
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB,
       .group = "quality",
       .description = "Toksvig specular antialiasing: normal-map variance from its mip chain widens alpha."),
+    P(.id = "layer_clearcoat", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the clear coat of materials that carry one (KHR_materials_clearcoat)."),
     /* material keys */
     P(.id = "alpha", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {0.3f}}, .min = 0, .max = 1,
       .step = 0.01f, .group = "ggx", .description = "GGX α (width of the microfacet distribution); 0 is clamped to 2e-3."),
@@ -50,6 +52,25 @@ static const sl_param_desc params[] = {
                      "F0 = ((ior - 1)/(ior + 1))^2; 0.04 without it."),
     P(.id = "metallic", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "ggx", .material_input = "metallic", .description = "Metalness for fresnel = metallic-roughness."),
+    /* KHR_materials_clearcoat (README "Layers") */
+    P(.id = "clearcoat", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
+      .group = "clearcoat", .material_input = "clearcoat",
+      .description = "Clear-coat weight: a second GGX lobe (IOR 1.5) over the material, which it dims by 1 - weight*F."),
+    P(.id = "clearcoat_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "clearcoat", .material_input = "clearcoat_texture",
+      .description = "Clear-coat weight in the red channel, times clearcoat."),
+    P(.id = "clearcoat_roughness", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
+      .group = "clearcoat", .material_input = "clearcoat_roughness",
+      .description = "Perceptual roughness of the coat: its alpha = roughness^2 (0 without it)."),
+    P(.id = "clearcoat_roughness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "clearcoat", .material_input = "clearcoat_roughness_texture",
+      .description = "Coat roughness in the green channel, times clearcoat_roughness."),
+    P(.id = "clearcoat_normal_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "clearcoat", .material_input = "clearcoat_normal_texture",
+      .description = "The coat's own tangent-space normal map (+Y up); without it the coat follows the mesh's normal."),
+    P(.id = "clearcoat_normal_scale", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1}},
+      .min = 0, .max = 10, .step = 0.01f, .group = "clearcoat", .material_input = "clearcoat_normal_scale",
+      .description = "Scale of the coat normal map's X and Y."),
 };
 
 #define C(...) {.struct_size = sizeof(sl_shader_chunk_desc), __VA_ARGS__}
@@ -72,6 +93,11 @@ static const sl_shader_chunk_desc chunks[] = {
       .when_material_has = "specular_map", .order = 1),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_specular_aa",
       .when_material_has = "normal_map", .order = 20),
+    /* before normal-map (order 10): the coat keeps the mesh's normal */
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_clearcoat",
+      .when_material_has = "clearcoat", .order = 5),
+    C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_clearcoat",
+      .name = "ggx-clearcoat", .description = "the clear coat's own reflection, summed over lights"),
     C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_D", .name = "ggx-d",
       .description = "GGX distribution D(h), summed over lights"),
     C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_G", .name = "ggx-g",
@@ -103,7 +129,10 @@ static sl_status ggx_create(const sl_host *host, void **user) {
 
 /* The glTF metallic-roughness BRDF (fresnel = metallic-roughness) and its inputs: imported
  * glTF materials load this plugin (the host reads this list without calling create). */
-static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metallic_roughness_texture", "ior", NULL};
+static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metallic_roughness_texture", "ior",
+                                         "clearcoat", "clearcoat_texture", "clearcoat_roughness",
+                                         "clearcoat_roughness_texture", "clearcoat_normal_texture",
+                                         "clearcoat_normal_scale", NULL};
 
 static const char *const ggx_models[] = {"ggx", NULL};
 static const sl_plugin_desc ggx_desc = {

@@ -3,6 +3,7 @@
 // fresnel = metallic-roughness: f = (1 − F)(1 − metallic) base/π + F D G/(4|n·l||n·v|),
 // F0 = mix(0.04, base, metallic).
 #include "sl:ggx_brdf.glsl"
+#include "ggx_layers.glsl"
 
 // Vectors in the space the lighting is evaluated in (world by default; camera space as a
 // check: a rotation, so both agree up to rounding).
@@ -25,6 +26,17 @@ vec3 ggx_fresnel(float l_dot_h, SlSurface s) {
 #endif
 }
 
+#ifdef GGX_HAS_CLEARCOAT
+// The coat's normal, or the shading normal where the surface hook has not set it.
+vec3 ggx_coat_normal(SlSurface s) { return dot(ggx_coat.normal, ggx_coat.normal) > 0.5 ? ggx_coat.normal : s.normal; }
+// The material's coat (ggx_layers.glsl) over the radiance `below` of the layers under it.
+vec3 ggx_clearcoat_over(vec3 below, SlSurface s, vec3 l, vec3 E) {
+    vec3 n = ggx_coat_normal(s), v = s.view;
+    ggx_to_space(n, l, v);
+    return ggx_coat_layer(below, E, ggx_coat.weight, ggx_coat.alpha, n, v, l);
+}
+#endif
+
 vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
     vec3 n = s.normal, v = s.view;
     ggx_to_space(n, l, v);
@@ -37,10 +49,14 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
 #endif
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
     vec3 diffuse = (1.0 - F) * (1.0 - s.metallic) * s.base_color * SL_INV_PI;
-    return (diffuse + F * dg) * E * n_dot_l;
+    vec3 base = (diffuse + F * dg) * E * n_dot_l;
 #else
-    return (s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;
+    vec3 base = (s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;
 #endif
+#ifdef GGX_HAS_CLEARCOAT
+    base = ggx_clearcoat_over(base, s, l, E);
+#endif
+    return base;
 }
 
 // The model's lobes (ABI 1.14, the SDK's lobe contract): the ggx BRDF is one GGX microfacet lobe
@@ -68,6 +84,16 @@ SlLobes ggx_lobes(SlSurface s) {
 #if GGX_ZERO_SPECULAR
     L.lobe[0].weight = 0.0;
 #endif
+#ifdef GGX_HAS_CLEARCOAT
+    // the coat as lobe 1 with the constant Fresnel F_c(n_c·v) (F0 = F90), weight w; the layers
+    // below weighted by 1 − w·F_c, as for point lights. About s.normal: the contract's lobes share
+    // one normal, so the coat's own normal is followed by point lights only.
+    float fc = ggx_coat_fresnel(clamp(dot(ggx_coat_normal(s), s.view), 0.0, 1.0));
+    L.diffuse *= 1.0 - ggx_coat.weight * fc;
+    L.lobe[0].weight *= 1.0 - ggx_coat.weight * fc;
+    L.count = 2;
+    L.lobe[1] = SlLobe(vec3(fc), vec3(fc), max(ggx_coat.alpha, GGX_MIN_ALPHA), ggx_coat.weight, 0.0);
+#endif
     return L;
 }
 
@@ -91,4 +117,14 @@ vec3 ggx_debug_F(SlSurface s, vec3 l, vec3 E) {
     if (dot(n, l) <= 0.0) return vec3(0.0); // light not visible: shown as 0
     vec3 h = normalize(l + v);
     return ggx_fresnel(dot(l, h), s);
+}
+
+// "ggx-clearcoat": the coat's own reflection (KHR_materials_clearcoat), summed over the lights; 0
+// for a material without a coat or with ggx.layer_clearcoat off.
+vec3 ggx_debug_clearcoat(SlSurface s, vec3 l, vec3 E) {
+#ifdef GGX_HAS_CLEARCOAT
+    return ggx_clearcoat_over(vec3(0.0), s, l, E);
+#else
+    return vec3(0.0);
+#endif
 }

@@ -1,5 +1,6 @@
 // Surface hooks filling s.alpha (GGX α) and s.specular (k_s) from the material. Each runs only
 // for materials carrying its key (when_material_has), so a material pays only for its inputs.
+#include "ggx_layers.glsl"
 #ifdef SL_MAT_HAS_ALPHA
 void ggx_surface_alpha(inout SlSurface s) { s.alpha = sl_mat_alpha; }
 #endif
@@ -53,6 +54,37 @@ void ggx_surface_specular_aa(inout SlSurface s) {
     float len = clamp(length(avg), 1e-3, 1.0);
     float variance = (1.0 - len) / len;
     s.alpha = sqrt(min(s.alpha * s.alpha + variance, 1.0));
+#endif
+}
+#endif
+
+#ifdef SL_MAT_HAS_CLEARCOAT
+// KHR_materials_clearcoat's inputs, read once per fragment into ggx_coat. Runs before the
+// normal-map hook (order 10): the coat does not follow the base's normal texture (the extension:
+// without a clearcoatNormalTexture the coat has no normal mapping), so its normal is taken here,
+// or from its own normal texture in this (pre-mapping) tangent frame.
+void ggx_surface_clearcoat(inout SlSurface s) {
+#ifdef GGX_HAS_CLEARCOAT
+    float w = sl_mat_clearcoat, r = 0.0;
+#ifdef SL_MAT_HAS_CLEARCOAT_MAP
+    w *= texture(sl_mat_clearcoat_map, sl_uv_clearcoat_map(s)).r;
+#endif
+#ifdef SL_MAT_HAS_CLEARCOAT_ROUGHNESS
+    r = sl_mat_clearcoat_roughness;
+#endif
+#ifdef SL_MAT_HAS_CLEARCOAT_ROUGHNESS_MAP
+    r *= texture(sl_mat_clearcoat_roughness_map, sl_uv_clearcoat_roughness_map(s)).g;
+#endif
+    vec3 n = s.normal;
+#ifdef SL_MAT_HAS_CLEARCOAT_NORMAL_MAP
+    vec3 t = texture(sl_mat_clearcoat_normal_map, sl_uv_clearcoat_normal_map(s)).xyz * 2.0 - 1.0;
+#ifdef SL_MAT_HAS_CLEARCOAT_NORMAL_SCALE
+    t.xy *= sl_mat_clearcoat_normal_scale;
+#endif
+    vec3 m = s.tangent * t.x + s.bitangent * t.y + s.normal * t.z;
+    if (dot(m, m) > 1e-12) n = normalize(m);
+#endif
+    ggx_coat = GgxClearcoat(clamp(w, 0.0, 1.0), r * r, n);
 #endif
 }
 #endif

@@ -101,6 +101,9 @@ typedef struct sl_param_desc {
  *   double_sided              bool: glTF doubleSided (back faces drawn, not culled)
  *   alpha_blend               bool: alphaMode BLEND (sorted, blended over what is behind)
  *   unlit                     bool (ABI 1.7): KHR_materials_unlit (the base colour, unlit)
+ *   clearcoat, clearcoat_roughness  floats (KHR_materials_clearcoat, present when the factor > 0);
+ *                             clearcoat_texture (linear, R), clearcoat_roughness_texture (linear, G),
+ *                             clearcoat_normal_texture (linear, tangent space) and clearcoat_normal_scale
  * ior (KHR_materials_ior) is the dielectric's index of refraction: glTF's F0 = ((ior − 1)/(ior + 1))². */
 #ifdef __cplusplus
 }

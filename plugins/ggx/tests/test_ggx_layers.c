@@ -1,0 +1,266 @@
+/* ggx's glTF layers (KHR_materials_*, README "Layers") against closed forms:
+ *  1. clearcoat under a directional light equals, per pixel, the extension's formula evaluated in
+ *     C from the camera rays: mix(base, D·G/(4 n·l n·v), w·F_c(n·v)), F_c Schlick with F0 = 0.04;
+ *  2. the coat's energy loss by its Fresnel: the render minus the "ggx-clearcoat" debug view equals
+ *     the render without the layer (ggx.layer_clearcoat=false) times 1 − w·F_c(n·v);
+ *  3. white furnace of the layer (GLSL ggx_coat_layer over a white Lambert base, integrated in C):
+ *     ≤ 1 for every view angle and coat roughness, the base keeping exactly 1 − F_c(μ); the coat
+ *     lobe alone equals C's quadrature; the form with F_c(v·h) (the Fresnel of the microfacet, not
+ *     the extension's) is integrated in C too and printed: it gains energy at grazing views;
+ *  4. envmap lights the coat through the lobe contract: a coated white sphere in a uniform
+ *     environment 1 stays ≤ 1 in envmap's Monte Carlo reference (the model's own f), and the
+ *     split sum built from the lobes is within a stated bound of it;
+ *  5. a material without the layer is untouched by its switch. */
+#include "check.h"
+#include "camera_rays.h"
+#include <shadelab/harness.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W 96
+#define H 72
+static float img[W * H * 4], img2[W * H * 4], img3[W * H * 4];
+static const test_camera cam = {{0, 3, 4}, {0, 0, 0}, 50, W, H};
+static const double kd[3] = {0.4, 0.3, 0.2}, E = 3;
+
+#define COAT_KEYS "\"fresnel\": \"metallic-roughness\", \"metallic\": 0, \"roughness\": 0.6, \"clearcoat\": 0.7, " \
+                  "\"clearcoat_roughness\": 0.4"
+static const double coat_w = 0.7, coat_alpha = 0.4 * 0.4, base_alpha = 0.6 * 0.6;
+
+static sl_harness *make(const char *material_keys, const char *const *settings, const char *view) {
+    char json[4096], err[4096];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"ggx\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 3, 4], \"target\": [0, 0, 0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}],\n"
+             " \"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.4, 0.3, 0.2], %s}],\n"
+             " \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}],\n"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.1, -0.6, 0.8], \"intensity\": 3}]}",
+             material_keys);
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                          .scene_json = json, .settings = settings, .debug_view = view,
+                                                          .float32 = true, .strict = true},
+                                      err, sizeof err);
+    CHECK_MSG(h != NULL, "harness: %s", err);
+    return h;
+}
+
+static bool render(const char *keys, const char *const *settings, const char *view, float *out) {
+    sl_harness *h = make(keys, settings, view);
+    if (!h) return false;
+    bool ok = sl_harness_render(h, out) && sl_harness_count_nonfinite(out, W, H) == 0;
+    CHECK_MSG(ok, "render of %s failed or not finite", keys);
+    sl_harness_destroy(h);
+    return ok;
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void normalize3(double v[3]) {
+    double l = sqrt(dot3(v, v));
+    for (int i = 0; i < 3; i++) v[i] /= l;
+}
+static double schlick(double c, double f0) { return f0 + (1 - f0) * pow(1 - fabs(c), 5); }
+static double g1(double xn, double xh, double a) {
+    if (xn == 0 || xh / xn <= 0) return 0;
+    return 2 / (1 + sqrt(1 + a * a * (1 - xn * xn) / (xn * xn)));
+}
+/* D·G/(4 n·l n·v) about n for unit v, l (0 when either is below the horizon) */
+static double dg_over_4(const double n[3], const double v[3], const double l[3], double a) {
+    double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+    normalize3(h);
+    double nl = dot3(n, l), nv = dot3(n, v), nh = dot3(n, h);
+    if (nl <= 0 || nv <= 0 || nh <= 0) return 0;
+    double t2 = (1 - nh * nh) / (nh * nh), D = a * a / (M_PI * pow(nh, 4) * pow(a * a + t2, 2));
+    return D * g1(nv, dot3(v, h), a) * g1(nl, dot3(l, h), a) / (4 * nl * nv);
+}
+
+/* per pixel of the floor: v, l, and w·F_c(n·v), n = +y; false off the floor */
+static bool floor_pixel(int x, int y, double v[3], double l[3], double *fc) {
+    float p[3], o[3], d[3];
+    if (!test_camera_hit_ground(&cam, x, y, 9.5f, p)) return false;
+    test_camera_ray(&cam, x, y, o, d);
+    for (int i = 0; i < 3; i++) v[i] = -d[i];
+    l[0] = -0.1, l[1] = 0.6, l[2] = -0.8;
+    normalize3(l);
+    *fc = coat_w * schlick(v[1], 0.04);
+    return true;
+}
+
+static void test_clearcoat_closed_form(void) {
+    if (!render(COAT_KEYS, NULL, NULL, img)) return;
+    const double n[3] = {0, 1, 0};
+    double worst = 0, coat_peak = 0;
+    int checked = 0;
+    for (int y = 0; y < H; y += 2)
+        for (int x = 0; x < W; x += 2) {
+            double v[3], l[3], fc;
+            if (!floor_pixel(x, y, v, l, &fc)) continue;
+            double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+            normalize3(h);
+            double nl = l[1], F = schlick(dot3(l, h), 0.04), spec = dg_over_4(n, v, l, base_alpha),
+                   coat = fc * dg_over_4(n, v, l, coat_alpha) * E * nl;
+            coat_peak = fmax(coat_peak, coat);
+            for (int c = 0; c < 3; c++) {
+                double base = ((1 - F) * kd[c] / M_PI + F * spec) * E * nl, want = base * (1 - fc) + coat;
+                worst = fmax(worst, fabs(img[(y * W + x) * 4 + c] - want) / want);
+            }
+            checked++;
+        }
+    printf("clearcoat closed form: %d pixels, worst relative error %.2e, coat peak %.3f\n", checked, worst, coat_peak);
+    CHECK(checked > 500);
+    CHECK_MSG(coat_peak > 0.5, "the coat's highlight must be in view (peak %.3f)", coat_peak);
+    CHECK_MSG(worst < 2e-3, "clearcoat: worst relative error %.2e", worst);
+}
+
+static void test_clearcoat_fresnel_loss(void) {
+    const char *off[] = {"ggx.layer_clearcoat=false", NULL};
+    if (!render(COAT_KEYS, NULL, NULL, img) || !render(COAT_KEYS, off, NULL, img2) ||
+        !render(COAT_KEYS, NULL, "ggx-clearcoat", img3))
+        return;
+    double worst = 0, loss_min = 1, loss_max = 0;
+    int checked = 0;
+    for (int y = 0; y < H; y += 2)
+        for (int x = 0; x < W; x += 2) {
+            double v[3], l[3], fc;
+            if (!floor_pixel(x, y, v, l, &fc)) continue;
+            loss_min = fmin(loss_min, fc), loss_max = fmax(loss_max, fc);
+            for (int c = 0; c < 3; c++) {
+                int i = (y * W + x) * 4 + c;
+                double want = img2[i] * (1 - fc), got = img[i] - img3[i];
+                worst = fmax(worst, fabs(got - want) / want);
+            }
+            checked++;
+        }
+    printf("clearcoat Fresnel loss: (with − coat view) vs without × (1 − w F_c(n·v)), %d pixels: worst %.2e; w F_c in [%.3f, %.3f]\n",
+           checked, worst, loss_min, loss_max);
+    CHECK(checked > 500);
+    CHECK_MSG(loss_max - loss_min > 0.03, "the view must span a range of coat Fresnel (%.3f..%.3f)", loss_min, loss_max);
+    CHECK_MSG(worst < 2e-3, "the base under the coat: worst relative error %.2e", worst);
+}
+
+/* ---- 3. furnace of the layer, GLSL evaluated over a hemisphere grid ------------------------- */
+#define NT 256
+#define NP 256
+static float in0[NT * NP * 4], out[NT * NP * 4];
+
+/* ∫ layer(v, l) dl over the upper hemisphere, (cos θ, φ) midpoint grid; below = white Lambert
+ * (cos/π) or nothing; also C's quadrature of the coat lobe alone w·F_c·D·G/(4..)·cos. */
+static bool furnace(sl_harness *h, double mu, double alpha, bool lambert, double *glsl, double *c_coat, double *c_vh) {
+    double v[3] = {sqrt(1 - mu * mu), 0, mu}, n[3] = {0, 0, 1}, sum_c = 0, sum_vh = 0;
+    for (int i = 0; i < NT; i++)
+        for (int j = 0; j < NP; j++) {
+            double ct = (i + 0.5) / NT, st = sqrt(1 - ct * ct), ph = (j + 0.5) * 2 * M_PI / NP;
+            double l[3] = {st * cos(ph), st * sin(ph), ct}, hh[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+            normalize3(hh);
+            float *p = in0 + (i * NP + j) * 4;
+            p[0] = (float)l[0], p[1] = (float)l[1], p[2] = (float)l[2], p[3] = lambert ? (float)(ct / M_PI) : 0;
+            double spec = dg_over_4(n, v, l, fmax(alpha, 2e-3)) * ct;
+            sum_c += schlick(mu, 0.04) * spec;
+            sum_vh += (1 - schlick(dot3(v, hh), 0.04)) * ct / M_PI + schlick(dot3(v, hh), 0.04) * spec;
+        }
+    char expr[256], err[8192];
+    snprintf(expr, sizeof expr, "vec4(ggx_coat_layer(vec3(in0.w), vec3(1.0), 1.0, %.9g, vec3(0, 0, 1), vec3(%.9g, 0, %.9g), in0.xyz), 1.0)",
+             alpha, v[0], v[2]);
+    const char *files[] = {"ggx_layers.glsl", NULL};
+    sl_glsl_eval_desc d = {.struct_size = sizeof d, .plugin = "ggx", .files = files, .expression = expr,
+                           .defines = "SL_MAT_HAS_CLEARCOAT 1\nGGX_LAYER_CLEARCOAT 1", .width = NP, .height = NT, .in0 = in0};
+    if (!sl_harness_eval_glsl(h, &d, out, err, sizeof err)) {
+        CHECK_MSG(false, "eval: %s", err);
+        return false;
+    }
+    double sum = 0;
+    for (int i = 0; i < NT * NP; i++) sum += out[i * 4];
+    double dw = (1.0 / NT) * (2 * M_PI / NP);
+    *glsl = sum * dw, *c_coat = sum_c * dw, *c_vh = sum_vh * dw;
+    return true;
+}
+
+static void test_furnace(void) {
+    char err[4096];
+    const char *plugins[] = {"ggx", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 8, .height = 8,
+                                                          .plugins = plugins}, err, sizeof err);
+    CHECK_MSG(h != NULL, "harness: %s", err);
+    if (!h) return;
+    const double mus[] = {1.0, 0.7, 0.4, 0.15, 0.05}, alphas[] = {0.1, 0.3, 0.6, 1.0};
+    double most = 0, worst_coat = 0, worst_kept = 0;
+    for (int a = 0; a < 4; a++)
+        for (int m = 0; m < 5; m++) {
+            double with_base, coat_only, c_coat, vh, unused;
+            if (!furnace(h, mus[m], alphas[a], true, &with_base, &unused, &vh) ||
+                !furnace(h, mus[m], alphas[a], false, &coat_only, &c_coat, &unused))
+                continue;
+            printf("furnace clearcoat alpha %.2f mu %.2f: coat over white Lambert %.4f (with F_c(v.h): %.4f), coat alone %.4f (C %.4f)\n",
+                   alphas[a], mus[m], with_base, vh, coat_only, c_coat);
+            most = fmax(most, with_base);
+            worst_coat = fmax(worst_coat, fabs(coat_only - c_coat));
+            CHECK_MSG(with_base <= 1.0 + 2e-3, "coat over white Lambert gains energy: %.4f (alpha %.2f, mu %.2f)", with_base,
+                      alphas[a], mus[m]);
+            /* what the white base keeps is its albedo 1 times 1 − F_c(μ) (the midpoint rule in cos θ
+             * integrates the Lambert term exactly) */
+            double kept = with_base - coat_only, want = 1 - schlick(mus[m], 0.04);
+            worst_kept = fmax(worst_kept, fabs(kept - want));
+        }
+    printf("furnace: most %.4f; coat lobe GLSL vs C worst difference %.2e; base kept vs 1 − F_c(mu) worst %.2e\n", most,
+           worst_coat, worst_kept);
+    CHECK_MSG(worst_kept < 1e-4, "the base under the coat keeps 1 − F_c(mu): off by %.2e", worst_kept);
+    CHECK_MSG(worst_coat < 2e-3, "coat lobe alone: GLSL vs C differ by %.2e", worst_coat);
+    sl_harness_destroy(h);
+}
+
+/* ---- 4. envmap through the lobe contract ------------------------------------------------------ */
+#define EW 32
+static float env_ref[EW * EW * 4], env_split[EW * EW * 4];
+static bool env_render(const char *mode, int accumulate, float *o) {
+    char json[2048], err[4096];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"envmap\", \"ggx\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y\": 40, \"near\": 0.1, \"far\": 100}],\n"
+             " \"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, "
+             "\"roughness\": 1, \"base_color\": [1, 1, 1], \"clearcoat\": 1, \"clearcoat_roughness\": 0.5}],\n"
+             " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 128, \"rings\": 64}, \"material\": \"m\"}],\n"
+             " \"environment\": {\"map\": \"constant:1,1,1\"}}");
+    const char *settings[] = {"envmap.cube_size=32", "envmap.samples=128", "envmap.lut_size=64", "envmap.cache=false",
+                              "envmap.background=false", "aa.enabled=false", mode, "envmap.reference_samples=64", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = EW, .height = EW,
+                                                          .scene_json = json, .settings = settings, .float32 = true,
+                                                          .strict = true, .accumulate = accumulate},
+                                      err, sizeof err);
+    CHECK_MSG(h != NULL, "harness: %s", err);
+    if (!h) return false;
+    bool ok = sl_harness_render(h, o) && sl_harness_count_nonfinite(o, EW, EW) == 0;
+    CHECK(ok);
+    sl_harness_destroy(h);
+    return ok;
+}
+
+static void test_envmap_lobes(void) {
+    if (!env_render("envmap.mode=reference", 16, env_ref) || !env_render("envmap.mode=split-sum", 1, env_split)) return;
+    double most = 0, rms = 0;
+    int count = 0;
+    for (int y = 4; y < EW - 4; y++)
+        for (int x = 4; x < EW - 4; x++) {
+            const float *r = env_ref + (y * EW + x) * 4, *s = env_split + (y * EW + x) * 4;
+            if (r[1] <= 0.05f) continue; /* the sphere only */
+            most = fmax(most, r[1]);
+            rms += pow(s[1] / r[1] - 1, 2), count++;
+        }
+    rms = sqrt(rms / fmax(count, 1));
+    printf("envmap furnace, coated white sphere: reference at most %.4f; split sum vs reference relative rms %.4f (%d px)\n",
+           most, rms, count);
+    CHECK(count > 200);
+    CHECK_MSG(most <= 1.03, "the coated sphere gains energy in a white furnace: %.4f", most);
+    CHECK_MSG(rms < 0.05, "the lobes describe the coat %.4f off the reference", rms);
+}
+
+int main(void) {
+    test_clearcoat_closed_form();
+    test_clearcoat_fresnel_loss();
+    test_furnace();
+    test_envmap_lobes();
+    /* 5. a material without the layer: its switch changes nothing */
+    const char *off[] = {"ggx.layer_clearcoat=false", NULL};
+    const char *plain = "\"fresnel\": \"metallic-roughness\", \"metallic\": 0.2, \"roughness\": 0.5";
+    if (render(plain, NULL, NULL, img) && render(plain, off, NULL, img2))
+        CHECK_MSG(!memcmp(img, img2, sizeof img), "a material without a coat changed with ggx.layer_clearcoat");
+    return check_result();
+}
