@@ -428,6 +428,12 @@ static void test_outputs(void) {
     sl_bench_mark_fronts(&r);
     CHECK(!r.rows[0].noisy && r.rows[0].front[SL_METRIC_RMSE]);
     CHECK(!strcmp(r.rows[2].label, "ssaa=3"));
+    /* a peer renderer (EEVEE against a Cycles reference): in the JSON, on no front even when it
+     * beats every setting's error */
+    r.peer_count = 1;
+    r.peers = calloc(1, sizeof *r.peers);
+    r.peers[0] = (sl_bench_peer){.label = strdup("EEVEE 16 spp"), .ms = 20000, .error = {.rmse = 0.001, .psnr = 60, .ssim = 0.999}};
+    sl_bench_mark_fronts(&r);
     char dir[512], path[600], err[1024];
     snprintf(dir, sizeof dir, "%s/bench-metrics", sl_test_dir());
     CHECK(sl_bench_mkdirs(dir, err, sizeof err));
@@ -438,6 +444,7 @@ static void test_outputs(void) {
     if (f) { text[fread(text, 1, sizeof text - 1, f)] = 0; fclose(f); }
     CHECK_CONTAINS(text, "\"front\":\t[\"core.ssaa=1\", \"core.ssaa=2\", \"core.ssaa=4\"]");
     CHECK_CONTAINS(text, "\"psnr\":\t\"inf\"");
+    CHECK_CONTAINS(text, "\"peers\":\t[{\n\t\t\t\"label\":\t\"EEVEE 16 spp\",\n\t\t\t\"ms_per_render\":\t20000,\n\t\t\t\"error\":\t{\n\t\t\t\t\"rmse\":\t0.001");
     sl_aq_choice c;
     CHECK(sl_autoquality_choose(text, NULL, 0.005, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=2"));
     CHECK(sl_autoquality_choose(text, "psnr", 100, &c, err, sizeof err) && !strcmp(c.settings, "core.ssaa=4"));
@@ -489,6 +496,11 @@ static void test_chart_edges(void) {
         r.rows[i] = (sl_bench_row){.settings = strdup(s), .label = sl_bench_label(s, "core"), .ok = true, .frames = 30,
                                    .frame_ms_median = ms[i], .error = {.rmse = rmse[i], .psnr = 30 + i, .ssim = 1 - rmse[i]}};
     }
+    /* a peer seconds away on the log axis that --reference cycles draws: its label goes left too */
+    r.peer_count = 1;
+    r.peers = calloc(1, sizeof *r.peers);
+    r.peers[0] = (sl_bench_peer){.label = strdup("EEVEE 16 spp (a peer renderer with a long label)"), .ms = 20000,
+                                 .error = {.rmse = 0.005, .psnr = 40, .ssim = 0.995}};
     sl_bench_mark_fronts(&r);
     char dir[] = "/tmp/shadelab-chart-edges-XXXXXX", path[600], err[1024];
     CHECK(mkdtemp(dir) != NULL);

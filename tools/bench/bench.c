@@ -570,6 +570,40 @@ static int remove_entry(const char *path, const struct stat *st, int flag, struc
 /* rm -r dir (its own files only: no symlink is followed). */
 static void remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
 
+/* EEVEE's renders in DIR (eevee.tsv: samples and ms per render; eevee-N.exr) against the
+ * reference: res->peers. No eevee.tsv: no EEVEE was asked for. */
+static bool eevee_peers(const char *dir, sl_bench_result *res, int w, int h, char *err, size_t n) {
+    char path[4300];
+    snprintf(path, sizeof path, "%s/eevee.tsv", dir);
+    FILE *f = fopen(path, "r");
+    if (!f) return true;
+    int samples;
+    double ms;
+    bool ok = true;
+    while (ok && res->peer_count < 16 && fscanf(f, "%d %lf", &samples, &ms) == 2) {
+        sl_image img = {0};
+        snprintf(path, sizeof path, "%s/eevee-%d.exr", dir, samples);
+        ok = sl_image_load(&img, path, err, n);
+        if (ok && (img.width != w || img.height != h)) {
+            snprintf(err, n, "%s: %dx%d, expected %dx%d", path, img.width, img.height, w, h);
+            ok = false;
+        }
+        if (ok) {
+            res->peers = realloc(res->peers, sizeof *res->peers * (res->peer_count + 1));
+            sl_bench_peer *p = &res->peers[res->peer_count++];
+            char label[64];
+            snprintf(label, sizeof label, "EEVEE %d spp", samples);
+            p->label = strdup(label);
+            p->ms = ms;
+            sl_metric_all(img.pixels, res->reference.pixels, w, h, &p->error);
+            p->error.noise = NAN; /* one render: its noise is not measured */
+        }
+        sl_image_free(&img);
+    }
+    fclose(f);
+    return ok;
+}
+
 /* --reference cycles: shadelab-xcheck (beside this executable) exports the scene with the base
  * settings and renders it with Cycles, cached by its own key; its linear image is the reference. */
 static bool cycles_reference(const sl_bench_options *o, sl_bench_result *res, char *err, size_t n) {
@@ -596,6 +630,9 @@ static bool cycles_reference(const sl_bench_options *o, sl_bench_result *res, ch
     if (o->cache_dir && (fits &= shell_quote(o->cache_dir, q, sizeof q)) && u < sizeof cmd)
         u += snprintf(cmd + u, sizeof cmd - u, " --cache %s", q);
     if (o->no_cache && u < sizeof cmd) u += snprintf(cmd + u, sizeof cmd - u, " --no-cache");
+    const char *eevee = o->eevee ? o->eevee : "1,16";
+    if (strcmp(eevee, "none") && (fits &= shell_quote(eevee, q, sizeof q)) && u < sizeof cmd)
+        u += snprintf(cmd + u, sizeof cmd - u, " --eevee %s", q);
     if (o->plugin && strcmp(o->plugin, "core") && (fits &= shell_quote(o->plugin, q, sizeof q)) && u < sizeof cmd)
         u += snprintf(cmd + u, sizeof cmd - u, " --plugin %s", q);
     for (int i = 0; i < o->plugin_count; i++)
@@ -635,6 +672,7 @@ static bool cycles_reference(const sl_bench_options *o, sl_bench_result *res, ch
     res->reference.pixels = img.pixels; /* owned by the result now */
     img.pixels = NULL;
     sl_image_free(&img);
+    if (!eevee_peers(dir, res, w, h, err, n)) return false;
     char settings[64];
     snprintf(settings, sizeof settings, "cycles:%d", samples);
     res->reference.settings = strdup(settings);
@@ -881,6 +919,8 @@ void sl_bench_result_free(sl_bench_result *res) {
         free(r->passes);
     }
     free(res->rows);
+    for (int i = 0; i < res->peer_count; i++) free(res->peers[i].label);
+    free(res->peers);
     free(res->scene);
     free(res->plugin);
     free(res->plugins_loaded);

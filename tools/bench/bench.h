@@ -39,6 +39,9 @@ typedef struct sl_bench_options {
      * before tone mapping (tonemap is switched off) */
     bool reference_cycles;
     int cycles_samples;
+    /* with reference_cycles: EEVEE's sample counts ("1,16"; NULL: "1,16"; "none": no EEVEE),
+     * rendered by shadelab-xcheck and measured against the same reference as peers */
+    const char *eevee;
     int reference_accumulate;        /* 0: the declared accumulation (or 1) */
     /* > 1: render the reference at scale× the size and box-filter it down (scale² more samples
      * per pixel; for methods whose result does not depend on the pixel size). */
@@ -75,6 +78,14 @@ typedef struct sl_bench_row {
     double wall_s;                   /* time spent measuring this setting */
 } sl_bench_row;
 
+/* Another renderer measured against the same reference (EEVEE with --reference cycles): a
+ * point of its own on the chart, in no Pareto front. */
+typedef struct sl_bench_peer {
+    char *label;                     /* "EEVEE 16 spp" */
+    double ms;                       /* its time per render */
+    sl_bench_error error;
+} sl_bench_peer;
+
 typedef struct sl_bench_result {
     char *scene;                     /* path as given, or "<built-in default scene>" */
     char scene_hash[17];             /* hex FNV-1a of the scene file's contents */
@@ -97,6 +108,7 @@ typedef struct sl_bench_result {
         float *pixels;               /* linear RGBA, width*height*4 */
     } reference;
     sl_bench_row *rows; int row_count;
+    sl_bench_peer *peers; int peer_count;
     double total_s;
     char created[32];                /* ISO 8601 UTC */
 } sl_bench_result;

@@ -31,6 +31,8 @@ static const char *usage =
     "  --reference cycles        the reference is Blender's Cycles (shadelab-xcheck, docs/xcheck.md):\n"
     "                            every render is compared before tone mapping; needs --scene\n"
     "  --cycles-samples N        Cycles samples per pixel for --reference cycles (default 256)\n"
+    "  --eevee N,...|none        with --reference cycles: EEVEE at these sample counts, measured\n"
+    "                            against the same reference, a peer point on the chart (default 1,16)\n"
     "  --reference-settings S    override the declared reference settings\n"
     "  --reference-accumulate N  override the declared reference accumulation (CI: small)\n"
     "  --reference-scale K       render the reference at K times the size, box-filtered down\n"
@@ -284,6 +286,7 @@ int main(int argc, char **argv) {
             }
             o.cycles_samples = (int)x;
         }
+        else if (!strcmp(a, "--eevee")) NEED(o.eevee = NEXT());
         else if (!strcmp(a, "--cache")) NEED(o.cache_dir = NEXT());
         else if (!strcmp(a, "--no-cache")) o.no_cache = true;
         else if (!strcmp(a, "--out")) NEED(out = NEXT());
@@ -348,6 +351,7 @@ int main(int argc, char **argv) {
     o.vary = vary; o.vary_count = nv;
     if (!nm) metrics[nm++] = SL_METRIC_RMSE, metrics[nm++] = SL_METRIC_FLIP;
     if (ns && nv) return die("--vary chooses values for enumerated knobs; it cannot be combined with --settings");
+    if (o.eevee && !o.reference_cycles) return die("--eevee needs --reference cycles (EEVEE is measured against Cycles)");
     if (o.frames < 30)
         fprintf(stderr, "shadelab-bench: note: %d timed frames (fewer than 30): the medians are indicative only\n", o.frames);
 

@@ -168,6 +168,20 @@ bool sl_bench_write_json(const sl_bench_result *res, const char *path, sl_metric
         if (r->front[primary]) cJSON_AddItemToArray(front, cJSON_CreateString(r->settings));
     }
     cJSON_AddItemToObject(root, "front", front);
+    cJSON *peers = cJSON_AddArrayToObject(root, "peers"); /* other renderers, the same reference */
+    for (int i = 0; i < res->peer_count; i++) {
+        const sl_bench_peer *p = &res->peers[i];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "label", p->label);
+        cJSON_AddItemToObject(o, "ms_per_render", num(p->ms));
+        cJSON *e = cJSON_AddObjectToObject(o, "error");
+        cJSON_AddItemToObject(e, "rmse", num(p->error.rmse));
+        cJSON_AddItemToObject(e, "relmse", num(p->error.relmse));
+        cJSON_AddItemToObject(e, "psnr", num(p->error.psnr));
+        cJSON_AddItemToObject(e, "dssim", num(1 - p->error.ssim));
+        cJSON_AddItemToObject(e, "flip", num(p->error.flip));
+        cJSON_AddItemToArray(peers, o);
+    }
     char *text = cJSON_Print(root);
     cJSON_Delete(root);
     FILE *f = fopen(path, "w");
@@ -254,11 +268,33 @@ static int text_chars(const char *s) {
 }
 
 /* 1 when a label written to the right of its point (offset 0.8 char) would pass the chart's right
- * edge: it is then written to the left of the point. x_end is where the x axis ends. */
-static int label_goes_left(double x, double x_end, const char *label) {
+ * edge: it is then written to the left of the point. The x axis runs from x_start to x_end
+ * (x_start > 0: a log scale). */
+static int label_goes_left(double x, double x_start, double x_end, const char *label) {
     double left = chart_plot_left * CHART_W, width = (chart_plot_right - chart_plot_left) * CHART_W;
-    double x_px = left + (x_end > 0 ? x / x_end : 0) * width;
+    double at = x_start > 0 ? log(x / x_start) / log(x_end / x_start) : x_end > 0 ? x / x_end : 0;
+    double x_px = left + at * width;
     return x_px + 0.8 * chart_char_unit_px + text_chars(label) * chart_char_px > CHART_W - 4;
+}
+
+/* The peers' points (ms, error, label, label left of its point) into path; how many, and in
+ * *left how many of them have their label on the left. */
+static int write_peers(const sl_bench_result *res, const char *path, sl_metric metric, double x_start, double x_end,
+                       int *left) {
+    FILE *f = res->peer_count ? fopen(path, "w") : NULL;
+    int count = 0;
+    *left = 0;
+    for (int i = 0; f && i < res->peer_count; i++) {
+        const sl_bench_peer *p = &res->peers[i];
+        double y = metric == SL_METRIC_PSNR ? p->error.psnr : sl_metric_value(&p->error, metric);
+        if (!isfinite(y) || !(p->ms > 0) || (metric != SL_METRIC_PSNR && y <= 0)) continue;
+        int l = label_goes_left(p->ms, x_start, x_end, p->label);
+        fprintf(f, "%.6g %.6g \"%s\" %d\n", p->ms, y, p->label, l);
+        *left += l;
+        count++;
+    }
+    if (f) fclose(f);
+    return count;
 }
 
 static int cmp_cost(const void *a, const void *b) {
@@ -286,11 +322,29 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
         if (!psnr && y > 0 && y < minpos) minpos = y;
         if (psnr && isfinite(y) && y > peak) peak = y;
     }
-    double x_end = xmax > 0 && isfinite(xmax) ? xmax * chart_x_room : 0; /* 0: gnuplot's autoscale */
+    /* other renderers (EEVEE) take seconds where shadelab takes milliseconds: with them the x axis
+     * is logarithmic, from below the fastest point to past the slowest */
+    double xmin = INFINITY;
+    for (int i = 0; i < res->row_count; i++)
+        if (res->rows[i].ok && res->rows[i].frame_ms_median > 0 && res->rows[i].frame_ms_median < xmin)
+            xmin = res->rows[i].frame_ms_median;
+    for (int i = 0; i < res->peer_count; i++) {
+        double y = psnr ? res->peers[i].error.psnr : sl_metric_value(&res->peers[i].error, metric);
+        if (isnan(y) || !(res->peers[i].ms > 0)) continue;
+        if (res->peers[i].ms > xmax) xmax = res->peers[i].ms;
+        if (res->peers[i].ms < xmin) xmin = res->peers[i].ms;
+        if (!psnr && y > 0 && y < minpos) minpos = y;
+        if (psnr && isfinite(y) && y > peak) peak = y;
+    }
+    bool log_x = res->peer_count > 0 && isfinite(xmin) && xmax > 0 && isfinite(xmax);
+    double x_start = log_x ? xmin / 1.5 : 0;
+    double x_end = log_x ? xmax * 4 : xmax > 0 && isfinite(xmax) ? xmax * chart_x_room : 0; /* 0: gnuplot's autoscale */
     double special_y = psnr ? (isfinite(peak) ? peak + 6 : 60) : (isfinite(minpos) ? minpos / 4 : 1e-6);
     char dir[] = "/tmp/shadelab-chart-XXXXXX";
     if (!mkdtemp(dir)) { snprintf(err, n, "mkdtemp: %s", strerror(errno)); return -1; }
-    char pts[4200], frt[4200], zero[4200], script[4200];
+    char pts[4200], frt[4200], zero[4200], script[4200], peer[4200];
+    snprintf(peer, sizeof peer, "%s/peers.dat", dir);
+    int peer_left, npeer = write_peers(res, peer, metric, x_start, x_end, &peer_left);
     snprintf(pts, sizeof pts, "%s/points.dat", dir);
     snprintf(frt, sizeof frt, "%s/front.dat", dir);
     snprintf(zero, sizeof zero, "%s/zero.dat", dir);
@@ -307,7 +361,7 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
         char label[600];
         if (r->error.noise > 0) snprintf(label, sizeof label, "%s (noise %.2g)", r->label, r->error.noise);
         else snprintf(label, sizeof label, "%s", r->label);
-        int l = label_goes_left(r->frame_ms_median, x_end, label);
+        int l = label_goes_left(r->frame_ms_median, x_start, x_end, label);
         if (psnr ? isinf(y) : y <= 0) {
             y = special_y;
             fprintf(fz, "%.6g %.6g \"%s\" %d\n", r->frame_ms_median, y, label, l);
@@ -363,11 +417,16 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
         snprintf(xl, sizeof xl, "median frame time (ms, %d frames in %d rounds, %d warm-up each)", res->frames, res->rounds, res->warmup);
     else
         snprintf(xl, sizeof xl, "median frame time (ms, %d frames after %d warm-up)", res->frames, res->warmup);
+    if (log_x) {
+        size_t u = strlen(xl);
+        snprintf(xl + u, sizeof xl - u, "; EEVEE: one render of N samples per pixel; log scale");
+    }
     gp_string(g, xl);
     fprintf(g, "\nset ylabel ");
     gp_string(g, metric_title);
     fprintf(g, "\nset grid\nset key top right box opaque\n");
-    if (x_end > 0) fprintf(g, "set xrange [0:%.9g]\n", x_end);
+    if (log_x) fprintf(g, "set logscale x\nset format x '%%g'\nset xrange [%.9g:%.9g]\n", x_start, x_end);
+    else if (x_end > 0) fprintf(g, "set xrange [0:%.9g]\n", x_end);
     else fprintf(g, "set xrange [0:*]\nset offsets 0, graph %g, 0, 0\n", chart_x_room - 1);
     if (!psnr) fprintf(g, "set logscale y\nset format y '%%g'\n");
     fprintf(g, "plot ");
@@ -400,8 +459,21 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
                     zero);
         first = false;
     }
-    if (nf) fprintf(g, "%s'%s' using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#d62728' title 'Pareto front (settings no other beats on both time and error)'",
-                    first ? "" : ", \\\n     ", frt);
+    if (nf) {
+        fprintf(g, "%s'%s' using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#d62728' title 'Pareto front (settings no other beats on both time and error)'",
+                first ? "" : ", \\\n     ", frt);
+        first = false;
+    }
+    if (npeer) { /* EEVEE: a peer renderer, its time per render; labels as the settings' are */
+        fprintf(g, "%s'%s' using 1:2 with points pt 5 ps 1.6 lc rgb '#000000' title 'EEVEE (Blender, real time): ms per render'",
+                first ? "" : ", \\\n     ", peer);
+        if (peer_left < npeer)
+            fprintf(g, ", \\\n     '%s' using 1:($4 == 0 ? $2 : 1/0):3 with labels offset char 0.8,-0.7 left tc rgb '#000000' notitle",
+                    peer);
+        if (peer_left)
+            fprintf(g, ", \\\n     '%s' using 1:($4 != 0 ? $2 : 1/0):3 with labels offset char -0.8,-0.7 right tc rgb '#000000' notitle",
+                    peer);
+    }
     fprintf(g, "\n");
     fclose(g);
     char cmd[9000];
@@ -417,7 +489,7 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
         result = -1;
     }
     /* clean the temporary directory */
-    const char *files[] = {"points.dat", "front.dat", "zero.dat", "chart.gp", "gnuplot.err"};
+    const char *files[] = {"points.dat", "front.dat", "zero.dat", "peers.dat", "chart.gp", "gnuplot.err"};
     for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
         char p[4300];
         snprintf(p, sizeof p, "%s/%s", dir, files[i]);
