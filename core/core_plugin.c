@@ -127,6 +127,11 @@ static sl_status core_create(const sl_host *host, void **user) {
                         "are chosen per frame for the least predicted error within it; a still view refines to the "
                         "best settings. 0 = off (headless default); the window starts at 66 (--budget). See "
                         "docs/budget.md."},
+        {.struct_size = sizeof(sl_param_desc), .id = "lod_pixels", .type = SL_PARAM_FLOAT, .min = 0, .max = 16,
+         .step = 0.25f, .unit = "px", .group = "quality",
+         .description = "Level of detail: a mesh of 2048 triangles or more is drawn with the coarsest of its "
+                        "simplified versions (meshoptimizer, made at first use) whose geometric error, projected "
+                        "onto the image, is at most this many pixels. 0 = off (the default): every mesh in full."},
         {.struct_size = sizeof(sl_param_desc), .id = "render_scale", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}},
          .min = 0.25f, .max = 1, .step = 0.05f, .unit = "x", .group = "quality", .flags = SL_PARAM_QUALITY_KNOB,
          .description = "Render at this fraction of the window per axis; the window shows it scaled up (bilinear). "

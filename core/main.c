@@ -158,6 +158,14 @@ static bool write_stats(const char *path, sl_app *app, recorder *rec, double fir
     return ok;
 }
 
+/* Triangles of every node's meshes (a mesh two nodes draw counts twice). */
+static long scene_triangles(const sl_scene *s) {
+    long n = 0;
+    for (int i = 0; i < s->node_count; i++)
+        for (int k = 0; k < s->nodes[i].mesh_count; k++) n += s->meshes[s->nodes[i].meshes[k]].data.index_count / 3;
+    return n;
+}
+
 static void print_bench(sl_app *app, recorder *rec, int warmup) {
     double med, mean, mn;
     int skip = rec->frames > warmup ? warmup : 0;
@@ -478,6 +486,8 @@ int main(int argc, char **argv) {
             print_bench(&app, &rec, warmup);
             printf("  startup to first frame: %.1f ms\n", first_frame_ms);
             printf("  peak memory (resident): %.1f MiB\n", peak_rss_mib());
+            printf("  triangles: %ld in the scene, %ld drawn in the last frame (every pass)\n", scene_triangles(&app.scene),
+                   sl_renderer_stats(&app)->triangles);
         }
         if (c.explain) sl_renderer_explain(&app, stdout);
         for (int i = 0; i < rec.count; i++) free(rec.s[i].ms);

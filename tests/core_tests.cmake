@@ -95,3 +95,7 @@ sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT ${S
 # 100 000 overlapping blended quads under TAA: the still completes, each cell's colour is the
 # closed form of its layers.
 sl_add_test(blend_layers SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_blend_layers.c)
+
+# Levels of detail by projected size (core.lod_pixels): meshoptimizer's levels, the choice in
+# closed form, a far sphere drawn with fewer triangles and a near one in full.
+sl_add_test(lod SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_lod.c)

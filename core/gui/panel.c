@@ -324,7 +324,8 @@ static void section_timing(sl_panel *p, double dt) {
     if (*budget) sl_ui_text("budget %s", budget);
     if (!st) return;
     bool timed = st->timing_mode && strcmp(st->timing_mode, "off");
-    sl_ui_text("frame %.2f ms (CPU), %d draw calls, %d programs", st->frame_ms, st->draw_calls, st->program_count);
+    sl_ui_text("frame %.2f ms (CPU), %d draw calls, %ld triangles, %d programs", st->frame_ms, st->draw_calls,
+               st->triangles, st->program_count);
     sl_ui_text_disabled("pass times: %s%s", st->timing_mode ? st->timing_mode : "?",
                         st->timing_mode && !strcmp(st->timing_mode, "glfinish") ? " (CPU rasteriser: honest, serialising)" : "");
     if (!sl_ui_begin_table("passes", 3)) return;

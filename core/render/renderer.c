@@ -302,6 +302,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     double t0 = sl_now_ms();
     r->stats.pass_count = 0;
     r->stats.draw_calls = r->stats.reused_draw_calls = 0;
+    r->stats.triangles = 0;
     r->timing = app->opt.timings || r->timing_next;
     r->timing_next = false;
     r->stats.timing_mode = !r->timing ? "off" : r->finish_timing ? "glfinish" : "timer-query";

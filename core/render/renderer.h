@@ -45,6 +45,7 @@ typedef struct sl_frame_stats {
     double frame_ms;
     int draw_calls;
     int reused_draw_calls;       /* those of the passes skipped as unchanged, when they last ran */
+    long triangles;              /* triangles drawn by the core's scene draws (levels of detail count theirs) */
     int program_count;
     uint64_t program_hashes[256]; /* hash of each composed program in use, sorted */
     const char *timing_mode;     /* "glfinish", "timer-query", or "off" (not asked: pass ms are 0) */

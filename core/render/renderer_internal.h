@@ -9,15 +9,19 @@
 #include "render/renderer.h"
 #include "state.h"
 #include "render/forward.h"
+#include "render/lod.h"
 #include "plugin/plugins.h"
 
 /* center: the object-space bounds' centre (blended draws sort on its view depth); lo, hi: the
- * object-space bounds (frustum culling; a deformed mesh is never culled: its pose leaves them) */
+ * object-space bounds (frustum culling; a deformed mesh is never culled: its pose leaves them),
+ * radius: half their diagonal; lod: the index lists of its levels of detail in ibo once lod_built
+ * (render/lod.h; index_count is level 0's; a deformed mesh has none) */
 typedef struct gpu_mesh {
     unsigned vao, vbo[5], ibo;
     int index_count;
-    float center[3], lo[3], hi[3];
+    float center[3], lo[3], hi[3], radius;
     struct gpu_deform *deform; /* a deformed mesh's buffers (deform.c), or NULL */
+    sl_lod_levels lod; bool lod_built;
 } gpu_mesh;
 typedef struct gpu_texture { char *key; unsigned id; } gpu_texture;
 

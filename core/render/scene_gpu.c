@@ -63,6 +63,8 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
             if (v == 0 || x > hi[c]) hi[c] = x;
         }
     for (int c = 0; c < 3; c++) g->center[c] = 0.5f * (lo[c] + hi[c]), g->lo[c] = lo[c], g->hi[c] = hi[c];
+    g->radius = 0.5f * sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
 
 /* ------------------------------------------------------------------ textures -------- */
@@ -649,6 +651,30 @@ static bool identity_blend(sl_app *app, const sl_draw_scene_desc *d) {
     return true;
 }
 
+/* The level of detail of mesh g (data m) drawn by `node` in view d (render/lod.h), 0 when pixels
+ * <= 0. The levels are made at the first draw that asks (core.lod_pixels > 0): the index buffer
+ * then holds level 0 and the coarser lists after it. */
+static int lod_level(gpu_mesh *g, const sl_mesh_data *m, const sl_node *node, const sl_draw_scene_desc *d, int height,
+                     float pixels) {
+    if (!(pixels > 0) || g->deform) return 0; /* a deformed mesh's pose leaves its bounds */
+    if (!g->lod_built) {
+        int total = 0;
+        uint32_t *levels = sl_lod_build(m, &g->lod, &total);
+        if (levels) glNamedBufferData(g->ibo, (size_t)total * 4, levels, GL_STATIC_DRAW);
+        free(levels);
+        g->lod_built = true;
+    }
+    if (g->lod.count < 2) return 0;
+    vec4 c = {g->center[0], g->center[1], g->center[2], 1}, w, v;
+    glm_mat4_mulv((vec4 *)node->world, c, w);
+    glm_mat4_mulv((vec4 *)d->view, w, v);
+    float scale = 0; /* the longest axis of the node's transform */
+    for (int k = 0; k < 3; k++)
+        scale = fmaxf(scale, sqrtf(node->world[k * 4] * node->world[k * 4] + node->world[k * 4 + 1] * node->world[k * 4 + 1] +
+                                   node->world[k * 4 + 2] * node->world[k * 4 + 2]));
+    return sl_lod_pick(&g->lod, d->proj, v, g->radius, scale, height, pixels);
+}
+
 void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom, sl_gpu_draw_set set) {
     const char *model_override = d->mode == SL_DRAW_MATERIALS ? d->model_override : NULL;
     const char *fragment = d->mode == SL_DRAW_MATERIALS ? d->fragment : NULL; /* resolved (draw_scene) */
@@ -669,7 +695,13 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
         glUniform1i(glGetUniformLocation(custom->id, "sl_uv_space"), d->uv_space);
     }
     draw_item *items = NULL;
-    int count = draw_list(app, d, set, may_cull(app, d, custom != NULL), &items);
+    bool cull = may_cull(app, d, custom != NULL);
+    int count = draw_list(app, d, set, cull, &items);
+    /* levels of detail where the draw may cull (a vertex stage the core knows), on this target */
+    const sl_param *lod_param = sl_params_find(&app->params, "core.lod_pixels");
+    float lod_pixels = cull && lod_param ? lod_param->value.f[0] : 0;
+    int viewport[4] = {0, 0, 0, 0};
+    if (lod_pixels > 0) glGetIntegerv(GL_VIEWPORT, viewport);
     int bound_m = -1;
     unsigned prog = custom ? custom->id : 0;
     const sl_forward_variant *var = NULL;
@@ -733,7 +765,11 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                                GL_UNSIGNED_INT, (const void *)(sizeof(uint32_t) * (size_t)first));
             }
         } else {
-            glDrawElements(GL_TRIANGLES, r->meshes[mi].index_count, GL_UNSIGNED_INT, 0);
+            gpu_mesh *g = &r->meshes[mi];
+            int level = lod_level(g, &s->meshes[mi].data, node, d, viewport[3], lod_pixels);
+            int n = level ? g->lod.index_count[level] : g->index_count;
+            glDrawElements(GL_TRIANGLES, n, GL_UNSIGNED_INT, (const void *)(sizeof(uint32_t) * (size_t)g->lod.first[level]));
+            r->stats.triangles += n / 3;
         }
         r->stats.draw_calls++;
     }
