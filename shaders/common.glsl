@@ -47,7 +47,15 @@ struct SlSurface {
 // with f_GGX the microfacet GGX BRDF (Smith G) and F_k Schlick between f0 and f90, or the exact
 // dielectric Fresnel with eta when eta > 0. w_d = 1, or 1 − F_0(l·h) with diffuse_coupled (glTF
 // 2.0 appendix B: the diffuse under lobe 0's Fresnel). Lobes are isotropic.
+// ABI 1.16, flags: SL_LOBES_MODEL_AT_DOMINANT_LIGHT says the model's response must not be
+// integrated (a toon model's bands would blur): the integrator evaluates the model's own f
+// (sl_shading_model) once per light, at the light's dominant direction d with the irradiance E_d
+// it carries, and adds the diffuse albedo under the rest of the light:
+//   L_o = f(s, d, E_d) + diffuse/π · max(E(n) − E_d max(0, n·d), 0)
+// (envmap: d and E_d from the environment's order-1 irradiance; area lights: the polygon's vector
+// irradiance, nothing left over). A Lambert f gives diffuse/π · E(n) exactly; the lobes are unused.
 const int SL_MAX_LOBES = 2;
+const int SL_LOBES_MODEL_AT_DOMINANT_LIGHT = 1;
 struct SlLobe {
     vec3 f0;      // Fresnel at normal incidence of the microfacets (colour)
     vec3 f90;     // … at grazing incidence (1 for Schlick's usual form)
@@ -61,11 +69,12 @@ struct SlLobes {
     bool diffuse_coupled;  // the diffuse is weighted by 1 − F of lobe 0 (see above)
     int count;             // lobes in use, 0 … SL_MAX_LOBES
     SlLobe lobe[SL_MAX_LOBES];
+    int flags;             // ABI 1.16: SL_LOBES_MODEL_AT_DOMINANT_LIGHT or 0
 };
 // An empty description: no diffuse, no lobe; a hook starts from it.
 SlLobes sl_lobes_none() {
     SlLobe z = SlLobe(vec3(0.0), vec3(1.0), 1.0, 0.0, 0.0);
-    return SlLobes(vec3(0.0), false, 0, SlLobe[SL_MAX_LOBES](z, z));
+    return SlLobes(vec3(0.0), false, 0, SlLobe[SL_MAX_LOBES](z, z), 0);
 }
 
 // One light as packed by the core (std430, 80 bytes).

@@ -73,6 +73,11 @@ step "find_package(shadelab): the ssao example (depth, normals, pre-pass, pass v
   && "$CMAKE" --build "$T/ssao" >>"$T/ssao.log" 2>&1 || { cat "$T/ssao.log"; fail "ssao: configure and build"; }
 (cd "$T/ssao" && ctest --output-on-failure) || fail "the ssao example's harness test"
 
+step "find_package(shadelab): the toon example (a model lit at the dominant light) out of tree"
+"$CMAKE" -S "$SRC/sdk/example/toon" -B "$T/toon" -DCMAKE_PREFIX_PATH="$PFX" -DCMAKE_BUILD_TYPE=RelWithDebInfo >"$T/toon.log" \
+  && "$CMAKE" --build "$T/toon" >>"$T/toon.log" 2>&1 || { cat "$T/toon.log"; fail "toon: configure and build"; }
+(cd "$T/toon" && ctest --output-on-failure) || fail "the toon example's harness test"
+
 step "each feature of the example visibly changes the image (installed viewer, --plugin PATH)"
 r() { local out=$1; shift; "$VIEWER" --headless --size 160x90 --strict --plugin "$PLUGIN" "$@" --output "$out" 2>"$out.log" \
         || { cat "$out.log"; fail "render $out"; }; }

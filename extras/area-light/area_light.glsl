@@ -10,9 +10,10 @@
 //                LTC fitted to the GGX BRDF (ltc_fit.c; Heitz et al. 2016) × its weight; Fresnel:
 //                Schlick's split between F0 and F90, the exact dielectric Fresnel at the lobe's
 //                mean angle for a lobe with eta (see README)
-//   a model without lobes (SL_MODEL_HAS_LOBES undefined): the model evaluated once, at the
-//                direction of the polygon's vector irradiance with its magnitude (exact for
-//                Lambertian terms; an approximation otherwise)
+//   a model without lobes (SL_MODEL_HAS_LOBES undefined), or lit at the dominant light
+//                (SL_LOBES_MODEL_AT_DOMINANT_LIGHT, ABI 1.16: a toon model's bands): the model
+//                evaluated once, at the direction of the polygon's vector irradiance with its
+//                magnitude (exact for Lambertian terms; an approximation otherwise)
 //   method = reference: Monte Carlo over the light's surface with the model itself (no visibility)
 #include "area_polygon.glsl"
 #include "sl:ggx_brdf.glsl" // the SDK's GGX terms (ggx_fresnel_exact)
@@ -228,9 +229,12 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
     area_light_geometry(L, c, nl, ex, ey);
     bool two_sided = L.params[0].w > 0.5;
     if (!two_sided && dot(s.position - c, nl) <= 0.0) return vec3(0.0); // behind a one-sided light
+    SlLobes lobes = sl_model_lobes(s);
+    // a model lit at the dominant light (ABI 1.16) is defined by that evaluation: every method gives it
+    bool at_dominant = (lobes.flags & SL_LOBES_MODEL_AT_DOMINANT_LIGHT) != 0;
 #if AREA_LIGHT_METHOD == AREA_LIGHT_METHOD_REFERENCE
-    return area_light_reference(L, s, c, nl, ex, ey);
-#else
+    if (!at_dominant) return area_light_reference(L, s, c, nl, ex, ey);
+#endif
     AreaLightPolygon poly = area_light_make_polygon(c - s.position, ex, ey, L.params[0].x, L.params[0].y,
                                                     L.params[0].z > 0.5, AREA_LIGHT_DISK_SEGMENTS);
     mat3 frame = area_light_frame(s.normal, s.view);
@@ -240,23 +244,23 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
     vec3 hx = ex * (0.5 * L.params[0].x), hy = ey * (0.5 * L.params[0].y);
     if (layer >= 0) Td = area_light_tex_filtered(layer, frame, c - s.position, hx, hy);
 #if defined(SL_MODEL_HAS_LOBES)
-    SlLobes lobes = sl_model_lobes(s);
-    float ndv = clamp(dot(s.normal, s.view), 0.0, 1.0);
-    vec3 kd = lobes.diffuse, spec = vec3(0.0);
-    for (int k = 0; k < lobes.count && k < SL_MAX_LOBES; ++k) {
-        // diffuse_coupled: (1 − F) of lobe 0 approximated by (1 − F0)
-        if (k == 0 && lobes.diffuse_coupled) kd *= 1.0 - lobes.lobe[0].f0;
-        // no specular for a normal facing away (the contract's lobes are masked there)
-        if (lobes.lobe[k].weight > 0.0 && dot(s.normal, s.view) > 0.0)
-            spec += area_light_lobe(lobes.lobe[k], poly, frame, ndv, layer, c - s.position, hx, hy);
+    if (!at_dominant) {
+        float ndv = clamp(dot(s.normal, s.view), 0.0, 1.0);
+        vec3 kd = lobes.diffuse, spec = vec3(0.0);
+        for (int k = 0; k < lobes.count && k < SL_MAX_LOBES; ++k) {
+            // diffuse_coupled: (1 − F) of lobe 0 approximated by (1 − F0)
+            if (k == 0 && lobes.diffuse_coupled) kd *= 1.0 - lobes.lobe[0].f0;
+            // no specular for a normal facing away (the contract's lobes are masked there)
+            if (lobes.lobe[k].weight > 0.0 && dot(s.normal, s.view) > 0.0)
+                spec += area_light_lobe(lobes.lobe[k], poly, frame, ndv, layer, c - s.position, hx, hy);
+        }
+        return Le * (kd * SL_INV_PI * phi.z * Td + spec);
     }
-    return Le * (kd * SL_INV_PI * phi.z * Td + spec);
-#else
-    // Lambert exactly (model(s, l̂, |Φ|) = k_d/π |Φ| n·l̂ = k_d/π Φ·n); any other model once, at
-    // the vector irradiance's direction
+#endif
+    // the model once, at the vector irradiance's direction with its magnitude: the dominant light
+    // of SL_LOBES_MODEL_AT_DOMINANT_LIGHT, and the fallback of a model without lobes; exact for
+    // Lambert (model(s, l̂, |Φ|) = k_d/π |Φ| n·l̂ = k_d/π Φ·n), nothing left over for the diffuse
     float e = length(phi);
     if (!(e > 0.0)) return vec3(0.0);
     return sl_shading_model(s, transpose(frame) * (phi / e), Le * Td * e);
-#endif
-#endif
 }

@@ -148,7 +148,7 @@ typedef struct envmap {
     /* derived, each with the key it was built for */
     unsigned base, spec, irr, lut;
     int base_size, spec_levels, lut_size;
-    uint64_t base_key, spec_key, irr_key;
+    uint64_t base_key, spec_key, irr_key, sh_key;
     bool spec_from_chain;
     /* the reference's environment importance sampling (a lat-long source): RG32F (conditional
      * CDF, pdf) and R32F marginal CDF, em_env_distribution's arrays; dist_total 0 = none */
@@ -159,7 +159,7 @@ typedef struct envmap {
     float sh[9][3];
     bool sh_valid;
     /* a lat-long source's SH projection, made on the CPU from the pixels as loaded (src_sh_valid):
-     * ensure_irradiance then reads nothing back from the GPU */
+     * ensure_sh then reads nothing back from the GPU */
     float src_sh[9][3];
     bool src_sh_valid;
     double progress_start, progress_last;
@@ -334,7 +334,7 @@ static void free_derived(envmap *e) {
     delete_tex(&e->dist);
     delete_tex(&e->marginal);
     e->dist_total = 0;
-    e->base_key = e->spec_key = e->irr_key = e->dist_key = 0;
+    e->base_key = e->spec_key = e->irr_key = e->sh_key = e->dist_key = 0;
     e->sh_valid = false;
 }
 
@@ -572,23 +572,16 @@ static void ensure_spec(envmap *e) {
     e->spec_key = key;
 }
 
-static bool convolved(envmap *e) { return param(e, "irradiance").i == 1; }
-
-static void ensure_irradiance(envmap *e) {
-    bool conv = convolved(e);
+/* The irradiance a program reads, each made the first time one reads it: the order-2 SH
+ * (irradiance=sh, and the dominant light of models lit at it, SL_LOBES_MODEL_AT_DOMINANT_LIGHT,
+ * whatever `irradiance` says) and the convolved cube (irradiance=convolved). */
+static void ensure_sh(envmap *e) {
     ensure_base(e);
-    uint64_t key = em_hash(&conv, sizeof conv, e->base_key);
-    if ((conv ? e->irr != 0 : e->sh_valid) && e->irr_key == key) return;
-    if (conv) {
-        delete_tex(&e->irr);
-        refresh_programs(e, PROG_IRRADIANCE);
-        int out = e->base_size < 32 ? e->base_size : 32;
-        e->irr = em_convolve_irradiance(&e->gpu, e->base, e->base_size, 16, out);
-    } else if (e->src_sh_valid) {
+    if (e->sh_valid && e->sh_key == e->base_key) return;
+    if (e->src_sh_valid) {
         /* a lat-long source: projected from its pixels when it was loaded. Reading the base cube
          * back waited ≈ 0.1 s in begin_frame for the rasteriser to convert it (head scene). */
         memcpy(e->sh, e->src_sh, sizeof e->sh);
-        e->sh_valid = true;
     } else {
         /* a cube source: project a small mip of the base cube (≤ 32²): the box-filtered mips keep
          * the low frequencies SH keeps */
@@ -600,9 +593,19 @@ static void ensure_irradiance(envmap *e) {
         em_sh9_project(faces, s, sh);
         em_sh9_diffuse_coefficients(sh, e->sh);
         free(faces);
-        e->sh_valid = true;
     }
-    e->irr_key = key;
+    e->sh_valid = true;
+    e->sh_key = e->base_key;
+}
+
+static void ensure_convolved(envmap *e) {
+    ensure_base(e);
+    if (e->irr && e->irr_key == e->base_key) return;
+    delete_tex(&e->irr);
+    refresh_programs(e, PROG_IRRADIANCE);
+    int out = e->base_size < 32 ? e->base_size : 32;
+    e->irr = em_convolve_irradiance(&e->gpu, e->base, e->base_size, 16, out);
+    e->irr_key = e->base_key;
 }
 
 /* The reference's environment distribution, the first time a reference program reads it: the
@@ -673,12 +676,13 @@ static bool host_scene_uses(envmap *e, const char *uniform) {
  * envmap-prefilter pass (below), after the shadow maps. */
 static void prepare(envmap *e) {
     if (!e->have_src) return;
-    bool irr = host_scene_uses(e, "envmap_sh") || host_scene_uses(e, "envmap_irr");
+    bool sh = host_scene_uses(e, "envmap_sh"), conv = host_scene_uses(e, "envmap_irr");
     bool lut = host_scene_uses(e, "envmap_lut"), base = host_scene_uses(e, "envmap_base");
-    if (!irr && !lut && !base) return;
+    if (!sh && !conv && !lut && !base) return;
     gl_state st;
     gpu_work_begin(&st);
-    if (irr) ensure_irradiance(e);
+    if (sh) ensure_sh(e);
+    if (conv) ensure_convolved(e);
     if (lut) ensure_lut(e);
     if (base) ensure_base(e);
     gpu_work_end(e, &st);
@@ -768,13 +772,14 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     int l_dist = glGetUniformLocation(prog, "envmap_dist"); /* the reference's environment sampling */
     /* compute what this program reads, the first time it is needed (a mirror-only scene never
      * prefilters); the forward pass is mid-flight, so GL state is saved and restored */
-    bool need_spec = l_spec >= 0 && !e->spec_from_chain, need_irr = l_irr >= 0 || l_sh >= 0, need_lut = l_lut >= 0;
+    bool need_spec = l_spec >= 0 && !e->spec_from_chain, need_lut = l_lut >= 0;
     bool need_base = l_base >= 0, need_dist = l_dist >= 0;
-    if (need_spec || need_irr || need_lut || need_base || need_dist) {
+    if (need_spec || l_irr >= 0 || l_sh >= 0 || need_lut || need_base || need_dist) {
         gl_state st;
         gpu_work_begin(&st);
         if (need_spec) ensure_spec(e);
-        if (need_irr) ensure_irradiance(e);
+        if (l_sh >= 0) ensure_sh(e);
+        if (l_irr >= 0) ensure_convolved(e);
         if (need_lut) ensure_lut(e);
         if (need_base) ensure_base(e);
         if (need_dist) ensure_distribution(e);

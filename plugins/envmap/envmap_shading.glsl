@@ -443,6 +443,27 @@ vec3 envmap_reference(SlSurface s) {
     return s.ao * sum / float(envmap_reference_samples);
 }
 
+// The lobe contract's SL_LOBES_MODEL_AT_DOMINANT_LIGHT (common.glsl): the environment as one
+// directional light and the rest. Per channel the irradiance's order-1 SH term is
+// π (c_x, c_y, c_z)·m (envmap_sh, map space); a directional light of irradiance E_d from d has the
+// order-1 term E_d/2 (n·d) (the clamped cosine's projection, beside E_d/4 in order 0), so d is the
+// direction of that term (luminance) and E_d = 2π (c·d). The diffuse albedo takes the rest,
+// max(E(n) − E_d max(0, n·d), 0) with E(n) as `irradiance` computes it: a Lambert f gives the
+// split sum's diffuse exactly. s.ao scales both, as it scales the split sum.
+vec3 envmap_at_dominant_light(SlSurface s, SlLobes L) {
+    const vec3 luminance = vec3(0.2126, 0.7152, 0.0722);
+    vec3 cx = envmap_sh[3], cy = envmap_sh[1], cz = envmap_sh[2];
+    vec3 dm = vec3(dot(cx, luminance), dot(cy, luminance), dot(cz, luminance));
+    vec3 d = s.normal, Ed = vec3(0.0);
+    if (length(dm) > 1e-8) {
+        dm = normalize(dm);
+        Ed = max(2.0 * SL_PI * (cx * dm.x + cy * dm.y + cz * dm.z), vec3(0.0)) * envmap_scale;
+        d = transpose(envmap_rot) * dm; // map → world
+    }
+    vec3 rest = max(SL_PI * envmap_diffuse(s.normal) - Ed * max(dot(s.normal, d), 0.0), vec3(0.0));
+    return s.ao * (sl_shading_model(s, d, Ed) + L.diffuse * SL_INV_PI * rest);
+}
+
 vec3 envmap_tint(SlSurface s) {
 #if defined(SL_MAT_HAS_BASE_COLOR) || defined(SL_MAT_HAS_BASE_COLOR_MAP)
     return s.base_color;
@@ -475,9 +496,14 @@ vec3 envmap_ambient(SlSurface s) {
     float footprint = max(length(dFdx(d)), length(dFdy(d)));
 #if defined(SL_MODEL_MIRROR) || defined(SL_MODEL_ENVIRONMENT)
     return envmap_tint(s) * envmap_source(d, envmap_source_lod(footprint));
-#elif ENVMAP_MODE == ENVMAP_MODE_REFERENCE
+#else
+    SlLobes lobes = sl_model_lobes(s);
+    // a model lit at the dominant light is defined by that evaluation: every mode gives it
+    if ((lobes.flags & SL_LOBES_MODEL_AT_DOMINANT_LIGHT) != 0) return envmap_at_dominant_light(s, lobes);
+#if ENVMAP_MODE == ENVMAP_MODE_REFERENCE
     return envmap_reference(s);
 #else
     return envmap_split_sum(s);
+#endif
 #endif
 }

@@ -32,6 +32,9 @@
  *             MODEL_LOBES description, or the fallback (Lambert diffuse of s.base_color, no
  *             lobe; SL_MODEL_HAS_LOBES undefined). Integrators (AMBIENT hooks, radiance LIGHTs)
  *             light every model through it and name none (plugin-guide.md, "Lobes").
+ *             ABI 1.16: SlLobes.flags; SL_LOBES_MODEL_AT_DOMINANT_LIGHT asks integrators to
+ *             evaluate the model's own f at the light's dominant direction (a toon model's
+ *             bands) instead of integrating lobes (common.glsl, sdk/example/toon).
  *
  * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX),
  * and "#define SL_MODEL_MASKS_FACING_AWAY 1" when that model's chunk carries
