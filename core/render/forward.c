@@ -751,8 +751,9 @@ static void emit_model_lobes(const composition *c, sl_strbuf *gen) {
     for (int i = 0; i < nwarned; i++)
         if (!strncmp(warned[i], c->model, sizeof warned[i] - 1)) return;
     if (nwarned < 32) snprintf(warned[nwarned++], sizeof warned[0], "%s", c->model);
-    SL_WARN("shading model \"%s\" (plugin %s) describes no lobes (MODEL_LOBES): environment and area lights "
-            "light it with the fallback, a Lambert diffuse of its base_color", c->model, c->P->items[c->model_chunk->owner]->id);
+    SL_WARN("shading model \"%s\" (plugin %s) describes no lobes (MODEL_LOBES): environment light reaches it as a "
+            "Lambert diffuse of its base_color, an area light as one evaluation of the model (the lobe contract's fallback)",
+            c->model, c->P->items[c->model_chunk->owner]->id);
 }
 
 static bool compose_forward_fragment(composition *c, sl_program *p) {
