@@ -230,6 +230,11 @@ EOF
         echo "[chart](budget-error.png), [table](budget-error.md) (\`tools/bench/budget-chart.sh\`, its own date and load)."
         echo
     fi
+    if [ -f "$ROOT/docs/scale.md" ]; then
+        echo "Frame time against the scene's triangles (1 M and 10 M), levels of detail off and on:"
+        echo "[chart](scale.png), [table](scale.md) (\`tools/bench/scale-chart.sh\`, its own date and load)."
+        echo
+    fi
     echo "How \`shadelab-bench\` sweeps quality knobs and computes each metric: [tools/bench](../tools/bench/README.md)."
     echo "Each plugin's own error-versus-time charts are in its README."
 } > "$TMP/out.md"

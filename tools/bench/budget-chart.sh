@@ -68,7 +68,7 @@ open(tmp + "/rows", "w").write("\n".join(rows) + "\n")
 PY
 
 gnuplot <<EOF
-set terminal pngcairo size 900,560 font ",11"
+set terminal pngcairo size 900,560 font ",11" noenhanced
 set output "$OUT.png"
 set title "Built-in default scene, $SIZE orbit: motion error against the frame-time budget"
 set xlabel "frame-time budget / p95 frame time (ms)"

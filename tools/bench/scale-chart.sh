@@ -99,7 +99,7 @@ open(tmp + "/rows", "w").write("\n".join(rows) + "\n")
 PY
 
 gnuplot <<EOF
-set terminal pngcairo size 900,560 font ",11"
+set terminal pngcairo size 900,560 font ",11" noenhanced
 set output "$OUT.png"
 set title "Frame time against the scene's triangles, $SIZE, frustum culling on"
 set xlabel "triangles in the scene"
