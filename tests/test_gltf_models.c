@@ -398,6 +398,25 @@ static void f_clearcoat_zero(gw_doc *g) {
                   "{\"clearcoat\": false, \"clearcoat_roughness\": false, \"clearcoat_texture\": false}");
 }
 
+/* only what differs from the defaults (1, [1, 1, 1]) is published */
+static void f_specular(gw_doc *g) {
+    layer_feature(g, "KHR_materials_specular",
+                  "{\"specularFactor\": 0.5, \"specularColorFactor\": [1, 0.5, 0.25], \"specularTexture\": {\"index\": 0}}",
+                  "{\"specular\": 0.5, \"specular_color\": 1, \"specular_texture\": true, \"specular_color_texture\": false}");
+}
+static void f_specular_defaults(gw_doc *g) {
+    layer_feature(g, "KHR_materials_specular", "{\"specularFactor\": 1}", "{\"specular\": false, \"specular_color\": false}");
+}
+static void f_sheen(gw_doc *g) {
+    layer_feature(g, "KHR_materials_sheen",
+                  "{\"sheenColorFactor\": [0.9, 0.6, 0.3], \"sheenRoughnessFactor\": 0.4, \"sheenColorTexture\": {\"index\": 0}}",
+                  "{\"sheen_color\": 0.9, \"sheen_roughness\": 0.4, \"sheen_color_texture\": true, \"sheen_roughness_texture\": false}");
+}
+/* a black sheenColorFactor (the default) is no sheen */
+static void f_sheen_black(gw_doc *g) {
+    layer_feature(g, "KHR_materials_sheen", "{\"sheenRoughnessFactor\": 0.4}", "{\"sheen_color\": false, \"sheen_roughness\": false}");
+}
+
 static const struct { const char *name; void (*build)(gw_doc *g); } features[] = {
     {"baseline", f_baseline},
     {"indices_u8", f_indices_u8},
@@ -423,6 +442,10 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"material_identity", f_material_identity},
     {"clearcoat", f_clearcoat},
     {"clearcoat_zero", f_clearcoat_zero},
+    {"specular", f_specular},
+    {"specular_defaults", f_specular_defaults},
+    {"sheen", f_sheen},
+    {"sheen_black", f_sheen_black},
 };
 
 static void write_features(void) {

@@ -23,8 +23,12 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_clearcoat", SL_GLTF_APPROXIMATED,
      "a second GGX lobe with its roughness, textures and normal texture (ggx); environment and area lights see "
      "the coat about the base's normal"},
-    {"KHR_materials_sheen", SL_GLTF_IGNORED, "the base layer only"},
-    {"KHR_materials_specular", SL_GLTF_IGNORED, "F0 from ior only"},
+    {"KHR_materials_sheen", SL_GLTF_APPROXIMATED,
+     "Charlie sheen with the albedo scaling of the layers below (ggx); environment and area lights see it as a "
+     "diffuse albedo sheenColor * E(n.v)"},
+    {"KHR_materials_specular", SL_GLTF_APPROXIMATED,
+     "the dielectric's specular strength and F0 colour, factors and textures (ggx); environment and area lights "
+     "weight the diffuse by 1 - F per channel"},
     {"KHR_materials_transmission", SL_GLTF_IGNORED, "opaque"},
     {"KHR_materials_volume", SL_GLTF_IGNORED, "opaque"},
     {"KHR_materials_iridescence", SL_GLTF_IGNORED, "no thin film"},

@@ -279,8 +279,54 @@ static bool clearcoat_inputs(gltf_import *im, int mi, const cJSON *ext, const ch
            slot(im, mi, e, p, "clearcoatNormalTexture", "clearcoat_normal_texture", "scale", "clearcoat_normal_scale");
 }
 
+/* KHR_materials_specular: the strength and F0 colour of the dielectric's reflection; values
+ * that are the defaults (1, [1, 1, 1]) are not published, so such a material pays nothing. */
+static bool specular_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    sl_prop_list *in = &im->scene->materials[mi].inputs;
+    const cJSON *e;
+    char p[160];
+    snprintf(p, sizeof p, "%s/KHR_materials_specular", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_specular", &e)) return false;
+    if (!e) return true;
+    double strength = 1;
+    float colour[3] = {1, 1, 1};
+    if (!factor(d, e, p, "specularFactor", 0, 1, &strength) || !gltf_get_numbers(d, e, p, "specularColorFactor", 3, colour, NULL))
+        return false;
+    for (int c = 0; c < 3; c++)
+        if (!(colour[c] >= 0 && colour[c] <= 1e4)) { /* unbounded above by the schema; F0 is clamped to 1 */
+            gltf_note(d, p, "specularColorFactor[%d] %g is not in [0, 1e4]: 1 used", c, colour[c]);
+            colour[c] = 1;
+        }
+    if (strength != 1) sl_prop_set_number(in, "specular", (float)strength, 0);
+    if (colour[0] != 1 || colour[1] != 1 || colour[2] != 1) sl_prop_set_vec(in, "specular_color", colour, 3, 0);
+    return slot(im, mi, e, p, "specularTexture", "specular_texture", NULL, NULL) &&
+           slot(im, mi, e, p, "specularColorTexture", "specular_color_texture", NULL, NULL);
+}
+
+/* KHR_materials_sheen: a black sheenColorFactor (the default) is no sheen at all. */
+static bool sheen_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    sl_prop_list *in = &im->scene->materials[mi].inputs;
+    const cJSON *e;
+    char p[160];
+    snprintf(p, sizeof p, "%s/KHR_materials_sheen", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_sheen", &e)) return false;
+    if (!e) return true;
+    double rough = 0;
+    float colour[3] = {0, 0, 0};
+    if (!gltf_get_numbers(d, e, p, "sheenColorFactor", 3, colour, NULL) || !factor(d, e, p, "sheenRoughnessFactor", 0, 1, &rough))
+        return false;
+    for (int c = 0; c < 3; c++) colour[c] = fminf(fmaxf(colour[c], 0.0f), 1.0f); /* NaN compares false: 0 */
+    if (colour[0] == 0 && colour[1] == 0 && colour[2] == 0) return true;
+    sl_prop_set_vec(in, "sheen_color", colour, 3, 0);
+    sl_prop_set_number(in, "sheen_roughness", (float)rough, 0);
+    return slot(im, mi, e, p, "sheenColorTexture", "sheen_color_texture", NULL, NULL) &&
+           slot(im, mi, e, p, "sheenRoughnessTexture", "sheen_roughness_texture", NULL, NULL);
+}
+
 /* KHR_materials_emissive_strength, _ior, _unlit and (approximated) _pbrSpecularGlossiness;
- * the layers ggx renders (clearcoat). */
+ * the layers ggx renders (clearcoat, specular, sheen). */
 static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const char *at) {
     gltf_doc *d = &im->doc;
     sl_prop_list *in = &im->scene->materials[mi].inputs;
@@ -303,7 +349,8 @@ static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const ch
     if (e) sl_prop_set_number(in, "ior", (float)ior, 0);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_unlit", &e)) return false;
     if (e) sl_prop_set_bool(in, "unlit", true, 0);
-    if (!clearcoat_inputs(im, mi, ext, ep)) return false;
+    if (!clearcoat_inputs(im, mi, ext, ep) || !specular_inputs(im, mi, ext, ep) || !sheen_inputs(im, mi, ext, ep))
+        return false;
     snprintf(p, sizeof p, "%s/KHR_materials_pbrSpecularGlossiness", ep);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_pbrSpecularGlossiness", &e)) return false;
     if (!e) return true;

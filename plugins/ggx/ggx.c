@@ -3,7 +3,10 @@
  * GLSL: the SDK shader library's ggx_brdf.glsl (pure BRDF terms, shared with every model that
  * needs them: envmap, sss, extras), ggx_model.glsl (the shading model and debug views),
  * ggx_surface.glsl (material inputs → SlSurface). See README.md. */
+#define SL_GL_IMPLEMENTATION
+#include <shadelab/gl.h>
 #include <shadelab/shadelab.h>
+#include <math.h>
 #include <stdlib.h>
 
 static const char *const fresnel_modes[] = {"exact", "schlick", "metallic-roughness", NULL};
@@ -26,6 +29,10 @@ static const sl_param_desc params[] = {
       .description = "Toksvig specular antialiasing: normal-map variance from its mip chain widens alpha."),
     P(.id = "layer_clearcoat", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the clear coat of materials that carry one (KHR_materials_clearcoat)."),
+    P(.id = "layer_sheen", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the sheen of materials that carry one (KHR_materials_sheen)."),
+    P(.id = "layer_specular", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the specular strength and colour of materials that carry them (KHR_materials_specular)."),
     /* material keys */
     P(.id = "alpha", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {0.3f}}, .min = 0, .max = 1,
       .step = 0.01f, .group = "ggx", .description = "GGX α (width of the microfacet distribution); 0 is clamped to 2e-3."),
@@ -52,6 +59,28 @@ static const sl_param_desc params[] = {
                      "F0 = ((ior - 1)/(ior + 1))^2; 0.04 without it."),
     P(.id = "metallic", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "ggx", .material_input = "metallic", .description = "Metalness for fresnel = metallic-roughness."),
+    /* KHR_materials_specular (README "Layers"), for fresnel = metallic-roughness */
+    P(.id = "dielectric_specular", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1}}, .min = 0,
+      .max = 1, .step = 0.01f, .group = "specular", .material_input = "specular",
+      .description = "Strength of the dielectric's specular reflection (its F0 and F90); 0: diffuse only."),
+    P(.id = "dielectric_specular_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "specular", .material_input = "specular_texture",
+      .description = "Specular strength in the alpha channel, times dielectric_specular."),
+    P(.id = "dielectric_specular_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1, 1, 1}},
+      .min = 0, .max = 100, .group = "specular", .material_input = "specular_color",
+      .description = "Colour scaling the dielectric's F0 (min(F0 * colour, 1)); F90 stays the strength."),
+    P(.id = "dielectric_specular_color_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .group = "specular",
+      .material_input = "specular_color_texture", .description = "Specular colour (sRGB), times dielectric_specular_color."),
+    /* KHR_materials_sheen (README "Layers") */
+    P(.id = "sheen_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL, .group = "sheen", .material_input = "sheen_color",
+      .description = "Colour of the sheen (Charlie microfibres) over the material; black: no sheen."),
+    P(.id = "sheen_color_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .group = "sheen",
+      .material_input = "sheen_color_texture", .description = "Sheen colour (sRGB), times sheen_color."),
+    P(.id = "sheen_roughness", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
+      .group = "sheen", .material_input = "sheen_roughness", .description = "Sheen roughness: alpha = roughness^2 (0 without it)."),
+    P(.id = "sheen_roughness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "sheen", .material_input = "sheen_roughness_texture",
+      .description = "Sheen roughness in the alpha channel, times sheen_roughness."),
     /* KHR_materials_clearcoat (README "Layers") */
     P(.id = "clearcoat", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "clearcoat", .material_input = "clearcoat",
@@ -93,6 +122,21 @@ static const sl_shader_chunk_desc chunks[] = {
       .when_material_has = "specular_map", .order = 1),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_specular_aa",
       .when_material_has = "normal_map", .order = 20),
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_dielectric_specular",
+      .when_material_has = "dielectric_specular", .order = 3),
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_dielectric_specular_map",
+      .when_material_has = "dielectric_specular_map", .order = 4),
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_dielectric_specular_color",
+      .when_material_has = "dielectric_specular_color", .order = 3),
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_dielectric_specular_color_map",
+      .when_material_has = "dielectric_specular_color_map", .order = 4),
+    /* after normal-map (order 10): the albedo scaling reads the shading normal */
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_sheen", .when_material_has = "sheen_color",
+      .order = 21),
+    C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_sheen", .name = "ggx-sheen",
+      .description = "the sheen's own reflection, summed over lights"),
+    C(.hook = SL_HOOK_DEBUG_VIEW, .file = "ggx_model.glsl", .function = "ggx_debug_specular", .name = "ggx-specular",
+      .description = "KHR_materials_specular: specular colour times strength (1 without the layer)"),
     /* before normal-map (order 10): the coat keeps the mesh's normal */
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_clearcoat",
       .when_material_has = "clearcoat", .order = 5),
@@ -110,7 +154,77 @@ static const sl_key_desc keys[] = {
     {.struct_size = sizeof(sl_key_desc), .key = "Z", .param = "zero_specular", .description = "toggle zero specular"},
 };
 
+/* ---- the sheen's directional albedo (ggx_layers.glsl, KHR_materials_sheen) ------------------- */
+/* The same Charlie distribution and visibility as ggx_layers.glsl (Conty Estevez & Kulla 2017). */
+#define SHEEN_MU 32
+#define SHEEN_ROUGH 8
+static double sheen_L(double x, double a) {
+    double t = (1 - a) * (1 - a);
+    double A = 25.3245 * t + 21.5473 * (1 - t), B = 3.32435 * t + 3.82987 * (1 - t), C = 0.16801 * t + 0.19823 * (1 - t);
+    double D = -1.27393 * t - 1.97760 * (1 - t), E = -4.85967 * t - 4.32054 * (1 - t);
+    return A / (1 + B * pow(x, C)) + D * x + E;
+}
+static double sheen_lambda(double c, double a) {
+    return c < 0.5 ? exp(sheen_L(c, a)) : exp(2 * sheen_L(0.5, a) - sheen_L(1 - c, a));
+}
+/* E(μ, α) = ∫ D·V·(n·l) dl, midpoint rule in (cos θ_l, φ) over the half of the hemisphere that
+ * the symmetry about the plane of v and n gives twice */
+static double sheen_albedo(double mu, double alpha) {
+    enum { NT = 48, NP = 48 };
+    alpha = fmax(alpha, 0.07 * 0.07);
+    double inv = 1 / alpha, vx = sqrt(fmax(1 - mu * mu, 0)), sum = 0, lv = sheen_lambda(mu, alpha);
+    for (int i = 0; i < NT; i++) {
+        double ct = (i + 0.5) / NT, st = sqrt(1 - ct * ct), ll = sheen_lambda(ct, alpha);
+        for (int j = 0; j < NP; j++) {
+            double ph = (j + 0.5) * M_PI / NP, hx = st * cos(ph) + vx, hy = st * sin(ph), hz = ct + mu;
+            double nh = hz / sqrt(hx * hx + hy * hy + hz * hz), sin2 = fmax(1 - nh * nh, 0);
+            double d = (2 + inv) * pow(sin2, 0.5 * inv) / (2 * M_PI);
+            sum += d / ((1 + lv + ll) * 4 * mu);
+        }
+    }
+    return sum * 2 * (1.0 / NT) * (M_PI / NP);
+}
+
+typedef struct ggx {
+    const sl_host *host;
+    float sheen_albedo[SHEEN_ROUGH * SHEEN_MU]; /* [roughness][μ], μ and roughness from 0 to 1 */
+    bool sheen_ready;
+} ggx;
+
+/* Programs with a sheen (uniform ggx_sheen_albedo) get the table, made at the first of them. */
+static void ggx_bind(void *user, unsigned program, int material, const sl_frame *frame) {
+    (void)material, (void)frame;
+    ggx *g = user;
+    int at = glGetUniformLocation(program, "ggx_sheen_albedo");
+    if (at < 0) return;
+    if (!g->sheen_ready) {
+        for (int r = 0; r < SHEEN_ROUGH; r++)
+            for (int m = 0; m < SHEEN_MU; m++) {
+                double rough = (double)r / (SHEEN_ROUGH - 1), mu = fmax((double)m / (SHEEN_MU - 1), 1e-3);
+                g->sheen_albedo[r * SHEEN_MU + m] = (float)sheen_albedo(mu, rough * rough);
+            }
+        g->sheen_ready = true;
+    }
+    glUniform4fv(at, SHEEN_ROUGH * SHEEN_MU / 4, g->sheen_albedo);
+}
+
+static sl_status ggx_activate(void *user) {
+    ggx *g = user;
+    const char *missing = NULL;
+    if (!sl_gl_load(g->host->gl_get_proc_address, &missing)) {
+        g->host->log(g->host, SL_LOG_ERROR, "GL entry point %s missing", missing ? missing : "?");
+        return SL_ERR_GL;
+    }
+    return SL_OK;
+}
+
+static void ggx_destroy(void *user) { free(user); }
+
 static sl_status ggx_create(const sl_host *host, void **user) {
+    ggx *g = calloc(1, sizeof *g);
+    *user = g;
+    if (!g) return SL_ERR_FAILED;
+    g->host = host;
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
     for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
@@ -123,13 +237,14 @@ static sl_status ggx_create(const sl_host *host, void **user) {
         .description = "8x8 supersampling without specular antialiasing: every sample shades the normal map at its "
                        "own, finer mip level."};
     host->set_reference(host, &reference);
-    *user = NULL;
-    return SL_OK;
+    return host->set_bind_callback(host, ggx_bind, g);
 }
 
 /* The glTF metallic-roughness BRDF (fresnel = metallic-roughness) and its inputs: imported
  * glTF materials load this plugin (the host reads this list without calling create). */
 static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metallic_roughness_texture", "ior",
+                                         "sheen_color", "sheen_color_texture", "sheen_roughness",
+                                         "sheen_roughness_texture", "specular", "specular_texture", "specular_color", "specular_color_texture",
                                          "clearcoat", "clearcoat_texture", "clearcoat_roughness",
                                          "clearcoat_roughness_texture", "clearcoat_normal_texture",
                                          "clearcoat_normal_scale", NULL};
@@ -141,6 +256,8 @@ static const sl_plugin_desc ggx_desc = {
     .version = "1.0",
     .description = "Cook-Torrance GGX microfacet BRDF: exact/Schlick/metallic-roughness Fresnel, D/G/F debug views.",
     .create = ggx_create,
+    .activate = ggx_activate,
+    .destroy = ggx_destroy,
     .material_inputs = ggx_inputs,
     .shading_models = ggx_models,
 };

@@ -13,6 +13,92 @@ vec3 ggx_schlick_f90(float c, vec3 f0, vec3 f90) {
     return f0 + (f90 - f0) * (m2 * m2 * m);
 }
 
+#if defined(SL_MAT_HAS_DIELECTRIC_SPECULAR) || defined(SL_MAT_HAS_DIELECTRIC_SPECULAR_MAP) || \
+    defined(SL_MAT_HAS_DIELECTRIC_SPECULAR_COLOR) || defined(SL_MAT_HAS_DIELECTRIC_SPECULAR_COLOR_MAP)
+#if GGX_LAYER_SPECULAR && SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+#define GGX_HAS_SPECULAR 1
+#endif
+#endif
+#ifdef GGX_HAS_SPECULAR
+// KHR_materials_specular: the strength and F0 colour of the dielectric's specular reflection
+// (specularFactor × specularTexture.a, specularColorFactor × specularColorTexture.rgb), filled by
+// the surface hooks.
+float ggx_spec_strength = 1.0;
+vec3 ggx_spec_color = vec3(1.0);
+#endif
+
+// The extension's dielectric BRDF (its fresnel_mix) times n·l, for a dielectric F0 of
+// f0_ior (((ior − 1)/(ior + 1))², 0.04 by default):
+//   F_d = Schlick(min(f0_ior·colour, 1)·strength, F90 = strength) at v·h,
+//   f = F_d·D·G/(4|n·l||n·v|) + (1 − max(F_d))·base/π.
+// Without the extension (strength 1, colour 1) it is glTF's dielectric BRDF (appendix B).
+vec3 ggx_dielectric_fresnel(float v_dot_h, float f0_ior, vec3 colour, float strength) {
+    return ggx_schlick_f90(v_dot_h, min(vec3(f0_ior) * colour, vec3(1.0)) * strength, vec3(strength));
+}
+vec3 ggx_dielectric_layer(vec3 base, float f0_ior, vec3 colour, float strength, float alpha, vec3 n, vec3 v, vec3 l) {
+    vec3 h;
+    float dg = ggx_DG_over_4(n, l, v, alpha, h);
+    vec3 F = ggx_dielectric_fresnel(dot(v, h), f0_ior, colour, strength);
+    return (F * dg + (1.0 - max(F.r, max(F.g, F.b))) * base * SL_INV_PI) * max(dot(n, l), 0.0);
+}
+
+// KHR_materials_sheen's BRDF (Conty Estevez & Kulla 2017, "Production Friendly Microfacet Sheen
+// BRDF"): the "Charlie" distribution D = (2 + 1/α)·sin(θ_h)^(1/α)/(2π), α = roughness², and the
+// paper's visibility V = 1/((1 + Λ(n·v) + Λ(n·l))·4·n·l·n·v), Λ from its fitted L(x) (the
+// coefficients of the paper, interpolated in (1 − α)²). GGX_SHEEN_MIN_ALPHA keeps 1/α finite.
+const float GGX_SHEEN_MIN_ALPHA = 0.07 * 0.07;
+float ggx_sheen_D(float n_dot_h, float alpha) {
+    float inv = 1.0 / max(alpha, GGX_SHEEN_MIN_ALPHA);
+    float sin2 = max(1.0 - n_dot_h * n_dot_h, 0.0);
+    return (2.0 + inv) * pow(sin2, 0.5 * inv) / (2.0 * SL_PI);
+}
+float ggx_sheen_L(float x, float alpha) {
+    float t = (1.0 - alpha) * (1.0 - alpha);
+    float a = mix(21.5473, 25.3245, t), b = mix(3.82987, 3.32435, t), c = mix(0.19823, 0.16801, t);
+    float d = mix(-1.97760, -1.27393, t), e = mix(-4.32054, -4.85967, t);
+    return a / (1.0 + b * pow(x, c)) + d * x + e;
+}
+float ggx_sheen_lambda(float c, float alpha) {
+    return c < 0.5 ? exp(ggx_sheen_L(c, alpha)) : exp(2.0 * ggx_sheen_L(0.5, alpha) - ggx_sheen_L(1.0 - c, alpha));
+}
+// D·V·(n·l): the sheen BRDF times the cosine (0 below either horizon).
+float ggx_sheen_brdf_cos(vec3 n, vec3 v, vec3 l, float alpha) {
+    float nl = dot(n, l), nv = dot(n, v);
+    if (nl <= 0.0 || nv <= 0.0) return 0.0;
+    alpha = max(alpha, GGX_SHEEN_MIN_ALPHA);
+    nl = min(nl, 1.0), nv = min(nv, 1.0);
+    vec3 h = normalize(l + v);
+    float vis = 1.0 / ((1.0 + ggx_sheen_lambda(nv, alpha) + ggx_sheen_lambda(nl, alpha)) * 4.0 * nv);
+    return ggx_sheen_D(dot(n, h), alpha) * vis;
+}
+
+#if defined(SL_MAT_HAS_SHEEN_COLOR) && GGX_LAYER_SHEEN
+#define GGX_HAS_SHEEN 1
+// The sheen's directional albedo E(μ, roughness) = ∫ D·V·(n·l) dl, tabulated by ggx.c (the same
+// formulas in C, 32 values of μ = n·v × 8 of the sheen roughness) and set by its bind callback.
+uniform vec4 ggx_sheen_albedo[64];
+float ggx_sheen_table(int i) { return ggx_sheen_albedo[i >> 2][i & 3]; }
+float ggx_sheen_E(float mu, float roughness) {
+    vec2 p = vec2(clamp(mu, 0.0, 1.0) * 31.0, clamp(roughness, 0.0, 1.0) * 7.0);
+    ivec2 i = min(ivec2(p), ivec2(30, 6));
+    vec2 f = p - vec2(i);
+    float e00 = ggx_sheen_table(i.y * 32 + i.x), e10 = ggx_sheen_table(i.y * 32 + i.x + 1);
+    float e01 = ggx_sheen_table((i.y + 1) * 32 + i.x), e11 = ggx_sheen_table((i.y + 1) * 32 + i.x + 1);
+    return mix(mix(e00, e10, f.x), mix(e01, e11, f.x), f.y);
+}
+// The layer (the extension's albedo scaling, in its V·N form, which keeps a white furnace ≤ 1):
+// colour·D·V·(n·l)·E_light + below·(1 − max(colour)·E(n·v)).
+struct GgxSheen {
+    vec3 colour;     // sheenColorFactor × sheenColorTexture.rgb
+    float roughness; // sheenRoughnessFactor × sheenRoughnessTexture.a (α = roughness²)
+    float scale;     // 1 − max(colour)·E(n·v): what the layers below keep
+};
+GgxSheen ggx_sheen = GgxSheen(vec3(0.0), 1.0, 1.0);
+vec3 ggx_sheen_layer(vec3 below, vec3 E, vec3 colour, float roughness, float scale, vec3 n, vec3 v, vec3 l) {
+    return colour * ggx_sheen_brdf_cos(n, v, l, roughness * roughness) * E + below * scale;
+}
+#endif
+
 #if defined(SL_MAT_HAS_CLEARCOAT) && GGX_LAYER_CLEARCOAT
 #define GGX_HAS_CLEARCOAT 1
 // KHR_materials_clearcoat: a second GGX lobe on top, IOR 1.5 (F0 = 0.04), with its own roughness

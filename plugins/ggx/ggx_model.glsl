@@ -19,6 +19,10 @@ void ggx_to_space(inout vec3 n, inout vec3 l, inout vec3 v) {
 vec3 ggx_fresnel(float l_dot_h, SlSurface s) {
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_SCHLICK
     return ggx_fresnel_schlick(l_dot_h, vec3(ggx_f0_from_eta(sl_mat_eta)));
+#elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS && defined(GGX_HAS_SPECULAR)
+    // KHR_materials_specular: mix(dielectric, metal) Fresnel (the metal's F0 the base colour, F90 1)
+    return mix(ggx_dielectric_fresnel(l_dot_h, ggx_gltf_dielectric_f0(), ggx_spec_color, ggx_spec_strength),
+               ggx_fresnel_schlick(l_dot_h, s.base_color), s.metallic);
 #elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
     return ggx_fresnel_schlick(l_dot_h, mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic));
 #else
@@ -47,11 +51,19 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
 #if GGX_ZERO_SPECULAR
     dg = 0.0;
 #endif
-#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+#if defined(GGX_HAS_SPECULAR)
+    // the extension's dielectric_brdf: the diffuse under 1 − max(F_d) of the dielectric's Fresnel
+    vec3 Fd = ggx_dielectric_fresnel(dot(l, h), ggx_gltf_dielectric_f0(), ggx_spec_color, ggx_spec_strength);
+    vec3 diffuse = (1.0 - max(Fd.r, max(Fd.g, Fd.b))) * (1.0 - s.metallic) * s.base_color * SL_INV_PI;
+    vec3 base = (diffuse + F * dg) * E * n_dot_l;
+#elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
     vec3 diffuse = (1.0 - F) * (1.0 - s.metallic) * s.base_color * SL_INV_PI;
     vec3 base = (diffuse + F * dg) * E * n_dot_l;
 #else
     vec3 base = (s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;
+#endif
+#ifdef GGX_HAS_SHEEN
+    base = ggx_sheen_layer(base, E, ggx_sheen.colour, ggx_sheen.roughness, ggx_sheen.scale, n, v, l);
 #endif
 #ifdef GGX_HAS_CLEARCOAT
     base = ggx_clearcoat_over(base, s, l, E);
@@ -73,6 +85,13 @@ SlLobes ggx_lobes(SlSurface s) {
     L.diffuse_coupled = true;
     L.lobe[0].f0 = mix(vec3(ggx_gltf_dielectric_f0()), s.base_color, s.metallic);
     L.lobe[0].weight = 1.0;
+#ifdef GGX_HAS_SPECULAR
+    // KHR_materials_specular: the dielectric's F0 and F90 (strength) mixed with the metal's;
+    // approximated: integrators weight the diffuse by 1 − F per channel, not by 1 − max(F_d)
+    L.lobe[0].f0 = mix(min(vec3(ggx_gltf_dielectric_f0()) * ggx_spec_color, vec3(1.0)) * ggx_spec_strength,
+                       s.base_color, s.metallic);
+    L.lobe[0].f90 = vec3(mix(ggx_spec_strength, 1.0, s.metallic));
+#endif
 #else
     L.diffuse = s.base_color;
     L.lobe[0].f0 = vec3(ggx_f0_from_eta(sl_mat_eta));
@@ -83,6 +102,15 @@ SlLobes ggx_lobes(SlSurface s) {
 #endif
 #if GGX_ZERO_SPECULAR
     L.lobe[0].weight = 0.0;
+#endif
+#ifdef GGX_HAS_SHEEN
+    // the sheen, approximated as a diffuse albedo colour·E(n·v): what it reflects of a uniform
+    // environment, not its grazing shape; the layers below scaled by 1 − max(colour)·E(n·v). With
+    // diffuse_coupled, integrators weight the diffuse by about 1 − F0 of lobe 0: divided out.
+    L.diffuse *= ggx_sheen.scale;
+    L.lobe[0].weight *= ggx_sheen.scale;
+    vec3 sheen = ggx_sheen.colour * ggx_sheen_E(clamp(dot(s.normal, s.view), 0.0, 1.0), ggx_sheen.roughness);
+    L.diffuse += L.diffuse_coupled ? sheen / max(1.0 - L.lobe[0].f0, vec3(0.05)) : sheen;
 #endif
 #ifdef GGX_HAS_CLEARCOAT
     // the coat as lobe 1 with the constant Fresnel F_c(n_c·v) (F0 = F90), weight w; the layers
@@ -124,6 +152,28 @@ vec3 ggx_debug_F(SlSurface s, vec3 l, vec3 E) {
 vec3 ggx_debug_clearcoat(SlSurface s, vec3 l, vec3 E) {
 #ifdef GGX_HAS_CLEARCOAT
     return ggx_clearcoat_over(vec3(0.0), s, l, E);
+#else
+    return vec3(0.0);
+#endif
+}
+
+// "ggx-specular": KHR_materials_specular's inputs after textures, specularColor × specular (the
+// dielectric's F0 relative to the one its ior gives); 1 for a material without the layer.
+vec3 ggx_debug_specular(SlSurface s) {
+#ifdef GGX_HAS_SPECULAR
+    return ggx_spec_color * ggx_spec_strength;
+#else
+    return vec3(1.0);
+#endif
+}
+
+// "ggx-sheen": the sheen's own reflection (KHR_materials_sheen), summed over the lights; 0 for a
+// material without it or with ggx.layer_sheen off.
+vec3 ggx_debug_sheen(SlSurface s, vec3 l, vec3 E) {
+#ifdef GGX_HAS_SHEEN
+    vec3 n = s.normal, v = s.view;
+    ggx_to_space(n, l, v);
+    return ggx_sheen_layer(vec3(0.0), E, ggx_sheen.colour, ggx_sheen.roughness, 0.0, n, v, l);
 #else
     return vec3(0.0);
 #endif

@@ -88,3 +88,55 @@ void ggx_surface_clearcoat(inout SlSurface s) {
 #endif
 }
 #endif
+
+// KHR_materials_specular's inputs into ggx_spec_strength / ggx_spec_color; the maps run after
+// the factors (order) and multiply them.
+#ifdef SL_MAT_HAS_DIELECTRIC_SPECULAR
+void ggx_surface_dielectric_specular(inout SlSurface s) {
+#ifdef GGX_HAS_SPECULAR
+    ggx_spec_strength = sl_mat_dielectric_specular;
+#endif
+}
+#endif
+#ifdef SL_MAT_HAS_DIELECTRIC_SPECULAR_MAP
+void ggx_surface_dielectric_specular_map(inout SlSurface s) {
+#ifdef GGX_HAS_SPECULAR
+    ggx_spec_strength *= texture(sl_mat_dielectric_specular_map, sl_uv_dielectric_specular_map(s)).a;
+#endif
+}
+#endif
+#ifdef SL_MAT_HAS_DIELECTRIC_SPECULAR_COLOR
+void ggx_surface_dielectric_specular_color(inout SlSurface s) {
+#ifdef GGX_HAS_SPECULAR
+    ggx_spec_color = sl_mat_dielectric_specular_color;
+#endif
+}
+#endif
+#ifdef SL_MAT_HAS_DIELECTRIC_SPECULAR_COLOR_MAP
+void ggx_surface_dielectric_specular_color_map(inout SlSurface s) {
+#ifdef GGX_HAS_SPECULAR
+    ggx_spec_color *= texture(sl_mat_dielectric_specular_color_map, sl_uv_dielectric_specular_color_map(s)).rgb;
+#endif
+}
+#endif
+
+#ifdef SL_MAT_HAS_SHEEN_COLOR
+// KHR_materials_sheen's inputs into ggx_sheen, with the albedo scaling of the layers below.
+void ggx_surface_sheen(inout SlSurface s) {
+#ifdef GGX_HAS_SHEEN
+    vec3 c = sl_mat_sheen_color;
+    float r = 0.0;
+#ifdef SL_MAT_HAS_SHEEN_COLOR_MAP
+    c *= texture(sl_mat_sheen_color_map, sl_uv_sheen_color_map(s)).rgb;
+#endif
+#ifdef SL_MAT_HAS_SHEEN_ROUGHNESS
+    r = sl_mat_sheen_roughness;
+#endif
+#ifdef SL_MAT_HAS_SHEEN_ROUGHNESS_MAP
+    r *= texture(sl_mat_sheen_roughness_map, sl_uv_sheen_roughness_map(s)).a;
+#endif
+    float e = ggx_sheen_E(clamp(dot(s.normal, s.view), 0.0, 1.0), r);
+    ggx_sheen = GgxSheen(c, r, 1.0 - max(c.r, max(c.g, c.b)) * e);
+#endif
+}
+#endif

@@ -104,6 +104,10 @@ typedef struct sl_param_desc {
  *   clearcoat, clearcoat_roughness  floats (KHR_materials_clearcoat, present when the factor > 0);
  *                             clearcoat_texture (linear, R), clearcoat_roughness_texture (linear, G),
  *                             clearcoat_normal_texture (linear, tangent space) and clearcoat_normal_scale
+ *   sheen_color, sheen_roughness  colour, float (KHR_materials_sheen, present when the colour is not
+ *                             black); sheen_color_texture (sRGB, RGB), sheen_roughness_texture (linear, A)
+ *   specular, specular_color  float, colour (KHR_materials_specular, published when not 1, [1, 1, 1]);
+ *                             specular_texture (linear, A), specular_color_texture (sRGB, RGB)
  * ior (KHR_materials_ior) is the dielectric's index of refraction: glTF's F0 = ((ior − 1)/(ior + 1))². */
 #ifdef __cplusplus
 }
