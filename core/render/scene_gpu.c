@@ -554,10 +554,6 @@ static int cmp_back_to_front(const void *a, const void *b) {
     return x->order - y->order;
 }
 
-/* The draws of a frame: opaque (and masked) materials first, in material order (one program
- * bind each), then blended ones sorted back to front by the view depth of each draw's bounds
- * centre (the usual viewer approach: per draw, not per triangle; intersecting or interleaved
- * blended surfaces are approximate). */
 /* Whether the view (proj × view) may skip meshes outside its frustum: not when a plugin's vertex
  * stage may move vertices beyond their bounds (a VERTEX or DISPLACEMENT hook, a plugin's own
  * program), nor in UV space (texture-space targets draw every mesh). */
@@ -588,6 +584,11 @@ static bool outside_frustum(const gpu_mesh *g, const float world[16], vec4 plane
     return false;
 }
 
+/* The draws of a frame: opaque (and masked) materials first, in material order (one program
+ * bind each), then blended ones sorted back to front by the view depth of each draw's bounds
+ * centre (the usual viewer approach: per draw, not per triangle; intersecting or interleaved
+ * blended surfaces are approximate). With `cull`, meshes wholly outside the view's side planes
+ * are left out (may_cull, outside_frustum). */
 static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set set, bool cull, draw_item **out) {
     sl_renderer *r = R(app);
     sl_scene *s = &app->scene;
