@@ -94,9 +94,12 @@ static bool attribute(gltf_import *im, primitive *p, const cJSON *attrs, const c
     } else if (!(*out = gltf_read_floats(&im->doc, index, type, allowed, at, &count))) {
         return false;
     }
-    if (p->vertex_count && count != p->vertex_count)
+    if (p->vertex_count && count != p->vertex_count) { /* a failed read hands out nothing */
+        free(*out);
+        *out = NULL;
         return gltf_fail(&im->doc, at, "%d elements, but POSITION has %d (all attributes of a primitive have one count)",
                          count, p->vertex_count);
+    }
     p->vertex_count = count;
     return true;
 }
