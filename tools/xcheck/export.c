@@ -831,6 +831,19 @@ static bool copy_builder(ctx *c, const char *builder) {
     return ok && write_file(c, "scene.py", runner, sizeof runner - 1);
 }
 
+/* --unoccluded: objects cast no shadows in the reference; each light whose shadow shadelab draws
+ * is named. */
+static void note_unshadowed(ctx *c, const cJSON *lights) {
+    const cJSON *l;
+    cJSON_ArrayForEach(l, lights) {
+        const cJSON *shadow = cJSON_GetObjectItemCaseSensitive(l, "shadow"),
+                    *name = cJSON_GetObjectItemCaseSensitive(l, "name");
+        if (cJSON_IsTrue(shadow))
+            note(c, "approximated: light %s: its shadow is not in the reference (--unoccluded: objects are seen by "
+                    "camera rays only)", cJSON_IsString(name) ? name->valuestring : "?");
+    }
+}
+
 bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, xc_export *out, char *err, size_t n) {
     memset(out, 0, sizeof *out);
     char assets[4096];
@@ -843,6 +856,7 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
     cJSON_AddNumberToObject(render, "height", o->height);
     cJSON_AddNumberToObject(render, "samples", o->samples);
     cJSON_AddNumberToObject(render, "bounces", o->bounces);
+    if (o->unoccluded) cJSON_AddStringToObject(render, "object_rays", "camera"); /* absent: all rays (cache keys kept) */
     int tm = sl_plugins_find(&app->plugins, "tonemap");
     if (tm >= 0 && app->plugins.items[tm]->ok) { /* shadelab-xcheck switches it off: loaded is what counts */
         cJSON_AddNumberToObject(render, "exposure", global_float(app, "tonemap.exposure", 0));
@@ -868,6 +882,7 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
     }
     cJSON *lights = cJSON_AddArrayToObject(root, "lights");
     for (int li = 0; ok && li < app->scene.light_count; li++) ok = export_light(&c, li, lights);
+    if (ok && o->unoccluded) note_unshadowed(&c, lights);
     ok = ok && export_world(&c, root);
     free(checked);
     if (ok) {

@@ -19,6 +19,10 @@ typedef struct xc_export_options {
     int width, height;  /* image size */
     int samples;        /* Cycles samples per pixel */
     int bounces;        /* Cycles' max bounces (0: direct light only) */
+    /* Objects visible to camera rays only: no object occludes, shadows or reflects any object
+     * (itself included), the quantity an environment lighting without visibility computes.
+     * scene.json's render.object_rays is "camera"; absent, every ray sees every object. */
+    bool unoccluded;
     const char *builder; /* path of xcheck_blender.py */
 } xc_export_options;
 

@@ -24,6 +24,9 @@ static const char usage[] =
     "  --size WxH         image size (default 256x256)\n"
     "  --samples N        Cycles samples per pixel (default 128)\n"
     "  --bounces N        Cycles' light bounces (default 8; 0 = direct light only)\n"
+    "  --unoccluded       objects seen by camera rays only in the reference: no object occludes,\n"
+    "                     shadows or reflects any object (environment lighting without visibility,\n"
+    "                     as IBL methods compute it); the default is the full path-traced scene\n"
     "  --out DIR          where the report and images go (default xcheck-<scene name>)\n"
     "  --set ID=VALUE     a shadelab setting, applied before the export (repeatable)\n"
     "  --plugin NAME      load a plugin (repeatable)\n"
@@ -48,7 +51,7 @@ static const char usage[] =
 typedef struct options {
     const char *scene, *out, *blender, *cache, *camera, *data;
     int width, height, samples, bounces, frames;
-    bool reference_only, export_only, no_cache;
+    bool reference_only, export_only, no_cache, unoccluded;
     double max_rel_rms;
     const char *settings[128]; int setting_count;
     const char *plugins[64]; int plugin_count;
@@ -65,6 +68,7 @@ static bool parse(int argc, char **argv, options *o) {
         else if (!strcmp(a, "--reference-only")) o->reference_only = true;
         else if (!strcmp(a, "--export-only")) o->export_only = true;
         else if (!strcmp(a, "--no-cache")) o->no_cache = true;
+        else if (!strcmp(a, "--unoccluded")) o->unoccluded = true;
         else if (a[0] == '-' && a[1] == '-' && !has_next) { fprintf(stderr, "shadelab-xcheck: %s needs a value\n", a); return false; }
         else if (!strcmp(a, "--size")) {
             const char *v = NEXT();
@@ -225,8 +229,8 @@ static bool cycles_reference(const options *o, const char *dir, uint64_t key, co
     shell_quote(render_dir, qr, sizeof qr);
     shell_quote(log, ql, sizeof ql);
     snprintf(cmd, sizeof cmd, "%s -b --factory-startup --python-exit-code 1 --python %s -- %s > %s 2>&1", qb, qs, qr, ql);
-    fprintf(stderr, "[xcheck] Cycles: %dx%d, %d samples, %d bounces (log: %s)\n", o->width, o->height, o->samples,
-            o->bounces, log);
+    fprintf(stderr, "[xcheck] Cycles: %dx%d, %d samples, %d bounces%s (log: %s)\n", o->width, o->height, o->samples,
+            o->bounces, o->unoccluded ? ", unoccluded" : "", log);
     double t0 = now_seconds();
     int status = system(cmd);
     *seconds = now_seconds() - t0;
@@ -374,6 +378,10 @@ static xc_stats region_row(const report_ctx *r, FILE *txt, FILE *json, const flo
 static void report_header(const report_ctx *r, FILE *txt, FILE *json) {
     fprintf(txt, "shadelab-xcheck %s: %dx%d, Cycles (%s) %d samples, %d bounces%s\n", r->o->scene, r->w, r->h,
             r->blender_version, r->o->samples, r->o->bounces, r->cached ? ", reference from the cache" : "");
+    fprintf(txt, "reference: %s\n", r->o->unoccluded
+                     ? "UNOCCLUDED (--unoccluded): objects seen by camera rays only; no occlusion, shadows or "
+                       "inter-reflection"
+                     : "the full scene, path-traced (occlusion, shadows, inter-reflection)");
     if (!r->cached) fprintf(txt, "Cycles: %.1f s (Blender start-up included)\n", r->cycles_seconds);
     fprintf(txt, "shadelab: %.2f ms per frame (median)\n", r->shadelab_ms);
     fprintf(txt, "compared before tone mapping, on each object's interior (its pixels whose four neighbours are it too);\n"
@@ -387,9 +395,10 @@ static void report_header(const report_ctx *r, FILE *txt, FILE *json) {
         fprintf(json, "%s%s", first ? "" : ", ", p->id);
         first = 0;
     }
-    fprintf(json, "\", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d,\n"
+    fprintf(json, "\", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d, \"object_rays\": \"%s\",\n"
                   "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n",
-            r->w, r->h, r->o->samples, r->o->bounces, r->blender_version, (unsigned long long)r->key, r->cycles_seconds,
+            r->w, r->h, r->o->samples, r->o->bounces, r->o->unoccluded ? "camera" : "all", r->blender_version,
+            (unsigned long long)r->key, r->cycles_seconds,
             r->shadelab_ms);
 }
 
@@ -678,7 +687,7 @@ int main(int argc, char **argv) {
     bool ok = open_app(&o, &app, err, sizeof err);
     snprintf(blender_dir, sizeof blender_dir, "%s/blender", out);
     xc_export_options eo = {.width = o.width, .height = o.height, .samples = o.samples, .bounces = o.bounces,
-                            .builder = builder};
+                            .unoccluded = o.unoccluded, .builder = builder};
     ok = ok && xc_mkdirs(out, err, sizeof err) && xc_export_scene(&app, &eo, blender_dir, &ex, err, sizeof err);
     uint64_t key = sl_tool_hash64(version, strlen(version), ex.hash);
     report_ctx r = {.o = &o, .app = &app, .ex = &ex, .w = o.width, .h = o.height, .blender_version = version, .key = key,
@@ -690,7 +699,8 @@ int main(int argc, char **argv) {
         printf("shadelab-xcheck: the Blender scene is in %s\n", blender_dir);
         for (int i = 0; i < ex.note_count; i++) printf("%s\n", ex.notes[i]);
     } else if (ok && o.reference_only) {
-        printf("shadelab-xcheck: Cycles reference %s/cycles.exr (%s)\n", out, r.cached ? "from the cache" : "rendered");
+        printf("shadelab-xcheck: Cycles reference %s/cycles.exr (%s%s)\n", out, r.cached ? "from the cache" : "rendered",
+               o.unoccluded ? "; unoccluded: objects seen by camera rays only" : "");
         for (int i = 0; i < ex.note_count; i++) printf("%s\n", ex.notes[i]);
         ok = render_eevee(&o, out, blender, eevee, &r, err, sizeof err) && write_eevee_times(out, &o, &r, err, sizeof err);
     } else if (ok) {

@@ -265,15 +265,16 @@ def spot_falloff(light, spec):
     tree.links.new(f, em.inputs["Strength"])
 
 
-def make_light(l, root, eevee):
+def make_light(l, root, eevee, unoccluded):
     kind = l["blender_type"]
     if eevee and "spot" in l:
         kind = "SPOT"  # EEVEE has no light node trees: Blender's own spot, its edge approximated
     data = bpy.data.lights.new(l["name"], kind)
     data.color = l["color"]
     data.energy = l["energy"]
-    data.cycles.cast_shadow = l["shadow"]
-    data.use_shadow = l["shadow"]
+    shadow = l["shadow"] and not unoccluded
+    data.cycles.cast_shadow = shadow
+    data.use_shadow = shadow
     data.cycles.max_bounces = 1024
     if kind == "SUN":
         data.angle = l.get("angle", 0.0)
@@ -288,7 +289,7 @@ def make_light(l, root, eevee):
         data.spot_size = min(2 * outer, math.pi)
         data.spot_blend = max(0.0, min(1.0, 1.0 - inner / outer))
         data.shadow_soft_size = l.get("radius", 0.0)
-        data.use_shadow = l["shadow"]
+        data.use_shadow = shadow
     elif kind == "AREA":
         data.shape = l["shape"]
         data.size, data.size_y = l["size"]
@@ -418,16 +419,29 @@ def import_gltf(d, g, out_dir):
         json.dump({"objects": listed}, f, indent=1)
 
 
+def camera_rays_only():
+    """render.object_rays == "camera" (shadelab-xcheck --unoccluded): every mesh object is seen by
+    camera rays only, so no object occludes, shadows or reflects any object, itself included; each
+    surface sees the environment and the lights alone."""
+    for o in bpy.data.objects:
+        if o.type == "MESH":
+            o.visible_camera = True
+            o.visible_diffuse = o.visible_glossy = o.visible_transmission = False
+            o.visible_volume_scatter = o.visible_shadow = False
+
+
 def setup_eevee(S, samples, out_dir):
     """EEVEE as a peer: the same scene, soft shadows, ambient occlusion and screen-space
-    reflections on, `samples` anti-aliasing samples, the linear image to OUT/eevee_0001.exr."""
+    reflections on (off for an unoccluded reference: what they add is occlusion and
+    inter-reflection), `samples` anti-aliasing samples, the linear image to OUT/eevee_0001.exr."""
     sc = bpy.context.scene
     sc.render.engine = "BLENDER_EEVEE"
     ee = sc.eevee
     ee.taa_render_samples = samples
+    unoccluded = S["render"].get("object_rays", "all") == "camera"
     ee.use_soft_shadows = True
-    ee.use_gtao = True
-    ee.use_ssr = True
+    ee.use_gtao = not unoccluded
+    ee.use_ssr = not unoccluded
     ee.shadow_cube_size = "1024"
     ee.shadow_cascade_size = "2048"
     sc.render.filter_size = 1.0
@@ -462,9 +476,14 @@ def main():
         link(obj, root)
     if "gltf" in S:
         import_gltf(d, S["gltf"], out_dir)
+    rays = S["render"].get("object_rays", "all")
+    if rays not in ("all", "camera"):
+        fail("render.object_rays: %r, expected \"all\" or \"camera\"" % rays)
+    if rays == "camera":
+        camera_rays_only()
     eevee = int(argv[argv.index("--eevee") + 1]) if "--eevee" in argv else 0
     for l in S["lights"]:
-        make_light(l, root, eevee > 0)
+        make_light(l, root, eevee > 0, rays == "camera")
     bpy.context.scene.world = make_world(d, S["world"])
     make_camera(S["camera"], root)
     setup_render(S, out_dir)

@@ -5,12 +5,17 @@
  *
  *   sun        Lambert plane under a sun at 40°: L = ρ·E·cos θ / π
  *   furnace    Lambert sphere in a uniform environment: L = ρ·L_env (a convex object)
+ *   unoccluded the furnace sphere over a black ground (--unoccluded): still ρ·L_env, the ground
+ *              neither occludes nor shadows it; the full path-traced scene (the default) is darker
+ *              by the ground's occlusion, so the option is what makes the figure; the export
+ *              carries the option as scene.json's render.object_rays ("camera"; absent without it)
  *   point      point light over a plane, perspective camera: L = ρ/π · I·h / d³
  *   spot       spots over a plane (linear and glTF fall-off, one tilted): L = ρ/π · I·f(θ)·cos θ_i / d²
  *   mirror     mirror sphere in a lat-long whose colour is a linear function of the direction, in
  *              Blender's orientation (u = ½ at +X growing towards +Z, v = 0 up), turned by yaw
  *
  * Blender missing: exit 77 (skipped), said on stderr. */
+#include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,14 +41,15 @@ static void write_text(const char *path, const char *text) {
     fclose(f);
 }
 
-/* Renders scene text with Cycles through shadelab-xcheck; exits 77 when Blender is missing. */
-static bool cycles(const char *name, const char *scene, int samples, render *r) {
+/* Renders scene text with Cycles through shadelab-xcheck (with the options `extra`); exits 77
+ * when Blender is missing. */
+static bool cycles_with(const char *name, const char *scene, int samples, const char *extra, render *r) {
     char path[4096], out[4096], cmd[9000];
     snprintf(path, sizeof path, "%s/%s.json", sl_test_dir(), name);
     snprintf(out, sizeof out, "%s/%s", sl_test_dir(), name);
     write_text(path, scene);
-    snprintf(cmd, sizeof cmd, "'%s' --reference-only --size %dx%d --samples %d --out '%s' '%s'", SL_XCHECK_EXE, W, H,
-             samples, out, path);
+    snprintf(cmd, sizeof cmd, "'%s' --reference-only %s --size %dx%d --samples %d --out '%s' '%s'", SL_XCHECK_EXE, extra,
+             W, H, samples, out, path);
     int status = system(cmd);
     if (WIFEXITED(status) && WEXITSTATUS(status) == SKIP) {
         fprintf(stderr, "SKIPPED: Blender is not installed (tools/install-deps.sh --with-tests installs it)\n");
@@ -57,6 +63,10 @@ static bool cycles(const char *name, const char *scene, int samples, render *r) 
     ok = ok && sl_image_load(&r->index, path, err, sizeof err);
     CHECK_MSG(ok, "%s: %s", name, err);
     return ok;
+}
+
+static bool cycles(const char *name, const char *scene, int samples, render *r) {
+    return cycles_with(name, scene, samples, "", r);
 }
 
 static void free_render(render *r) {
@@ -136,6 +146,74 @@ static double furnace_sphere(const double p[3], int c, void *u) {
 static double furnace_background(const double p[3], int c, void *u) {
     (void)c, (void)u;
     return p[0] * p[0] + p[1] * p[1] > 1.05 * 1.05 ? 1.0 : -1; /* clear of the silhouette */
+}
+
+/* ---- unoccluded -------------------------------------------------------------------------- */
+
+/* The furnace sphere over a black ground plane just below it (seen edge-on by the camera). */
+static const char *const OVER_GROUND =
+    "{ \"cameras\": [{ \"type\": \"orthographic\", \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"ymag\": 1.5 }],\n"
+    "  \"materials\": [{ \"name\": \"m\", \"base_color\": [0.8, 0.8, 0.8] }, { \"name\": \"black\", \"base_color\": [0, 0, 0] }],\n"
+    "  \"nodes\": [{ \"name\": \"ball\", \"mesh\": { \"primitive\": \"sphere\", \"radius\": 1 }, \"material\": \"m\" },\n"
+    "            { \"name\": \"ground\", \"translate\": [0, -1.02, 0], \"mesh\": { \"primitive\": \"plane\", \"size\": 8 }, \"material\": \"black\" }],\n"
+    "  \"environment\": { \"color\": [1, 1, 1], \"intensity\": 1 } }\n";
+
+/* scene.json's render.object_rays of `--export-only [extra]` of OVER_GROUND ("" when absent). */
+static void exported_rays(const char *name, const char *extra, char *rays, size_t n) {
+    char path[4096], out[4096], cmd[9000];
+    snprintf(path, sizeof path, "%s/%s.json", sl_test_dir(), name);
+    snprintf(out, sizeof out, "%s/%s", sl_test_dir(), name);
+    write_text(path, OVER_GROUND);
+    snprintf(cmd, sizeof cmd, "'%s' --export-only %s --out '%s' '%s' > /dev/null", SL_XCHECK_EXE, extra, out, path);
+    int status = system(cmd);
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 0, "%s: shadelab-xcheck --export-only failed (%d)", name, status);
+    snprintf(path, sizeof path, "%s/blender/scene.json", out);
+    FILE *f = fopen(path, "rb");
+    char text[1 << 16] = "";
+    size_t k = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[k] = 0;
+    cJSON *doc = cJSON_Parse(text);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(doc, "render"), "object_rays");
+    CHECK_MSG(doc, "%s: %s is not readable JSON", name, path);
+    snprintf(rays, n, "%s", cJSON_IsString(v) ? v->valuestring : "");
+    cJSON_Delete(doc);
+}
+
+/* The sphere's mean over its interior in the render (its closed form 0.8 where unoccluded). */
+static double sphere_mean(const render *r) {
+    double sum = 0;
+    long count = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            size_t px = ((size_t)y * W + x) * 4;
+            double p[3];
+            ortho_point(x, y, 1.5, p);
+            if (lroundf(r->index.pixels[px]) != 1 || furnace_sphere(p, 0, NULL) < 0) continue;
+            sum += r->img.pixels[px], count++;
+        }
+    return count ? sum / count : NAN;
+}
+
+static void unoccluded_case(void) {
+    char rays[64];
+    exported_rays("unoccluded-export", "--unoccluded", rays, sizeof rays);
+    CHECK_MSG(!strcmp(rays, "camera"), "--unoccluded: render.object_rays is \"%s\", expected \"camera\"", rays);
+    exported_rays("full-export", "", rays, sizeof rays);
+    CHECK_MSG(!rays[0], "without --unoccluded: render.object_rays is \"%s\", expected none", rays);
+    render r = {0};
+    if (cycles_with("unoccluded", OVER_GROUND, 64, "--unoccluded", &r)) {
+        compare("unoccluded", &r, 1, furnace_sphere, NULL, false, 1.5, 0, 0.01, 0.02, 0.08);
+        compare("unocc-bg", &r, 0, furnace_background, NULL, false, 1.5, 0, 0.01, 0.005, 0.01);
+    }
+    free_render(&r);
+    /* the default reference of the same scene: the ground takes light from the sphere's lower half */
+    if (cycles("occluded", OVER_GROUND, 64, &r)) {
+        double m = sphere_mean(&r);
+        printf("%-12s sphere mean %.5f: %.1f %% under the unoccluded closed form 0.8\n", "occluded", m, 100 * (1 - m / 0.8));
+        CHECK_MSG(m < 0.8 * 0.95, "occluded: the sphere's mean %.4f is within 5 %% of 0.8: the ground does not occlude", m);
+    }
+    free_render(&r);
 }
 
 /* ---- point ------------------------------------------------------------------------------- */
@@ -265,6 +343,7 @@ int main(void) {
         compare("furnace-bg", &r, 0, furnace_background, NULL, false, 1.5, 0, 0.01, 0.005, 0.01);
     }
     free_render(&r);
+    unoccluded_case();
 
     /* point light 1 m over a plane, seen through a 40° perspective camera */
     char point[2048];
