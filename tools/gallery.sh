@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The gallery (docs/gallery.md), made from the scenes' own metadata; this script names no scene
-# and no plugin. For each scene (scenes/*.json, then extras/*/scenes/*.json):
+# and no plugin. For each scene the project ships — every JSON file in a folder named scenes/,
+# test data and build trees aside (scenes/, then the extras' and the SDK examples' scenes/):
 #   - one image, captioned with the first sentence of the scene's "comment";
 #   - one more per entry of its "gallery" array, {"caption": "…", "args": ["--set", "…", …]}:
 #     the same scene with those command-line arguments (a debug view, a plugin switched off);
 #   - scenes/default.json is the built-in default and is rendered without --scene.
-# Then, per plugin (plugins/*/, extras/*/), links to the images of the scenes that name it.
+# Then, per plugin (each folder with a CMakeLists.txt in plugins/, extras/ or sdk/example/),
+# links to the images of the scenes that name it.
 # A scene is skipped, with the reason in the gallery, when a plugin it names cannot be loaded
 # (an extra not built) or a file it names is missing (the data directory, SHADELAB_DATA or
 # ../shared/assets, or a generated file its "generated_by" names). Images are 320x180 PNG in
@@ -99,23 +101,29 @@ if ! $plan; then
     mkdir -p "$out/gallery"
     { echo "# Gallery"
       echo
-      echo "One image per bundled scene, and more where a scene's \`gallery\` entry asks for them, $size,"
-      echo "made by \`tools/gallery.sh\` from the scenes' own metadata (headless; re-run it after changing"
-      echo "a scene or a plugin). Each image has the command that made it, run from the repository root."
+      echo "One image per scene the project ships (\`scenes/\`, the extras' and the SDK examples'), and more"
+      echo "where a scene's \`gallery\` entry asks for them, $size, made by \`tools/gallery.sh\` from the"
+      echo "scenes' own metadata (headless; re-run it after changing a scene or a plugin). Each image has"
+      echo "the command that made it, run from the repository root."
       echo
       echo "## Scenes"
       echo; } > "$md.tmp"
 fi
 
-# the built-in default first, then the bundled scenes, then the extras' scenes
+# Every shipped scene: JSON files in folders named scenes/, outside build trees, test data and
+# nested checkouts; the built-in default first, then by depth (scenes/ before the modules' own)
+# and path.
 scenes=("$root/scenes/default.json")
-for s in "$root"/scenes/*.json "$root"/extras/*/scenes/*.json; do
-    [ -f "$s" ] && [ "$s" != "${scenes[0]}" ] && scenes+=("$s")
-done
+while IFS= read -r s; do
+    [ "$s" != "${scenes[0]}" ] && scenes+=("$s")
+done < <(cd "$root" && find . \( -path './build*' -o -path '*/build-*' -o -path ./tests -o -path ./.git \
+                                  -o -path ./shared \) -prune -o -path '*/scenes/*.json' -type f -printf '%d %P\n' |
+             LC_ALL=C sort -k1,1n -k2 | sed "s|^[0-9]* |$root/|")
 for s in "${scenes[@]}"; do
     rel=${s#"$root/"}
     stem=$(basename "$s" .json)
-    [[ $rel == extras/* ]] && stem="${rel#extras/}" && stem="${stem%%/*}-$(basename "$s" .json)"
+    # a module's scene (MODULE/scenes/NAME.json) is named MODULE-NAME
+    [[ $rel == */scenes/* ]] && stem="$(basename "$(dirname "$(dirname "$s")")")-$stem"
     if ! valid_metadata "$s"; then
         echo "gallery.sh: $rel: \"gallery\" must be an array of {\"caption\": string, \"args\": [strings]}" >&2
         fails=$((fails + 1))
@@ -154,7 +162,7 @@ if ! $plan; then
       echo
       echo "The scenes that name each plugin (\`\"plugins\"\`), linked to their images."
       echo
-      for dir in "$root"/plugins/*/ "$root"/extras/*/; do
+      for dir in "$root"/plugins/*/ "$root"/extras/*/ "$root"/sdk/example/*/; do
           [ -f "$dir/CMakeLists.txt" ] || continue
           p=$(basename "$dir")
           readme=${dir#"$root/"}README.md
