@@ -5,13 +5,12 @@
 # Baseline: one fitted map of the same total memory as each cascade setting (N maps of s² =
 # one map of (s·√N)²). always_render=true: every timed frame renders the maps, as a moving
 # camera does (a still camera skips the pass).
-#   extras/cascades/bench/run.sh PREFIX EXTRAS_BUILD [OUT_DIR]
-# PREFIX: an installed shadelab (bin/shadelab-bench); EXTRAS_BUILD: the extras' build directory.
+#   extras/cascades/bench/run.sh [BUILD [OUT_DIR]]
+# BUILD: the project's build directory (default build/, as ./build.sh makes it; the extras load by name).
 set -eu
-prefix=$(cd "$1" && pwd) build=$(cd "$2" && pwd)
 here=$(cd "$(dirname "$0")" && pwd)
-out=${3:-$here}
-export SHADELAB_PLUGIN_PATH=$build/cascades/plugins
+build=$(cd "${1:-$here/../../../build}" && pwd)
+out=${2:-$here}
 args=()
 for s in 512 1024 2048; do
   for n in 2 3 4; do args+=(--settings "cascades.count=$n spotlight-shadow.map_size=$s"); done
@@ -20,7 +19,7 @@ for m in 724 887 1024 1448 1774 2048 2896 3547 4096; do
   args+=(--settings "cascades.enabled=false spotlight-shadow.map_size=$m")
 done
 # CHART_ONLY=1: redraw the chart from an existing long_floor.csv
-[ -n "${CHART_ONLY:-}" ] || "$prefix/bin/shadelab-bench" --plugin cascades --scene "$here/../scenes/long_floor.json" --size 320x180 \
+[ -n "${CHART_ONLY:-}" ] || "$build/shadelab-bench" --plugin cascades --scene "$here/../scenes/long_floor.json" --size 320x180 \
   --set spotlight-shadow.always_render=true --set aa.enabled=false --frames 12 --warmup 3 --rounds 3 \
   --metric rmse --no-cache --no-chart "${args[@]}" --out "$out/long_floor"
 

@@ -5,13 +5,12 @@
 #  waves_parallax: POM layers and plain parallax against the same displaced surface
 #                  (--reference-settings: the material also gets `displace`, which wins).
 # The flat polygon's error (no relief) is the README's baseline.
-#   extras/displacement/bench/run.sh PREFIX EXTRAS_BUILD [OUT_DIR]
+#   extras/displacement/bench/run.sh [BUILD [OUT_DIR]]
 set -eu
-prefix=$(cd "$1" && pwd) build=$(cd "$2" && pwd)
 here=$(cd "$(dirname "$0")" && pwd)
-out=${3:-$here}
-export SHADELAB_PLUGIN_PATH=$build/displacement/plugins
-B="$prefix/bin/shadelab-bench --plugin displacement --size 320x180 --frames 6 --warmup 2 --rounds 2 --metric rmse --no-cache"
+build=$(cd "${1:-$here/../../../build}" && pwd)
+out=${2:-$here}
+B="$build/shadelab-bench --plugin displacement --size 320x180 --frames 6 --warmup 2 --rounds 2 --metric rmse --no-cache"
 $B --scene "$here/../scenes/waves.json" --set spotlight-shadow.map_size=1024 \
    $(for e in 2 4 8 16 32 64; do printf -- '--settings displacement.edge_px=%s ' $e; done) --out "$out/waves_tess"
 $B --scene "$here/../scenes/waves_parallax.json" --set spotlight-shadow.map_size=1024 \

@@ -59,11 +59,13 @@ static int cmpd(const void *a, const void *b) {
 /* N lights at 0.2-1.7 m over the 14 m ground, each of intensity I = 0.03 (colour up to 1): at the
  * default epsilon 0.01 a range of sqrt(0.03/0.01) = 1.73 m, so a point of the ground is within
  * range of about N/18 lights (the same kind of light, more of them) */
-static char *scene(int n, const char *head) {
+static char *scene(int n, const char *head, bool file) {
     size_t cap = 4096 + (size_t)n * 300;
     char *b = malloc(cap);
-    int k = snprintf(b, cap,
-        "{ \"plugins\": [\"ggx\", \"spotlight-shadow\"],\n  \"cameras\": [{\"name\": \"main\", \"position\": [0, 2.5, 7.5], \"target\": [0, 0.7, 0], \"fov_y\": 40}],\n"
+    /* a file names many-lights too; the charts load it (or another build of it) by path */
+    int k = snprintf(b, cap, "{ \"plugins\": [%s\"ggx\", \"spotlight-shadow\"],\n", file ? "\"many-lights\", " : "");
+    k += snprintf(b + k, cap - k,
+        "  \"cameras\": [{\"name\": \"main\", \"position\": [0, 2.5, 7.5], \"target\": [0, 0.7, 0], \"fov_y\": 40}],\n"
         "  \"environment\": {\"color\": [1, 1, 1], \"intensity\": 0.05},\n"
         "  \"materials\": [ {\"name\": \"ground\", \"base_color_map\": \"checker:16:0.8,0.8,0.8:0.3,0.3,0.3\"},\n"
         "    {\"name\": \"red\", \"model\": \"ggx\", \"base_color\": [0.85, 0.2, 0.15], \"roughness\": 0.4},\n"
@@ -117,7 +119,7 @@ static int interleave(int rounds, int W, int H, const int *counts, int nc, const
                 if (pid == 0) { /* child: one harness, one frame per request */
                     close(down[1]), close(up[0]);
                     for (int i = 0; i < n; i++) close(cf[i].to), close(cf[i].from); /* the other children's pipes */
-                    char *json = scene(counts[c], head);
+                    char *json = scene(counts[c], head, false);
                     char set[96], err[4096];
                     snprintf(set, sizeof set, "many-lights.method=%s", methods[m]);
                     const char *settings[18] = {set};
@@ -200,7 +202,7 @@ int main(int argc, char **argv) {
     const char *methods_s = "brute,deferred,tiled,clustered", *extra[16];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--write-scene") && i + 2 < argc) {
-            char *s = scene(atoi(argv[i + 1]), i + 3 < argc && !strcmp(argv[i + 3], "--head") && i + 4 < argc ? argv[i + 4] : NULL);
+            char *s = scene(atoi(argv[i + 1]), i + 3 < argc && !strcmp(argv[i + 3], "--head") && i + 4 < argc ? argv[i + 4] : NULL, true);
             FILE *f = fopen(argv[i + 2], "w");
             if (!f) return 1;
             fputs(s, f);
@@ -252,7 +254,7 @@ int main(int argc, char **argv) {
         int n = counts[c];
         best_cpu[c] = best_wall[c] = INFINITY;
         if (n < 1 || n > 4096) continue;
-        char *json = scene(n, head);
+        char *json = scene(n, head, false);
         double wall[4] = {NAN, NAN, NAN, NAN}, cpu[4] = {NAN, NAN, NAN, NAN};
         printf("%5d lights:", n);
         for (int m = 0; m < 4; m++) {

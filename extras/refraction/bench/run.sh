@@ -4,13 +4,12 @@
 # refraction_sphere_ref against the CPU sphere reference (every internal bounce; tests/sphere_ref.h)
 # — not against the plugin's own output. Writes sphere.csv (label, ms, rmse vs the CPU reference)
 # and sphere.png (gnuplot; the Pareto front joined).
-#   extras/refraction/bench/run.sh PREFIX EXTRAS_BUILD [OUT_DIR]
-# PREFIX: an installed shadelab (bin/shadelab-bench); EXTRAS_BUILD: the extras' build directory.
+#   extras/refraction/bench/run.sh [BUILD [OUT_DIR]]
+# BUILD: the project's build directory (default build/, as ./build.sh makes it; the extras load by name).
 set -eu
-prefix=$(cd "$1" && pwd) build=$(cd "$2" && pwd)
 here=$(cd "$(dirname "$0")" && pwd)
-out=${3:-$here}
-export SHADELAB_PLUGIN_PATH=$build/refraction/plugins
+build=$(cd "${1:-$here/../../../build}" && pwd)
+out=${2:-$here}
 scene=$here/../scenes/sphere.json
 size=320x180
 D="material.glass.ior_rgb=1.45,1.5,1.58"
@@ -25,11 +24,11 @@ add "dispersion off two-interface steps=2" "refraction.method=two-interface refr
 
 args=()
 for s in "${sets[@]}"; do args+=(--settings "$s"); done
-"$prefix/bin/shadelab-bench" --plugin refraction --scene "$scene" --size $size --frames 12 --warmup 3 --rounds 5 \
+"$build/shadelab-bench" --plugin refraction --scene "$scene" --size $size --frames 12 --warmup 3 --rounds 5 \
   --metric rmse --no-cache --no-chart "${args[@]}" --out "$out/bench-timing"
 eargs=()
 for i in "${!sets[@]}"; do eargs+=("${labels[$i]}" "${sets[$i]}"); done
-"$build/refraction/refraction_sphere_ref" "$scene" ${size/x/ } "${eargs[@]}" > "$out/bench-error.csv"
+"$build/extras/refraction/refraction_sphere_ref" "$scene" ${size/x/ } "${eargs[@]}" > "$out/bench-error.csv"
 
 # join: the i-th timing row with the i-th error row (same order); series files for the chart
 tmp=$(mktemp -d)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Interleaved A/B of two builds on the head scene's warm first frame, per phase (issue 18 item 5):
+# Interleaved A/B of two builds on the head scene's warm first frame, per phase:
 #
 #   tools/bench/startup/ab_phases.sh BUILD_A BUILD_B [ROUNDS] [PHASE_REGEX]     (default 3 rounds)
 #
