@@ -56,7 +56,7 @@ if [ -z "${SCENES:-}" ]; then
             echo "$s|$(tail -1 "$TMP/export.log" | sed 's/^shadelab-xcheck: //')" >> "$TMP/left_out"
         elif grep '^not cross-checked:' "$TMP/export.log" | grep -qv '^not cross-checked: \(tonemap\|the background\)'; then
             echo "$s|$(grep '^not cross-checked:' "$TMP/export.log" | grep -v '^not cross-checked: \(tonemap\|the background\)' |
-                       sed 's/^not cross-checked: //' | paste -sd ';' | sed 's/;/; /g')" >> "$TMP/left_out"
+                       sed 's/^not cross-checked: //' | paste -sd '\t' | sed 's/\t/; /g')" >> "$TMP/left_out"
         else
             SCENES="$SCENES $s"
         fi
@@ -183,17 +183,17 @@ with open(out, "w") as f:
             "Blender's real-time renderer on the same llvmpipe under Xvfb, one render of N samples after a "
             "one-sample render that compiles its shaders, once per scene. *EEVEE's time at shadelab's error*: "
             "EEVEE's time at the fewest samples whose relative RMS is at most shadelab's, over shadelab's "
-            "frame. *Issue 40's figure*: shadelab's error no worse than EEVEE's at a frame at least %d× "
+            "frame. *The target*: shadelab's error no worse than EEVEE's at a frame at least %d× "
             "shorter, judged against each EEVEE render ([docs/xcheck.md](xcheck.md)).\n\n"
             % (size, samples, eevee, now, commit, cores, cpu, load0, load1, minutes,
                " (%s rows kept from an interrupted run of the same command, REUSE=1)" % reused if int(reused) else "",
                samples, FACTOR))
     f.write("| scene | plugins | setting | shadelab rel-RMS / FLIP (mean ratio) | EEVEE rel-RMS / FLIP (samples) | "
-            "shadelab ms/frame | EEVEE ms/render (samples) | EEVEE's time at shadelab's error | issue 40's figure |\n"
+            "shadelab ms/frame | EEVEE ms/render (samples) | EEVEE's time at shadelab's error | the target |\n"
             "|---|---|---|---|---|---|---|---|---|\n")
     f.write("\n".join(rows) + "\n\n")
     for k, (rms, flip, both, n) in tally.items():
-        f.write("Issue 40's figure at %s: met against every EEVEE render on %d of %d rows by relative RMS, "
+        f.write("The target at %s: met against every EEVEE render on %d of %d rows by relative RMS, "
                 "%d by FLIP, %d by both.\n" % ("the defaults" if k == "defaults" else "the highest settings",
                                               rms, n, flip, both))
     if left:
