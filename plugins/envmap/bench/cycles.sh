@@ -3,14 +3,24 @@
 # white metal spheres (GGX alpha 0.05 / 0.2 / 0.4 / 0.7 / 1, F0 = 1) under Blender's forest.exr,
 # environment only, 480x96, aa off, one frame (no accumulation, no TAA still); relative RMS per
 # sphere interior from shadelab-xcheck, plus EEVEE (1 and 16 samples) against the same Cycles
-# image. Writes bench/cycles.csv (method, alpha, relative RMS, mean ratio). The Cycles image is
-# rendered once (SAMPLES per pixel, ≈ 30 min at 2048 on 2 loaded cores) and cached by xcheck.
-# Usage: plugins/envmap/bench/cycles.sh [BUILD_DIR] [SAMPLES] [OUT_DIR]
+# image. REFERENCE: `full` (the default: the row path-traced, each sphere seeing its neighbours)
+# or `unoccluded` (shadelab-xcheck --unoccluded: spheres seen by camera rays only, so each is lit
+# by the environment alone, the quantity envmap computes; docs/xcheck.md). Writes
+# bench/cycles.csv (full) or bench/cycles-unoccluded.csv: method, alpha, relative RMS, mean ratio.
+# The Cycles image is rendered once (SAMPLES per pixel, ≈ 8–30 min at 2048 on 2 loaded cores) and
+# cached by xcheck.
+# Usage: plugins/envmap/bench/cycles.sh [BUILD_DIR] [SAMPLES] [OUT_DIR] [full|unoccluded]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/common.sh"
 samples=${2:-2048}
 out=${3:-$here}
+reference=${4:-full}
+case $reference in
+  full) csv=cycles.csv ref_opt=() ;;
+  unoccluded) csv=cycles-unoccluded.csv ref_opt=(--unoccluded) ;;
+  *) echo "cycles.sh: reference \"$reference\": expected full or unoccluded" >&2; exit 1 ;;
+esac
 hdr=$(blender_hdr forest)
 [ -n "$hdr" ] || { echo "cycles.sh: Blender's forest.exr is not installed (Debian blender-data)" >&2; exit 77; }
 tmp=$(mktemp -d)
@@ -38,7 +48,7 @@ alphas=(0.05 0.2 0.4 0.7 1.0) names=(005 020 040 070 100) # the scene is written
 xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles image
   local name=$1; shift
   "$build/shadelab-xcheck" "$tmp/metal_row.json" --size 480x96 --samples "$samples" --set aa.enabled=false \
-    --frames 1 --out "$tmp/$name" "$@" > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log" >&2; exit 1; }
+    --frames 1 --out "$tmp/$name" ${ref_opt[@]+"${ref_opt[@]}"} "$@" > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log" >&2; exit 1; }
   jq -r --arg m "$name" '.objects[] | [$m, (.name | ltrimstr("s")), .rel_rms, .mean_ratio] | @csv' "$tmp/$name/report.json"
 }
 { echo "method,alpha,rel_rms,mean_ratio"
@@ -46,12 +56,14 @@ xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles imag
   xcheck mirror --set envmap.specular=mirror
   xcheck filtered16 --set envmap.specular=filtered
   xcheck filtered32 --set envmap.specular=filtered --set envmap.filtered_samples=32
+  xcheck filtered48 --set envmap.specular=filtered --set envmap.filtered_samples=48
   xcheck filtered64 --set envmap.specular=filtered --set envmap.filtered_samples=64
+  xcheck filtered64-bias0 --set envmap.specular=filtered --set envmap.filtered_samples=64 --set envmap.filtered_lod_bias=0
   xcheck fis32 --set envmap.specular=fis --set envmap.fis_samples=32
   xcheck hybrid16 --set envmap.specular=hybrid
   xcheck hybrid16-still --set envmap.specular=hybrid --set aa.enabled=true --frames 16
   for e in "$tmp"/dominant/eevee-*.exr; do # EEVEE per sphere, on the interiors xcheck used
     n=$(basename "$e" .exr)
     python3 "$here/cycles_objects.py" "$tmp/dominant" "$e" | sed "s/^/$n,/"
-  done; } | tr -d '"' > "$out/cycles.csv"
-echo "$out/cycles.csv" >&2
+  done; } | tr -d '"' > "$out/$csv"
+echo "$out/$csv" >&2
