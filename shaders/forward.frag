@@ -71,14 +71,15 @@ SlSurface sl_surface_from_varyings() {
 }
 #endif
 
-#if defined(SL_ALPHA_BLENDED) && !defined(SL_CUSTOM_MAIN) && !defined(SL_FULLSCREEN_MATERIAL)
+#if (defined(SL_ALPHA_BLENDED) || defined(SL_SCENE_BEHIND)) && !defined(SL_CUSTOM_MAIN) && !defined(SL_FULLSCREEN_MATERIAL)
 // glTF alphaMode BLEND, drawn by the core's forward-blend pass over the opaque image with no depth
 // attachment: the fragment tests the opaque depth itself, which holds sl_blend_ssaa² samples per
 // pixel (core.ssaa), and weighs its coverage by the share of them it is in front of (the
 // blended surface is shaded once per pixel; the opaque edges behind keep their supersampling).
 // sl_blend_ssaa is 0 in other passes (a plugin's draw_scene): the fragment is then written opaque
 // (alpha 1) under that pass's own depth test, as before blending existed (sss keeps chart coverage
-// in its targets' alpha).
+// in its targets' alpha). The forward-behind pass (SL_SCENE_BEHIND, ABI 1.17) draws its opaque
+// materials over the captured scene the same way.
 uniform sampler2D sl_blend_depth;
 uniform int sl_blend_ssaa;
 float sl_blend_visible() {
@@ -106,6 +107,12 @@ void main() {
     // glTF alphaMode BLEND: the pass blends alpha·c + (1 − alpha)·behind (alpha kept in the target)
     if (sl_blend_ssaa > 0) {
         alpha = clamp(sl_coverage(s), 0.0, 1.0) * sl_blend_visible();
+        if (alpha <= 0.0) discard;
+    }
+#elif defined(SL_SCENE_BEHIND)
+    // drawn by forward-behind over the opaque image: covering the share of depth samples it is in front of
+    if (sl_blend_ssaa > 0) {
+        alpha = sl_blend_visible();
         if (alpha <= 0.0) discard;
     }
 #endif

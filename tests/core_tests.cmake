@@ -38,6 +38,7 @@ sl_test_plugin(tp-input-unclaimed test_plugin.glsl DEFS TP_LISTED_INPUT="tp_inpu
 sl_test_plugin(tp-input-agreed test_plugin.glsl DEFS TP_KEY_INPUT="tp_input" TP_LISTED_INPUT="tp_input")
 sl_test_plugin(tp-model-unlisted test_plugin.glsl DEFS TP_UNLISTED_MODEL)
 sl_test_plugin(tp-model-unprovided test_plugin.glsl DEFS TP_UNPROVIDED_MODEL)
+sl_test_plugin(tp-bad-gate test_plugin.glsl DEFS TP_BAD_GATE)
 
 foreach(t core_render core_glsl core_bad_input core_plugins core_zero_cost)
   sl_add_test(${t} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_${t}.c)

@@ -199,6 +199,8 @@ int main(void) {
     CHECK_CONTAINS(logbuf, "shading model \"tp-model-unlisted-model\" is not in its descriptor's shading_models");
     expect_disabled(TP("tp-model-unprovided"), "shading_models lists \"tp-phantom-model\", which none of its "
                                                "shading-model chunks provides", NULL);
+    /* a chunk gated on a parameter that cannot switch programs (ABI 1.17 when_param) */
+    expect_disabled(TP("tp-bad-gate"), "when_param \"gain\" is not one of its bool global parameters", NULL);
     char provider[64] = "";
     CHECK(sl_plugin_for_model("tp-other-model", provider, sizeof provider) && !strcmp(provider, "tp-other"));
     CHECK(!sl_plugin_for_model("no-such-model", provider, sizeof provider));

@@ -76,7 +76,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     sl_shader_chunk_desc d = {0};
     memcpy(&d, in, in->struct_size < sizeof d ? in->struct_size : sizeof d);
     const char *id = P->items[owner]->id;
-    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_MODEL_LOBES) {
+    if (d.hook < SL_HOOK_VERTEX || d.hook > SL_HOOK_SCENE_BEHIND) {
         SL_ERROR("%s: shader chunk %s: unknown hook %d", id, d.file ? d.file : "?", (int)d.hook);
         return SL_ERR_INVALID;
     }
@@ -86,6 +86,13 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     }
     if (d.when_node_tag && d.hook != SL_HOOK_VERTEX) {
         SL_ERROR("%s: shader chunk %s: when_node_tag is for VERTEX hooks only", id, d.file);
+        return SL_ERR_INVALID;
+    }
+    bool gated = d.hook == SL_HOOK_VERTEX || d.hook == SL_HOOK_SURFACE || d.hook == SL_HOOK_AMBIENT ||
+                 d.hook == SL_HOOK_DISPLACEMENT || d.hook == SL_HOOK_SCENE_BEHIND;
+    if (d.when_param && !gated) {
+        SL_ERROR("%s: shader chunk %s: when_param is for VERTEX, SURFACE, AMBIENT, DISPLACEMENT and SCENE_BEHIND "
+                 "hooks only", id, d.file);
         return SL_ERR_INVALID;
     }
     if (d.tess_level && d.hook != SL_HOOK_DISPLACEMENT) {
@@ -136,6 +143,7 @@ sl_status sl_plugins_add_chunk(sl_plugins *P, int owner, const sl_shader_chunk_d
     r->d.tess_level = dup0(d.tess_level);
     r->d.description = dup0(d.description);
     r->d.resource = dup0(d.resource);
+    r->d.when_param = dup0(d.when_param);
     return SL_OK;
 }
 
@@ -523,6 +531,7 @@ static void free_chunk(sl_chunk_reg *c) {
     free((char *)c->d.when_node_tag);
     free((char *)c->d.tess_level);
     free((char *)c->d.resource);
+    free((char *)c->d.when_param);
 }
 
 static void free_pass(sl_pass_reg *r) {
@@ -573,6 +582,23 @@ static const char *unprovided_model(const sl_plugins *P, int i) {
             provided = P->chunks[c].owner == i && P->chunks[c].d.hook == SL_HOOK_SHADING_MODEL &&
                        !strcmp(P->chunks[c].d.name, list[k]);
         if (!provided) return list[k];
+    }
+    return NULL;
+}
+
+/* The first when_param (ABI 1.17) of plugin i's chunks that is not one of its bool global
+ * parameters declared SL_PARAM_NEEDS_RECOMPILE (a switch that changes which chunks a program
+ * holds must recompose it), or NULL. */
+static const char *bad_gate_param(const sl_plugins *P, int i) {
+    for (int c = 0; c < P->chunk_count; c++) {
+        const sl_shader_chunk_desc *d = &P->chunks[c].d;
+        if (P->chunks[c].owner != i || !d->when_param) continue;
+        char full[300];
+        snprintf(full, sizeof full, "%s.%s", P->items[i]->id, d->when_param);
+        const sl_param *q = sl_params_find(P->params, full);
+        if (!q || q->desc.scope != SL_SCOPE_GLOBAL || q->desc.type != SL_PARAM_BOOL ||
+            !(q->desc.flags & SL_PARAM_NEEDS_RECOMPILE))
+            return d->when_param;
     }
     return NULL;
 }
@@ -651,6 +677,13 @@ static void create_one(sl_plugins *P, int i, int depth) {
         remove_registrations(P, i);
         disable(r, "its descriptor's material_inputs lists \"%s\", which none of its material keys takes "
                    "(material_input)", unclaimed);
+    } else if ((unclaimed = bad_gate_param(P, i))) {
+        char gate[128]; /* the chunk's copy goes with its registration */
+        snprintf(gate, sizeof gate, "%s", unclaimed);
+        if (r->desc.destroy) r->desc.destroy(user);
+        remove_registrations(P, i);
+        disable(r, "a shader chunk's when_param \"%s\" is not one of its bool global parameters with "
+                   "SL_PARAM_NEEDS_RECOMPILE", gate);
     } else if ((unclaimed = unprovided_model(P, i))) {
         if (r->desc.destroy) r->desc.destroy(user);
         remove_registrations(P, i);

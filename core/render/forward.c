@@ -132,6 +132,35 @@ static bool material_drawn_with_tag(sl_app *app, int m, const char *tag) {
     return false;
 }
 
+/* A chunk's when_param (ABI 1.17): its plugin's bool parameter of that id is on (checked at load:
+ * a bool global with SL_PARAM_NEEDS_RECOMPILE). */
+static bool gate_param_on(sl_app *app, const sl_chunk_reg *h) {
+    char full[300];
+    snprintf(full, sizeof full, "%s.%s", app->plugins.items[h->owner]->id, h->d.when_param);
+    const sl_param *q = sl_params_find(&app->params, full);
+    return q && q->value.b;
+}
+
+/* Whether hook chunk h's gates let it into material m's programs: its plugin is on, and
+ * when_material_has, when_model (the material's own model, also in override programs: its surface
+ * stays the same), when_node_tag and when_param pass. */
+static bool gates_pass(sl_app *app, const sl_chunk_reg *h, int m) {
+    const sl_material *mat = &app->scene.materials[m];
+    return sl_plugin_enabled(&app->plugins, h->owner) &&
+           (!h->d.when_material_has || material_has(app, m, h->d.when_material_has)) &&
+           (!h->d.when_model || !strcmp(h->d.when_model, mat->model ? mat->model : "lambert")) &&
+           (!h->d.when_node_tag || material_drawn_with_tag(app, m, h->d.when_node_tag)) &&
+           (!h->d.when_param || gate_param_on(app, h));
+}
+
+bool sl_forward_reads_scene_behind(sl_app *app, int m) {
+    for (int i = 0; i < app->plugins.chunk_count; i++) {
+        const sl_chunk_reg *h = &app->plugins.chunks[i];
+        if (h->d.hook == SL_HOOK_SCENE_BEHIND && gates_pass(app, h, m)) return true;
+    }
+    return false;
+}
+
 static int cmp_chunk_order(const void *a, const void *b) {
     const sl_chunk_reg *x = *(const sl_chunk_reg *const *)a, *y = *(const sl_chunk_reg *const *)b;
     if (x->d.order != y->d.order) return x->d.order < y->d.order ? -1 : 1;
@@ -240,13 +269,14 @@ typedef struct composition {
     int ntypes;
     bool casters;                                      /* the shadow casters have a loop of their own */
     /* gather_gated_hooks: the hooks this material gets, in their order */
-    const sl_chunk_reg *vertex[SL_MAX_HOOKS], *surface[SL_MAX_HOOKS], *ambient[SL_MAX_HOOKS], *displacement[SL_MAX_HOOKS];
-    int nv, ns, na, nd;
+    const sl_chunk_reg *vertex[SL_MAX_HOOKS], *surface[SL_MAX_HOOKS], *ambient[SL_MAX_HOOKS], *displacement[SL_MAX_HOOKS],
+        *behind[SL_MAX_HOOKS];
+    int nv, ns, na, nd, nb;
     const char *node_tags[SL_MAX_NODE_TAGS];           /* when_node_tag of the VERTEX hooks, bit order */
     int node_tag_count;
-    /* list_fragment_chunks: the fragment stage's chunks in include order (at most every hook of two
+    /* list_fragment_chunks: the fragment stage's chunks in include order (at most every hook of three
      * kinds, a chunk per light type and six single ones), and every plugin involved */
-    const sl_chunk_reg *list[2 * SL_MAX_HOOKS + SL_MAX_LIGHT_TYPES + 6];
+    const sl_chunk_reg *list[3 * SL_MAX_HOOKS + SL_MAX_LIGHT_TYPES + 6];
     int count;
     uint64_t owners;                                   /* bit i: plugin i (sl_plugins_load keeps i < 64) */
     /* write_prelude */
@@ -317,15 +347,17 @@ static const char *hook_name(sl_hook h) {
     case SL_HOOK_SURFACE: return "SURFACE";
     case SL_HOOK_AMBIENT: return "AMBIENT";
     case SL_HOOK_DISPLACEMENT: return "DISPLACEMENT";
+    case SL_HOOK_SCENE_BEHIND: return "SCENE_BEHIND";
     default: return "?";
     }
 }
 
-/* The VERTEX, SURFACE, AMBIENT and DISPLACEMENT hooks whose gates this material passes
- * (when_material_has, when_model, when_node_tag), sorted by order; more than SL_MAX_HOOKS of one
- * kind, or more than SL_MAX_NODE_TAGS node tags, is an error blamed on the hook one too many. */
+/* The VERTEX, SURFACE, AMBIENT, DISPLACEMENT and SCENE_BEHIND hooks whose gates this material
+ * passes (gates_pass), sorted by order; SCENE_BEHIND only in the core's own forward programs (the
+ * forward-behind pass binds what it reads). More than SL_MAX_HOOKS of one kind, or more than
+ * SL_MAX_NODE_TAGS node tags, is an error blamed on the hook one too many. */
 static bool gather_gated_hooks(composition *c) {
-    sl_app *app = c->app;
+    bool forward_main = c->req->kind == SL_VARIANT_FORWARD && !c->req->model_override && !c->req->fragment;
     for (int i = 0; i < c->P->chunk_count; i++) {
         const sl_chunk_reg *h = &c->P->chunks[i];
         const sl_chunk_reg **into;
@@ -335,13 +367,13 @@ static bool gather_gated_hooks(composition *c) {
         case SL_HOOK_SURFACE: into = c->surface, count = &c->ns; break;
         case SL_HOOK_AMBIENT: into = c->ambient, count = &c->na; break;
         case SL_HOOK_DISPLACEMENT: into = c->displacement, count = &c->nd; break;
+        case SL_HOOK_SCENE_BEHIND:
+            if (!forward_main) continue;
+            into = c->behind, count = &c->nb;
+            break;
         default: continue;
         }
-        if (!sl_plugin_enabled(c->P, h->owner)) continue;
-        if (h->d.when_material_has && !material_has(app, c->m, h->d.when_material_has)) continue;
-        /* the material's own model, also in override programs (its surface stays the same) */
-        if (h->d.when_model && strcmp(h->d.when_model, c->mat->model ? c->mat->model : "lambert")) continue;
-        if (h->d.when_node_tag && !material_drawn_with_tag(app, c->m, h->d.when_node_tag)) continue;
+        if (!gates_pass(c->app, h, c->m)) continue;
         if (*count == SL_MAX_HOOKS)
             return compose_fail(c, h->owner, "material \"%s\": plugin %s's %s hook %s is one too many: a material takes "
                                 "at most %d %s hooks (forward.h, SL_MAX_HOOKS)", c->mat->name, c->P->items[h->owner]->id,
@@ -378,6 +410,7 @@ static void list_fragment_chunks(composition *c) {
         for (int k = 1; k < 5; k++)
             if (single[k]) c->list[c->count++] = single[k];
         for (int i = 0; i < c->na; i++) c->list[c->count++] = c->ambient[i];
+        for (int i = 0; i < c->nb; i++) c->list[c->count++] = c->behind[i];
         if (single[5]) c->list[c->count++] = single[5];
     }
     for (int i = 0; i < c->count; i++) add_owner(c, c->list[i]);
@@ -408,6 +441,7 @@ static void write_defines(composition *c) {
         sl_sb_append(pre, "#define SL_MODEL_MASKS_FACING_AWAY 1\n");
     if (req->fragment) sl_sb_append(pre, "#define SL_CUSTOM_MAIN 1\n"); /* a plugin's main (draw_scene fragment, ABI 1.7) */
     if (req->fullscreen) sl_sb_append(pre, "#define SL_FULLSCREEN_MATERIAL 1\n");
+    if (c->nb) sl_sb_append(pre, "#define SL_SCENE_BEHIND 1\n"); /* drawn by forward-behind (ABI 1.17) */
     if (c->motion) sl_sb_append(pre, "#define SL_MOTION_VECTORS 1\n");
     if (c->normal) sl_sb_printf(pre, "#define SL_NORMAL_TARGET 1\n#define SL_NORMAL_LOCATION %d\n", c->motion ? 2 : 1);
     if (c->view) {
@@ -726,6 +760,8 @@ static void emit_shade_surface(const composition *c, sl_strbuf *gen) {
         sl_sb_printf(gen, "    Lo += %s(s, %s);\n", c->model_ambient->d.function, hooks ? "vec3(0.0)" : "sl_ambient_irradiance");
     else if (!hooks)
         sl_sb_append(gen, "    Lo += s.base_color * SL_INV_PI * sl_ambient_irradiance * s.ao;\n");
+    /* SCENE_BEHIND hooks (ABI 1.17): what the surface passes on from the opaque scene behind it */
+    for (int i = 0; i < c->nb; i++) sl_sb_printf(gen, "    Lo += %s(s);\n", c->behind[i]->d.function);
     /* glTF emission (shaders/material.glsl), whatever the model */
     sl_sb_append(gen, "#ifdef SL_MAT_HAS_EMISSIVE\n    Lo += sl_emission(s);\n#endif\n");
     sl_sb_append(gen, "    return Lo;\n}\n");
@@ -759,6 +795,7 @@ static void emit_model_lobes(const composition *c, sl_strbuf *gen) {
 static bool compose_forward_fragment(composition *c, sl_program *p) {
     write_fragment_declarations(c, p);
     bool ok = sl_source_include(&p->fs, "sl:material.glsl", c->err, c->n);
+    if (c->nb) ok = ok && sl_source_include(&p->fs, "sl:scene_behind.glsl", c->err, c->n);
     ok = ok && include_fragment_chunks(c, p);
     sl_strbuf gen = {0};
     sl_sb_append(&gen, "void sl_run_surface_hooks(inout SlSurface s) {\n");

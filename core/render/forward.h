@@ -10,7 +10,7 @@
 struct sl_app;
 
 /* The composer's limits. Each is an error naming what overflowed, never a silent drop. */
-#define SL_MAX_HOOKS 64       /* VERTEX, SURFACE, AMBIENT or DISPLACEMENT hooks of one kind per material */
+#define SL_MAX_HOOKS 64       /* VERTEX, SURFACE, AMBIENT, DISPLACEMENT or SCENE_BEHIND hooks of one kind per material */
 #define SL_MAX_NODE_TAGS 31   /* node tags the VERTEX hooks of one material are gated on (bits of an int) */
 #define SL_MAX_LIGHT_TYPES 32 /* distinct light types in a scene (checked when the scene is loaded) */
 
@@ -56,6 +56,9 @@ int sl_forward_light_types(struct sl_app *app, const char **types, int max);
 bool sl_forward_shadow_casters(struct sl_app *app);
 /* A light type with an l/E pair (not SL_CHUNK_LIGHT_RADIANCE), from the loaded plugins. */
 bool sl_forward_light_type_lit(struct sl_app *app, const char *type);
+/* Whether material m's forward program gets a SCENE_BEHIND hook (ABI 1.17): the material is then
+ * drawn by the core's forward-behind pass over the captured opaque scene, not by the forward pass. */
+bool sl_forward_reads_scene_behind(struct sl_app *app, int m);
 /* GLSL-safe identifier from a name ("spotlight-shadow" → "spotlight_shadow"). */
 void sl_glsl_ident(const char *in, char *out, size_t n, bool upper);
 #endif

@@ -28,6 +28,14 @@ static const char *blend_inputs[] = {"depth", NULL};
 static sl_target_desc blend_outputs[1];
 static sl_pass_desc blend_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward-blend", .stage = SL_STAGE_BLEND,
                                   .inputs = blend_inputs, .outputs = blend_outputs, .output_count = 1};
+/* The scene behind (ABI 1.17, shader.h): materials with a SCENE_BEHIND hook over everything
+ * opaque, which it captures first (graph_run.c); only while such a material exists. Not
+ * display_on_write, for the reason above; it reads "color" through the capture, not as an input
+ * (which would ping-pong it). */
+static sl_target_desc behind_outputs[1];
+static sl_pass_desc behind_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward-behind",
+                                   .stage = SL_STAGE_BEHIND, .inputs = blend_inputs, .outputs = behind_outputs,
+                                   .output_count = 1};
 static const char *display_inputs[] = {"color", NULL};
 static sl_pass_desc forward_pass = {.struct_size = sizeof(sl_pass_desc), .name = "forward", .stage = SL_STAGE_OPAQUE,
                                     .outputs = forward_outputs, .output_count = 2, /* + "motion", "normal" */
@@ -101,6 +109,8 @@ void sl_graph_plan(sl_app *app) {
     /* "color" drawn over, not read: its latest texture is bound, no ping-pong */
     blend_outputs[0] = forward_outputs[0];
     r->blend_planned = sl_gpu_scene_has_blended(app);
+    behind_outputs[0] = forward_outputs[0];
+    r->behind_planned = sl_gpu_scene_has_behind(app);
     if (r->ssaa > 1) { /* "depth", "motion" and "normal" at the forward pass's size */
         forward_outputs[0].name = "forward.ssaa";
         for (int k = 0; k < 4; k++) forward_outputs[k].scale = (float)r->ssaa;
@@ -109,11 +119,12 @@ void sl_graph_plan(sl_app *app) {
     r->display_desc = display_pass; /* its own copy: is_active reads this renderer (harnesses coexist) */
     r->display_desc.user = r;
     r->color_final = true;
-    int total = app->plugins.pass_count + 5;
+    int total = app->plugins.pass_count + 6;
     r->passes = calloc(total, sizeof *r->passes);
     if (r->prepass) r->passes[r->pass_count++] = (graph_pass){.d = &prepass_pass, .owner = -1, .core_prepass = true};
     r->passes[r->pass_count++] = (graph_pass){.d = &forward_pass, .owner = -1, .core_forward = true};
     if (r->ssaa > 1) r->passes[r->pass_count++] = (graph_pass){.d = &resolve_pass, .owner = -1, .core_resolve = true};
+    if (r->behind_planned) r->passes[r->pass_count++] = (graph_pass){.d = &behind_pass, .owner = -1, .core_behind = true};
     if (r->blend_planned) r->passes[r->pass_count++] = (graph_pass){.d = &blend_pass, .owner = -1, .core_blend = true};
     for (int i = 0; i < app->plugins.pass_count; i++) {
         sl_pass_reg *reg = &app->plugins.passes[i];

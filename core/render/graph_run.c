@@ -141,6 +141,58 @@ static void run_blend(sl_app *app, sl_pass_ctx *ctx) {
     glBindTextureUnit(SL_BLEND_DEPTH_UNIT, 0);
 }
 
+/* The opaque scene as every pass before forward-behind left "color": copied into the capture's
+ * level 0 and box-filtered down its mip chain (glGenerateMipmap), bound on SL_SCENE_BEHIND_UNIT
+ * for the materials drawn over it (forward-behind, then forward-blend). Made again when "color"
+ * changes size or format. */
+static void capture_scene_behind(sl_app *app, sl_pass_ctx *ctx) {
+    sl_renderer *r = R(app);
+    unsigned color = sl_renderer_pass_texture(app, ctx, "color");
+    if (!color) return;
+    int w = 0, h = 0, format = 0;
+    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_HEIGHT, &h);
+    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    if (w < 1 || h < 1) return;
+    if (!r->behind_tex || w != r->behind_w || h != r->behind_h || format != r->behind_format) {
+        if (r->behind_tex) glDeleteTextures(1, &r->behind_tex);
+        int levels = 1;
+        while ((w | h) >> levels) levels++;
+        glCreateTextures(GL_TEXTURE_2D, 1, &r->behind_tex);
+        glTextureStorage2D(r->behind_tex, levels, (GLenum)format, w, h);
+        glTextureParameteri(r->behind_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(r->behind_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(r->behind_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(r->behind_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        r->behind_w = w, r->behind_h = h, r->behind_format = format;
+    }
+    glCopyImageSubData(color, GL_TEXTURE_2D, 0, 0, 0, 0, r->behind_tex, GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+    glGenerateTextureMipmap(r->behind_tex);
+    glBindTextureUnit(SL_SCENE_BEHIND_UNIT, r->behind_tex);
+}
+
+/* The scene behind (ABI 1.17, shader.h): the opaque image captured, then the materials with a
+ * SCENE_BEHIND hook drawn over it as run_blend draws blended ones (back to front, the fragment
+ * testing "depth", no depth writes), their fragments covering what they are in front of. */
+static void run_behind(sl_app *app, sl_pass_ctx *ctx) {
+    sl_renderer *r = R(app);
+    if (sl_renderer_bind_outputs(app, ctx, 0) != SL_OK) return;
+    capture_scene_behind(app, ctx);
+    glBindTextureUnit(SL_BLEND_DEPTH_UNIT, sl_renderer_pass_texture(app, ctx, "depth"));
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
+    memcpy(d.view, r->frame.view, sizeof d.view);
+    memcpy(d.proj, r->frame.proj, sizeof d.proj);
+    sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_BEHIND);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_BLEND);
+    glBindTextureUnit(SL_BLEND_DEPTH_UNIT, 0);
+}
+
 const sl_chunk_reg *sl_graph_pass_view(sl_app *app) {
     for (int i = 0; app->debug_view && i < app->plugins.chunk_count; i++) {
         const sl_chunk_reg *c = &app->plugins.chunks[i];
@@ -222,6 +274,7 @@ static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
     else if (g->core_display) run_display(app, &ctx);
     else if (g->core_resolve) run_resolve(app, &ctx);
     else if (g->core_blend) run_blend(app, &ctx);
+    else if (g->core_behind) run_behind(app, &ctx);
     else if (g->core_prepass) run_prepass(app, &ctx);
     else g->d->execute(g->d->user, &ctx, &r->frame);
     r->current = NULL;

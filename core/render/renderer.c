@@ -175,6 +175,8 @@ static void refresh(sl_app *app) {
     r->seen_lights_version = app->lights_version;
     /* a material became blended or stopped being (alpha_blend): the forward-blend pass comes or goes */
     if (sl_gpu_scene_has_blended(app) != r->blend_planned) r->plan_dirty = true;
+    /* ... a material got or lost a SCENE_BEHIND hook: the forward-behind pass comes or goes */
+    if (sl_gpu_scene_has_behind(app) != r->behind_planned) r->plan_dirty = true;
     if (r->seen_param_version != app->params.version) {
         /* enabling/disabling a plugin changes the pass list */
         uint64_t key = plan_key(app);
@@ -572,6 +574,7 @@ void sl_renderer_destroy(sl_app *app) {
     sl_renderer *r = R(app);
     if (!r) return;
     sl_graph_free(r);
+    if (r->behind_tex) glDeleteTextures(1, &r->behind_tex); /* the scene behind's capture (graph_run.c) */
     for (int i = 0; r->meshes && i < app->scene.mesh_count; i++) {
         gpu_mesh *g = &r->meshes[i];
         sl_deform_free(g);

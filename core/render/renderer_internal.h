@@ -52,7 +52,7 @@ typedef struct resource {
 typedef struct graph_pass {
     const sl_pass_desc *d;
     int owner;            /* plugin index; -1 = core pass */
-    bool core_forward, core_display, core_resolve, core_blend, core_prepass;
+    bool core_forward, core_display, core_resolve, core_blend, core_prepass, core_behind;
     unsigned fbo;
     uint64_t last_signature; bool has_run;
     uint64_t last_depends; /* key of sl_pass_desc.depends when it last ran (graph_run.c) */
@@ -104,6 +104,9 @@ typedef struct sl_renderer {
     int width, height;
     int ssaa;                 /* core.ssaa the plan was made with */
     bool blend_planned;       /* the plan holds the "forward-blend" pass (a blended material exists) */
+    bool behind_planned;      /* ... the "forward-behind" pass (a material reads the scene behind it) */
+    unsigned behind_tex;      /* the captured opaque scene, mipmapped (graph_run.c), and its size */
+    int behind_w, behind_h, behind_format;
     sl_pass_desc display_desc; /* the core's display pass (graph_plan.c), active while color_final */
     bool color_final;     /* "color" holds the frame's final linear colour (no pass wrote display) */
     uint64_t shadow_runs;     /* runs of passes before SL_STAGE_PREPASS (SL_DEPENDS_LIGHTS) */
@@ -164,15 +167,21 @@ bool sl_gpu_lights_in_uniform_block(sl_app *app);
 void sl_gpu_compose_all(sl_app *app);        /* every material's programs and textures */
 /* renderer.c: plugin k's GLSL broke a material program (message err); reported once per plugin */
 void sl_renderer_blame_plugin(sl_app *app, int k, const char *err);
-/* Which materials a draw takes: every one (blended ones last, back to front: plugins' draw_scene),
- * the opaque and masked ones (the forward pass) or the blended ones (the forward-blend pass). */
-typedef enum sl_gpu_draw_set { SL_GPU_DRAW_ALL, SL_GPU_DRAW_OPAQUE, SL_GPU_DRAW_BLENDED } sl_gpu_draw_set;
+/* Which materials a draw takes: every one (those drawn over the scene last, back to front:
+ * plugins' draw_scene), the opaque and masked ones (the forward pass), the blended ones (the
+ * forward-blend pass) or the opaque ones that read the scene behind them (forward-behind). */
+typedef enum sl_gpu_draw_set { SL_GPU_DRAW_ALL, SL_GPU_DRAW_OPAQUE, SL_GPU_DRAW_BLENDED, SL_GPU_DRAW_BEHIND } sl_gpu_draw_set;
 void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_only, sl_program *custom, sl_gpu_draw_set set);
 /* glTF alphaMode BLEND: the material carries alpha_blend = true; whether any material does */
 bool sl_gpu_material_blended(sl_app *app, int m);
 bool sl_gpu_scene_has_blended(sl_app *app);
-/* the texture unit of "depth" in the forward-blend pass (host.h's layout) */
+/* whether a material reads the scene behind it (a SCENE_BEHIND hook; blended or not: the capture
+ * is made for both, forward-behind draws those not blended) */
+bool sl_gpu_scene_has_behind(sl_app *app);
+/* the texture unit of "depth" in the forward-blend and forward-behind passes (host.h's layout),
+ * and of the captured opaque scene (shaders/scene_behind.glsl) */
 #define SL_BLEND_DEPTH_UNIT SL_TEXTURE_UNIT_CORE
+#define SL_SCENE_BEHIND_UNIT (SL_TEXTURE_UNIT_CORE + 1)
 
 /* graph_targets.c */
 resource *sl_graph_find(sl_renderer *r, const char *name);

@@ -476,8 +476,12 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
  * ssaa × ssaa samples per pixel of "color"; the fragment tests them itself. 0 outside that pass:
  * the material's fragments are written opaque (alpha 1), as before blending existed. */
 static void blend_uniforms(sl_app *app, unsigned prog, bool blend_pass) {
+    sl_renderer *r = R(app);
     glUniform1i(glGetUniformLocation(prog, "sl_blend_depth"), SL_BLEND_DEPTH_UNIT);
-    glUniform1i(glGetUniformLocation(prog, "sl_blend_ssaa"), blend_pass ? R(app)->ssaa : 0);
+    glUniform1i(glGetUniformLocation(prog, "sl_blend_ssaa"), blend_pass ? r->ssaa : 0);
+    /* the capture's mip count − 1 (shaders/scene_behind.glsl) */
+    int side = r->behind_w > r->behind_h ? r->behind_w : r->behind_h;
+    glUniform1f(glGetUniformLocation(prog, "sl_scene_behind_levels"), side > 0 ? floorf(log2f((float)side)) : 0.0f);
 }
 
 /* The material's program with its shading model replaced (SL_DRAW_MATERIALS). */
@@ -544,6 +548,20 @@ bool sl_gpu_scene_has_blended(sl_app *app) {
     return false;
 }
 
+/* Materials with a SCENE_BEHIND hook (shader.h, ABI 1.17) are drawn after every opaque pass over
+ * the captured opaque scene, back to front (the core's "forward-behind" pass); a blended one stays
+ * in forward-blend, which comes later and sees the same capture. */
+bool sl_gpu_scene_has_behind(sl_app *app) {
+    for (int m = 0; m < app->scene.material_count; m++)
+        if (sl_forward_reads_scene_behind(app, m)) return true;
+    return false;
+}
+
+/* Where a draw of material m goes: 0 the opaque passes, 1 forward-behind, 2 forward-blend. */
+static int draw_class(sl_app *app, int m) {
+    return sl_gpu_material_blended(app, m) ? 2 : sl_forward_reads_scene_behind(app, m) ? 1 : 0;
+}
+
 /* One draw: a mesh of a node. `depth`: view-space distance of the mesh's bounds centre (blended
  * draws sort on it, farthest first); `order`: its place in the scene (ties keep it). */
 typedef struct draw_item { int m, node, k, order; float depth; } draw_item;
@@ -585,7 +603,8 @@ static bool outside_frustum(const gpu_mesh *g, const float world[16], vec4 plane
 }
 
 /* The draws of a frame: opaque (and masked) materials first, in material order (one program
- * bind each), then blended ones sorted back to front by the view depth of each draw's bounds
+ * bind each), then those that read the scene behind them, then blended ones, each group sorted
+ * back to front by the view depth of each draw's bounds
  * centre (the usual viewer approach: per draw, not per triangle; intersecting or interleaved
  * blended surfaces are approximate). With `cull`, meshes wholly outside the view's side planes
  * are left out (may_cull, outside_frustum). */
@@ -604,12 +623,14 @@ static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set s
     for (int ni = 0; ni < s->node_count; ni++) cap += s->nodes[ni].mesh_count;
     draw_item *items = malloc((cap + 1) * sizeof *items);
     int n = 0, order = 0;
-    for (int pass = 0; pass < 2; pass++) { /* 0: opaque, 1: blended */
+    static const int wanted[] = {[SL_GPU_DRAW_ALL] = -1, [SL_GPU_DRAW_OPAQUE] = 0, [SL_GPU_DRAW_BEHIND] = 1,
+                                 [SL_GPU_DRAW_BLENDED] = 2};
+    for (int pass = 0; pass < 3; pass++) { /* draw_class: opaque, then behind, then blended */
         int first = n;
+        if (wanted[set] >= 0 && wanted[set] != pass) continue;
         for (int m = 0; m < s->material_count; m++) {
-            bool blended = sl_gpu_material_blended(app, m);
-            if (blended != (pass == 1)) continue;
-            if ((set == SL_GPU_DRAW_OPAQUE && blended) || (set == SL_GPU_DRAW_BLENDED && !blended)) continue;
+            bool blended = pass > 0; /* sorted back to front, no depth writes */
+            if (draw_class(app, m) != pass) continue;
             if (d->shadow_casters_only && !s->materials[m].cast_shadows) continue;
             if (d->only_materials_with) {
                 sl_mat_value *v = sl_app_material_value(app, m, d->only_materials_with);
@@ -633,7 +654,7 @@ static int draw_list(sl_app *app, const sl_draw_scene_desc *d, sl_gpu_draw_set s
                 }
             }
         }
-        if (pass == 1) qsort(items + first, n - first, sizeof *items, cmp_back_to_front);
+        if (pass > 0) qsort(items + first, n - first, sizeof *items, cmp_back_to_front);
     }
     *out = items;
     return n;
@@ -727,7 +748,7 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 if (prog) glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
                 /* a blended material's program blends only in the forward-blend pass; a plugin's
                  * draw (the same program when the sources match) sees it opaque */
-                if (prog && sl_gpu_material_blended(app, m)) blend_uniforms(app, prog, set == SL_GPU_DRAW_BLENDED);
+                if (prog && draw_class(app, m) > 0) blend_uniforms(app, prog, set == SL_GPU_DRAW_BLENDED || set == SL_GPU_DRAW_BEHIND);
             }
         }
         if (!prog) continue;

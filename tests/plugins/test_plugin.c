@@ -120,6 +120,11 @@ static sl_status tp_create(const sl_host *host, void **user) {
         /* ABI 1.6: a light that returns radiance (area lights) through sl_shading_model */
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_LIGHT, .file = TP_GLSL,
          .function = "tp_glow", .name = TP_ID "-glow", .flags = SL_CHUNK_LIGHT_RADIANCE},
+#ifdef TP_BAD_GATE
+        /* ABI 1.17: when_param must name a bool parameter with SL_PARAM_NEEDS_RECOMPILE; gain is a float */
+        {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SURFACE, .file = TP_GLSL,
+         .function = "tp_surface", .when_material_has = "tp_mark", .when_param = "gain"},
+#endif
     };
     for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
         if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;

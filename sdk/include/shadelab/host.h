@@ -72,7 +72,8 @@ typedef struct sl_light_info {
  *   [16, 64)  handed out by reserve_texture_unit, from 16 up, each to one plugin for the whole
  *             run: textures bound there stay bound (a plugin's chunk samples them in every material
  *             program). A pass must not bind anything on another plugin's unit.
- *   64        the core's own (the forward-blend pass's "depth"). */
+ *   64, 65    the core's own (the forward-blend pass's "depth"; ABI 1.17: the scene behind,
+ *             shader.h). */
 #define SL_TEXTURE_UNIT_MATERIAL_FIRST 0
 #define SL_TEXTURE_UNIT_MATERIAL_COUNT 16
 #define SL_TEXTURE_UNIT_PLUGIN_FIRST 16

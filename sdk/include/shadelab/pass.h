@@ -54,6 +54,8 @@ typedef enum sl_stage {
                                      while a pass before SL_STAGE_OPAQUE reads one of them */
     SL_STAGE_PREPASS = 200,  /* anything the forward pass samples (texture-space lighting): sss */
     SL_STAGE_OPAQUE = 300,   /* the core's forward pass; plugins may add passes after it (envmap's background) */
+    SL_STAGE_BEHIND = 370,   /* ABI 1.17 name: the core's "forward-behind" pass (materials with a
+                                SCENE_BEHIND hook, shader.h: transmission), over every opaque pass */
     SL_STAGE_BLEND = 380,    /* ABI 1.8 name: the core's "forward-blend" pass (materials with alpha_blend,
                                 glTF alphaMode BLEND), over every opaque pass; temporal methods after it */
     SL_STAGE_POST = 400,     /* full-screen passes on linear HDR "color" (bloom, blurs) */

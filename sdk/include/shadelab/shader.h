@@ -124,6 +124,13 @@
  *                                                                VERTEX hooks, interpolated over
  *                                                                the triangle), in object-space
  *                                                                units; see "Displacement" below
+ *   SCENE_BEHIND     vec3 FN(SlSurface s)                        ABI 1.17: radiance the surface
+ *                                                                passes on from the opaque scene
+ *                                                                behind it (transmission,
+ *                                                                refraction), added once per
+ *                                                                pixel after the SURFACE hooks;
+ *                                                                gated like SURFACE hooks; see
+ *                                                                "The scene behind" below
  *
  * Displacement (ABI 1.7). A material that gets a DISPLACEMENT chunk (gated like VERTEX hooks:
  * when_material_has, when_model; when_node_tag is refused) is drawn as GL_PATCHES of 3 vertices
@@ -149,6 +156,19 @@
  *     surface, normalize(n - ∇h), with ∇h the surface gradient of h from finite differences over
  *     the patch (Mikkelsen 2020, "Surface gradient based bump mapping"); depth-only programs
  *     skip it. SlSurface.object_position stays the rest pose.
+ *
+ * The scene behind (ABI 1.17). A material whose program gets a SCENE_BEHIND chunk (its gates:
+ * when_material_has, when_model, when_param) is drawn by the core's "forward-behind" pass
+ * (SL_STAGE_BEHIND, pass.h) instead of the forward pass: after every opaque pass (envmap's
+ * background included) the core copies "color" into a mip chain (a box-filtered pyramid, level 0
+ * the viewport's pixels) and draws these materials over it, back to front per draw as blended
+ * ones, depth-tested against "depth" by the fragment (no depth writes; they are not in the capture:
+ * they do not see each other). FN's value is added to the shaded radiance (not in debug views, not in
+ * SL_DRAW_MATERIALS programs). In those programs SL_SCENE_BEHIND is defined and
+ *     uniform sampler2D sl_scene_behind;  the captured opaque scene (linear radiance, mipmapped)
+ *     uniform float sl_scene_behind_levels;  its mip count − 1 (log2 of its larger side)
+ *     vec2 sl_screen_uv(vec3 world)       where a world point lands in it (through sl_view_proj)
+ * are declared. The pass and the capture exist only while such a material does.
  */
 #ifndef SHADELAB_SHADER_H
 #define SHADELAB_SHADER_H
@@ -170,7 +190,8 @@ typedef enum sl_hook {
     SL_HOOK_SHADOW,         /* ABI 1.1 (shadow maps); an older host refuses the chunk */
     SL_HOOK_LIGHT_LOOP,     /* ABI 1.7 (light culling); an older host refuses the chunk */
     SL_HOOK_DISPLACEMENT,   /* ABI 1.7 (tessellation, see above); an older host refuses it */
-    SL_HOOK_MODEL_LOBES     /* ABI 1.14 (the lobe contract); an older host refuses it */
+    SL_HOOK_MODEL_LOBES,    /* ABI 1.14 (the lobe contract); an older host refuses it */
+    SL_HOOK_SCENE_BEHIND    /* ABI 1.17 (transmission, see "The scene behind"); an older host refuses it */
 } sl_hook;
 
 typedef struct sl_shader_chunk_desc {
@@ -181,8 +202,8 @@ typedef struct sl_shader_chunk_desc {
     /* SHADING_MODEL / MODEL_AMBIENT / MODEL_LOBES: the model name materials select ("ggx").
      * LIGHT: the light type ("spot"). DEBUG_VIEW(_LIGHT): the view name ("ggx-d"). */
     const char *name;
-    /* VERTEX/SURFACE/AMBIENT: include the chunk only for materials carrying this material
-     * key (e.g. "normal_map"); NULL = every material. */
+    /* VERTEX/SURFACE/AMBIENT/DISPLACEMENT/SCENE_BEHIND: include the chunk only for materials
+     * carrying this material key (e.g. "normal_map"); NULL = every material. */
     const char *when_material_has;
     int order;             /* SURFACE/VERTEX hooks run in ascending order, then by plugin */
     const char *description; /* DEBUG_VIEW: shown in the GUI and --list-debug-views */
@@ -202,6 +223,11 @@ typedef struct sl_shader_chunk_desc {
     /* ABI 1.13, DEBUG_VIEW with SL_CHUNK_PASS_VIEW only: the render-graph resource the view shows
      * ("my-plugin.ao", "normal"). */
     const char *resource;
+    /* ABI 1.17, VERTEX/SURFACE/AMBIENT/DISPLACEMENT/SCENE_BEHIND: include the chunk only while this
+     * bool global parameter of the same plugin is true ("layer_transmission"); it must be declared
+     * with SL_PARAM_NEEDS_RECOMPILE (else the plugin is disabled at load). Combines with the other
+     * gates. NULL = always. */
+    const char *when_param;
 } sl_shader_chunk_desc;
 
 typedef enum sl_chunk_flags {
