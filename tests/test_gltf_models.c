@@ -416,6 +416,37 @@ static void f_sheen(gw_doc *g) {
 static void f_sheen_black(gw_doc *g) {
     layer_feature(g, "KHR_materials_sheen", "{\"sheenRoughnessFactor\": 0.4}", "{\"sheen_color\": false, \"sheen_roughness\": false}");
 }
+static void f_transmission(gw_doc *g) {
+    layer_feature(g, "KHR_materials_transmission", "{\"transmissionFactor\": 0.9, \"transmissionTexture\": {\"index\": 0}}",
+                  "{\"transmission\": 0.9, \"transmission_texture\": true}");
+}
+/* transmissionFactor 0 (the default) is an opaque material, whatever the texture says */
+static void f_transmission_zero(gw_doc *g) {
+    layer_feature(g, "KHR_materials_transmission", "{\"transmissionTexture\": {\"index\": 0}}",
+                  "{\"transmission\": false, \"transmission_texture\": false}");
+}
+/* KHR_materials_volume over a transmissive material (the extension needs one) */
+static void volume_feature(gw_doc *g, const char *ext, const char *want) {
+    layer_feature(g, "KHR_materials_volume", ext, want);
+    gw_set(g, "/materials/0/extensions/KHR_materials_transmission", "{\"transmissionFactor\": 1}");
+    gw_set(g, "/extensionsUsed/1", "\"KHR_materials_transmission\"");
+}
+static void f_volume(gw_doc *g) {
+    volume_feature(g, "{\"thicknessFactor\": 0.25, \"thicknessTexture\": {\"index\": 0}, \"attenuationDistance\": 0.5, "
+                      "\"attenuationColor\": [0.8, 0.5, 0.2]}",
+                   "{\"transmission\": 1, \"thickness\": 0.25, \"thickness_texture\": true, \"attenuation_distance\": 0.5, "
+                   "\"attenuation_color\": 0.8}");
+}
+/* thicknessFactor 0 (the default) is a thin wall: nothing of the volume is published; an
+ * attenuationDistance absent is infinite (no absorption) */
+static void f_volume_thin(gw_doc *g) {
+    volume_feature(g, "{\"attenuationColor\": [0.8, 0.5, 0.2], \"thicknessTexture\": {\"index\": 0}}",
+                   "{\"transmission\": 1, \"thickness\": false, \"thickness_texture\": false, \"attenuation_color\": false}");
+}
+static void f_volume_no_absorption(gw_doc *g) {
+    volume_feature(g, "{\"thicknessFactor\": 2}",
+                   "{\"thickness\": 2, \"attenuation_distance\": false, \"attenuation_color\": false}");
+}
 
 static const struct { const char *name; void (*build)(gw_doc *g); } features[] = {
     {"baseline", f_baseline},
@@ -446,6 +477,11 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"specular_defaults", f_specular_defaults},
     {"sheen", f_sheen},
     {"sheen_black", f_sheen_black},
+    {"transmission", f_transmission},
+    {"transmission_zero", f_transmission_zero},
+    {"volume", f_volume},
+    {"volume_thin", f_volume_thin},
+    {"volume_no_absorption", f_volume_no_absorption},
 };
 
 static void write_features(void) {

@@ -29,8 +29,12 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_specular", SL_GLTF_APPROXIMATED,
      "the dielectric's specular strength and F0 colour, factors and textures (ggx); environment and area lights "
      "weight the diffuse by 1 - F per channel"},
-    {"KHR_materials_transmission", SL_GLTF_IGNORED, "opaque"},
-    {"KHR_materials_volume", SL_GLTF_IGNORED, "opaque"},
+    {"KHR_materials_transmission", SL_GLTF_APPROXIMATED,
+     "thin walls showing the opaque scene behind them, blurred by roughness (ggx); transmissive surfaces do not see "
+     "each other, and cast full shadows"},
+    {"KHR_materials_volume", SL_GLTF_APPROXIMATED,
+     "refraction through the thickness by the IOR and Beer-Lambert absorption along it (ggx), from the thickness "
+     "factor and texture, not the mesh"},
     {"KHR_materials_iridescence", SL_GLTF_IGNORED, "no thin film"},
     {"KHR_materials_anisotropy", SL_GLTF_IGNORED, "isotropic"},
     {"KHR_materials_dispersion", SL_GLTF_IGNORED, "no dispersion"},

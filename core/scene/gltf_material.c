@@ -325,8 +325,51 @@ static bool sheen_inputs(gltf_import *im, int mi, const cJSON *ext, const char *
            slot(im, mi, e, p, "sheenRoughnessTexture", "sheen_roughness_texture", NULL, NULL);
 }
 
+/* KHR_materials_transmission: the factor and its texture; a factor of 0 (the default) is an
+ * opaque material, whatever the texture says. */
+static bool transmission_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    const cJSON *e;
+    char p[160];
+    snprintf(p, sizeof p, "%s/KHR_materials_transmission", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_transmission", &e)) return false;
+    double t = 0;
+    if (!e || !factor(d, e, p, "transmissionFactor", 0, 1, &t)) return e == NULL;
+    if (t == 0) return true;
+    sl_prop_set_number(&im->scene->materials[mi].inputs, "transmission", (float)t, 0);
+    return slot(im, mi, e, p, "transmissionTexture", "transmission_texture", NULL, NULL);
+}
+
+/* KHR_materials_volume: thickness (0, the default, is a thin wall: nothing published), its
+ * texture, and the absorption: attenuationDistance (default +inf: none; it must be > 0) and
+ * attenuationColor (default white), published only where they absorb. */
+static bool volume_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    sl_prop_list *in = &im->scene->materials[mi].inputs;
+    const cJSON *e;
+    char p[160], q[200];
+    snprintf(p, sizeof p, "%s/KHR_materials_volume", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_volume", &e)) return false;
+    if (!e) return true;
+    double thickness = 0, distance = INFINITY;
+    float colour[3] = {1, 1, 1};
+    bool given = false;
+    if (!factor(d, e, p, "thicknessFactor", 0, 1e6, &thickness) || !gltf_get_number(d, e, p, "attenuationDistance", &distance) ||
+        !gltf_get_numbers(d, e, p, "attenuationColor", 3, colour, &given))
+        return false;
+    if (thickness == 0) return true;
+    sl_prop_set_number(in, "thickness", (float)thickness, 0);
+    if (!slot(im, mi, e, p, "thicknessTexture", "thickness_texture", NULL, NULL)) return false;
+    snprintf(q, sizeof q, "%s/attenuationDistance", p);
+    if (!(distance > 0)) gltf_note(d, q, "%g must be > 0: no absorption", distance);
+    else if (isfinite(distance) && distance <= 1e9) sl_prop_set_number(in, "attenuation_distance", (float)distance, 0);
+    for (int c = 0; c < 3; c++) colour[c] = fminf(fmaxf(colour[c], 0.0f), 1.0f); /* NaN compares false: 0 */
+    if (given) sl_prop_set_vec(in, "attenuation_color", colour, 3, 0);
+    return true;
+}
+
 /* KHR_materials_emissive_strength, _ior, _unlit and (approximated) _pbrSpecularGlossiness;
- * the layers ggx renders (clearcoat, specular, sheen). */
+ * the layers ggx renders (clearcoat, specular, sheen, transmission, volume). */
 static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const char *at) {
     gltf_doc *d = &im->doc;
     sl_prop_list *in = &im->scene->materials[mi].inputs;
@@ -349,7 +392,8 @@ static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const ch
     if (e) sl_prop_set_number(in, "ior", (float)ior, 0);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_unlit", &e)) return false;
     if (e) sl_prop_set_bool(in, "unlit", true, 0);
-    if (!clearcoat_inputs(im, mi, ext, ep) || !specular_inputs(im, mi, ext, ep) || !sheen_inputs(im, mi, ext, ep))
+    if (!clearcoat_inputs(im, mi, ext, ep) || !specular_inputs(im, mi, ext, ep) || !sheen_inputs(im, mi, ext, ep) ||
+        !transmission_inputs(im, mi, ext, ep) || !volume_inputs(im, mi, ext, ep))
         return false;
     snprintf(p, sizeof p, "%s/KHR_materials_pbrSpecularGlossiness", ep);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_pbrSpecularGlossiness", &e)) return false;

@@ -33,6 +33,12 @@ static const sl_param_desc params[] = {
       .group = "layers", .description = "Render the sheen of materials that carry one (KHR_materials_sheen)."),
     P(.id = "layer_specular", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the specular strength and colour of materials that carry them (KHR_materials_specular)."),
+    P(.id = "layer_transmission", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the transmission of materials that carry it (KHR_materials_transmission): "
+                                        "the opaque scene seen through them."),
+    P(.id = "layer_volume", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the volume of transmissive materials that carry one (KHR_materials_volume): "
+                                        "refraction through its thickness and its absorption."),
     /* material keys */
     P(.id = "alpha", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {0.3f}}, .min = 0, .max = 1,
       .step = 0.01f, .group = "ggx", .description = "GGX α (width of the microfacet distribution); 0 is clamped to 2e-3."),
@@ -81,6 +87,27 @@ static const sl_param_desc params[] = {
     P(.id = "sheen_roughness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
       .group = "sheen", .material_input = "sheen_roughness_texture",
       .description = "Sheen roughness in the alpha channel, times sheen_roughness."),
+    /* KHR_materials_transmission and _volume (README "Layers") */
+    P(.id = "transmission", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
+      .group = "transmission", .material_input = "transmission",
+      .description = "Share of the light entering the surface that passes through it instead of being diffused: the "
+                     "opaque scene behind, tinted by the base colour."),
+    P(.id = "transmission_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "transmission", .material_input = "transmission_texture",
+      .description = "Transmission in the red channel, times transmission."),
+    P(.id = "thickness", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1000, .step = 0.01f,
+      .group = "transmission", .material_input = "thickness",
+      .description = "Thickness of the volume under a transmissive surface, in the mesh's units; 0 or absent: a thin wall."),
+    P(.id = "thickness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "transmission", .material_input = "thickness_texture",
+      .description = "Thickness in the green channel, times thickness."),
+    P(.id = "attenuation_distance", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1}},
+      .min = 1e-6f, .max = 1e9f, .step = 0.01f, .group = "transmission", .material_input = "attenuation_distance",
+      .description = "Distance in the volume after which white light has become attenuation_color (Beer-Lambert); "
+                     "absent: no absorption."),
+    P(.id = "attenuation_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1, 1, 1}},
+      .min = 0, .max = 1, .group = "transmission", .material_input = "attenuation_color",
+      .description = "What white light turns into after attenuation_distance in the volume."),
     /* KHR_materials_clearcoat (README "Layers") */
     P(.id = "clearcoat", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "clearcoat", .material_input = "clearcoat",
@@ -142,6 +169,13 @@ static const sl_shader_chunk_desc chunks[] = {
       .when_material_has = "clearcoat", .order = 5),
     C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_clearcoat",
       .name = "ggx-clearcoat", .description = "the clear coat's own reflection, summed over lights"),
+    /* after the coat and sheen (their dimming of the layers below) and the normal map */
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_transmission",
+      .when_material_has = "transmission", .when_param = "layer_transmission", .order = 22),
+    C(.hook = SL_HOOK_SCENE_BEHIND, .file = "ggx_model.glsl", .function = "ggx_scene_behind",
+      .when_material_has = "transmission", .when_param = "layer_transmission"),
+    C(.hook = SL_HOOK_DEBUG_VIEW, .file = "ggx_model.glsl", .function = "ggx_debug_transmission",
+      .name = "ggx-transmission", .description = "what the scene behind is multiplied by (transmission, tint, Fresnel, absorption)"),
     C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_D", .name = "ggx-d",
       .description = "GGX distribution D(h), summed over lights"),
     C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_G", .name = "ggx-g",
@@ -247,7 +281,8 @@ static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metal
                                          "sheen_roughness_texture", "specular", "specular_texture", "specular_color", "specular_color_texture",
                                          "clearcoat", "clearcoat_texture", "clearcoat_roughness",
                                          "clearcoat_roughness_texture", "clearcoat_normal_texture",
-                                         "clearcoat_normal_scale", NULL};
+                                         "clearcoat_normal_scale", "transmission", "transmission_texture", "thickness",
+                                         "thickness_texture", "attenuation_distance", "attenuation_color", NULL};
 
 static const char *const ggx_models[] = {"ggx", NULL};
 static const sl_plugin_desc ggx_desc = {

@@ -125,3 +125,53 @@ vec3 ggx_coat_layer(vec3 below, vec3 E, float w, float alpha, vec3 n, vec3 v, ve
     return mix(below, dg * max(dot(n, l), 0.0) * E, fc);
 }
 #endif
+
+#if defined(SL_MAT_HAS_TRANSMISSION) && GGX_LAYER_TRANSMISSION
+#define GGX_HAS_TRANSMISSION 1
+// KHR_materials_transmission: of the light entering the surface (not reflected), the share
+// `weight` passes through a thin wall instead of being diffused. The extension's
+//   base = mix(diffuse_brdf(baseColor), specular_btdf(α)·baseColor, transmission)
+// under the dielectric's Fresnel, the BTDF V_T·D_T with the transmission half vector
+// H_T = normalize(V − 2(N·L)N + L): the specular lobe about the light mirrored through the wall.
+// The opaque scene behind the wall is what lights it from there (the core's SCENE_BEHIND hook),
+// looked up straight through a thin wall, blurred by a mip level that grows with the roughness.
+// KHR_materials_volume (GGX_HAS_VOLUME): a thickness under the surface refracts that lookup by the
+// IOR and absorbs along it by Beer–Lambert, T = attenuationColor^(distance/attenuationDistance).
+struct GgxTransmission {
+    float weight;   // transmissionFactor × transmissionTexture.r
+    float distance; // world length of the path through the volume (0: a thin wall)
+    vec3 exit;      // where that path leaves it: the point the scene behind is looked up at
+};
+GgxTransmission ggx_trans = GgxTransmission(0.0, 0.0, vec3(0.0));
+#if defined(SL_MAT_HAS_THICKNESS) && GGX_LAYER_VOLUME
+#define GGX_HAS_VOLUME 1
+#endif
+
+float ggx_ior() {
+#ifdef SL_MAT_HAS_IOR
+    return sl_mat_ior;
+#else
+    return 1.5;
+#endif
+}
+// The microfacet "prisms" of the two faces of a thin wall blur what it transmits by an amount the
+// IOR modulates (the extension, "Refraction"): none at IOR 1. As the Khronos sample viewer, the
+// transmitted lobe's roughness is the surface's times clamp(2·ior − 2, 0, 1).
+float ggx_transmission_roughness_scale() { return clamp(2.0 * ggx_ior() - 2.0, 0.0, 1.0); }
+
+// Beer–Lambert through `distance` (world units) of the volume (KHR_materials_volume, "Attenuation"):
+// T = c^(x/d) with c = attenuationColor, d = attenuationDistance; 1 without a distance (infinite).
+vec3 ggx_volume_transmittance(float distance) {
+#if defined(GGX_HAS_VOLUME) && defined(SL_MAT_HAS_ATTENUATION_DISTANCE)
+#ifdef SL_MAT_HAS_ATTENUATION_COLOR
+    vec3 c = sl_mat_attenuation_color;
+#else
+    vec3 c = vec3(1.0);
+#endif
+    float x = max(distance, 0.0) / max(sl_mat_attenuation_distance, 1e-6);
+    return x > 0.0 ? pow(max(c, vec3(0.0)), vec3(x)) : vec3(1.0); // pow(0, 0) is undefined in GLSL
+#else
+    return vec3(1.0);
+#endif
+}
+#endif

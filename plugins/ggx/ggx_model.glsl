@@ -41,6 +41,63 @@ vec3 ggx_clearcoat_over(vec3 below, SlSurface s, vec3 l, vec3 E) {
 }
 #endif
 
+#ifdef GGX_HAS_TRANSMISSION
+// The dielectric's Fresnel at cosine c (with KHR_materials_specular's colour and strength where
+// carried) as one share, its largest channel: what the specular lobe takes from the light that
+// would enter the surface.
+float ggx_dielectric_share(float c, SlSurface s) {
+#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS && defined(GGX_HAS_SPECULAR)
+    vec3 F = ggx_dielectric_fresnel(c, ggx_gltf_dielectric_f0(), ggx_spec_color, ggx_spec_strength);
+#elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+    vec3 F = ggx_dielectric_fresnel(c, ggx_gltf_dielectric_f0(), vec3(1.0), 1.0);
+#else
+    vec3 F = ggx_fresnel(c, s);
+#endif
+    return max(F.r, max(F.g, F.b));
+}
+// What the layers over the base leave of it at the view: the sheen's albedo scaling and the coat's
+// 1 − w·F_c(n_c·v), as they dim the base under point lights.
+float ggx_share_under_layers(SlSurface s) {
+    float k = 1.0;
+#ifdef GGX_HAS_SHEEN
+    k *= ggx_sheen.scale;
+#endif
+#ifdef GGX_HAS_CLEARCOAT
+    k *= 1.0 - ggx_coat.weight * ggx_coat_fresnel(clamp(dot(ggx_coat_normal(s), s.view), 0.0, 1.0));
+#endif
+    return k;
+}
+// What the scene behind the surface is multiplied by: transmission × (1 − metallic) (metals absorb
+// what enters them) × base colour (the tint) × (1 − F(n·v)) (the dielectric's Fresnel at the view:
+// exact for a smooth wall, the lobe's directional albedo otherwise approximated by it) × what the
+// layers over the base leave × the volume's Beer–Lambert transmittance along its path.
+vec3 ggx_transmittance(SlSurface s) {
+    float f = ggx_dielectric_share(clamp(dot(s.normal, s.view), 0.0, 1.0), s);
+    return ggx_trans.weight * (1.0 - s.metallic) * (1.0 - f) * ggx_share_under_layers(s) * s.base_color *
+           ggx_volume_transmittance(ggx_trans.distance);
+}
+// A light behind the wall (n·l < 0) seen through it: the extension's BTDF V_T·D_T, the GGX lobe
+// about the light mirrored through the surface (H_T = normalize(v + l − 2(n·l)n)) with the
+// transmitted roughness, times (1 − F(v·H_T)), the tint and the volume's absorption, × E·|n·l|.
+vec3 ggx_transmitted_light(SlSurface s, vec3 n, vec3 v, vec3 l, vec3 E) {
+    float n_dot_l = dot(n, l);
+    if (n_dot_l >= 0.0) return vec3(0.0);
+    vec3 h, mirrored = l - 2.0 * n_dot_l * n;
+    float dg = ggx_DG_over_4(n, mirrored, v, s.alpha * ggx_transmission_roughness_scale(), h);
+    float f = ggx_dielectric_share(dot(v, h), s);
+    return ggx_trans.weight * (1.0 - s.metallic) * (1.0 - f) * dg * (-n_dot_l) * s.base_color *
+           ggx_volume_transmittance(ggx_trans.distance) * E;
+}
+#endif
+// The diffuse's share of the light entering the surface: 1 − transmission (KHR_materials_transmission).
+float ggx_diffuse_share() {
+#ifdef GGX_HAS_TRANSMISSION
+    return 1.0 - ggx_trans.weight;
+#else
+    return 1.0;
+#endif
+}
+
 vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
     vec3 n = s.normal, v = s.view;
     ggx_to_space(n, l, v);
@@ -54,13 +111,16 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
 #if defined(GGX_HAS_SPECULAR)
     // the extension's dielectric_brdf: the diffuse under 1 − max(F_d) of the dielectric's Fresnel
     vec3 Fd = ggx_dielectric_fresnel(dot(l, h), ggx_gltf_dielectric_f0(), ggx_spec_color, ggx_spec_strength);
-    vec3 diffuse = (1.0 - max(Fd.r, max(Fd.g, Fd.b))) * (1.0 - s.metallic) * s.base_color * SL_INV_PI;
+    vec3 diffuse = (1.0 - max(Fd.r, max(Fd.g, Fd.b))) * (1.0 - s.metallic) * ggx_diffuse_share() * s.base_color * SL_INV_PI;
     vec3 base = (diffuse + F * dg) * E * n_dot_l;
 #elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
-    vec3 diffuse = (1.0 - F) * (1.0 - s.metallic) * s.base_color * SL_INV_PI;
+    vec3 diffuse = (1.0 - F) * (1.0 - s.metallic) * ggx_diffuse_share() * s.base_color * SL_INV_PI;
     vec3 base = (diffuse + F * dg) * E * n_dot_l;
 #else
-    vec3 base = (s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;
+    vec3 base = (ggx_diffuse_share() * s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;
+#endif
+#ifdef GGX_HAS_TRANSMISSION
+    base += ggx_transmitted_light(s, n, v, l, E);
 #endif
 #ifdef GGX_HAS_SHEEN
     base = ggx_sheen_layer(base, E, ggx_sheen.colour, ggx_sheen.roughness, ggx_sheen.scale, n, v, l);
@@ -103,6 +163,9 @@ SlLobes ggx_lobes(SlSurface s) {
 #if GGX_ZERO_SPECULAR
     L.lobe[0].weight = 0.0;
 #endif
+    // KHR_materials_transmission: the environment behind the surface reaches it through the scene
+    // behind (ggx_scene_behind), so integrators see only the diffuse's remaining share
+    L.diffuse *= ggx_diffuse_share();
 #ifdef GGX_HAS_SHEEN
     // the sheen, approximated as a diffuse albedo colour·E(n·v): what it reflects of a uniform
     // environment, not its grazing shape; the layers below scaled by 1 − max(colour)·E(n·v). With
@@ -174,6 +237,28 @@ vec3 ggx_debug_sheen(SlSurface s, vec3 l, vec3 E) {
     vec3 n = s.normal, v = s.view;
     ggx_to_space(n, l, v);
     return ggx_sheen_layer(vec3(0.0), E, ggx_sheen.colour, ggx_sheen.roughness, 0.0, n, v, l);
+#else
+    return vec3(0.0);
+#endif
+}
+
+#if defined(GGX_HAS_TRANSMISSION) && defined(SL_SCENE_BEHIND)
+// The SCENE_BEHIND hook (the core's captured opaque scene, shaders/scene_behind.glsl): looked up
+// where the transmitted path leaves the material (straight through a thin wall), at the mip level
+// the Khronos sample viewer picks, log2(size) × the transmitted roughness: level 0 for a smooth
+// wall, the whole screen's average at roughness 1.
+vec3 ggx_scene_behind(SlSurface s) {
+    float roughness = sqrt(max(s.alpha, 0.0)) * ggx_transmission_roughness_scale();
+    vec3 behind = textureLod(sl_scene_behind, sl_screen_uv(ggx_trans.exit), roughness * sl_scene_behind_levels).rgb;
+    return ggx_transmittance(s) * behind;
+}
+#endif
+
+// "ggx-transmission": what the scene behind is multiplied by (ggx_transmittance); 0 for a material
+// without KHR_materials_transmission or with ggx.layer_transmission off.
+vec3 ggx_debug_transmission(SlSurface s) {
+#ifdef GGX_HAS_TRANSMISSION
+    return ggx_transmittance(s);
 #else
     return vec3(0.0);
 #endif

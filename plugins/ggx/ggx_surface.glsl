@@ -140,3 +140,30 @@ void ggx_surface_sheen(inout SlSurface s) {
 #endif
 }
 #endif
+
+#ifdef SL_MAT_HAS_TRANSMISSION
+// KHR_materials_transmission's inputs into ggx_trans, once per fragment, after the normal map
+// (order 22). With KHR_materials_volume's thickness τ (mesh units) the path into the volume is
+// refracted by the IOR from air, r = refract(−v, n, 1/ior), and leaves it after τ measured in the
+// mesh's space along r: a world length τ/|M⁻¹r| (M⁻¹ = transpose of sl_normal_matrix), as the
+// extension's thickness is "given in the coordinate space of the mesh".
+void ggx_surface_transmission(inout SlSurface s) {
+#ifdef GGX_HAS_TRANSMISSION
+    float t = sl_mat_transmission, distance = 0.0;
+#ifdef SL_MAT_HAS_TRANSMISSION_MAP
+    t *= texture(sl_mat_transmission_map, sl_uv_transmission_map(s)).r;
+#endif
+    vec3 r = -s.view;
+#ifdef GGX_HAS_VOLUME
+    float thickness = sl_mat_thickness;
+#ifdef SL_MAT_HAS_THICKNESS_MAP
+    thickness *= texture(sl_mat_thickness_map, sl_uv_thickness_map(s)).g;
+#endif
+    vec3 bent = refract(-s.view, s.normal, 1.0 / max(ggx_ior(), 1.0));
+    if (dot(bent, bent) > 0.5) r = normalize(bent);
+    distance = max(thickness, 0.0) / max(length(transpose(sl_normal_matrix) * r), 1e-6);
+#endif
+    ggx_trans = GgxTransmission(clamp(t, 0.0, 1.0), distance, s.position + r * distance);
+#endif
+}
+#endif

@@ -108,6 +108,11 @@ typedef struct sl_param_desc {
  *                             black); sheen_color_texture (sRGB, RGB), sheen_roughness_texture (linear, A)
  *   specular, specular_color  float, colour (KHR_materials_specular, published when not 1, [1, 1, 1]);
  *                             specular_texture (linear, A), specular_color_texture (sRGB, RGB)
+ *   transmission              float (KHR_materials_transmission, present when > 0); transmission_texture
+ *                             (linear, R)
+ *   thickness                 float (KHR_materials_volume, present when > 0, mesh units); thickness_texture
+ *                             (linear, G); attenuation_distance (world units, present when finite) and
+ *                             attenuation_color (colour, present when given)
  * ior (KHR_materials_ior) is the dielectric's index of refraction: glTF's F0 = ((ior − 1)/(ior + 1))². */
 #ifdef __cplusplus
 }
