@@ -448,6 +448,26 @@ static void f_volume_no_absorption(gw_doc *g) {
                    "{\"thickness\": 2, \"attenuation_distance\": false, \"attenuation_color\": false}");
 }
 
+/* KHR_materials_iridescence: the IOR and thickness range published where not the defaults
+ * (1.3, 100, 400 nm) */
+static void f_iridescence(gw_doc *g) {
+    layer_feature(g, "KHR_materials_iridescence",
+                  "{\"iridescenceFactor\": 0.75, \"iridescenceIor\": 1.8, \"iridescenceThicknessMinimum\": 200, "
+                  "\"iridescenceThicknessTexture\": {\"index\": 0}}",
+                  "{\"iridescence\": 0.75, \"iridescence_ior\": 1.8, \"iridescence_thickness_minimum\": 200, "
+                  "\"iridescence_thickness_maximum\": false, \"iridescence_texture\": false, \"iridescence_thickness_texture\": true}");
+}
+/* iridescenceFactor 0 (the default) is no film, whatever else is given */
+static void f_iridescence_zero(gw_doc *g) {
+    layer_feature(g, "KHR_materials_iridescence", "{\"iridescenceIor\": 1.8, \"iridescenceTexture\": {\"index\": 0}}",
+                  "{\"iridescence\": false, \"iridescence_ior\": false, \"iridescence_texture\": false}");
+}
+/* a film of thickness 0 (the maximum, without a thickness texture) is no film */
+static void f_iridescence_thin(gw_doc *g) {
+    layer_feature(g, "KHR_materials_iridescence", "{\"iridescenceFactor\": 1, \"iridescenceThicknessMaximum\": 0}",
+                  "{\"iridescence\": false, \"iridescence_thickness_maximum\": false}");
+}
+
 static const struct { const char *name; void (*build)(gw_doc *g); } features[] = {
     {"baseline", f_baseline},
     {"indices_u8", f_indices_u8},
@@ -482,6 +502,9 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"volume", f_volume},
     {"volume_thin", f_volume_thin},
     {"volume_no_absorption", f_volume_no_absorption},
+    {"iridescence", f_iridescence},
+    {"iridescence_zero", f_iridescence_zero},
+    {"iridescence_thin", f_iridescence_thin},
 };
 
 static void write_features(void) {

@@ -35,7 +35,9 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_volume", SL_GLTF_APPROXIMATED,
      "refraction through the thickness by the IOR and Beer-Lambert absorption along it (ggx), from the thickness "
      "factor and texture, not the mesh"},
-    {"KHR_materials_iridescence", SL_GLTF_IGNORED, "no thin film"},
+    {"KHR_materials_iridescence", SL_GLTF_APPROXIMATED,
+     "the thin film's Fresnel (Belcour & Barla, spectrally integrated) in the base's specular, factors and textures "
+     "(ggx); environment and area lights see the film's Fresnel at n.v"},
     {"KHR_materials_anisotropy", SL_GLTF_IGNORED, "isotropic"},
     {"KHR_materials_dispersion", SL_GLTF_IGNORED, "no dispersion"},
     {"KHR_materials_variants", SL_GLTF_RENDERED, "the default materials, or the variant --variant NAME names"},

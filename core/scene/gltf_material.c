@@ -368,8 +368,34 @@ static bool volume_inputs(gltf_import *im, int mi, const cJSON *ext, const char 
     return true;
 }
 
+/* KHR_materials_iridescence: a factor of 0 (the default) is no film, nor is a film whose
+ * thickness is 0 (the maximum without a thickness texture, both ends with one); the IOR (1.3)
+ * and thickness range (100..400 nm) are published where they differ from the defaults. */
+static bool iridescence_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    sl_prop_list *in = &im->scene->materials[mi].inputs;
+    const cJSON *e, *thick_tex;
+    char p[160];
+    snprintf(p, sizeof p, "%s/KHR_materials_iridescence", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_iridescence", &e)) return false;
+    if (!e) return true;
+    double w = 0, ior = 1.3, lo = 100, hi = 400;
+    if (!factor(d, e, p, "iridescenceFactor", 0, 1, &w) || !factor(d, e, p, "iridescenceIor", 1, 5, &ior) ||
+        !factor(d, e, p, "iridescenceThicknessMinimum", 0, 5000, &lo) ||
+        !factor(d, e, p, "iridescenceThicknessMaximum", 0, 5000, &hi) ||
+        !gltf_get_object(d, e, p, "iridescenceThicknessTexture", &thick_tex))
+        return false;
+    if (w == 0 || (hi == 0 && (!thick_tex || lo == 0))) return true;
+    sl_prop_set_number(in, "iridescence", (float)w, 0);
+    if (ior != 1.3) sl_prop_set_number(in, "iridescence_ior", (float)ior, 0);
+    if (lo != 100) sl_prop_set_number(in, "iridescence_thickness_minimum", (float)lo, 0);
+    if (hi != 400) sl_prop_set_number(in, "iridescence_thickness_maximum", (float)hi, 0);
+    return slot(im, mi, e, p, "iridescenceTexture", "iridescence_texture", NULL, NULL) &&
+           slot(im, mi, e, p, "iridescenceThicknessTexture", "iridescence_thickness_texture", NULL, NULL);
+}
+
 /* KHR_materials_emissive_strength, _ior, _unlit and (approximated) _pbrSpecularGlossiness;
- * the layers ggx renders (clearcoat, specular, sheen, transmission, volume). */
+ * the layers ggx renders (clearcoat, specular, sheen, transmission, volume, iridescence). */
 static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const char *at) {
     gltf_doc *d = &im->doc;
     sl_prop_list *in = &im->scene->materials[mi].inputs;
@@ -393,7 +419,8 @@ static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const ch
     if (!gltf_get_object(d, ext, ep, "KHR_materials_unlit", &e)) return false;
     if (e) sl_prop_set_bool(in, "unlit", true, 0);
     if (!clearcoat_inputs(im, mi, ext, ep) || !specular_inputs(im, mi, ext, ep) || !sheen_inputs(im, mi, ext, ep) ||
-        !transmission_inputs(im, mi, ext, ep) || !volume_inputs(im, mi, ext, ep))
+        !transmission_inputs(im, mi, ext, ep) || !volume_inputs(im, mi, ext, ep) ||
+        !iridescence_inputs(im, mi, ext, ep))
         return false;
     snprintf(p, sizeof p, "%s/KHR_materials_pbrSpecularGlossiness", ep);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_pbrSpecularGlossiness", &e)) return false;

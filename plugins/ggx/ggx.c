@@ -33,6 +33,8 @@ static const sl_param_desc params[] = {
       .group = "layers", .description = "Render the sheen of materials that carry one (KHR_materials_sheen)."),
     P(.id = "layer_specular", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the specular strength and colour of materials that carry them (KHR_materials_specular)."),
+    P(.id = "layer_iridescence", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the thin film of materials that carry one (KHR_materials_iridescence)."),
     P(.id = "layer_transmission", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the transmission of materials that carry it (KHR_materials_transmission): "
                                         "the opaque scene seen through them."),
@@ -108,6 +110,25 @@ static const sl_param_desc params[] = {
     P(.id = "attenuation_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1, 1, 1}},
       .min = 0, .max = 1, .group = "transmission", .material_input = "attenuation_color",
       .description = "What white light turns into after attenuation_distance in the volume."),
+    /* KHR_materials_iridescence (README "Layers"), for fresnel = metallic-roughness */
+    P(.id = "iridescence", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
+      .group = "iridescence", .material_input = "iridescence",
+      .description = "Weight of the thin film's Fresnel in the base's specular reflection; 0: no film."),
+    P(.id = "iridescence_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "iridescence", .material_input = "iridescence_texture",
+      .description = "Iridescence weight in the red channel, times iridescence."),
+    P(.id = "iridescence_ior", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1.3f}}, .min = 1,
+      .max = 5, .step = 0.01f, .group = "iridescence", .material_input = "iridescence_ior",
+      .description = "Index of refraction of the thin film."),
+    P(.id = "iridescence_thickness_min", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {100}},
+      .min = 0, .max = 5000, .step = 1, .group = "iridescence", .material_input = "iridescence_thickness_minimum",
+      .description = "Film thickness (nm) where the thickness map's green channel is 0."),
+    P(.id = "iridescence_thickness_max", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {400}},
+      .min = 0, .max = 5000, .step = 1, .group = "iridescence", .material_input = "iridescence_thickness_maximum",
+      .description = "Film thickness (nm) where the thickness map's green channel is 1, and without the map; 0: no film."),
+    P(.id = "iridescence_thickness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "iridescence", .material_input = "iridescence_thickness_texture",
+      .description = "Film thickness in the green channel, from iridescence_thickness_min to _max."),
     /* KHR_materials_clearcoat (README "Layers") */
     P(.id = "clearcoat", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "clearcoat", .material_input = "clearcoat",
@@ -170,6 +191,10 @@ static const sl_shader_chunk_desc chunks[] = {
     C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_clearcoat",
       .name = "ggx-clearcoat", .description = "the clear coat's own reflection, summed over lights"),
     /* after the coat and sheen (their dimming of the layers below) and the normal map */
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_iridescence",
+      .when_material_has = "iridescence", .when_param = "layer_iridescence", .order = 6),
+    C(.hook = SL_HOOK_DEBUG_VIEW, .file = "ggx_model.glsl", .function = "ggx_debug_iridescence", .name = "ggx-iridescence",
+      .description = "KHR_materials_iridescence: the specular Fresnel at the view with the thin film mixed in"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_transmission",
       .when_material_has = "transmission", .when_param = "layer_transmission", .order = 22),
     C(.hook = SL_HOOK_SCENE_BEHIND, .file = "ggx_model.glsl", .function = "ggx_scene_behind",
@@ -282,7 +307,9 @@ static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metal
                                          "clearcoat", "clearcoat_texture", "clearcoat_roughness",
                                          "clearcoat_roughness_texture", "clearcoat_normal_texture",
                                          "clearcoat_normal_scale", "transmission", "transmission_texture", "thickness",
-                                         "thickness_texture", "attenuation_distance", "attenuation_color", NULL};
+                                         "thickness_texture", "attenuation_distance", "attenuation_color", "iridescence",
+                                         "iridescence_texture", "iridescence_ior", "iridescence_thickness_minimum",
+                                         "iridescence_thickness_maximum", "iridescence_thickness_texture", NULL};
 
 static const char *const ggx_models[] = {"ggx", NULL};
 static const sl_plugin_desc ggx_desc = {

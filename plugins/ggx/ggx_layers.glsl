@@ -175,3 +175,61 @@ vec3 ggx_volume_transmittance(float distance) {
 #endif
 }
 #endif
+
+#if defined(SL_MAT_HAS_IRIDESCENCE) && GGX_LAYER_IRIDESCENCE && SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
+#define GGX_HAS_IRIDESCENCE 1
+// KHR_materials_iridescence: a thin film (index film_ior, thickness in nm) over the base's
+// specular reflection, whose Fresnel becomes mix(F, F_film, weight). F_film is Belcour & Barla
+// 2017 ("A Practical Extension to Microfacet Theory for the Modeling of Varying Iridescence") in
+// the form the extension specifies: Schlick's Fresnel at both interfaces, the Airy reflectance
+// written as a Fourier series in the film's optical path difference (orders 0..2), each order
+// integrated over the spectrum against Gaussian fits of the XYZ colour matching functions, then
+// converted to linear sRGB. Only (ggx_layers.glsl's) glTF metallic-roughness model carries it.
+struct GgxIridescence {
+    float weight;    // iridescenceFactor × iridescenceTexture.r (0 also for a film of thickness 0)
+    float thickness; // nm: mix(minimum, maximum, iridescenceThicknessTexture.g), maximum without it
+    float film_ior;  // iridescenceIor (1.3)
+};
+GgxIridescence ggx_irid = GgxIridescence(0.0, 0.0, 1.3);
+
+// The spectral sensitivity of order m in Fourier space (the paper's eq. for the XYZ Gaussians,
+// the extension's constants): for optical path difference opd (nm) and phase shift, the XYZ
+// response ∑ a·√(2πσ)·cos(2π·μ·opd + shift)·exp(−(2π·opd)²σ), normalised by the Y integral,
+// converted to linear sRGB by the XYZ → Rec. 709 matrix (D65).
+vec3 ggx_film_sensitivity(float opd, vec3 shift) {
+    float phase = 2.0 * SL_PI * opd * 1e-9;
+    vec3 a = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13), mu = vec3(1.6810e6, 1.7953e6, 2.2084e6);
+    vec3 sigma = vec3(4.3278e9, 9.3046e9, 6.6121e9);
+    vec3 xyz = a * sqrt(2.0 * SL_PI * sigma) * cos(mu * phase + shift) * exp(-phase * phase * sigma);
+    xyz.x += 9.7470e-14 * sqrt(2.0 * SL_PI * 4.5282e9) * cos(2.2399e6 * phase + shift.x) * exp(-4.5282e9 * phase * phase);
+    xyz /= 1.0685e-7;
+    return mat3(3.2404542, -0.9692660, 0.0556434, -1.5371385, 1.8760108, -0.2040259, -0.4985314, 0.0415560,
+                1.0572252) * xyz;
+}
+float ggx_film_f0(float a, float b) { return ((a - b) / (a + b)) * ((a - b) / (a + b)); }
+// The film's Fresnel at cosine c1 from air, over a base of normal-incidence reflectance f0 (its
+// index η3 = (1 + √f0)/(1 − √f0) per channel):
+//   R12 = Schlick(f0(η2, 1), c1), T = 1 − R12, R23 = Schlick(f0(η3, η2), c2), c2 by Snell's law;
+//   phase shifts φ = φ21 + φ23 (π at a reflection on a denser medium), opd = 2·η2·d·c2;
+//   R = R12 + Rs + ∑_{m=1,2} 2·(Rs − T)·√(R12 R23)^m · S(m·opd, m·φ), Rs = T²R23/(1 − R12 R23).
+// Total internal reflection in the film (η2 < 1) reflects everything.
+vec3 ggx_film_fresnel(float c1, vec3 f0, float eta2, float thickness) {
+    float s2 = (1.0 - c1 * c1) / (eta2 * eta2);
+    if (s2 >= 1.0) return vec3(1.0);
+    float c2 = sqrt(1.0 - s2);
+    float R12 = ggx_schlick_f90(c1, vec3(ggx_film_f0(eta2, 1.0)), vec3(1.0)).x, T = 1.0 - R12;
+    float phi21 = eta2 < 1.0 ? 0.0 : SL_PI;
+    vec3 sf0 = sqrt(clamp(f0, 0.0, 0.9999)), eta3 = (1.0 + sf0) / (1.0 - sf0);
+    vec3 R23 = ggx_schlick_f90(c2, (eta3 - eta2) * (eta3 - eta2) / ((eta3 + eta2) * (eta3 + eta2)), vec3(1.0));
+    vec3 phi = vec3(phi21) + mix(vec3(0.0), vec3(SL_PI), lessThan(eta3, vec3(eta2)));
+    float opd = 2.0 * eta2 * thickness * c2;
+    vec3 R123 = min(R12 * R23, vec3(0.9999)), r123 = sqrt(R123);
+    vec3 Rs = T * T * R23 / (1.0 - R123);
+    vec3 R = R12 + Rs, Cm = Rs - T;
+    for (int m = 1; m <= 2; m++) {
+        Cm *= r123;
+        R += Cm * 2.0 * ggx_film_sensitivity(float(m) * opd, float(m) * phi);
+    }
+    return max(R, vec3(0.0));
+}
+#endif

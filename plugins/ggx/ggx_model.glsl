@@ -16,7 +16,35 @@ void ggx_to_space(inout vec3 n, inout vec3 l, inout vec3 v) {
 #endif
 }
 
+vec3 ggx_fresnel_base(float l_dot_h, SlSurface s);
+#ifdef GGX_HAS_IRIDESCENCE
+// The dielectric's F0: glTF's from the ior, with KHR_materials_specular's colour and strength.
+vec3 ggx_dielectric_f0_colour() {
+#ifdef GGX_HAS_SPECULAR
+    return min(vec3(ggx_gltf_dielectric_f0()) * ggx_spec_color, vec3(1.0)) * ggx_spec_strength;
+#else
+    return vec3(ggx_gltf_dielectric_f0());
+#endif
+}
+// The film's Fresnel at cosine c over the base: mix(film over the dielectric, film over the metal
+// (F0 the base colour), metallic), as the extension's dielectric and metal BRDFs each take it.
+vec3 ggx_film(float c, SlSurface s) {
+    vec3 d = ggx_film_fresnel(c, ggx_dielectric_f0_colour(), ggx_irid.film_ior, ggx_irid.thickness);
+    if (s.metallic <= 0.0) return d;
+    return mix(d, ggx_film_fresnel(c, s.base_color, ggx_irid.film_ior, ggx_irid.thickness), s.metallic);
+}
+#endif
+
 vec3 ggx_fresnel(float l_dot_h, SlSurface s) {
+#if SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS && defined(GGX_HAS_IRIDESCENCE)
+    // KHR_materials_iridescence: the base's Fresnel (below, without the film) mixed with the film's
+    return mix(ggx_fresnel_base(l_dot_h, s), ggx_film(abs(l_dot_h), s), ggx_irid.weight);
+#else
+    return ggx_fresnel_base(l_dot_h, s);
+#endif
+}
+
+vec3 ggx_fresnel_base(float l_dot_h, SlSurface s) {
 #if SL_MAT_FRESNEL == SL_MAT_FRESNEL_SCHLICK
     return ggx_fresnel_schlick(l_dot_h, vec3(ggx_f0_from_eta(sl_mat_eta)));
 #elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS && defined(GGX_HAS_SPECULAR)
@@ -111,6 +139,10 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
 #if defined(GGX_HAS_SPECULAR)
     // the extension's dielectric_brdf: the diffuse under 1 − max(F_d) of the dielectric's Fresnel
     vec3 Fd = ggx_dielectric_fresnel(dot(l, h), ggx_gltf_dielectric_f0(), ggx_spec_color, ggx_spec_strength);
+#ifdef GGX_HAS_IRIDESCENCE
+    Fd = mix(Fd, ggx_film_fresnel(abs(dot(l, h)), ggx_dielectric_f0_colour(), ggx_irid.film_ior, ggx_irid.thickness),
+             ggx_irid.weight);
+#endif
     vec3 diffuse = (1.0 - max(Fd.r, max(Fd.g, Fd.b))) * (1.0 - s.metallic) * ggx_diffuse_share() * s.base_color * SL_INV_PI;
     vec3 base = (diffuse + F * dg) * E * n_dot_l;
 #elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
@@ -159,6 +191,14 @@ SlLobes ggx_lobes(SlSurface s) {
 #if SL_MAT_FRESNEL != SL_MAT_FRESNEL_SCHLICK
     L.lobe[0].eta = sl_mat_eta;
 #endif
+#endif
+#ifdef GGX_HAS_IRIDESCENCE
+    // KHR_materials_iridescence: the film's Fresnel at the view as a constant (F0 = F90) mixed in
+    // by its weight, as the Khronos sample viewer lights it by the environment; point lights take
+    // it at each half vector.
+    vec3 film = ggx_film(clamp(dot(s.normal, s.view), 0.0, 1.0), s);
+    L.lobe[0].f0 = mix(L.lobe[0].f0, film, ggx_irid.weight);
+    L.lobe[0].f90 = mix(L.lobe[0].f90, film, ggx_irid.weight);
 #endif
 #if GGX_ZERO_SPECULAR
     L.lobe[0].weight = 0.0;
@@ -259,6 +299,17 @@ vec3 ggx_scene_behind(SlSurface s) {
 vec3 ggx_debug_transmission(SlSurface s) {
 #ifdef GGX_HAS_TRANSMISSION
     return ggx_transmittance(s);
+#else
+    return vec3(0.0);
+#endif
+}
+
+// "ggx-iridescence": the base's specular Fresnel at the view with the film mixed in
+// (KHR_materials_iridescence), mix(F(n·v), F_film(n·v), weight); 0 for a material without the
+// layer or with ggx.layer_iridescence off.
+vec3 ggx_debug_iridescence(SlSurface s) {
+#ifdef GGX_HAS_IRIDESCENCE
+    return ggx_fresnel(clamp(dot(s.normal, s.view), 0.0, 1.0), s);
 #else
     return vec3(0.0);
 #endif

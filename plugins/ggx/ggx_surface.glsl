@@ -167,3 +167,32 @@ void ggx_surface_transmission(inout SlSurface s) {
 #endif
 }
 #endif
+
+#ifdef SL_MAT_HAS_IRIDESCENCE
+// KHR_materials_iridescence's inputs into ggx_irid, once per fragment: the weight (factor × R of
+// its texture), the thickness mix(minimum, maximum, G of the thickness texture) or the maximum
+// without that texture, and the film's IOR. A film of thickness 0 is no film (weight 0).
+void ggx_surface_iridescence(inout SlSurface s) {
+#ifdef GGX_HAS_IRIDESCENCE
+    float w = sl_mat_iridescence, eta = 1.3, d_min = 100.0, d_max = 400.0;
+#ifdef SL_MAT_HAS_IRIDESCENCE_MAP
+    w *= texture(sl_mat_iridescence_map, sl_uv_iridescence_map(s)).r;
+#endif
+#ifdef SL_MAT_HAS_IRIDESCENCE_IOR
+    eta = sl_mat_iridescence_ior;
+#endif
+#ifdef SL_MAT_HAS_IRIDESCENCE_THICKNESS_MIN
+    d_min = sl_mat_iridescence_thickness_min;
+#endif
+#ifdef SL_MAT_HAS_IRIDESCENCE_THICKNESS_MAX
+    d_max = sl_mat_iridescence_thickness_max;
+#endif
+    float d = d_max;
+#ifdef SL_MAT_HAS_IRIDESCENCE_THICKNESS_MAP
+    d = mix(d_min, d_max, texture(sl_mat_iridescence_thickness_map, sl_uv_iridescence_thickness_map(s)).g);
+#endif
+    d = max(d, 0.0);
+    ggx_irid = GgxIridescence(d > 0.0 ? clamp(w, 0.0, 1.0) : 0.0, d, max(eta, 1.0));
+#endif
+}
+#endif

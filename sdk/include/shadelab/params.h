@@ -113,6 +113,10 @@ typedef struct sl_param_desc {
  *   thickness                 float (KHR_materials_volume, present when > 0, mesh units); thickness_texture
  *                             (linear, G); attenuation_distance (world units, present when finite) and
  *                             attenuation_color (colour, present when given)
+ *   iridescence               float (KHR_materials_iridescence, present when > 0 and the film has a
+ *                             thickness); iridescence_ior, iridescence_thickness_minimum/_maximum (nm)
+ *                             when not 1.3, 100, 400; iridescence_texture (linear, R),
+ *                             iridescence_thickness_texture (linear, G)
  * ior (KHR_materials_ior) is the dielectric's index of refraction: glTF's F0 = ((ior − 1)/(ior + 1))². */
 #ifdef __cplusplus
 }
