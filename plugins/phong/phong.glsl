@@ -42,18 +42,19 @@ vec3 phong_model_blinn_gloss(SlSurface s, vec3 l, vec3 E) {
 #endif
 }
 // blinn-gloss's lobes (ABI 1.14): the diffuse (1 − F(n·v))·albedo exactly (F depends on n·v
-// only), and one GGX lobe of the same α (s.alpha, Walter's p ↔ α), constant Fresnel
-// f0 = f90 = F(n·v)·k_s, weighted by phong_lobe_weight (phong_brdf.glsl). Toksvig's widening is
-// in α; its Fresnel/cosine blend (phong_filter_w) is not described.
+// only), and one GGX lobe with Blinn's median (phong_lobe_alpha of the power s.alpha carries),
+// constant Fresnel f0 = f90 = F(n·v)·k_s, and the weight that gives the model's specular albedo
+// (phong_lobe_weight): a uniform environment is lit as the model says. Toksvig's widening is in
+// the power; its Fresnel/cosine blend (phong_filter_w) is not described.
 SlLobes phong_blinn_gloss_lobes(SlSurface s) {
     SlLobes L = sl_lobes_none();
     float mu = dot(s.normal, s.view);
     float F = phong_schlick(mu);
     L.diffuse = (1.0 - F) * phong_albedo(s);
     L.count = 1;
-    L.lobe[0].alpha = s.alpha;
+    L.lobe[0].alpha = phong_lobe_alpha(phong_power(s));
     L.lobe[0].f0 = L.lobe[0].f90 = vec3(F * s.specular);
-    L.lobe[0].weight = phong_lobe_weight(mu, phong_power(s), s.alpha);
+    L.lobe[0].weight = phong_lobe_weight(mu, L.lobe[0].alpha);
     return L;
 }
 vec3 phong_model_blinn_gloss_ambient(SlSurface s, vec3 Ea) {

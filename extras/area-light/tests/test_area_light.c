@@ -301,7 +301,6 @@ static double rel_rmse(const float *a, const float *b, double *peak) {
     return sqrt(s / (3.0 * W * H)) / fmax(m, 1e-9);
 }
 
-#define BLINN_GLOSS_BOUND 0.03 /* ggx's bound (test_ggx) */
 static void test_ggx(void) {
     const char *const ref[] = {"area-light.method=reference", "area-light.reference_samples=8", "area-light.reference_visibility=false", NULL};
     const char *const mats[] = {
@@ -321,9 +320,14 @@ static void test_ggx(void) {
     }
 }
 
-/* phong's blinn-gloss through the lobe contract (one GGX lobe, α = √(2/(p+2)), phong/README.md
- * "Lobes"): the LTC image against the reference, which evaluates blinn-gloss itself per point */
+/* phong's blinn-gloss through the lobe contract (one GGX lobe of Blinn's median α, weighted to
+ * the model's directional albedo; phong/README.md "Lobes"): the LTC image against the reference,
+ * which evaluates blinn-gloss itself per point. Bounds: a margin over the measured 1.38 / 1.12 /
+ * 0.73 % (ggx's test bound is 3 %; the LTC of the lobe against a reference of the lobe itself is
+ * 0.2–0.3 %, the rest is GGX's shape against Blinn's); Walter's α weighted at the lobe's centre
+ * measured 1.43 / 1.46 / 1.06 % */
 static void test_blinn_gloss(void) {
+    const double bound[3] = {0.016, 0.014, 0.010};
     const char *const ref[] = {"area-light.method=reference", "area-light.reference_samples=8", "area-light.reference_visibility=false", NULL};
     const char *const mats[] = {
         "{\"name\": \"m\", \"model\": \"blinn-gloss\", \"base_color\": [0.2, 0.2, 0.2], \"gloss\": 0.3}",
@@ -337,7 +341,7 @@ static void test_blinn_gloss(void) {
         render(json, ref, 16, img2);
         double peak, e = rel_rmse(img, img2, &peak);
         printf("blinn-gloss gloss %.1f: LTC vs reference RMSE %.3f%% of the peak %.3f\n", 0.3 + 0.2 * i, 100 * e, peak);
-        CHECK(e < BLINN_GLOSS_BOUND, "blinn-gloss %d: LTC vs reference RMSE %.3g of the peak", i, e);
+        CHECK(e < bound[i], "blinn-gloss %d: LTC vs reference RMSE %.3g of the peak", i, e);
         CHECK(sl_harness_count_nonfinite(img, W, H) == 0, "non-finite pixels");
     }
 }

@@ -9,7 +9,8 @@
  *   furnace: a uniform environment 1 and blinn-gloss: the reference gives the model's
  *   directional albedo, (1 − F)·albedo + F·k_s·R(μ), R(μ) = ∫ (p+1)/(2π)(n·h)^p (n·l) dl
  *   integrated here in C (a closed form at the sphere centre is not available; the midpoint
- *   quadrature over the hemisphere is independent of the GLSL). */
+ *   quadrature over the hemisphere is independent of the GLSL); then black blinn-gloss spheres
+ *   at gloss 0.3 / 0.5 / 0.7, split sum against that reference (the lobe's weight alone). */
 #include "check.h"
 #include "camera_rays.h"
 #include "envmap/io.h"
@@ -22,13 +23,18 @@
 #define W 32
 #define H 32
 /* relative RMS of the split sum (envmap's default specular, dominant) vs the reference (block
- * means), margin over what was measured (phong README): with a diffuse albedo both models share
- * one bound (measured 0.008–0.026); the specular lobe alone (black) is where the equivalent GGX
- * lobe shows: ggx 0.083–0.105, blinn-gloss 0.115–0.196 (GGX's tails against Blinn's, and the
- * weight off at the rim of wide lobes) */
-#define SPLIT_BOUND 0.04
+ * means), margin over what was measured (phong README, "Lobes"): with a diffuse albedo both
+ * models share one bound (measured 0.008–0.020); the specular lobe alone (black): ggx
+ * 0.083–0.105 (the split sum's own error), blinn-gloss 0.085 / 0.179 / 0.145 at gloss
+ * 0.3 / 0.5 / 0.7 (one GGX lobe of Blinn's median α: GGX's tails are longer than Blinn's; the
+ * lobe of Walter's α weighted at its centre measured 0.115 / 0.196 / 0.196 and fails) */
+#define SPLIT_BOUND 0.03
 #define SPLIT_BOUND_GGX_SPECULAR 0.12
-#define SPLIT_BOUND_PHONG_SPECULAR 0.25
+static const double split_bound_phong_specular[3] = {0.10, 0.19, 0.17};
+/* a uniform environment (the lobe's weight alone): blinn-gloss's lobe carries the model's
+ * directional albedo (measured 0.4–0.8 % relative RMS; the centre-of-lobe weight 10.6 / 4.3 /
+ * 1.0 % at gloss 0.3 / 0.5 / 0.7) */
+#define FURNACE_BOUND 0.02
 static float img[W * H * 4], ref[W * H * 4];
 static const test_camera cam = {{0, 0, 4}, {0, 0, 0}, 40, W, H};
 static char dir[256];
@@ -149,8 +155,8 @@ static void test_band(void) {
                      gloss[g], alpha);
             double rms;
             compare(what, &rms);
-            double bound = !k ? SPLIT_BOUND : m ? SPLIT_BOUND_GGX_SPECULAR : SPLIT_BOUND_PHONG_SPECULAR;
-            CHECK_MSG(rms < bound, "%s: rms %.4f over the bound %.2f", what, rms, bound);
+            double bound = !k ? SPLIT_BOUND : m ? SPLIT_BOUND_GGX_SPECULAR : split_bound_phong_specular[g];
+            CHECK_MSG(rms < bound, "%s: rms %.4f over the bound %.3f", what, rms, bound);
         }
     }
 }
@@ -189,7 +195,7 @@ static void test_furnace(void) {
            want, R);
     CHECK_MSG(fabs(got / want - 1) < 0.01, "furnace: %.4f vs %.4f", got, want);
     /* the lobe's weight alone (no environment detail): the specular lobe's split sum vs the
-     * reference in the furnace, per gloss */
+     * reference in the furnace, per gloss: the weight gives the model's directional albedo */
     const double gloss[] = {0.3, 0.5, 0.7};
     for (int g = 0; g < 3; g++) {
         char black[160], what[96];
@@ -198,6 +204,7 @@ static void test_furnace(void) {
         snprintf(what, sizeof what, "furnace blinn-gloss black gloss %.1f", gloss[g]);
         double rms;
         compare(what, &rms);
+        CHECK_MSG(rms < FURNACE_BOUND, "%s: rms %.4f over the bound %.2f", what, rms, FURNACE_BOUND);
     }
 }
 

@@ -3,7 +3,8 @@
  * equivalence, the lobe's normalisation (∫ (p+1)/2·cos^p θ_h dω_h = π for every p, with a
  * mutant that must fail), Toksvig, both models over random grids, and their stability (gloss 0
  * and 1, grazing light, light behind, normals facing away, l = −v): no NaN/Inf, no negative
- * radiance, and stated values. */
+ * radiance, and stated values. The lobe description (README, "Lobes"): α with Blinn's median and
+ * the weight that carries the model's directional albedo, against quadratures in C. */
 #include "check.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
@@ -255,6 +256,85 @@ static void test_stability(void) {
     CHECK(out[5 * 4 + 2] == 0); /* n·v < 0: F = 1, (1−F)·ambient = 0 (the formula's own limit) */
 }
 
+/* ---- the lobe description: one GGX lobe for light integrators --------------------------- */
+static double ggx_d(double c, double a) {
+    if (c <= 0) return 0;
+    double d = c * c * (a * a - 1) + 1;
+    return a * a / (M_PI * d * d);
+}
+static double smith_g1(double c, double a) { return c > 0 ? 2 / (1 + sqrt(1 + a * a * (1 - c * c) / (c * c))) : 0; }
+static double median_alpha(double p) { return sqrt(expm1(M_LN2 * 2 / (p + 2))); }
+/* ∫ f cos θ_l dl of blinn-gloss's specular lobe (ggx = false: (p+1)/(2π)(n·h)^p, per unit F·k_s)
+ * or of a GGX lobe (D G₁(v)G₁(l)/(4 n·v)) at n·v = μ: midpoint quadrature over l in polar
+ * coordinates about the mirror direction r, ψ = 2 atan(k x/(1 − x)) crowding the nodes into
+ * the lobe (k its width), cut at the horizon */
+static double lobe_albedo(bool ggx, double mu, double p, double a) {
+    const int nt = 500, np = 128;
+    double v[3] = {sqrt(1 - mu * mu), 0, mu}, r[3] = {-v[0], 0, mu}, t1[3] = {mu, 0, v[0]}, k = sqrt(2 / (p + 2)), sum = 0;
+    for (int i = 0; i < nt; i++) {
+        double x = (i + 0.5) / nt, u = x / (1 - x), psi = 2 * atan(k * u);
+        double dpsi = 2 * k / (1 + k * k * u * u) / ((1 - x) * (1 - x)) / nt;
+        for (int j = 0; j < np; j++) {
+            double ph = (j + 0.5) / np * 2 * M_PI, cs = cos(psi), sn = sin(psi);
+            double l[3] = {cs * r[0] + sn * cos(ph) * t1[0], sn * sin(ph), cs * r[2] + sn * cos(ph) * t1[2]};
+            if (l[2] <= 0) continue;
+            double hv[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]}, ndh = hv[2] / sqrt(dot3(hv, hv));
+            double f = ggx ? ggx_d(ndh, a) * smith_g1(mu, a) * smith_g1(l[2], a) / (4 * mu)
+                           : (p + 1) / (2 * M_PI) * pow(fmax(ndh, 0), p) * l[2];
+            sum += f * sn * dpsi * (2 * M_PI / np);
+        }
+    }
+    return sum;
+}
+static void test_lobe_description(void) {
+    /* α: Blinn's median, √(2^(2/(p+2)) − 1), p from 0 to 10⁵ (past gloss 1, through s.alpha) */
+    for (int i = 0; i < G; i++) in0[i * 4] = (float)(exp2(17.0 * i / (G - 1)) - 1);
+    CHECK(eval("vec4(phong_lobe_alpha(in0.x), 0.0, 0.0, 0.0)", G, 1, in0, NULL, out));
+    double worst = 0;
+    for (int i = 0; i < G; i++) worst = fmax(worst, fabs(out[i * 4] / median_alpha(in0[i * 4]) - 1));
+    CHECK_MSG(worst < 2e-5, "phong_lobe_alpha differs from sqrt(2^(2/(p+2)) - 1) by %g (relative)", worst);
+    /* … which is the median: half of GGX's projected area within θ½, where Blinn's CDF
+     * 1 − cos^(p+2) θ is ½ (trapezoid over θ of D_GGX cos θ sin θ 2π) */
+    const double pm[3] = {1, 64, 2000};
+    for (int k = 0; k < 3; k++) {
+        double a = median_alpha(pm[k]), th = acos(exp2(-1 / (pm[k] + 2))), sum = 0;
+        for (int i = 0; i < 20000; i++) {
+            double t = (i + 0.5) / 20000 * th;
+            sum += ggx_d(cos(t), a) * cos(t) * sin(t) * 2 * M_PI * th / 20000;
+        }
+        CHECK_MSG(fabs(sum - 0.5) < 1e-4, "p = %g: GGX's projected area within Blinn's median angle %.6f", pm[k], sum);
+    }
+    /* weight: the model's specular albedo over the lobe's, R(μ, p)/E(μ, α), at gloss 0 … 1 and
+     * μ = 0.1 … 1 (the fit's domain); the old centre-of-lobe weight 4μ²(p+1)/((p+2)G₁(μ)²) at
+     * Walter's α must fail the same bound */
+    enum { NG = 9, NM = 7 };
+    for (int g = 0; g < NG; g++)
+        for (int m = 0; m < NM; m++) {
+            int i = g * NM + m;
+            in0[i * 4] = (float)(0.1 + 0.9 * m / (NM - 1)), in0[i * 4 + 1] = (float)exp2(12.0 * g / (NG - 1));
+        }
+    CHECK(eval("vec4(phong_lobe_weight(in0.x, phong_lobe_alpha(in0.y)), phong_lobe_alpha(in0.y), 0.0, 0.0)", NG * NM, 1, in0,
+               NULL, out));
+    double worst_w = 0, worst_old = 0;
+    for (int i = 0; i < NG * NM; i++) {
+        double mu = in0[i * 4], p = in0[i * 4 + 1], a = out[i * 4 + 1], R = lobe_albedo(false, mu, p, 0);
+        double want = R / lobe_albedo(true, mu, p, a), aw = sqrt(2 / (p + 2)), g1 = smith_g1(mu, aw);
+        double old = 4 * mu * mu * (p + 1) / ((p + 2) * g1 * g1) * lobe_albedo(true, mu, p, aw) / R;
+        worst_w = fmax(worst_w, fabs(out[i * 4] / want - 1));
+        worst_old = fmax(worst_old, fabs(old - 1));
+    }
+    printf("lobe weight over %d (gloss, n.v): worst relative error %.4f (the centre-of-lobe weight: %.4f)\n", NG * NM,
+           worst_w, worst_old);
+    CHECK_MSG(worst_w < 0.025, "phong_lobe_weight is %.4f off the ratio of the albedos", worst_w);
+    CHECK_MSG(worst_old >= 0.025, "the mutant (centre-of-lobe weight) passes: %.4f", worst_old);
+    /* stability: μ ≤ 0 → 0; μ → 0, p = 0 and p = 10⁶: finite, ≥ 0 */
+    float edge[6 * 4] = {0, 64, 0, 0, -0.3f, 64, 0, 0, 1e-4f, 64, 0, 0, 0.02f, 0, 0, 0, 1e-4f, 1e6f, 0, 0, 1, 1e6f, 0, 0};
+    CHECK(eval("vec4(phong_lobe_weight(in0.x, phong_lobe_alpha(in0.y)), 0.0, 0.0, 0.0)", 6, 1, edge, NULL, out));
+    CHECK(out[0] == 0 && out[4] == 0);
+    for (int i = 2; i < 6; i++) CHECK_MSG(isfinite(out[i * 4]) && out[i * 4] >= 0, "edge %d: weight %g", i, out[i * 4]);
+    CHECK_NEAR(out[5 * 4], 4.0, 0.02); /* a mirror-sharp lobe at μ = 1: 4μ²/G₁² = 4 */
+}
+
 int main(void) {
     h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 8, .height = 8, .plugins = PH,
                                              .strict = true},
@@ -265,6 +345,7 @@ int main(void) {
     test_normalisation();
     test_models();
     test_stability();
+    test_lobe_description();
     sl_harness_destroy(h);
     return check_result();
 }
