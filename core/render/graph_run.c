@@ -120,12 +120,11 @@ void sl_renderer_compile_ahead(sl_app *app) {
     glUseProgram((unsigned)prog);
 }
 
-/* glTF alphaMode BLEND: the blended materials over the opaque image, back to front (scene_gpu.c),
- * colour = alpha·c + (1 − alpha)·dst with the target's alpha kept, no depth writes. The fragment
- * tests "depth" itself (forward.frag): it holds ssaa² samples per pixel of "color" here. */
-static void run_blend(sl_app *app, sl_pass_ctx *ctx) {
+/* The meshes of `set` over the opaque image, back to front (scene_gpu.c): colour = alpha·c +
+ * (1 − alpha)·dst with the target's alpha kept, no depth writes. The fragment tests "depth"
+ * itself (forward.frag): it holds ssaa² samples per pixel of "color" here. */
+static void draw_over_opaque(sl_app *app, sl_pass_ctx *ctx, sl_gpu_draw_set set) {
     sl_renderer *r = R(app);
-    if (sl_renderer_bind_outputs(app, ctx, 0) != SL_OK) return;
     glBindTextureUnit(SL_BLEND_DEPTH_UNIT, sl_renderer_pass_texture(app, ctx, "depth"));
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -134,11 +133,17 @@ static void run_blend(sl_app *app, sl_pass_ctx *ctx) {
     sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
     memcpy(d.view, r->frame.view, sizeof d.view);
     memcpy(d.proj, r->frame.proj, sizeof d.proj);
-    sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_BLENDED);
+    sl_gpu_draw_meshes(app, &d, false, NULL, set);
     glDepthMask(GL_TRUE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_BLEND);
     glBindTextureUnit(SL_BLEND_DEPTH_UNIT, 0);
+}
+
+/* glTF alphaMode BLEND: the blended materials over the opaque image. */
+static void run_blend(sl_app *app, sl_pass_ctx *ctx) {
+    if (sl_renderer_bind_outputs(app, ctx, 0) != SL_OK) return;
+    draw_over_opaque(app, ctx, SL_GPU_DRAW_BLENDED);
 }
 
 /* The opaque scene as every pass before forward-behind left "color": copied into the capture's
@@ -172,25 +177,12 @@ static void capture_scene_behind(sl_app *app, sl_pass_ctx *ctx) {
 }
 
 /* The scene behind (ABI 1.17, shader.h): the opaque image captured, then the materials with a
- * SCENE_BEHIND hook drawn over it as run_blend draws blended ones (back to front, the fragment
- * testing "depth", no depth writes), their fragments covering what they are in front of. */
+ * SCENE_BEHIND hook drawn over it as blended ones are, their fragments covering what they are
+ * in front of. */
 static void run_behind(sl_app *app, sl_pass_ctx *ctx) {
-    sl_renderer *r = R(app);
     if (sl_renderer_bind_outputs(app, ctx, 0) != SL_OK) return;
     capture_scene_behind(app, ctx);
-    glBindTextureUnit(SL_BLEND_DEPTH_UNIT, sl_renderer_pass_texture(app, ctx, "depth"));
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
-    glDepthMask(GL_FALSE);
-    sl_draw_scene_desc d = {.struct_size = sizeof d, .cull = 1};
-    memcpy(d.view, r->frame.view, sizeof d.view);
-    memcpy(d.proj, r->frame.proj, sizeof d.proj);
-    sl_gpu_draw_meshes(app, &d, false, NULL, SL_GPU_DRAW_BEHIND);
-    glDepthMask(GL_TRUE);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDisable(GL_BLEND);
-    glBindTextureUnit(SL_BLEND_DEPTH_UNIT, 0);
+    draw_over_opaque(app, ctx, SL_GPU_DRAW_BEHIND);
 }
 
 const sl_chunk_reg *sl_graph_pass_view(sl_app *app) {

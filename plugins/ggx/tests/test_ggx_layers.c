@@ -25,9 +25,8 @@
  *     base in envmap's uniform environment stays ≤ 1 (the albedo scaling), and the split sum,
  *     which sees the sheen as a diffuse albedo colour·E_s, matches that reference;
  *  7. a material without a layer is untouched by the layer's switch. */
-#include "check.h"
 #include "camera_rays.h"
-#include <shadelab/harness.h>
+#include "ggx_layer_test.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,7 +41,7 @@ static const double kd[3] = {0.4, 0.3, 0.2}, E = 3;
 static const double coat_w = 0.7, coat_alpha = 0.4 * 0.4, base_alpha = 0.6 * 0.6;
 
 static sl_harness *make(const char *material_keys, const char *const *settings, const char *view) {
-    char json[4096], err[4096];
+    char json[4096];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"ggx\"],\n"
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 3, 4], \"target\": [0, 0, 0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}],\n"
@@ -50,41 +49,15 @@ static sl_harness *make(const char *material_keys, const char *const *settings, 
              " \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}],\n"
              " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.1, -0.6, 0.8], \"intensity\": 3}]}",
              material_keys);
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
-                                                          .scene_json = json, .settings = settings, .debug_view = view,
-                                                          .float32 = true, .strict = true},
-                                      err, sizeof err);
-    CHECK_MSG(h != NULL, "harness: %s", err);
-    return h;
+    return ggx_test_harness(json, W, H, settings, view);
 }
 
 static bool render(const char *keys, const char *const *settings, const char *view, float *out) {
     sl_harness *h = make(keys, settings, view);
     if (!h) return false;
-    bool ok = sl_harness_render(h, out) && sl_harness_count_nonfinite(out, W, H) == 0;
-    CHECK_MSG(ok, "render of %s failed or not finite", keys);
+    bool ok = ggx_test_render(h, W, H, out, keys);
     sl_harness_destroy(h);
     return ok;
-}
-
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void normalize3(double v[3]) {
-    double l = sqrt(dot3(v, v));
-    for (int i = 0; i < 3; i++) v[i] /= l;
-}
-static double schlick(double c, double f0) { return f0 + (1 - f0) * pow(1 - fabs(c), 5); }
-static double g1(double xn, double xh, double a) {
-    if (xn == 0 || xh / xn <= 0) return 0;
-    return 2 / (1 + sqrt(1 + a * a * (1 - xn * xn) / (xn * xn)));
-}
-/* D·G/(4 n·l n·v) about n for unit v, l (0 when either is below the horizon) */
-static double dg_over_4(const double n[3], const double v[3], const double l[3], double a) {
-    double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
-    normalize3(h);
-    double nl = dot3(n, l), nv = dot3(n, v), nh = dot3(n, h);
-    if (nl <= 0 || nv <= 0 || nh <= 0) return 0;
-    double t2 = (1 - nh * nh) / (nh * nh), D = a * a / (M_PI * pow(nh, 4) * pow(a * a + t2, 2));
-    return D * g1(nv, dot3(v, h), a) * g1(nl, dot3(l, h), a) / (4 * nl * nv);
 }
 
 /* per pixel of the floor: v, l, and w·F_c(n·v), n = +y; false off the floor */

@@ -18,9 +18,8 @@
  * the interpolated position against C's ray through the pixel centre, ~1e-6): 1e-4 is allowed.
  * A missing (1 − F) is 4 % off at IOR 1.5 and up to 17 % (n·v = 0.3) at IOR 1; a missing c^x
  * 20–90 %. The BTDF is evaluated in C from the same formulas: 1e-3 (rounding of D at α = 0.25). */
-#include "check.h"
 #include "camera_rays.h"
-#include <shadelab/harness.h>
+#include "ggx_layer_test.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,7 +32,7 @@ static const double kb[3] = {0.9, 0.6, 0.3}, bg[3] = {0.3, 0.5, 0.7};
 /* The wall with `keys` (JSON members of its ggx material) at node scale `scale`, over the
  * background plane; `lights`: the scene's lights array. */
 static sl_harness *make(const char *keys, double scale, const char *lights, const char *const *settings, const char *view) {
-    char json[4096], err[4096];
+    char json[4096];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"ggx\"], \"environment\": {\"color\": [0, 0, 0]},\n"
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 3, 4], \"target\": [0, 0, 0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}],\n"
@@ -44,12 +43,7 @@ static sl_harness *make(const char *keys, double scale, const char *lights, cons
              "           {\"name\": \"behind\", \"translate\": [0, -1, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 80}, \"material\": \"behind\"}],\n"
              " \"lights\": [%s]}",
              *keys ? ", " : "", keys, scale, scale, scale, lights ? lights : "");
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
-                                                          .scene_json = json, .settings = settings, .debug_view = view,
-                                                          .float32 = true, .strict = true},
-                                      err, sizeof err);
-    CHECK_MSG(h != NULL, "harness: %s", err);
-    return h;
+    return ggx_test_harness(json, W, H, settings, view);
 }
 
 /* Renders into out; with `behind_pass`, whether the frame ran the forward-behind pass. */
@@ -57,8 +51,7 @@ static bool render(const char *keys, double scale, const char *lights, const cha
                    float *out, bool *behind_pass) {
     sl_harness *h = make(keys, scale, lights, settings, view);
     if (!h) return false;
-    bool ok = sl_harness_render(h, out) && sl_harness_count_nonfinite(out, W, H) == 0;
-    CHECK_MSG(ok, "render of {%s} failed or not finite", keys);
+    bool ok = ggx_test_render(h, W, H, out, keys);
     if (behind_pass) {
         sl_harness_structure st;
         sl_harness_structure_of(h, &st);
@@ -69,7 +62,6 @@ static bool render(const char *keys, double scale, const char *lights, const cha
     return ok;
 }
 
-static double schlick(double c, double f0) { return f0 + (1 - f0) * pow(1 - fabs(c), 5); }
 static double f0_of(double ior) { return pow((ior - 1) / (ior + 1), 2); }
 
 /* per pixel of the wall (|x|, |z| < 4.5 world units): v, the view direction */
@@ -156,15 +148,6 @@ static void test_volume(void) {
     }
 }
 
-/* D·V of GGX (the separable Smith form of the extension's V_T) about n = +y */
-static double dv(const double v[3], const double l[3], double a) {
-    double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]}, len = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-    double nh = h[1] / len, nl = l[1], nv = v[1], a2 = a * a;
-    if (nl <= 0 || nv <= 0 || nh <= 0) return 0;
-    double D = a2 / (M_PI * pow(nh * nh * (a2 - 1) + 1, 2));
-    return D / ((nl + sqrt(a2 + (1 - a2) * nl * nl)) * (nv + sqrt(a2 + (1 - a2) * nv * nv)));
-}
-
 static void test_light_behind(void) {
     /* the sun shines upward through the wall, towards the camera: l (towards it) points down */
     const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.1, 0.6, 0.8], \"intensity\": 3}";
@@ -172,6 +155,7 @@ static void test_light_behind(void) {
     double l[3] = {-0.1, -0.6, -0.8}, len = sqrt(1.01);
     for (int i = 0; i < 3; i++) l[i] /= len;
     const double lm[3] = {l[0], -l[1], l[2]}; /* mirrored through the wall */
+    const double up[3] = {0, 1, 0};           /* D·G/(4 n·l n·v) of the separable Smith G: the extension's D·V_T */
     /* no background: the light alone */
     char json_keys[256];
     snprintf(json_keys, sizeof json_keys, "\"roughness\": 0.5, \"transmission\": %g", t);
@@ -191,7 +175,7 @@ static void test_light_behind(void) {
             if (!wall_pixel(x, y, v)) continue;
             double h2[3] = {v[0] + lm[0], v[1] + lm[1], v[2] + lm[2]}, hl = sqrt(h2[0] * h2[0] + h2[1] * h2[1] + h2[2] * h2[2]);
             double vh = (v[0] * h2[0] + v[1] * h2[1] + v[2] * h2[2]) / hl;
-            double btdf = t * (1 - schlick(vh, 0.04)) * dv(v, lm, a) * E * fabs(l[1]);
+            double btdf = t * (1 - schlick(vh, 0.04)) * dg_over_4(up, v, lm, a) * E * fabs(l[1]);
             for (int c = 0; c < 3; c++) {
                 double want = kb[c] * btdf, got = img[(y * W + x) * 4 + c] - img2[(y * W + x) * 4 + c];
                 peak = fmax(peak, want);
