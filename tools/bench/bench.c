@@ -630,6 +630,7 @@ static bool cycles_reference(const sl_bench_options *o, sl_bench_result *res, ch
     if (o->cache_dir && (fits &= shell_quote(o->cache_dir, q, sizeof q)) && u < sizeof cmd)
         u += snprintf(cmd + u, sizeof cmd - u, " --cache %s", q);
     if (o->no_cache && u < sizeof cmd) u += snprintf(cmd + u, sizeof cmd - u, " --no-cache");
+    if (o->unoccluded && u < sizeof cmd) u += snprintf(cmd + u, sizeof cmd - u, " --unoccluded");
     const char *eevee = o->eevee ? o->eevee : "1,16";
     if (strcmp(eevee, "none") && (fits &= shell_quote(eevee, q, sizeof q)) && u < sizeof cmd)
         u += snprintf(cmd + u, sizeof cmd - u, " --eevee %s", q);
@@ -648,7 +649,9 @@ static bool cycles_reference(const sl_bench_options *o, sl_bench_result *res, ch
     }
     if ((fits &= shell_quote(o->scene_path, q, sizeof q)) && u < sizeof cmd) u += snprintf(cmd + u, sizeof cmd - u, " %s", q);
     if (!fits || u >= sizeof cmd - 1) { snprintf(err, n, "--reference cycles: the command line is too long"); return false; }
-    if (o->progress) fprintf(stderr, "[bench] reference: Cycles, %d samples (shadelab-xcheck)\n", samples);
+    if (o->progress)
+        fprintf(stderr, "[bench] reference: Cycles, %d samples%s (shadelab-xcheck)\n", samples,
+                o->unoccluded ? ", unoccluded" : "");
     double t0 = now_s();
     int status = system(cmd);
     res->reference.render_s = now_s() - t0;
@@ -674,12 +677,14 @@ static bool cycles_reference(const sl_bench_options *o, sl_bench_result *res, ch
     sl_image_free(&img);
     if (!eevee_peers(dir, res, w, h, err, n)) return false;
     char settings[64];
-    snprintf(settings, sizeof settings, "cycles:%d", samples);
+    snprintf(settings, sizeof settings, "cycles:%d%s", samples, o->unoccluded ? ":unoccluded" : "");
     res->reference.settings = strdup(settings);
-    res->reference.description = strdup("Blender's Cycles through shadelab-xcheck (docs/xcheck.md), before tone mapping");
+    res->reference.description = strdup(o->unoccluded ? "Blender's Cycles through shadelab-xcheck --unoccluded (docs/xcheck.md): objects "
+                                                        "seen by camera rays only, before tone mapping"
+                                                      : "Blender's Cycles through shadelab-xcheck (docs/xcheck.md), before tone mapping");
     res->reference.accumulate = 1;
     res->reference.scale = 1;
-    snprintf(res->reference.key, sizeof res->reference.key, "cycles-%d", samples);
+    snprintf(res->reference.key, sizeof res->reference.key, "cycles-%d", samples); /* xcheck caches it */
     remove_tree(dir); /* the export and its render (the reference itself is in xcheck's cache) */
     return true;
 }

@@ -39,6 +39,9 @@ typedef struct sl_bench_options {
      * before tone mapping (tonemap is switched off) */
     bool reference_cycles;
     int cycles_samples;
+    /* with reference_cycles: objects are seen by camera rays only in the reference (no
+     * occlusion, shadows or interreflection: shadelab-xcheck --unoccluded, docs/xcheck.md) */
+    bool unoccluded;
     /* with reference_cycles: EEVEE's sample counts ("1,16"; NULL: "1,16"; "none": no EEVEE),
      * rendered by shadelab-xcheck and measured against the same reference as peers */
     const char *eevee;

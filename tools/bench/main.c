@@ -31,6 +31,8 @@ static const char *usage =
     "  --reference cycles        the reference is Blender's Cycles (shadelab-xcheck, docs/xcheck.md):\n"
     "                            every render is compared before tone mapping; needs --scene\n"
     "  --cycles-samples N        Cycles samples per pixel for --reference cycles (default 256)\n"
+    "  --unoccluded              with --reference cycles: objects seen by camera rays only in the\n"
+    "                            reference (no occlusion, shadows or interreflection; docs/xcheck.md)\n"
     "  --eevee N,...|none        with --reference cycles: EEVEE at these sample counts, measured\n"
     "                            against the same reference, a peer point on the chart (default 1,16)\n"
     "  --reference-settings S    override the declared reference settings\n"
@@ -286,6 +288,7 @@ int main(int argc, char **argv) {
             }
             o.cycles_samples = (int)x;
         }
+        else if (!strcmp(a, "--unoccluded")) o.unoccluded = true;
         else if (!strcmp(a, "--eevee")) NEED(o.eevee = NEXT());
         else if (!strcmp(a, "--cache")) NEED(o.cache_dir = NEXT());
         else if (!strcmp(a, "--no-cache")) o.no_cache = true;
@@ -352,6 +355,7 @@ int main(int argc, char **argv) {
     if (!nm) metrics[nm++] = SL_METRIC_RMSE, metrics[nm++] = SL_METRIC_FLIP;
     if (ns && nv) return die("--vary chooses values for enumerated knobs; it cannot be combined with --settings");
     if (o.eevee && !o.reference_cycles) return die("--eevee needs --reference cycles (EEVEE is measured against Cycles)");
+    if (o.unoccluded && !o.reference_cycles) return die("--unoccluded needs --reference cycles (it is a kind of Cycles reference)");
     if (o.frames < 30)
         fprintf(stderr, "shadelab-bench: note: %d timed frames (fewer than 30): the medians are indicative only\n", o.frames);
 
