@@ -468,6 +468,18 @@ static void f_iridescence_thin(gw_doc *g) {
                   "{\"iridescence\": false, \"iridescence_thickness_maximum\": false}");
 }
 
+/* KHR_materials_anisotropy: the rotation published where not 0, reduced to (-2pi, 2pi) */
+static void f_anisotropy(gw_doc *g) {
+    layer_feature(g, "KHR_materials_anisotropy",
+                  "{\"anisotropyStrength\": 0.6, \"anisotropyRotation\": 7.5, \"anisotropyTexture\": {\"index\": 0}}",
+                  "{\"anisotropy_strength\": 0.6, \"anisotropy_rotation\": 1.2168147, \"anisotropy_texture\": true}");
+}
+/* anisotropyStrength 0 (the default) is isotropic, whatever else is given */
+static void f_anisotropy_zero(gw_doc *g) {
+    layer_feature(g, "KHR_materials_anisotropy", "{\"anisotropyRotation\": 1, \"anisotropyTexture\": {\"index\": 0}}",
+                  "{\"anisotropy_strength\": false, \"anisotropy_rotation\": false, \"anisotropy_texture\": false}");
+}
+
 static const struct { const char *name; void (*build)(gw_doc *g); } features[] = {
     {"baseline", f_baseline},
     {"indices_u8", f_indices_u8},
@@ -505,6 +517,8 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"iridescence", f_iridescence},
     {"iridescence_zero", f_iridescence_zero},
     {"iridescence_thin", f_iridescence_thin},
+    {"anisotropy", f_anisotropy},
+    {"anisotropy_zero", f_anisotropy_zero},
 };
 
 static void write_features(void) {

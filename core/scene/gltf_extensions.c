@@ -38,7 +38,9 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_iridescence", SL_GLTF_APPROXIMATED,
      "the thin film's Fresnel (Belcour & Barla, spectrally integrated) in the base's specular, factors and textures "
      "(ggx); environment and area lights see the film's Fresnel at n.v"},
-    {"KHR_materials_anisotropy", SL_GLTF_IGNORED, "isotropic"},
+    {"KHR_materials_anisotropy", SL_GLTF_APPROXIMATED,
+     "the anisotropic GGX lobe (Burley's D, Smith's G) along the rotated tangent or texture direction (ggx); "
+     "environment and area lights see an isotropic lobe of alpha sqrt(alpha_t * alpha_b)"},
     {"KHR_materials_dispersion", SL_GLTF_IGNORED, "no dispersion"},
     {"KHR_materials_variants", SL_GLTF_RENDERED, "the default materials, or the variant --variant NAME names"},
     {"KHR_animation_pointer", SL_GLTF_IGNORED, "those channels are not played"},

@@ -394,8 +394,30 @@ static bool iridescence_inputs(gltf_import *im, int mi, const cJSON *ext, const 
            slot(im, mi, e, p, "iridescenceThicknessTexture", "iridescence_thickness_texture", NULL, NULL);
 }
 
+/* KHR_materials_anisotropy: a strength of 0 (the default) is isotropic, whatever else is given
+ * (the texture's blue channel multiplies it); the rotation (radians, any finite number) is
+ * published reduced to (-2pi, 2pi) where not 0. */
+static bool anisotropy_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    sl_prop_list *in = &im->scene->materials[mi].inputs;
+    const cJSON *e;
+    char p[160];
+    snprintf(p, sizeof p, "%s/KHR_materials_anisotropy", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_anisotropy", &e)) return false;
+    if (!e) return true;
+    double strength = 0, rotation = 0;
+    if (!factor(d, e, p, "anisotropyStrength", 0, 1, &strength) || !gltf_get_number(d, e, p, "anisotropyRotation", &rotation))
+        return false;
+    if (strength == 0) return true;
+    sl_prop_set_number(in, "anisotropy_strength", (float)strength, 0);
+    rotation = fmod(rotation, 2 * M_PI);
+    if (rotation != 0) sl_prop_set_number(in, "anisotropy_rotation", (float)rotation, 0);
+    return slot(im, mi, e, p, "anisotropyTexture", "anisotropy_texture", NULL, NULL);
+}
+
 /* KHR_materials_emissive_strength, _ior, _unlit and (approximated) _pbrSpecularGlossiness;
- * the layers ggx renders (clearcoat, specular, sheen, transmission, volume, iridescence). */
+ * the layers ggx renders (clearcoat, specular, sheen, transmission, volume, iridescence,
+ * anisotropy). */
 static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const char *at) {
     gltf_doc *d = &im->doc;
     sl_prop_list *in = &im->scene->materials[mi].inputs;
@@ -420,7 +442,7 @@ static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const ch
     if (e) sl_prop_set_bool(in, "unlit", true, 0);
     if (!clearcoat_inputs(im, mi, ext, ep) || !specular_inputs(im, mi, ext, ep) || !sheen_inputs(im, mi, ext, ep) ||
         !transmission_inputs(im, mi, ext, ep) || !volume_inputs(im, mi, ext, ep) ||
-        !iridescence_inputs(im, mi, ext, ep))
+        !iridescence_inputs(im, mi, ext, ep) || !anisotropy_inputs(im, mi, ext, ep))
         return false;
     snprintf(p, sizeof p, "%s/KHR_materials_pbrSpecularGlossiness", ep);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_pbrSpecularGlossiness", &e)) return false;

@@ -35,6 +35,8 @@ static const sl_param_desc params[] = {
       .group = "layers", .description = "Render the specular strength and colour of materials that carry them (KHR_materials_specular)."),
     P(.id = "layer_iridescence", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the thin film of materials that carry one (KHR_materials_iridescence)."),
+    P(.id = "layer_anisotropy", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the anisotropy of materials that carry it (KHR_materials_anisotropy)."),
     P(.id = "layer_transmission", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the transmission of materials that carry it (KHR_materials_transmission): "
                                         "the opaque scene seen through them."),
@@ -129,6 +131,16 @@ static const sl_param_desc params[] = {
     P(.id = "iridescence_thickness_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
       .group = "iridescence", .material_input = "iridescence_thickness_texture",
       .description = "Film thickness in the green channel, from iridescence_thickness_min to _max."),
+    /* KHR_materials_anisotropy (README "Layers") */
+    P(.id = "anisotropy", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
+      .group = "anisotropy", .material_input = "anisotropy_strength",
+      .description = "Anisotropy strength: the specular lobe's alpha along the direction is mix(alpha, 1, strength^2)."),
+    P(.id = "anisotropy_rotation", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = -6.2832f, .max = 6.2832f,
+      .step = 0.01f, .unit = "rad", .group = "anisotropy", .material_input = "anisotropy_rotation",
+      .description = "Direction of the stretch, radians counter-clockwise from the tangent toward the bitangent."),
+    P(.id = "anisotropy_map", .type = SL_PARAM_TEXTURE, .scope = SL_SCOPE_MATERIAL, .flags = SL_PARAM_LINEAR_DATA,
+      .group = "anisotropy", .material_input = "anisotropy_texture",
+      .description = "Direction in red and green (2 * rg - 1, tangent space, then rotated), strength in blue (times anisotropy)."),
     /* KHR_materials_clearcoat (README "Layers") */
     P(.id = "clearcoat", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "clearcoat", .material_input = "clearcoat",
@@ -195,6 +207,11 @@ static const sl_shader_chunk_desc chunks[] = {
       .when_material_has = "iridescence", .when_param = "layer_iridescence", .order = 6),
     C(.hook = SL_HOOK_DEBUG_VIEW, .file = "ggx_model.glsl", .function = "ggx_debug_iridescence", .name = "ggx-iridescence",
       .description = "KHR_materials_iridescence: the specular Fresnel at the view with the thin film mixed in"),
+    /* after the normal map (order 10) and specular AA (20): the frame and α it reads */
+    C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_anisotropy",
+      .when_material_has = "anisotropy", .when_param = "layer_anisotropy", .order = 23),
+    C(.hook = SL_HOOK_DEBUG_VIEW, .file = "ggx_model.glsl", .function = "ggx_debug_anisotropy", .name = "ggx-anisotropy",
+      .description = "KHR_materials_anisotropy: direction in tangent space as rg (0.5 + 0.5 dir), strength in b"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_transmission",
       .when_material_has = "transmission", .when_param = "layer_transmission", .order = 22),
     C(.hook = SL_HOOK_SCENE_BEHIND, .file = "ggx_model.glsl", .function = "ggx_scene_behind",
@@ -309,7 +326,8 @@ static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metal
                                          "clearcoat_normal_scale", "transmission", "transmission_texture", "thickness",
                                          "thickness_texture", "attenuation_distance", "attenuation_color", "iridescence",
                                          "iridescence_texture", "iridescence_ior", "iridescence_thickness_minimum",
-                                         "iridescence_thickness_maximum", "iridescence_thickness_texture", NULL};
+                                         "iridescence_thickness_maximum", "iridescence_thickness_texture",
+                                         "anisotropy_strength", "anisotropy_rotation", "anisotropy_texture", NULL};
 
 static const char *const ggx_models[] = {"ggx", NULL};
 static const sl_plugin_desc ggx_desc = {

@@ -233,3 +233,54 @@ vec3 ggx_film_fresnel(float c1, vec3 f0, float eta2, float thickness) {
     return max(R, vec3(0.0));
 }
 #endif
+
+#if defined(SL_MAT_HAS_ANISOTROPY) && GGX_LAYER_ANISOTROPY
+#define GGX_HAS_ANISOTROPY 1
+// KHR_materials_anisotropy: the base's specular lobe stretched along a direction t of the surface
+// (the tangent rotated by anisotropyRotation, or the anisotropy texture's direction rotated by
+// it), b = n × t across it: α_t = mix(α, 1, strength²), α_b = α (the extension's formula), and
+// Burley's anisotropic GGX distribution (the extension's D):
+//   D(h) = 1 / (π α_t α_b ((h·t)²/α_t² + (h·b)²/α_b² + (h·n)²)²),
+// with the Smith masking of that distribution (Heitz 2014, "Understanding the Masking-Shadowing
+// Function in Microfacet-Based BRDFs", §5.3: Λ with α² tan²θ replaced by
+// (α_t²(x·t)² + α_b²(x·b)²)/(x·n)²), separable as ggx's isotropic G: at strength 0 both are
+// ggx_DG_over_4's terms exactly (up to rounding). The extension's sample code uses the
+// height-correlated form instead, the same choice ggx makes differently for the isotropic lobe.
+struct GgxAnisotropy {
+    float strength; // anisotropyStrength × anisotropyTexture.b
+    vec3 t;         // unit direction of the stretch, orthogonal to the shading normal
+    vec3 b;         // n × t
+};
+GgxAnisotropy ggx_aniso = GgxAnisotropy(0.0, vec3(1.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0));
+
+// α_t, α_b of a lobe of GGX α `alpha` at anisotropy `strength` (both ≥ GGX_MIN_ALPHA).
+vec2 ggx_aniso_alphas(float alpha, float strength) {
+    float a = max(alpha, GGX_MIN_ALPHA);
+    return vec2(mix(a, 1.0, strength * strength), a);
+}
+float ggx_aniso_D(vec3 n, vec3 t, vec3 b, vec3 h, vec2 a) {
+    float hn = dot(h, n);
+    if (hn <= 0.0) return 0.0;
+    float ht = dot(h, t) / a.x, hb = dot(h, b) / a.y, k = ht * ht + hb * hb + hn * hn;
+    return 1.0 / (SL_PI * a.x * a.y * k * k);
+}
+// D·G/(4|n·l||n·v|) of the anisotropic lobe, written as ggx_DG_over_4 with the divisions cancelled:
+// G₁(x) = 2c/(c + √(c² + α_t²(x·t)² + α_b²(x·b)²)), c = n·x. 0 below either horizon.
+float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out vec3 h) {
+    float n_dot_l = dot(n, l), n_dot_v = dot(n, v);
+    vec3 hv = l + v;
+    float len2 = dot(hv, hv);
+    h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
+    if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
+    float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
+    vec2 pl = a * vec2(dot(l, t), dot(l, b)), pv = a * vec2(dot(v, t), dot(v, b));
+    return ggx_aniso_D(n, t, b, h, a) / ((cl + sqrt(cl * cl + dot(pl, pl))) * (cv + sqrt(cv * cv + dot(pv, pv))));
+}
+// Smith's G = G₁(v)·G₁(l) of the anisotropic lobe (the ggx-g debug view).
+float ggx_aniso_G(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a) {
+    float cl = dot(n, l), cv = dot(n, v);
+    if (cl <= 0.0 || cv <= 0.0) return 0.0;
+    vec2 pl = a * vec2(dot(l, t), dot(l, b)), pv = a * vec2(dot(v, t), dot(v, b));
+    return 4.0 * cl * cv / ((cl + sqrt(cl * cl + dot(pl, pl))) * (cv + sqrt(cv * cv + dot(pv, pv))));
+}
+#endif

@@ -16,6 +16,28 @@ void ggx_to_space(inout vec3 n, inout vec3 l, inout vec3 v) {
 #endif
 }
 
+#ifdef GGX_HAS_ANISOTROPY
+// The anisotropy's frame (ggx_aniso.t, .b) in the space the lighting is evaluated in.
+void ggx_aniso_frame(out vec3 t, out vec3 b) {
+    t = ggx_aniso.t, b = ggx_aniso.b;
+#if GGX_SPACE == GGX_SPACE_CAMERA
+    t = mat3(sl_view) * t;
+    b = mat3(sl_view) * b;
+#endif
+}
+#endif
+// D·G/(4|n·l||n·v|) of the base's specular lobe: anisotropic where KHR_materials_anisotropy is
+// carried (always with θ_x measured from n there, whatever ggx.g1_angle says).
+float ggx_base_DG_over_4(SlSurface s, vec3 n, vec3 l, vec3 v, out vec3 h) {
+#ifdef GGX_HAS_ANISOTROPY
+    vec3 t, b;
+    ggx_aniso_frame(t, b);
+    return ggx_aniso_DG_over_4(n, t, b, l, v, ggx_aniso_alphas(s.alpha, ggx_aniso.strength), h);
+#else
+    return ggx_DG_over_4(n, l, v, s.alpha, h);
+#endif
+}
+
 vec3 ggx_fresnel_base(float l_dot_h, SlSurface s);
 #ifdef GGX_HAS_IRIDESCENCE
 // The dielectric's F0: glTF's from the ior, with KHR_materials_specular's colour and strength.
@@ -131,7 +153,7 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
     ggx_to_space(n, l, v);
     float n_dot_l = max(dot(n, l), 0.0);
     vec3 h;
-    float dg = ggx_DG_over_4(n, l, v, s.alpha, h);
+    float dg = ggx_base_DG_over_4(s, n, l, v, h);
     vec3 F = ggx_fresnel(dot(l, h), s);
 #if GGX_ZERO_SPECULAR
     dg = 0.0;
@@ -200,6 +222,13 @@ SlLobes ggx_lobes(SlSurface s) {
     L.lobe[0].f0 = mix(L.lobe[0].f0, film, ggx_irid.weight);
     L.lobe[0].f90 = mix(L.lobe[0].f90, film, ggx_irid.weight);
 #endif
+#ifdef GGX_HAS_ANISOTROPY
+    // KHR_materials_anisotropy, approximated: the contract's lobes are isotropic about s.normal (no
+    // bent normal), so the lobe gets the isotropic α of the same peak and slope-space area,
+    // √(α_t·α_b): the stretched highlight of an environment becomes a wider round one.
+    vec2 aa = ggx_aniso_alphas(s.alpha, ggx_aniso.strength);
+    L.lobe[0].alpha = sqrt(aa.x * aa.y);
+#endif
 #if GGX_ZERO_SPECULAR
     L.lobe[0].weight = 0.0;
 #endif
@@ -233,14 +262,26 @@ vec3 ggx_debug_D(SlSurface s, vec3 l, vec3 E) {
     vec3 n = s.normal, v = s.view;
     ggx_to_space(n, l, v);
     vec3 h = normalize(l + v);
+#ifdef GGX_HAS_ANISOTROPY
+    vec3 t, b;
+    ggx_aniso_frame(t, b);
+    return vec3(ggx_aniso_D(n, t, b, h, ggx_aniso_alphas(s.alpha, ggx_aniso.strength)));
+#else
     return vec3(ggx_D(dot(n, h), max(s.alpha, GGX_MIN_ALPHA)));
+#endif
 }
 vec3 ggx_debug_G(SlSurface s, vec3 l, vec3 E) {
     vec3 n = s.normal, v = s.view;
     ggx_to_space(n, l, v);
     vec3 h = normalize(l + v);
+#ifdef GGX_HAS_ANISOTROPY
+    vec3 t, b;
+    ggx_aniso_frame(t, b);
+    return vec3(ggx_aniso_G(n, t, b, l, v, ggx_aniso_alphas(s.alpha, ggx_aniso.strength)));
+#else
     float a = max(s.alpha, GGX_MIN_ALPHA);
     return vec3(ggx_G1(v, n, h, a) * ggx_G1(l, n, h, a));
+#endif
 }
 vec3 ggx_debug_F(SlSurface s, vec3 l, vec3 E) {
     vec3 n = s.normal, v = s.view;
@@ -310,6 +351,18 @@ vec3 ggx_debug_transmission(SlSurface s) {
 vec3 ggx_debug_iridescence(SlSurface s) {
 #ifdef GGX_HAS_IRIDESCENCE
     return ggx_fresnel(clamp(dot(s.normal, s.view), 0.0, 1.0), s);
+#else
+    return vec3(0.0);
+#endif
+}
+
+// "ggx-anisotropy": KHR_materials_anisotropy's direction in the surface's (tangent, bitangent) frame
+// after the rotation, encoded as the anisotropy texture encodes it (rg = 0.5 + 0.5·direction), and
+// the strength in blue; 0 for a material without the layer or with ggx.layer_anisotropy off.
+vec3 ggx_debug_anisotropy(SlSurface s) {
+#ifdef GGX_HAS_ANISOTROPY
+    vec2 d = vec2(dot(ggx_aniso.t, s.tangent), dot(ggx_aniso.t, s.bitangent));
+    return vec3(0.5 + 0.5 * d, ggx_aniso.strength);
 #else
     return vec3(0.0);
 #endif

@@ -196,3 +196,30 @@ void ggx_surface_iridescence(inout SlSurface s) {
 #endif
 }
 #endif
+
+#ifdef SL_MAT_HAS_ANISOTROPY
+// KHR_materials_anisotropy's inputs into ggx_aniso, once per fragment, after the normal map (order
+// 23). The direction in (tangent, bitangent) space is (cos r, sin r), r = anisotropyRotation
+// (counter-clockwise from the tangent), or the texture's rg·2 − 1 (normalised) rotated by r, whose
+// blue channel multiplies the strength; in the world it is made orthogonal to the shading normal.
+void ggx_surface_anisotropy(inout SlSurface s) {
+#ifdef GGX_HAS_ANISOTROPY
+    float strength = sl_mat_anisotropy, r = 0.0;
+#ifdef SL_MAT_HAS_ANISOTROPY_ROTATION
+    r = sl_mat_anisotropy_rotation;
+#endif
+    vec2 rot = vec2(cos(r), sin(r)), d = rot;
+#ifdef SL_MAT_HAS_ANISOTROPY_MAP
+    vec3 tex = texture(sl_mat_anisotropy_map, sl_uv_anisotropy_map(s)).rgb;
+    vec2 td = tex.rg * 2.0 - 1.0;
+    td = dot(td, td) > 1e-8 ? normalize(td) : vec2(1.0, 0.0);
+    d = mat2(rot.x, rot.y, -rot.y, rot.x) * td;
+    strength *= tex.b;
+#endif
+    vec3 dir = s.tangent * d.x + s.bitangent * d.y, t = dir - s.normal * dot(s.normal, dir);
+    if (dot(t, t) < 1e-12) t = cross(s.normal, abs(s.normal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0));
+    t = normalize(t);
+    ggx_aniso = GgxAnisotropy(clamp(strength, 0.0, 1.0), t, cross(s.normal, t));
+#endif
+}
+#endif

@@ -117,6 +117,8 @@ typedef struct sl_param_desc {
  *                             thickness); iridescence_ior, iridescence_thickness_minimum/_maximum (nm)
  *                             when not 1.3, 100, 400; iridescence_texture (linear, R),
  *                             iridescence_thickness_texture (linear, G)
+ *   anisotropy_strength       float (KHR_materials_anisotropy, present when > 0); anisotropy_rotation
+ *                             (radians, when not 0); anisotropy_texture (linear: rg direction, b strength)
  * ior (KHR_materials_ior) is the dielectric's index of refraction: glTF's F0 = ((ior − 1)/(ior + 1))². */
 #ifdef __cplusplus
 }
