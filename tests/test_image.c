@@ -872,10 +872,15 @@ static void remove_tmpdir(void) {
     rmdir(tmpdir);
 }
 
-/* sl_image_mip_rgba8 (the CPU mip chain of 8-bit textures, issue 18 item 5) against the box filter
- * computed here with the transfer functions in double: sRGB channels averaged in linear light and
- * encoded to the nearest code, alpha and linear images averaged as codes; odd sides drop their last
- * texel; 1-wide images average pairs along the other axis only. */
+/* The mip filter's weights from their definition: destination texel i of a side of `size`
+ * (→ n = max(1, size/2) texels) covers source [i·size/n, (i+1)·size/n); source texel k weighs the
+ * length of [k, k + 1) inside it over the interval's length. */
+static double mip_weight(int size, int i, int k) {
+    int n = size > 1 ? size / 2 : 1;
+    double a = (double)i * size / n, b = (double)(i + 1) * size / n;
+    double lo = a > k ? a : k, hi = b < k + 1 ? b : k + 1;
+    return hi > lo ? (hi - lo) / (b - a) : 0.0;
+}
 static int srgb_code_of_linear(double v) {
     double e = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
     return (int)floor(e * 255.0 + 0.5);
@@ -884,33 +889,43 @@ static double srgb_linear_of_code(int k) {
     double x = k / 255.0;
     return x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4);
 }
+
+/* sl_image_mip_rgba8 (the CPU mip chain of 8-bit textures) against the area-weighted box computed
+ * here in double: sRGB channels averaged in linear light and encoded to the nearest code, alpha
+ * and linear images averaged as codes. 5x3 → 2x1: odd sides, each texel covering parts of 3
+ * columns and all 3 rows (a 2×2 box that drops the last column and row fails); 4x2 → 2x1 even. */
 static void test_mip_rgba8(void) {
-    /* 5x3 → 2x1: texel (x, y) of level 1 averages (2x..2x+1, 2y..2y+1); the 5th column and the
-     * 3rd row drop out */
-    enum { W = 5, H = 3 };
-    unsigned char src[W * H * 4], dst[2 * 1 * 4];
-    for (int i = 0; i < W * H * 4; i++) src[i] = (unsigned char)((i * 97 + 13) % 256);
-    for (int srgb = 0; srgb < 2; srgb++) {
-        memset(dst, 0xAB, sizeof dst);
-        sl_image_mip_rgba8(src, W, H, dst, srgb);
-        int bad = 0;
-        for (int x = 0; x < 2; x++)
-            for (int c = 0; c < 4; c++) {
-                double lin = 0;
-                int codes = 0;
-                for (int j = 0; j < 2; j++)
-                    for (int i = 0; i < 2; i++) {
-                        int k = src[((j * W) + 2 * x + i) * 4 + c];
-                        lin += srgb_linear_of_code(k), codes += k;
+    static const int sizes[][2] = {{5, 3}, {4, 2}};
+    for (int t = 0; t < 2; t++) {
+        int W = sizes[t][0], H = sizes[t][1], W2 = W / 2, H2 = H / 2;
+        unsigned char src[5 * 3 * 4], dst[2 * 1 * 4];
+        for (int i = 0; i < W * H * 4; i++) src[i] = (unsigned char)((i * 97 + 13) % 256);
+        for (int srgb = 0; srgb < 2; srgb++) {
+            memset(dst, 0xAB, sizeof dst);
+            sl_image_mip_rgba8(src, W, H, dst, srgb);
+            int bad = 0;
+            for (int y = 0; y < H2; y++)
+                for (int x = 0; x < W2; x++)
+                    for (int c = 0; c < 4; c++) {
+                        double lin = 0, codes = 0;
+                        for (int j = 0; j < H; j++)
+                            for (int i = 0; i < W; i++) {
+                                double wgt = mip_weight(W, x, i) * mip_weight(H, y, j);
+                                int k = src[(j * W + i) * 4 + c];
+                                lin += wgt * srgb_linear_of_code(k), codes += wgt * k;
+                            }
+                        int want = srgb && c < 3 ? srgb_code_of_linear(lin) : (int)floor(codes + 0.5);
+                        int got = dst[(y * W2 + x) * 4 + c];
+                        /* a mean that lands within 1e-4 of a rounding boundary may round either way in float */
+                        double edge = srgb && c < 3 ? 1.0 : fabs(codes - floor(codes) - 0.5) < 1e-4 ? 1.0 : 0.0;
+                        if (abs(got - want) > (int)edge) {
+                            bad++;
+                            fprintf(stderr, "mip rgba8 %dx%d (srgb %d): texel %d,%d channel %d = %d, expected %d\n", W, H,
+                                    srgb, x, y, c, got, want);
+                        }
                     }
-                int want = srgb && c < 3 ? srgb_code_of_linear(lin / 4) : (codes + 2) / 4;
-                if (dst[x * 4 + c] != want) {
-                    bad++;
-                    fprintf(stderr, "mip rgba8 (srgb %d): texel %d channel %d = %d, expected %d\n", srgb, x, c,
-                            dst[x * 4 + c], want);
-                }
-            }
-        CHECK(bad == 0);
+            CHECK(bad == 0);
+        }
     }
     /* black and white: linear mean 0.5 → code 188 in sRGB (not the codes' mean 128) */
     unsigned char bw[2 * 2 * 4] = {0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255, 255, 255, 255, 255}, one[4];
@@ -924,25 +939,51 @@ static void test_mip_rgba8(void) {
     CHECK(col2[0] == 11 && col2[1] == 21 && col2[3] == 41 && col2[4] == 150 && col2[5] == 0);
 }
 
-/* sl_image_mip_rgbaf (the CPU mip chain of float textures: procedural, 16-bit, float files): the
- * same box in float, every channel as stored; odd sides drop their last row and column */
+/* sl_image_mip_rgbaf (float textures: procedural, 16-bit, float files): the same area-weighted box
+ * in float, every channel as stored; and where each level's content sits. A ramp f(u) = u along a
+ * 211-texel row (u at texel centres, BoxTextured.glb's logo is 211²) keeps, 1 to 3 levels down,
+ * f at each texel's own centre within 0.02 source texels: the filter is linear and the level's
+ * texels sit where their source intervals do. A box that drops odd sides' last texel puts level 2
+ * 1.5 texels off in the middle and 3 at the end. The mean of every level is the source's. */
 static void test_mip_rgbaf(void) {
     enum { W = 5, H = 3 };
     float src[W * H * 4], dst[2 * 1 * 4];
-    for (int i = 0; i < W * H * 4; i++) src[i] = (float)((i * 97 + 13) % 256) * 0.125f - 3.0f; /* exact in float */
+    for (int i = 0; i < W * H * 4; i++) src[i] = (float)((i * 97 + 13) % 256) * 0.125f - 3.0f;
     sl_image_mip_rgbaf(src, W, H, dst);
     int bad = 0;
     for (int x = 0; x < 2; x++)
         for (int c = 0; c < 4; c++) {
-            /* sums of four multiples of 1/8 and a quarter of them: exact, so equality is the test */
-            float want = (src[(2 * x) * 4 + c] + src[(2 * x + 1) * 4 + c] + src[(W + 2 * x) * 4 + c] +
-                          src[(W + 2 * x + 1) * 4 + c]) * 0.25f;
-            if (dst[x * 4 + c] != want) {
+            double want = 0;
+            for (int j = 0; j < H; j++)
+                for (int i = 0; i < W; i++) want += mip_weight(W, x, i) * mip_weight(H, 0, j) * src[(j * W + i) * 4 + c];
+            if (fabs(dst[x * 4 + c] - want) > 1e-4 * (1 + fabs(want))) {
                 bad++;
                 fprintf(stderr, "mip rgbaf: texel %d channel %d = %g, expected %g\n", x, c, dst[x * 4 + c], want);
             }
         }
     CHECK(bad == 0);
+    enum { R = 211 };
+    float *a = malloc(R * 4 * sizeof(float)), *b = malloc(R * 4 * sizeof(float));
+    for (int x = 0; x < R; x++)
+        for (int c = 0; c < 4; c++) a[x * 4 + c] = ((float)x + 0.5f) / R;
+    int w = R;
+    for (int level = 1; level <= 3; level++) {
+        sl_image_mip_rgbaf(a, w, 1, b);
+        w /= 2;
+        double worst = 0, mean = 0;
+        for (int x = 0; x < w; x++) {
+            double off = fabs(b[x * 4] - (x + 0.5) / w) * R; /* in source texels */
+            worst = off > worst ? off : worst;
+            mean += b[x * 4 + 1] / w;
+        }
+        printf("mip rgbaf: ramp of 211, level %d (%d texels): content off its texel centres by at most %.4f "
+               "source texels; mean %.6f (source 0.5)\n", level, w, worst, mean);
+        CHECK(worst < 0.02);
+        CHECK(fabs(mean - 0.5) < 1e-5);
+        float *t = a;
+        a = b, b = t;
+    }
+    free(a), free(b);
     /* 1x4 → 1x2: pairs along v only; HDR values and negatives pass through (no clamp) */
     float col[1 * 4 * 4] = {10, 20, 30, 40, 12, 22, 32, 42, 1000, -2, 0, 1, 3000, 2, 0, 1}, col2[1 * 2 * 4];
     sl_image_mip_rgbaf(col, 1, 4, col2);

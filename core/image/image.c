@@ -105,24 +105,55 @@ static void mip_tables(void) {
     }
 }
 
+/* The source texels under destination texel i of one axis (size → max(1, size/2)), with the
+ * share of each: the destination texel covers source [i·size/n, (i+1)·size/n) with n = size/2, so
+ * an even side takes 2 texels by halves and an odd side 2n + 1 = size takes 3, weighted (n − i, n,
+ * i + 1)/(2n + 1): the parts of texels 2i, 2i + 1 and 2i + 2 it covers. Every source texel then
+ * weighs the same in the next level and a level's texel centre sees the content at its own
+ * coordinate; a 2×2 box that drops an odd side's last texel stretches each level by size/(2n) —
+ * 211 texels: the logo of BoxTextured.glb half a screen pixel off at 1.5 levels down. (The
+ * polyphase box of NVIDIA's "Non-Power-of-Two Mipmap Creation", 2003.) */
+static int mip_taps(int size, int i, int idx[3], float w[3]) {
+    if (size <= 1) {
+        idx[0] = 0, w[0] = 1.0f;
+        return 1;
+    }
+    int n = size / 2;
+    if (size % 2 == 0) {
+        idx[0] = 2 * i, idx[1] = 2 * i + 1, w[0] = w[1] = 0.5f;
+        return 2;
+    }
+    float d = (float)size;
+    idx[0] = 2 * i, idx[1] = 2 * i + 1, idx[2] = 2 * i + 2;
+    w[0] = (float)(n - i) / d, w[1] = (float)n / d, w[2] = (float)(i + 1) / d;
+    return 3;
+}
+
+/* The taps of destination texel (x, y): up to 3 × 3 source offsets (in texels) and weights. */
+static int mip_texel_taps(int w, int h, int x, int y, size_t off[9], float wt[9]) {
+    int ix[3], iy[3], k = 0;
+    float wx[3], wy[3];
+    int nx = mip_taps(w, x, ix, wx), ny = mip_taps(h, y, iy, wy);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) off[k] = (size_t)iy[j] * w + (size_t)ix[i], wt[k++] = wx[i] * wy[j];
+    return k;
+}
+
 void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *dst, bool srgb) {
     static pthread_once_t once = PTHREAD_ONCE_INIT;
     pthread_once(&once, mip_tables);
     const float *decode = mip_decode, *mid = mip_mid;
     int w2 = w > 1 ? w / 2 : 1, h2 = h > 1 ? h / 2 : 1;
-    int sx = w > 1 ? 2 : 1, sy = h > 1 ? 2 : 1, n = sx * sy;
     for (int y = 0; y < h2; y++)
         for (int x = 0; x < w2; x++) {
-            const unsigned char *t[4];
-            int k = 0;
-            for (int j = 0; j < sy; j++)
-                for (int i = 0; i < sx; i++) t[k++] = src + (((size_t)(y * sy + j) * w) + (size_t)(x * sx + i)) * 4;
+            size_t off[9];
+            float wt[9];
+            int n = mip_texel_taps(w, h, x, y, off, wt);
             unsigned char *d = dst + ((size_t)y * w2 + x) * 4;
             for (int c = 0; c < 4; c++) {
+                float v = 0;
                 if (srgb && c < 3) {
-                    float v = 0;
-                    for (int q = 0; q < n; q++) v += decode[t[q][c]];
-                    v /= (float)n;
+                    for (int q = 0; q < n; q++) v += decode[src[off[q] * 4 + c]] * wt[q];
                     /* the nearest code in encoded space: the largest k with mid[k] <= v */
                     int lo = 0, hi = 255;
                     while (lo < hi) {
@@ -132,9 +163,9 @@ void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *d
                     }
                     d[c] = (unsigned char)lo;
                 } else {
-                    int v = 0;
-                    for (int q = 0; q < n; q++) v += t[q][c];
-                    d[c] = (unsigned char)((v + n / 2) / n);
+                    for (int q = 0; q < n; q++) v += (float)src[off[q] * 4 + c] * wt[q];
+                    int k = (int)floorf(v + 0.5f);
+                    d[c] = (unsigned char)(k < 0 ? 0 : k > 255 ? 255 : k);
                 }
             }
         }
@@ -142,16 +173,16 @@ void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *d
 
 void sl_image_mip_rgbaf(const float *src, int w, int h, float *dst) {
     int w2 = w > 1 ? w / 2 : 1, h2 = h > 1 ? h / 2 : 1;
-    int sx = w > 1 ? 2 : 1, sy = h > 1 ? 2 : 1;
-    float scale = 1.0f / (float)(sx * sy);
     for (int y = 0; y < h2; y++)
         for (int x = 0; x < w2; x++) {
+            size_t off[9];
+            float wt[9];
+            int n = mip_texel_taps(w, h, x, y, off, wt);
             float *d = dst + ((size_t)y * w2 + x) * 4;
             for (int c = 0; c < 4; c++) {
                 float v = 0;
-                for (int j = 0; j < sy; j++)
-                    for (int i = 0; i < sx; i++) v += src[(((size_t)(y * sy + j) * w) + (size_t)(x * sx + i)) * 4 + c];
-                d[c] = v * scale;
+                for (int q = 0; q < n; q++) v += src[off[q] * 4 + c] * wt[q];
+                d[c] = v;
             }
         }
 }

@@ -148,14 +148,15 @@ float sl_srgb_encode(float linear);
 float sl_srgb_decode(float encoded);
 
 /* The next mip level of an RGBA8 image (w×h → max(1, w/2)×max(1, h/2), row-major): each texel the
- * mean of its 2×2 source block (a 1-texel-wide or -high side averages its 2 or 1 texels; the last
- * row and column of an odd side are left out, as a 2×2 box does). With srgb, RGB is averaged in
- * linear light (IEC 61966-2-1 decode, mean, encode rounded to the nearest code) and alpha linearly;
- * otherwise every channel as stored, rounded to nearest. What glGenerateMipmap computes (a box
- * filter, sRGB-correct), on the CPU: llvmpipe compiles a blit shader per format for it, ~60-180 ms
- * per format at start-up (issue 18 item 5). */
+ * area-weighted mean of the source texels it covers — a 2×2 block on even sides; on an odd side
+ * 2n + 1 → n each texel covers 2 + 1/n source texels, 3 of them in part, so that no texel is left
+ * out and each level keeps the content where its texel centres are (a 1-texel side stays 1). With
+ * srgb, RGB is averaged in linear light (IEC 61966-2-1 decode, mean, encode rounded to the nearest
+ * code) and alpha linearly; otherwise every channel as stored, rounded to nearest. A box filter,
+ * sRGB-correct, as glGenerateMipmap means it, on the CPU: llvmpipe compiles a blit shader per
+ * format for it, ~60-180 ms per format at start-up. */
 void sl_image_mip_rgba8(const unsigned char *src, int w, int h, unsigned char *dst, bool srgb);
-/* The same 2×2 box on float RGBA, every channel as stored (linear data: procedural textures,
+/* The same filter on float RGBA, every channel as stored (linear data: procedural textures,
  * 16-bit and float files kept in float storage). */
 void sl_image_mip_rgbaf(const float *src, int w, int h, float *dst);
 
