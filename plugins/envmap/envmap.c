@@ -63,14 +63,22 @@ static const sl_param_desc params[] = {
       .group = "lighting",
       .description = "Bias added to specular=fis's per-sample mip level (1/2 log2 of the sample's solid angle over the base "
                      "texel's); Krivanek & Colbert use +1, chosen here from the measured error."),
-    P(.id = "filtered_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 64, .group = "lighting",
+    P(.id = "filtered_samples", .type = SL_PARAM_INT, .default_value = {.i = 48}, .min = 1, .max = 64, .group = "lighting",
       .flags = SL_PARAM_QUALITY_KNOB,
       .description = "Samples per pixel of specular=filtered: one fixed set shared by every pixel and frame "
-                     "(deterministic); error falls with cost (bench/first.sh)."),
-    P(.id = "filtered_lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {0.5f}}, .min = -3, .max = 3, .step = 0.25f,
+                     "(deterministic); error falls with cost (bench/cycles.sh)."),
+    P(.id = "filtered_lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = -3, .max = 3, .step = 0.25f,
       .group = "lighting",
       .description = "specular=filtered: each sample reads the prefiltered chain at the roughness whose lobe covers its "
                      "share of the real lobe, times 2^bias (0: the sub-lobes just tile it; more: smoother, blurrier)."),
+    P(.id = "filtered_alpha", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = 0, .max = 2, .step = 0.05f,
+      .group = "lighting",
+      .description = "specular=filtered: GGX alpha from which the dominant lookup alone is used (1 lookup); the "
+                     "filtered samples below filtered_alpha - 0.25, fading between (2: filtered at every alpha)."),
+    P(.id = "filtered_deconvolve", .type = SL_PARAM_FLOAT, .default_value = {.f = {3}}, .min = 0, .max = 8,
+      .step = 0.5f, .group = "lighting",
+      .description = "specular=filtered: samples the lobe narrowed to alpha/sqrt(1 + k 4^filtered_lod_bias/N), so that "
+                     "with the sub-lobes' blur it comes out at alpha (k = this; 0: off)."),
     P(.id = "irradiance", .type = SL_PARAM_ENUM, .enum_values = irradiance_methods,
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
       .description = "Diffuse irradiance: order-2 spherical harmonics (9 coefficients) or a convolved cube."),

@@ -76,10 +76,13 @@ vec3 envmap_specular(vec3 r, float alpha) {
 // more so the rougher (the off-specular peak). specular=dominant uses Lagarde & de Rousiers' fit
 // ("Moving Frostbite to PBR", SIGGRAPH 2014 course notes, §4.9.3): lerp(n, r, s(√s + α)) with
 // s = 1 − α, normalised (their "roughness" is α).
-vec3 envmap_lookup_dir(vec3 n, vec3 r, float alpha) {
-#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_DOMINANT
+vec3 envmap_dominant_dir(vec3 n, vec3 r, float alpha) {
     float s = clamp(1.0 - alpha, 0.0, 1.0);
     return normalize(mix(n, r, s * (sqrt(s) + alpha)));
+}
+vec3 envmap_lookup_dir(vec3 n, vec3 r, float alpha) {
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_DOMINANT || ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
+    return envmap_dominant_dir(n, r, alpha);
 #else
     return r;
 #endif
@@ -175,8 +178,7 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 f90, ve
     float lod_max = log2(envmap_base_size);
     // the control variate: the split sum's prefiltered radiance along the dominant direction
     // (Lagarde & de Rousiers 2014 §4.9.3, as specular=dominant), horizon-faded as it is there
-    float sd = clamp(1.0 - alpha, 0.0, 1.0);
-    vec3 d = normalize(mix(n, r, sd * (sqrt(sd) + alpha)));
+    vec3 d = envmap_dominant_dir(n, r, alpha);
     vec3 c = textureLod(envmap_spec, envmap_rot * d, envmap_spec_lod(alpha)).rgb * envmap_horizon(d, s.geometric_normal);
     vec3 sum = vec3(0.0);
     if (beta <= 0.0) count = 0; // the split sum alone: no sample (uniform per material unless α is mapped)
@@ -232,8 +234,16 @@ vec3 envmap_filtered_specular(SlSurface s, float alpha, vec3 f0, vec3 f90, vec3 
     vec3 vl = vec3(dot(v, t), dot(v, b), dot(v, n));
     if (vl.z <= 0.0) return vec3(0.0);
     int count = clamp(envmap_filtered_samples, 1, 64);
-    float g1v = envmap_smith_g1(vl.z, alpha);
     float spread = exp2(envmap_filtered_lod_bias) / sqrt(4.0 * ENVMAP_PI * float(count));
+    // Deconvolution: the sub-lobes blur the sampled lobe; at its peak a sub-lobe is α_s² =
+    // 4^bias·α²/N, and a blur adds its variance to α² (as NDF filtering for shading antialiasing
+    // does, Kaplanyan et al. 2016), so the set samples the narrower lobe α/√(1 + k·4^bias/N) that
+    // comes out at α. k = filtered_deconvolve: 1 by that argument; the chain's sub-lobes are wider
+    // than their nominal α (trilinear between levels 4× apart in α, the prefilter's lod bias), and
+    // k = 3 measured best against Cycles (README, "The first frame"). 0: off. The weights follow
+    // the sampled lobe; the LUT's albedo stays α's, so the furnace is exact.
+    alpha /= sqrt(1.0 + envmap_filtered_deconvolve * exp2(2.0 * envmap_filtered_lod_bias) / float(count));
+    float g1v = envmap_smith_g1(vl.z, alpha);
     // The visible-normal sampler lays its disk out from the view's azimuth, which turns all the
     // way round the point where v = n (the middle of a sphere): the set is turned back by that
     // azimuth, so it stays put in the surface frame (t, b) there, where the sampler's view-
@@ -300,9 +310,19 @@ vec3 envmap_split_sum(SlSurface s) {
         if (envmap_multiscatter) // Fdez-Agüera 2019: the energy single scattering loses, F0-tinted
             spec *= 1.0 + lobe.f0 * (1.0 / max(abc.x + abc.y, 1e-3) - 1.0);
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
-        // the filtered lobe estimates the single-scattering specular (albedo inside); multiscatter
-        // scales it as it scales the split sum's
-        vec3 specular = envmap_filtered_specular(s, alpha, lobe.f0, lobe.f90, albedo) * (spec / max(albedo, vec3(1e-6)));
+        // the dominant lookup alone from α = filtered_alpha (1: rough lobes, where it measured
+        // closer to Cycles than the samples and costs one lookup), the samples alone up to
+        // filtered_alpha − 0.25, blended between; the branch is uniform per material unless a
+        // roughness map varies α. The filtered lobe estimates the single-scattering specular
+        // (albedo inside); multiscatter scales it as it scales the split sum's
+        float beta = clamp((envmap_filtered_alpha - alpha) / 0.25, 0.0, 1.0);
+        vec3 specular = vec3(0.0);
+        if (beta < 1.0) {
+            vec3 d = envmap_lookup_dir(n, r, alpha);
+            specular = spec * envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
+        }
+        if (beta > 0.0)
+            specular = mix(specular, envmap_filtered_specular(s, alpha, lobe.f0, lobe.f90, albedo) * (spec / max(albedo, vec3(1e-6))), beta);
 #elif ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
         float beta = envmap_hybrid_beta(alpha) * envmap_fis_weight;

@@ -4,7 +4,8 @@
 # the forward pass's median over 7 frames after 3 warm-up (shadelab --bench), methods interleaved
 # round by round (the machine is shared: compare within a round). Prints a CSV
 # round,method,forward_ms,frame_ms,ns_per_pixel and the load average. A METHOD is an
-# envmap.specular value, or VALUE:N for fis or filtered with N samples (envmap.VALUE_samples=N).
+# envmap.specular value, or VALUE:N for fis or filtered with N samples (envmap.VALUE_samples=N),
+# or VALUE:N:P=X,Q=Y with more envmap parameters (envmap.P=X, envmap.Q=Y).
 # Usage: plugins/envmap/bench/cost.sh [BUILD_DIR] [ROUNDS] [METHOD...]   (default: dominant hybrid)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -17,7 +18,12 @@ echo "round,method,forward_ms,frame_ms,ns_per_pixel"
 for r in $(seq 1 "$rounds"); do
   for m in "${methods[@]}"; do
     sets=(--set "envmap.specular=${m%%:*}")
-    [ "$m" = "${m%%:*}" ] || sets+=(--set "envmap.${m%%:*}_samples=${m#*:}")
+    rest=${m#*:}
+    [ "$m" = "${m%%:*}" ] || sets+=(--set "envmap.${m%%:*}_samples=${rest%%:*}")
+    if [ "$rest" != "${rest#*:}" ]; then
+      IFS=, read -ra more <<< "${rest#*:}"
+      for p in "${more[@]}"; do sets+=(--set "envmap.$p"); done
+    fi
     SHADELAB_PLUGIN_PATH="$build/plugins" "$build/shadelab" --headless --scene "$root/scenes/ibl_spheres.json" \
       --size 1280x720 --frames 10 --bench "${sets[@]}" 2>/dev/null |
       awk -v r="$r" -v m="$m" '$1 == "forward" { f = $2 } $1 == "frame" { w = $4 }

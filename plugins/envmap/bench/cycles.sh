@@ -9,25 +9,31 @@
 # bench/cycles.csv (full) or bench/cycles-unoccluded.csv: method, alpha, relative RMS, mean ratio.
 # The Cycles image is rendered once (SAMPLES per pixel, ≈ 8–30 min at 2048 on 2 loaded cores) and
 # cached by xcheck.
-# Usage: plugins/envmap/bench/cycles.sh [BUILD_DIR] [SAMPLES] [OUT_DIR] [full|unoccluded]
+# MAP (default forest) is another of Blender's studio lights (courtyard, city, …): its CSV is
+# cycles[-unoccluded]-MAP.csv. $CYCLES_METHODS (names from the list below, space-separated)
+# limits the run to those methods; `reference` renders (or finds cached) the Cycles image only.
+# $CYCLES_EXTRA adds methods: "NAME ARGS...;NAME ARGS..." (ARGS as for shadelab-xcheck, --set …).
+# Usage: plugins/envmap/bench/cycles.sh [BUILD_DIR] [SAMPLES] [OUT_DIR] [full|unoccluded] [MAP]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/common.sh"
 samples=${2:-2048}
 out=${3:-$here}
 reference=${4:-full}
+map=${5:-forest}
 case $reference in
-  full) csv=cycles.csv ref_opt=() ;;
-  unoccluded) csv=cycles-unoccluded.csv ref_opt=(--unoccluded) ;;
+  full) csv=cycles ref_opt=() ;;
+  unoccluded) csv=cycles-unoccluded ref_opt=(--unoccluded) ;;
   *) echo "cycles.sh: reference \"$reference\": expected full or unoccluded" >&2; exit 1 ;;
 esac
-hdr=$(blender_hdr forest)
-[ -n "$hdr" ] || { echo "cycles.sh: Blender's forest.exr is not installed (Debian blender-data)" >&2; exit 77; }
+[ "$map" = forest ] && csv=$csv.csv || csv=$csv-$map.csv
+hdr=$(blender_hdr "$map")
+[ -n "$hdr" ] || { echo "cycles.sh: Blender's $map.exr is not installed (Debian blender-data)" >&2; exit 77; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 alphas=(0.05 0.2 0.4 0.7 1.0) names=(005 020 040 070 100) # the scene is written byte for byte as before, so that xcheck's cached Cycles image is found
 { echo '{'
-  echo '  "comment": "Metal sphere row under Blender'"'"'s forest.exr: GGX alpha 0.05, 0.2, 0.4, 0.7, 1 (white metal, F0 = 1), environment only.",'
+  echo "  \"comment\": \"Metal sphere row under Blender's $map.exr: GGX alpha 0.05, 0.2, 0.4, 0.7, 1 (white metal, F0 = 1), environment only.\","
   echo '  "plugins": ["ggx", "envmap"],'
   echo '  "cameras": [ { "name": "main", "position": [0, 0, 9], "target": [0, 0, 0], "fov_y": 7, "near": 0.5, "far": 50 } ],'
   echo "  \"environment\": { \"map\": \"$hdr\" },"
@@ -45,8 +51,15 @@ alphas=(0.05 0.2 0.4 0.7 1.0) names=(005 020 040 070 100) # the scene is written
   echo '  ],'
   echo '  "lights": []'
   echo '}'; } > "$tmp/metal_row.json"
+wanted() { [ -z "${CYCLES_METHODS:-}" ] || [[ " $CYCLES_METHODS " == *" $1 "* ]]; }
+if [ "${CYCLES_METHODS:-}" = reference ]; then # the Cycles image alone (cached by xcheck)
+  "$build/shadelab-xcheck" "$tmp/metal_row.json" --size 480x96 --samples "$samples" --out "$tmp/ref" \
+    --reference-only ${ref_opt[@]+"${ref_opt[@]}"} > "$tmp/ref.log" 2>&1 || { cat "$tmp/ref.log" >&2; exit 1; }
+  exit 0
+fi
 xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles image
   local name=$1; shift
+  wanted "$name" || return 0
   "$build/shadelab-xcheck" "$tmp/metal_row.json" --size 480x96 --samples "$samples" --set aa.enabled=false \
     --frames 1 --out "$tmp/$name" ${ref_opt[@]+"${ref_opt[@]}"} "$@" > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log" >&2; exit 1; }
   jq -r --arg m "$name" '.objects[] | [$m, (.name | ltrimstr("s")), .rel_rms, .mean_ratio] | @csv' "$tmp/$name/report.json"
@@ -54,15 +67,24 @@ xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles imag
 { echo "method,alpha,rel_rms,mean_ratio"
   xcheck dominant --eevee 1,16
   xcheck mirror --set envmap.specular=mirror
-  xcheck filtered16 --set envmap.specular=filtered
-  xcheck filtered32 --set envmap.specular=filtered --set envmap.filtered_samples=32
-  xcheck filtered48 --set envmap.specular=filtered --set envmap.filtered_samples=48
-  xcheck filtered64 --set envmap.specular=filtered --set envmap.filtered_samples=64
-  xcheck filtered64-bias0 --set envmap.specular=filtered --set envmap.filtered_samples=64 --set envmap.filtered_lod_bias=0
+  F=(--set envmap.specular=filtered)
+  xcheck filtered "${F[@]}" # its defaults: 48 samples, lod bias 1, deconvolve 3, dominant from alpha 1
+  xcheck filtered32 "${F[@]}" --set envmap.filtered_samples=32
+  xcheck filtered64 "${F[@]}" --set envmap.filtered_samples=64
+  xcheck filtered-every-alpha "${F[@]}" --set envmap.filtered_alpha=2
+  xcheck filtered-no-deconvolve "${F[@]}" --set envmap.filtered_deconvolve=0
+  xcheck filtered64-bias1.5 "${F[@]}" --set envmap.filtered_samples=64 --set envmap.filtered_lod_bias=1.5 --set envmap.filtered_deconvolve=4
+  xcheck filtered48-before "${F[@]}" --set envmap.filtered_lod_bias=0.5 --set envmap.filtered_deconvolve=0 --set envmap.filtered_alpha=2
   xcheck fis32 --set envmap.specular=fis --set envmap.fis_samples=32
   xcheck hybrid16 --set envmap.specular=hybrid
   xcheck hybrid16-still --set envmap.specular=hybrid --set aa.enabled=true --frames 16
-  for e in "$tmp"/dominant/eevee-*.exr; do # EEVEE per sphere, on the interiors xcheck used
+  IFS=';' read -ra extra <<< "${CYCLES_EXTRA:-}"
+  for e in ${extra[@]+"${extra[@]}"}; do
+    read -ra words <<< "$e"
+    [ ${#words[@]} -eq 0 ] || xcheck "${words[@]}"
+  done
+  for e in "$tmp"/dominant/eevee-*.exr; do
+    [ -e "$e" ] || continue # EEVEE per sphere, on the interiors xcheck used
     n=$(basename "$e" .exr)
     python3 "$here/cycles_objects.py" "$tmp/dominant" "$e" | sed "s/^/$n,/"
   done; } | tr -d '"' > "$out/$csv"
