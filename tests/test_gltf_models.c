@@ -468,6 +468,15 @@ static void f_iridescence_thin(gw_doc *g) {
                   "{\"iridescence\": false, \"iridescence_thickness_maximum\": false}");
 }
 
+/* KHR_materials_dispersion: published where > 0 (here with the volume it builds on) */
+static void f_dispersion(gw_doc *g) {
+    layer_feature(g, "KHR_materials_dispersion", "{\"dispersion\": 0.36}", "{\"dispersion\": 0.36}");
+}
+/* dispersion 0 (the default) is none */
+static void f_dispersion_zero(gw_doc *g) {
+    layer_feature(g, "KHR_materials_dispersion", "{\"dispersion\": 0}", "{\"dispersion\": false}");
+}
+
 /* KHR_materials_anisotropy: the rotation published where not 0, reduced to (-2pi, 2pi) */
 static void f_anisotropy(gw_doc *g) {
     layer_feature(g, "KHR_materials_anisotropy",
@@ -519,6 +528,8 @@ static const struct { const char *name; void (*build)(gw_doc *g); } features[] =
     {"iridescence_thin", f_iridescence_thin},
     {"anisotropy", f_anisotropy},
     {"anisotropy_zero", f_anisotropy_zero},
+    {"dispersion", f_dispersion},
+    {"dispersion_zero", f_dispersion_zero},
 };
 
 static void write_features(void) {

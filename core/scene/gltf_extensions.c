@@ -41,7 +41,9 @@ static const sl_gltf_extension extensions[] = {
     {"KHR_materials_anisotropy", SL_GLTF_APPROXIMATED,
      "the anisotropic GGX lobe (Burley's D, Smith's G) along the rotated tangent or texture direction (ggx); "
      "environment and area lights see an isotropic lobe of alpha sqrt(alpha_t * alpha_b)"},
-    {"KHR_materials_dispersion", SL_GLTF_IGNORED, "no dispersion"},
+    {"KHR_materials_dispersion", SL_GLTF_APPROXIMATED,
+     "an IOR per colour channel (the extension's Cauchy fit at the C, d and F lines) for the volume's refracted "
+     "lookups (ggx): three rays, not a spectrum; thin walls (no volume) do not disperse"},
     {"KHR_materials_variants", SL_GLTF_RENDERED, "the default materials, or the variant --variant NAME names"},
     {"KHR_animation_pointer", SL_GLTF_IGNORED, "those channels are not played"},
     {"KHR_draco_mesh_compression", SL_GLTF_RENDERED, "decoded with Debian's libdraco (a module loaded for the first one)"},

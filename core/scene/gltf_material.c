@@ -368,6 +368,20 @@ static bool volume_inputs(gltf_import *im, int mi, const cJSON *ext, const char 
     return true;
 }
 
+/* KHR_materials_dispersion (20 / Abbe number; 0, the default, is none): published where > 0; ggx
+ * applies it to a volume (KHR_materials_volume's thickness), which it builds on. */
+static bool dispersion_inputs(gltf_import *im, int mi, const cJSON *ext, const char *ep) {
+    gltf_doc *d = &im->doc;
+    const cJSON *e;
+    char p[160];
+    snprintf(p, sizeof p, "%s/KHR_materials_dispersion", ep);
+    if (!gltf_get_object(d, ext, ep, "KHR_materials_dispersion", &e)) return false;
+    double v = 0;
+    if (!e || !factor(d, e, p, "dispersion", 0, 100, &v)) return e == NULL;
+    if (v > 0) sl_prop_set_number(&im->scene->materials[mi].inputs, "dispersion", (float)v, 0);
+    return true;
+}
+
 /* KHR_materials_iridescence: a factor of 0 (the default) is no film, nor is a film whose
  * thickness is 0 (the maximum without a thickness texture, both ends with one); the IOR (1.3)
  * and thickness range (100..400 nm) are published where they differ from the defaults. */
@@ -416,8 +430,8 @@ static bool anisotropy_inputs(gltf_import *im, int mi, const cJSON *ext, const c
 }
 
 /* KHR_materials_emissive_strength, _ior, _unlit and (approximated) _pbrSpecularGlossiness;
- * the layers ggx renders (clearcoat, specular, sheen, transmission, volume, iridescence,
- * anisotropy). */
+ * the layers ggx renders (clearcoat, specular, sheen, transmission, volume, dispersion,
+ * iridescence, anisotropy). */
 static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const char *at) {
     gltf_doc *d = &im->doc;
     sl_prop_list *in = &im->scene->materials[mi].inputs;
@@ -442,7 +456,8 @@ static bool extension_inputs(gltf_import *im, int mi, const cJSON *mat, const ch
     if (e) sl_prop_set_bool(in, "unlit", true, 0);
     if (!clearcoat_inputs(im, mi, ext, ep) || !specular_inputs(im, mi, ext, ep) || !sheen_inputs(im, mi, ext, ep) ||
         !transmission_inputs(im, mi, ext, ep) || !volume_inputs(im, mi, ext, ep) ||
-        !iridescence_inputs(im, mi, ext, ep) || !anisotropy_inputs(im, mi, ext, ep))
+        !iridescence_inputs(im, mi, ext, ep) || !anisotropy_inputs(im, mi, ext, ep) ||
+        !dispersion_inputs(im, mi, ext, ep))
         return false;
     snprintf(p, sizeof p, "%s/KHR_materials_pbrSpecularGlossiness", ep);
     if (!gltf_get_object(d, ext, ep, "KHR_materials_pbrSpecularGlossiness", &e)) return false;

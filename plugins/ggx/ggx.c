@@ -40,6 +40,9 @@ static const sl_param_desc params[] = {
     P(.id = "layer_transmission", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the transmission of materials that carry it (KHR_materials_transmission): "
                                         "the opaque scene seen through them."),
+    P(.id = "layer_dispersion", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "layers", .description = "Render the dispersion of volumes that carry it (KHR_materials_dispersion): "
+                                        "an index of refraction per colour channel."),
     P(.id = "layer_volume", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the volume of transmissive materials that carry one (KHR_materials_volume): "
                                         "refraction through its thickness and its absorption."),
@@ -112,6 +115,9 @@ static const sl_param_desc params[] = {
     P(.id = "attenuation_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL, .default_value = {.f = {1, 1, 1}},
       .min = 0, .max = 1, .group = "transmission", .material_input = "attenuation_color",
       .description = "What white light turns into after attenuation_distance in the volume."),
+    P(.id = "dispersion", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 100, .step = 0.01f,
+      .group = "transmission", .material_input = "dispersion",
+      .description = "20 / Abbe number of the volume: its IOR per colour channel (KHR_materials_dispersion); 0: none."),
     /* KHR_materials_iridescence (README "Layers"), for fresnel = metallic-roughness */
     P(.id = "iridescence", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_MATERIAL, .min = 0, .max = 1, .step = 0.01f,
       .group = "iridescence", .material_input = "iridescence",
@@ -216,6 +222,8 @@ static const sl_shader_chunk_desc chunks[] = {
       .when_material_has = "transmission", .when_param = "layer_transmission", .order = 22),
     C(.hook = SL_HOOK_SCENE_BEHIND, .file = "ggx_model.glsl", .function = "ggx_scene_behind",
       .when_material_has = "transmission", .when_param = "layer_transmission"),
+    C(.hook = SL_HOOK_DEBUG_VIEW, .file = "ggx_model.glsl", .function = "ggx_debug_dispersion", .name = "ggx-dispersion",
+      .description = "KHR_materials_dispersion: pixels from the green lookup of the scene behind to the red (r) and blue (b) ones"),
     C(.hook = SL_HOOK_DEBUG_VIEW, .file = "ggx_model.glsl", .function = "ggx_debug_transmission",
       .name = "ggx-transmission", .description = "what the scene behind is multiplied by (transmission, tint, Fresnel, absorption)"),
     C(.hook = SL_HOOK_DEBUG_VIEW_LIGHT, .file = "ggx_model.glsl", .function = "ggx_debug_D", .name = "ggx-d",
@@ -324,7 +332,7 @@ static const char *const ggx_inputs[] = {"brdf", "metallic", "roughness", "metal
                                          "clearcoat", "clearcoat_texture", "clearcoat_roughness",
                                          "clearcoat_roughness_texture", "clearcoat_normal_texture",
                                          "clearcoat_normal_scale", "transmission", "transmission_texture", "thickness",
-                                         "thickness_texture", "attenuation_distance", "attenuation_color", "iridescence",
+                                         "thickness_texture", "attenuation_distance", "attenuation_color", "dispersion", "iridescence",
                                          "iridescence_texture", "iridescence_ior", "iridescence_thickness_minimum",
                                          "iridescence_thickness_maximum", "iridescence_thickness_texture",
                                          "anisotropy_strength", "anisotropy_rotation", "anisotropy_texture", NULL};

@@ -159,19 +159,49 @@ float ggx_ior() {
 // transmitted lobe's roughness is the surface's times clamp(2·ior − 2, 0, 1).
 float ggx_transmission_roughness_scale() { return clamp(2.0 * ggx_ior() - 2.0, 0.0, 1.0); }
 
-// Beer–Lambert through `distance` (world units) of the volume (KHR_materials_volume, "Attenuation"):
-// T = c^(x/d) with c = attenuationColor, d = attenuationDistance; 1 without a distance (infinite).
-vec3 ggx_volume_transmittance(float distance) {
+// Beer–Lambert through `distance` (world units, per colour channel) of the volume
+// (KHR_materials_volume, "Attenuation"): T = c^(x/d) with c = attenuationColor, d =
+// attenuationDistance; 1 without a distance (infinite).
+vec3 ggx_volume_transmittance(vec3 distance) {
 #if defined(GGX_HAS_VOLUME) && defined(SL_MAT_HAS_ATTENUATION_DISTANCE)
 #ifdef SL_MAT_HAS_ATTENUATION_COLOR
     vec3 c = sl_mat_attenuation_color;
 #else
     vec3 c = vec3(1.0);
 #endif
-    float x = max(distance, 0.0) / max(sl_mat_attenuation_distance, 1e-6);
-    return x > 0.0 ? pow(max(c, vec3(0.0)), vec3(x)) : vec3(1.0); // pow(0, 0) is undefined in GLSL
+    vec3 x = max(distance, vec3(0.0)) / max(sl_mat_attenuation_distance, 1e-6);
+    vec3 T = pow(max(c, vec3(0.0)), x); // pow(0, 0) is undefined in GLSL: 1 where x = 0
+    return vec3(x.r > 0.0 ? T.r : 1.0, x.g > 0.0 ? T.g : 1.0, x.b > 0.0 ? T.b : 1.0);
 #else
     return vec3(1.0);
+#endif
+}
+
+#if defined(GGX_HAS_VOLUME) && defined(SL_MAT_HAS_DISPERSION) && GGX_LAYER_DISPERSION
+#define GGX_HAS_DISPERSION 1
+// KHR_materials_dispersion: the volume's index of refraction per wavelength, the extension's
+// Cauchy fit through the Abbe number V_d = 20/dispersion (λ in nm):
+//   n(λ) = max(n_d + (n_d − 1)/V_d · (523655/λ² − 1.5168), 1),
+// taken for red, green and blue at the Fraunhofer lines the Abbe number is defined by: C
+// (656.27 nm), d (587.56 nm: n_d, the material's ior) and F (486.13 nm). Each channel's lookup of
+// the scene behind follows its own refracted ray (ggx_surface_transmission).
+vec3 ggx_dispersion_iors(float ior, float dispersion) {
+    vec3 lambda = vec3(656.27, 587.56, 486.13);
+    return max(ior + (ior - 1.0) * dispersion / 20.0 * (523655.0 / (lambda * lambda) - 1.5168), vec3(1.0));
+}
+// Where the red and blue paths leave the volume, and each channel's path length.
+struct GgxDispersion {
+    vec3 exit_red, exit_blue;
+    vec3 distance; // world length of the red, green and blue paths through the volume
+};
+GgxDispersion ggx_disp = GgxDispersion(vec3(0.0), vec3(0.0), vec3(0.0));
+#endif
+// Each colour channel's path length through the volume (one length without dispersion).
+vec3 ggx_volume_distances() {
+#ifdef GGX_HAS_DISPERSION
+    return ggx_disp.distance;
+#else
+    return vec3(ggx_trans.distance);
 #endif
 }
 #endif

@@ -124,7 +124,7 @@ float ggx_share_under_layers(SlSurface s) {
 vec3 ggx_transmittance(SlSurface s) {
     float f = ggx_dielectric_share(clamp(dot(s.normal, s.view), 0.0, 1.0), s);
     return ggx_trans.weight * (1.0 - s.metallic) * (1.0 - f) * ggx_share_under_layers(s) * s.base_color *
-           ggx_volume_transmittance(ggx_trans.distance);
+           ggx_volume_transmittance(ggx_volume_distances());
 }
 // A light behind the wall (n·l < 0) seen through it: the extension's BTDF V_T·D_T, the GGX lobe
 // about the light mirrored through the surface (H_T = normalize(v + l − 2(n·l)n)) with the
@@ -136,7 +136,7 @@ vec3 ggx_transmitted_light(SlSurface s, vec3 n, vec3 v, vec3 l, vec3 E) {
     float dg = ggx_DG_over_4(n, mirrored, v, s.alpha * ggx_transmission_roughness_scale(), h);
     float f = ggx_dielectric_share(dot(v, h), s);
     return ggx_trans.weight * (1.0 - s.metallic) * (1.0 - f) * dg * (-n_dot_l) * s.base_color *
-           ggx_volume_transmittance(ggx_trans.distance) * E;
+           ggx_volume_transmittance(ggx_volume_distances()) * E;
 }
 #endif
 // The diffuse's share of the light entering the surface: 1 − transmission (KHR_materials_transmission).
@@ -330,10 +330,28 @@ vec3 ggx_debug_sheen(SlSurface s, vec3 l, vec3 E) {
 // wall, the whole screen's average at roughness 1.
 vec3 ggx_scene_behind(SlSurface s) {
     float roughness = sqrt(max(s.alpha, 0.0)) * ggx_transmission_roughness_scale();
-    vec3 behind = textureLod(sl_scene_behind, sl_screen_uv(ggx_trans.exit), roughness * sl_scene_behind_levels).rgb;
+    float lod = roughness * sl_scene_behind_levels;
+    vec3 behind = textureLod(sl_scene_behind, sl_screen_uv(ggx_trans.exit), lod).rgb;
+#ifdef GGX_HAS_DISPERSION
+    // KHR_materials_dispersion: red and blue each from where their own refracted ray leaves
+    behind.r = textureLod(sl_scene_behind, sl_screen_uv(ggx_disp.exit_red), lod).r;
+    behind.b = textureLod(sl_scene_behind, sl_screen_uv(ggx_disp.exit_blue), lod).b;
+#endif
     return ggx_transmittance(s) * behind;
 }
 #endif
+
+// "ggx-dispersion": how far (pixels) the red (r) and blue (b) lookups of the scene behind lie from
+// the green one (KHR_materials_dispersion); 0 without the layer (or without a volume).
+vec3 ggx_debug_dispersion(SlSurface s) {
+#if defined(GGX_HAS_DISPERSION) && defined(SL_SCENE_BEHIND)
+    vec2 g = sl_screen_uv(ggx_trans.exit);
+    return vec3(length((sl_screen_uv(ggx_disp.exit_red) - g) * sl_viewport_size), 0.0,
+                length((sl_screen_uv(ggx_disp.exit_blue) - g) * sl_viewport_size));
+#else
+    return vec3(0.0);
+#endif
+}
 
 // "ggx-transmission": what the scene behind is multiplied by (ggx_transmittance); 0 for a material
 // without KHR_materials_transmission or with ggx.layer_transmission off.

@@ -141,6 +141,18 @@ void ggx_surface_sheen(inout SlSurface s) {
 }
 #endif
 
+#ifdef GGX_HAS_VOLUME
+// The path into the volume of index `ior` from air, r = refract(−v, n, 1/ior) (straight on under
+// total internal reflection, which cannot happen from air), and its world length through the
+// thickness τ (mesh units along r): τ/|M⁻¹r|.
+vec3 ggx_volume_path(SlSurface s, float ior, float thickness, out float distance) {
+    vec3 r = -s.view, bent = refract(-s.view, s.normal, 1.0 / max(ior, 1.0));
+    if (dot(bent, bent) > 0.5) r = normalize(bent);
+    distance = max(thickness, 0.0) / max(length(transpose(sl_normal_matrix) * r), 1e-6);
+    return r;
+}
+#endif
+
 #ifdef SL_MAT_HAS_TRANSMISSION
 // KHR_materials_transmission's inputs into ggx_trans, once per fragment, after the normal map
 // (order 22). With KHR_materials_volume's thickness τ (mesh units) the path into the volume is
@@ -159,9 +171,14 @@ void ggx_surface_transmission(inout SlSurface s) {
 #ifdef SL_MAT_HAS_THICKNESS_MAP
     thickness *= texture(sl_mat_thickness_map, sl_uv_thickness_map(s)).g;
 #endif
-    vec3 bent = refract(-s.view, s.normal, 1.0 / max(ggx_ior(), 1.0));
-    if (dot(bent, bent) > 0.5) r = normalize(bent);
-    distance = max(thickness, 0.0) / max(length(transpose(sl_normal_matrix) * r), 1e-6);
+    r = ggx_volume_path(s, ggx_ior(), thickness, distance);
+#ifdef GGX_HAS_DISPERSION
+    // KHR_materials_dispersion: red and blue along their own refracted rays
+    vec3 iors = ggx_dispersion_iors(ggx_ior(), max(sl_mat_dispersion, 0.0));
+    float d_red, d_blue;
+    vec3 r_red = ggx_volume_path(s, iors.r, thickness, d_red), r_blue = ggx_volume_path(s, iors.b, thickness, d_blue);
+    ggx_disp = GgxDispersion(s.position + r_red * d_red, s.position + r_blue * d_blue, vec3(d_red, distance, d_blue));
+#endif
 #endif
     ggx_trans = GgxTransmission(clamp(t, 0.0, 1.0), distance, s.position + r * distance);
 #endif

@@ -113,6 +113,7 @@ typedef struct sl_param_desc {
  *   thickness                 float (KHR_materials_volume, present when > 0, mesh units); thickness_texture
  *                             (linear, G); attenuation_distance (world units, present when finite) and
  *                             attenuation_color (colour, present when given)
+ *   dispersion                float (KHR_materials_dispersion, 20 / Abbe number, present when > 0)
  *   iridescence               float (KHR_materials_iridescence, present when > 0 and the film has a
  *                             thickness); iridescence_ior, iridescence_thickness_minimum/_maximum (nm)
  *                             when not 1.3, 100, 400; iridescence_texture (linear, R),
