@@ -394,6 +394,28 @@ def setup_render(S, out_dir):
     tree.links.new(rl.outputs["Image"], comp.inputs[0])
 
 
+def default_material_where_none(o):
+    """glTF 2.0 §3.9.6: a primitive without a material is drawn with the default material (base
+    colour 1, metallicFactor 1, roughnessFactor 1); Blender's importer leaves it without one, which
+    Cycles draws as its own grey diffuse. The spec's material goes where the importer left none."""
+    if o.data.materials and all(m is not None for m in o.data.materials):
+        return
+    mat = bpy.data.materials.get("glTF default material")
+    if mat is None:
+        mat = bpy.data.materials.new("glTF default material")
+        mat.use_nodes = True
+        p = mat.node_tree.nodes["Principled BSDF"]
+        p.distribution = "GGX"
+        p.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        p.inputs["Metallic"].default_value = 1.0
+        p.inputs["Roughness"].default_value = 1.0
+    if not o.data.materials:
+        o.data.materials.append(mat)
+    for k, m in enumerate(o.data.materials):
+        if m is None:
+            o.data.materials[k] = mat
+
+
 def import_gltf(d, g, out_dir):
     """Blender's own glTF importer reads the file (geometry, materials); its lights and cameras are
     dropped (the export's stand for them). The mesh objects get pass indices 1..N by name, listed in
@@ -412,6 +434,7 @@ def import_gltf(d, g, out_dir):
     listed = []
     for i, o in enumerate(meshes):
         o.pass_index = i + 1
+        default_material_where_none(o)
         names = [m.name for m in o.data.materials if m is not None]
         listed.append({"index": i + 1, "name": o.name, "material": ", ".join(names)})
     os.makedirs(out_dir, exist_ok=True)
