@@ -66,6 +66,8 @@ static const char *usage =
     "                            with the scene's TAA still)\n"
     "  --orbit-variant \"A=1 B=2\" settings of one orbit on top of --set (repeatable: each scene is\n"
     "                            orbited once per variant, in turn; \"\" for none)\n"
+    "  --orbit-passes            time every pass of every orbit frame (glFinish around each on\n"
+    "                            llvmpipe, which slows the frames): per-pass medians in the output\n"
     "  --orbit-rounds R          R orbits per scene and variant, interleaved (variant 1, 2, ..., 1,\n"
     "                            2, ...); one result each, frame times and errors pooled (default 1)\n"
     "  --data DIR                asset directory (also SHADELAB_DATA)\n"
@@ -99,6 +101,14 @@ static void print_orbit(const sl_orbit_result *r) {
     printf("    motion frames:          FLIP %.4f  RMSE %.4g\n", r->motion_flip, r->motion_rmse);
     printf("    converged still (%2d f): FLIP %.4f  RMSE %.4g\n", r->still_frames, r->still_flip, r->still_rmse);
     printf("    flicker (RMS, sRGB):    mean %.4f  largest %.4f\n", r->flicker, r->flicker_max);
+    if (!r->passes.count) return;
+    printf("  per pass, median ms over the frames it ran in (frames):");
+    for (int k = -1; k < r->passes.count; k++) {
+        int runs;
+        double m = sl_orbit_pass_median(r, k, &runs);
+        printf("%s %s %.1f (%d)", k < 0 ? "" : ",", k < 0 ? "outside the passes" : r->passes.name[k], m, runs);
+    }
+    printf("\n");
 }
 
 static cJSON *orbit_json(const sl_orbit_result *r) {
@@ -121,6 +131,16 @@ static cJSON *orbit_json(const sl_orbit_result *r) {
     cJSON_AddNumberToObject(o, "points", r->points);
     cJSON_AddNumberToObject(o, "still_frames", r->still_frames);
     cJSON_AddStringToObject(o, "hq_settings", r->hq_settings);
+    if (r->passes.count) {
+        cJSON *passes = cJSON_AddObjectToObject(o, "pass_median_ms"), *runs = cJSON_AddObjectToObject(o, "pass_runs");
+        for (int k = -1; k < r->passes.count; k++) {
+            int n;
+            double m = sl_orbit_pass_median(r, k, &n);
+            const char *name = k < 0 ? "(outside the passes)" : r->passes.name[k];
+            cJSON_AddItemToObject(passes, name, isfinite(m) ? cJSON_CreateNumber(m) : cJSON_CreateNull());
+            cJSON_AddNumberToObject(runs, name, n);
+        }
+    }
     return o;
 }
 
@@ -320,6 +340,7 @@ int main(int argc, char **argv) {
             if (!parse_number(a, NEXT(), 1, 100, &v, err, sizeof err)) return die(err);
             orbit_rounds = (int)v;
         }
+        else if (!strcmp(a, "--orbit-passes")) oo.pass_times = true;
         else if (!strcmp(a, "--images")) images = true;
         else if (!strcmp(a, "--no-chart")) chart = false;
         else if (!strcmp(a, "--list")) list = true;

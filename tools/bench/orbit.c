@@ -52,6 +52,7 @@ static bool open_app(const sl_orbit_options *o, const char *extra, char *buf, si
     opt.height = o->height > 0 ? o->height : 180;
     opt.keep_color = true; /* the comparisons read the linear "color" */
     opt.accumulate = 1;
+    opt.timings = o->pass_times;
     for (int i = 0; i < o->setting_count && opt.setting_count < 128; i++) opt.settings[opt.setting_count++] = o->settings[i];
     snprintf(buf, bufn, "%s", extra ? extra : "");
     char *save = NULL;
@@ -79,12 +80,40 @@ static bool render_still(sl_app *app, const sl_camera_state *cam, float *rgba) {
     return sl_app_read_color(app, rgba);
 }
 
+/* Column of pass `name` in pp (added when new), or -1 when the table is full. */
+static int pass_column(sl_orbit_passes *pp, const char *name) {
+    for (int k = 0; k < pp->count; k++)
+        if (!strcmp(pp->name[k], name)) return k;
+    if (pp->count == SL_ORBIT_MAX_PASSES) return -1;
+    pp->name[pp->count] = strdup(name);
+    return pp->name[pp->count] ? pp->count++ : -1;
+}
+
+/* Row `frame` of pp: the last frame's pass times and what lies outside them. */
+static bool record_passes(sl_app *app, sl_orbit_passes *pp, int frame, double frame_ms) {
+    double *ms = realloc(pp->ms, sizeof *ms * (size_t)(frame + 1) * SL_ORBIT_MAX_PASSES);
+    if (ms) pp->ms = ms;
+    double *out = ms ? realloc(pp->outside_ms, sizeof *out * (size_t)(frame + 1)) : NULL;
+    if (!out) return false;
+    pp->outside_ms = out;
+    sl_tool_frame_times t;
+    sl_tool_frame_times_of(app, &t);
+    double *row = pp->ms + (size_t)frame * SL_ORBIT_MAX_PASSES, sum = 0;
+    for (int k = 0; k < SL_ORBIT_MAX_PASSES; k++) row[k] = NAN;
+    for (int i = 0; i < t.pass_count; i++) {
+        int k = t.passes[i].ran ? pass_column(pp, t.passes[i].name) : -1;
+        if (k >= 0) row[k] = t.passes[i].ms, sum += t.passes[i].ms;
+    }
+    pp->outside_ms[frame] = frame_ms - sum;
+    return true;
+}
+
 /* Two consecutive motion frames, their cameras, and the orbit settings' still at the second. */
 typedef struct orbit_pair { sl_camera_state cam[2]; float *frame[2], *still; } orbit_pair;
 
 /* The timed orbit: frame times into ms[], the pairs captured at their moments. */
 static bool timed_orbit(const sl_orbit_options *o, sl_app *app, double speed, orbit_pair *pairs, int points,
-                        double **ms, int *frames) {
+                        double **ms, int *frames, sl_orbit_passes *pp) {
     const size_t px = (size_t)app->backend.width * app->backend.height * 4;
     const sl_camera_state start = app->camera;
     int cap = 256, next = 0, taking = -1;
@@ -110,12 +139,14 @@ static bool timed_orbit(const sl_orbit_options *o, sl_app *app, double speed, or
         double f0 = now_s();
         if (!sl_app_render_frame(app)) return false;
         glFinish();
+        double frame_ms = (now_s() - f0) * 1e3;
+        if (o->pass_times && !record_passes(app, pp, *frames, frame_ms)) return false;
         if (*frames == cap) {
             double *grown = realloc(*ms, sizeof **ms * (cap *= 2));
             if (!grown) return false;
             *ms = grown;
         }
-        (*ms)[(*frames)++] = (now_s() - f0) * 1e3;
+        (*ms)[(*frames)++] = frame_ms;
         /* a pair starts at the first frame past its moment, (k + 1/2)/points of the orbit */
         int slot = taking >= 0 ? 1 : 0;
         if (taking < 0 && next < points && t >= (next + 0.5) * o->seconds / points) taking = next++;
@@ -198,7 +229,7 @@ static bool orbit_and_stills(const sl_orbit_options *o, double speed, orbit_pair
         res->renderer = strdup(rs ? rs : "?");
         if (o->progress) fprintf(stderr, "[orbit] %s: %.0f s at %g deg/s, %dx%d\n", res->scene, o->seconds,
                                  speed * 180 / M_PI, res->width, res->height);
-        ok = timed_orbit(o, &app, speed, pairs, points, &ms, &res->frames);
+        ok = timed_orbit(o, &app, speed, pairs, points, &ms, &res->frames, &res->passes);
         if (!ok) snprintf(err, n, "rendering the orbit failed");
     }
     if (ok) res->frame_ms = ms, ms = NULL, ok = summarise_times(res);
@@ -249,6 +280,38 @@ bool sl_orbit_run(const sl_orbit_options *o, sl_orbit_result *res, char *err, si
 /* The mean of a (over na pairs) and b (over nb), over all. */
 static double pooled(double a, int na, double b, int nb) { return na + nb ? (a * na + b * nb) / (na + nb) : 0; }
 
+/* r's rows after into's `na` rows, its passes matched by name. */
+static bool pool_passes(sl_orbit_passes *into, int na, const sl_orbit_passes *r, int nb) {
+    double *ms = realloc(into->ms, sizeof *ms * (size_t)(na + nb) * SL_ORBIT_MAX_PASSES);
+    double *out = ms ? realloc(into->outside_ms, sizeof *out * (size_t)(na + nb)) : NULL;
+    if (ms) into->ms = ms;
+    if (!ms || !out) return false;
+    into->outside_ms = out;
+    for (int f = 0; f < nb; f++) {
+        double *row = ms + (size_t)(na + f) * SL_ORBIT_MAX_PASSES;
+        for (int k = 0; k < SL_ORBIT_MAX_PASSES; k++) row[k] = NAN;
+        for (int k = 0; k < r->count; k++) {
+            int c = pass_column(into, r->name[k]);
+            if (c >= 0) row[c] = r->ms[(size_t)f * SL_ORBIT_MAX_PASSES + k];
+        }
+        out[na + f] = r->outside_ms[f];
+    }
+    return true;
+}
+
+double sl_orbit_pass_median(const sl_orbit_result *r, int k, int *runs) {
+    double *v = malloc(sizeof *v * (r->frames ? r->frames : 1));
+    int n = 0;
+    for (int f = 0; v && f < r->frames; f++) {
+        double x = k < 0 ? r->passes.outside_ms[f] : r->passes.ms[(size_t)f * SL_ORBIT_MAX_PASSES + k];
+        if (x == x) v[n++] = x;
+    }
+    double m = n ? sl_orbit_quantile(v, n, 0.5) : NAN;
+    free(v);
+    if (runs) *runs = n;
+    return m;
+}
+
 bool sl_orbit_pool(sl_orbit_result *into, sl_orbit_result *r) {
     if (!into->rounds) {
         *into = *r;
@@ -258,7 +321,9 @@ bool sl_orbit_pool(sl_orbit_result *into, sl_orbit_result *r) {
     double *ms = realloc(into->frame_ms, sizeof *ms * (into->frames + r->frames + 1));
     if (!ms) return false;
     memcpy(ms + into->frames, r->frame_ms, sizeof *ms * r->frames);
-    into->frame_ms = ms, into->frames += r->frames;
+    into->frame_ms = ms;
+    if (r->passes.count && !pool_passes(&into->passes, into->frames, &r->passes, r->frames)) return false;
+    into->frames += r->frames;
     int a = into->points, b = r->points;
     into->motion_flip = pooled(into->motion_flip, a, r->motion_flip, b);
     into->motion_rmse = pooled(into->motion_rmse, a, r->motion_rmse, b);
@@ -273,6 +338,9 @@ bool sl_orbit_pool(sl_orbit_result *into, sl_orbit_result *r) {
 }
 
 void sl_orbit_result_free(sl_orbit_result *res) {
+    for (int k = 0; k < res->passes.count; k++) free(res->passes.name[k]);
+    free(res->passes.ms);
+    free(res->passes.outside_ms);
     free(res->frame_ms);
     free(res->scene);
     free(res->backend);

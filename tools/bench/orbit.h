@@ -40,7 +40,18 @@ typedef struct sl_orbit_options {
     int points;                      /* 0: SL_ORBIT_POINTS */
     const char *hq_settings;         /* NULL: SL_ORBIT_HQ_SETTINGS; "" = the orbit's own settings */
     bool progress;                   /* progress lines on stderr */
+    bool pass_times;                 /* time every pass of every timed frame (glFinish around each on
+                                      * llvmpipe: the frames are slower by what that costs) */
 } sl_orbit_options;
+
+#define SL_ORBIT_MAX_PASSES 64
+
+typedef struct sl_orbit_passes {
+    int count;                       /* passes seen in any frame, in the order first seen */
+    char *name[SL_ORBIT_MAX_PASSES];
+    double *ms;                      /* frames x SL_ORBIT_MAX_PASSES, NAN where the pass did not run */
+    double *outside_ms;              /* per frame: the frame's time less its passes' (set-up, waits) */
+} sl_orbit_passes;
 
 typedef struct sl_orbit_result {
     char *scene;
@@ -58,6 +69,7 @@ typedef struct sl_orbit_result {
     double still_flip, still_rmse;
     double flicker, flicker_max;     /* mean and largest over the points */
     char *hq_settings;
+    sl_orbit_passes passes;          /* with pass_times only (count 0 otherwise) */
 } sl_orbit_result;
 
 /* Runs the orbit. False with err when the scene, a plugin or GL fails. */
@@ -67,6 +79,9 @@ void sl_orbit_result_free(sl_orbit_result *res);
  * times appended and their statistics recomputed over all, errors averaged over every frame pair
  * of both, seconds and degrees added. `r` is left empty (freed). False when out of memory. */
 bool sl_orbit_pool(sl_orbit_result *into, sl_orbit_result *r);
+/* Median ms of pass k over the frames it ran in (*runs of them); NAN when it never ran. k = -1:
+ * the time outside the passes. */
+double sl_orbit_pass_median(const sl_orbit_result *r, int k, int *runs);
 /* The q-quantile (0..1) of v (n values) by linear interpolation between order statistics
  * (sorted v[(n-1)q]); NaN when n == 0. v is sorted in place. */
 double sl_orbit_quantile(double *v, int n, double q);
