@@ -14,6 +14,13 @@ static double now_s(void) {
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
+/* CPU seconds of every thread of this process (llvmpipe's rasteriser threads included). */
+static double cpu_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
 static int cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : x > y;
@@ -111,14 +118,16 @@ static bool record_passes(sl_app *app, sl_orbit_passes *pp, int frame, double fr
 /* Two consecutive motion frames, their cameras, and the orbit settings' still at the second. */
 typedef struct orbit_pair { sl_camera_state cam[2]; float *frame[2], *still; } orbit_pair;
 
-/* The timed orbit: frame times into ms[], the pairs captured at their moments. */
+/* The timed orbit: wall and CPU times of each frame into ms[] and cpu[], the pairs captured at
+ * their moments. */
 static bool timed_orbit(const sl_orbit_options *o, sl_app *app, double speed, orbit_pair *pairs, int points,
-                        double **ms, int *frames, sl_orbit_passes *pp) {
+                        double **ms, double **cpu, int *frames, sl_orbit_passes *pp) {
     const size_t px = (size_t)app->backend.width * app->backend.height * 4;
     const sl_camera_state start = app->camera;
     int cap = 256, next = 0, taking = -1;
     *ms = malloc(sizeof **ms * cap);
-    if (!*ms) return false;
+    *cpu = malloc(sizeof **cpu * cap);
+    if (!*ms || !*cpu) return false;
     *frames = 0;
     app->time = 0;
     /* warm-up: two frames at rest, two moving (programs compiled, uploads done, TAA's motion
@@ -136,16 +145,20 @@ static bool timed_orbit(const sl_orbit_options *o, sl_app *app, double speed, or
         app->camera = start;
         app->camera.version = version;
         sl_camera_orbit(&app->camera, (float)(speed * t), 0); /* bumps the version */
-        double f0 = now_s();
+        double f0 = now_s(), c0 = cpu_s();
         if (!sl_app_render_frame(app)) return false;
         glFinish();
-        double frame_ms = (now_s() - f0) * 1e3;
+        double frame_ms = (now_s() - f0) * 1e3, frame_cpu_ms = (cpu_s() - c0) * 1e3;
         if (o->pass_times && !record_passes(app, pp, *frames, frame_ms)) return false;
         if (*frames == cap) {
-            double *grown = realloc(*ms, sizeof **ms * (cap *= 2));
-            if (!grown) return false;
-            *ms = grown;
+            cap *= 2;
+            double *grown = realloc(*ms, sizeof **ms * cap);
+            if (grown) *ms = grown;
+            double *grown_cpu = grown ? realloc(*cpu, sizeof **cpu * cap) : NULL;
+            if (!grown_cpu) return false;
+            *cpu = grown_cpu;
         }
+        (*cpu)[*frames] = frame_cpu_ms;
         (*ms)[(*frames)++] = frame_ms;
         /* a pair starts at the first frame past its moment, (k + 1/2)/points of the orbit */
         int slot = taking >= 0 ? 1 : 0;
@@ -181,6 +194,9 @@ static bool summarise_times(sl_orbit_result *res) {
     res->p95_ms = sl_orbit_quantile(ms, res->frames, 0.95);
     res->p99_ms = sl_orbit_quantile(ms, res->frames, 0.99);
     res->max_ms = res->frames ? ms[res->frames - 1] : NAN;
+    res->cpu_mean_ms = 0;
+    for (int i = 0; i < res->frames; i++) ms[i] = res->cpu_ms[i], res->cpu_mean_ms += ms[i] / res->frames;
+    res->cpu_p50_ms = sl_orbit_quantile(ms, res->frames, 0.5);
     free(ms);
     return true;
 }
@@ -220,7 +236,7 @@ static bool orbit_and_stills(const sl_orbit_options *o, double speed, orbit_pair
     sl_app app = {0};
     bool inited = false;
     char buf[4096];
-    double *ms = NULL;
+    double *ms = NULL, *cpu = NULL;
     bool ok = open_app(o, o->variant, buf, sizeof buf, &app, &inited, err, n);
     if (ok) {
         res->width = app.backend.width, res->height = app.backend.height;
@@ -229,10 +245,10 @@ static bool orbit_and_stills(const sl_orbit_options *o, double speed, orbit_pair
         res->renderer = strdup(rs ? rs : "?");
         if (o->progress) fprintf(stderr, "[orbit] %s: %.0f s at %g deg/s, %dx%d\n", res->scene, o->seconds,
                                  speed * 180 / M_PI, res->width, res->height);
-        ok = timed_orbit(o, &app, speed, pairs, points, &ms, &res->frames, &res->passes);
+        ok = timed_orbit(o, &app, speed, pairs, points, &ms, &cpu, &res->frames, &res->passes);
         if (!ok) snprintf(err, n, "rendering the orbit failed");
     }
-    if (ok) res->frame_ms = ms, ms = NULL, ok = summarise_times(res);
+    if (ok) res->frame_ms = ms, res->cpu_ms = cpu, ms = cpu = NULL, ok = summarise_times(res);
     size_t px = (size_t)res->width * res->height * 4;
     for (int k = 0; k < points && ok; k++) {
         if (!pairs[k].frame[1]) continue;
@@ -242,6 +258,7 @@ static bool orbit_and_stills(const sl_orbit_options *o, double speed, orbit_pair
     }
     if (ok) res->still_frames = sl_tool_still_frames(&app);
     free(ms);
+    free(cpu);
     if (inited) sl_app_shutdown(&app);
     return ok;
 }
@@ -322,6 +339,10 @@ bool sl_orbit_pool(sl_orbit_result *into, sl_orbit_result *r) {
     if (!ms) return false;
     memcpy(ms + into->frames, r->frame_ms, sizeof *ms * r->frames);
     into->frame_ms = ms;
+    double *cpu = realloc(into->cpu_ms, sizeof *cpu * (into->frames + r->frames + 1));
+    if (!cpu) return false;
+    memcpy(cpu + into->frames, r->cpu_ms, sizeof *cpu * r->frames);
+    into->cpu_ms = cpu;
     if (r->passes.count && !pool_passes(&into->passes, into->frames, &r->passes, r->frames)) return false;
     into->frames += r->frames;
     int a = into->points, b = r->points;
@@ -342,6 +363,7 @@ void sl_orbit_result_free(sl_orbit_result *res) {
     free(res->passes.ms);
     free(res->passes.outside_ms);
     free(res->frame_ms);
+    free(res->cpu_ms);
     free(res->scene);
     free(res->backend);
     free(res->renderer);

@@ -4,7 +4,8 @@
  * user's drag is: frame i is rendered at yaw0 + speed * (its start time), as fast as the
  * renderer goes, for `seconds`; the scene's clock stays at 0 (only the camera moves). Reported:
  *   - frame times (render + glFinish, CPU wall): p50, p95, p99, mean, and the fraction of
- *     frames over the budget;
+ *     frames over the budget; the CPU time of the process's threads per frame (p50, mean): on a
+ *     CPU rasteriser the work a frame costs, which other processes on the machine do not inflate;
  *   - at `points` moments evenly spread over the orbit, a pair of consecutive motion frames
  *     (f_{k-1}, f_k), compared afterwards, untimed, with the highest-quality still at each
  *     frame's camera (h_{k-1}, h_k: the scene with `hq_settings` on top, rendered as a complete
@@ -62,6 +63,8 @@ typedef struct sl_orbit_result {
     double *frame_ms;                /* their times in the order rendered (pooled rounds: one after another) */
     int rounds;                      /* orbits pooled into this result (sl_orbit_pool) */
     double p50_ms, p95_ms, p99_ms, mean_ms, max_ms;
+    double *cpu_ms;                  /* CPU time of every thread of the process per frame, same order */
+    double cpu_p50_ms, cpu_mean_ms;  /* what a frame costs, whatever else the machine runs */
     double over_budget;              /* fraction of frames slower than budget_ms */
     int points;                      /* frame pairs compared */
     int still_frames;                /* frames of the orbit's settings' still (TAA's history) */
