@@ -246,6 +246,8 @@ static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size
     return sh;
 }
 
+static void free_uniforms(sl_program *p);
+
 bool sl_program_build(sl_program *p, char *err, size_t n) {
     char log[8192] = "";
     int err_owner = 0;
@@ -295,6 +297,7 @@ bool sl_program_build(sl_program *p, char *err, size_t n) {
         return false;
     }
     if (p->id) glDeleteProgram(p->id);
+    free_uniforms(p); /* GL may give a new program an old one's name */
     p->id = prog;
     return true;
 }
@@ -448,8 +451,80 @@ bool sl_source_changed(const sl_source *s) {
     return false;
 }
 
+typedef struct sl_uniform_slot { uint64_t hash; char *name; int location; } sl_uniform_slot;
+
+static void free_uniforms(sl_program *p) {
+    for (int i = 0; i < p->uniform_slots; i++) free(p->uniforms[i].name);
+    free(p->uniforms);
+    p->uniforms = NULL;
+    p->uniform_slots = 0;
+    p->uniforms_of = 0;
+}
+
+/* The slot of `name` (hash h) in the open-addressed table: its own, or the empty one it would take. */
+static sl_uniform_slot *uniform_slot(sl_program *p, const char *name, uint64_t h) {
+    int mask = p->uniform_slots - 1;
+    for (int i = (int)(h & (uint64_t)mask);; i = (i + 1) & mask) {
+        sl_uniform_slot *s = &p->uniforms[i];
+        if (!s->name || (s->hash == h && !strcmp(s->name, name))) return s;
+    }
+}
+
+static void add_uniform(sl_program *p, const char *name, int location) {
+    uint64_t h = sl_hash64(name, strlen(name), 0);
+    sl_uniform_slot *s = uniform_slot(p, name, h);
+    if (s->name) return;
+    *s = (sl_uniform_slot){.hash = h, .name = strdup(name), .location = location};
+    if (!s->name) s->hash = 0;
+}
+
+/* The table of p->id's active uniforms with a location (block members have none), arrays also
+ * under their bare name; at least twice as many slots as names, so that every probe ends. */
+static void make_uniforms(sl_program *p) {
+    free_uniforms(p);
+    int count = 0, longest = 0;
+    glGetProgramiv(p->id, GL_ACTIVE_UNIFORMS, &count);
+    glGetProgramiv(p->id, GL_ACTIVE_UNIFORM_MAX_LENGTH, &longest);
+    int slots = 16;
+    while (slots < 4 * (count + 1)) slots *= 2;
+    p->uniforms = calloc(slots, sizeof *p->uniforms);
+    char *name = malloc(longest + 1 > 1 ? longest + 1 : 2);
+    if (!p->uniforms || !name) {
+        free(name);
+        free(p->uniforms);
+        p->uniforms = NULL;
+        return;
+    }
+    p->uniform_slots = slots;
+    p->uniforms_of = p->id;
+    for (int i = 0; i < count; i++) {
+        int size = 0;
+        unsigned type = 0;
+        glGetActiveUniform(p->id, (unsigned)i, longest + 1, NULL, &size, &type, name);
+        int location = glGetUniformLocation(p->id, name);
+        if (location < 0) continue;
+        add_uniform(p, name, location);
+        size_t len = strlen(name);
+        if (len > 3 && !strcmp(name + len - 3, "[0]")) {
+            name[len - 3] = 0;
+            add_uniform(p, name, location);
+        }
+    }
+    free(name);
+}
+
+int sl_program_uniform(sl_program *p, const char *name) {
+    if (!p || !p->id) return -1;
+    if (strchr(name, '[')) return glGetUniformLocation(p->id, name);
+    if (p->uniforms_of != p->id) make_uniforms(p);
+    if (!p->uniforms) return glGetUniformLocation(p->id, name);
+    const sl_uniform_slot *s = uniform_slot(p, name, sl_hash64(name, strlen(name), 0));
+    return s->name ? s->location : -1;
+}
+
 void sl_program_free(sl_program *p) {
     if (!p) return;
+    free_uniforms(p);
     if (p->id) glDeleteProgram(p->id);
     sl_source_free(&p->vs);
     sl_source_free(&p->fs);

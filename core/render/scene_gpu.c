@@ -386,9 +386,10 @@ void sl_gpu_compose_all(sl_app *app) {
     }
 }
 
-static void set_value_uniform(unsigned prog, const char *name, const sl_param *q, const sl_value *v) {
-    int loc = glGetUniformLocation(prog, name);
+static void set_value_uniform(sl_program *p, const char *name, const sl_param *q, const sl_value *v) {
+    int loc = sl_program_uniform(p, name);
     if (loc < 0) return;
+    unsigned prog = p->id;
     switch (q->desc.type) {
     case SL_PARAM_BOOL: glProgramUniform1i(prog, loc, v->b); break;
     case SL_PARAM_INT: case SL_PARAM_ENUM: glProgramUniform1i(prog, loc, v->i); break;
@@ -398,51 +399,52 @@ static void set_value_uniform(unsigned prog, const char *name, const sl_param *q
     }
 }
 
-static void set_camera_uniforms(sl_app *app, unsigned prog, const float *view, const float *proj) {
+static void set_camera_uniforms(sl_app *app, sl_program *p, const float *view, const float *proj) {
     sl_renderer *r = R(app);
     mat4 vp;
     glm_mat4_mul((vec4 *)proj, (vec4 *)view, vp);
-    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_view"), 1, GL_FALSE, view);
-    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_proj"), 1, GL_FALSE, proj);
-    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_view_proj"), 1, GL_FALSE, (float *)vp);
-    glUniform3fv(glGetUniformLocation(prog, "sl_camera_pos"), 1, r->frame.camera_pos);
-    glUniform1f(glGetUniformLocation(prog, "sl_time"), (float)r->frame.time);
-    glUniform1i(glGetUniformLocation(prog, "sl_frame_index"), r->frame.accumulate_index);
-    glUniform1i(glGetUniformLocation(prog, "sl_sample_index"), r->frame.sample_index);
-    glUniform1i(glGetUniformLocation(prog, "sl_sample_count"), r->frame.sample_count);
-    glUniform2f(glGetUniformLocation(prog, "sl_viewport_size"), (float)r->frame.width, (float)r->frame.height);
+    glUniformMatrix4fv(sl_program_uniform(p, "sl_view"), 1, GL_FALSE, view);
+    glUniformMatrix4fv(sl_program_uniform(p, "sl_proj"), 1, GL_FALSE, proj);
+    glUniformMatrix4fv(sl_program_uniform(p, "sl_view_proj"), 1, GL_FALSE, (float *)vp);
+    glUniform3fv(sl_program_uniform(p, "sl_camera_pos"), 1, r->frame.camera_pos);
+    glUniform1f(sl_program_uniform(p, "sl_time"), (float)r->frame.time);
+    glUniform1i(sl_program_uniform(p, "sl_frame_index"), r->frame.accumulate_index);
+    glUniform1i(sl_program_uniform(p, "sl_sample_index"), r->frame.sample_index);
+    glUniform1i(sl_program_uniform(p, "sl_sample_count"), r->frame.sample_count);
+    glUniform2f(sl_program_uniform(p, "sl_viewport_size"), (float)r->frame.width, (float)r->frame.height);
     if (r->motion) { /* SL_MOTION_VECTORS programs (forward.vert) */
-        glUniformMatrix4fv(glGetUniformLocation(prog, "sl_unjittered_view_proj"), 1, GL_FALSE, r->frame.unjittered_view_proj);
-        glUniformMatrix4fv(glGetUniformLocation(prog, "sl_prev_view_proj"), 1, GL_FALSE,
+        glUniformMatrix4fv(sl_program_uniform(p, "sl_unjittered_view_proj"), 1, GL_FALSE, r->frame.unjittered_view_proj);
+        glUniformMatrix4fv(sl_program_uniform(p, "sl_prev_view_proj"), 1, GL_FALSE,
                            r->have_prev ? r->prev_unjittered_vp : r->frame.unjittered_view_proj);
-        glUniform1f(glGetUniformLocation(prog, "sl_prev_time"), (float)(r->have_prev ? r->prev_time : r->frame.time));
+        glUniform1f(sl_program_uniform(p, "sl_prev_time"), (float)(r->have_prev ? r->prev_time : r->frame.time));
     }
 }
 
 /* Binds a material's program and every uniform it reads except the per-object ones. */
-static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var, const float *view, const float *proj) {
+static sl_program *bind_material(sl_app *app, int m, const sl_forward_variant *var, const float *view, const float *proj) {
     sl_renderer *r = R(app);
-    unsigned prog = var->program ? var->program->id : 0;
-    if (!prog) return 0;
+    sl_program *p = var->program;
+    unsigned prog = p ? p->id : 0;
+    if (!prog) return NULL;
     glUseProgram(prog);
-    set_camera_uniforms(app, prog, view, proj);
+    set_camera_uniforms(app, p, view, proj);
     const sl_environment *env = &app->scene.environment;
-    glUniform3f(glGetUniformLocation(prog, "sl_ambient_irradiance"), (float)M_PI * env->color[0] * env->intensity,
+    glUniform3f(sl_program_uniform(p, "sl_ambient_irradiance"), (float)M_PI * env->color[0] * env->intensity,
                 (float)M_PI * env->color[1] * env->intensity, (float)M_PI * env->color[2] * env->intensity);
     for (int t = 0; t < r->ntypes; t++) {
         char name[160], id[128];
         sl_glsl_ident(r->types[t], id, sizeof id, false);
         snprintf(name, sizeof name, "sl_lights_%s", id);
-        glUniform2i(glGetUniformLocation(prog, name), r->type_range[t][0], r->type_range[t][1]);
+        glUniform2i(sl_program_uniform(p, name), r->type_range[t][0], r->type_range[t][1]);
         snprintf(name, sizeof name, "sl_shadowed_%s", id);
-        glUniform2i(glGetUniformLocation(prog, name), r->shadowed_range[t][0], r->shadowed_range[t][1]);
+        glUniform2i(sl_program_uniform(p, name), r->shadowed_range[t][0], r->shadowed_range[t][1]);
     }
     glBindBufferBase(sl_gpu_lights_in_uniform_block(app) ? GL_UNIFORM_BUFFER : GL_SHADER_STORAGE_BUFFER, 0, r->light_buffer);
     if (var->program->tessellated) {
         /* levels from the frame's camera in every pass (shaders/tess.glsl): shadow maps tessellate
          * as the view does; proj[1][1] × height / 2 = pixels per unit at unit distance */
-        glUniform1f(glGetUniformLocation(prog, "sl_tess_pixel_scale"), r->frame.proj[5] * 0.5f * (float)r->frame.height);
-        glUniform1i(glGetUniformLocation(prog, "sl_tess_orthographic"), r->frame.proj[15] == 1.0f);
+        glUniform1f(sl_program_uniform(p, "sl_tess_pixel_scale"), r->frame.proj[5] * 0.5f * (float)r->frame.height);
+        glUniform1i(sl_program_uniform(p, "sl_tess_orthographic"), r->frame.proj[15] == 1.0f);
     }
     sl_mat_state *ms = &app->materials[m];
     for (int i = 0; i < ms->count; i++) {
@@ -450,7 +452,7 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
         if (q->desc.type == SL_PARAM_TEXTURE || (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE)) continue;
         char name[200];
         snprintf(name, sizeof name, "sl_mat_%s", q->full_id);
-        set_value_uniform(prog, name, q, &ms->values[i].v);
+        set_value_uniform(p, name, q, &ms->values[i].v);
     }
     for (int t = 0; t < var->texture_count; t++) glBindTextureUnit(SL_TEXTURE_UNIT_MATERIAL_FIRST + t, r->materials[m].textures[t]);
     for (int i = 0; i < app->params.count; i++) {
@@ -461,13 +463,13 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
         char name[300], oid[128];
         sl_glsl_ident(q->owner, oid, sizeof oid, false);
         snprintf(name, sizeof name, "%s_%s", oid, q->desc.id);
-        set_value_uniform(prog, name, q, &q->value);
+        set_value_uniform(p, name, q, &q->value);
     }
     for (int i = 0; i < app->plugins.count; i++) {
         sl_plugin_rec *pr = app->plugins.items[i];
         if ((var->owners & (1ull << (i & 63))) && pr->bind && sl_plugin_enabled(&app->plugins, i)) pr->bind(pr->bind_user, prog, m, &r->frame);
     }
-    return prog;
+    return p;
 }
 
 /* ------------------------------------------------------------------ drawing --------- */
@@ -475,13 +477,13 @@ static unsigned bind_material(sl_app *app, int m, const sl_forward_variant *var,
 /* The forward-blend pass's own uniforms (forward.frag, SL_MAT_ALPHA_BLEND): "depth" holds
  * ssaa × ssaa samples per pixel of "color"; the fragment tests them itself. 0 outside that pass:
  * the material's fragments are written opaque (alpha 1), as before blending existed. */
-static void blend_uniforms(sl_app *app, unsigned prog, bool blend_pass) {
+static void blend_uniforms(sl_app *app, sl_program *p, bool blend_pass) {
     sl_renderer *r = R(app);
-    glUniform1i(glGetUniformLocation(prog, "sl_blend_depth"), SL_BLEND_DEPTH_UNIT);
-    glUniform1i(glGetUniformLocation(prog, "sl_blend_ssaa"), blend_pass ? r->ssaa : 0);
+    glUniform1i(sl_program_uniform(p, "sl_blend_depth"), SL_BLEND_DEPTH_UNIT);
+    glUniform1i(sl_program_uniform(p, "sl_blend_ssaa"), blend_pass ? r->ssaa : 0);
     /* the capture's mip count − 1 (shaders/scene_behind.glsl) */
     int side = r->behind_w > r->behind_h ? r->behind_w : r->behind_h;
-    glUniform1f(glGetUniformLocation(prog, "sl_scene_behind_levels"), side > 0 ? floorf(log2f((float)side)) : 0.0f);
+    glUniform1f(sl_program_uniform(p, "sl_scene_behind_levels"), side > 0 ? floorf(log2f((float)side)) : 0.0f);
 }
 
 /* The material's program with its shading model replaced (SL_DRAW_MATERIALS). */
@@ -526,9 +528,9 @@ static void draw_materials_fullscreen(sl_app *app, const sl_draw_scene_desc *d, 
             if (!v || !v->present) continue;
         }
         const sl_forward_variant *var = override_variant_of(app, m, d->model_override, fragment, true);
-        unsigned prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
-        if (!prog) continue;
-        glUniform1i(glGetUniformLocation(prog, "sl_material_index"), m);
+        sl_program *p = var ? bind_material(app, m, var, d->view, d->proj) : NULL;
+        if (!p) continue;
+        glUniform1i(sl_program_uniform(p, "sl_material_index"), m);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         r->stats.draw_calls++;
     }
@@ -713,8 +715,8 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
             return;
         }
         glUseProgram(custom->id);
-        set_camera_uniforms(app, custom->id, d->view, d->proj);
-        glUniform1i(glGetUniformLocation(custom->id, "sl_uv_space"), d->uv_space);
+        set_camera_uniforms(app, custom, d->view, d->proj);
+        glUniform1i(sl_program_uniform(custom, "sl_uv_space"), d->uv_space);
     }
     draw_item *items = NULL;
     bool cull = may_cull(app, d, custom != NULL);
@@ -725,7 +727,7 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
     int viewport[4] = {0, 0, 0, 0};
     if (lod_pixels > 0) glGetIntegerv(GL_VIEWPORT, viewport);
     int bound_m = -1;
-    unsigned prog = custom ? custom->id : 0;
+    sl_program *prog = custom;
     const sl_forward_variant *var = NULL;
     for (int i = 0; i < count; i++) {
         int m = items[i].m, ni = items[i].node;
@@ -744,8 +746,8 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
                 var = depth_only       ? &r->materials[m].depth
                       : model_override || fragment ? override_variant_of(app, m, model_override, fragment, false)
                                        : &r->materials[m].forward;
-                prog = var ? bind_material(app, m, var, d->view, d->proj) : 0;
-                if (prog) glUniform1i(glGetUniformLocation(prog, "sl_uv_space"), d->uv_space);
+                prog = var ? bind_material(app, m, var, d->view, d->proj) : NULL;
+                if (prog) glUniform1i(sl_program_uniform(prog, "sl_uv_space"), d->uv_space);
                 /* a blended material's program blends only in the forward-blend pass; a plugin's
                  * draw (the same program when the sources match) sees it opaque */
                 if (prog && draw_class(app, m) > 0) blend_uniforms(app, prog, set == SL_GPU_DRAW_BLENDED || set == SL_GPU_DRAW_BEHIND);
@@ -761,18 +763,18 @@ void sl_gpu_draw_meshes(sl_app *app, const sl_draw_scene_desc *d, bool depth_onl
         /* a mirroring transform (negative determinant) reverses the winding; in UV space
          * (v = 0 at the top) unmirrored UV layouts wind clockwise: make them front faces */
         glFrontFace(d->uv_space || glm_mat4_det(model) < 0 ? GL_CW : GL_CCW);
-        glUniformMatrix4fv(glGetUniformLocation(prog, "sl_model"), 1, GL_FALSE, (float *)model);
+        glUniformMatrix4fv(sl_program_uniform(prog, "sl_model"), 1, GL_FALSE, (float *)model);
         /* motion vectors: the node's world matrix in the previous frame (animated nodes move) */
         if (r->motion) {
             const float *prev = r->have_prev && r->prev_world && ni < r->prev_world_count ? r->prev_world[ni] : (float *)model;
-            glUniformMatrix4fv(glGetUniformLocation(prog, "sl_prev_model"), 1, GL_FALSE, prev);
+            glUniformMatrix4fv(sl_program_uniform(prog, "sl_prev_model"), 1, GL_FALSE, prev);
         }
-        glUniformMatrix3fv(glGetUniformLocation(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
+        glUniformMatrix3fv(sl_program_uniform(prog, "sl_normal_matrix"), 1, GL_FALSE, (float *)nrm);
         if (var && var->node_tag_count) { /* VERTEX hooks gated on node tags (when_node_tag) */
             int mask = 0;
             for (int t = 0; t < var->node_tag_count; t++)
                 if (sl_scene_node_has_tag(s, ni, var->node_tags[t])) mask |= 1 << t;
-            glUniform1i(glGetUniformLocation(prog, "sl_vertex_hook_mask"), mask);
+            glUniform1i(sl_program_uniform(prog, "sl_vertex_hook_mask"), mask);
         }
         glBindVertexArray(r->meshes[mi].vao);
         if (var && var->program && var->program->tessellated) { /* DISPLACEMENT hooks (ABI 1.7) */
@@ -836,8 +838,8 @@ bool sl_renderer_materials_use_uniform(sl_app *app, const char *name) {
     sl_renderer *r = R(app);
     if (!r || !r->materials || !name) return false;
     for (int m = 0; m < app->scene.material_count; m++) {
-        unsigned prog = r->materials[m].forward.program ? sl_program_id(r->materials[m].forward.program) : 0;
-        if (prog && glGetUniformLocation(prog, name) >= 0) return true;
+        sl_program *p = r->materials[m].forward.program;
+        if (p && sl_program_id(p) && sl_program_uniform(p, name) >= 0) return true;
     }
     return false;
 }
