@@ -79,8 +79,37 @@ bool sl_graph_wants_prepass(sl_app *app) {
 
 bool sl_graph_wants_normal(sl_app *app) { return !sl_graph_wants_prepass(app) && read_between(app, "normal", INT_MIN, INT_MAX); }
 
+/* A pass that writes no target of the graph (shadow maps, a prefiltered environment: textures of
+ * its own) keeps what it wrote when the graph is planned again, e.g. for a new render scale: it
+ * keeps its skip state too, so it re-runs only when what it declared it depends on changed. */
+typedef struct kept_pass { const sl_pass_desc *d; int owner; uint64_t signature, depends; int draws; double ms; } kept_pass;
+
+static int keep_own_output_passes(const sl_renderer *r, kept_pass **out) {
+    *out = calloc(r->pass_count + 1, sizeof **out);
+    int n = 0;
+    for (int i = 0; *out && i < r->pass_count; i++) {
+        const graph_pass *g = &r->passes[i];
+        if (g->has_run && !g->broken && g->d->output_count == 0)
+            (*out)[n++] = (kept_pass){g->d, g->owner, g->last_signature, g->last_depends, g->last_draws, g->last_ms};
+    }
+    return n;
+}
+
+static void restore_own_output_passes(sl_renderer *r, const kept_pass *kept, int n) {
+    for (int i = 0; i < r->pass_count; i++)
+        for (int k = 0; k < n; k++) {
+            graph_pass *g = &r->passes[i];
+            if (g->d != kept[k].d || g->owner != kept[k].owner || g->broken) continue;
+            g->has_run = true;
+            g->last_signature = kept[k].signature, g->last_depends = kept[k].depends;
+            g->last_draws = kept[k].draws, g->last_ms = kept[k].ms;
+        }
+}
+
 void sl_graph_plan(sl_app *app) {
     sl_renderer *r = R(app);
+    kept_pass *kept;
+    int kept_count = keep_own_output_passes(r, &kept);
     sl_graph_free(r);
     for (int i = 0; i < app->plugins.pass_count; i++) sl_plugins_update_pass_io(&app->plugins, i); /* ABI 1.13 */
     /* core.ssaa > 1: the forward pass renders "forward.ssaa" at k× the viewport and the resolve
@@ -157,6 +186,8 @@ void sl_graph_plan(sl_app *app) {
             sl_graph_add_target(r, o, sl_graph_lists(g->d->inputs, o->name));
         }
     }
+    restore_own_output_passes(r, kept, kept_count);
+    free(kept);
     r->plan_dirty = false;
 }
 

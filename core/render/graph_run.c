@@ -302,10 +302,18 @@ static uint64_t input_versions(sl_renderer *r, graph_pass *g) {
  * current state of each thing it declared. The pass is skipped while the key is the one it had
  * when the pass last ran and its outputs persist (see outputs_persist). */
 
-static uint64_t hash_globals(sl_app *app, const char *owner, uint64_t h) {
+/* The core's parameters that no program reads and that change no pass's work but through what
+ * passes declare otherwise: the render scale reaches them as the viewport size
+ * (SL_DEPENDS_CAMERA), the frame-time budget only through the settings it changes. Left out of
+ * SL_DEPENDS_MATERIALS, so that a new render scale re-renders no shadow map. */
+static bool viewport_only(const sl_param *q) {
+    return !strcmp(q->owner, "core") && (!strcmp(q->desc.id, "render_scale") || !strcmp(q->desc.id, "budget"));
+}
+
+static uint64_t hash_globals(sl_app *app, const char *owner, bool materials, uint64_t h) {
     for (int i = 0; i < app->params.count; i++) {
         const sl_param *q = &app->params.items[i];
-        if (q->desc.scope != SL_SCOPE_GLOBAL || strcmp(q->owner, owner)) continue;
+        if (q->desc.scope != SL_SCOPE_GLOBAL || strcmp(q->owner, owner) || (materials && viewport_only(q))) continue;
         h = sl_hash64(&q->value.b, sizeof q->value.b, h);
         h = sl_hash64(&q->value.i, sizeof q->value.i, h);
         h = sl_hash64(q->value.f, sizeof q->value.f, h);
@@ -350,9 +358,9 @@ static uint64_t depends_key(sl_app *app, graph_pass *g) {
         uint64_t v[3] = {app->materials_version, app->params.recompile_version, r->programs_version};
         h = sl_hash64(v, sizeof v, h);
         for (int p = 0; p < app->plugins.count; p++)
-            if (reaches_materials(app, p)) h = hash_globals(app, app->plugins.items[p]->id, h);
+            if (reaches_materials(app, p)) h = hash_globals(app, app->plugins.items[p]->id, true, h);
     }
-    if (dep & SL_DEPENDS_OWN_PARAMS) h = hash_globals(app, g->owner >= 0 ? app->plugins.items[g->owner]->id : "core", h);
+    if (dep & SL_DEPENDS_OWN_PARAMS) h = hash_globals(app, g->owner >= 0 ? app->plugins.items[g->owner]->id : "core", false, h);
     if (dep & SL_DEPENDS_PARAMS) h = sl_hash64(&f->edits_version, sizeof f->edits_version, h);
     if (dep & SL_DEPENDS_TIME) h = sl_hash64(&f->time, sizeof f->time, h);
     if (dep & SL_DEPENDS_INPUTS) {

@@ -224,6 +224,24 @@ static void test_pass_skipping(void) {
            without.pass_count);
 }
 
+/* A new render scale (the frame-time budget's knob) re-plans the graph at another size, but no
+ * caster or light moved: the maps are kept, and the image is the one a fresh start at that scale
+ * renders, which draws them. */
+static void test_render_scale_keeps_maps(void) {
+    char json[4096];
+    snprintf(json, sizeof json, SCENE_HEAD "%s", cases[1].json);
+    sl_harness *h = ss_make(W, H, json, NULL);
+    CHECK(h && sl_harness_render(h, NULL) && ss_has_pass(h, "shadow-maps"));
+    CHECK(h && ss_set(h, "core.render_scale=0.5") && sl_harness_render(h, img) && !ss_has_pass(h, "shadow-maps"));
+    CHECK(h && ss_set(h, "core.render_scale=1") && sl_harness_render(h, NULL) && !ss_has_pass(h, "shadow-maps"));
+    CHECK(h && ss_set(h, "core.render_scale=0.5") && sl_harness_render(h, img) && !ss_has_pass(h, "shadow-maps"));
+    sl_harness_destroy(h);
+    h = ss_make(W, H, json, (const char *[]){"core.render_scale=0.5", NULL});
+    CHECK(h && sl_harness_render(h, lit) && ss_has_pass(h, "shadow-maps"));
+    CHECK_MSG(h && !memcmp(img, lit, sizeof img), "the kept maps shade differently from freshly drawn ones");
+    sl_harness_destroy(h);
+}
+
 /* The reference (area light, accumulated) is soft; PCSS is closer to it than hard shadows. */
 static void test_reference(void) {
     char json[4096];
@@ -325,6 +343,7 @@ int main(void) {
     test_stability();
     test_off_exact();
     test_pass_skipping();
+    test_render_scale_keeps_maps();
     test_reference();
     return check_result();
 }
