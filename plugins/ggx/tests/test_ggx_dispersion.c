@@ -22,6 +22,7 @@
  * lookup (2). */
 #include "check.h"
 #include "camera_rays.h"
+#include "ggx_layer_test.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,7 +34,7 @@ static const test_camera cam = {{0, 3, 4}, {0, 0, 0}, 50, W, H};
 static const double ior = 1.5, thickness = 2, dispersion = 5, floor_y = -3, stripe_half = 0.8;
 
 static bool render(const char *keys, const char *const *settings, const char *view, float *out) {
-    char json[4096], err[4096];
+    char json[4096];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"ggx\"], \"environment\": {\"color\": [0, 0, 0]},\n"
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 3, 4], \"target\": [0, 0, 0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}],\n"
@@ -46,14 +47,11 @@ static bool render(const char *keys, const char *const *settings, const char *vi
              "           {\"name\": \"stripe\", \"translate\": [0, %g, 0], \"scale\": [40, 1, %g], \"mesh\": {\"primitive\": \"plane\", \"size\": 1},\n"
              "            \"material\": \"stripe\"}]}",
              ior, thickness, keys, floor_y, floor_y + 0.01, 2 * stripe_half);
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
-                                                          .scene_json = json, .settings = settings, .debug_view = view,
-                                                          .float32 = true, .strict = true},
-                                      err, sizeof err);
-    CHECK_MSG(h != NULL, "harness: %s", err);
+    sl_harness *h = ggx_test_harness(json, W, H, settings, view);
     if (!h) return false;
-    bool ok = sl_harness_render(h, out) && sl_harness_count_nonfinite(out, W, H) == 0;
-    CHECK_MSG(ok, "render of {%s} failed or not finite", keys);
+    char what[600];
+    snprintf(what, sizeof what, "{%s}", keys);
+    bool ok = ggx_test_render(h, W, H, out, what);
     sl_harness_destroy(h);
     return ok;
 }
