@@ -49,8 +49,9 @@ static const sl_param_desc params[] = {
                      "2014); fis: filtered importance sampling, fis_samples GGX visible-normal samples per pixel "
                      "from the base cube's mips (Krivanek & Colbert 2007), Monte Carlo, times the environment BRDF; "
                      "hybrid: fis below hybrid_alpha, dominant above, its sequence continuing over a TAA still's "
-                     "frames (a still converges, its frames are noisy); filtered: deterministic fis with one fixed "
-                     "sample set reading the prefiltered chain."),
+                     "frames (a still converges, its frames are noisy); filtered: deterministic fis with one "
+                     "sample set for every pixel reading the prefiltered chain, turned from frame to frame of a "
+                     "still."),
     P(.id = "fis_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 32, .group = "lighting",
       .flags = SL_PARAM_QUALITY_KNOB,
       .description = "Samples per pixel of specular=fis and hybrid (1, 2, 4, 8, 16, 32: error falls with cost; the "
@@ -65,8 +66,8 @@ static const sl_param_desc params[] = {
                      "texel's); Krivanek & Colbert use +1, chosen here from the measured error."),
     P(.id = "filtered_samples", .type = SL_PARAM_INT, .default_value = {.i = 48}, .min = 1, .max = 64, .group = "lighting",
       .flags = SL_PARAM_QUALITY_KNOB,
-      .description = "Samples per pixel of specular=filtered: one fixed set shared by every pixel and frame "
-                     "(deterministic); error falls with cost (bench/cycles.sh)."),
+      .description = "Samples per pixel of specular=filtered: one set shared by every pixel (deterministic; "
+                     "turned from frame to frame of a still); error falls with cost (bench/cycles.sh)."),
     P(.id = "filtered_lod_bias", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}}, .min = -3, .max = 3, .step = 0.25f,
       .group = "lighting",
       .description = "specular=filtered: each sample reads the prefiltered chain at the roughness whose lobe covers its "

@@ -213,10 +213,15 @@ vec3 envmap_fis_specular(SlSurface s, float alpha, vec3 r, vec3 f0, vec3 f90, ve
 
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
 // specular=filtered: filtered importance sampling (Křivánek & Colbert 2007, GPU Gems 3 ch. 20)
-// with one fixed sample set for every pixel and frame, read from the prefiltered GGX chain, so
-// the result is a smooth function of (n, v, α): no per-pixel random pattern, nothing that
-// changes from frame to frame. The set is a Fibonacci spiral on the unit disk,
-// r_i = √((i + ½)/N), φ_i = 2π·frac(i/golden ratio) (the disk's most even N-point set), mapped
+// with one sample set shared by every pixel, read from the prefiltered GGX chain, so a frame is
+// a smooth function of (n, v, α): no per-pixel random pattern. The set is a Fibonacci spiral on
+// the unit disk, r_i = √((i + o_x)/N), φ_i = 2π·frac(i/golden ratio + o_y) (the disk's most even
+// N-point set), with the same offset o for every pixel of a frame: (½, 0) in frame 0 (every frame
+// in motion, the first of a still), and in frame k of a still or an accumulated render
+// (sl_sample_index) o = R2(k) − (0, ½) — a Cranley–Patterson rotation that moves every point
+// within its ring and turns the spiral, so the frames' sub-lobes fall between each other's and
+// the still's mean fills the lobe in (a small bright sun's highlight, one dot per sub-lobe in a
+// single frame, is smoothed). Mapped
 // to the pixel's real lobe by GGX visible-normal sampling (Heitz 2018), whose disk is aligned
 // with the plane of incidence: the pattern turns with the view, and the lobe is stretched and cut
 // by the horizon as the real one is (the split sum's n = v = r lobe is not). Each sample stands
@@ -249,10 +254,11 @@ vec3 envmap_filtered_specular(SlSurface s, float alpha, vec3 f0, vec3 f90, vec3 
     // azimuth, so it stays put in the surface frame (t, b) there, where the sampler's view-
     // dependent squeeze vanishes; elsewhere the pattern moves as smoothly as the view does.
     float turn = (vl.x != 0.0 || vl.y != 0.0) ? atan(vl.x, -vl.y) * (0.5 / ENVMAP_PI) : 0.0;
+    vec2 shift = envmap_r2(uint(sl_sample_index)) - vec2(0.0, 0.5); // (½, 0) at frame 0
     vec3 sum = vec3(0.0), wsum = vec3(0.0);
     int i = 0; // a do-while: see envmap_fis_specular
     do {
-        vec2 xi = vec2((float(i) + 0.5) / float(count), fract(float(i) * 0.6180339887498949 - turn));
+        vec2 xi = vec2((float(i) + shift.x) / float(count), fract(float(i) * 0.6180339887498949 - turn + shift.y));
         vec3 hl = envmap_sample_vndf(vl, alpha, xi);
         vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
         if (ll.z <= 0.0) continue; // below the horizon: weight 0

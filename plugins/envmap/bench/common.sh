@@ -1,5 +1,6 @@
 # Sourced by envmap's bench scripts after they set $here (this directory): the repository root,
-# the build directory (the script's first argument, else build/), blender_hdr, pareto_front and gp.
+# the build directory (the script's first argument, else build/), blender_hdr, metal_row, pareto_front
+# and gp.
 root=$(cd "$here/../../.." && pwd)
 build=${1:-$root/build}
 # blender_hdr NAME: the path of Blender's studio-light environment NAME.exr (Debian blender-data,
@@ -7,6 +8,32 @@ build=${1:-$root/build}
 blender_hdr() {
     ls /usr/share/blender/*/datafiles/studiolights/world/"$1".exr \
        /usr/share/blender/datafiles/studiolights/world/"$1".exr 2>/dev/null | head -1 || true
+}
+# metal_row MAP HDR: the scene cycles.sh charts (and dots.sh crops), on stdout: a row of white metal
+# spheres (GGX alpha 0.05, 0.2, 0.4, 0.7, 1, F0 = 1, radius 0.42, 1 m apart) under HDR (Blender's
+# MAP.exr), environment only, seen from 9 m with a 7° field of view. Written byte for byte as
+# before, so that xcheck's cached Cycles images are found.
+metal_row() {
+  local alphas=(0.05 0.2 0.4 0.7 1.0) names=(005 020 040 070 100) i
+  { echo '{'
+    echo "  \"comment\": \"Metal sphere row under Blender's $1.exr: GGX alpha 0.05, 0.2, 0.4, 0.7, 1 (white metal, F0 = 1), environment only.\","
+    echo '  "plugins": ["ggx", "envmap"],'
+    echo '  "cameras": [ { "name": "main", "position": [0, 0, 9], "target": [0, 0, 0], "fov_y": 7, "near": 0.5, "far": 50 } ],'
+    echo "  \"environment\": { \"map\": \"$2\" },"
+    echo '  "materials": ['
+    for i in 0 1 2 3 4; do
+      printf '    { "name": "a%s", "model": "ggx", "fresnel": "metallic-roughness", "metallic": 1, "base_color": [1, 1, 1], "alpha": %s }%s\n' \
+        "${names[$i]}" "${alphas[$i]}" "$([ $i -lt 4 ] && echo ,)"
+    done
+    echo '  ],'
+    echo '  "nodes": ['
+    for i in 0 1 2 3 4; do
+      printf '    { "name": "s%s", "translate": [%s, 0, 0], "mesh": { "primitive": "sphere", "radius": 0.42, "segments": 96, "rings": 48 }, "material": "a%s" }%s\n' \
+        "${names[$i]}" "$(echo "$i - 2" | bc).0" "${names[$i]}" "$([ $i -lt 4 ] && echo ,)"
+    done
+    echo '  ],'
+    echo '  "lights": []'
+    echo '}'; }
 }
 # pareto_front MEAN.csv: the rows of MEAN.csv (alpha,method,ms,error,..., sorted by alpha then ms)
 # that are more accurate than every faster row of the same alpha: the error-vs-ms Pareto front.

@@ -31,26 +31,7 @@ hdr=$(blender_hdr "$map")
 [ -n "$hdr" ] || { echo "cycles.sh: Blender's $map.exr is not installed (Debian blender-data)" >&2; exit 77; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-alphas=(0.05 0.2 0.4 0.7 1.0) names=(005 020 040 070 100) # the scene is written byte for byte as before, so that xcheck's cached Cycles image is found
-{ echo '{'
-  echo "  \"comment\": \"Metal sphere row under Blender's $map.exr: GGX alpha 0.05, 0.2, 0.4, 0.7, 1 (white metal, F0 = 1), environment only.\","
-  echo '  "plugins": ["ggx", "envmap"],'
-  echo '  "cameras": [ { "name": "main", "position": [0, 0, 9], "target": [0, 0, 0], "fov_y": 7, "near": 0.5, "far": 50 } ],'
-  echo "  \"environment\": { \"map\": \"$hdr\" },"
-  echo '  "materials": ['
-  for i in 0 1 2 3 4; do
-    printf '    { "name": "a%s", "model": "ggx", "fresnel": "metallic-roughness", "metallic": 1, "base_color": [1, 1, 1], "alpha": %s }%s\n' \
-      "${names[$i]}" "${alphas[$i]}" "$([ $i -lt 4 ] && echo ,)"
-  done
-  echo '  ],'
-  echo '  "nodes": ['
-  for i in 0 1 2 3 4; do
-    printf '    { "name": "s%s", "translate": [%s, 0, 0], "mesh": { "primitive": "sphere", "radius": 0.42, "segments": 96, "rings": 48 }, "material": "a%s" }%s\n' \
-      "${names[$i]}" "$(echo "$i - 2" | bc).0" "${names[$i]}" "$([ $i -lt 4 ] && echo ,)"
-  done
-  echo '  ],'
-  echo '  "lights": []'
-  echo '}'; } > "$tmp/metal_row.json"
+metal_row "$map" "$hdr" > "$tmp/metal_row.json"
 wanted() { [ -z "${CYCLES_METHODS:-}" ] || [[ " $CYCLES_METHODS " == *" $1 "* ]]; }
 if [ "${CYCLES_METHODS:-}" = reference ]; then # the Cycles image alone (cached by xcheck)
   "$build/shadelab-xcheck" "$tmp/metal_row.json" --size 480x96 --samples "$samples" --out "$tmp/ref" \
@@ -69,6 +50,7 @@ xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles imag
   xcheck mirror --set envmap.specular=mirror
   F=(--set envmap.specular=filtered)
   xcheck filtered "${F[@]}" # its defaults: 48 samples, lod bias 1, deconvolve 3, dominant from alpha 1
+  xcheck filtered-still "${F[@]}" --set aa.enabled=true --frames 16 # a TAA still: the set turns per frame
   xcheck filtered32 "${F[@]}" --set envmap.filtered_samples=32
   xcheck filtered64 "${F[@]}" --set envmap.filtered_samples=64
   xcheck filtered-every-alpha "${F[@]}" --set envmap.filtered_alpha=2
