@@ -699,7 +699,7 @@ static void render_size(sl_app *app, int *w, int *h) {
 static void apply_render_scale(sl_app *app) {
     int w, h;
     render_size(app, &w, &h);
-    sl_renderer_resize(app, w, h);
+    sl_renderer_resize(app, w, h, app->backend.width, app->backend.height);
 }
 
 bool sl_app_render_frame(sl_app *app) {
@@ -742,10 +742,10 @@ bool sl_app_render_frame(sl_app *app) {
 }
 
 /* A target at the window's size: scaled up bilinearly (pixel centres, clamped at the edges, as the
- * window's GL_LINEAR present) when core.render_scale < 1. */
+ * window's GL_LINEAR present) when it is smaller (core.render_scale < 1 without an upscaler). */
 static bool read_at_window_size(sl_app *app, const char *name, float *rgba) {
     int w, h, W = app->backend.width, H = app->backend.height;
-    render_size(app, &w, &h);
+    if (!sl_renderer_read_size(app, name, &w, &h)) return false;
     if (w == W && h == H) return sl_renderer_read(app, name, rgba);
     float *src = malloc((size_t)w * h * 4 * sizeof(float));
     bool ok = src && sl_renderer_read(app, name, src);

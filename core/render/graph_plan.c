@@ -54,6 +54,13 @@ static sl_pass_desc display_pass = {.struct_size = sizeof(sl_pass_desc), .name =
                                     .inputs = display_inputs, .outputs = &core_display, .output_count = 1,
                                     .is_active = display_active};
 
+/* A pass that writes "color" at the output size (ABI 1.18, SL_SIZE_OUTPUT): the upscaler. */
+static bool upscales(const graph_pass *g) {
+    for (int k = 0; k < g->d->output_count; k++)
+        if (!strcmp(g->d->outputs[k].name, "color") && g->d->outputs[k].width == SL_SIZE_OUTPUT) return true;
+    return false;
+}
+
 static int cmp_stage(const void *a, const void *b) {
     const graph_pass *x = a, *y = b;
     if (x->d->stage != y->d->stage) return x->d->stage < y->d->stage ? -1 : 1;
@@ -166,7 +173,9 @@ void sl_graph_plan(sl_app *app) {
         for (int j = i; j > 0 && cmp_stage(&r->passes[j - 1], &r->passes[j]) > 0; j--) {
             graph_pass t = r->passes[j]; r->passes[j] = r->passes[j - 1]; r->passes[j - 1] = t;
         }
-    /* validate inputs against what earlier passes produce, then allocate */
+    /* validate inputs against what earlier passes produce, then allocate (from the upscaler on,
+     * "color" and the viewport are at the output size: pass.h, SL_SIZE_OUTPUT) */
+    r->upscaler = -1;
     for (int i = 0; i < r->pass_count; i++) {
         graph_pass *g = &r->passes[i];
         for (const char *const *in = g->d->inputs; in && *in; in++) {
@@ -181,9 +190,11 @@ void sl_graph_plan(sl_app *app) {
             }
         }
         if (g->broken) continue;
+        if (r->upscaler < 0 && upscales(g)) r->upscaler = i;
         for (int k = 0; k < g->d->output_count; k++) {
             const sl_target_desc *o = &g->d->outputs[k];
-            sl_graph_add_target(r, o, sl_graph_lists(g->d->inputs, o->name));
+            resource probe = {.name = (char *)sl_graph_name_at(r, i, o->name, true)};
+            sl_graph_add_target(r, o, i, sl_graph_pass_reads(r, g, &probe));
         }
     }
     restore_own_output_passes(r, kept, kept_count);
@@ -221,7 +232,8 @@ void sl_graph_route_display(sl_app *app, int first, bool keep_color) {
         else if (rd) last_reader = i;
     }
     /* a pass view (SL_CHUNK_PASS_VIEW) is written by the display pass itself */
-    bool ok = !keep_color && !sl_graph_pass_view(app) && start >= first && last_reader < start;
+    bool ok = !keep_color && !sl_graph_pass_view(app) && start >= first && last_reader < start &&
+              start >= r->upscaler; /* the display has the output size from the upscaler on */
     for (int i = start; ok && i >= 0 && i < r->pass_count; i++)
         if (runs[i] && writes(&r->passes[i], "color") && !r->passes[i].d->display_on_write) ok = false;
     for (int i = 0; i < r->pass_count; i++) {

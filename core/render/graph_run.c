@@ -231,7 +231,7 @@ static void run_display(sl_app *app, sl_pass_ctx *ctx) {
     const sl_chunk_reg *view = sl_graph_pass_view(app);
     sl_program *shown = view ? pass_view_program(app, view) : NULL;
     if (shown && shown->id) { /* a pass's resource as it is (ABI 1.13) */
-        resource *e = sl_graph_find(r, view->d.resource);
+        resource *e = sl_graph_resource(r, ctx->pass, view->d.resource, false);
         glUseProgram(shown->id);
         glBindTextureUnit(0, e ? e->tex[e->current] : 0);
         glUniform1i(glGetUniformLocation(shown->id, "sl_view_source"), 0);
@@ -281,9 +281,10 @@ static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
     }
     /* writes: ping-ponged targets flip, versions bump */
     for (int k = 0; k < g->d->output_count; k++) {
-        resource *e = sl_graph_find(r, g->d->outputs[k].name);
-        if (!e || (g->to_display && !strcmp(e->name, "color"))) continue;
-        if (e->tex[1] && sl_graph_lists(g->d->inputs, e->name)) e->current = 1 - e->current;
+        const char *declared = g->d->outputs[k].name;
+        resource *e = sl_graph_resource(r, g, declared, true);
+        if (!e || (g->to_display && !strcmp(declared, "color"))) continue;
+        if (e->tex[1] && sl_graph_pass_reads(r, g, e)) e->current = 1 - e->current;
         e->version++;
     }
 }
@@ -291,7 +292,7 @@ static void run_pass(sl_app *app, graph_pass *g, int stat_index) {
 static uint64_t input_versions(sl_renderer *r, graph_pass *g) {
     uint64_t h = 0;
     for (const char *const *in = g->d->inputs; in && *in; in++) {
-        resource *e = sl_graph_find(r, *in);
+        resource *e = sl_graph_resource(r, g, *in, false);
         if (e) h = sl_hash64(&e->version, sizeof e->version, h);
     }
     return h;
@@ -306,14 +307,14 @@ static uint64_t input_versions(sl_renderer *r, graph_pass *g) {
  * passes declare otherwise: the render scale reaches them as the viewport size
  * (SL_DEPENDS_CAMERA), the frame-time budget only through the settings it changes. Left out of
  * SL_DEPENDS_MATERIALS, so that a new render scale re-renders no shadow map. */
-static bool viewport_only(const sl_param *q) {
+bool sl_graph_viewport_only(const sl_param *q) {
     return !strcmp(q->owner, "core") && (!strcmp(q->desc.id, "render_scale") || !strcmp(q->desc.id, "budget"));
 }
 
 static uint64_t hash_globals(sl_app *app, const char *owner, bool materials, uint64_t h) {
     for (int i = 0; i < app->params.count; i++) {
         const sl_param *q = &app->params.items[i];
-        if (q->desc.scope != SL_SCOPE_GLOBAL || strcmp(q->owner, owner) || (materials && viewport_only(q))) continue;
+        if (q->desc.scope != SL_SCOPE_GLOBAL || strcmp(q->owner, owner) || (materials && sl_graph_viewport_only(q))) continue;
         h = sl_hash64(&q->value.b, sizeof q->value.b, h);
         h = sl_hash64(&q->value.i, sizeof q->value.i, h);
         h = sl_hash64(q->value.f, sizeof q->value.f, h);
@@ -365,7 +366,7 @@ static uint64_t depends_key(sl_app *app, graph_pass *g) {
     if (dep & SL_DEPENDS_TIME) h = sl_hash64(&f->time, sizeof f->time, h);
     if (dep & SL_DEPENDS_INPUTS) {
         for (const char *const *in = g->d->inputs; in && *in; in++) {
-            resource *e = sl_graph_find(r, *in);
+            resource *e = sl_graph_resource(r, g, *in, false);
             if (e) h = sl_hash64(&e->version, sizeof e->version, h);
         }
     }
@@ -412,11 +413,30 @@ static bool unchanged(sl_app *app, graph_pass *g) {
     return same;
 }
 
-/* Runs passes with index in [begin, end), timing each. */
+/* The upscaler does not run this frame (ABI 1.18, pass.h): its output-size "color" is the
+ * render-size one scaled up bilinearly, as the window shows an image without an upscaler. */
+static void upscale_bilinear(sl_renderer *r, graph_pass *g) {
+    resource *src = sl_graph_resource(r, g, "color", false), *dst = sl_graph_resource(r, g, "color", true);
+    if (!src || !dst) return;
+    unsigned fbo[2];
+    glCreateFramebuffers(2, fbo);
+    glNamedFramebufferTexture(fbo[0], GL_COLOR_ATTACHMENT0, src->tex[src->current], 0);
+    glNamedFramebufferTexture(fbo[1], GL_COLOR_ATTACHMENT0, dst->tex[dst->current], 0);
+    glBlitNamedFramebuffer(fbo[0], fbo[1], 0, 0, src->w, src->h, 0, 0, dst->w, dst->h, GL_COLOR_BUFFER_BIT,
+                           src->w == dst->w && src->h == dst->h ? GL_NEAREST : GL_LINEAR);
+    glDeleteFramebuffers(2, fbo);
+    dst->version++;
+}
+
+/* Runs passes with index in [begin, end), timing each. Passes after the upscaler see the output
+ * size as their viewport (sl_frame.width, height: pass.h, ABI 1.18). */
 void sl_graph_run_range(sl_app *app, int begin, int end) {
     sl_renderer *r = R(app);
     for (int i = begin; i < end; i++) {
         graph_pass *g = &r->passes[i];
+        bool after = r->upscaler >= 0 && i > r->upscaler;
+        r->frame.width = after ? r->out_width : r->width;
+        r->frame.height = after ? r->out_height : r->height;
         sl_pass_stat *st = NULL;
         for (int k = 0; k < r->stats.pass_count; k++)
             if (!strcmp(r->stats.passes[k].name, g->d->name)) st = &r->stats.passes[k];
@@ -434,7 +454,10 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
             if (st) st->fused_into = r->passes[into].d->name;
             continue;
         }
-        if (g->d->is_active && !g->d->is_active(g->d->user, &r->frame)) continue;
+        if (g->d->is_active && !g->d->is_active(g->d->user, &r->frame)) {
+            if (i == r->upscaler) upscale_bilinear(r, g);
+            continue;
+        }
         if (unchanged(app, g)) { /* its declared inputs and its signature did not move */
             if (st) st->reused = true;
             r->stats.reused_draw_calls += g->last_draws;
@@ -463,6 +486,7 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
         g->last_ms = ms;
         if (st) { st->ms += ms; st->ran = true; }
     }
+    r->frame.width = r->width, r->frame.height = r->height;
 }
 
 

@@ -57,8 +57,32 @@ void sl_graph_free(sl_renderer *r) {
     r->pass_count = 0;
 }
 
-void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, bool pingpong) {
-    resource *e = sl_graph_find(r, d->name);
+/* The viewport of the pass at graph index `at` (ABI 1.18): the output size after the upscaler,
+ * the render size up to it and in it. */
+static void viewport_at(const sl_renderer *r, int at, int *w, int *h) {
+    bool after = r->upscaler >= 0 && at > r->upscaler;
+    *w = after ? r->out_width : r->width;
+    *h = after ? r->out_height : r->height;
+}
+
+const char *sl_graph_name_at(const sl_renderer *r, int at, const char *name, bool output) {
+    bool upscaled = r->upscaler >= 0 && (at > r->upscaler || (at == r->upscaler && output));
+    return upscaled && !strcmp(name, "color") ? SL_OUTPUT_COLOR : name;
+}
+
+resource *sl_graph_resource(sl_renderer *r, const graph_pass *g, const char *name, bool output) {
+    return sl_graph_find(r, sl_graph_name_at(r, (int)(g - r->passes), name, output));
+}
+
+bool sl_graph_pass_reads(const sl_renderer *r, const graph_pass *g, const resource *e) {
+    for (const char *const *in = g->d->inputs; in && *in; in++)
+        if (!strcmp(sl_graph_name_at(r, (int)(g - r->passes), *in, false), e->name)) return true;
+    return false;
+}
+
+void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, int at, bool pingpong) {
+    const char *name = sl_graph_name_at(r, at, d->name, true);
+    resource *e = sl_graph_find(r, name);
     if (e) {
         if (pingpong && !e->tex[1]) e->tex[1] = make_target(&e->desc, e->w, e->h);
         return;
@@ -66,16 +90,22 @@ void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, bool pingpong)
     r->res = realloc(r->res, (r->res_count + 1) * sizeof *r->res);
     e = &r->res[r->res_count++];
     memset(e, 0, sizeof *e);
-    e->name = strdup(d->name);
+    e->name = strdup(name);
     e->desc = *d;
     e->desc.name = e->name;
+    resource *color = strcmp(name, SL_OUTPUT_COLOR) ? NULL : sl_graph_find(r, "color");
+    if (color) e->desc.format = color->desc.format; /* the upscaled "color" keeps the format (--float) */
     float scale = d->scale > 0 ? d->scale : 1;
-    e->w = d->width > 0 ? d->width : (int)(r->width * scale + 0.5f);
-    e->h = d->height > 0 ? d->height : (int)(r->height * scale + 0.5f);
+    int vw, vh;
+    viewport_at(r, at, &vw, &vh);
+    if (d->width == SL_SIZE_OUTPUT) vw = r->out_width, vh = r->out_height;
+    bool sized = d->width > 0 && d->width != SL_SIZE_OUTPUT;
+    e->w = sized ? d->width : (int)(vw * scale + 0.5f);
+    e->h = sized && d->height > 0 ? d->height : (int)(vh * scale + 0.5f);
     if (e->w < 1) e->w = 1;
     if (e->h < 1) e->h = 1;
-    e->tex[0] = make_target(d, e->w, e->h);
-    if (pingpong) e->tex[1] = make_target(d, e->w, e->h);
+    e->tex[0] = make_target(&e->desc, e->w, e->h);
+    if (pingpong) e->tex[1] = make_target(&e->desc, e->w, e->h);
 }
 
 bool sl_graph_lists(const char *const *list, const char *name) {
@@ -88,7 +118,7 @@ bool sl_graph_lists(const char *const *list, const char *name) {
  * input (current contents) and bind_outputs attaches the other half of the ping-pong pair. */
 unsigned sl_renderer_pass_texture(sl_app *app, sl_pass_ctx *ctx, const char *name) {
     sl_renderer *r = R(app);
-    resource *e = sl_graph_find(r, name);
+    resource *e = ctx ? sl_graph_resource(r, ctx->pass, name, false) : NULL;
     if (!e || !ctx) return 0;
     return e->tex[e->current];
 }
@@ -109,9 +139,11 @@ static unsigned display_view(sl_renderer *r) {
     return d->srgb_view;
 }
 
-static unsigned output_texture(sl_pass_ctx *ctx, resource *e) {
-    if (ctx->pass->to_display && !strcmp(e->name, "color")) return 0; /* bind_outputs: the display view */
-    if (e->tex[1] && sl_graph_lists(ctx->pass->d->inputs, e->name)) return e->tex[1 - e->current];
+/* The texture a pass writes for its output `declared` (resource e): the display view when its
+ * "color" goes to the display, the other half of a ping-pong pair it reads. */
+static unsigned output_texture(sl_renderer *r, sl_pass_ctx *ctx, const char *declared, resource *e) {
+    if (ctx->pass->to_display && !strcmp(declared, "color")) return 0; /* bind_outputs: the display view */
+    if (e->tex[1] && sl_graph_pass_reads(r, ctx->pass, e)) return e->tex[1 - e->current];
     return e->tex[e->current];
 }
 
@@ -123,8 +155,8 @@ sl_status sl_renderer_bind_outputs(sl_app *app, sl_pass_ctx *ctx, int layer) {
     int nc = 0, w = 0, h = 0, display_slot = -1;
     for (int k = 0; k < g->d->output_count && k < 8; k++) {
         const sl_target_desc *o = &g->d->outputs[k];
-        resource *e = sl_graph_find(r, o->name);
-        unsigned tex = output_texture(ctx, e);
+        resource *e = sl_graph_resource(r, g, o->name, true);
+        unsigned tex = output_texture(r, ctx, o->name, e);
         bool depth = o->format == SL_FORMAT_DEPTH32F;
         if (!tex && g->to_display) tex = display_view(r), display_slot = nc;
         GLenum att = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0 + nc;

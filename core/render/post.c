@@ -120,6 +120,7 @@ void sl_post_route(sl_app *app, int first) {
         int fused = 0, last = -1;
         for (int j = i + 1; j < s->routed && fused < SL_EPILOGUE_MAX; j++) {
             graph_pass *q = &r->passes[j];
+            if (j == r->upscaler) break; /* it changes the size of "color" (pass.h, SL_SIZE_OUTPUT) */
             if (q->core_display || !runs(r, q)) continue; /* inactive passes are not in between */
             const point_reg *pt = q->owner >= 0 ? point_for(s, q) : NULL;
             if (!pt) break;

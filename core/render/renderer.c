@@ -191,6 +191,27 @@ static void refresh(sl_app *app) {
     if (r->plan_dirty) sl_graph_plan(app);
 }
 
+/* Edits of global parameters since the start, not counting the viewport-only ones (a new render
+ * scale is no edit of the image: a temporal method keeps its history, pass.h, edits_version). */
+static uint64_t param_edits(sl_app *app) {
+    sl_renderer *r = R(app);
+    if (app->params.version == r->edits_seen_version) return r->param_edits;
+    uint64_t h = 0;
+    for (int i = 0; i < app->params.count; i++) {
+        const sl_param *q = &app->params.items[i];
+        if (q->desc.scope != SL_SCOPE_GLOBAL || sl_graph_viewport_only(q)) continue;
+        h = sl_hash64(q->full_id, strlen(q->full_id), h);
+        h = sl_hash64(&q->value.b, sizeof q->value.b, h);
+        h = sl_hash64(&q->value.i, sizeof q->value.i, h);
+        h = sl_hash64(q->value.f, sizeof q->value.f, h);
+        if (q->value.s) h = sl_hash64(q->value.s, strlen(q->value.s), h);
+    }
+    if (h != r->edits_key || !r->edits_seen_version) r->param_edits++;
+    r->edits_key = h;
+    r->edits_seen_version = app->params.version;
+    return r->param_edits;
+}
+
 static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     sl_renderer *r = R(app);
     sl_frame *f = &r->frame;
@@ -199,6 +220,8 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     f->time = app->time;
     f->width = r->width;
     f->height = r->height;
+    f->output_width = r->out_width;
+    f->output_height = r->out_height;
     app->camera.aspect = (float)r->width / (float)(r->height ? r->height : 1);
     sl_camera_matrices(&app->camera, f->view, f->proj);
     glm_mat4_mul((vec4 *)f->proj, (vec4 *)f->view, (vec4 *)f->view_proj);
@@ -216,7 +239,8 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
     f->lights_version = r->lights_packed; /* changes with every edit and every animated frame */
     /* + programs reloaded or a new debug view: what a pass shows may change */
     f->params_version = app->params.version + app->materials_version + r->programs_version;
-    f->edits_version = f->params_version + app->lights_version + r->forced_starts;
+    f->edits_version = param_edits(app) + app->materials_version + r->programs_version + app->lights_version +
+                       r->forced_starts;
     f->accumulate_index = acc_index;
     f->accumulate_count = acc_count;
     /* temporal antialiasing (ABI 1.6): the previous frame's camera, the unjittered view-projection,
@@ -332,11 +356,10 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         sl_graph_run_range(app, 0, r->pass_count);
     } else {
         /* average the linear HDR colour of `count` sub-frames before any post pass */
-        resource *color = sl_graph_find(r, "color");
         static const sl_target_desc mean_desc = {.name = "accumulate.mean", .format = SL_FORMAT_RGBA32F};
-        sl_graph_add_target(r, &mean_desc, true);
+        sl_graph_add_target(r, &mean_desc, post_begin, true); /* the size of "color" there */
         resource *mean = sl_graph_find(r, "accumulate.mean");
-        color = sl_graph_find(r, "color");
+        resource *color = sl_graph_find(r, sl_graph_name_at(r, post_begin, "color", false));
         unsigned fbo;
         glCreateFramebuffers(1, &fbo);
         for (int k = 0; k < count; k++) {
@@ -427,9 +450,20 @@ bool sl_renderer_compose_pending(sl_app *app) {
 
 const sl_frame_stats *sl_renderer_stats(sl_app *app) { return R(app) ? &R(app)->stats : NULL; }
 
+/* What the frame ended with under `name` ("color" after an upscaler: its output-size one). */
+static resource *final_resource(sl_renderer *r, const char *name) {
+    return r ? sl_graph_find(r, sl_graph_name_at(r, r->pass_count, name, false)) : NULL;
+}
+
+bool sl_renderer_read_size(sl_app *app, const char *name, int *w, int *h) {
+    resource *e = final_resource(R(app), name);
+    if (e) *w = e->w, *h = e->h;
+    return e != NULL;
+}
+
 bool sl_renderer_read(sl_app *app, const char *name, float *rgba) {
     sl_renderer *r = R(app);
-    resource *e = r ? sl_graph_find(r, name) : NULL;
+    resource *e = final_resource(r, name);
     if (!e) return false;
     if (!strcmp(name, "color") && !r->color_final) {
         SL_ERROR("the last frame wrote \"display\" directly and kept no final \"color\" (set keep_color before "
@@ -456,9 +490,13 @@ void sl_renderer_invalidate(sl_app *app) {
     if (R(app)) R(app)->plan_dirty = true;
 }
 
-void sl_renderer_resize(sl_app *app, int w, int h) {
+void sl_renderer_resize(sl_app *app, int w, int h, int out_w, int out_h) {
     sl_renderer *r = R(app);
-    if (!r || (w == r->width && h == r->height) || w < 1 || h < 1) return;
+    if (!r || w < 1 || h < 1 || out_w < 1 || out_h < 1) return;
+    if (out_w != r->out_width || out_h != r->out_height) r->plan_dirty = true; /* SL_SIZE_OUTPUT targets */
+    r->out_width = out_w;
+    r->out_height = out_h;
+    if (w == r->width && h == r->height) return;
     r->width = w;
     r->height = h;
     r->plan_dirty = true;
@@ -507,8 +545,9 @@ void sl_renderer_explain(sl_app *app, FILE *f) {
 bool sl_renderer_create(sl_app *app, char *err, size_t n) {
     sl_renderer *r = calloc(1, sizeof *r);
     app->renderer = (struct sl_renderer *)r;
-    r->width = app->backend.width;
-    r->height = app->backend.height;
+    r->width = r->out_width = app->backend.width;
+    r->height = r->out_height = app->backend.height;
+    r->upscaler = -1;
     r->finish_timing = app->opt.finish_timing || !app->backend.is_gpu;
     glGenQueries(64, r->queries);
     glCreateVertexArrays(1, &r->empty_vao);

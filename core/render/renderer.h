@@ -18,7 +18,9 @@ bool sl_renderer_frame(struct sl_app *app, int accumulate_index, int accumulate_
 void sl_renderer_invalidate(struct sl_app *app);
 /* Times every pass of the next frame (the panel's timing view); app->opt.timings times them all. */
 void sl_renderer_request_timing(struct sl_app *app);
-void sl_renderer_resize(struct sl_app *app, int w, int h);
+/* The render size (w, h: the viewport of the passes up to the upscaler) and the output's size
+ * (the window's, or --size: SL_SIZE_OUTPUT targets, and "display" after an upscaler, pass.h). */
+void sl_renderer_resize(struct sl_app *app, int w, int h, int out_w, int out_h);
 /* Re-reads every shader file and rebuilds programs; keeps the last good program on error. */
 int sl_renderer_reload_shaders(struct sl_app *app);
 
@@ -33,6 +35,8 @@ void sl_renderer_present(struct sl_app *app);
 
 /* Read-back of the last frame (rows top to bottom). */
 bool sl_renderer_read(struct sl_app *app, const char *resource, float *rgba);
+/* The size of what sl_renderer_read gives for `resource` (the output size after an upscaler). */
+bool sl_renderer_read_size(struct sl_app *app, const char *resource, int *w, int *h);
 
 /* Statistics of the last frame, for --stats, --explain and the structural tests. */
 typedef struct sl_pass_stat {

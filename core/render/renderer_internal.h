@@ -101,7 +101,9 @@ typedef struct sl_renderer {
     graph_pass *passes; int pass_count;
     bool plan_dirty;
     uint64_t plan_key;       /* plugins on/off and core settings the plan was made with (renderer.c) */
-    int width, height;
+    int width, height;        /* the render size (core.render_scale of the output) */
+    int out_width, out_height; /* the output's size (ABI 1.18, pass.h: SL_SIZE_OUTPUT) */
+    int upscaler;             /* graph index of the upscaler (its "color" output at SL_SIZE_OUTPUT), or -1 */
     int ssaa;                 /* core.ssaa the plan was made with */
     bool blend_planned;       /* the plan holds the "forward-blend" pass (a blended material exists) */
     bool behind_planned;      /* ... the "forward-behind" pass (a material reads the scene behind it) */
@@ -114,6 +116,9 @@ typedef struct sl_renderer {
 
     /* ---- what the last frame saw (renderer.c): a change recomposes or re-plans ---- */
     uint64_t seen_recompile, seen_materials, seen_lights_version, seen_param_version;
+    /* edits of global parameters (sl_frame.edits_version): counted when their values other than
+     * the viewport-only ones (sl_graph_viewport_only) changed since the parameters' last version */
+    uint64_t param_edits, edits_seen_version, edits_key;
     char *seen_debug_view;
 
     /* ---- the frame and its sample (renderer.c) ---- */
@@ -185,7 +190,16 @@ bool sl_gpu_scene_has_behind(sl_app *app);
 
 /* graph_targets.c */
 resource *sl_graph_find(sl_renderer *r, const char *name);
-void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, bool pingpong);
+/* ABI 1.18: the output-size "color" of the upscaler and every pass after it (pass.h, SL_SIZE_OUTPUT) */
+#define SL_OUTPUT_COLOR "color@output"
+/* The resource the pass at graph index `at` means by `name`, as an input or an output ("color"
+ * after the upscaler is SL_OUTPUT_COLOR; at = pass_count: what the frame ends with). */
+const char *sl_graph_name_at(const sl_renderer *r, int at, const char *name, bool output);
+resource *sl_graph_resource(sl_renderer *r, const graph_pass *g, const char *name, bool output);
+/* Whether pass g reads resource e (one of its inputs names it): a pass writing e ping-pongs. */
+bool sl_graph_pass_reads(const sl_renderer *r, const graph_pass *g, const resource *e);
+/* Allocates the target as the pass at graph index `at` declares it (its viewport, its name). */
+void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, int at, bool pingpong);
 void sl_graph_free(sl_renderer *r);          /* targets, passes and their framebuffers */
 bool sl_graph_lists(const char *const *list, const char *name);
 
@@ -202,6 +216,9 @@ bool sl_graph_wants_prepass(sl_app *app);
 /* A pass reads "normal" and no pre-pass writes it: the forward programs do (SL_NORMAL_TARGET). */
 bool sl_graph_wants_normal(sl_app *app);
 
+/* graph_run.c: core.render_scale and core.budget, which change what is rendered only through the
+ * viewport size and the settings the budget sets: no edit of the image (sl_frame.edits_version) */
+bool sl_graph_viewport_only(const sl_param *q);
 /* graph_run.c: the chosen debug view when it shows a pass's resource (SL_CHUNK_PASS_VIEW), or NULL */
 const sl_chunk_reg *sl_graph_pass_view(sl_app *app);
 /* graph_run.c: runs passes [begin, end), timing each */

@@ -7,6 +7,10 @@
  *   "color"  RGBA16F (RGBA32F with --float), viewport size: linear HDR radiance. Written by the
  *            core's forward pass (stage OPAQUE). A POST pass that lists "color" both as input and
  *            output gets two different textures (ping-pong); later passes see its output.
+ *            ABI 1.18: a pass whose "color" output has width SL_SIZE_OUTPUT is the frame's
+ *            upscaler (a TAA upsampler): its "color" input is at the render size (the output's
+ *            size times core.render_scale), its output, and "color" in every pass after it, at
+ *            the output size, and so is "display" (shown without scaling). See SL_SIZE_OUTPUT.
  *   "depth"  DEPTH32F, from the forward pass, at the forward pass's size: the viewport times
  *            core.ssaa (k × k depth samples per "color" pixel when core.ssaa = k > 1; size a pass's
  *            own reads with glGetTextureLevelParameteriv, not from sl_frame). Convention: OpenGL
@@ -73,10 +77,21 @@ typedef enum sl_format {
     SL_FORMAT_DEPTH32F
 } sl_format;
 
+/* ABI 1.18, sl_target_desc.width: the output's size (the window's, or --size: what is shown),
+ * times `scale`; `height` is ignored. The viewport (0) is the render size: the output's times
+ * core.render_scale, rounded (the same when the scale is 1). A pass whose "color" output is
+ * declared so is the frame's upscaler (above; the first such pass in pass order when several
+ * are): it reads "color" at the render size and writes it at the output size, so "depth",
+ * "motion" and "normal" stay at the render size, and passes after it get sl_frame.width and
+ * height = the output size and targets of size 0 at the output size. While the upscaler does not
+ * run (is_active false), the core fills its "color" by a bilinear scale-up of the render-size
+ * "color". Switch the declaration with sl_pass_desc.io when the pass upscales only in some modes. */
+#define SL_SIZE_OUTPUT (-1)
+
 typedef struct sl_target_desc {
     const char *name;   /* resource name, unique in the graph ("shadow.maps") */
     sl_format format;
-    int width, height;  /* 0 = viewport size (times `scale` when scale > 0) */
+    int width, height;  /* 0 = viewport size (times `scale` when scale > 0); SL_SIZE_OUTPUT (1.18) */
     float scale;
     int layers;         /* > 1: a 2D array texture (e.g. one layer per shadow-casting light) */
     bool compare;       /* depth formats: enable GL_COMPARE_REF_TO_TEXTURE (hardware PCF) */
@@ -87,7 +102,7 @@ typedef struct sl_frame {
     uint32_t struct_size;
     uint64_t index;          /* frames rendered since start */
     double time;             /* seconds, the `sl_time` uniform (fixed steps with --frames) */
-    int width, height;       /* viewport */
+    int width, height;       /* viewport: the render size (see output_width, ABI 1.18) */
     float view[16], proj[16], view_proj[16]; /* column-major, camera */
     float camera_pos[3];
     float scene_min[3], scene_max[3];        /* world-space bounds of all geometry */
@@ -106,7 +121,9 @@ typedef struct sl_frame {
     float unjittered_view_proj[16];
     /* ABI 1.6: moves with every edit (parameters, material and light values, a hot reload, the
      * debug view) and never by itself: unlike lights_version it stays put while lights animate.
-     * A temporal method restarts its history on it (a live change equals a fresh start). */
+     * A temporal method restarts its history on it (a live change equals a fresh start). ABI 1.18:
+     * not with core.render_scale or core.budget, which change the render size (width, height), not
+     * the image: a history at the output size goes on across a new render scale. */
     uint64_t edits_version;
     /* ABI 1.9: the frame's sample of the image being averaged, for stochastic shading (sample
      * sequences that continue across frames). sample_count = the frames averaged into what is
@@ -121,6 +138,10 @@ typedef struct sl_frame {
      * maps, texture-space passes) keeps the result of its last run, which saw that run's index:
      * a still does not re-run them frame after frame. */
     int sample_index, sample_count;
+    /* ABI 1.18: the output's size (the window's, or --size: what is shown). width and height above
+     * are the viewport: the render size (output × core.render_scale), up to and in the upscaler
+     * pass, the output size in the passes after it (SL_SIZE_OUTPUT). */
+    int output_width, output_height;
 } sl_frame;
 
 typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() */
