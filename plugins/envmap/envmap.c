@@ -11,6 +11,7 @@
 #include <shadelab/matrix.h>
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
+#include <shadelab/ext/budget.h>
 #include "envmap/io.h"
 #include "envmap/prefilter.h"
 #include <errno.h>
@@ -913,6 +914,17 @@ static sl_status envmap_create(const sl_host *host, void **user) {
     *user = e;
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
+    /* specular for the window's frame-time budget (ext/budget.h, docs/budget.md): dominant (one
+     * lookup) while the view moves, the configured setting when it is still. bench/budget.sh:
+     * the built-in scene's whole frame at 1280x720 relative to filtered's, RMSE of one frame
+     * against the reference at 320x180 (bench/budget.csv) */
+    static const char *const budget_speculars[] = {"dominant", "filtered"};
+    static const float budget_cost[] = {0.14f, 1}, budget_error[] = {0.0066f, 0.0039f};
+    const sl_ext_budget *budget = host->get_extension(host, SL_EXT_BUDGET);
+    const sl_quality_model spec = {.struct_size = sizeof spec, .param = "specular", .count = 2,
+                                   .values = budget_speculars, .cost = budget_cost, .error = budget_error,
+                                   .measured_with = "envmap bench/budget.sh, bench/budget.csv (built-in scene)"};
+    if (budget && budget->add_quality_model(host, &spec) != SL_OK) return SL_ERR_FAILED;
     for (size_t i = 0; i < sizeof chunks / sizeof *chunks; i++)
         if (host->add_shader_chunk(host, &chunks[i]) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc bg = {.struct_size = sizeof bg, .name = "envmap-background", .stage = SL_STAGE_OPAQUE,
