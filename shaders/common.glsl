@@ -54,8 +54,14 @@ struct SlSurface {
 //   L_o = f(s, d, E_d) + diffuse/π · max(E(n) − E_d max(0, n·d), 0)
 // (envmap: d and E_d from the environment's order-1 irradiance; area lights: the polygon's vector
 // irradiance, nothing left over). A Lambert f gives diffuse/π · E(n) exactly; the lobes are unused.
+// ABI 1.19, lobe shapes: flag bit SL_LOBES_BLINN_PHONG << k says lobe k is normalised
+// Blinn-Phong instead of GGX: its directional albedo is the GGX lobe's (weight × the environment
+// BRDF at α with its Fresnel), spread over l as (n·h)^p (n·l), p = sl_lobe_blinn_power(α) (below).
+// α stays the GGX lobe closest to it, which an integrator that does not know the shape uses.
+// Flag bits rather than an SlLobe field: SlLobe(…) constructors of older plugins still compile.
 const int SL_MAX_LOBES = 2;
 const int SL_LOBES_MODEL_AT_DOMINANT_LIGHT = 1;
+const int SL_LOBES_BLINN_PHONG = 256; // lobe k: SL_LOBES_BLINN_PHONG << k
 struct SlLobe {
     vec3 f0;      // Fresnel at normal incidence of the microfacets (colour)
     vec3 f90;     // … at grazing incidence (1 for Schlick's usual form)
@@ -69,8 +75,22 @@ struct SlLobes {
     bool diffuse_coupled;  // the diffuse is weighted by 1 − F of lobe 0 (see above)
     int count;             // lobes in use, 0 … SL_MAX_LOBES
     SlLobe lobe[SL_MAX_LOBES];
-    int flags;             // ABI 1.16: SL_LOBES_MODEL_AT_DOMINANT_LIGHT or 0
+    int flags;             // ABI 1.16: SL_LOBES_MODEL_AT_DOMINANT_LIGHT | (1.19) SL_LOBES_BLINN_PHONG << k
 };
+// Lobe shapes (ABI 1.19): whether lobe k is Blinn-Phong, and the power ↔ α of the contract. The
+// α of power p has Blinn's median: half of each D's projected microfacet area lies within the same
+// θ½ of n, 1 − cos^(p+2) θ½ = ½ = tan²θ½/(α² + tan²θ½), so α = √(2^(2/(p+2)) − 1) and
+// p = 2/log2(1 + α²) − 2 (0.83–0.90 × Walter et al.'s √(2/(p+2)): GGX's longer tails).
+bool sl_lobe_blinn_phong(SlLobes L, int k) { return (L.flags & (SL_LOBES_BLINN_PHONG << k)) != 0; }
+float sl_lobe_blinn_alpha(float p) {
+    float y = 0.69314718 * 2.0 / (max(p, 0.0) + 2.0); // 2^(2/(p+2)) − 1 = e^y − 1, by its series
+    return sqrt(y < 0.01 ? y * (1.0 + y * (0.5 + y / 6.0)) : exp(y) - 1.0); // where exp − 1 cancels
+}
+float sl_lobe_blinn_power(float alpha) {
+    float x = alpha * alpha; // log2(1 + x), by its series where 1 + x rounds (α ≲ 0.1)
+    float l2 = x < 0.01 ? x * (1.0 - x * (0.5 - x / 3.0)) * 1.44269504 : log2(1.0 + x);
+    return max(2.0 / max(l2, 1e-30) - 2.0, 0.0);
+}
 // An empty description: no diffuse, no lobe; a hook starts from it.
 SlLobes sl_lobes_none() {
     SlLobe z = SlLobe(vec3(0.0), vec3(1.0), 1.0, 0.0, 0.0);

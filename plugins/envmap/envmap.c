@@ -140,6 +140,7 @@ typedef struct envmap {
     const sl_host *host;
     int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut, unit_base; /* unit_cube = unit_2d + 1 (em_gpu) */
     int unit_dist, unit_marginal; /* the reference's environment distribution */
+    int unit_spec_blinn;          /* the Blinn-Phong lobes' chain */
     em_gpu gpu;
     sl_program *progs[6];
     sl_program *bg_prog[2], *bg_in_place_prog[2]; /* [1]: a cube source (ENVMAP_SOURCE_CUBE) */
@@ -160,6 +161,11 @@ typedef struct envmap {
     int base_size, spec_levels, lut_size;
     uint64_t base_key, spec_key, irr_key, sh_key;
     bool spec_from_chain;
+    /* the chain of Blinn-Phong lobes (the lobe contract, ABI 1.19), made only when a material's
+     * program reads it (envmap_spec_blinn): the GGX chain's settings, its own key and cache file */
+    unsigned spec_blinn;
+    uint64_t spec_blinn_key;
+    bool blinn_store_pending;
     /* the reference's environment importance sampling (a lat-long source): RG32F (conditional
      * CDF, pdf) and R32F marginal CDF, em_env_distribution's arrays; dist_total 0 = none */
     unsigned dist, marginal;
@@ -334,11 +340,19 @@ static void store_pending(envmap *e) {
     e->store_pending = false;
     if (e->spec && e->spec_key == e->store_key) cache_store(e, e->store_key, e->spec, e->store_size, e->store_levels);
 }
+static void store_pending_blinn(envmap *e) {
+    if (!e->blinn_store_pending) return;
+    e->blinn_store_pending = false;
+    if (e->spec_blinn) cache_store(e, e->spec_blinn_key, e->spec_blinn, e->base_size, e->spec_levels);
+}
 
 static void free_derived(envmap *e) {
     e->store_pending = false;
     delete_tex(&e->base);
     delete_tex(&e->spec); /* ours, also when it came from a precomputed chain */
+    delete_tex(&e->spec_blinn);
+    e->blinn_store_pending = false;
+    e->spec_blinn_key = 0;
     e->spec_from_chain = false;
     delete_tex(&e->irr);
     delete_tex(&e->dist);
@@ -582,6 +596,34 @@ static void ensure_spec(envmap *e) {
     e->spec_key = key;
 }
 
+/* The Blinn-Phong chain: the GGX chain's size, levels and level map (a precomputed GGX chain's:
+ * the sqrt map), prefiltered from the base cube by em_prefilter_chain, issued without waiting as
+ * ensure_spec's. */
+static void ensure_spec_blinn(envmap *e) {
+    spec_settings t;
+    uint64_t key = em_hash("blinn-phong", 11, spec_key(e, &t));
+    if (e->spec_from_chain) t.levels = e->spec_levels, t.map = EM_LEVEL_MAP_SQRT, key = em_hash(&t.levels, sizeof t.levels, key);
+    if (e->spec_blinn && e->spec_blinn_key == key) return;
+    e->blinn_store_pending = false;
+    delete_tex(&e->spec_blinn);
+    char path[2400] = "";
+    e->spec_blinn = cache_load(e, key, t.size, t.levels, path, sizeof path);
+    if (!e->spec_blinn) {
+        e->host->log(e->host, SL_LOG_DEBUG, "prefiltering the Blinn-Phong chain: %d² cube, %d levels, %d samples", t.size,
+                     t.levels, t.samples);
+        ensure_base(e);
+        refresh_programs(e, PROG_GGX);
+        em_progress_fn report = e->gpu.progress;
+        e->gpu.progress = NULL;
+        e->spec_blinn = em_prefilter_chain(&e->gpu, e->base, t.size, t.levels, t.samples, t.bias, (em_level_map)t.map,
+                                           EM_LOBE_BLINN_PHONG);
+        e->gpu.progress = report;
+        e->blinn_store_pending = true;
+    }
+    e->spec_levels = t.levels;
+    e->spec_blinn_key = key;
+}
+
 /* The irradiance a program reads, each made the first time one reads it: the order-2 SH
  * (irradiance=sh, and the dominant light of models lit at it, SL_LOBES_MODEL_AT_DOMINANT_LIGHT,
  * whatever `irradiance` says) and the convolved cube (irradiance=convolved). */
@@ -709,27 +751,30 @@ static void prepare(envmap *e) {
  * read-back (sss's blurs), which waits for the rasteriser anyway. */
 static bool prefilter_active(void *user, const sl_frame *f) {
     envmap *e = user;
-    return e->have_src && !e->spec_from_chain && host_scene_uses(e, "envmap_spec");
+    return e->have_src && ((!e->spec_from_chain && host_scene_uses(e, "envmap_spec")) ||
+                           host_scene_uses(e, "envmap_spec_blinn"));
 }
 
 /* Skipped while the chain it made is current (its key: source, GLSL, settings). */
 static uint64_t prefilter_signature(void *user, const sl_frame *f) {
     envmap *e = user;
     (void)f;
-    return spec_key(e, NULL);
+    return spec_key(e, NULL) ^ (host_scene_uses(e, "envmap_spec_blinn") ? 0x5b1177 : 0);
 }
 
 static void prefilter_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     envmap *e = user;
     gl_state st;
     gpu_work_begin(&st);
-    ensure_spec(e);
+    if (!e->spec_from_chain && host_scene_uses(e, "envmap_spec")) ensure_spec(e);
+    if (host_scene_uses(e, "envmap_spec_blinn")) ensure_spec_blinn(e);
     gpu_work_end(e, &st);
 }
 
 static void envmap_begin_frame(void *user, const sl_frame *f) {
     envmap *e = user;
     store_pending(e);
+    store_pending_blinn(e);
     float env[5];
     const char *map = e->host->environment(e->host, env);
     char key[4400];
@@ -780,14 +825,16 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     int l_sh = glGetUniformLocation(prog, "envmap_sh"), l_lut = glGetUniformLocation(prog, "envmap_lut");
     int l_base = glGetUniformLocation(prog, "envmap_base"); /* specular=fis reads the base cube's mips */
     int l_dist = glGetUniformLocation(prog, "envmap_dist"); /* the reference's environment sampling */
+    int l_blinn = glGetUniformLocation(prog, "envmap_spec_blinn"); /* a material with Blinn-Phong lobes */
     /* compute what this program reads, the first time it is needed (a mirror-only scene never
      * prefilters); the forward pass is mid-flight, so GL state is saved and restored */
     bool need_spec = l_spec >= 0 && !e->spec_from_chain, need_lut = l_lut >= 0;
     bool need_base = l_base >= 0, need_dist = l_dist >= 0;
-    if (need_spec || l_irr >= 0 || l_sh >= 0 || need_lut || need_base || need_dist) {
+    if (need_spec || l_blinn >= 0 || l_irr >= 0 || l_sh >= 0 || need_lut || need_base || need_dist) {
         gl_state st;
         gpu_work_begin(&st);
         if (need_spec) ensure_spec(e);
+        if (l_blinn >= 0) ensure_spec_blinn(e);
         if (l_sh >= 0) ensure_sh(e);
         if (l_irr >= 0) ensure_convolved(e);
         if (need_lut) ensure_lut(e);
@@ -808,6 +855,10 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     glBindTextureUnit(e->unit_irr, e->irr ? e->irr : e->dummy_cube);
     glBindTextureUnit(e->unit_lut, e->lut ? e->lut : e->dummy_2d);
     if (l_spec >= 0) glUniform1i(l_spec, e->unit_spec);
+    if (l_blinn >= 0) {
+        glBindTextureUnit(e->unit_spec_blinn, e->spec_blinn ? e->spec_blinn : e->dummy_cube);
+        glUniform1i(l_blinn, e->unit_spec_blinn);
+    }
     if (l_irr >= 0) glUniform1i(l_irr, e->unit_irr);
     if (l_lut >= 0) glUniform1i(l_lut, e->unit_lut);
     if (l_base >= 0) {
@@ -953,11 +1004,11 @@ static sl_status envmap_create(const sl_host *host, void **user) {
                        "combined with environment importance sampling by MIS), 64 frames x 64 samples per pixel."};
     host->set_reference(host, &ref);
     host->set_bind_callback(host, envmap_bind, e);
-    int units[8];
-    for (int i = 0; i < 8; i++)
+    int units[9];
+    for (int i = 0; i < 9; i++)
         if ((units[i] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     e->unit_2d = units[0], e->unit_cube = units[1], e->unit_spec = units[2], e->unit_irr = units[3], e->unit_lut = units[4];
-    e->unit_base = units[5], e->unit_dist = units[6], e->unit_marginal = units[7];
+    e->unit_base = units[5], e->unit_dist = units[6], e->unit_marginal = units[7], e->unit_spec_blinn = units[8];
     if (e->unit_cube != e->unit_2d + 1) return SL_ERR_FAILED;
     snprintf(e->glsl_dir, sizeof e->glsl_dir, "%s", host->resource_dir(host));
     return SL_OK;
@@ -1018,6 +1069,7 @@ static sl_status envmap_activate(void *user) {
 static void envmap_deactivate(void *user) {
     envmap *e = user;
     store_pending(e);
+    store_pending_blinn(e);
     free_derived(e);
     delete_tex(&e->src_tex);
     delete_tex(&e->lut);

@@ -70,6 +70,18 @@ float envmap_spec_lod(float alpha) {
 vec3 envmap_specular(vec3 r, float alpha) {
     return textureLod(envmap_spec, envmap_rot * r, envmap_spec_lod(alpha)).rgb * envmap_scale;
 }
+// The chain of Blinn-Phong lobes (the lobe contract's shapes, ABI 1.19; envmap.c makes it only
+// where a program reads it): the level for α holds the environment filtered by the n = v = r
+// Blinn-Phong lobe of power p = sl_lobe_blinn_power(α). At n·v = μ the lobe, a cone about h
+// reflected about the surface, is μ× narrower across the plane of incidence than along it (l moves
+// 2μ× as far as h across it, 2× along it): μ× the solid angle of the n = v = r lobe. It is read
+// as the isotropic lobe of that solid angle, power p/μ (read at p, the band test's error at
+// gloss 0.5 was 0.164 instead of 0.107: phong README, "Lobes").
+uniform samplerCube envmap_spec_blinn;
+vec3 envmap_specular_blinn(vec3 r, float alpha, float mu) {
+    float a = sl_lobe_blinn_alpha(sl_lobe_blinn_power(alpha) / max(mu, 0.05));
+    return textureLod(envmap_spec_blinn, envmap_rot * r, envmap_spec_lod(a)).rgb * envmap_scale;
+}
 
 // The direction the prefiltered chain is looked up along. The split sum's n = v = r lobe sits on
 // the mirror direction r; GGX's real lobe, with the G and cos factors, peaks between r and n, the
@@ -340,7 +352,8 @@ vec3 envmap_split_sum(SlSurface s) {
         vec3 specular = envmap_fis_specular(s, alpha, r, lobe.f0, lobe.f90, albedo, beta) * (spec / max(albedo, vec3(1e-6)));
 #else
         vec3 d = envmap_lookup_dir(n, r, alpha);
-        vec3 specular = spec * envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
+        vec3 specular = spec * (sl_lobe_blinn_phong(L, k) ? envmap_specular_blinn(d, alpha, mu) : envmap_specular(d, alpha)) *
+                        envmap_horizon(d, s.geometric_normal);
 #endif
         lit += lobe.weight * visible * envmap_specular_occlusion(mu, s.ao, alpha) * specular;
     }

@@ -193,11 +193,13 @@ unsigned em_make_base_cube(em_gpu *g, unsigned src, bool src_is_cube, int src_w,
     return t;
 }
 
-/* The GGX sample table of one level (envmap_ggx.frag): Hammersley points → half-vectors
- * distributed as D(h)(n·h) → l = reflect(−n, h), kept when n·l > 0, with the source mip level
- * from the sample's PDF. The same formulas as envmap_common.glsl's, in double. */
-static int ggx_table(float *out, int samples, double alpha, int base_size, float bias, int max_lod) {
-    double a2 = alpha * alpha, omega_p = 4 * M_PI / (6.0 * base_size * base_size);
+/* The sample table of one level (envmap_ggx.frag): Hammersley points → half-vectors distributed
+ * as D(h)(n·h) → l = reflect(−n, h), kept when n·l > 0, with the source mip level from the
+ * sample's PDF, D(h)(n·h)/(4 v·h) = D/4 at v = n. D is GGX's of α, or (EM_LOBE_BLINN_PHONG) the
+ * normalised Blinn-Phong (p+2)/(2π) cos^p θ of p = em_blinn_power(α), whose cos θ is
+ * (1 − y)^(1/(p+2)). The same formulas as envmap_common.glsl's, in double. */
+static int lobe_table(float *out, int samples, double alpha, em_lobe_shape shape, int base_size, float bias, int max_lod) {
+    double a2 = alpha * alpha, omega_p = 4 * M_PI / (6.0 * base_size * base_size), p = em_blinn_power(alpha);
     int k = 0;
     for (int i = 0; i < samples; i++) {
         uint32_t b = (uint32_t)i;
@@ -206,18 +208,31 @@ static int ggx_table(float *out, int samples, double alpha, int base_size, float
         b = ((b & 0x33333333u) << 2) | ((b & 0xCCCCCCCCu) >> 2);
         b = ((b & 0x0F0F0F0Fu) << 4) | ((b & 0xF0F0F0F0u) >> 4);
         b = ((b & 0x00FF00FFu) << 8) | ((b & 0xFF00FF00u) >> 8);
-        double x = (i + 0.5) / samples, y = b * 2.3283064365386963e-10;
-        double c2 = (1 - y) / (1 + (a2 - 1) * y), c = sqrt(c2), s = sqrt(fmax(0, 1 - c2)), phi = 2 * M_PI * x;
+        double x = (i + 0.5) / samples, y = b * 2.3283064365386963e-10, c2, D;
+        if (shape == EM_LOBE_BLINN_PHONG) {
+            double c = pow(1 - y, 1 / (p + 2));
+            c2 = c * c, D = (p + 2) / (2 * M_PI) * pow(c, p);
+        } else {
+            c2 = (1 - y) / (1 + (a2 - 1) * y);
+            double d = c2 * (a2 - 1) + 1;
+            D = a2 / (M_PI * d * d);
+        }
+        double c = sqrt(c2), s = sqrt(fmax(0, 1 - c2)), phi = 2 * M_PI * x;
         double h[3] = {s * cos(phi), s * sin(phi), c};
         double l[3] = {2 * c * h[0], 2 * c * h[1], 2 * c * h[2] - 1};
         if (l[2] <= 0) continue;
-        double d = c2 * (a2 - 1) + 1, D = a2 / (M_PI * d * d), pdf = D * 0.25; /* v = n: D(n·h)(n·h)/(4 v·h) */
+        double pdf = D * 0.25;
         double lod = 0.5 * log2(1.0 / (samples * pdf * omega_p)) + bias;
         lod = lod < 0 ? 0 : lod > max_lod ? max_lod : lod;
         out[k * 4 + 0] = (float)l[0], out[k * 4 + 1] = (float)l[1], out[k * 4 + 2] = (float)l[2], out[k * 4 + 3] = (float)lod;
         k++;
     }
     return k;
+}
+
+double em_blinn_power(double alpha) {
+    double a2 = alpha * alpha;
+    return a2 > 0 ? fmax(2 / log2(1 + a2) - 2, 0) : INFINITY;
 }
 
 double em_level_alpha(int level, int levels, em_level_map map) {
@@ -246,6 +261,11 @@ unsigned em_prefilter_ggx(em_gpu *g, unsigned base, int size, int levels, int sa
 
 unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias,
                               em_level_map map) {
+    return em_prefilter_chain(g, base, size, levels, samples, lod_bias, map, EM_LOBE_GGX);
+}
+
+unsigned em_prefilter_chain(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias, em_level_map map,
+                            em_lobe_shape shape) {
     int max_levels = em_max_levels(size);
     if (levels > max_levels) levels = max_levels;
     if (levels < 1) levels = 1;
@@ -266,8 +286,8 @@ unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, in
     int *counts = calloc((size_t)n, sizeof *counts);
     for (int l = 1; l < levels && table && counts; l++) {
         double a = em_level_alpha(l, levels, map);
-        counts[l - 1] = ggx_table(table + (size_t)(l - 1) * rows * 1024 * 4, samples, a < 2e-3 ? 2e-3 : a, size, lod_bias,
-                                  max_levels - 1);
+        counts[l - 1] = lobe_table(table + (size_t)(l - 1) * rows * 1024 * 4, samples, a < 2e-3 ? 2e-3 : a, shape, size,
+                                    lod_bias, max_levels - 1);
     }
     unsigned tex;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
@@ -289,8 +309,8 @@ unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, in
             draw_into(g, t, l, f, s, s);
             done += (double)s * s;
             /* levels counted as the files of a chain are (1..N, level 1 the unfiltered copy above) */
-            snprintf(what, sizeof what, "GGX prefilter %d² cube, %d samples: level %d/%d face %d/6", size, samples, l + 1,
-                     levels, f + 1);
+            snprintf(what, sizeof what, "%s prefilter %d² cube, %d samples: level %d/%d face %d/6",
+                     shape == EM_LOBE_BLINN_PHONG ? "Blinn-Phong" : "GGX", size, samples, l + 1, levels, f + 1);
             report(g, total > 0 ? done / total : 1, what);
         }
     }

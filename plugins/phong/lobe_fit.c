@@ -4,7 +4,7 @@
  *   phong_lobe_fit mixtures   the best least-squares fit of Blinn's D by w₁·D_GGX(α₁) + w₂·D_GGX(α₂),
  *                             w ≥ 0, in solid-angle measure, per gloss: it is one lobe
  *   phong_lobe_fit alpha      GGX α against the Blinn power p: Walter's √(2/(p+2)), the median
- *                             match used (phong_lobe_alpha), and the α minimising the L1,
+ *                             match used (sl_lobe_blinn_alpha), and the α minimising the L1,
  *                             Hellinger and KL distances between the two normalised D's
  *   phong_lobe_fit weight     the least-squares fit in phong_lobe_weight (phong_brdf.glsl): the
  *                             lobe weight that gives the model's directional albedo, printed as

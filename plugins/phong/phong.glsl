@@ -42,7 +42,8 @@ vec3 phong_model_blinn_gloss(SlSurface s, vec3 l, vec3 E) {
 #endif
 }
 // blinn-gloss's lobes (ABI 1.14): the diffuse (1 − F(n·v))·albedo exactly (F depends on n·v
-// only), and one GGX lobe with Blinn's median (phong_lobe_alpha of the power s.alpha carries),
+// only), and one lobe, Blinn-Phong shaped (ABI 1.19) of the power s.alpha carries (its α,
+// sl_lobe_blinn_alpha, is the GGX lobe with Blinn's median for integrators that read GGX only),
 // constant Fresnel f0 = f90 = F(n·v)·k_s, and the weight that gives the model's specular albedo
 // (phong_lobe_weight): a uniform environment is lit as the model says. Toksvig's widening is in
 // the power; its Fresnel/cosine blend (phong_filter_w) is not described.
@@ -52,9 +53,10 @@ SlLobes phong_blinn_gloss_lobes(SlSurface s) {
     float F = phong_schlick(mu);
     L.diffuse = (1.0 - F) * phong_albedo(s);
     L.count = 1;
-    L.lobe[0].alpha = phong_lobe_alpha(phong_power(s));
+    L.lobe[0].alpha = sl_lobe_blinn_alpha(phong_power(s));
     L.lobe[0].f0 = L.lobe[0].f90 = vec3(F * s.specular);
     L.lobe[0].weight = phong_lobe_weight(mu, L.lobe[0].alpha);
+    L.flags = SL_LOBES_BLINN_PHONG; // lobe 0 is Blinn-Phong
     return L;
 }
 vec3 phong_model_blinn_gloss_ambient(SlSurface s, vec3 Ea) {

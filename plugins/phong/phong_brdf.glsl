@@ -76,24 +76,18 @@ vec3 phong_blinn_gloss_ambient(vec3 n, vec3 v, vec3 albedo, float ao, vec3 Ea) {
     return (1.0 - phong_schlick(dot(n, v))) * albedo * ao * Ea * SL_INV_PI;
 }
 
-// blinn-gloss as one GGX lobe for light integrators (README, "Lobes"; both derived by
-// plugins/phong/lobe_fit.c). The lobe's α has Blinn's median: half of each D's projected
-// microfacet area lies within θ½ of n, 1 − cos^(p+2)θ½ = ½ = tan²θ½/(α² + tan²θ½), so
-// α = √(2^(2/(p+2)) − 1) (0.83–0.90 × Walter's √(2/(p+2)); GGX's longer tails widen it less).
-// 2^y − 1 by its series for small y, where exp2 − 1 cancels (p ≳ 300).
-float phong_lobe_alpha(float p) {
-    float y = 0.69314718 * 2.0 / (max(p, 0.0) + 2.0);
-    return sqrt(y < 0.01 ? y * (1.0 + y * (0.5 + y / 6.0)) : exp(y) - 1.0);
-}
-
-// The lobe's weight: the model's specular albedo over the lobe's, so that a uniform
+// blinn-gloss as one lobe for light integrators (README, "Lobes"; derived by
+// plugins/phong/lobe_fit.c): Blinn-Phong shaped (the contract's SL_LOBES_BLINN_PHONG), of the
+// α whose power is the model's, sl_lobe_blinn_alpha(p) (Blinn's median: the GGX lobe closest to
+// it for integrators that read every lobe as GGX). Its weight: the model's specular albedo over
+// the lobe's (the contract gives a Blinn-Phong lobe the GGX lobe's albedo), so that a uniform
 // environment gets the model's exact response at every n·v = μ:
 //   R(μ, p) = ∫ (p+1)/(2π)(n·h)^p (n·l) dl,   E(μ, α) = ∫ D G₁(v)G₁(l)/(4 n·v) (n·l) dl,
 // weight = R/E, fitted by least squares over p ∈ [0, 4095], μ ∈ [0.1, 1] (phong_lobe_fit weight:
 // relative error ≤ 1.7 %, rms 0.7 %) as 4μ²/G₁(μ)² — its narrow-lobe limit, written
 // (μ + √(μ² + α²(1 − μ²)))² to stay finite at μ → 0 — times exp(Σ c_ij α^i t^j), i + j ≤ 4,
 // t = α/(max(μ, 0.1) + α) − α/(1 + α) (0 at μ = 1; grows where the lobe meets the horizon).
-// α is phong_lobe_alpha(p). 0 for μ ≤ 0.
+// α is sl_lobe_blinn_alpha(p). 0 for μ ≤ 0.
 const float PHONG_LOBE_FIT[14] = float[](-0.46046, 4.39667, -0.01032, -3.45885, -0.13490, 12.44044, -22.01450, 6.06315, -2.31435, -10.56660, 13.49543, 2.38887, 0.95184, -0.84898);
 float phong_lobe_weight(float mu, float alpha) {
     if (mu <= 0.0) return 0.0;

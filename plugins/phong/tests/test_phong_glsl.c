@@ -289,10 +289,23 @@ static double lobe_albedo(bool ggx, double mu, double p, double a) {
 static void test_lobe_description(void) {
     /* α: Blinn's median, √(2^(2/(p+2)) − 1), p from 0 to 10⁵ (past gloss 1, through s.alpha) */
     for (int i = 0; i < G; i++) in0[i * 4] = (float)(exp2(17.0 * i / (G - 1)) - 1);
-    CHECK(eval("vec4(phong_lobe_alpha(in0.x), 0.0, 0.0, 0.0)", G, 1, in0, NULL, out));
+    CHECK(eval("vec4(sl_lobe_blinn_alpha(in0.x), 0.0, 0.0, 0.0)", G, 1, in0, NULL, out));
     double worst = 0;
     for (int i = 0; i < G; i++) worst = fmax(worst, fabs(out[i * 4] / median_alpha(in0[i * 4]) - 1));
-    CHECK_MSG(worst < 2e-5, "phong_lobe_alpha differs from sqrt(2^(2/(p+2)) - 1) by %g (relative)", worst);
+    CHECK_MSG(worst < 2e-5, "sl_lobe_blinn_alpha differs from sqrt(2^(2/(p+2)) - 1) by %g (relative)", worst);
+    /* the contract's inverse (ABI 1.19, what integrators read a Blinn-Phong lobe's power from):
+     * p = 2/log2(1 + α²) − 2 against C, and the round trip p → α → p, p from 1 to 10⁵ */
+    for (int i = 0; i < G; i++) in0[i * 4] = (float)exp2(17.0 * i / (G - 1)), in0[i * 4 + 1] = (float)median_alpha(in0[i * 4]);
+    CHECK(eval("vec4(sl_lobe_blinn_power(in0.y), sl_lobe_blinn_power(sl_lobe_blinn_alpha(in0.x)), 0.0, 0.0)", G, 1, in0, NULL,
+               out));
+    double worst_p = 0, worst_trip = 0;
+    for (int i = 0; i < G; i++) {
+        double a = in0[i * 4 + 1], want = 2 / log2(1 + a * a) - 2;
+        worst_p = fmax(worst_p, fabs(out[i * 4] / want - 1));
+        worst_trip = fmax(worst_trip, fabs(out[i * 4 + 1] / in0[i * 4] - 1));
+    }
+    CHECK_MSG(worst_p < 1e-4, "sl_lobe_blinn_power differs from 2/log2(1 + a^2) - 2 by %g (relative)", worst_p);
+    CHECK_MSG(worst_trip < 1e-3, "sl_lobe_blinn_power(sl_lobe_blinn_alpha(p)) differs from p by %g (relative)", worst_trip);
     /* … which is the median: half of GGX's projected area within θ½, where Blinn's CDF
      * 1 − cos^(p+2) θ is ½ (trapezoid over θ of D_GGX cos θ sin θ 2π) */
     const double pm[3] = {1, 64, 2000};
@@ -313,7 +326,7 @@ static void test_lobe_description(void) {
             int i = g * NM + m;
             in0[i * 4] = (float)(0.1 + 0.9 * m / (NM - 1)), in0[i * 4 + 1] = (float)exp2(12.0 * g / (NG - 1));
         }
-    CHECK(eval("vec4(phong_lobe_weight(in0.x, phong_lobe_alpha(in0.y)), phong_lobe_alpha(in0.y), 0.0, 0.0)", NG * NM, 1, in0,
+    CHECK(eval("vec4(phong_lobe_weight(in0.x, sl_lobe_blinn_alpha(in0.y)), sl_lobe_blinn_alpha(in0.y), 0.0, 0.0)", NG * NM, 1, in0,
                NULL, out));
     double worst_w = 0, worst_old = 0;
     for (int i = 0; i < NG * NM; i++) {
@@ -329,7 +342,7 @@ static void test_lobe_description(void) {
     CHECK_MSG(worst_old >= 0.025, "the mutant (centre-of-lobe weight) passes: %.4f", worst_old);
     /* stability: μ ≤ 0 → 0; μ → 0, p = 0 and p = 10⁶: finite, ≥ 0 */
     float edge[6 * 4] = {0, 64, 0, 0, -0.3f, 64, 0, 0, 1e-4f, 64, 0, 0, 0.02f, 0, 0, 0, 1e-4f, 1e6f, 0, 0, 1, 1e6f, 0, 0};
-    CHECK(eval("vec4(phong_lobe_weight(in0.x, phong_lobe_alpha(in0.y)), 0.0, 0.0, 0.0)", 6, 1, edge, NULL, out));
+    CHECK(eval("vec4(phong_lobe_weight(in0.x, sl_lobe_blinn_alpha(in0.y)), 0.0, 0.0, 0.0)", 6, 1, edge, NULL, out));
     CHECK(out[0] == 0 && out[4] == 0);
     for (int i = 2; i < 6; i++) CHECK_MSG(isfinite(out[i * 4]) && out[i * 4] >= 0, "edge %d: weight %g", i, out[i * 4]);
     CHECK_NEAR(out[5 * 4], 4.0, 0.02); /* a mirror-sharp lobe at μ = 1: 4μ²/G₁² = 4 */

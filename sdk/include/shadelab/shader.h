@@ -35,6 +35,8 @@
  *             ABI 1.16: SlLobes.flags; SL_LOBES_MODEL_AT_DOMINANT_LIGHT asks integrators to
  *             evaluate the model's own f at the light's dominant direction (a toon model's
  *             bands) instead of integrating lobes (common.glsl, sdk/example/toon).
+ *             ABI 1.19: SL_LOBES_BLINN_PHONG << k in SlLobes.flags: lobe k is normalised
+ *             Blinn-Phong of power sl_lobe_blinn_power(alpha), not GGX (sl_lobe_blinn_phong(L, k)).
  *
  * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX),
  * and "#define SL_MODEL_MASKS_FACING_AWAY 1" when that model's chunk carries

@@ -213,6 +213,15 @@ double em_level_alpha(int level, int levels, em_level_map map); /* α prefiltere
 double em_alpha_lod(double alpha, int levels, em_level_map map); /* the lookup's lod (the GLSL's twin) */
 unsigned em_prefilter_ggx_map(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias,
                               em_level_map map);
+/* The lobe shapes of the SDK's lobe contract (shaders/common.glsl, ABI 1.19): GGX, or normalised
+ * Blinn-Phong about the half vector of the power whose D has the median of GGX's at α,
+ * em_blinn_power(α) = 2/log2(1 + α²) − 2 (the GLSL's sl_lobe_blinn_power). A Blinn-Phong chain's
+ * level m holds the environment filtered by that lobe for em_level_alpha(m): the lookups are the
+ * GGX chain's. */
+typedef enum em_lobe_shape { EM_LOBE_GGX = 0, EM_LOBE_BLINN_PHONG = 1 } em_lobe_shape;
+double em_blinn_power(double alpha);
+unsigned em_prefilter_chain(em_gpu *g, unsigned base, int size, int levels, int samples, float lod_bias, em_level_map map,
+                            em_lobe_shape shape);
 /* Diffuse irradiance cube (out_size², one level): E(n)/π by summing every texel of the base
  * cube's mip of face size src_size (exact cosine-weighted Riemann sum, no noise). */
 unsigned em_convolve_irradiance(em_gpu *g, unsigned base, int base_size, int src_size, int out_size);
