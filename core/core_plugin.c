@@ -134,8 +134,8 @@ static sl_status core_create(const sl_host *host, void **user) {
                         "onto the image, is at most this many pixels. 0 = off (the default): every mesh in full."},
         {.struct_size = sizeof(sl_param_desc), .id = "render_scale", .type = SL_PARAM_FLOAT, .default_value = {.f = {1}},
          .min = 0.25f, .max = 1, .step = 0.05f, .unit = "x", .group = "quality", .flags = SL_PARAM_QUALITY_KNOB,
-         .description = "Render at this fraction of the window per axis; the window shows it scaled up (bilinear). "
-                        "The budget lowers it while the view moves."},
+         .description = "Render at this fraction of the window per axis; the window shows it scaled up (bilinear, "
+                        "or by an upscaler pass: aa.taa_upscale). The budget lowers it while the view moves."},
         /* material keys */
         {.struct_size = sizeof(sl_param_desc), .id = "base_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material", .material_input = "base_color",

@@ -39,7 +39,7 @@ check built "$msg" sl:accumulate.frag
 broken="$out/broken-plugins/aa"
 mkdir -p "$broken"
 cp -L "$(dirname "$exe")/plugins/aa/aa.so" "$broken/"
-cp "$scenes/../plugins/aa/"*.frag "$broken/"
+cp "$scenes/../plugins/aa/"*.frag "$scenes/../plugins/aa/"*.glsl "$broken/"
 printf '\nvoid sl_broken() { no_such_function(); }\n' >> "$broken/taa.frag"
 # The run writes its image and exits 2: it printed an error (one, naming the plugin and file).
 msg=$(SHADELAB_PLUGIN_PATH="$out/broken-plugins" "$exe" --headless --size 32x18 --scene "$scenes/basic.json" --output "$out/broken.png" 2>&1)

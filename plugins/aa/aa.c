@@ -43,6 +43,11 @@ static const sl_param_desc params[] = {
     P(.id = "taa_reject", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "taa",
       .description = "TAA: drop the history where the reprojected surface is not this one (disocclusion: the depth "
                      "there does not match) or falls outside the last frame."),
+    P(.id = "taa_upscale", .type = SL_PARAM_BOOL, .default_value = {.b = false}, .group = "taa",
+      .description = "TAA: with core.render_scale below 1, keep the history at the output (window) size and "
+                     "reconstruct it from the jittered frames (TAAU, see README: a sharper still, but on a CPU "
+                     "rasteriser a motion frame costs 2.6x, so off by default); off: TAA at the render size, "
+                     "scaled up bilinearly."),
 };
 
 typedef struct aa {
@@ -53,6 +58,9 @@ typedef struct aa {
     sl_program *taa_copy;  /* a frame without a history, and a converged still's history, as it is */
     sl_program *taa_still; /* a still: the running mean (taa.frag's AA_STILL) */
     sl_program *taa[2][2]; /* in motion: the resolve per [clamp][reject] (taa.frag's AA_CLAMP, AA_REJECT) */
+    /* the render size below the output size (taau.frag): a frame without a history, a still, motion */
+    sl_program *taau_first, *taau_still, *taau[2][2];
+    bool upscales;         /* the pass's "color" output is at the output size (taa_io) */
     int unit[5];
     unsigned sampler_linear, sampler_nearest;
     /* TAA: the history (rgb + frames in alpha) as a ping-pong pair, the last frame's depth */
@@ -110,30 +118,46 @@ static float halton(unsigned i, unsigned b) {
 /* What moves the image (camera, animated geometry and lights): while it stays, the view is
  * still. A change of settings or size is a cut instead: the history of another setting is no
  * history of this one, so the accumulation restarts (a live change equals a fresh start). */
-static uint64_t motion_signature(const sl_frame *f) {
-    uint64_t v[] = {f->camera_version, f->geometry_version, f->lights_version};
+static uint64_t motion_signature(const sl_frame *f, bool upscales) {
+    /* upscaling, a new render scale moves the samples: the history goes on (at the output size),
+     * a still restarts at the new scale */
+    uint64_t size = upscales ? (uint64_t)f->width << 32 | (uint32_t)f->height : 0;
+    uint64_t v[] = {f->camera_version, f->geometry_version, f->lights_version, size};
     uint64_t h = 1469598103934665603ull;
     for (size_t i = 0; i < sizeof v / sizeof *v; i++) h = (h ^ v[i]) * 1099511628211ull;
     return h;
 }
-static uint64_t cut_signature(const sl_frame *f) {
-    uint64_t v[] = {f->edits_version, (uint64_t)f->width << 32 | (uint32_t)f->height};
+static uint64_t cut_signature(const sl_frame *f, bool upscales) {
+    uint64_t size = upscales ? (uint64_t)f->output_width << 32 | (uint32_t)f->output_height
+                             : (uint64_t)f->width << 32 | (uint32_t)f->height;
+    uint64_t v[] = {f->edits_version, size};
     uint64_t h = 1469598103934665603ull;
     for (size_t i = 0; i < sizeof v / sizeof *v; i++) h = (h ^ v[i]) * 1099511628211ull;
     return h;
+}
+
+/* The length of the jitter sequence and of a still: taa_frames, times the output pixels per
+ * render pixel while upscaling (a frame brings each output pixel s^2 samples at render scale s,
+ * taau.frag), at most 64 (or taa_frames). */
+static int sequence_frames(aa *a, const sl_frame *f) {
+    int n = param(a, "taa_frames").i;
+    if (!a->upscales || f->width >= f->output_width || f->height >= f->output_height) return n;
+    double per_sample = (double)f->output_width * f->output_height / ((double)f->width * f->height);
+    int m = (int)ceil(n * per_sample);
+    return m < 64 ? m : n > 64 ? n : 64;
 }
 
 static void begin_frame(void *user, const sl_frame *f) {
     aa *a = user;
     a->frames_begun++;
     if (param(a, "method").i != AA_TAA) return;
-    int n = param(a, "taa_frames").i;
+    int n = sequence_frames(a, f);
     a->host->set_still_frames(a->host, n);
     /* A still view (nothing changed since the last frame, which TAA rendered) accumulates
      * exactly: the first frame of the still restarts the history at the pixel centre, the next
      * n-1 frames add Halton points 1..n-1 with equal weights, and from then on the history is
      * shown as it is (no jitter): the window shows what a headless still (n frames) gives. */
-    uint64_t sig = motion_signature(f), cut = cut_signature(f);
+    uint64_t sig = motion_signature(f, a->upscales), cut = cut_signature(f, a->upscales);
     bool consecutive = a->history_valid && a->taa_ran_at + 1 == a->frames_begun;
     if (!consecutive || cut != a->cut) a->still = 0, a->restart = 1; /* a first frame starts a still */
     else if (sig != a->signature) a->still = -1, a->restart = 0; /* moving: ordinary TAA */
@@ -159,22 +183,30 @@ static bool taa_active(void *user, const sl_frame *f) {
     return param(user, "method").i == AA_TAA;
 }
 
-/* The history in the colour target's own format (RGBA16F, RGBA32F with --float). */
-static void taa_textures(aa *a, int w, int h, int format, int dw, int dh) {
-    if (w != a->hw || h != a->hh || format != a->hformat) {
-        if (a->history[0]) glDeleteTextures(2, a->history);
-        glCreateTextures(GL_TEXTURE_2D, 2, a->history);
-        for (int i = 0; i < 2; i++) glTextureStorage2D(a->history[i], 1, (GLenum)format, w, h);
-        a->hw = w, a->hh = h, a->hformat = format;
-        a->history_valid = false;
-    }
+/* The history at the size of the pass's output (the output size while it upscales), in the colour
+ * target's own format (RGBA16F, RGBA32F with --float). A new size or format restarts it. */
+static void history_textures(aa *a, int w, int h, int format) {
+    if (w == a->hw && h == a->hh && format == a->hformat) return;
+    if (a->history[0]) glDeleteTextures(2, a->history);
+    glCreateTextures(GL_TEXTURE_2D, 2, a->history);
+    for (int i = 0; i < 2; i++) glTextureStorage2D(a->history[i], 1, (GLenum)format, w, h);
+    a->hw = w, a->hh = h, a->hformat = format;
+    a->history_valid = false;
+}
+
+/* This frame's depth becomes the next frame's previous depth (disocclusion, in motion). Made at
+ * the depth's size after the draw: the draw read the last frame's, whatever its size (a new
+ * render scale keeps an upscaling history). Without an upscaling history a new size restarts. */
+static void keep_depth(aa *a, unsigned depth, int dw, int dh) {
     if (dw != a->dw || dh != a->dh) {
         if (a->prev_depth) glDeleteTextures(1, &a->prev_depth);
         glCreateTextures(GL_TEXTURE_2D, 1, &a->prev_depth);
         glTextureStorage2D(a->prev_depth, 1, GL_DEPTH_COMPONENT32F, dw, dh);
         a->dw = dw, a->dh = dh;
-        a->history_valid = false;
     }
+    glNamedFramebufferTexture(a->depth_fbo[0], GL_DEPTH_ATTACHMENT, depth, 0);
+    glNamedFramebufferTexture(a->depth_fbo[1], GL_DEPTH_ATTACHMENT, a->prev_depth, 0);
+    glBlitNamedFramebuffer(a->depth_fbo[0], a->depth_fbo[1], 0, 0, dw, dh, 0, 0, dw, dh, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
 }
 
 static void bind_tex(aa *a, unsigned prog, int slot, const char *name, unsigned tex, unsigned sampler) {
@@ -183,11 +215,51 @@ static void bind_tex(aa *a, unsigned prog, int slot, const char *name, unsigned 
     glUniform1i(glGetUniformLocation(prog, name), a->unit[slot]);
 }
 
+/* The inputs of a resolve in motion (taa.frag, taau.frag): reprojection and disocclusion. */
+static bool bind_motion_inputs(aa *a, unsigned p, const sl_frame *f, unsigned color, unsigned depth, unsigned motion) {
+    float inv[16], prev_inv[16];
+    if (!sl_mat4_invert(f->view_proj, inv) || !sl_mat4_invert(f->prev_view_proj, prev_inv)) return false;
+    glUseProgram(p);
+    bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
+    bind_tex(a, p, 1, "aa_depth", depth, a->sampler_nearest);
+    bind_tex(a, p, 2, "aa_motion", motion, a->sampler_nearest);
+    bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
+    bind_tex(a, p, 4, "aa_prev_depth", a->prev_depth, a->sampler_nearest);
+    glUniformMatrix4fv(glGetUniformLocation(p, "aa_inv_view_proj"), 1, GL_FALSE, inv);
+    glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
+    glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
+    glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
+    return true;
+}
+
+/* The program of a TAAU draw (the render size below the output size, taau.frag): a frame
+ * without a history starts from the samples and the bilinear scale-up, a still accumulates the
+ * samples' weighted mean, motion reprojects, clips and rejects. */
+static unsigned taau_program(aa *a, const sl_frame *f, bool valid, unsigned color, unsigned depth, unsigned motion) {
+    const sl_host *h = a->host;
+    bool moving = valid && a->still < 0;
+    sl_program *prog = !valid ? a->taau_first : !moving ? a->taau_still : a->taau[param(a, "taa_clamp").b][param(a, "taa_reject").b];
+    unsigned p = h->program_id(h, prog);
+    if (!p) return 0;
+    if (moving && !bind_motion_inputs(a, p, f, color, depth, motion)) return taau_program(a, f, false, color, depth, motion);
+    glUseProgram(p);
+    bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
+    bind_tex(a, p, 3, "aa_history", a->history[a->current], moving ? a->sampler_linear : a->sampler_nearest);
+    /* in motion, the history keeps taa_frames frames' worth of samples (taau.frag): a frame adds
+     * 1.372 s^2 of weight on average at render scale s, so the new samples' share is on average
+     * 1 / taa_frames, as in TAA */
+    double scale2 = (double)f->width * f->height / ((double)f->output_width * f->output_height);
+    glUniform1f(glGetUniformLocation(p, "aa_cap"), (float)(param(a, "taa_frames").i * 1.372 * scale2));
+    glUniform2f(glGetUniformLocation(p, "aa_jitter"), f->jitter[0], f->jitter[1]);
+    return p;
+}
+
 /* The program of this frame's TAA draw and its inputs: a frame without a history copies "color";
  * a still averages (no neighbourhood: nothing moved, so the history is this pixel's own frames);
  * in motion the resolve reprojects, clips and rejects. */
 static unsigned taa_program(aa *a, const sl_frame *f, bool valid, unsigned color, unsigned depth, unsigned motion) {
     const sl_host *h = a->host;
+    if (a->upscales && (f->width != a->hw || f->height != a->hh)) return taau_program(a, f, valid, color, depth, motion);
     if (!valid) {
         unsigned p = h->program_id(h, a->taa_copy);
         if (p) glUseProgram(p), bind_tex(a, p, 0, "aa_src", color, a->sampler_nearest);
@@ -202,22 +274,9 @@ static unsigned taa_program(aa *a, const sl_frame *f, bool valid, unsigned color
         glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
         return p;
     }
-    float inv[16], prev_inv[16];
-    if (!sl_mat4_invert(f->view_proj, inv) || !sl_mat4_invert(f->prev_view_proj, prev_inv))
-        return taa_program(a, f, false, color, depth, motion);
     unsigned p = h->program_id(h, a->taa[param(a, "taa_clamp").b][param(a, "taa_reject").b]);
     if (!p) return 0;
-    glUseProgram(p);
-    bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
-    bind_tex(a, p, 1, "aa_depth", depth, a->sampler_nearest);
-    bind_tex(a, p, 2, "aa_motion", motion, a->sampler_nearest);
-    bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_linear);
-    bind_tex(a, p, 4, "aa_prev_depth", a->prev_depth, a->sampler_nearest);
-    glUniformMatrix4fv(glGetUniformLocation(p, "aa_inv_view_proj"), 1, GL_FALSE, inv);
-    glUniformMatrix4fv(glGetUniformLocation(p, "aa_prev_inv_view_proj"), 1, GL_FALSE, prev_inv);
-    glUniform3fv(glGetUniformLocation(p, "aa_camera_pos"), 1, f->camera_pos);
-    glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
-    return p;
+    return bind_motion_inputs(a, p, f, color, depth, motion) ? p : taa_program(a, f, false, color, depth, motion);
 }
 
 /* One full-screen draw per frame: the new history (our target) and "color" (the output, through
@@ -228,13 +287,13 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     unsigned color = h->pass_texture(h, ctx, "color"), depth = h->pass_texture(h, ctx, "depth"),
              motion = h->pass_texture(h, ctx, "motion");
     if (!color || !depth || !motion) return;
-    int w, hh, dw, dh, format;
+    int dw, dh, format;
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_WIDTH, &w);
-    glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_HEIGHT, &hh);
     glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_WIDTH, &dw);
     glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_HEIGHT, &dh);
-    taa_textures(a, w, hh, format, dw, dh);
+    history_textures(a, a->upscales ? f->output_width : f->width, a->upscales ? f->output_height : f->height, format);
+    /* without an upscaling history a new render size restarts (the depth of another size too) */
+    if (!a->upscales && (dw != a->dw || dh != a->dh)) a->history_valid = false;
     /* the history continues only from the frame just before (not after the method was off, a
      * pause or a resize) */
     bool valid = a->history_valid && a->taa_ran_at + 1 == a->frames_begun && !a->restart;
@@ -256,11 +315,7 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     for (int i = 0; i < 5; i++) glBindSampler(a->unit[i], 0);
     /* this frame's depth is the next frame's previous depth (disocclusion, in motion). A still's
      * frames after its first differ only by the jitter: the first one's depth serves */
-    if (a->still <= 0) {
-        glNamedFramebufferTexture(a->depth_fbo[0], GL_DEPTH_ATTACHMENT, depth, 0);
-        glNamedFramebufferTexture(a->depth_fbo[1], GL_DEPTH_ATTACHMENT, a->prev_depth, 0);
-        glBlitNamedFramebuffer(a->depth_fbo[0], a->depth_fbo[1], 0, 0, dw, dh, 0, 0, dw, dh, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-    }
+    if (a->still <= 0 || dw != a->dw || dh != a->dh) keep_depth(a, depth, dw, dh);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     a->current = next;
     a->history_valid = true;
@@ -271,6 +326,18 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
 static const char *const fxaa_inputs[] = {"color", NULL};
 static const char *const taa_inputs[] = {"color", "depth", "motion", NULL};
 static const sl_target_desc color_out[] = {{.name = "color", .format = SL_FORMAT_RGBA16F}};
+/* TAA with taa_upscale: the pass is the frame's upscaler (pass.h, SL_SIZE_OUTPUT, ABI 1.18) */
+static const sl_target_desc color_out_upscaled[] = {{.name = "color", .format = SL_FORMAT_RGBA16F, .width = SL_SIZE_OUTPUT}};
+
+/* TAA's output: at the output size while it upscales (taa and taa_upscale), else at the render
+ * size, where a method other than taa leaves the scaling up to the window (bilinear). */
+static void taa_io(void *user, const char *const **inputs, const sl_target_desc **outputs, int *count) {
+    aa *a = user;
+    a->upscales = param(a, "method").i == AA_TAA && param(a, "taa_upscale").b;
+    *inputs = taa_inputs;
+    *outputs = a->upscales ? color_out_upscaled : color_out;
+    *count = 1;
+}
 
 /* FXAA runs last before the display encoding: after tone mapping and display-referred effects,
  * on the image as it will be seen (Lottes: after everything but the UI). */
@@ -297,7 +364,7 @@ static sl_status create(const sl_host *host, void **user) {
     if (host->add_pass(host, &fxaa) != SL_OK) return SL_ERR_FAILED;
     const sl_pass_desc taa = {.struct_size = sizeof taa, .name = "aa-taa", .stage = AA_STAGE_TAA,
                               .inputs = taa_inputs, .outputs = color_out, .output_count = 1,
-                              .execute = taa_execute, .is_active = taa_active, .user = a,
+                              .execute = taa_execute, .is_active = taa_active, .user = a, .io = taa_io,
                               .depends = SL_DEPENDS_EVERY_FRAME, /* its history moves every frame */
                               .display_on_write = true};
     if (host->add_pass(host, &taa) != SL_OK) return SL_ERR_FAILED;
@@ -330,6 +397,22 @@ static sl_status activate(void *user) {
                                                                              .fragment = "taa.frag", .defines = defines});
             resolves = resolves && a->taa[c][r];
         }
+    for (int c = 0; c < 2; c++)
+        for (int r = 0; r < 2; r++) {
+            char defines[64];
+            snprintf(defines, sizeof defines, "AA_CLAMP %d\nAA_REJECT %d", c, r);
+            a->taau[c][r] = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                              .vertex = "sl:fullscreen.vert",
+                                                                              .fragment = "taau.frag", .defines = defines});
+            resolves = resolves && a->taau[c][r];
+        }
+    a->taau_first = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                        .vertex = "sl:fullscreen.vert", .fragment = "taau.frag",
+                                                                        .defines = "AA_FIRST 1"});
+    a->taau_still = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                        .vertex = "sl:fullscreen.vert", .fragment = "taau.frag",
+                                                                        .defines = "AA_STILL 1"});
+    resolves = resolves && a->taau_first && a->taau_still;
     a->taa_still = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                        .vertex = "sl:fullscreen.vert", .fragment = "taa.frag",
                                                                        .defines = "AA_STILL 1"});

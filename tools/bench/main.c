@@ -51,7 +51,9 @@ static const char *usage =
     "                            measured)\n"
     "  --noise-limit X           noise above X makes a setting noisy: on no front, never chosen by\n"
     "                            --auto-quality (default 0.002, half an 8-bit step)\n"
-    "  --images                  also write PREFIX-<setting>.png and PREFIX-reference.png\n"
+    "  --images                  also write PREFIX-<setting>.png and PREFIX-reference.png; with --orbit,\n"
+    "                            PREFIX-S-V-motion-K.png, -still-K.png, -truth-K.png (scene S, variant V,\n"
+    "                            point K, first round)\n"
     "  --no-chart                no PNG chart\n"
     "  --list                    print the settings that would be measured, then exit\n"
     "  --orbit SECONDS           instead of a sweep: a slow orbit of the camera driven by the wall\n"
@@ -172,7 +174,7 @@ static bool orbit_variant(const sl_orbit_options *oo, const char *variant, sl_or
 /* --orbit: the given scene, or the built-in one and the head when its data is there; each
  * variant in turn, `rounds` times. */
 static int run_orbits(sl_orbit_options *oo, const char *const *variants, int variant_count, int rounds,
-                      const char *prefix, char *err, size_t n) {
+                      const char *prefix, bool images_wanted, char *err, size_t n) {
     const char *scenes[2] = {oo->scene_path, NULL};
     const char *data[2] = {oo->data_dir, NULL};
     int count = 1;
@@ -196,6 +198,9 @@ static int run_orbits(sl_orbit_options *oo, const char *const *variants, int var
                 oo->scene_path = scenes[i];
                 oo->data_dir = data[i];
                 sl_orbit_result r;
+                char images[4200];
+                snprintf(images, sizeof images, "%s-%d-%d", prefix, i, v); /* scene i, variant v */
+                oo->image_prefix = images_wanted && round == 0 ? images : NULL;
                 if (oo->progress && (rounds > 1 || variant_count > 1))
                     fprintf(stderr, "[orbit] round %d of %d, variant \"%s\"\n", round + 1, rounds, variants[v]);
                 if (!orbit_variant(oo, variants[v], &r, err, n)) rc = die(err);
@@ -357,7 +362,7 @@ int main(int argc, char **argv) {
     if (oo.seconds > 0) {
         oo.scene_path = o.scene_path, oo.data_dir = o.data_dir, oo.width = o.width, oo.height = o.height;
         oo.backend = o.backend, oo.settings = base, oo.setting_count = nb, oo.progress = o.progress;
-        return run_orbits(&oo, variants, variant_count, orbit_rounds, out ? out : "bench-orbit", err, sizeof err);
+        return run_orbits(&oo, variants, variant_count, orbit_rounds, out ? out : "bench-orbit", images, err, sizeof err);
     }
     if (!o.plugin) return die("--plugin NAME is required (\"core\" for the core's own knobs); see --help");
     if (o.reference_scale > 1) { /* every size derived from a user number is checked before use */

@@ -201,8 +201,16 @@ static bool summarise_times(sl_orbit_result *res) {
     return true;
 }
 
+/* --images: one image of point k (linear, written display-encoded) */
+static void save_image(const char *prefix, const char *what, int k, const float *px, int w, int h) {
+    char path[4200], err[1024];
+    snprintf(path, sizeof path, "%s-%s-%d.png", prefix, what, k);
+    if (!sl_image_write(path, px, w, h, false, err, sizeof err)) SL_WARN("%s", err);
+}
+
 /* Each captured pair against the truth (its two cameras' highest-quality stills). */
-static bool compare_with_truth(sl_app *truth, orbit_pair *pairs, int points, sl_orbit_result *res) {
+static bool compare_with_truth(sl_app *truth, const char *image_prefix, orbit_pair *pairs, int points,
+                               sl_orbit_result *res) {
     int w = res->width, hh = res->height;
     size_t px = (size_t)w * hh * 4;
     float *h0 = malloc(sizeof(float) * px), *h1 = malloc(sizeof(float) * px);
@@ -213,6 +221,11 @@ static bool compare_with_truth(sl_app *truth, orbit_pair *pairs, int points, sl_
         if (!p->still) continue; /* the orbit ended before this moment */
         ok = render_still(truth, &p->cam[0], h0) && render_still(truth, &p->cam[1], h1);
         if (!ok) break;
+        if (image_prefix) {
+            save_image(image_prefix, "motion", k, p->frame[1], w, hh);
+            save_image(image_prefix, "still", k, p->still, w, hh);
+            save_image(image_prefix, "truth", k, h1, w, hh);
+        }
         compare(p->frame[1], h1, w, hh, &res->motion_flip, &res->motion_rmse);
         compare(p->still, h1, w, hh, &res->still_flip, &res->still_rmse);
         double fl = sl_orbit_flicker(p->frame[0], p->frame[1], h0, h1, w, hh);
@@ -286,7 +299,7 @@ bool sl_orbit_run(const sl_orbit_options *o, sl_orbit_result *res, char *err, si
          * one truth for every variant */
         snprintf(truth_settings, sizeof truth_settings, "%s core.budget=0", hq);
         ok = open_app(o, truth_settings, buf, sizeof buf, &truth, &inited, err, n);
-        if (ok && !(ok = compare_with_truth(&truth, pairs, points, res))) snprintf(err, n, "rendering the truth failed");
+        if (ok && !(ok = compare_with_truth(&truth, o->image_prefix, pairs, points, res))) snprintf(err, n, "rendering the truth failed");
         if (inited) sl_app_shutdown(&truth);
     }
     for (int k = 0; pairs && k < points; k++) free(pairs[k].frame[0]), free(pairs[k].frame[1]), free(pairs[k].still);

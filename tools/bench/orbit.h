@@ -43,6 +43,8 @@ typedef struct sl_orbit_options {
     bool progress;                   /* progress lines on stderr */
     bool pass_times;                 /* time every pass of every timed frame (glFinish around each on
                                       * llvmpipe: the frames are slower by what that costs) */
+    const char *image_prefix;        /* non-NULL: PREFIX-motion-K.png, -still-K.png, -truth-K.png
+                                      * (f_k, the still, h_k of point K) */
 } sl_orbit_options;
 
 #define SL_ORBIT_MAX_PASSES 64

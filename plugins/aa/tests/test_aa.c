@@ -156,12 +156,13 @@ static void test_taa_still_exact(void) {
 }
 
 /* A square moving right (a VERTEX hook over sl_time, aa-test-mover): behind its left edge the
- * background is uncovered. After taa_frames frames of motion, no pixel farther than 1.5 px behind
- * the edge (its position per frame in closed form) may keep any of the square: the history there
- * must be dropped (disocclusion) or clipped (neighbourhood). With both off, the ghost must show. */
-static double ghost(const char *clamp, const char *reject, double *edge_rmse) {
+ * background is uncovered. After `frames` frames of motion (`then`, if any, set before the last),
+ * no pixel farther than `behind` px behind the edge (its position per frame in closed form) may keep
+ * any of the square: the history there must be dropped (disocclusion) or clipped (neighbourhood).
+ * Returns the largest value there; *edge_rmse: the RMSE to the box-filtered coverage in closed form
+ * over the rows the square covers. */
+static double moving_edge(const char *const *settings, int frames, const char *then, double behind, double *edge_rmse) {
     const double v = 4.1, x0 = -0.45, half = 0.6, dist = 3.0, tan_half = tan(20.0 * M_PI / 180.0);
-    const int frames = 12;
     char json[2048];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"aa\"],"
@@ -174,7 +175,6 @@ static double ghost(const char *clamp, const char *reject, double *edge_rmse) {
              "               \"color\": [1, 1, 1], \"intensity\": 3.14159265}]}",
              v, x0);
     const char *plugins[] = {AA_MOVER, NULL};
-    const char *settings[] = {"aa.method=taa", "aa.taa_frames=8", clamp, reject, NULL};
     char err[4096] = "";
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
                                                          .scene_json = json, .plugins = plugins, .settings = settings,
@@ -182,10 +182,14 @@ static double ghost(const char *clamp, const char *reject, double *edge_rmse) {
                                       err, sizeof err);
     CHECK_MSG(h != NULL, "harness: %s", err);
     if (!h) return -1;
-    for (int f = 0; f < frames; f++) CHECK(sl_harness_render(h, img));
+    if (frames == 1) sl_harness_set_frame(h, 11); /* a first frame at the time of the others' last */
+    for (int f = 0; f < frames; f++) {
+        if (then && f == frames - 1) CHECK_MSG(sl_harness_set(h, then, err, sizeof err), "%s", err);
+        CHECK(sl_harness_render(h, img));
+    }
     sl_harness_destroy(h);
-    /* frame frames-1 at t = (frames-1)/60: the left edge's pixel column, from the left */
-    double t = (frames - 1) / 60.0;
+    /* the last frame, at t = 11/60: the left edge's pixel column, from the left */
+    double t = 11 / 60.0;
     double left = ((x0 - half + v * t) / (dist * tan_half) + 1) * 0.5 * W;
     double right = ((x0 + half + v * t) / (dist * tan_half) + 1) * 0.5 * W;
     double top = (1 - half / (dist * tan_half)) * 0.5 * H, bottom = (1 + half / (dist * tan_half)) * 0.5 * H;
@@ -198,10 +202,15 @@ static double ghost(const char *clamp, const char *reject, double *edge_rmse) {
             double cover = fmax(0, fmin(x + 1.0, right) - fmax((double)x, left));
             double expect = 0.8 * fmin(cover, 1.0), got = img[(y * W + x) * 4 + 1];
             se += (got - expect) * (got - expect), n++;
-            if (cx < left - 1.5) worst = fmax(worst, fabs(got));
+            if (cx < left - behind) worst = fmax(worst, fabs(got));
         }
     *edge_rmse = sqrt(se / n);
     return worst;
+}
+
+static double ghost(const char *clamp, const char *reject, double *edge_rmse) {
+    const char *settings[] = {"aa.method=taa", "aa.taa_frames=8", clamp, reject, NULL};
+    return moving_edge(settings, 12, NULL, 1.5, edge_rmse);
 }
 
 static void test_taa_ghost(void) {
@@ -220,10 +229,118 @@ static void test_taa_ghost(void) {
     CHECK_MSG(without > 0.05, "without clamping and rejection no ghost shows (%g): the test cannot fail", without);
 }
 
+/* TAAU (render scale 0.5, taau.frag): a still converges towards the full-size still closer than
+ * TAA at the render size scaled up bilinearly does, and closer to the 8x8 supersampled truth. */
+static void test_taau_still(void) {
+    char json[2048];
+    edge_scene(json, sizeof json, 17);
+    static float full[W * H * 4], up[W * H * 4], bilinear[W * H * 4];
+    const char *s_ref[] = {"aa.method=none", "core.ssaa=8", NULL};
+    const char *s_full[] = {"aa.taa_frames=16", NULL};
+    const char *s_up[] = {"aa.taa_frames=16", "core.render_scale=0.5", "aa.taa_upscale=true", NULL};
+    const char *s_bilinear[] = {"aa.taa_frames=16", "core.render_scale=0.5", NULL}; /* the default */
+    /* the still of a TAAU at scale 0.5 is 4x as long: its frames bring a quarter of the samples */
+    if (!render_still(json, s_ref, 1, ref) || !render_still(json, s_full, 16, full) || !render_still(json, s_up, 64, up) ||
+        !render_still(json, s_bilinear, 16, bilinear))
+        return;
+    double up_full = rmse(up, full), bilinear_full = rmse(bilinear, full);
+    double up_ref = rmse(up, ref), bilinear_ref = rmse(bilinear, ref), full_ref = rmse(full, ref);
+    printf("edge 17 deg, still at render scale 0.5: RMSE to the full-size still: taau %.5f, bilinear %.5f; to ssaa=8: "
+           "taau %.5f, bilinear %.5f (full size %.5f)\n", up_full, bilinear_full, up_ref, bilinear_ref, full_ref);
+    CHECK(sl_harness_count_nonfinite(up, W, H) == 0);
+    CHECK_MSG(up_full <= 0.6 * bilinear_full, "TAAU's still (RMSE %.5f to the full-size still) is not 40 %% closer than "
+              "the bilinear scale-up's (%.5f)", up_full, bilinear_full);
+    CHECK_MSG(up_ref < bilinear_ref, "TAAU's still is farther from the truth (%.5f) than bilinear (%.5f)", up_ref,
+              bilinear_ref);
+}
+
+/* The edge scene with the camera set again before every frame (the view counts as moving: the
+ * resolve in motion runs, with reprojection and clip, not a still) for `frames` frames; `then`, if
+ * any, set before the last. The last frame's RMSE to the 8x8 supersampled truth (in ref). */
+static double moving_view(const char *const *settings, int frames, const char *then) {
+    char json[2048], err[256];
+    edge_scene(json, sizeof json, 17);
+    sl_harness *h = open_json(json, settings);
+    if (!h) return -1;
+    const float eye[3] = {0, 0, 3}, target[3] = {0, 0, 0};
+    for (int f = 0; f < frames; f++) {
+        if (then && f == frames - 1) CHECK_MSG(sl_harness_set(h, then, err, sizeof err), "%s", err);
+        CHECK(sl_harness_set_camera(h, eye, target) && sl_harness_render(h, img));
+    }
+    sl_harness_destroy(h);
+    return rmse(img, ref);
+}
+
+/* TAAU in motion: no ghost behind a moving edge (beyond the 3x3 render-size box, 4 px), and a new
+ * render scale keeps the history at the output size: with the view moving (but for its jitter, in
+ * place), the frame after a switch from 0.5 to 0.6 stays as close to the truth as its history was,
+ * not as far as a first frame at 0.6; TAA at the render size restarts there. */
+static void test_taau_motion(void) {
+    double e_moving;
+    const char *s_up[] = {"aa.taa_frames=8", "core.render_scale=0.5", "aa.taa_upscale=true", NULL};
+    double ghost_up = moving_edge(s_up, 12, NULL, 4.0, &e_moving);
+    printf("moving edge at render scale 0.5, TAAU: largest value 4 px behind the edge %.4f, edge RMSE %.4f\n", ghost_up,
+           e_moving);
+    CHECK_MSG(ghost_up >= 0 && ghost_up <= 0.01, "TAAU leaves a ghost behind a moving edge: %g", ghost_up);
+
+    char json[2048];
+    edge_scene(json, sizeof json, 17);
+    const char *s_ref[] = {"aa.method=none", "core.ssaa=8", NULL};
+    if (!render_still(json, s_ref, 1, ref)) return;
+    const char *s_taau[] = {"aa.taa_frames=16", "core.render_scale=0.5", "aa.taa_upscale=true", NULL};
+    const char *s_first[] = {"aa.taa_frames=16", "core.render_scale=0.6", "aa.taa_upscale=true", NULL};
+    const char *s_bilinear[] = {"aa.taa_frames=16", "core.render_scale=0.5", NULL};
+    double before = moving_view(s_taau, 24, NULL), after = moving_view(s_taau, 25, "core.render_scale=0.6");
+    double first = moving_view(s_first, 1, NULL), restarted = moving_view(s_bilinear, 25, "core.render_scale=0.6");
+    printf("edge 17 deg, view moving in place: RMSE to ssaa=8 after 24 frames at render scale 0.5 %.5f, one frame after "
+           "a switch to 0.6 %.5f, a first frame at 0.6 %.5f; TAA at the render size after the switch %.5f\n", before,
+           after, first, restarted);
+    CHECK_MSG(after <= 0.7 * first, "after a new render scale TAAU's frame (RMSE %.5f) is not closer to the truth than a "
+              "first frame (%.5f): its history was not kept", after, first);
+    CHECK_MSG(after <= 1.25 * before, "a new render scale lost TAAU's history: RMSE %.5f after, %.5f before", after, before);
+}
+
+/* Without TAA nothing upscales (taa_upscale on or not): FXAA runs at the render size and the image
+ * is scaled up bilinearly, as a render at the render size scaled up here. */
+static void test_fxaa_not_upscaled(void) {
+    char json[2048];
+    edge_scene(json, sizeof json, 17);
+    static float small[(W / 2) * (H / 2) * 4];
+    const char *s_small[] = {"aa.method=fxaa", "aa.taa_upscale=true", NULL};
+    const char *s_scaled[] = {"aa.method=fxaa", "core.render_scale=0.5", "aa.taa_upscale=true", NULL};
+    char err[4096] = "";
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W / 2,
+                                                         .height = H / 2, .scene_json = json, .settings = s_small,
+                                                         .strict = true},
+                                      err, sizeof err);
+    CHECK_MSG(h != NULL, "harness: %s", err);
+    if (!h) return;
+    CHECK(sl_harness_render(h, small));
+    sl_harness_destroy(h);
+    if (!render_still(json, s_scaled, 1, img)) return;
+    double worst = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            /* bilinear at pixel centres, clamped at the edges (the window's present) */
+            double fy = fmin(fmax((y + 0.5) / 2 - 0.5, 0), H / 2 - 1), fx = fmin(fmax((x + 0.5) / 2 - 0.5, 0), W / 2 - 1);
+            int y0 = (int)fy, x0 = (int)fx, y1 = y0 + 1 < H / 2 ? y0 + 1 : y0, x1 = x0 + 1 < W / 2 ? x0 + 1 : x0;
+            double ay = fy - y0, ax = fx - x0;
+            const float *s00 = small + (y0 * (W / 2) + x0) * 4, *s01 = small + (y0 * (W / 2) + x1) * 4;
+            const float *s10 = small + (y1 * (W / 2) + x0) * 4, *s11 = small + (y1 * (W / 2) + x1) * 4;
+            double expect = (s00[1] * (1 - ax) + s01[1] * ax) * (1 - ay) + (s10[1] * (1 - ax) + s11[1] * ax) * ay;
+            worst = fmax(worst, fabs(img[(y * W + x) * 4 + 1] - expect));
+        }
+    printf("fxaa at render scale 0.5 against a render at half size scaled up bilinearly: largest difference %.2g\n", worst);
+    CHECK_MSG(worst <= 1e-3, "FXAA at render scale 0.5 is not the half-size FXAA image scaled up bilinearly (%g)", worst);
+}
+
 int main(void) {
     test_fxaa();
     test_taa_still();
     test_taa_still_exact();
     test_taa_ghost();
+    test_taau_still();
+    test_taau_motion();
+    test_fxaa_not_upscaled();
     return check_result();
 }
