@@ -13,7 +13,7 @@
 //     Blackman-Harris window (the filter Karis 2014 gives the current frame's samples); 1 for a
 //     sample at the pixel's centre, as a TAA frame's sample is to its pixel. At render scale s a
 //     frame brings an output pixel 1.37 s^2 of weight on average (pi / 2.29 per sample, s^2
-//     samples per output pixel): the history gathers over 1 / s^2 more frames (aa.c lengthens the
+//     samples per output pixel): a still gathers over 1 / s^2 more frames (aa.c lengthens the
 //     jitter sequence and the still to match);
 //   - the blend: history h of weight N (alpha), new samples' sum S of weight W:
 //     (N h + S) / (N + W); in motion N + W is capped at taa_frames frames' worth of samples
