@@ -596,13 +596,14 @@ static void ensure_spec(envmap *e) {
     e->spec_key = key;
 }
 
-/* The Blinn-Phong chain: the GGX chain's size, levels and level map (a precomputed GGX chain's:
- * the sqrt map), prefiltered from the base cube by em_prefilter_chain, issued without waiting as
- * ensure_spec's. */
+/* The Blinn-Phong chain: the GGX chain's size and levels (a precomputed GGX chain's count), always
+ * the log level map (envmap_specular_blinn), prefiltered from the base cube by em_prefilter_chain,
+ * issued without waiting as ensure_spec's. */
 static void ensure_spec_blinn(envmap *e) {
     spec_settings t;
-    uint64_t key = em_hash("blinn-phong", 11, spec_key(e, &t));
-    if (e->spec_from_chain) t.levels = e->spec_levels, t.map = EM_LEVEL_MAP_SQRT, key = em_hash(&t.levels, sizeof t.levels, key);
+    uint64_t key = em_hash("blinn-phong, log map", 20, spec_key(e, &t));
+    if (e->spec_from_chain) t.levels = e->spec_levels, key = em_hash(&t.levels, sizeof t.levels, key);
+    t.map = EM_LEVEL_MAP_LOG;
     if (e->spec_blinn && e->spec_blinn_key == key) return;
     e->blinn_store_pending = false;
     delete_tex(&e->spec_blinn);

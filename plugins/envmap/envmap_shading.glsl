@@ -59,13 +59,12 @@ vec3 envmap_diffuse(vec3 n) { // E(n)/π: the outgoing radiance of a white Lambe
 // The chain's level for α (em_alpha_lod's twin, <envmap/prefilter.h>): envmap_spec_map 0 =
 // level m for perceptual roughness m/L (L = the last level), 1 = α halving per level from 1.
 uniform int envmap_spec_map; // = the level_map parameter; 0 for a shadelab-cube chain
+float envmap_spec_lod_log(float alpha) {
+    float top = envmap_spec_lod_max, a1 = exp2(1.0 - top);
+    return alpha >= a1 ? top + log2(alpha) : alpha / a1;
+}
 float envmap_spec_lod(float alpha) {
-    float top = envmap_spec_lod_max;
-    if (envmap_spec_map == 1) {
-        float a1 = exp2(1.0 - top);
-        return alpha >= a1 ? top + log2(alpha) : alpha / a1;
-    }
-    return sqrt(alpha) * top;
+    return envmap_spec_map == 1 ? envmap_spec_lod_log(alpha) : sqrt(alpha) * envmap_spec_lod_max;
 }
 vec3 envmap_specular(vec3 r, float alpha) {
     return textureLod(envmap_spec, envmap_rot * r, envmap_spec_lod(alpha)).rgb * envmap_scale;
@@ -76,11 +75,13 @@ vec3 envmap_specular(vec3 r, float alpha) {
 // reflected about the surface, is μ× narrower across the plane of incidence than along it (l moves
 // 2μ× as far as h across it, 2× along it): μ× the solid angle of the n = v = r lobe. It is read
 // as the isotropic lobe of that solid angle, power p/μ (read at p, the band test's error at
-// gloss 0.5 was 0.164 instead of 0.107: phong README, "Lobes").
+// gloss 0.5 was 0.164 instead of 0.107 on sqrt-map levels: phong README, "Lobes"). Its levels are always spaced by
+// 2× in α (level_map=log): between the sqrt map's levels, 4× apart at low α, the trilinear blend
+// of two widths gives the lobe a tail, which a tail-free Blinn-Phong lobe shows next to a sun.
 uniform samplerCube envmap_spec_blinn;
 vec3 envmap_specular_blinn(vec3 r, float alpha, float mu) {
     float a = sl_lobe_blinn_alpha(sl_lobe_blinn_power(alpha) / max(mu, 0.05));
-    return textureLod(envmap_spec_blinn, envmap_rot * r, envmap_spec_lod(a)).rgb * envmap_scale;
+    return textureLod(envmap_spec_blinn, envmap_rot * r, envmap_spec_lod_log(a)).rgb * envmap_scale;
 }
 
 // The direction the prefiltered chain is looked up along. The split sum's n = v = r lobe sits on
