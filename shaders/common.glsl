@@ -36,6 +36,9 @@ struct SlSurface {
     vec2 uv1;              // ABI 1.7: the mesh's second UV set (glTF TEXCOORD_1); uv where the
                            // material has no texture on it. Material textures are read at
                            // sl_uv_<key>(s): their UV set and KHR_texture_transform
+    vec3 emission_weight;  // ABI 1.20: what the layers over the emission leave of it (1 by
+                           // default; ggx's clear coat: 1 − w·F_c(n_c·v)); sl_emission(s) is
+                           // the material's emission times it
 };
 
 // ABI 1.14, the lobe contract (sdk/docs/plugin-guide.md, "Lobes"): how a shading model's

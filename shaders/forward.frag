@@ -67,6 +67,7 @@ SlSurface sl_surface_from_varyings() {
     s.opacity = 1.0;
     s.lod_bias = 0.0;
     s.object_position = v_object_pos;
+    s.emission_weight = vec3(1.0);
     return s;
 }
 #endif

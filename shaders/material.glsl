@@ -18,14 +18,15 @@ vec3 sl_base_color(SlSurface s) {
 
 // glTF 2.0 emission: emissiveFactor × emissiveTexture × emissive_strength, added to the shaded
 // radiance (forward.c calls it only for materials carrying "emissive"; glTF's factor defaults to
-// 0, so a texture alone emits nothing).
+// 0, so a texture alone emits nothing), times what the model's layers over it leave of it
+// (s.emission_weight, ABI 1.20: a clear coat dims the emission below it by its Fresnel).
 #ifdef SL_MAT_HAS_EMISSIVE
 vec3 sl_emission(SlSurface s) {
     vec3 e = sl_mat_emissive * sl_mat_emissive_strength;
 #ifdef SL_MAT_HAS_EMISSIVE_MAP
     e *= texture(sl_mat_emissive_map, sl_uv_emissive_map(s)).rgb;
 #endif
-    return e;
+    return e * s.emission_weight;
 }
 #endif
 

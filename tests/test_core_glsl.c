@@ -25,7 +25,7 @@ int main(void) {
     const char *files[] = {"lambert.glsl", NULL};
     sl_glsl_eval_desc d = {.struct_size = sizeof d, .files = files, .width = N, .height = N, .in0 = in0, .in1 = in1,
                            .expression = "vec4(sl_model_lambert(SlSurface(vec3(0), vec3(0,1,0), vec3(0,1,0), vec3(1,0,0), "
-                                         "vec3(0,0,1), vec2(0), vec3(0,1,0), vec3(in1.x), 1.0, 1.0, 1.0, 1.0, 0.0, vec3(0), 0.0, vec2(0)), in0.xyz, vec3(in1.y)), 0.0)"};
+                                         "vec3(0,0,1), vec2(0), vec3(0,1,0), vec3(in1.x), 1.0, 1.0, 1.0, 1.0, 0.0, vec3(0), 0.0, vec2(0), vec3(1)), in0.xyz, vec3(in1.y)), 0.0)"};
     CHECK_MSG(sl_harness_eval_glsl(h, &d, out, err, sizeof err), "%s", err);
     double worst = 0;
     for (int i = 0; i < N * N; i++) {

@@ -21,8 +21,8 @@ static const sl_gltf_extension extensions[] = {
      "diffuse as base colour, metallic 0, roughness 1 - glossiness; the specular colour and its texture are "
      "not rendered"},
     {"KHR_materials_clearcoat", SL_GLTF_APPROXIMATED,
-     "a second GGX lobe with its roughness, textures and normal texture (ggx); environment and area lights see "
-     "the coat about the base's normal"},
+     "a second GGX lobe with its roughness, textures and normal texture, over the emission too (ggx); environment "
+     "and area lights see the coat about the base's normal"},
     {"KHR_materials_sheen", SL_GLTF_APPROXIMATED,
      "Charlie sheen with the albedo scaling of the layers below (ggx); environment and area lights see it as a "
      "diffuse albedo sheenColor * E(n.v)"},

@@ -85,6 +85,11 @@ void ggx_surface_clearcoat(inout SlSurface s) {
     if (dot(m, m) > 1e-12) n = normalize(m);
 #endif
     ggx_coat = GgxClearcoat(clamp(w, 0.0, 1.0), r * r, n);
+#ifdef SL_MAT_HAS_EMISSIVE
+    // the coat lies over the emission too: it keeps 1 − w·F_c(n_c·v) of it (the extension's
+    // "Emission"), as of the layers below under every light
+    s.emission_weight *= 1.0 - ggx_coat.weight * ggx_coat_fresnel(clamp(dot(n, s.view), 0.0, 1.0));
+#endif
 #endif
 }
 #endif

@@ -24,7 +24,11 @@
  *     integrated here; the GLSL BRDF integrates to this file's E_s; a white sheen over a white
  *     base in envmap's uniform environment stays ≤ 1 (the albedo scaling), and the split sum,
  *     which sees the sheen as a diffuse albedo colour·E_s, matches that reference;
- *  7. a material without a layer is untouched by the layer's switch. */
+ *  7. a material without a layer is untouched by the layer's switch;
+ *  8. the coat over the emission (the extension's "Emission"): an emissive black plane under a coat
+ *     of weight 1, unlit, seen from above (n·v up to 1) and at grazing views (n·v down to 0.03),
+ *     equals emission·(1 − F_c(n·v)) per pixel, F_c Schlick with F0 = 0.04; the emission
+ *     itself with ggx.layer_clearcoat=false. */
 #include "camera_rays.h"
 #include "ggx_layer_test.h"
 #include <stdlib.h>
@@ -455,9 +459,59 @@ static void test_sheen_integral(void) {
     sl_harness_destroy(h);
 }
 
+/* ---- 8. the coat over the emission ---------------------------------------------------------- */
+/* An unlit, black, emissive plane under a coat seen from `eye`: per pixel of the plane, the
+ * render against emission·(1 − w·F_c(n·v)) (w = 0: the emission itself); the range of n·v seen. */
+static void coat_over_emission(const float eye[3], const float target[3], const char *const *settings, double w,
+                               double *worst, double *mu_min, double *mu_max) {
+    const double e[3] = {0.8 * 2, 0.5 * 2, 0.25 * 2}; /* emissive × emissive_strength */
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"ggx\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [%g, %g, %g], \"target\": [%g, %g, %g], \"fov_y\": 50, "
+             "\"near\": 0.05, \"far\": 100}],\n"
+             " \"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 0, "
+             "\"roughness\": 0.5, \"base_color\": [0, 0, 0], \"emissive\": [0.8, 0.5, 0.25], \"emissive_strength\": 2, "
+             "\"clearcoat\": 1, \"clearcoat_roughness\": 0.3}],\n"
+             " \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}],\n"
+             " \"lights\": []}",
+             eye[0], eye[1], eye[2], target[0], target[1], target[2]);
+    sl_harness *h = ggx_test_harness(json, W, H, settings, NULL);
+    if (!h) return;
+    bool ok = ggx_test_render(h, W, H, img, "the coated emissive plane");
+    sl_harness_destroy(h);
+    if (!ok) return;
+    const test_camera view = {{eye[0], eye[1], eye[2]}, {target[0], target[1], target[2]}, 50, W, H};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float p[3], o[3], d[3];
+            if (!test_camera_hit_ground(&view, x, y, 9.9f, p)) continue;
+            test_camera_ray(&view, x, y, o, d);
+            double mu = -d[1], keep = 1 - w * schlick(mu, 0.04);
+            *mu_min = fmin(*mu_min, mu), *mu_max = fmax(*mu_max, mu);
+            for (int c = 0; c < 3; c++) *worst = fmax(*worst, fabs(img[(y * W + x) * 4 + c] - e[c] * keep) / (e[c] * keep));
+        }
+}
+
+static void test_clearcoat_emission(void) {
+    const float above[3] = {0, 3, 0.3f}, origin[3] = {0, 0, 0}, low[3] = {0, 0.35f, 9}, far[3] = {0, 0, -10};
+    const char *off[] = {"ggx.layer_clearcoat=false", NULL};
+    double worst = 0, mu_min = 1, mu_max = 0, worst_off = 0, unused0 = 1, unused1 = 0;
+    coat_over_emission(above, origin, NULL, 1, &worst, &mu_min, &mu_max);
+    double top = mu_max;
+    coat_over_emission(low, far, NULL, 1, &worst, &mu_min, &mu_max);
+    coat_over_emission(low, far, off, 0, &worst_off, &unused0, &unused1);
+    printf("clearcoat over emission: emission (1 - F_c(n.v)) per pixel for n.v in [%.3f, %.4f], worst relative error "
+           "%.2e; layer off: the emission itself, worst %.2e\n", mu_min, top, worst, worst_off);
+    CHECK_MSG(top > 0.999 && mu_min < 0.05, "the views must reach normal incidence and grazing (n.v %.4f..%.3f)", mu_min, top);
+    CHECK_MSG(worst < 2e-3, "the coat over the emission: worst relative error %.2e", worst);
+    CHECK_MSG(worst_off < 1e-5, "without the layer the emission is undimmed: worst relative error %.2e", worst_off);
+}
+
 int main(void) {
     test_clearcoat_closed_form();
     test_clearcoat_fresnel_loss();
+    test_clearcoat_emission();
     test_furnace();
     test_envmap_lobes("coated white sphere", "\"metallic\": 0, \"roughness\": 1, \"base_color\": [1, 1, 1], \"clearcoat\": 1, "
                       "\"clearcoat_roughness\": 0.5", 1.0, 0.01);

@@ -11,7 +11,8 @@
  *   struct SlSurface { vec3 position; vec3 normal; vec3 geometric_normal;
  *                      vec3 tangent; vec3 bitangent; vec2 uv; vec3 view;        world space
  *                      vec3 base_color; float alpha; float specular; float ao; float opacity;
- *                      float lod_bias; vec3 object_position; float metallic; };
+ *                      float lod_bias; vec3 object_position; float metallic; vec2 uv1;
+ *                      vec3 emission_weight; };
  *                      lod_bias (ABI 1.5): mip bias of lookups that follow
  *                      the normal map's level; normal-map sets it, phong's gloss map reads it;
  *                      object_position (ABI 1.6): the mesh's object-space position before
@@ -19,7 +20,10 @@
  *                      stay on the surface while vertex hooks move it;
  *                      metallic (ABI 1.7): glTF metalness, 0 by default; ggx sets it from the
  *                      material's metallic × the metallic-roughness map's blue channel, and
- *                      its metallic-roughness Fresnel, envmap's split sum and area lights read it
+ *                      its metallic-roughness Fresnel, envmap's split sum and area lights read it;
+ *                      emission_weight (ABI 1.20): what the model's layers over the material's
+ *                      emission leave of it, 1 by default; SURFACE hooks of a layered model set
+ *                      it (ggx's clear coat: 1 − w·F_c(n_c·v)) and sl_emission(s) applies it
  *   struct SlLight   { vec4 position; vec4 direction; vec4 color; vec4 params[2]; };
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size;
