@@ -14,6 +14,8 @@
 // normal_offset·tw along the normal and (bias_constant + bias_slope·tanθ)·tw towards the
 // light; with receiver_plane every tap compares against the receiver's tangent plane at that
 // tap (computed from the geometric normal, exact for both projections) instead of one depth.
+// Beyond tanθ = spotlight_shadow_tan_ungated both slope terms are gated (see the view's
+// visibility below).
 
 uniform sampler2DArrayShadow spotlight_shadow_cmp_map; // hardware comparison, bilinear
 uniform sampler2DArray spotlight_shadow_depth_map;     // raw depths, nearest
@@ -21,6 +23,9 @@ uniform sampler2D spotlight_shadow_table;
 uniform int spotlight_shadow_view_base;
 uniform float spotlight_shadow_texels;                 // map size in texels
 #define spotlight_shadow_pcf_step float(SPOTLIGHT_SHADOW_PCF_STEP) // a permutation (the gathered PCF)
+// Up to this tanθ (84°) the slope terms apply in full; beyond it only where the receiver point is
+// lit without them (the gate in spotlight_shadow_view_visibility).
+const float spotlight_shadow_tan_ungated = 10.0;
 
 // Progressive Poisson disk (Mitchell's best candidate): every prefix is well spread.
 const vec2 spotlight_shadow_disk[64] = vec2[64](
@@ -120,6 +125,11 @@ vec4 spotlight_shadow_project(SpotlightShadowView V, vec3 p) {
     return vec4(c.xyz / (abs(w) > 1e-20 ? w : 1e-20) * 0.5 + 0.5, w);
 }
 
+// Behind the light, outside the map or in front of its near plane: nothing can shadow it.
+bool spotlight_shadow_outside(vec4 c) {
+    return c.w <= 0.0 || any(lessThan(c.xyz, vec3(0.0))) || any(greaterThan(c.xyz, vec3(1.0)));
+}
+
 // Window depth → metres along the view axis (sdk ext/shadow_maps.h).
 float spotlight_shadow_linear_depth(SpotlightShadowView V, float d) {
     if (V.ortho > 0.5) return V.near + d * (V.far - V.near);
@@ -158,49 +168,46 @@ float spotlight_shadow_view_visibility(int v, SlSurface s, vec3 l) {
     float tan_t = min(sin_t / max(cos_t, 1e-4), 1000.0); // 89.94°: beyond, the light is edge-on
     float z_r = dot(s.position - V.pos, V.axis);
     float tw = V.texel * (V.ortho > 0.5 ? 1.0 : max(z_r, 1e-4));
+    float tan_near = min(tan_t, spotlight_shadow_tan_ungated);
     vec3 pb = s.position + n * (spotlight_shadow_normal_offset * tw) +
-              l * (tw * (spotlight_shadow_bias_constant + spotlight_shadow_bias_slope * tan_t));
+              l * (tw * (spotlight_shadow_bias_constant + spotlight_shadow_bias_slope * tan_near));
     vec4 c = spotlight_shadow_project(V, pb);
-    vec3 sc = c.xyz;
-    // behind the light, outside the map or in front of its near plane: nothing can shadow it
-    if (c.w <= 0.0 || any(lessThan(sc, vec3(0.0))) || any(greaterThan(sc, vec3(1.0)))) return 1.0;
-    float S = spotlight_shadow_texels;
-    vec2 g = vec2(0.0); // receiver plane: window depth change per texel of offset
-    if (spotlight_shadow_receiver_plane) {
-        vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
-        vec3 t2 = cross(n, t1);
-        vec3 a = spotlight_shadow_project(V, pb + t1 * tw).xyz - sc;
-        vec3 b = spotlight_shadow_project(V, pb + t2 * tw).xyz - sc;
-        a.xy *= S;
-        b.xy *= S;
-        float det = a.x * b.y - a.y * b.x;
-        if (abs(det) > 1e-3) g = vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
-        // no steeper than tanθ = 1000 (89.94°), as the slope bias (at a silhouette the plane is
-        // edge-on and the taps would extrapolate it without bound)
-        float dl = sc.z - spotlight_shadow_project(V, pb + l * tw).z;
-        float gmax = 1000.0 * abs(dl), glen = length(g);
-        if (glen > gmax) g *= gmax / glen;
-    }
-    float layer = V.layer;
+    if (spotlight_shadow_outside(c)) return 1.0;
+    float layer = V.layer, S = spotlight_shadow_texels;
+    // The gate. At grazing incidence the slope bias and the receiver plane reach tanθ texel widths
+    // towards the light per texel of offset (up to 1000): exact on a plane, but on a curved
+    // receiver (a cheek) they reach past an occluder of the point itself (the nose), and lit
+    // triangles appear in its shadow. So beyond tanθ = 10 they grow only as far as the point with
+    // the terms capped at 10 is lit (its bilinear comparison, free where the filter reads those
+    // texels anyway). On planes and convex receivers that point is lit at any angle: the normal
+    // offset puts it a texel off the surface, in front of every texel the comparison reads (the
+    // texels diagonal to it carry under 9% of the weight). Where it is shadowed the terms stay
+    // capped: the taps reach (10 + 10 per texel of kernel radius) texel widths past the receiver.
+    // Moving the point along l keeps its texel (the map's rays meet at the light; the reference's
+    // maps, rendered from points on the light, are read at the moved point), so the hard and PCF
+    // filters read the texels at c.xy.
+    float lit0;
 #if SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_HARD
-    vec2 texel = clamp(floor(sc.xy * S), vec2(0.0), vec2(S - 1.0));
+    vec2 texel = clamp(floor(c.xy * S), vec2(0.0), vec2(S - 1.0));
     float stored = texelFetch(spotlight_shadow_depth_map, ivec3(texel, int(layer + 0.5)), 0).r;
-    return min(sc.z + dot(g, texel + 0.5 - sc.xy * S), 1.0) <= stored ? 1.0 : 0.0;
+    lit0 = c.z <= stored ? 1.0 : 0.0;
 #elif SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_PCF
     const int K = SPOTLIGHT_SHADOW_PCF_SIZE;
-    float h = 0.5 * float(K - 1), sum = 0.0;
-    if (float(SPOTLIGHT_SHADOW_PCF_STEP) == 1.0) { // a constant: only one side is compiled
-        // Taps one texel apart (the default): tap (x, y) is the bilinear comparison of the 2×2
-        // texels from b + (x, y), all with the same fractions f, so the K×K taps read (K+1)² texels.
-        // They are fetched once each, 2×2 at a time (textureGather, ⌈(K+1)/2⌉² fetches instead of
-        // K² filtered ones: 9 for 25 at K = 5, the fetches being most of the cost on llvmpipe),
-        // and every texel is compared against the reference of each tap that reads it, weighted
-        // as the hardware's bilinear comparison weights it: the same filter, per-tap receiver
-        // plane included.
-        const int M = K + 1, G = (K + 2) / 2;
-        vec2 q = sc.xy * S - h - 0.5;
-        vec2 b = floor(q), f = q - b;
-        float d[M * M];
+    const bool gathered = float(SPOTLIGHT_SHADOW_PCF_STEP) == 1.0; // a constant: one side is compiled
+    float h = 0.5 * float(K - 1);
+    // Taps one texel apart (the default): tap (x, y) is the bilinear comparison of the 2×2
+    // texels from b + (x, y), all with the same fractions f, so the K×K taps read (K+1)² texels.
+    // They are fetched once each, 2×2 at a time (textureGather, ⌈(K+1)/2⌉² fetches instead of
+    // K² filtered ones: 9 for 25 at K = 5, the fetches being most of the cost on llvmpipe),
+    // and every texel is compared against the reference of each tap that reads it, weighted
+    // as the hardware's bilinear comparison weights it: the same filter, per-tap receiver
+    // plane included. For odd K the middle tap is the gate's comparison.
+    const int M = K + 1, G = (K + 2) / 2;
+    vec2 q = c.xy * S - h - 0.5;
+    vec2 b = floor(q), f = q - b;
+    vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    float d[M * M];
+    if (gathered)
         for (int gy = 0; gy < G; ++gy)
             for (int gx = 0; gx < G; ++gx) {
                 // at the corner shared by texels b + (2gx, 2gy) .. + (1, 1): x = (i0, j1), y = (i1, j1),
@@ -212,7 +219,43 @@ float spotlight_shadow_view_visibility(int v, SlSurface s, vec3 l) {
                 if (2 * gx < M && 2 * gy + 1 < M) d[i + M] = t.x;
                 if (2 * gx + 1 < M && 2 * gy + 1 < M) d[i + M + 1] = t.y;
             }
-        vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    if (gathered && K % 2 == 1) {
+        int i = (K / 2) * (M + 1);
+        lit0 = dot(w, vec4(c.z <= d[i] ? 1.0 : 0.0, c.z <= d[i + 1] ? 1.0 : 0.0, c.z <= d[i + M] ? 1.0 : 0.0,
+                           c.z <= d[i + M + 1] ? 1.0 : 0.0));
+    } else {
+        lit0 = texture(spotlight_shadow_cmp_map, vec4(c.xy, layer, c.z));
+    }
+#else
+    lit0 = texture(spotlight_shadow_cmp_map, vec4(c.xy, layer, c.z));
+#endif
+    float trust = smoothstep(0.25, 0.75, lit0);
+    pb += l * (tw * spotlight_shadow_bias_slope * (tan_t - tan_near) * trust);
+    c = spotlight_shadow_project(V, pb);
+    vec3 sc = c.xyz;
+    if (spotlight_shadow_outside(c)) return 1.0;
+    vec2 g = vec2(0.0); // receiver plane: window depth change per texel of offset
+    if (spotlight_shadow_receiver_plane) {
+        vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
+        vec3 t2 = cross(n, t1);
+        vec3 a = spotlight_shadow_project(V, pb + t1 * tw).xyz - sc;
+        vec3 b = spotlight_shadow_project(V, pb + t2 * tw).xyz - sc;
+        a.xy *= S;
+        b.xy *= S;
+        float det = a.x * b.y - a.y * b.x;
+        if (abs(det) > 1e-3) g = vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
+        // no steeper than tanθ = 1000 (89.94°), as the slope bias (at a silhouette the plane is
+        // edge-on and the taps would extrapolate it without bound), and than tanθ = 10 where the
+        // gate is shut
+        float dl = sc.z - spotlight_shadow_project(V, pb + l * tw).z;
+        float gmax = mix(spotlight_shadow_tan_ungated, 1000.0, trust) * abs(dl), glen = length(g);
+        if (glen > gmax) g *= gmax / glen;
+    }
+#if SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_HARD
+    return min(sc.z + dot(g, texel + 0.5 - sc.xy * S), 1.0) <= stored ? 1.0 : 0.0;
+#elif SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_PCF
+    float sum = 0.0;
+    if (gathered) {
         for (int y = 0; y < K; ++y)
             for (int x = 0; x < K; ++x) {
                 float ref = min(sc.z + dot(g, vec2(x, y) - h), 1.0);
