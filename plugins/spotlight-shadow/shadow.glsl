@@ -118,12 +118,14 @@ SpotlightShadowView spotlight_shadow_view(int v) {
     return V;
 }
 
-// Map coordinates (u, v, window depth) of a world point; w <= 0 behind a perspective light.
-vec4 spotlight_shadow_project(SpotlightShadowView V, vec3 p) {
-    vec4 c = V.vp * vec4(p, 1.0);
+// Map coordinates (u, v, window depth) of a clip-space point; w <= 0 behind a perspective light.
+vec4 spotlight_shadow_window(vec4 c) {
     float w = c.w;
     return vec4(c.xyz / (abs(w) > 1e-20 ? w : 1e-20) * 0.5 + 0.5, w);
 }
+
+// Map coordinates of a world point.
+vec4 spotlight_shadow_project(SpotlightShadowView V, vec3 p) { return spotlight_shadow_window(V.vp * vec4(p, 1.0)); }
 
 // Behind the light, outside the map or in front of its near plane: nothing can shadow it.
 bool spotlight_shadow_outside(vec4 c) {
@@ -171,21 +173,39 @@ float spotlight_shadow_view_visibility(int v, SlSurface s, vec3 l) {
     float tan_near = min(tan_t, spotlight_shadow_tan_ungated);
     vec3 pb = s.position + n * (spotlight_shadow_normal_offset * tw) +
               l * (tw * (spotlight_shadow_bias_constant + spotlight_shadow_bias_slope * tan_near));
-    vec4 c = spotlight_shadow_project(V, pb);
+    vec4 clip_near = V.vp * vec4(pb, 1.0), c = spotlight_shadow_window(clip_near);
     if (spotlight_shadow_outside(c)) return 1.0;
     float layer = V.layer, S = spotlight_shadow_texels;
+    // The receiver plane at this point, before the gate's share of the slope bias: the same plane
+    // up to tanθ = 10, its slope at a slightly larger depth beyond (computed here, the filter's
+    // texels are not held through it: cheaper on llvmpipe).
+    vec2 g = vec2(0.0); // receiver plane: window depth change per texel of offset
+    float dl = 0.0;     // window depth change per texel width along l
+    if (spotlight_shadow_receiver_plane) {
+        vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
+        vec3 t2 = cross(n, t1);
+        vec3 a = spotlight_shadow_project(V, pb + t1 * tw).xyz - c.xyz;
+        vec3 b = spotlight_shadow_project(V, pb + t2 * tw).xyz - c.xyz;
+        a.xy *= S;
+        b.xy *= S;
+        float det = a.x * b.y - a.y * b.x;
+        if (abs(det) > 1e-3) g = vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
+        dl = abs(c.z - spotlight_shadow_project(V, pb + l * tw).z);
+    }
+    // the rest of the slope bias, in clip space (added below as far as the gate lets it)
+    vec4 clip_rest = V.vp * vec4(l * (tw * spotlight_shadow_bias_slope * (tan_t - tan_near)), 0.0);
     // The gate. At grazing incidence the slope bias and the receiver plane reach tanθ texel widths
     // towards the light per texel of offset (up to 1000): exact on a plane, but on a curved
     // receiver (a cheek) they reach past an occluder of the point itself (the nose), and lit
     // triangles appear in its shadow. So beyond tanθ = 10 they grow only as far as the point with
-    // the terms capped at 10 is lit (its bilinear comparison, free where the filter reads those
+    // the terms capped at 10 is lit (its bilinear comparison, free where the filter gathers those
     // texels anyway). On planes and convex receivers that point is lit at any angle: the normal
     // offset puts it a texel off the surface, in front of every texel the comparison reads (the
     // texels diagonal to it carry under 9% of the weight). Where it is shadowed the terms stay
     // capped: the taps reach (10 + 10 per texel of kernel radius) texel widths past the receiver.
-    // Moving the point along l keeps its texel (the map's rays meet at the light; the reference's
-    // maps, rendered from points on the light, are read at the moved point), so the hard and PCF
-    // filters read the texels at c.xy.
+    // Moving the point along l keeps its texel (the map's rays meet at the light), so every filter
+    // reads at c.xy (for the reference's maps, rendered from points on the light, the bias then
+    // acts in depth only).
     float lit0;
 #if SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_HARD
     vec2 texel = clamp(floor(c.xy * S), vec2(0.0), vec2(S - 1.0));
@@ -230,27 +250,14 @@ float spotlight_shadow_view_visibility(int v, SlSurface s, vec3 l) {
     lit0 = texture(spotlight_shadow_cmp_map, vec4(c.xy, layer, c.z));
 #endif
     float trust = smoothstep(0.25, 0.75, lit0);
-    pb += l * (tw * spotlight_shadow_bias_slope * (tan_t - tan_near) * trust);
-    c = spotlight_shadow_project(V, pb);
-    vec3 sc = c.xyz;
+    vec2 uv = c.xy; // the texel stays (above); rounding moved it by ~10⁻⁴ texel at grazing
+    c = spotlight_shadow_window(clip_near + trust * clip_rest);
     if (spotlight_shadow_outside(c)) return 1.0;
-    vec2 g = vec2(0.0); // receiver plane: window depth change per texel of offset
-    if (spotlight_shadow_receiver_plane) {
-        vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
-        vec3 t2 = cross(n, t1);
-        vec3 a = spotlight_shadow_project(V, pb + t1 * tw).xyz - sc;
-        vec3 b = spotlight_shadow_project(V, pb + t2 * tw).xyz - sc;
-        a.xy *= S;
-        b.xy *= S;
-        float det = a.x * b.y - a.y * b.x;
-        if (abs(det) > 1e-3) g = vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
-        // no steeper than tanθ = 1000 (89.94°), as the slope bias (at a silhouette the plane is
-        // edge-on and the taps would extrapolate it without bound), and than tanθ = 10 where the
-        // gate is shut
-        float dl = sc.z - spotlight_shadow_project(V, pb + l * tw).z;
-        float gmax = mix(spotlight_shadow_tan_ungated, 1000.0, trust) * abs(dl), glen = length(g);
-        if (glen > gmax) g *= gmax / glen;
-    }
+    vec3 sc = vec3(uv, c.z);
+    // no steeper than tanθ = 1000 (89.94°), as the slope bias (at a silhouette the plane is edge-on
+    // and the taps would extrapolate it without bound), and than tanθ = 10 where the gate is shut
+    float gmax = mix(spotlight_shadow_tan_ungated, 1000.0, trust) * dl, glen = length(g);
+    if (glen > gmax) g *= gmax / glen;
 #if SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_HARD
     return min(sc.z + dot(g, texel + 0.5 - sc.xy * S), 1.0) <= stored ? 1.0 : 0.0;
 #elif SPOTLIGHT_SHADOW_FILTER == SPOTLIGHT_SHADOW_FILTER_PCF
