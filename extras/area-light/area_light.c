@@ -1,13 +1,15 @@
 /* area-light: rectangle and disk lights (light type "area"), one- or two-sided, shaded with
- * linearly transformed cosines (Heitz, Dupuy, Hill, Neubelt 2016) for the ggx model and with
- * Lambert's exact polygon formula for lambert; a Monte Carlo reference over the light's surface.
+ * linearly transformed cosines (Heitz, Dupuy, Hill, Neubelt 2016) for every model's lobes and with
+ * Lambert's exact polygon formula for the diffuse; a Monte Carlo reference over the light's surface.
  * Built against the installed SDK only (extras/README.md). See README.md.
  *
  *   light keys   light.NAME.width, height (m), shape (rect/disk), two_sided, axis (width direction)
  *   globals      area-light.method (ltc/reference), disk_segments (knob), reference_samples
  *   material     fresnel, eta, metallic: the ggx plugin's Fresnel inputs, declared here too (a
  *                shared material vocabulary) so the LTC's Fresnel follows the material
- *   data         ltc_ggx.txt beside the module (made by ltc_fit, command in its header) */
+ *   data         ltc_ggx.txt and ltc_blinn_phong.txt beside the module (made by ltc_fit, command
+ *                in their headers); the Blinn-Phong table's texture is made at the first bind of
+ *                a program that reads it (a material with a Blinn-Phong lobe) */
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include <shadelab/shadelab.h>
@@ -48,9 +50,9 @@ typedef struct area_light {
     unsigned shadow_tex, shadow_fbo;
     int shadow_size, shadow_layers, unit_s;
     al_shadow_slot shadows[AL_MAX_SHADOW];
-    al_ltc_table table;
-    unsigned tex_m, tex_n, tex_e;
-    int unit_m, unit_n, unit_e;
+    al_ltc_table table, blinn_table;  /* GGX; the contract's Blinn-Phong lobe (ABI 1.19) */
+    unsigned tex_m, tex_n, tex_e, tex_blinn;
+    int unit_m, unit_n, unit_e, unit_blinn;
     al_tex_slot slots[AL_MAX_TEX];
     bool warned_many;
 } area_light;
@@ -224,6 +226,32 @@ static void al_update_textures(area_light *a) {
         if (!used[j]) a->slots[j].source = 0, a->slots[j].name[0] = 0;
 }
 
+/* A table as an RGBA32F texture, bilinear between entries: M⁻¹ (a, b, c, d), or with `magnitudes`
+ * (norm, fresnel, 0, 0). Unpacks from client memory whatever buffer a pass left bound (the
+ * Blinn-Phong table is made during the forward pass). */
+static unsigned al_table_texture(const al_ltc_table *t, bool magnitudes) {
+    int N = t->size, unpack = 0;
+    float *data = malloc(sizeof(float) * 4 * N * N);
+    for (int k = 0; k < N * N; k++) {
+        const al_ltc_entry *e = &t->e[k];
+        float m[4] = {(float)e->a, (float)e->b, (float)e->c, (float)e->d}, n[4] = {(float)e->norm, (float)e->fresnel, 0, 0};
+        memcpy(data + 4 * k, magnitudes ? n : m, sizeof m);
+    }
+    unsigned tex;
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RGBA32F, N, N);
+    glTextureSubImage2D(tex, 0, 0, 0, N, N, GL_RGBA, GL_FLOAT, data);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (unsigned)unpack);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    free(data);
+    return tex;
+}
+
 static void al_bind(void *user, unsigned program, int material, const sl_frame *frame) {
     (void)material, (void)frame;
     area_light *a = user;
@@ -261,6 +289,17 @@ static void al_bind(void *user, unsigned program, int material, const sl_frame *
     glUniform1i(glGetUniformLocation(program, "area_light_shadow_count"), scount);
     glUniform1i(glGetUniformLocation(program, "area_light_shadow"), a->unit_s);
     glBindTextureUnit(a->unit_s, a->shadow_tex ? a->shadow_tex : a->tex_e);
+    int blinn = glGetUniformLocation(program, "area_light_ltc_blinn"); /* a material with a Blinn-Phong lobe */
+    if (blinn >= 0) {
+        if (!a->tex_blinn) {
+            a->tex_blinn = al_table_texture(&a->blinn_table, false);
+            a->host->log(a->host, SL_LOG_DEBUG, "made the Blinn-Phong LTC table (%d², a material has a Blinn-Phong lobe)",
+                         a->blinn_table.size);
+        }
+        glUniform1i(blinn, a->unit_blinn);
+        glUniform1f(glGetUniformLocation(program, "area_light_ltc_blinn_size"), (float)a->blinn_table.size);
+        glBindTextureUnit(a->unit_blinn, a->tex_blinn);
+    }
     glUniform1i(glGetUniformLocation(program, "area_light_ltc_m"), a->unit_m);
     glUniform1i(glGetUniformLocation(program, "area_light_ltc_n"), a->unit_n);
     glUniform1f(glGetUniformLocation(program, "area_light_ltc_size"), (float)a->table.size);
@@ -443,7 +482,8 @@ static sl_status al_create(const sl_host *host, void **user) {
     if (host->add_shader_chunk(host, &light) != SL_OK) return SL_ERR_FAILED;
     if (host->set_bind_callback(host, al_bind, a) != SL_OK) return SL_ERR_FAILED;
     if ((a->unit_m = host->reserve_texture_unit(host)) < 0 || (a->unit_n = host->reserve_texture_unit(host)) < 0 ||
-        (a->unit_e = host->reserve_texture_unit(host)) < 0 || (a->unit_s = host->reserve_texture_unit(host)) < 0)
+        (a->unit_e = host->reserve_texture_unit(host)) < 0 || (a->unit_s = host->reserve_texture_unit(host)) < 0 ||
+        (a->unit_blinn = host->reserve_texture_unit(host)) < 0)
         return SL_ERR_FAILED;
     const sl_pass_desc pass = {.struct_size = sizeof pass, .name = "area-light-visibility", .stage = SL_STAGE_SHADOW,
                                .execute = al_shadow_execute, .is_active = al_shadow_active,
@@ -457,12 +497,16 @@ static sl_status al_create(const sl_host *host, void **user) {
                        "per light (a Hammersley set over the 256 frames, the exact ellipse for disks) and a depth cube "
                        "map rendered from it (reference_map_size), shaded through the material's own model"};
     if (host->set_reference(host, &ref) != SL_OK) return SL_ERR_FAILED;
-    /* the table: read now, so a missing or damaged file is a create() error naming it */
-    char path[4096], err[1024];
-    snprintf(path, sizeof path, "%s/ltc_ggx.txt", host->resource_dir(host));
-    if (!al_table_read(path, &a->table, err, sizeof err)) {
-        host->log(host, SL_LOG_ERROR, "%s", err);
-        return SL_ERR_FAILED;
+    /* the tables: read now, so a missing or damaged file is a create() error naming it */
+    const char *files[2] = {"ltc_ggx.txt", "ltc_blinn_phong.txt"};
+    al_ltc_table *tables[2] = {&a->table, &a->blinn_table};
+    for (int i = 0; i < 2; i++) {
+        char path[4096], err[1024];
+        snprintf(path, sizeof path, "%s/%s", host->resource_dir(host), files[i]);
+        if (!al_table_read(path, tables[i], err, sizeof err)) {
+            host->log(host, SL_LOG_ERROR, "%s", err);
+            return SL_ERR_FAILED;
+        }
     }
     return SL_OK;
 }
@@ -470,26 +514,9 @@ static sl_status al_create(const sl_host *host, void **user) {
 static sl_status al_activate(void *user) {
     area_light *a = user;
     if (!sl_gl_load(a->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
-    int N = a->table.size;
-    float *m = malloc(sizeof(float) * 4 * N * N), *n = malloc(sizeof(float) * 4 * N * N);
-    for (int k = 0; k < N * N; k++) {
-        const al_ltc_entry *e = &a->table.e[k];
-        m[4 * k + 0] = (float)e->a, m[4 * k + 1] = (float)e->b, m[4 * k + 2] = (float)e->c, m[4 * k + 3] = (float)e->d;
-        n[4 * k + 0] = (float)e->norm, n[4 * k + 1] = (float)e->fresnel, n[4 * k + 2] = 0, n[4 * k + 3] = 0;
-    }
-    unsigned *tex[2] = {&a->tex_m, &a->tex_n};
-    float *data[2] = {m, n};
-    for (int i = 0; i < 2; i++) {
-        glCreateTextures(GL_TEXTURE_2D, 1, tex[i]);
-        glTextureStorage2D(*tex[i], 1, GL_RGBA32F, N, N);
-        glTextureSubImage2D(*tex[i], 0, 0, 0, N, N, GL_RGBA, GL_FLOAT, data[i]);
-        glTextureParameteri(*tex[i], GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(*tex[i], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(*tex[i], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(*tex[i], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
-    free(m);
-    free(n);
+    a->tex_m = al_table_texture(&a->table, false);
+    a->tex_n = al_table_texture(&a->table, true);
+    a->tex_blinn = 0; /* at the first bind that reads it */
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &a->tex_e);
     glTextureStorage3D(a->tex_e, AL_TEX_LEVELS, GL_RGBA16F, AL_TEX_DIM, AL_TEX_DIM, AL_MAX_TEX);
     glTextureParameteri(a->tex_e, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
@@ -510,9 +537,10 @@ static void al_deactivate(void *user) {
     glDeleteTextures(1, &a->tex_m);
     glDeleteTextures(1, &a->tex_n);
     glDeleteTextures(1, &a->tex_e);
+    if (a->tex_blinn) glDeleteTextures(1, &a->tex_blinn);
     if (a->shadow_tex) glDeleteTextures(1, &a->shadow_tex);
     glDeleteFramebuffers(1, &a->shadow_fbo);
-    a->tex_m = a->tex_n = a->tex_e = a->shadow_tex = a->shadow_fbo = 0;
+    a->tex_m = a->tex_n = a->tex_e = a->tex_blinn = a->shadow_tex = a->shadow_fbo = 0;
     a->shadow_size = 0;
     memset(a->shadows, 0, sizeof a->shadows);
     memset(a->slots, 0, sizeof a->slots);
@@ -520,7 +548,7 @@ static void al_deactivate(void *user) {
 
 static void al_destroy(void *user) {
     area_light *a = user;
-    if (a) free(a->table.e);
+    if (a) free(a->table.e), free(a->blinn_table.e);
     free(a);
 }
 
@@ -528,8 +556,8 @@ static const sl_plugin_desc al_desc = {
     SL_PLUGIN_HEADER,
     .id = AL_ID,
     .version = "1.0.0",
-    .description = "Rectangle and disk area lights: LTC (Heitz et al. 2016) for ggx, Lambert's exact polygon irradiance, "
-                   "a Monte Carlo reference.",
+    .description = "Rectangle and disk area lights: LTC (Heitz et al. 2016) per lobe, GGX or Blinn-Phong, Lambert's "
+                   "exact polygon irradiance, a Monte Carlo reference.",
     .create = al_create,
     .activate = al_activate,
     .deactivate = al_deactivate,

@@ -6,8 +6,9 @@
 // or on both faces (two_sided).
 //
 //   every model through the SDK's lobe contract (sl_model_lobes, ABI 1.14), naming none: the
-//                diffuse albedo by Lambert's formula (exact for the polygon), each GGX lobe by the
-//                LTC fitted to the GGX BRDF (ltc_fit.c; Heitz et al. 2016) × its weight; Fresnel:
+//                diffuse albedo by Lambert's formula (exact for the polygon), each lobe by the LTC
+//                fitted to its shape (ltc_fit.c; Heitz et al. 2016): GGX's BRDF, or (ABI 1.19,
+//                SL_LOBES_BLINN_PHONG) the Blinn-Phong lobe, × its weight; Fresnel:
 //                Schlick's split between F0 and F90, the exact dielectric Fresnel at the lobe's
 //                mean angle for a lobe with eta (see README)
 //   a model without lobes (SL_MODEL_HAS_LOBES undefined), or lit at the dominant light
@@ -18,9 +19,13 @@
 #include "area_polygon.glsl"
 #include "sl:ggx_brdf.glsl" // the SDK's GGX terms (ggx_fresnel_exact)
 
-uniform sampler2D area_light_ltc_m;     // M⁻¹ entries (a, b, c, d), see ltc.h
-uniform sampler2D area_light_ltc_n;     // (norm, fresnel, -, -)
+uniform sampler2D area_light_ltc_m;     // M⁻¹ entries (a, b, c, d) of the GGX table, see ltc.h
+uniform sampler2D area_light_ltc_n;     // (norm, fresnel, -, -) of the GGX table: every lobe's magnitude
 uniform float area_light_ltc_size;      // table size N
+// M⁻¹ of the Blinn-Phong table (ltc_blinn_phong.txt); only programs whose model has a Blinn-Phong
+// lobe read it (area_light.c makes it at the first such bind)
+uniform sampler2D area_light_ltc_blinn;
+uniform float area_light_ltc_blinn_size;
 
 // Emission textures (area_light.c: the emissive_map of the material named like the light),
 // prefiltered into the levels of one layer each; a light is textured when its position and
@@ -204,13 +209,18 @@ vec3 area_light_reference(SlLight L, SlSurface s, vec3 c, vec3 nl, vec3 ex, vec3
 #endif
 
 #if defined(SL_MODEL_HAS_LOBES)
-// One GGX lobe of the contract over the polygon: the LTC's integral (a fraction of the lobe)
-// × its Fresnel-weighted norm (∫ F f cos / ∫ D_ltc, Schlick split: F0·(n − f) + F90·f, exact
-// for Schlick; see ltc.h) × weight. Textured lights read the texture through the lobe's LTC.
-vec3 area_light_lobe(SlLobe lobe, AreaLightPolygon poly, mat3 frame, float ndv, int layer, vec3 rel, vec3 hx, vec3 hy) {
+// One lobe of the contract over the polygon: the LTC's integral (a fraction of the lobe) × its
+// Fresnel-weighted norm (∫ F f cos / ∫ D_ltc, Schlick split: F0·(n − f) + F90·f, exact for
+// Schlick; see ltc.h) × weight. A Blinn-Phong lobe takes its shape, M⁻¹, from its own table and
+// its magnitude from GGX's at its α: the contract gives it the GGX lobe's albedo. Textured lights
+// read the texture through the lobe's LTC.
+vec3 area_light_lobe(SlLobe lobe, bool blinn_phong, AreaLightPolygon poly, mat3 frame, float ndv, int layer, vec3 rel,
+                     vec3 hx, vec3 hy) {
     float alpha = max(lobe.alpha, 2e-3);
-    vec2 tc = (vec2(sqrt(alpha), sqrt(1.0 - ndv)) * (area_light_ltc_size - 1.0) + 0.5) / area_light_ltc_size;
-    vec4 m = texture(area_light_ltc_m, tc);
+    vec2 at = vec2(sqrt(alpha), sqrt(1.0 - ndv));
+    vec2 tc = (at * (area_light_ltc_size - 1.0) + 0.5) / area_light_ltc_size;
+    vec4 m = blinn_phong ? texture(area_light_ltc_blinn, (at * (area_light_ltc_blinn_size - 1.0) + 0.5) / area_light_ltc_blinn_size)
+                         : texture(area_light_ltc_m, tc);
     vec2 nf = texture(area_light_ltc_n, tc).xy;
     mat3 minv = mat3(vec3(m.x, 0.0, m.z), vec3(0.0, 1.0, 0.0), vec3(m.y, 0.0, m.w)); // columns
     float spec = area_light_vector_irradiance(poly, minv * frame).z * SL_INV_PI;
@@ -252,7 +262,8 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
             if (k == 0 && lobes.diffuse_coupled) kd *= 1.0 - lobes.lobe[0].f0;
             // no specular for a normal facing away (the contract's lobes are masked there)
             if (lobes.lobe[k].weight > 0.0 && dot(s.normal, s.view) > 0.0)
-                spec += area_light_lobe(lobes.lobe[k], poly, frame, ndv, layer, c - s.position, hx, hy);
+                spec += area_light_lobe(lobes.lobe[k], sl_lobe_blinn_phong(lobes, k), poly, frame, ndv, layer, c - s.position,
+                                        hx, hy);
         }
         return Le * (kd * SL_INV_PI * phi.z * Td + spec);
     }

@@ -1,6 +1,6 @@
-/* area-light, C side: the polygon integrals, the GGX BRDF and the LTC table, shared by the fit
- * tool (ltc_fit.c), its Monte Carlo validation and the tests. Written here from the papers; no
- * code or table is taken from their published implementations.
+/* area-light, C side: the polygon integrals, the GGX and Blinn-Phong lobes and the LTC tables,
+ * shared by the fit tool (ltc_fit.c), its Monte Carlo validation and the tests. Written here from
+ * the papers; no code or table is taken from their published implementations.
  *
  *   Lambert (1760), the irradiance from a polygon: ∫_P cosθ dω = ½ Σ_i γ_i n·(v_i×v_{i+1})/|v_i×v_{i+1}|,
  *     v_i the unit directions to the polygon's vertices, γ_i the angle between v_i and v_{i+1}.
@@ -10,6 +10,7 @@
  *     Lambert's formula (over π) after clipping to the upper hemisphere.
  *   Walter, Marschner, Li, Torrance (2007): GGX D and the separable Smith G = G₁(v)G₁(l), as the
  *     bundled ggx plugin evaluates them (f = F D G / (4 |n·l| |n·v|)).
+ *   Blinn (1977), normalised: the SDK's Blinn-Phong lobe (p+1)/(2π) (n·h)^p, as phong's blinn-gloss.
  *
  * Header-only (static functions): the tool and each test include it. */
 #ifndef AREA_LIGHT_LTC_H
@@ -129,13 +130,64 @@ static inline bool al_ggx_sample(al_v3 v, double a, double u1, double u2, al_v3 
     return l->z > 0 && vh > 0;
 }
 
+/* ---- the lobe contract's Blinn-Phong lobe (SDK ABI 1.19, shaders/common.glsl) -------------- */
+
+/* The power of the Blinn-Phong lobe whose GGX-equivalent α is a: p = 2/log2(1 + α²) − 2 (the
+ * contract's sl_lobe_blinn_power; Blinn's median matched to GGX's). α = 1 is p = 0. */
+static inline double al_blinn_power(double a) {
+    double l2 = log1p(a * a) / log(2.0);
+    return fmax(2 / fmax(l2, 1e-300) - 2, 0);
+}
+/* f·cos of the normalised Blinn-Phong lobe without Fresnel, as blinn-gloss evaluates it (phong's
+ * phong_blinn_lobe / π): (p+1)/(2π) (n·h)^p (n·l), local frame; 0 below either horizon. Over h
+ * it integrates to 1 ((p+1)/(2π) ∫ cos^p θ_h dω_h = 1), so h ~ (n·h)^p is its natural sampling. */
+static inline double al_blinn_fcos(al_v3 v, al_v3 l, double p) {
+    if (v.z <= 0 || l.z <= 0) return 0;
+    al_v3 h = al_norm(al_add(v, l));
+    return h.z > 0 ? (p + 1) / (2 * M_PI) * pow(h.z, p) * l.z : 0;
+}
+/* The density of l when h is drawn with density (p+1)/(2π) (n·h)^p and l = reflect(−v, h). */
+static inline double al_blinn_pdf(al_v3 v, al_v3 l, double p) {
+    al_v3 h = al_norm(al_add(v, l));
+    double vh = al_dot(v, h);
+    return vh > 0 && l.z > 0 && h.z > 0 ? (p + 1) / (2 * M_PI) * pow(h.z, p) / (4 * vh) : 0;
+}
+/* Samples l by that density (cos θ_h = (1 − u1)^(1/(p+1))); false below the horizon. */
+static inline bool al_blinn_sample(al_v3 v, double p, double u1, double u2, al_v3 *l, double *pdf) {
+    double c = pow(1 - u1, 1 / (p + 1)), s = sqrt(fmax(0, 1 - c * c)), phi = 2 * M_PI * u2;
+    al_v3 h = al_v(s * cos(phi), s * sin(phi), c);
+    double vh = al_dot(v, h);
+    *l = al_sub(al_mul(h, 2 * vh), v);
+    *pdf = (p + 1) / (2 * M_PI) * pow(c, p) / (4 * fabs(vh));
+    return l->z > 0 && vh > 0;
+}
+
+/* ---- a lobe of either shape: what the fit and the validation integrate --------------------- */
+typedef struct al_lobe { bool blinn_phong; double alpha, power; } al_lobe;
+static inline al_lobe al_lobe_make(bool blinn_phong, double alpha) {
+    return (al_lobe){blinn_phong, alpha, blinn_phong ? al_blinn_power(alpha) : 0};
+}
+static inline double al_lobe_fcos(const al_lobe *k, al_v3 v, al_v3 l) {
+    return k->blinn_phong ? al_blinn_fcos(v, l, k->power) : al_ggx_fcos(v, l, k->alpha);
+}
+static inline double al_lobe_pdf(const al_lobe *k, al_v3 v, al_v3 l) {
+    if (k->blinn_phong) return al_blinn_pdf(v, l, k->power);
+    al_v3 h = al_norm(al_add(v, l));
+    double vh = al_dot(v, h);
+    return vh > 0 && l.z > 0 ? al_ggx_D(h.z, k->alpha) * h.z / (4 * vh) : 0;
+}
+static inline bool al_lobe_sample(const al_lobe *k, al_v3 v, double u1, double u2, al_v3 *l, double *pdf) {
+    return k->blinn_phong ? al_blinn_sample(v, k->power, u1, u2, l, pdf) : al_ggx_sample(v, k->alpha, u1, u2, l, pdf);
+}
+
 /* ---- the LTC table ------------------------------------------------------------------------- */
 
 /* One entry: M⁻¹ = [[a, 0, b], [0, 1, 0], [c, 0, d]] (rows; scaled so that its middle element is
  * 1: the polygon integral does not depend on the scale), in the frame (x = the view direction's
  * tangent component, y, z = n); norm = ∫ f cos dω, fresnel = ∫ f cos (1 − v·h)⁵ dω over the
  * hemisphere (Schlick: ∫ F f cos = F0·(norm − fresnel) + fresnel). Indexed by
- * u = √α (i over size−1) and t = √(1 − cos θ_v) (j over size−1). */
+ * u = √α (i over size−1) and t = √(1 − cos θ_v) (j over size−1); a Blinn-Phong table by the α of
+ * its lobe's power (al_blinn_power), as the contract's lobes carry it. */
 typedef struct al_ltc_entry { double a, b, c, d, norm, fresnel; } al_ltc_entry;
 typedef struct al_ltc_table { int size; al_ltc_entry *e; /* e[j * size + i] */ } al_ltc_table;
 

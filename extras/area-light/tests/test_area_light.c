@@ -4,14 +4,15 @@
  *               every position (straddling the horizon, below it, grazing); the C formula itself
  *               against a Gauss–Legendre quadrature of ∫ cosθ cosθ' / d² dA (independent)
  *   ltc         the GLSL LTC integral against the C one for table entries (1e-4)
- *   table       the fitted table against an integration of the BRDF over a rectangle (midpoint
- *               rule over its surface, 400² points): within 5 % up to θ_v = 40°, 15 % at 70°
+ *   table       the fitted tables against an integration of their lobes over a rectangle (midpoint
+ *               rule over its surface, 400² points): GGX within 5 % up to θ_v = 40°, 15 % at 70°;
+ *               Blinn-Phong 16 %, 26 %
  *   lambert     an image of a Lambert plane under a rectangle light, every pixel against the C
  *               closed form from the camera ray (float32 target)
  *   reference   the plugin's Monte Carlo reference (through the model) against the same closed form
  *   ggx         the LTC image against the reference image (the material's own ggx model)
- *   blinn-gloss, specular   phong's model through the lobe contract, likewise; the specular lobe
- *               alone beside ggx's of the same power
+ *   blinn-gloss, specular   phong's model through the lobe contract (its Blinn-Phong lobe by the
+ *               Blinn-Phong table), likewise; the specular lobe alone beside ggx's of the same power
  *   sides       one-sided: nothing behind; two-sided: both faces equal
  *   stability   roughness 0 and 1, grazing, lights cutting the surface, zero-size lights: finite,
  *               within the energy bound
@@ -210,16 +211,19 @@ static void test_polygon(void) {
     sl_harness_destroy(h);
 }
 
-/* The table against Monte Carlo (ltc_fit validate does the full grid for the README). */
-static void test_table(void) {
+/* The tables against an integration of their lobes (ltc_fit validate does the full grid for the
+ * README): GGX's, and the contract's Blinn-Phong lobe's (the same α, its power al_blinn_power). */
+static void test_table_of(const char *path, bool blinn_phong) {
     al_ltc_table tab;
     char err[512];
-    if (!al_table_read(AREA_LIGHT_TABLE, &tab, err, sizeof err)) { CHECK(false, "%s", err); return; }
+    const char *name = blinn_phong ? "blinn-phong" : "ggx";
+    if (!al_table_read(path, &tab, err, sizeof err)) { CHECK(false, "%s", err); return; }
     const double rough[] = {0.25, 0.5, 0.75, 1.0}, theta[] = {0, 40, 70};
     double worst = 0;
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 3; b++) {
             double alpha = rough[a] * rough[a], th = theta[b] * M_PI / 180;
+            al_lobe lobe = al_lobe_make(blinn_phong, alpha);
             al_v3 v = al_v(sin(th), 0, cos(th));
             al_v3 dir = al_v(-sin(fmin(th, 1.2)), 0, cos(fmin(th, 1.2))), ex, ey, p[4];
             light_frame(al_mul(dir, -1), al_v(0, 1, 0), &ex, &ey);
@@ -233,21 +237,27 @@ static void test_table(void) {
                     al_v3 y = al_add(al_mul(dir, 2), al_add(al_mul(ex, s), al_mul(ey, t)));
                     double d2 = al_dot(y, y);
                     al_v3 l = al_mul(y, 1 / sqrt(d2));
-                    sum += al_ggx_fcos(v, l, alpha) * fabs(al_dot(l, al_cross(ex, ey))) / d2;
+                    sum += al_lobe_fcos(&lobe, v, l) * fabs(al_dot(l, al_cross(ex, ey))) / d2;
                 }
             double mc = sum * 1.5 * 1.0 / ((double)S * S);
             al_ltc_entry e = al_table_lookup(&tab, alpha, cos(th));
             double ltc = e.norm * al_ltc_polygon(&e, p, 4), rel = fabs(ltc - mc) / mc;
             if (rel > worst) worst = rel;
-            /* the fit's stated accuracy (README): within 5 % up to 40°, 15 % at grazing view */
-            double bound = theta[b] <= 40 ? 0.05 : 0.15;
-            CHECK(rel < bound, "table: roughness %.2f theta %.0f: LTC %.5f vs integral %.5f (%.1f%%, bound %.0f%%)",
-                  rough[a], theta[b], ltc, mc, 100 * rel, 100 * bound);
-            printf("table: roughness %.2f theta %2.0f: LTC %.5f, integral %.5f, %+.1f%%\n", rough[a], theta[b], ltc, mc,
-                   100 * (ltc - mc) / mc);
+            /* the fits' stated accuracy (README): GGX within 5 % up to 40°, 15 % at grazing view; the
+             * Blinn-Phong lobe, whose Gaussian-like falloff an LTC (GGX-like tails) cannot take,
+             * measured 14.4 % and 23.7 % (fitted to lights' edges and squares, not one big light) */
+            double bound = blinn_phong ? (theta[b] <= 40 ? 0.16 : 0.26) : theta[b] <= 40 ? 0.05 : 0.15;
+            CHECK(rel < bound, "table %s: roughness %.2f theta %.0f: LTC %.5f vs integral %.5f (%.1f%%, bound %.0f%%)",
+                  name, rough[a], theta[b], ltc, mc, 100 * rel, 100 * bound);
+            printf("table %s: roughness %.2f theta %2.0f: LTC %.5f, integral %.5f, %+.1f%%\n", name, rough[a], theta[b], ltc,
+                   mc, 100 * (ltc - mc) / mc);
         }
-    printf("table: LTC vs integration of the BRDF over a rectangle in the mirror direction, worst %.1f%%\n", 100 * worst);
+    printf("table %s: LTC vs integration of the lobe over a rectangle in the mirror direction, worst %.1f%%\n", name,
+           100 * worst);
     free(tab.e);
+}
+static void test_table(void) {
+    for (int shape = 0; shape < 2; shape++) test_table_of(shape ? AREA_LIGHT_BLINN_TABLE : AREA_LIGHT_TABLE, shape == 1);
 }
 
 /* ---- images ------------------------------------------------------------------------------- */
@@ -322,14 +332,13 @@ static void test_ggx(void) {
     }
 }
 
-/* phong's blinn-gloss through the lobe contract (one GGX lobe of Blinn's median α, weighted to
- * the model's directional albedo; phong/README.md "Lobes"): the LTC image against the reference,
- * which evaluates blinn-gloss itself per point. Bounds: a margin over the measured 1.38 / 1.12 /
- * 0.73 % (ggx's test bound is 3 %; the LTC of the lobe against a reference of the lobe itself is
- * 0.2–0.3 %, the rest is GGX's shape against Blinn's); Walter's α weighted at the lobe's centre
- * measured 1.43 / 1.46 / 1.06 % */
+/* phong's blinn-gloss through the lobe contract (one Blinn-Phong lobe, weighted to the model's
+ * directional albedo; phong/README.md "Lobes"), lit by the Blinn-Phong LTC table: the LTC image
+ * against the reference, which evaluates blinn-gloss itself per point. Bounds: a margin over the
+ * measured 0.48 / 0.64 / 0.58 % (ggx's test bound is 3 %; with GGX's table at the lobe's α:
+ * 1.38 / 1.12 / 0.73 %) */
 static void test_blinn_gloss(void) {
-    const double bound[3] = {0.016, 0.014, 0.010};
+    const double bound[3] = {0.006, 0.008, 0.007};
     const char *const ref[] = {"area-light.method=reference", "area-light.reference_samples=8", "area-light.reference_visibility=false", NULL};
     const char *const mats[] = {
         "{\"name\": \"m\", \"model\": \"blinn-gloss\", \"base_color\": [0.2, 0.2, 0.2], \"gloss\": 0.3}",
@@ -351,11 +360,12 @@ static void test_blinn_gloss(void) {
 /* The specular lobe alone (base colour black), blinn-gloss at gloss 0.3 / 0.5 / 0.7 beside ggx
  * (dielectric) at Walter's α = √(2/(p+2)) of the same power, as envmap's lobe test compares them:
  * the LTC image against the reference of each model's own f, RMSE as a share of the peak. ggx
- * measured 1.04 / 0.34 / 0.29 % (bound: ggx's 3 %), blinn-gloss 3.05 / 1.54 / 0.87 % (bounds
- * a margin over that): the LTC table is GGX's, and blinn-gloss's Blinn-Phong lobe (ABI 1.19) is
- * read as the GGX lobe of its α (phong/README.md, "Lobes"). */
+ * measured 1.04 / 0.34 / 0.29 % (bound: ggx's 3 %); blinn-gloss, its Blinn-Phong lobe (ABI 1.19)
+ * lit by the Blinn-Phong table, 1.07 / 0.88 / 0.69 % (bounds a margin over that, inside ggx's).
+ * Read through GGX's table at the lobe's α it was 3.05 / 1.54 / 0.87 % and fails them; at
+ * Walter's α 2.78 / 1.97 / 1.31 % (README, "Blinn-Phong lobes"). */
 static void test_specular(void) {
-    const double bound[2][3] = {{0.035, 0.02, 0.012}, {0.03, 0.03, 0.03}};
+    const double bound[2][3] = {{0.013, 0.011, 0.008}, {0.03, 0.03, 0.03}};
     const char *const ref[] = {"area-light.method=reference", "area-light.reference_samples=8", "area-light.reference_visibility=false", NULL};
     const double gloss[3] = {0.3, 0.5, 0.7};
     for (int i = 0; i < 3; i++) {
