@@ -21,6 +21,8 @@
  *  - double_sided: a back face is culled unless the material is doubleSided.
  *  - metal_channel: the metallic-roughness map's B = metal, G = rough against the glTF BRDF in C
  *    (directional light) and the split sum's limits (uniform environment).
+ *  - shared_image: one image as baseColorTexture (sRGB) and metallicRoughnessTexture (linear, on
+ *    TEXCOORD_1), as Debian's BoxTexcoords has it: each role reads it in its own colour space.
  *  - texcoord1, texture_transform: the second UV set and KHR_texture_transform (with its
  *    texCoord override) move texels where the closed form puts them.
  *  - ior, unlit: KHR_materials_ior's F0 and KHR_materials_unlit's base colour, closed forms.
@@ -714,6 +716,52 @@ static void test_metal_channel(void) {
     free(img);
 }
 
+/* One image in two roles (glTF 2.0 §3.9.2: baseColorTexture is sRGB-encoded, metallicRoughnessTexture
+ * linear), as Debian's BoxTexcoords has it: the base colour on TEXCOORD_0 (one point here: the
+ * bottom-left texel, decoded from sRGB), the metal (B) and roughness (G) on TEXCOORD_1, per texel
+ * and linear (NEAREST). Under a directional light every pixel is the glTF BRDF in C. Blender 3.4's
+ * importer reads this base colour as data (docs/models.md): 0.50 where 0.22 is right. */
+static void test_shared_image(void) {
+    static const unsigned char mr[2][2][3] = {{{128, 230, 0}, {128, 40, 51}}, {{128, 140, 0}, {128, 90, 102}}};
+    char path[4200];
+    memcpy(texels, mr, sizeof texels);
+    g_uv1 = 1;
+    g_sampler = "{\"magFilter\": 9728, \"minFilter\": 9728}";
+    g_pbr = "\"baseColorTexture\": {\"index\": 0, \"texCoord\": 0}, "
+            "\"metallicRoughnessTexture\": {\"index\": 0, \"texCoord\": 1}";
+    snprintf(path, sizeof path, "%s/shared_image.glb", sl_test_dir());
+    CHECK(write_glb(path, NULL, NULL));
+    memcpy(texels, texels_default, sizeof texels);
+    g_pbr = pbr_default, g_uv1 = 0;
+    g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
+    double base[3];
+    for (int c = 0; c < 3; c++) { /* the texel at TEXCOORD_0 = (0.3, 0.8), sRGB-decoded (IEC 61966-2-1) */
+        double e = mr[1][0][c] / 255.0;
+        base[c] = e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+    }
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    const double cam[3] = {0, 0, 5}, sun_to[3] = {-0.3, 0.2, 1};
+    const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2}";
+    if (render_wrapped(path, sun, 0, img)) {
+        double worst = 0, rel = 0;
+        for (int j = 0; j < H; j++)
+            for (int i = 0; i < W; i++) {
+                int tx = i * 2 / W, ty = j * 2 / H;
+                double p[3] = {-1 + 2 * (i + 0.5) / W, 1 - 2 * (j + 0.5) / H, 0}, want[3];
+                gltf_brdf(p, cam, sun_to, base, mr[ty][tx][2] / 255.0, mr[ty][tx][1] / 255.0, 2, want);
+                for (int c = 0; c < 3; c++) {
+                    double e = fabs(img[(j * W + i) * 4 + c] - want[c]);
+                    worst = fmax(worst, e), rel = fmax(rel, e / fmax(want[c], 0.05));
+                }
+            }
+        CHECK_MSG(rel < 5e-3, "one image as sRGB base colour and linear metallic-roughness: worst pixel off by %.5f "
+                  "(%.3f%% relative)", worst, rel * 100);
+        printf("shared image: base colour (sRGB) and metallic-roughness (linear, TEXCOORD_1) from one image, every "
+               "pixel within %.5f (%.3f%%) of the glTF BRDF\n", worst, rel * 100);
+    }
+    free(img);
+}
+
 /* texCoord 1: the base colour texture reads TEXCOORD_1 (the full 0..1 layout) while TEXCOORD_0
  * is one point, so only the second set gives the closed form of test_open_direct. */
 static void test_texcoord1(void) {
@@ -957,6 +1005,7 @@ int main(void) {
     test_mask();
     test_double_sided();
     test_metal_channel();
+    test_shared_image();
     test_texcoord1();
     test_texture_transform();
     test_ior();
