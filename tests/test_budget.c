@@ -10,7 +10,8 @@
  *      every knob's best and stays there; the still's frames, three times dearer than the same
  *      settings in motion (a TAA still's Monte Carlo samples), teach the model nothing: the first
  *      frame in motion again has the choice of the last one before the pause, within the budget;
- *   4. hysteresis: an unchanged model does not make the choice alternate. */
+ *   4. hysteresis: an unchanged model does not make the choice alternate;
+ *   5. levels of detail, the last resort (test_lod). */
 #include "check.h"
 #include "budget/controller.h"
 #include <math.h>
@@ -156,9 +157,47 @@ static void test_loop(void) {
     CHECK_MSG(sl_budget_predict_ms(&b, b.choice) <= 66, "moving again: within the budget");
 }
 
+/* Geometry the knobs do not scale: a fixed part of 400 ms that levels of detail of tolerance p
+ * divide by 1 + 2p (a scene of 10 M triangles), on top of the scaled part of test_loop's model. The
+ * controller goes to its cheapest choice, then asks for levels of detail, coarser until motion fits
+ * the budget, and no coarser; a still keeps what motion learnt. A scene whose fixed part fits (the
+ * same knobs, 4 ms fixed) never asks for levels of detail. */
+static void test_lod(void) {
+    for (int heavy = 1; heavy >= 0; heavy--) {
+        sl_budget b;
+        sl_budget_init(&b, 66);
+        add_knobs(&b);
+        int over_late = 0;
+        float first_fit = -1;
+        for (int f = 0; f < 120; f++) {
+            bool moving = !(f >= 80 && f < 90);
+            sl_budget_step(&b, moving);
+            double fixed = heavy ? 400 / (1 + 2 * b.lod_pixels) : 4;
+            double ms = frame_ms(&b, b.choice, fixed, 700) * (moving ? 1 : 3);
+            if (moving && ms <= 66 && first_fit < 0) first_fit = b.lod_pixels;
+            if (moving && f >= 60) over_late += ms > 66;
+            float lod = b.lod_pixels;
+            sl_budget_observe(&b, b.choice, ms);
+            if (!moving) CHECK_MSG(b.lod_pixels == lod, "frame %d: a still changed the level of detail", f);
+        }
+        printf("lod, %s scene: motion's core.lod_pixels %g (first frame within the budget at %g); %d of the last "
+               "50 motion frames over\n", heavy ? "a heavy" : "a light", b.lod_pixels, first_fit, over_late);
+        if (heavy) {
+            /* the cheapest choice's scaled part is 700 x 0.35^2 x 0.8 x 0.5 = 34.3 ms: with p = 4 the frame is
+             * 44.4 + 34.3 = 78.7 ms (over even at -3 % noise), with p = 8 23.5 + 34.3 = 57.8 ms (within at
+             * +3 %): 8 is the first that fits; 16 would be coarser than needed */
+            CHECK_MSG(b.lod_pixels == 8, "a heavy scene's motion tolerance %g (expected 8)", b.lod_pixels);
+            CHECK_MSG(over_late == 0, "%d late motion frames over the budget", over_late);
+        } else {
+            CHECK_MSG(b.lod_pixels == 0, "a light scene asked for levels of detail (%g)", b.lod_pixels);
+        }
+    }
+}
+
 int main(void) {
     test_choose();
     test_fit();
     test_loop();
+    test_lod();
     return check_result();
 }

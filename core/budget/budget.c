@@ -34,6 +34,8 @@ typedef struct sl_budget_state {
     uint64_t seen_lights, seen_materials, seen_params;
     double seen_time;
     double last_ms;
+    bool lod_taken;                        /* core.lod_pixels is the budget's (not pinned by the user) */
+    float lod_ceiling;                     /* its configured value when the budget took it */
     char status[512];
 } sl_budget_state;
 
@@ -181,10 +183,29 @@ static bool moved(sl_app *app, sl_budget_state *s) {
     return m;
 }
 
+/* core.lod_pixels: the configured value in a still, at least the controller's level in motion
+ * (controller.h, SL_BUDGET_LOD_FRAMES); `off`: the configured value. A value the user set is left
+ * alone. The frame after a change draws with new levels (made at first use): not observed. */
+static void apply_lod(sl_app *app, sl_budget_state *s, bool off) {
+    sl_param *q = sl_params_find(&app->params, "core.lod_pixels");
+    if (!q || pinned(q)) {
+        s->lod_taken = false;
+        return;
+    }
+    if (!s->lod_taken) s->lod_taken = true, s->lod_ceiling = q->value.f[0];
+    bool still = off || s->ctl.still >= SL_BUDGET_STILL_FRAMES;
+    sl_value v = q->value;
+    v.f[0] = still ? s->lod_ceiling : fmaxf(s->lod_ceiling, s->ctl.lod_pixels);
+    if (v.f[0] == q->value.f[0]) return;
+    sl_params_set_value(&app->params, q, v, q->source);
+    s->skip_observation = true;
+}
+
 void sl_budget_before_frame(sl_app *app) {
     double b = budget_ms(app);
     sl_budget_state *s = app->budget;
     if (!(b > 0)) {
+        if (s && s->built) apply_lod(app, s, true);
         if (s) s->built = false, s->status[0] = 0;
         return;
     }
@@ -204,6 +225,7 @@ void sl_budget_before_frame(sl_app *app) {
     s->skip_observation = sl_budget_step(&s->ctl, moving);
     for (int k = 0; k < s->ctl.knob_count; k++)
         if (s->ctl.choice[k] != before[k]) apply(app, &s->ctl.knobs[k], s->ctl.choice[k]);
+    apply_lod(app, s, false);
     if (s->skip_observation) SL_DEBUG("budget %.0f ms: %s", b, sl_budget_status(app));
     s->seen_params = app->params.version;
     memcpy(s->last_choice, s->ctl.choice, sizeof s->last_choice);
@@ -215,6 +237,7 @@ void sl_budget_settle(sl_app *app) {
     for (int k = 0; k < s->ctl.knob_count; k++)
         if (s->ctl.choice[k] != s->ctl.knobs[k].count - 1) apply(app, &s->ctl.knobs[k], s->ctl.choice[k] = s->ctl.knobs[k].count - 1);
     s->ctl.still = SL_BUDGET_STILL_FRAMES;
+    apply_lod(app, s, true);
     s->skip_observation = true;
     s->seen_params = app->params.version;
 }
@@ -229,6 +252,8 @@ const char *sl_budget_status(sl_app *app) {
     for (int k = 0; k < s->ctl.knob_count && n < (int)sizeof s->status; k++)
         n += snprintf(s->status + n, sizeof s->status - n, "%s%s=%s", k ? ", " : "; ", s->ctl.knobs[k].id,
                       s->ctl.knobs[k].value[s->ctl.choice[k]]);
+    if (s->lod_taken && s->ctl.lod_pixels > 0 && n < (int)sizeof s->status)
+        snprintf(s->status + n, sizeof s->status - n, "; in motion core.lod_pixels=%g", s->ctl.lod_pixels);
     return s->status;
 }
 

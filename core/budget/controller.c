@@ -98,6 +98,13 @@ void sl_budget_observe(sl_budget *b, const int *choice, double ms) {
     b->wxy = d * b->wxy + x * ms;
     b->observations++;
     fit(b);
+    bool cheapest = true;
+    for (int k = 0; k < b->knob_count; k++) cheapest = cheapest && choice[k] == 0;
+    b->lod_over = cheapest && ms > b->budget_ms ? b->lod_over + 1 : 0;
+    if (b->lod_over >= SL_BUDGET_LOD_FRAMES && b->lod_pixels < SL_BUDGET_LOD_MAX) {
+        b->lod_pixels = b->lod_pixels > 0 ? fminf(2 * b->lod_pixels, SL_BUDGET_LOD_MAX) : 1;
+        b->lod_over = 0;
+    }
 }
 
 static bool set_choice(sl_budget *b, const int *c) {

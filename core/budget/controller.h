@@ -19,6 +19,11 @@
 #define SL_BUDGET_MAX_SETTINGS 12
 /* consecutive still frames before the controller refines to the best settings */
 #define SL_BUDGET_STILL_FRAMES 3
+/* Levels of detail, the last resort: after this many consecutive motion frames over the budget
+ * with every knob at its cheapest (what no knob scales, the geometry, is too much), motion frames
+ * are drawn with core.lod_pixels 1, then 2, 4, ... up to SL_BUDGET_LOD_MAX. */
+#define SL_BUDGET_LOD_FRAMES 3
+#define SL_BUDGET_LOD_MAX 16.0f
 
 typedef struct sl_budget_knob {
     char id[96];                                  /* the parameter ("core.render_scale") */
@@ -38,6 +43,8 @@ typedef struct sl_budget {
     double w, wx, wy, wxx, wxy;
     int observations;
     int still;                                    /* consecutive frames without motion */
+    float lod_pixels;                             /* motion's level-of-detail tolerance (0: none) */
+    int lod_over;                                 /* consecutive motion frames over at the cheapest */
 } sl_budget;
 
 /* Starts with every knob at its best and no observation; budget_ms > 0. */
@@ -50,9 +57,11 @@ double sl_budget_error(const sl_budget *b, const int *choice);
 /* The choice of lowest predicted error among those predicted within `budget_ms` (ties: the
  * cheaper); when none is, the cheapest. Exhaustive over every combination. */
 void sl_budget_choose(const sl_budget *b, double budget_ms, int *choice);
-/* A frame rendered with `choice` took `ms`: updates the cost model. Call it before the next
- * sl_budget_step. A frame rendered while still (b->still > 0) is left out: a still's frames cost
- * what motion does not (a TAA still's Monte Carlo samples), and the model is motion's. */
+/* A frame rendered with `choice` took `ms`: updates the cost model, and b->lod_pixels (see
+ * SL_BUDGET_LOD_FRAMES; it is kept through stills, since the scene still needs it when it moves
+ * again). Call it before the next sl_budget_step. A frame rendered while still (b->still > 0) is
+ * left out: a still's frames cost what motion does not (a TAA still's Monte Carlo samples), and
+ * the model is motion's. */
 void sl_budget_observe(sl_budget *b, const int *choice, double ms);
 /* Once per frame, before rendering it: whether anything moved since the last frame. Updates
  * b->choice and returns true when it changed. Moving: the best choice within the budget, kept

@@ -8,11 +8,13 @@
 # in the last frame. Writes OUT.csv, OUT.md (the table, with the commands, date, machine, load)
 # and OUT.png (gnuplot, log-log). A benchmark: it prints figures and asserts nothing.
 #   tools/bench/scale-chart.sh [BUILD_DIR]
-#   environment: SIZE (1280x720), FRAMES (6), ROUNDS (1), OUT (docs/scale)
+# Then one budgeted orbit per scene (shadelab-bench --orbit 10 with core.budget=BUDGET): frame-time
+# percentiles, the share over the budget, FLIP of motion and of the converged still.
+#   environment: SIZE (1280x720), FRAMES (6), ROUNDS (1), BUDGET (66), OUT (docs/scale)
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${1:-$ROOT/build}" && pwd) || exit 1
-SIZE=${SIZE:-1280x720} FRAMES=${FRAMES:-6} ROUNDS=${ROUNDS:-1} OUT=${OUT:-$ROOT/docs/scale}
+SIZE=${SIZE:-1280x720} FRAMES=${FRAMES:-6} ROUNDS=${ROUNDS:-1} BUDGET=${BUDGET:-66} OUT=${OUT:-$ROOT/docs/scale}
 BIN=$BUILD/shadelab
 [ -x "$BIN" ] || { echo "scale-chart: no $BIN (build first)" >&2; exit 1; }
 command -v gnuplot >/dev/null || { echo "scale-chart: gnuplot not found" >&2; exit 1; }
@@ -69,6 +71,21 @@ for r in $(seq "$ROUNDS"); do
         done
     done
 done
+# the frame-time budget on each scene: a 10 s orbit with core.budget=$BUDGET (levels of detail are
+# its last resort: docs/budget.md), frame times from its first frame (the levels' making included)
+: > "$TMP/orbits"
+for scene in default 1m 10m; do
+    args=(--orbit 10 --size "$SIZE" --orbit-points 1 --orbit-hq "" --orbit-variant "core.budget=$BUDGET" --out "$TMP/orbit" -q)
+    if [ "$scene" = default ]; then args+=(--scene scenes/default.json); else args+=(--scene "$TMP/$scene.json"); fi
+    echo "scale-chart: $scene, orbit with core.budget=$BUDGET" >&2
+    if "$BUILD/shadelab-bench" "${args[@]}" > "$TMP/orbit.log" 2>&1; then
+        python3 -c 'import json, sys; o = json.load(open(sys.argv[1]))["orbits"][0]
+print(sys.argv[2], o["frames"], o["p50_ms"], o["p95_ms"], o["p99_ms"], o["max_ms"], 100 * o["over_budget"], o["motion_flip"], o["still_flip"])' \
+            "$TMP/orbit.json" "$scene" >> "$TMP/orbits"
+    else
+        echo "scale-chart: $scene orbit failed: $(tail -2 "$TMP/orbit.log")" >&2
+    fi
+done
 LOAD1=$(cut -d' ' -f1-3 /proc/loadavg) T1=$(date +%s)
 
 python3 - "$TMP" "$OUT" <<'PY' || exit 1
@@ -96,6 +113,13 @@ with open(out + ".csv", "w") as f:
                 "off" if lod == "0" else "1 px", fr, fw, tri / 1e6))
 for lod in dat: open("%s/lod%s.dat" % (tmp, lod), "w").write("\n".join(dat[lod]) + "\n")
 open(tmp + "/rows", "w").write("\n".join(rows) + "\n")
+orbits = []
+for line in open(tmp + "/orbits"):
+    sc, n, p50, p95, p99, mx, over, fm, fs = line.split()
+    orbits.append("| %s | %.2f M | %s | %.0f / %.0f / %.0f ms (largest %.0f) | %.1f %% | %.3f / %.3f |" % (
+        {"default": "built-in default scene", "1m": "9 copies", "10m": "85 copies"}[sc], scenes.get(sc, 0) / 1e6, n,
+        float(p50), float(p95), float(p99), float(mx), float(over), float(fm), float(fs)))
+open(tmp + "/orbit-rows", "w").write("\n".join(orbits) + "\n")
 PY
 
 gnuplot <<EOF
@@ -121,6 +145,15 @@ CPU=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
     echo "| scene | triangles | levels of detail | median frame | triangles drawn |"
     echo "|---|---|---|---|---|"
     cat "$TMP/rows"
+    echo
+    echo "The frame-time budget on the same scenes: \`shadelab-bench --orbit 10 --size $SIZE --scene SCENE --orbit-points 1"
+    echo "--orbit-hq \"\" --orbit-variant core.budget=$BUDGET\` (levels of detail as its last resort: [budget.md](budget.md)). The"
+    echo "frame times count every frame of the orbit, the first ones (before the controller has learnt the scene, and"
+    echo "the one that makes the levels of detail) too; FLIP against the orbit's own settings' still at the same view."
+    echo
+    echo "| scene | triangles | frames | frame p50 / p95 / p99 | over $BUDGET ms | FLIP of motion / converged still |"
+    echo "|---|---|---|---|---|---|"
+    cat "$TMP/orbit-rows"
 } > "$OUT.md"
 cat "$OUT.md"
 echo "scale-chart: wrote $OUT.csv, $OUT.md, $OUT.png" >&2
