@@ -333,6 +333,42 @@ static const char *mat_texture(sl_app *app, int m, const char *key) {
     return v && v->str && v->str[0] ? v->str : NULL;
 }
 
+/* ggx's material keys that export_ggx maps; every other one it owns (its layers: clear coat,
+ * sheen, specular colour, transmission and volume, dispersion, iridescence, anisotropy) is not. */
+static const char *const ggx_mapped[] = {"alpha", "roughness", "roughness_map", "specular", "specular_map",
+                                         "eta", "fresnel", "ior", "metallic"};
+
+static bool value_is_default(const sl_param *p, const sl_mat_value *v) {
+    const sl_value *d = &p->desc.default_value;
+    switch (p->desc.type) {
+    case SL_PARAM_TEXTURE: return !v->str || !v->str[0];
+    case SL_PARAM_BOOL: return v->v.b == d->b;
+    case SL_PARAM_INT: case SL_PARAM_ENUM: return v->v.i == d->i;
+    default: return !memcmp(v->v.f, d->f, sizeof d->f);
+    }
+}
+
+/* A layer of ggx set on the material (a key of ggx's, not mapped, given a value other than its
+ * default) is not cross-checked: drawn without it in Cycles, it would be compared silently. */
+static void note_unmapped_ggx_keys(ctx *c, int m, bool *checked) {
+    sl_app *app = c->app;
+    const sl_mat_state *ms = &app->materials[m];
+    char text[512];
+    int n = snprintf(text, sizeof text, "not cross-checked: ggx's layers not mapped to Cycles: ");
+    int start = n;
+    for (int i = 0; i < ms->count && n < (int)sizeof text; i++) {
+        const sl_mat_value *v = &ms->values[i];
+        const sl_param *p = &app->params.items[v->param];
+        if (!v->present || strcmp(p->owner, "ggx") || value_is_default(p, v)) continue;
+        bool mapped = false;
+        for (size_t k = 0; k < sizeof ggx_mapped / sizeof *ggx_mapped; k++) mapped |= !strcmp(p->desc.id, ggx_mapped[k]);
+        if (!mapped) n += snprintf(text + n, sizeof text - n, "%s%s", n > start ? ", " : "", p->desc.id);
+    }
+    if (n == start || n >= (int)sizeof text) return;
+    note_item(c, text, app->scene.materials[m].name);
+    *checked = false;
+}
+
 /* The ggx material's lobes. Returns false only on an error (err set). */
 static bool export_ggx(ctx *c, int m, cJSON *j, bool *checked) {
     sl_app *app = c->app;
@@ -348,6 +384,7 @@ static bool export_ggx(ctx *c, int m, cJSON *j, bool *checked) {
     float r = sqrtf(alpha);
     cJSON *rough = textured(c, rmap, true, cJSON_CreateNumber(r), "G", mat_value(app, m, "roughness") != NULL);
     if (!rough) return false;
+    note_unmapped_ggx_keys(c, m, checked);
     cJSON_AddItemToObject(j, "roughness", rough);
     if (!strcmp(global_enum(app, "ggx.g1_angle"), "half-vector")) {
         note(c, "not cross-checked: ggx.g1_angle=half-vector (not a normalised BRDF; Cycles' GGX has none)");

@@ -13,6 +13,8 @@
  *   spot       spots over a plane (linear and glTF fall-off, one tilted): L = ρ/π · I·f(θ)·cos θ_i / d²
  *   mirror     mirror sphere in a lat-long whose colour is a linear function of the direction, in
  *              Blender's orientation (u = ½ at +X growing towards +Z, v = 0 up), turned by yaw
+ *   unmapped   a ggx layer set on a material (clear coat) is listed as not cross-checked, naming
+ *              the key and the material; a layer key at its default is not (no Blender needed)
  *
  * Blender missing: exit 77 (skipped), said on stderr. */
 #include <cjson/cJSON.h>
@@ -180,6 +182,37 @@ static void exported_rays(const char *name, const char *extra, char *rays, size_
     cJSON_Delete(doc);
 }
 
+/* ---- what the exporter does not map ------------------------------------------------------ */
+
+/* A ggx layer set on a material (clear coat here) is listed as not cross-checked, naming the key
+ * and the material; a layer key at its default (anisotropy 0) is not. No Blender needed. */
+static void unmapped_layer_case(void) {
+    const char *scene =
+        "{ \"plugins\": [\"ggx\"],\n"
+        "  \"cameras\": [{ \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"fov_y\": 40 }],\n"
+        "  \"materials\": [{ \"name\": \"coated\", \"model\": \"ggx\", \"roughness\": 0.5, \"clearcoat\": 1 },\n"
+        "                { \"name\": \"plain\", \"model\": \"ggx\", \"roughness\": 0.5, \"anisotropy\": 0 }],\n"
+        "  \"nodes\": [{ \"name\": \"a\", \"translate\": [-1, 0, 0], \"mesh\": { \"primitive\": \"sphere\" }, \"material\": \"coated\" },\n"
+        "            { \"name\": \"b\", \"translate\": [1, 0, 0], \"mesh\": { \"primitive\": \"sphere\" }, \"material\": \"plain\" }],\n"
+        "  \"lights\": [{ \"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 1 }] }\n";
+    char path[4096], out[4096], listing[4096], cmd[14000];
+    snprintf(path, sizeof path, "%s/unmapped.json", sl_test_dir());
+    snprintf(out, sizeof out, "%s/unmapped", sl_test_dir());
+    snprintf(listing, sizeof listing, "%s/unmapped.txt", sl_test_dir());
+    write_text(path, scene);
+    snprintf(cmd, sizeof cmd, "'%s' --export-only --out '%s' '%s' > '%s'", SL_XCHECK_EXE, out, path, listing);
+    int status = system(cmd);
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 0, "unmapped: shadelab-xcheck --export-only failed (%d)", status);
+    FILE *f = fopen(listing, "rb");
+    char text[1 << 14] = "";
+    size_t k = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[k] = 0;
+    CHECK_MSG(strstr(text, "not cross-checked: ggx's layers not mapped to Cycles: clearcoat (coated)\n"),
+              "the clear coat is not listed as not cross-checked:\n%s", text);
+    CHECK_MSG(!strstr(text, "plain)") && !strstr(text, "anisotropy"), "a layer key at its default is listed:\n%s", text);
+}
+
 /* The sphere's mean over its interior in the render (its closed form 0.8 where unoccluded). */
 static double sphere_mean(const render *r) {
     double sum = 0;
@@ -344,6 +377,7 @@ int main(void) {
     }
     free_render(&r);
     unoccluded_case();
+    unmapped_layer_case();
 
     /* point light 1 m over a plane, seen through a 40° perspective camera */
     char point[2048];
