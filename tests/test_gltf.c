@@ -9,6 +9,9 @@
  *    (computed here in C; the "diffuse-texture" debug view shows the base colour). A one-pixel
  *    shift of the framing or a flipped v changes values by 20× the tolerance.
  *  - data_uri: the same as a .gltf with base64 data: URIs for buffer and image, named .json.
+ *  - containers: one model as .glb, .gltf with data: URIs and .gltf with external files renders bit
+ *    for bit the same through the whole default pipeline; so do Debian's BoxTextured .glb and
+ *    .gltf, given the same sampler (the plain .gltf's differs).
  *  - plugins: a glTF inside a JSON scene loads ggx (its material input "brdf"), not normal-map;
  *    a plain diffuse OBJ loads neither; no "unknown key" warning, no embedded-texture warning.
  *  - extensions: extensionsRequired naming an unsupported one is an error naming it;
@@ -335,6 +338,133 @@ static void test_data_uri(void) {
     snprintf(path, sizeof path, "%s/quad_data_uri.json", sl_test_dir()); /* a glTF, whatever its name */
     CHECK_MSG(write_gltf_data_uri(path), "writing %s", path);
     check_texture_render(path, "gltf with data: URIs");
+}
+
+/* A .gltf beside its .bin and .png (relative URIs). */
+static bool write_gltf_external(const char *dir, const char *name) {
+    buf png = {0}, bin = {0};
+    if (!texture_png(&png)) return false;
+    geometry(&bin, &png);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s.bin", dir, name);
+    FILE *f = fopen(path, "wb");
+    bool ok = f && fwrite(bin.d, 1, bin.n, f) == bin.n;
+    if (f) fclose(f);
+    snprintf(path, sizeof path, "%s/%s.png", dir, name);
+    f = fopen(path, "wb");
+    ok = ok && f && fwrite(png.d, 1, png.n, f) == png.n;
+    if (f) fclose(f);
+    char buri[300], iuri[300];
+    snprintf(buri, sizeof buri, "%s.bin", name), snprintf(iuri, sizeof iuri, "%s.png", name);
+    char *text = gltf_json(bin.n, png.n, buri, iuri, NULL, NULL);
+    snprintf(path, sizeof path, "%s/%s.gltf", dir, name);
+    f = fopen(path, "wb");
+    ok = ok && f && fputs(text, f) >= 0;
+    if (f) fclose(f);
+    free(text), free(png.d), free(bin.d);
+    return ok;
+}
+
+/* The model file rendered as opened directly (its defaults: ggx, envmap's sky, tonemap, aa), at
+ * the default camera or the file's; linear RGBA, W×H. NULL on failure. envmap's cubes are small:
+ * the containers must give the same inputs, not a fine environment. */
+static float *render_model(const char *path) {
+    const char *settings[] = {"envmap.cube_size=16", "envmap.samples=8", "envmap.lut_size=16", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                         .scene_file = path, .settings = settings},
+                                      err, sizeof err);
+    CHECK_MSG(h, "%s: %s", path, err);
+    if (!h) return NULL;
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    bool ok = sl_harness_render(h, img);
+    CHECK_MSG(ok, "%s: render failed", path);
+    sl_harness_destroy(h);
+    if (!ok) free(img);
+    return ok ? img : NULL;
+}
+
+/* The largest |a − b| over the images (0: bit for bit, NAN when either is missing). */
+static double max_diff(const float *a, const float *b) {
+    if (!a || !b) return NAN;
+    double worst = 0;
+    for (int i = 0; i < 4 * W * H; i++) worst = fmax(worst, fabs((double)a[i] - b[i]));
+    return worst;
+}
+
+static bool copy_file(const char *from, const char *to) {
+    buf b = {0};
+    bool ok = read_all(from, &b);
+    FILE *f = ok ? fopen(to, "wb") : NULL;
+    ok = f && fwrite(b.d, 1, b.n, f) == b.n;
+    if (f) fclose(f);
+    free(b.d);
+    return ok;
+}
+
+/* One model in glTF's three containers renders the same, bit for bit, through the whole default
+ * pipeline (not a debug view): the .glb (binary chunk, image in a bufferView), a .gltf with data:
+ * URIs and a .gltf beside its .bin and .png. Then Debian's BoxTextured: the .glb against the
+ * "Embedded" .gltf (the same JSON, buffer and PNG as data: URIs), and against the plain .gltf
+ * (external .bin and PNG). That one is not the same model: its sampler is MIRRORED_REPEAT ×
+ * CLAMP_TO_EDGE where the .glb's is REPEAT, over UVs up to u = 6, so it must render differently;
+ * given the .glb's sampler (the file copied with those two numbers changed), bit for bit the same. */
+static void test_containers(void) {
+    char glb[4200], data[4200], ext[4200];
+    snprintf(glb, sizeof glb, "%s/same.glb", sl_test_dir());
+    snprintf(data, sizeof data, "%s/same_data.gltf", sl_test_dir());
+    snprintf(ext, sizeof ext, "%s/same_ext.gltf", sl_test_dir());
+    CHECK(write_glb(glb, NULL, NULL));
+    CHECK(write_gltf_data_uri(data));
+    CHECK(write_gltf_external(sl_test_dir(), "same_ext"));
+    float *a = render_model(glb), *b = render_model(data), *c = render_model(ext);
+    double lo = 1e9, hi = -1e9; /* the texture shows: its red texels against its others */
+    for (int i = 0; a && i < W * H; i++) lo = fmin(lo, a[4 * i]), hi = fmax(hi, a[4 * i]);
+    CHECK_MSG(a && hi - lo > 0.1, "the quad's red channel spans %g to %g: the texture does not show", lo, hi);
+    CHECK_MSG(max_diff(a, b) == 0, "glb against gltf with data: URIs: max |diff| %g", max_diff(a, b));
+    CHECK_MSG(max_diff(a, c) == 0, "glb against gltf with external files: max |diff| %g", max_diff(a, c));
+    printf("containers: the quad's .glb against .gltf (data: URIs), .gltf (.bin, .png): max |diff| %g, %g\n", max_diff(a, b),
+           max_diff(a, c));
+    free(a), free(b), free(c);
+
+    const char *dir = "/usr/share/assimp/models/glTF2";
+    char bin_glb[600], embedded[600], plain[600], from[700], to[4200];
+    snprintf(bin_glb, sizeof bin_glb, "%s/BoxTextured-glTF-Binary/BoxTextured.glb", dir);
+    snprintf(embedded, sizeof embedded, "%s/BoxTextured-glTF-Embedded/BoxTextured.gltf", dir);
+    snprintf(plain, sizeof plain, "%s/BoxTextured-glTF/BoxTextured.gltf", dir);
+    FILE *probe = fopen(plain, "rb");
+    if (!probe) {
+        printf("containers: SKIP the BoxTextured part: %s not found (assimp-testmodels, tools/install-deps.sh)\n", plain);
+        return;
+    }
+    fclose(probe);
+    buf text = {0};
+    CHECK(read_all(plain, &text));
+    put(&text, "", 1);
+    char *s = (char *)text.d, *ws = strstr(s, "\"wrapS\": 33648"), *wt = strstr(s, "\"wrapT\": 33071");
+    CHECK_MSG(ws && wt, "%s: its sampler is no longer MIRRORED_REPEAT x CLAMP_TO_EDGE: update this test", plain);
+    if (ws && wt) {
+        memcpy(ws, "\"wrapS\": 10497", 14), memcpy(wt, "\"wrapT\": 10497", 14);
+        snprintf(to, sizeof to, "%s/BoxTextured.gltf", sl_test_dir());
+        FILE *f = fopen(to, "wb");
+        CHECK(f && fputs(s, f) >= 0);
+        if (f) fclose(f);
+        for (int k = 0; k < 2; k++) {
+            const char *name = k ? "CesiumLogoFlat.png" : "BoxTextured0.bin";
+            snprintf(from, sizeof from, "%s/BoxTextured-glTF/%s", dir, name);
+            snprintf(to, sizeof to, "%s/%s", sl_test_dir(), name);
+            CHECK_MSG(copy_file(from, to), "copying %s", from);
+        }
+    }
+    free(text.d);
+    snprintf(to, sizeof to, "%s/BoxTextured.gltf", sl_test_dir());
+    float *g = render_model(bin_glb), *e = render_model(embedded), *p = render_model(plain), *r = render_model(to);
+    double de = max_diff(g, e), dp = max_diff(g, p), dr = max_diff(g, r);
+    CHECK_MSG(de == 0, "BoxTextured .glb against the embedded .gltf: max |diff| %g", de);
+    CHECK_MSG(dp > 0.05, "BoxTextured .glb against the .gltf with its own sampler: max |diff| %g, expected them to differ", dp);
+    CHECK_MSG(dr == 0, "BoxTextured .glb against the .gltf given the .glb's sampler: max |diff| %g", dr);
+    printf("containers: BoxTextured .glb against the embedded .gltf: max |diff| %g; the .gltf with its own sampler %.3f, "
+           "with the .glb's %g\n", de, dp, dr);
+    free(g), free(e), free(p), free(r);
 }
 
 static bool has_plugin(sl_harness *h, const char *id) {
@@ -997,6 +1127,7 @@ static void test_mask_shadow(void) {
 int main(void) {
     test_open_direct();
     test_data_uri();
+    test_containers();
     test_plugins();
     test_extensions();
     test_emissive();
