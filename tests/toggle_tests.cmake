@@ -7,8 +7,8 @@ set(SL_TOGGLE_SCENE_DIRS ${PROJECT_SOURCE_DIR}/scenes)
 if(SL_BUILD_EXTRAS)
   file(GLOB SL_EXTRA_SCENE_DIRS LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/extras/*/scenes)
   list(APPEND SL_TOGGLE_SCENE_DIRS ${SL_EXTRA_SCENE_DIRS})
-  # the toon example's scene names area-light, an extra
-  list(APPEND SL_TOGGLE_SCENE_DIRS ${PROJECT_SOURCE_DIR}/sdk/example/toon/scenes)
+  # the toon and ssao examples' scenes name area-light, an extra
+  list(APPEND SL_TOGGLE_SCENE_DIRS ${PROJECT_SOURCE_DIR}/sdk/example/toon/scenes ${PROJECT_SOURCE_DIR}/sdk/example/ssao/scenes)
 endif()
 sl_add_test(toggle_matrix SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_toggle_matrix.c ARGS ${SL_TOGGLE_SCENE_DIRS}
             TIMEOUT 3600 LABELS toggle)
