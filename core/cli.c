@@ -76,9 +76,15 @@ static sl_cli_result still_budget(sl_cli *c, const char *v, char *err, size_t n)
 static sl_cli_result list_gltf_extensions(sl_cli *c, const char *v, char *err, size_t n) {
     static const char *const support[] = {"rendered", "approximated", "not rendered"};
     int count;
-    const sl_gltf_extension *e = sl_gltf_extensions(&count);
-    for (int i = 0; i < count; i++) printf("%-38s %-13s %s\n", e[i].name, support[e[i].support], e[i].what);
+    const sl_gltf_extension *e = sl_gltf_features(&count);
+    for (int i = 0; i < count; i++) printf("%-40s %-13s %s\n", e[i].name, support[e[i].support], e[i].what);
+    e = sl_gltf_extensions(&count);
+    for (int i = 0; i < count; i++) printf("%-40s %-13s %s\n", e[i].name, support[e[i].support], e[i].what);
     printf("(any other extension: not rendered; a file that requires one is refused)\n");
+    return SL_CLI_DONE;
+}
+static sl_cli_result gltf_markdown(sl_cli *c, const char *v, char *err, size_t n) {
+    sl_gltf_print_markdown();
     return SL_CLI_DONE;
 }
 /* --budget 66ms (or 66, or off): the setting core.budget, as --set would give it */
@@ -138,8 +144,8 @@ static const option options[] = {
     {"--variant", NULL, "NAME", "the glTF `KHR_materials_variants` variant shown (name or index)", TEXT(opt.gltf_variant)},
     {"--animation", NULL, "N|NAME", "the glTF animation played (index or name; default the first)",
      TEXT(opt.gltf_animation)},
-    {"--list-gltf-extensions", NULL, NULL, "the glTF extensions shadelab knows: rendered, approximated or not",
-     CALL(list_gltf_extensions)},
+    {"--list-gltf-extensions", NULL, NULL, "glTF 2.0's features and the extensions shadelab knows: rendered, "
+     "approximated or not, and how", CALL(list_gltf_extensions)},
     {"--camera", NULL, "NAME", "start from a scene camera (a model's first camera by default)", TEXT(opt.camera)},
     {"--list-cameras", NULL, NULL, "the scene's cameras with position and field of view", FLAG(list_cameras)},
     {"--debug-view", NULL, "NAME", "replace the output with a debug view (`--list-debug-views`)",
@@ -164,6 +170,8 @@ static const option options[] = {
     {"--help", "-h", NULL, "this list", CALL(print_help)},
     {"--help-markdown", NULL, NULL, "this list as the Markdown table in README.md "
      "(`tools/readme-options.sh` puts it there)", CALL(print_markdown)},
+    {"--gltf-markdown", NULL, NULL, "`--list-gltf-extensions` as the Markdown table in README.md (the same tool "
+     "puts it there)", CALL(gltf_markdown)},
 };
 #define OPTION_COUNT (sizeof options / sizeof *options)
 

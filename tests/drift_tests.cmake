@@ -1,5 +1,6 @@
 # Lists with one source, checked: each copy that is generated from it must match it.
-# README.md's option table is `shadelab --help-markdown` (core/cli.c's table).
+# README.md's option table is `shadelab --help-markdown` (core/cli.c's table), its glTF table
+# `shadelab --gltf-markdown` (core/scene/gltf_extensions.c's lists).
 add_test(NAME readme_options
          COMMAND ${PROJECT_SOURCE_DIR}/tools/readme-options.sh --check $<TARGET_FILE:shadelab>
                  ${PROJECT_SOURCE_DIR}/README.md)

@@ -1,12 +1,43 @@
 /* The glTF extensions shadelab knows of and what it does with each: the one list that
  * --list-gltf-extensions prints and the reader checks a file's extensionsRequired and
  * extensionsUsed against (glTF 2.0 §3.12: a file requiring an extension a reader does not
- * support must not be loaded as if it were understood). An extension not listed is not read. */
+ * support must not be loaded as if it were understood). An extension not listed is not read.
+ * Before it, what the reader makes of glTF 2.0's own features. Both lists are README.md's glTF
+ * table (--gltf-markdown; the readme_options test fails when README's copy differs). */
 #include "log.h"
 #include "scene/gltf.h"
 
 #include <stdio.h>
 #include <string.h>
+
+static const sl_gltf_extension features[] = {
+    {"metallic-roughness materials", SL_GLTF_RENDERED,
+     "base colour (factor x sRGB texture), metallic and roughness factors and texture: the BRDF of the "
+     "specification's appendix B (ggx)"},
+    {"normal, occlusion and emissive textures", SL_GLTF_RENDERED,
+     "normal scale; occlusion on indirect light only; emissive factor and texture"},
+    {"samplers and UV sets 0 and 1", SL_GLTF_RENDERED, "wrap modes, filters, texCoord 0 or 1"},
+    {"alphaMode MASK and doubleSided", SL_GLTF_RENDERED, "cut out in the colour pass and in shadow maps; back faces"},
+    {"cameras", SL_GLTF_RENDERED, "perspective and orthographic: the first, or --camera NAME"},
+    {"node animation", SL_GLTF_RENDERED,
+     "translation, rotation and scale channels, LINEAR, STEP and CUBICSPLINE, one animation (the first or "
+     "--animation): looping in the window, at --time T headless; motion vectors for TAA"},
+    {"skins", SL_GLTF_RENDERED,
+     "up to 8 joints per vertex (JOINTS_0/1, WEIGHTS_0/1; more is an error), posed on the GPU before every pass"},
+    {"morph targets", SL_GLTF_RENDERED, "POSITION, NORMAL and TANGENT targets; node or mesh weights, animated"},
+    {"accessors", SL_GLTF_RENDERED, "interleaved, sparse, without a bufferView, normalized integers"},
+    {"triangle lists, strips and fans", SL_GLTF_RENDERED, "flat normals where a primitive has none"},
+    {"alphaMode BLEND", SL_GLTF_APPROXIMATED,
+     "blended back to front per draw by the depth of its bounds' centre: not where blended meshes intersect, nor "
+     "within one mesh"},
+    {"generated tangents", SL_GLTF_APPROXIMATED,
+     "where a primitive has no TANGENT: from its UVs by Lengyel's method, not MikkTSpace"},
+    {"normal textures on UV set 1", SL_GLTF_APPROXIMATED, "the tangent frame of UV set 0"},
+    {"lights and cameras under animated nodes", SL_GLTF_APPROXIMATED, "at the file's rest pose, not animated"},
+    {"vertex colours (COLOR_0)", SL_GLTF_IGNORED, "named in the file's warning"},
+    {"UV sets beyond 1", SL_GLTF_IGNORED, "those textures read UV set 0 (named)"},
+    {"points and lines", SL_GLTF_IGNORED, "not drawn (named)"},
+};
 
 static const sl_gltf_extension extensions[] = {
     {"KHR_lights_punctual", SL_GLTF_APPROXIMATED,
@@ -57,6 +88,25 @@ static const sl_gltf_extension extensions[] = {
 const sl_gltf_extension *sl_gltf_extensions(int *count) {
     *count = (int)(sizeof extensions / sizeof *extensions);
     return extensions;
+}
+
+const sl_gltf_extension *sl_gltf_features(int *count) {
+    *count = (int)(sizeof features / sizeof *features);
+    return features;
+}
+
+void sl_gltf_print_markdown(void) {
+    static const char *const label[] = {"✓", "approximate", "not rendered"};
+    printf("| | glTF 2.0 feature or extension |\n|---|---|\n");
+    for (int k = SL_GLTF_RENDERED; k <= SL_GLTF_IGNORED; k++) {
+        printf("| %s | ", label[k]);
+        int n = 0;
+        for (size_t i = 0; i < sizeof features / sizeof *features; i++)
+            if ((int)features[i].support == k) printf("%s%s", n++ ? "; " : "", features[i].name);
+        for (size_t i = 0; i < sizeof extensions / sizeof *extensions; i++)
+            if ((int)extensions[i].support == k) printf("%s`%s`", n++ ? "; " : "", extensions[i].name);
+        printf("%s |\n", k == SL_GLTF_IGNORED ? "; any other extension (refused where a file requires it)" : "");
+    }
 }
 
 bool gltf_extension_read(const char *name) {

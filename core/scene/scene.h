@@ -337,6 +337,10 @@ typedef struct sl_gltf_extension {
     const char *what;       /* what the viewer shows of it */
 } sl_gltf_extension;
 const sl_gltf_extension *sl_gltf_extensions(int *count);
+/* glTF 2.0's own features (materials, skins, …) and what the reader makes of each. */
+const sl_gltf_extension *sl_gltf_features(int *count);
+/* Both lists as README.md's glTF table: one row each for rendered, approximated, not rendered. */
+void sl_gltf_print_markdown(void); /* to stdout */
 
 /* Generates tangents (xyz + handedness w) from positions, normals and uvs; degenerate UVs
  * fall back to an arbitrary tangent orthogonal to the normal. */
