@@ -309,7 +309,7 @@ static void grab_window(viewer *v, const char *path) {
     for (int y = 0; y < h; y++) memcpy(flipped + (size_t)y * w * 4, px + (size_t)(h - 1 - y) * w * 4, (size_t)w * 4 * sizeof(float));
     for (size_t i = 0; i < (size_t)w * h; i++) flipped[i * 4 + 3] = 1;
     char err[1024];
-    if (sl_image_write(path, flipped, w, h, true, err, sizeof err)) fprintf(stderr, "grabbed the window into %s\n", path);
+    if (sl_image_write(path, flipped, w, h, true, err, sizeof err)) fprintf(stderr, "grabbed the window into %s (scene time %.17g s)\n", path, v->app->time);
     else fprintf(stderr, "grab: %s\n", err);
     free(px);
     free(flipped);

@@ -19,7 +19,7 @@
  *   orbit YAW [PITCH]  the camera orbits by these radians, as a left drag does
  *   wait N         render N frames
  *   waitfile PATH  render frames until PATH exists (gives up after 120 s)
- *   grab FILE      write the window's framebuffer, panel included, to FILE (PNG)
+ *   grab FILE      write the window's framebuffer, panel included, to FILE (PNG); prints the frame's scene time
  *   quit           close the window
  * SHADELAB_NO_GUI=1 runs the window without the panel. */
 #ifndef SL_VIEWER_H
