@@ -369,11 +369,15 @@ static void f_material_identity(gw_doc *g) {
     gw_set(g, "/asset/extras/expect/materials", s);
 }
 
-/* One material with one KHR_materials layer (ext: its JSON, with texture 0, a PNG stub, where it
- * names one); the inputs the reader must publish for it (want: {"input": number | true (a
- * texture) | false (absent)}), as the ggx keys that take them read them. */
+/* One material with one KHR_materials layer (ext: its JSON, with texture 0 where it names one: a
+ * 1×1 white PNG, so that the file also renders); the inputs the reader must publish for it (want:
+ * {"input": number | true (a texture) | false (absent)}), as the ggx keys that take them read them. */
 static void layer_feature(gw_doc *g, const char *name, const char *ext, const char *want) {
-    static const unsigned char png[] = {0x89, 'P', 'N', 'G', 13, 10, 26, 10};
+    static const unsigned char png[] = { /* 1×1 RGBA (255, 255, 255, 255) */
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00,
+        0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1f, 0x15, 0xc4, 0x89, 0x00,
+        0x00, 0x00, 0x0b, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63, 0xf8, 0x0f, 0x04, 0x00, 0x09, 0xfb, 0x03,
+        0xfd, 0x68, 0xfa, 0x1c, 0xcc, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
     char s[1200];
     snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, png, sizeof png), sizeof png, 0));
     gw_set(g, "/images", s);
