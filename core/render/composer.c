@@ -336,8 +336,11 @@ static bool compose_files(sl_program *p, const char *dir, char *err, size_t n) {
         sl_sb_append(&head, "#version 450 core\n");
         if (p->defines) {
             char *copy = strdup(p->defines), *save = NULL;
+            /* "NAME VALUE" lines become #defines; an "#extension NAME : BEHAVIOR" line is kept as
+             * it is, here before any code, where GLSL requires it (the fused epilogue and the
+             * files come after) */
             for (char *l = strtok_r(copy, "\n", &save); l; l = strtok_r(NULL, "\n", &save))
-                sl_sb_printf(&head, "#define %s\n", l);
+                sl_sb_printf(&head, strncmp(l, "#extension ", 11) ? "#define %s\n" : "%s\n", l);
             free(copy);
         }
         sl_sb_append(&srcs[k]->text, head.s);

@@ -57,6 +57,8 @@ typedef struct aa {
     sl_program *fxaa;
     sl_program *taa_copy;  /* a frame without a history, and a converged still's history, as it is */
     sl_program *taa_still; /* a still: the running mean (taa.frag's AA_STILL) */
+    bool fbfetch;          /* GL_EXT_shader_framebuffer_fetch: a still updates its history in place
+                              (AA_FBFETCH), which is then RGBA32F */
     sl_program *taa[2][2]; /* in motion: the resolve per [clamp][reject] (taa.frag's AA_CLAMP, AA_REJECT) */
     /* the render size below the output size (taau.frag): a frame without a history, a still, motion */
     sl_program *taau_first, *taau_still, *taau[2][2];
@@ -183,8 +185,10 @@ static bool taa_active(void *user, const sl_frame *f) {
     return param(user, "method").i == AA_TAA;
 }
 
-/* The history at the size of the pass's output (the output size while it upscales), in the colour
- * target's own format (RGBA16F, RGBA32F with --float). A new size or format restarts it. */
+/* The history at the size of the pass's output (the output size while it upscales): RGBA32F where
+ * a still updates it in place (framebuffer fetch: on llvmpipe a read of an RGBA32F target costs
+ * less than of an RGBA16F one, and less than a texel fetch of either), else in the colour target's
+ * own format (RGBA16F, RGBA32F with --float). A new size or format restarts it. */
 static void history_textures(aa *a, int w, int h, int format) {
     if (w == a->hw && h == a->hh && format == a->hformat) return;
     if (a->history[0]) glDeleteTextures(2, a->history);
@@ -270,7 +274,9 @@ static unsigned taa_program(aa *a, const sl_frame *f, bool valid, unsigned color
         if (!p) return 0;
         glUseProgram(p);
         bind_tex(a, p, 0, "aa_color", color, a->sampler_nearest);
-        bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_nearest);
+        /* in place (AA_FBFETCH): the history is the target, not a texture of this draw */
+        if (a->fbfetch) glBindTextureUnit(a->unit[3], 0);
+        else bind_tex(a, p, 3, "aa_history", a->history[a->current], a->sampler_nearest);
         glUniform1i(glGetUniformLocation(p, "aa_frames"), param(a, "taa_frames").i);
         return p;
     }
@@ -291,7 +297,8 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     glGetTextureLevelParameteriv(color, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
     glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_WIDTH, &dw);
     glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_HEIGHT, &dh);
-    history_textures(a, a->upscales ? f->output_width : f->width, a->upscales ? f->output_height : f->height, format);
+    history_textures(a, a->upscales ? f->output_width : f->width, a->upscales ? f->output_height : f->height,
+                     a->fbfetch ? GL_RGBA32F : format);
     /* without an upscaling history a new render size restarts (the depth of another size too) */
     if (!a->upscales && (dw != a->dw || dh != a->dh)) a->history_valid = false;
     /* the history continues only from the frame just before (not after the method was off, a
@@ -307,8 +314,10 @@ static void taa_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         glBindSampler(a->unit[0], 0);
         return;
     }
-    int next = 1 - a->current;
     unsigned p = taa_program(a, f, valid, color, depth, motion);
+    /* a still with framebuffer fetch writes the history it reads (taa.frag's AA_FBFETCH) */
+    bool in_place = a->fbfetch && valid && a->still >= 0 && !(a->upscales && (f->width != a->hw || f->height != a->hh));
+    int next = in_place ? a->current : 1 - a->current;
     if (!p) return; /* a program failed to compile (the host reported it): the frame stays as it is */
     if (a->post->bind_outputs_with(h, ctx, 0, &a->history[next], 1) != SL_OK) return;
     h->draw_fullscreen(h, ctx);
@@ -413,9 +422,20 @@ static sl_status activate(void *user) {
                                                                         .vertex = "sl:fullscreen.vert", .fragment = "taau.frag",
                                                                         .defines = "AA_STILL 1"});
     resolves = resolves && a->taau_first && a->taau_still;
-    a->taa_still = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
-                                                                       .vertex = "sl:fullscreen.vert", .fragment = "taa.frag",
-                                                                       .defines = "AA_STILL 1"});
+    /* a still reads its history in place where the GL can read the framebuffer (AA_FBFETCH) */
+    a->fbfetch = false;
+    int nx = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &nx);
+    for (int i = 0; i < nx && !a->fbfetch; i++) {
+        const char *e = (const char *)glGetStringi(GL_EXTENSIONS, (unsigned)i);
+        a->fbfetch = e && !strcmp(e, "GL_EXT_shader_framebuffer_fetch");
+    }
+    a->taa_still = a->post->load_program(a->host, &(sl_program_desc){
+                                                      .struct_size = sizeof(sl_program_desc), .vertex = "sl:fullscreen.vert",
+                                                      .fragment = "taa.frag",
+                                                      .defines = a->fbfetch ? "#extension GL_EXT_shader_framebuffer_fetch : require\n"
+                                                                              "AA_STILL 1\nAA_FBFETCH 1"
+                                                                            : "AA_STILL 1"});
     a->taa_copy = a->post->load_program(a->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                       .vertex = "sl:fullscreen.vert", .fragment = "taa_copy.frag"});
     glCreateFramebuffers(2, a->depth_fbo);

@@ -18,7 +18,9 @@
 // AA_STILL 1: the program of a still (nothing moved since the history began, so the history at
 // this pixel is this pixel's own earlier frames: no reprojection, neighbourhood or rejection),
 // the running mean alone; its value equals the resolve's without clip and rejection, where the
-// motion is 0.
+// motion is 0. AA_FBFETCH (with AA_STILL, where the GL has EXT_shader_framebuffer_fetch): the
+// history is read from the target it is written to, in place: on llvmpipe a framebuffer read of
+// the RGBA32F history costs much less than a texel fetch from the other history (aa.c).
 #include "sl:common.glsl"
 in vec2 v_uv;
 // AA_CLAMP, AA_REJECT (0 or 1): the neighbourhood clip and the disocclusion test, a permutation
@@ -33,7 +35,11 @@ void main() {
         aa_write(c, 0.0);
         return;
     }
+#if defined(AA_FBFETCH)
+    vec4 hist = o_history;
+#else
     vec4 hist = texelFetch(aa_history, p, 0);
+#endif
     bool bad = any(isnan(hist));
     float n = min((bad ? 0.0 : hist.a) + 1.0, float(aa_frames));
     aa_write(mix(bad ? c : hist.rgb, c, 1.0 / n), n);

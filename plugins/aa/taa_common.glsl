@@ -9,7 +9,13 @@ uniform mat4 aa_inv_view_proj, aa_prev_inv_view_proj;
 uniform vec3 aa_camera_pos;
 uniform int aa_frames;
 layout(location = 0) out vec4 o_color;   // the pass's "color" output
+#if defined(AA_FBFETCH)
+// a still where EXT_shader_framebuffer_fetch exists (aa.c): the history is updated in place, read
+// as it stands in the target (no texture fetch, no second history)
+layout(location = 1) inout vec4 o_history;
+#else
 layout(location = 1) out vec4 o_history; // the new history
+#endif
 
 void aa_write(vec3 c, float frames) {
     o_history = vec4(c, frames);

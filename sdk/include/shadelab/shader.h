@@ -263,7 +263,9 @@ typedef enum sl_chunk_flags {
 
 /* A stand-alone program (for passes: shadow maps, blurs, post effects). Files are relative to
  * the plugin's resource directory; "sl:" prefixes name the core's shader library
- * ("sl:fullscreen.vert"). `defines` is a newline-separated list of "NAME VALUE" lines. */
+ * ("sl:fullscreen.vert"). `defines` is a newline-separated list of "NAME VALUE" lines; a line
+ * "#extension NAME : BEHAVIOR" is passed through as that directive, right after #version in both
+ * stages (check the extension first: glGetStringi(GL_EXTENSIONS, i)). */
 typedef struct sl_program_desc {
     uint32_t struct_size;
     const char *vertex;
