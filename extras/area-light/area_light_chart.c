@@ -8,7 +8,11 @@
  * reference (Monte Carlo over the light's surface through the ggx model itself, --accumulate
  * frames of 64 stratified points), and the same for the diffuse-only case (lambert: exact, so its
  * curve is the reference's noise), with the ggx reference's own noise estimated from its first
- * quarter (q − ref = ¾(q − rest): rms = √3 σ). Cost: the
+ * quarter (q − ref = ¾(q − rest): rms = √3 σ). The same for phong's blinn-gloss (normalised
+ * Blinn-Phong, lit through the lobe contract by the Blinn-Phong LTC table) at the power of the same
+ * GGX α by Walter et al.'s equivalence, p = 2/α² − 2 (α = roughness², gloss = log2(p)/12; only
+ * where gloss ∈ [0, 1], the model's range: roughness 0.2 … 0.9), against its own reference (the
+ * blinn-gloss model itself per point). Cost: the
  * same scene with the rectangle light and with one point light at its centre, rendered in turn
  * (interleaved, median of --frames each) on the same harness build. Writes PREFIX.csv and
  * PREFIX.png (gnuplot). Not a test: it prints figures. */
@@ -23,7 +27,7 @@ static int W = 256, H = 144;
 
 #define SCENE_HEAD                                                                                                   \
     "{ \"cameras\": [{\"name\": \"c\", \"position\": [0, 2.2, 4.5], \"target\": [0, 0.4, 0], \"fov_y\": 45}],"       \
-    "  \"materials\": [{\"name\": \"m\", \"model\": \"%s\", \"base_color\": [0.2, 0.2, 0.2], \"roughness\": %g}],"    \
+    "  \"materials\": [{\"name\": \"m\", \"model\": \"%s\", \"base_color\": [0.2, 0.2, 0.2], \"%s\": %g}],"        \
     "  \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 12}, \"material\": \"m\"},"   \
     "             {\"name\": \"ball\", \"translate\": [0, 0.6, 0], \"mesh\": {\"primitive\": \"sphere\", \"radius\": 0.6}, \"material\": \"m\"}],"
 #define RECT_LIGHT                                                                                                   \
@@ -34,7 +38,7 @@ static int W = 256, H = 144;
 
 static sl_harness *make(const char *json, const char *const *settings, int accumulate) {
     char err[4096];
-    const char *plugins[] = {AREA_LIGHT_PLUGIN, "ggx", NULL};
+    const char *plugins[] = {AREA_LIGHT_PLUGIN, "ggx", "phong", NULL};
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
         .scene_json = json, .plugins = plugins, .settings = settings, .float32 = true, .strict = true,
         .accumulate = accumulate}, err, sizeof err);
@@ -78,21 +82,23 @@ int main(int argc, char **argv) {
     snprintf(png, sizeof png, "%s.png", out);
     FILE *f = fopen(csv, "w");
     if (!f) { fprintf(stderr, "area_light_chart: cannot write %s\n", csv); return 1; }
-    fprintf(f, "roughness,ggx_ltc_relrmse,lambert_relrmse,ggx_reference_noise,ggx_ltc_vs_shadowed_relrmse\n");
+    fprintf(f, "roughness,ggx_ltc_relrmse,lambert_relrmse,ggx_reference_noise,ggx_ltc_vs_shadowed_relrmse,"
+               "blinn_gloss,blinn_gloss_ltc_relrmse,blinn_gloss_reference_noise\n");
     const char *const refset[] = {"area-light.method=reference", "area-light.reference_samples=8",
                                   "area-light.reference_visibility=false", NULL};
     /* the declared reference: with visibility (the ball shadows the floor; the LTC has no shadows) */
     const char *const shadowset[] = {"area-light.method=reference", "area-light.reference_visibility=true",
                                      "area-light.reference_map_size=1024", NULL};
     const double rough[] = {0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
-    printf("roughness  ggx LTC vs reference  lambert vs reference  ggx reference noise  ggx LTC vs shadowed reference "
+    printf("roughness  ggx LTC vs reference  lambert vs reference  ggx reference noise  ggx LTC vs shadowed reference  "
+           "blinn-gloss (gloss)  LTC vs reference  reference noise "
            "(relative RMSE; reference: %d frames x 64 points, unshadowed; shadowed: %d frames x 1 point + cube map)\n",
            accumulate, accumulate);
     float *quarter = malloc(sizeof(float) * 4 * W * H);
     for (size_t k = 0; k < sizeof rough / sizeof *rough; k++) {
         double e[2], noise = 0, shadowed = 0;
         for (int m = 0; m < 2; m++) {
-            snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, m ? "lambert" : "ggx", rough[k]);
+            snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, m ? "lambert" : "ggx", "roughness", rough[k]);
             sl_harness *h = make(json, NULL, 1);
             sl_harness_render(h, img);
             sl_harness_destroy(h);
@@ -112,8 +118,28 @@ int main(int argc, char **argv) {
                 shadowed = rel_rmse(img, ref);
             }
         }
-        printf("%9.2f  %20.4f  %20.4f  %19.4f  %29.4f\n", rough[k], e[0], e[1], noise, shadowed);
-        fprintf(f, "%g,%g,%g,%g,%g\n", rough[k], e[0], e[1], noise, shadowed);
+        /* blinn-gloss at Walter's power of the same α = roughness² (NaN outside the gloss range) */
+        double alpha = rough[k] * rough[k], gloss = log2(2 / (alpha * alpha) - 2) / 12, eb = NAN, noise_b = NAN;
+        if (gloss >= 0 && gloss <= 1) {
+            snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, "blinn-gloss", "gloss", gloss);
+            sl_harness *h = make(json, NULL, 1);
+            sl_harness_render(h, img);
+            sl_harness_destroy(h);
+            h = make(json, refset, accumulate);
+            sl_harness_render(h, ref);
+            sl_harness_destroy(h);
+            eb = rel_rmse(img, ref);
+            if (accumulate >= 4) {
+                h = make(json, refset, accumulate / 4);
+                sl_harness_render(h, quarter);
+                sl_harness_destroy(h);
+                noise_b = rel_rmse(quarter, ref) / sqrt(3.0);
+            }
+        }
+        else gloss = NAN;
+        printf("%9.2f  %20.4f  %20.4f  %19.4f  %29.4f  %19.3f  %16.4f  %15.4f\n", rough[k], e[0], e[1], noise, shadowed, gloss,
+               eb, noise_b);
+        fprintf(f, "%g,%g,%g,%g,%g,%g,%g,%g\n", rough[k], e[0], e[1], noise, shadowed, gloss, eb, noise_b);
     }
     fclose(f);
 
@@ -122,8 +148,8 @@ int main(int argc, char **argv) {
     double *t_rect = calloc(frames, sizeof(double)), *t_point = calloc(frames, sizeof(double)),
            *t_shadow = calloc(frames, sizeof(double));
     char json_rect[4096], json_point[4096];
-    snprintf(json_rect, sizeof json_rect, SCENE_HEAD RECT_LIGHT, "ggx", 0.4);
-    snprintf(json_point, sizeof json_point, SCENE_HEAD POINT_LIGHT, "ggx", 0.4);
+    snprintf(json_rect, sizeof json_rect, SCENE_HEAD RECT_LIGHT, "ggx", "roughness", 0.4);
+    snprintf(json_point, sizeof json_point, SCENE_HEAD POINT_LIGHT, "ggx", "roughness", 0.4);
     for (int i = 0; i < frames; i++)
         for (int m = 0; m < 3; m++) {
             /* m = 2: one frame of the shadowed reference (a new light point: cube map + shading) */
@@ -154,17 +180,22 @@ int main(int argc, char **argv) {
     /* the chart */
     char cmd[8192];
     snprintf(cmd, sizeof cmd,
-             "gnuplot -e \"set terminal pngcairo size 900,440 font ',10'; set output '%s'; set datafile separator ',';"
-             " set multiplot layout 1,2;"
-             " set title 'area-light: LTC vs Monte Carlo reference'; set xlabel 'roughness'; set ylabel 'relative RMSE';"
-             " set key outside bottom center vertical maxrows 2 font ',8'; set grid; set logscale y;"
-             " plot '%s.csv' using 1:2 skip 1 with linespoints title 'ggx (LTC specular + Lambert)',"
-             " '' using 1:3 skip 1 with linespoints title 'lambert (exact formula)',"
-             " '' using 1:4 skip 1 with lines dashtype 2 title 'ggx reference noise (estimated)',"
-             " '' using 1:5 skip 1 with linespoints title 'ggx (LTC, no shadows) vs shadowed reference';"
+             "gnuplot -e \"set terminal pngcairo size 1100,540 font ',10'; set output '%s'; set datafile separator ',';"
+             " set multiplot;"
+             " set origin 0,0; set size 0.64,1;"
+             " set title 'area-light: LTC vs Monte Carlo reference'; set xlabel 'roughness (blinn-gloss: power 2/roughness^4 - 2)';"
+             " set ylabel 'relative RMSE';"
+             " set key outside bottom center vertical maxrows 3 font ',8'; set grid; set logscale y;"
+             " plot '%s.csv' using 1:2 skip 1 with linespoints lc rgb 'dark-violet' pt 1 title 'ggx (LTC specular + Lambert)',"
+             " '' using 1:3 skip 1 with linespoints lc rgb 'dark-green' pt 2 title 'lambert (exact formula)',"
+             " '' using 1:4 skip 1 with lines lc rgb 'dark-violet' dashtype 2 title 'ggx reference noise (estimated)',"
+             " '' using 1:5 skip 1 with linespoints lc rgb 'dark-orange' pt 4 title 'ggx (LTC, no shadows) vs shadowed reference',"
+             " '' using 1:7 skip 1 with linespoints lc rgb 'red' lw 2 pt 7 ps 0.8 title 'blinn-gloss (Blinn-Phong LTC + Lambert)',"
+             " '' using 1:8 skip 1 with lines lc rgb 'red' dashtype 3 title 'blinn-gloss reference noise (estimated)';"
              " unset logscale y;"
+             " set origin 0.64,0; set size 0.36,1;"
              " set title 'cost per frame, %dx%d, llvmpipe'; set xlabel ''; set ylabel 'ms'; set style fill solid 0.5;"
-             " set boxwidth 0.5; set yrange [0:*]; unset key;"
+             " set boxwidth 0.5; set yrange [0:*]; unset key; set xtics font ',8';"
              " plot '%s-cost.csv' using 0:2:xtic(1) skip 1 with boxes;"
              " unset multiplot\"",
              png, out, W, H, out);
