@@ -3,6 +3,9 @@
  *   corner       in a 90° corner lit by a uniform environment only, ambient at the crease is
  *                halved (the wall closes half of the cosine-weighted hemisphere: occluded share
  *                1/2), and points farther than ssao.radius from the other plane are not darkened
+ *   far occluder a wall with a ball in front of it, farther than ssao.radius from the wall: no wall
+ *                pixel is darkened (nothing is within the radius of the wall: the range check
+ *                keeps the ball's depth, which lies in front of the samples, from occluding)
  *   direct       the same corner lit by a directional light only: the image equals ssao off
  *   live         half resolution and strength change live; strength 0 equals ssao off
  *   pass view    the "ssao-visibility" debug view shows the visibility as it is (no tone mapping)
@@ -38,6 +41,16 @@ static const char *open_plane =
     "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 3, 3], \"target\": [0, 0, 0], \"fov_y\": 50}],\n"
     " \"materials\": [{\"name\": \"m\", \"model\": \"lambert\", \"base_color\": [0.8, 0.8, 0.8]}],\n"
     " \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 40}, \"material\": \"m\"}],\n"
+    " \"environment\": {\"color\": [1, 1, 1], \"intensity\": 1}}\n";
+
+/* a wall (z = 0) seen obliquely and a ball (radius 0.3) centred 1.2 m in front of it: the ball's
+ * base colour has no red, so the wall's pixels are those with red */
+static const char *far_ball =
+    "{\"cameras\": [{\"name\": \"c\", \"position\": [2.0, 1.0, 4.5], \"target\": [0, 0, 0], \"fov_y\": 45}],\n"
+    " \"materials\": [{\"name\": \"wall\", \"model\": \"lambert\", \"base_color\": [0.8, 0.8, 0.8]},\n"
+    "                {\"name\": \"ball\", \"model\": \"lambert\", \"base_color\": [0, 0.8, 0.8]}],\n"
+    " \"nodes\": [{\"name\": \"wall\", \"rotate\": [90, 0, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 8}, \"material\": \"wall\"},\n"
+    "           {\"name\": \"ball\", \"translate\": [0, 0, 1.2], \"mesh\": {\"primitive\": \"sphere\", \"radius\": 0.3}, \"material\": \"ball\"}],\n"
     " \"environment\": {\"color\": [1, 1, 1], \"intensity\": 1}}\n";
 
 /* the corner with the plugins `plugins` (a JSON list's items) named by the scene */
@@ -142,6 +155,24 @@ int main(void) {
         sl_harness_destroy(h);
     }
     free(on), free(ref);
+
+    /* far occluder: the ball's nearest point is 0.9 m (1.8 radii) from the wall, so no sample
+     * point of a wall pixel is inside anything: visibility 1 on every wall pixel. Without a range
+     * check (or with one that still weights an occluder 2.4 radii in front, as
+     * smoothstep(0, 1, radius/|dz|) does by 0.35) the ball draws a dark halo on the wall around
+     * its silhouette, the samples that land on it being behind its depth. */
+    {
+        on = render(far_ball, NULL), ref = render(far_ball, off);
+        visibility(on, ref, v);
+        float least = 1;
+        int wall = 0;
+        for (int i = 0; i < W * H; i++)
+            if (ref[i * 4] > 0.1f) least = fminf(least, v[i]), wall++;
+        CHECK(wall > W * H / 2 && least > 0.99f, "far occluder: a wall pixel darkened to %.3f (%d wall pixels)", least,
+              wall);
+        printf("far occluder: least visibility on the wall %.4f (%d pixels)\n", least, wall);
+        free(on), free(ref);
+    }
 
     /* direct light only (no environment): untouched */
     snprintf(scene, sizeof scene, corner, "0", sun);
