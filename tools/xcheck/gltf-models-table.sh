@@ -36,7 +36,7 @@ case $REFERENCE in unoccluded) ref_args=(--unoccluded) ;; full) ref_args=() ;;
     *) echo "gltf-models-table: REFERENCE=$REFERENCE: expected unoccluded or full" >&2; exit 1 ;; esac
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
-WORK=${KEEP:-$TMP/rows}
+WORK=${KEEP:-$TMP/work}
 mkdir -p "$WORK" || exit 1
 T0=$(date +%s)
 LOAD0=$(cut -d' ' -f1-3 /proc/loadavg)
