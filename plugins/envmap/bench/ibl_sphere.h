@@ -25,6 +25,19 @@ static inline double ibl_now_ms(void) {
     return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
 
+/* n·v at the centre of pixel (x, y) of the size × size image of the scene below (camera at
+ * (0, 0, 3.1) looking at the unit sphere's centre, 40° lens), −1 off the sphere; symmetric in x
+ * and y, so the image's row order does not matter */
+static inline double ibl_sphere_nv(int x, int y, int size) {
+    double t = tan(20 * M_PI / 180), d[3] = {((x + 0.5) / size * 2 - 1) * t, ((y + 0.5) / size * 2 - 1) * t, -1};
+    double l = sqrt(d[0] * d[0] + d[1] * d[1] + 1);
+    for (int k = 0; k < 3; k++) d[k] /= l;
+    double b = 3.1 * d[2], c = 3.1 * 3.1 - 1, disc = b * b - c; /* |o + s d|² = 1, o = (0, 0, 3.1) */
+    if (disc <= 0) return -1;
+    double s = -b - sqrt(disc), n[3] = {s * d[0], s * d[1], 3.1 + s * d[2]};
+    return -(n[0] * d[0] + n[1] * d[1] + n[2] * d[2]);
+}
+
 /* relative RMS and relative mean difference of x against ref over the sphere's pixels (mask: the
  * reference's alpha channel is no coverage mask; the sphere is where the reference is non-zero,
  * background off) */
@@ -44,6 +57,39 @@ static inline void ibl_compare(const float *x, const float *ref, const unsigned 
     *rel_mean = sx / sr - 1;
 }
 
+/* the scene's "plugins" list (JSON strings, comma-separated): envmap; a bench may name more
+ * (ibl_methods.c --plugin: phong for its blinn-gloss) */
+static char ibl_scene_plugins[512] = "\"envmap\"";
+
+/* the lobe tests' measure (tests/test_envmap_lobes.c): 3 × 3 block means of x and ref at block
+ * centres (1 + 3i, 1 + 3j), blocks wholly inside the mask; the RMS and the mean of
+ * block(x)/block(ref) − 1 over the blocks and channels */
+static inline void ibl_compare_blocks(const float *x, const float *ref, const unsigned char *mask, int size,
+                                      double *rel_rms, double *rel_mean) {
+    double se = 0, sm = 0;
+    long count = 0;
+    for (int py = 1; py < size - 1; py += 3)
+        for (int px = 1; px < size - 1; px += 3) {
+            bool all = true;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) all = all && mask[(py + dy) * size + px + dx];
+            if (!all) continue;
+            for (int c = 0; c < 3; c++) {
+                double bx = 0, br = 0;
+                for (int dy = -1; dy <= 1; dy++)
+                    for (int dx = -1; dx <= 1; dx++) {
+                        size_t i = ((size_t)(py + dy) * size + px + dx) * 4 + c;
+                        bx += x[i], br += ref[i];
+                    }
+                if (br <= 0) continue;
+                double e = bx / br - 1;
+                se += e * e, sm += e, count++;
+            }
+        }
+    *rel_rms = count ? sqrt(se / count) : NAN;
+    *rel_mean = count ? sm / count : NAN;
+}
+
 /* `mat`: the material's JSON keys; `aa`: leave the aa plugin on (its defaults: a TAA still of
  * taa_frames jittered frames), as the viewer runs (bench/ibl_still.c) */
 static sl_harness *ibl_sphere_aa(const char *env, const char *mat, int size, int accumulate, bool aa) {
@@ -55,12 +101,12 @@ static sl_harness *ibl_sphere_aa(const char *env, const char *mat, int size, int
     }
     else snprintf(envjson, sizeof envjson, "{\"map\": \"%s\"}", env);
     snprintf(json, sizeof json,
-             "{\"plugins\": [\"envmap\"],\n"
+             "{\"plugins\": [%s],\n"
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 3.1], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
              " \"materials\": [{\"name\": \"m\", %s, \"alpha\": 0.2}],\n"
              " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 192, \"rings\": 96}, \"material\": \"m\"}],\n"
              " \"environment\": %s}",
-             mat, envjson);
+             ibl_scene_plugins, mat, envjson);
     const char *settings[] = {"envmap.background=false", aa ? "aa.enabled=true" : "aa.enabled=false", sun[0] ? sun : NULL, NULL};
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = size, .height = size,
                                                           .scene_json = json, .settings = settings, .float32 = true,
