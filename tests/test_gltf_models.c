@@ -63,6 +63,13 @@ static const float quad_p[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0
 static const float quad_uv[4][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
 static const int quad_tris[6] = {0, 1, 2, 0, 2, 3};
 
+/* A 1×1 RGBA (255, 255, 255, 255) PNG: the feature files' texture 0, so that each also renders */
+static const unsigned char white_png[] = {
+    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00,
+    0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1f, 0x15, 0xc4, 0x89, 0x00,
+    0x00, 0x00, 0x0b, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63, 0xf8, 0x0f, 0x04, 0x00, 0x09, 0xfb, 0x03,
+    0xfd, 0x68, 0xfa, 0x1c, 0xcc, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+
 /* asset.extras.expect.<key> = the values of `corners` (count × comps floats) */
 static void expect_array(gw_doc *g, const char *key, const float *v, int n) {
     char *text = malloc((size_t)n * 24 + 16), ptr[96];
@@ -288,9 +295,8 @@ static void f_morph_animated(gw_doc *g) {
 
 /* a base colour texture on UV set 1 with KHR_texture_transform (the extension's texCoord wins) */
 static void f_texture_transform(gw_doc *g) {
-    static const unsigned char png[] = {0x89, 'P', 'N', 'G', 13, 10, 26, 10}; /* only its bytes are kept */
     char s[256];
-    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, png, sizeof png), sizeof png, 0));
+    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, white_png, sizeof white_png), sizeof white_png, 0));
     gw_set(g, "/images", s);
     gw_set(g, "/textures", "[{\"source\": 0}]");
     gw_set(g, "/extensionsUsed", "[\"KHR_texture_transform\"]");
@@ -331,9 +337,8 @@ static void f_light_spot(gw_doc *g) {
  * emissive strength and texture offset, listed in the file in another order than the meshes use
  * them: every mesh must get its own primitive's material (the file's index, whatever the name). */
 static void f_material_identity(gw_doc *g) {
-    static const unsigned char png[] = {0x89, 'P', 'N', 'G', 13, 10, 26, 10};
     char s[600];
-    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, png, sizeof png), sizeof png, 0));
+    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, white_png, sizeof white_png), sizeof white_png, 0));
     gw_set(g, "/images", s);
     gw_set(g, "/textures", "[{\"source\": 0}]");
     gw_set(g, "/extensionsUsed", "[\"KHR_texture_transform\", \"KHR_materials_ior\", \"KHR_materials_emissive_strength\"]");
@@ -369,17 +374,12 @@ static void f_material_identity(gw_doc *g) {
     gw_set(g, "/asset/extras/expect/materials", s);
 }
 
-/* One material with one KHR_materials layer (ext: its JSON, with texture 0 where it names one: a
- * 1×1 white PNG, so that the file also renders); the inputs the reader must publish for it (want:
- * {"input": number | true (a texture) | false (absent)}), as the ggx keys that take them read them. */
+/* One material with one KHR_materials layer (ext: its JSON, with texture 0 where it names one); the
+ * inputs the reader must publish for it (want: {"input": number | true (a texture) | false
+ * (absent)}), as the ggx keys that take them read them. */
 static void layer_feature(gw_doc *g, const char *name, const char *ext, const char *want) {
-    static const unsigned char png[] = { /* 1×1 RGBA (255, 255, 255, 255) */
-        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00,
-        0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1f, 0x15, 0xc4, 0x89, 0x00,
-        0x00, 0x00, 0x0b, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63, 0xf8, 0x0f, 0x04, 0x00, 0x09, 0xfb, 0x03,
-        0xfd, 0x68, 0xfa, 0x1c, 0xcc, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
     char s[1200];
-    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, png, sizeof png), sizeof png, 0));
+    snprintf(s, sizeof s, "[{\"bufferView\": %d, \"mimeType\": \"image/png\"}]", gw_view(g, gw_append(g, white_png, sizeof white_png), sizeof white_png, 0));
     gw_set(g, "/images", s);
     gw_set(g, "/textures", "[{\"source\": 0}]");
     snprintf(s, sizeof s, "[\"%s\"]", name);
