@@ -17,8 +17,14 @@
 void sl_sb_append(sl_strbuf *b, const char *t) {
     size_t l = strlen(t);
     if (b->len + l + 1 > b->cap) {
-        b->cap = (b->len + l + 1) * 2;
-        b->s = realloc(b->s, b->cap);
+        size_t cap = (b->len + l + 1) * 2;
+        char *grown = realloc(b->s, cap);
+        if (!grown) {
+            fprintf(stderr, "shadelab: out of memory composing a shader (%zu bytes)\n", cap);
+            abort(); /* a truncated shader would compile to something else */
+        }
+        b->s = grown;
+        b->cap = cap;
     }
     memcpy(b->s + b->len, t, l + 1);
     b->len += l;

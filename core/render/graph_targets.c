@@ -87,7 +87,12 @@ void sl_graph_add_target(sl_renderer *r, const sl_target_desc *d, int at, bool p
         if (pingpong && !e->tex[1]) e->tex[1] = make_target(&e->desc, e->w, e->h);
         return;
     }
-    r->res = realloc(r->res, (r->res_count + 1) * sizeof *r->res);
+    resource *grown = realloc(r->res, (r->res_count + 1) * sizeof *r->res);
+    if (!grown) {
+        SL_ERROR("target \"%s\": out of memory: not created", name);
+        return;
+    }
+    r->res = grown;
     e = &r->res[r->res_count++];
     memset(e, 0, sizeof *e);
     e->name = strdup(name);

@@ -179,7 +179,9 @@ unsigned sl_post_program_id(sl_app *app, sl_program *p) {
         int k = v->error_owner > 0 ? v->error_owner : p->owner;
         sl_renderer_blame_plugin(app, k, err);
     }
-    s->variants = realloc(s->variants, (s->variant_count + 1) * sizeof *s->variants);
+    variant *grown = realloc(s->variants, (s->variant_count + 1) * sizeof *s->variants);
+    if (!grown) return v->id; /* used, not cached: the next frame compiles it again */
+    s->variants = grown;
     s->variants[s->variant_count++] = (variant){.base = p, .key = key, .program = v};
     return v->id;
 }

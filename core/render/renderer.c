@@ -30,7 +30,12 @@ sl_program *sl_renderer_load_program(sl_app *app, int owner, const sl_program_de
     sl_program *p = sl_program_from_files_deferred(dir, d.vertex, d.fragment, d.defines, err, sizeof err);
     if (!p->deferred && !p->id) SL_ERROR("%s", err);
     p->owner = owner;
-    r->programs = realloc(r->programs, (r->program_count + 1) * sizeof *r->programs);
+    sl_program **grown = realloc(r->programs, (r->program_count + 1) * sizeof *r->programs);
+    if (!grown) {
+        SL_ERROR("program %s: out of memory", d.fragment);
+        return p; /* usable; not freed with the renderer */
+    }
+    r->programs = grown;
     r->programs[r->program_count++] = p;
     return p;
 }

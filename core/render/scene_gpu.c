@@ -213,7 +213,9 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         glTextureParameterf(tex, GL_TEXTURE_MAX_ANISOTROPY, (float)r->anisotropy);
     }
     sl_image_free(&img);
-    r->textures = realloc(r->textures, (r->texture_count + 1) * sizeof *r->textures);
+    gpu_texture *grown = realloc(r->textures, (r->texture_count + 1) * sizeof *r->textures);
+    if (!grown) return tex; /* drawn, not cached */
+    r->textures = grown;
     r->textures[r->texture_count++] = (gpu_texture){strdup(key), tex};
     return tex;
 }
