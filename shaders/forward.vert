@@ -8,6 +8,10 @@ layout(location = 3) in vec2 a_uv;
 layout(location = 4) in vec2 a_uv1;
 out vec2 v_uv1;
 #endif
+#ifdef SL_MAT_USES_VERTEX_COLOR // a coloured mesh uses the material (glTF COLOR_0; others read white)
+layout(location = 6) in vec4 a_color;
+out vec4 v_color;
+#endif
 
 out vec3 v_world_pos;
 out vec3 v_normal;
@@ -42,6 +46,9 @@ void main() {
     v_uv = v.uv;
 #ifdef SL_MAT_USES_UV1
     v_uv1 = a_uv1;
+#endif
+#ifdef SL_MAT_USES_VERTEX_COLOR
+    v_color = a_color;
 #endif
     v_object_pos = a_position;
     gl_Position = sl_uv_space != 0 ? vec4(v.uv * 2.0 - 1.0, 0.0, 1.0) : sl_view_proj * world;

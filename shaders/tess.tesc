@@ -15,6 +15,10 @@ out vec3 te_normal[];
 out vec4 te_tangent[];
 out vec2 te_uv[];
 out vec3 te_object_pos[];
+#ifdef SL_MAT_USES_VERTEX_COLOR
+in vec4 tc_color[];
+out vec4 te_color[];
+#endif
 #ifdef SL_MOTION_VECTORS
 in vec3 tc_prev_position[];
 out vec3 te_prev_position[];
@@ -39,6 +43,9 @@ void main() {
     te_tangent[gl_InvocationID] = tc_tangent[gl_InvocationID];
     te_uv[gl_InvocationID] = tc_uv[gl_InvocationID];
     te_object_pos[gl_InvocationID] = tc_object_pos[gl_InvocationID];
+#ifdef SL_MAT_USES_VERTEX_COLOR
+    te_color[gl_InvocationID] = tc_color[gl_InvocationID];
+#endif
 #ifdef SL_MOTION_VECTORS
     te_prev_position[gl_InvocationID] = tc_prev_position[gl_InvocationID];
 #endif

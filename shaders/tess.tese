@@ -14,6 +14,10 @@ out vec3 v_normal;
 out vec4 v_tangent;
 out vec2 v_uv;
 out vec3 v_object_pos;
+#ifdef SL_MAT_USES_VERTEX_COLOR
+in vec4 te_color[];
+out vec4 v_color;
+#endif
 
 uniform int sl_uv_space; // texture-space passes rasterise at uv*2-1
 
@@ -69,6 +73,9 @@ void main() {
     v_tangent = vec4(mat3(sl_model) * v.tangent.xyz, v.tangent.w);
     v_uv = v.uv;
     v_object_pos = b.x * te_object_pos[0] + b.y * te_object_pos[1] + b.z * te_object_pos[2];
+#ifdef SL_MAT_USES_VERTEX_COLOR
+    v_color = b.x * te_color[0] + b.y * te_color[1] + b.z * te_color[2];
+#endif
     gl_Position = sl_uv_space != 0 ? vec4(v.uv * 2.0 - 1.0, 0.0, 1.0) : sl_view_proj * world;
 #ifdef SL_MOTION_VECTORS
     vec3 prev = b.x * te_prev_position[0] + b.y * te_prev_position[1] + b.z * te_prev_position[2] + h * v.normal;

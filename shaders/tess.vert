@@ -12,6 +12,10 @@ out vec3 tc_normal;
 out vec4 tc_tangent;
 out vec2 tc_uv;
 out vec3 tc_object_pos; // rest pose (SlSurface.object_position)
+#ifdef SL_MAT_USES_VERTEX_COLOR
+layout(location = 6) in vec4 a_color;
+out vec4 tc_color;
+#endif
 #ifdef SL_MOTION_VECTORS
 out vec3 tc_prev_position; // with the VERTEX hooks at the previous frame's time
 layout(location = 5) in vec3 a_prev_position; // last frame's: a deformed mesh's moved (deform.c)
@@ -33,4 +37,7 @@ void main() {
     tc_tangent = v.tangent;
     tc_uv = v.uv;
     tc_object_pos = a_position;
+#ifdef SL_MAT_USES_VERTEX_COLOR
+    tc_color = a_color;
+#endif
 }

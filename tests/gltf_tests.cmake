@@ -13,6 +13,9 @@ add_dependencies(test_gltf_blend tp_tp-motion plugin_aa plugin_envmap plugin_ggx
 # Hostile and unusual glTF written by the test (tests/test_gltf_hostile.c, tests/gltf_writer.h):
 # every family refused naming the file, JSON pointer and cause, or opened naming what was dropped.
 sl_add_test(gltf_hostile SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_hostile.c LABELS scene gltf hostile TIMEOUT ${SL_HANG_GUARD})
+# Vertex colours (COLOR_0) against baseColorFactor × the interpolated colours, float VEC3 and
+# normalized u8 VEC4 under alphaMode BLEND (tests/test_gltf_color.c).
+sl_add_test(gltf_color SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_color.c LABELS scene gltf TIMEOUT ${SL_HANG_GUARD})
 # A model needs no JSON: --variant, --animation, --ground, --shadows, --env (tests/test_gltf_options.c).
 sl_add_test(gltf_options SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_gltf_options.c LABELS scene gltf TIMEOUT ${SL_HANG_GUARD})
 add_dependencies(test_gltf_options plugin_envmap plugin_ggx plugin_spotlight-shadow plugin_tonemap plugin_aa)

@@ -132,6 +132,14 @@ static bool material_drawn_with_tag(sl_app *app, int m, const char *tag) {
     return false;
 }
 
+/* Whether a mesh with vertex colours (sl_mesh_data.colors) is drawn with material m: its programs
+ * then read them (SL_MAT_USES_VERTEX_COLOR); others fetch nothing more. */
+static bool material_has_vertex_colors(const sl_app *app, int m) {
+    for (int i = 0; i < app->scene.mesh_count; i++)
+        if (app->scene.meshes[i].material == m && app->scene.meshes[i].data.colors) return true;
+    return false;
+}
+
 /* A chunk's when_param (ABI 1.17): its plugin's bool parameter of that id is on (checked at load:
  * a bool global with SL_PARAM_NEEDS_RECOMPILE). */
 static bool gate_param_on(sl_app *app, const sl_chunk_reg *h) {
@@ -520,6 +528,12 @@ static void write_prelude(composition *c, sl_forward_variant *out) {
         else if (q->desc.scope == SL_SCOPE_GLOBAL && strcmp(q->desc.id, "enabled")) write_global_param(c, q);
     }
     if (c->uses_uv1) sl_sb_append(&c->pre, "#define SL_MAT_USES_UV1 1\n");
+    /* vertex colours: the colour pass, and a depth pass that reads the coverage (alpha cut-out or
+     * blend dither); never a full-screen material (no vertices) */
+    bool coverage = material_has(app, c->m, "alpha_cutoff") || sl_gpu_material_blended(app, c->m);
+    if (!c->bare_depth && !c->req->fullscreen && (c->req->kind == SL_VARIANT_FORWARD || coverage) &&
+        material_has_vertex_colors(app, c->m))
+        sl_sb_append(&c->pre, "#define SL_MAT_USES_VERTEX_COLOR 1\n");
 }
 
 /* The tessellation of a displaced material (DISPLACEMENT hooks, shader.h ABI 1.7): tess.vert runs

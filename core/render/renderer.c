@@ -623,7 +623,7 @@ void sl_renderer_destroy(sl_app *app) {
         gpu_mesh *g = &r->meshes[i];
         sl_deform_free(g);
         glDeleteVertexArrays(1, &g->vao);
-        glDeleteBuffers(5, g->vbo);
+        glDeleteBuffers(6, g->vbo);
         glDeleteBuffers(1, &g->ibo);
     }
     free(r->meshes);

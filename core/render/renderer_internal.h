@@ -17,7 +17,7 @@
  * radius: half their diagonal; lod: the index lists of its levels of detail in ibo once lod_built
  * (render/lod.h; index_count is level 0's; a deformed mesh has none) */
 typedef struct gpu_mesh {
-    unsigned vao, vbo[5], ibo;
+    unsigned vao, vbo[6], ibo; /* positions, normals, tangents, uvs, uvs1, colors (0: none) */
     int index_count;
     float center[3], lo[3], hi[3], radius;
     struct gpu_deform *deform; /* a deformed mesh's buffers (deform.c), or NULL */

@@ -15,7 +15,9 @@
 
 void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
     glCreateVertexArrays(1, &g->vao);
-    glCreateBuffers(m->uvs1 ? 5 : 4, g->vbo);
+    glCreateBuffers(4, g->vbo);
+    if (m->uvs1) glCreateBuffers(1, &g->vbo[4]);
+    if (m->colors) glCreateBuffers(1, &g->vbo[5]);
     glCreateBuffers(1, &g->ibo);
     const float *arrays[4] = {m->positions, m->normals, m->tangents, m->uvs};
     const int comps[4] = {3, 3, 4, 2};
@@ -43,6 +45,17 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
         glVertexArrayAttribFormat(g->vao, 4, 2, GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(g->vao, 4, 4);
         glEnableVertexArrayAttrib(g->vao, 4);
+    }
+    /* vertex colours (location 6) likewise: read by the programs of materials a coloured mesh uses
+     * (SL_MAT_USES_VERTEX_COLOR); a mesh without them drawn by such a program reads the attribute's
+     * current value, white (1, 1, 1, 1): a generic attribute's default is (0, 0, 0, 1) */
+    glVertexAttrib4f(6, 1, 1, 1, 1);
+    if (m->colors && m->vertex_count > 0) {
+        glNamedBufferData(g->vbo[5], (size_t)m->vertex_count * 4 * sizeof(float), m->colors, GL_STATIC_DRAW);
+        glVertexArrayVertexBuffer(g->vao, 6, g->vbo[5], 0, 4 * sizeof(float));
+        glVertexArrayAttribFormat(g->vao, 6, 4, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(g->vao, 6, 6);
+        glEnableVertexArrayAttrib(g->vao, 6);
     }
     /* the previous frame's positions (motion vectors, forward.vert): a static mesh's own; a
      * deformed mesh's buffer of them (deform.c) replaces this binding */

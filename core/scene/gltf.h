@@ -144,8 +144,7 @@ typedef struct gltf_import {
 } gltf_import;
 
 enum {
-    GLTF_UNRENDERED_COLOR = 1u << 0,
-    GLTF_UNRENDERED_TEXCOORD2 = 1u << 1,
+    GLTF_UNRENDERED_TEXCOORD2 = 1u << 0,
 };
 
 /* gltf_mesh.c: glTF mesh `index`'s primitives as scene meshes for glTF node `node` with glTF skin

@@ -27,6 +27,8 @@ static const sl_gltf_extension features[] = {
     {"morph targets", SL_GLTF_RENDERED, "POSITION, NORMAL and TANGENT targets; node or mesh weights, animated"},
     {"accessors", SL_GLTF_RENDERED, "interleaved, sparse, without a bufferView, normalized integers"},
     {"triangle lists, strips and fans", SL_GLTF_RENDERED, "flat normals where a primitive has none"},
+    {"vertex colours (COLOR_0)", SL_GLTF_RENDERED,
+     "VEC3 or VEC4, multiplying the base colour and alpha in every shading model; not morphed"},
     {"alphaMode BLEND", SL_GLTF_APPROXIMATED,
      "blended back to front per draw by the depth of its bounds' centre: not where blended meshes intersect, nor "
      "within one mesh"},
@@ -34,7 +36,6 @@ static const sl_gltf_extension features[] = {
      "where a primitive has no TANGENT: from its UVs by Lengyel's method, not MikkTSpace"},
     {"normal textures on UV set 1", SL_GLTF_APPROXIMATED, "the tangent frame of UV set 0"},
     {"lights and cameras under animated nodes", SL_GLTF_APPROXIMATED, "at the file's rest pose, not animated"},
-    {"vertex colours (COLOR_0)", SL_GLTF_IGNORED, "named in the file's warning"},
     {"UV sets beyond 1", SL_GLTF_IGNORED, "those textures read UV set 0 (named)"},
     {"points and lines", SL_GLTF_IGNORED, "not drawn (named)"},
 };

@@ -336,7 +336,7 @@ static bool make_scene(gltf_import *im, int parent) {
 
 /* The file's one warning: what is not rendered as its author made it. */
 static void warn_unrendered(gltf_import *im) {
-    static const char *const what[] = {"vertex colours (COLOR_0)", "texCoord beyond 1 (those textures sample UV set 0)"};
+    static const char *const what[] = {"texCoord beyond 1 (those textures sample UV set 0)"};
     char list[5000] = "";
     size_t u = 0;
     for (unsigned b = 0; b < sizeof what / sizeof *what; b++)

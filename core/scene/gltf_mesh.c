@@ -18,6 +18,7 @@ typedef struct primitive {
     char at[96];             /* "/meshes/2/primitives/0" */
     int vertex_count;
     float *pos, *nrm, *tan, *uv0, *uv1;
+    float *col;              /* COLOR_0 as RGBA (VEC3: a = 1), or NULL */
     /* morph targets (§3.7.2.2): target_count × vertex_count × 3 displacements (NULL: no target
      * has the attribute); skins (§3.7.3): `influences` joints and weights per vertex (or 0) */
     int target_count;
@@ -35,7 +36,7 @@ typedef struct primitive {
 } primitive;
 
 static void primitive_free(primitive *p) {
-    free(p->pos), free(p->nrm), free(p->tan), free(p->uv0), free(p->uv1), free(p->tris);
+    free(p->pos), free(p->nrm), free(p->tan), free(p->uv0), free(p->uv1), free(p->col), free(p->tris);
     free(p->tpos), free(p->tnrm), free(p->ttan), free(p->joints), free(p->jweights);
     if (p->draco_mesh) p->draco->free(p->draco_mesh);
 }
@@ -104,6 +105,38 @@ static bool attribute(gltf_import *im, primitive *p, const cJSON *attrs, const c
     return true;
 }
 
+/* COLOR_0 (§3.7.2.1): VEC3 or VEC4 of float, normalized unsigned byte or short, as RGBA in p->col
+ * (VEC3: alpha 1); linear, multiplying the base colour (§3.9.2). Another type is refused. */
+static bool vertex_colors(gltf_import *im, primitive *p, const cJSON *attrs) {
+    gltf_doc *d = &im->doc;
+    const cJSON *id = cJSON_GetObjectItemCaseSensitive(attrs, "COLOR_0");
+    if (!id) return true;
+    const cJSON *acc = cJSON_IsNumber(id) ? gltf_item(d, "accessors", id->valueint) : NULL;
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(acc, "type");
+    bool rgb = cJSON_IsString(t) && !strcmp(t->valuestring, "VEC3");
+    if (cJSON_IsString(t) && !rgb && strcmp(t->valuestring, "VEC4")) {
+        char at[128];
+        snprintf(at, sizeof at, "%s/attributes/COLOR_0", p->at);
+        return gltf_fail(d, at, "accessor %d is %s: COLOR_0 must be VEC3 or VEC4 (glTF 2.0 §3.7.2.1)", id->valueint,
+                         t->valuestring);
+    }
+    float *c = NULL;
+    if (!attribute(im, p, attrs, "COLOR_0", rgb ? "VEC3" : "VEC4", GLTF_F32 | GLTF_U8N | GLTF_U16N, &c)) return false;
+    if (!c) return true;
+    if (!(p->col = rgb ? malloc(sizeof(float) * 4 * (size_t)p->vertex_count + 1) : c))
+        return free(c), gltf_fail(d, p->at, "out of memory for COLOR_0");
+    int bad = 0;
+    for (int v = 0; v < p->vertex_count; v++)
+        for (int k = 0; k < 4; k++) { /* a colour is in [0, 1]; a non-finite float one becomes 1 (named) */
+            float x = rgb ? (k < 3 ? c[3 * v + k] : 1.0f) : c[4 * v + k];
+            bad += !isfinite(x);
+            p->col[4 * v + k] = !isfinite(x) ? 1.0f : x < 0 ? 0.0f : x > 1 ? 1.0f : x;
+        }
+    if (rgb) free(c);
+    if (bad) gltf_note(d, p->at, "%d non-finite COLOR_0 component%s drawn as 1", bad, bad > 1 ? "s" : "");
+    return true;
+}
+
 /* The triangles of the primitive's index list (or 0..n−1) in `mode` (4 list, 5 strip, 6 fan). */
 static bool triangles(gltf_import *im, primitive *p, int mode, const uint32_t *idx, int n) {
     int tris = mode == 4 ? n / 3 : n >= 3 ? n - 2 : 0;
@@ -166,6 +199,8 @@ static bool morph_targets(gltf_import *im, primitive *p, const cJSON *prim, cons
         primitive tp = {.vertex_count = p->vertex_count, .is_target = true};
         snprintf(tp.at, sizeof tp.at, "%s/%d", at, k);
         if (!cJSON_IsObject(t)) return gltf_fail(d, tp.at, "must be an object");
+        if (cJSON_GetObjectItemCaseSensitive(t, "COLOR_0")) /* allowed by §3.7.2.2, not applied */
+            gltf_note(d, tp.at, "COLOR_0 displacements not applied: vertex colours are drawn unmorphed");
         if (!target_attribute(im, p, &tp, t, k, "POSITION", deltas, &p->tpos) ||
             !target_attribute(im, p, &tp, t, k, "NORMAL", deltas, &p->tnrm) ||
             !target_attribute(im, p, &tp, t, k, "TANGENT", deltas, &p->ttan))
@@ -320,7 +355,7 @@ static bool read_primitive(gltf_import *im, const cJSON *prim, const mesh_use *u
         !attribute(im, p, attrs, "TEXCOORD_0", "VEC2", GLTF_F32 | GLTF_U8N | GLTF_U16N | (q ? quantized : 0), &p->uv0) ||
         !attribute(im, p, attrs, "TEXCOORD_1", "VEC2", GLTF_F32 | GLTF_U8N | GLTF_U16N | (q ? quantized : 0), &p->uv1))
         return false;
-    if (cJSON_GetObjectItemCaseSensitive(attrs, "COLOR_0")) im->unrendered |= GLTF_UNRENDERED_COLOR;
+    if (!vertex_colors(im, p, attrs)) return false;
     if (cJSON_GetObjectItemCaseSensitive(attrs, "JOINTS_0") && !use->joint_count)
         gltf_note(d, p->at, "JOINTS_0 without a skin on the node drawing it: drawn unskinned");
     if (use->joint_count && !skin_attributes(im, p, attrs, use->joint_count)) return false;
@@ -421,7 +456,8 @@ static bool to_mesh(gltf_import *im, primitive *p, sl_mesh_data *m, sl_mesh_defo
     uint32_t *map = flat ? NULL : malloc(sizeof(uint32_t) * (size_t)p->vertex_count);
     if (!flat && (!source || !map)) return free(source), free(map), gltf_fail(&im->doc, p->at, "out of memory");
     int nv = flat ? 3 * p->tri_count : compact(p, source, map);
-    bool ok = sl_mesh_alloc(m, nv, 3 * p->tri_count) && (!p->uv1 || (m->uvs1 = calloc((size_t)nv * 2, sizeof(float))));
+    bool ok = sl_mesh_alloc(m, nv, 3 * p->tri_count) && (!p->uv1 || (m->uvs1 = calloc((size_t)nv * 2, sizeof(float)))) &&
+              (!p->col || (m->colors = calloc((size_t)nv * 4, sizeof(float))));
     for (int v = 0; ok && v < nv; v++) {
         int s = flat ? (int)p->tris[v] : source[v];
         memcpy(m->positions + 3 * v, p->pos + 3 * s, 3 * sizeof(float));
@@ -429,6 +465,7 @@ static bool to_mesh(gltf_import *im, primitive *p, sl_mesh_data *m, sl_mesh_defo
         if (p->tan) memcpy(m->tangents + 4 * v, p->tan + 4 * s, 4 * sizeof(float));
         if (p->uv0) memcpy(m->uvs + 2 * v, p->uv0 + 2 * s, 2 * sizeof(float));
         if (p->uv1) memcpy(m->uvs1 + 2 * v, p->uv1 + 2 * s, 2 * sizeof(float));
+        if (p->col) memcpy(m->colors + 4 * v, p->col + 4 * s, 4 * sizeof(float));
     }
     for (int i = 0; ok && i < 3 * p->tri_count; i++) m->indices[i] = flat ? (uint32_t)i : map[p->tris[i]];
     if (!ok) return free(source), free(map), gltf_fail(&im->doc, p->at, "out of memory (%d vertices)", nv);

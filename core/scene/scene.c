@@ -135,6 +135,7 @@ void sl_mesh_free(sl_mesh_data *m) {
     free(m->tangents);
     free(m->uvs);
     free(m->uvs1);
+    free(m->colors);
     free(m->indices);
     memset(m, 0, sizeof *m);
 }

@@ -22,6 +22,9 @@ typedef struct sl_mesh_data {
     float bounds_min[3], bounds_max[3];
     float *uvs1;        /* 2, or NULL: a second UV set (glTF TEXCOORD_1), same convention as uvs;
                            drawn only for materials with a texture on it (SL_MAT_USES_UV1) */
+    float *colors;      /* 4 (linear RGBA), or NULL: vertex colours (glTF COLOR_0; VEC3 with a = 1),
+                           multiplying the base colour and its alpha in the programs of materials
+                           some coloured mesh uses (SL_MAT_USES_VERTEX_COLOR); other meshes read 1 */
 } sl_mesh_data;
 
 /* How one texture slot of a material reads its UVs (glTF 2.0 textureInfo.texCoord and

@@ -278,6 +278,13 @@ static int import_mesh(importer *im, unsigned index) {
             d.uvs1[2 * v + 1] = 1.0f - am->mTextureCoords[1][v].y;
         }
     }
+    if (am->mColors[0]) { /* glTF COLOR_0, OBJ/PLY vertex colours: kept only where the file has them */
+        d.colors = malloc(sizeof(float) * 4 * am->mNumVertices);
+        for (unsigned v = 0; d.colors && v < am->mNumVertices; v++) {
+            d.colors[4 * v] = am->mColors[0][v].r, d.colors[4 * v + 1] = am->mColors[0][v].g;
+            d.colors[4 * v + 2] = am->mColors[0][v].b, d.colors[4 * v + 3] = am->mColors[0][v].a;
+        }
+    }
     uint32_t *ix = d.indices;
     for (unsigned f = 0; f < am->mNumFaces; f++) {
         const struct aiFace *face = &am->mFaces[f];

@@ -88,6 +88,7 @@
 #define glVertexArrayAttribBinding sl_glVertexArrayAttribBinding
 #define glEnableVertexAttribArray sl_glEnableVertexAttribArray
 #define glVertexAttribPointer sl_glVertexAttribPointer
+#define glVertexAttrib4f sl_glVertexAttrib4f
 #define glDrawArrays sl_glDrawArrays
 #define glDrawElements sl_glDrawElements
 #define glDrawArraysInstanced sl_glDrawArraysInstanced
