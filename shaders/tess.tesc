@@ -19,6 +19,10 @@ out vec3 te_object_pos[];
 in vec4 tc_color[];
 out vec4 te_color[];
 #endif
+#ifdef SL_MAT_USES_UV1
+in vec2 tc_uv1[];
+out vec2 te_uv1[];
+#endif
 #ifdef SL_MOTION_VECTORS
 in vec3 tc_prev_position[];
 out vec3 te_prev_position[];
@@ -45,6 +49,9 @@ void main() {
     te_object_pos[gl_InvocationID] = tc_object_pos[gl_InvocationID];
 #ifdef SL_MAT_USES_VERTEX_COLOR
     te_color[gl_InvocationID] = tc_color[gl_InvocationID];
+#endif
+#ifdef SL_MAT_USES_UV1
+    te_uv1[gl_InvocationID] = tc_uv1[gl_InvocationID];
 #endif
 #ifdef SL_MOTION_VECTORS
     te_prev_position[gl_InvocationID] = tc_prev_position[gl_InvocationID];

@@ -18,6 +18,10 @@ out vec3 v_object_pos;
 in vec4 te_color[];
 out vec4 v_color;
 #endif
+#ifdef SL_MAT_USES_UV1
+in vec2 te_uv1[];
+out vec2 v_uv1;
+#endif
 
 uniform int sl_uv_space; // texture-space passes rasterise at uv*2-1
 
@@ -75,6 +79,9 @@ void main() {
     v_object_pos = b.x * te_object_pos[0] + b.y * te_object_pos[1] + b.z * te_object_pos[2];
 #ifdef SL_MAT_USES_VERTEX_COLOR
     v_color = b.x * te_color[0] + b.y * te_color[1] + b.z * te_color[2];
+#endif
+#ifdef SL_MAT_USES_UV1
+    v_uv1 = b.x * te_uv1[0] + b.y * te_uv1[1] + b.z * te_uv1[2];
 #endif
     gl_Position = sl_uv_space != 0 ? vec4(v.uv * 2.0 - 1.0, 0.0, 1.0) : sl_view_proj * world;
 #ifdef SL_MOTION_VECTORS

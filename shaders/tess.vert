@@ -16,6 +16,10 @@ out vec3 tc_object_pos; // rest pose (SlSurface.object_position)
 layout(location = 6) in vec4 a_color;
 out vec4 tc_color;
 #endif
+#ifdef SL_MAT_USES_UV1 // as forward.vert: a texture of the material reads the second UV set
+layout(location = 4) in vec2 a_uv1;
+out vec2 tc_uv1;
+#endif
 #ifdef SL_MOTION_VECTORS
 out vec3 tc_prev_position; // with the VERTEX hooks at the previous frame's time
 layout(location = 5) in vec3 a_prev_position; // last frame's: a deformed mesh's moved (deform.c)
@@ -39,5 +43,8 @@ void main() {
     tc_object_pos = a_position;
 #ifdef SL_MAT_USES_VERTEX_COLOR
     tc_color = a_color;
+#endif
+#ifdef SL_MAT_USES_UV1
+    tc_uv1 = a_uv1;
 #endif
 }
