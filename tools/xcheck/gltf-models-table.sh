@@ -64,6 +64,8 @@ while IFS=$'\t' read -r key outcome _; do
     if "$XC" "${ref_args[@]}" --size "$SIZE" --samples "$SAMPLES" --out "$WORK/$name" "$file" \
         > "$WORK/$name.log" 2>&1 && [ -f "$WORK/$name/report.json" ]; then
         echo "$key|$WORK/$name/report.json" >> "$TMP/rows"
+    elif grep -q 'exit status 2 (the report was written)' "$WORK/$name.log"; then
+        echo "$key|not measured: shadelab printed errors: $(grep -m1 '^error' "$WORK/$name.log" | cut -c1-140)" >> "$TMP/rows"
     elif why=$(grep -E '^[A-Za-z]*(Error|Exception): ' "$WORK/$name/blender.log" 2>/dev/null | grep -v '^xcheck-blender' |
                tail -1) && [ -n "$why" ]; then
         echo "$key|not measured: Blender's importer: $(echo "$why" | cut -c1-160)" >> "$TMP/rows"

@@ -89,6 +89,10 @@ row() {
         status=$?
         note "$scene ($name) failed ($status): $(tail -2 "$WORK/$name.log")"
         [ $status = 77 ] && exit 77
+        if [ $status = 2 ]; then # shadelab printed errors: a report, but not a clean measurement
+            mv "$WORK/$name/report.json" "$WORK/$name/report-with-errors.json"
+            echo "$scene ($name: shadelab printed errors)" >> "$TMP/not_measured"
+        fi
     fi
 }
 
