@@ -13,6 +13,14 @@
 
 /* ------------------------------------------------------------------ meshes ---------- */
 
+/* attribute `loc` of vao reads `comps` floats per vertex, tightly packed, from vbo */
+static void bind_float_attrib(unsigned vao, int loc, unsigned vbo, int comps) {
+    glVertexArrayVertexBuffer(vao, loc, vbo, 0, comps * sizeof(float));
+    glVertexArrayAttribFormat(vao, loc, comps, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, loc, loc);
+    glEnableVertexArrayAttrib(vao, loc);
+}
+
 void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
     glCreateVertexArrays(1, &g->vao);
     glCreateBuffers(4, g->vbo);
@@ -32,19 +40,13 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
         glNamedBufferData(g->vbo[a], bytes ? bytes : sizeof none,
                           !bytes ? (const void *)none : arrays[a] ? (const void *)arrays[a] : fallback, GL_STATIC_DRAW);
         free(fallback);
-        glVertexArrayVertexBuffer(g->vao, a, g->vbo[a], 0, comps[a] * sizeof(float));
-        glVertexArrayAttribFormat(g->vao, a, comps[a], GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(g->vao, a, a);
-        glEnableVertexArrayAttrib(g->vao, a);
+        bind_float_attrib(g->vao, a, g->vbo[a], comps[a]);
     }
     /* the second UV set (location 4) only where the mesh has one; programs read it only for
      * materials with a texture on it (SL_MAT_USES_UV1), elsewhere the attribute stays off */
     if (m->uvs1 && m->vertex_count > 0) {
         glNamedBufferData(g->vbo[4], (size_t)m->vertex_count * 2 * sizeof(float), m->uvs1, GL_STATIC_DRAW);
-        glVertexArrayVertexBuffer(g->vao, 4, g->vbo[4], 0, 2 * sizeof(float));
-        glVertexArrayAttribFormat(g->vao, 4, 2, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(g->vao, 4, 4);
-        glEnableVertexArrayAttrib(g->vao, 4);
+        bind_float_attrib(g->vao, 4, g->vbo[4], 2);
     }
     /* vertex colours (location 6) likewise: read by the programs of materials a coloured mesh uses
      * (SL_MAT_USES_VERTEX_COLOR); a mesh without them drawn by such a program reads the attribute's
@@ -52,17 +54,11 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
     glVertexAttrib4f(6, 1, 1, 1, 1);
     if (m->colors && m->vertex_count > 0) {
         glNamedBufferData(g->vbo[5], (size_t)m->vertex_count * 4 * sizeof(float), m->colors, GL_STATIC_DRAW);
-        glVertexArrayVertexBuffer(g->vao, 6, g->vbo[5], 0, 4 * sizeof(float));
-        glVertexArrayAttribFormat(g->vao, 6, 4, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(g->vao, 6, 6);
-        glEnableVertexArrayAttrib(g->vao, 6);
+        bind_float_attrib(g->vao, 6, g->vbo[5], 4);
     }
     /* the previous frame's positions (motion vectors, forward.vert): a static mesh's own; a
      * deformed mesh's buffer of them (deform.c) replaces this binding */
-    glVertexArrayVertexBuffer(g->vao, 5, g->vbo[0], 0, 3 * sizeof(float));
-    glVertexArrayAttribFormat(g->vao, 5, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(g->vao, 5, 5);
-    glEnableVertexArrayAttrib(g->vao, 5);
+    bind_float_attrib(g->vao, 5, g->vbo[0], 3);
     static const uint32_t no_indices[1];
     glNamedBufferData(g->ibo, m->index_count ? (size_t)m->index_count * 4 : 4, m->index_count ? m->indices : no_indices,
                       GL_STATIC_DRAW);

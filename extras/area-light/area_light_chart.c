@@ -57,6 +57,13 @@ static double rel_rmse(const float *a, const float *ref) {
     return sqrt(s / fmax(r, 1e-30));
 }
 
+/* one frame of json (accumulating `accumulate` frames) into img, on a harness of its own */
+static void render_once(const char *json, const char *const *settings, int accumulate, float *img) {
+    sl_harness *h = make(json, settings, accumulate);
+    sl_harness_render(h, img);
+    sl_harness_destroy(h);
+}
+
 static double now(void) {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
@@ -99,22 +106,14 @@ int main(int argc, char **argv) {
         double e[2], noise = 0, shadowed = 0;
         for (int m = 0; m < 2; m++) {
             snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, m ? "lambert" : "ggx", "roughness", rough[k]);
-            sl_harness *h = make(json, NULL, 1);
-            sl_harness_render(h, img);
-            sl_harness_destroy(h);
-            h = make(json, refset, accumulate);
-            sl_harness_render(h, ref);
-            sl_harness_destroy(h);
+            render_once(json, NULL, 1, img);
+            render_once(json, refset, accumulate, ref);
             e[m] = rel_rmse(img, ref);
             if (m == 0 && accumulate >= 4) {
                 /* the reference's own noise: its first quarter against it, rms(q - ref) = √3 σ */
-                h = make(json, refset, accumulate / 4);
-                sl_harness_render(h, quarter);
-                sl_harness_destroy(h);
+                render_once(json, refset, accumulate / 4, quarter);
                 noise = rel_rmse(quarter, ref) / sqrt(3.0);
-                h = make(json, shadowset, accumulate);
-                sl_harness_render(h, ref);
-                sl_harness_destroy(h);
+                render_once(json, shadowset, accumulate, ref);
                 shadowed = rel_rmse(img, ref);
             }
         }
@@ -122,17 +121,11 @@ int main(int argc, char **argv) {
         double alpha = rough[k] * rough[k], gloss = log2(2 / (alpha * alpha) - 2) / 12, eb = NAN, noise_b = NAN;
         if (gloss >= 0 && gloss <= 1) {
             snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, "blinn-gloss", "gloss", gloss);
-            sl_harness *h = make(json, NULL, 1);
-            sl_harness_render(h, img);
-            sl_harness_destroy(h);
-            h = make(json, refset, accumulate);
-            sl_harness_render(h, ref);
-            sl_harness_destroy(h);
+            render_once(json, NULL, 1, img);
+            render_once(json, refset, accumulate, ref);
             eb = rel_rmse(img, ref);
             if (accumulate >= 4) {
-                h = make(json, refset, accumulate / 4);
-                sl_harness_render(h, quarter);
-                sl_harness_destroy(h);
+                render_once(json, refset, accumulate / 4, quarter);
                 noise_b = rel_rmse(quarter, ref) / sqrt(3.0);
             }
         }
