@@ -226,7 +226,8 @@ void sl_budget_before_frame(sl_app *app) {
     for (int k = 0; k < s->ctl.knob_count; k++)
         if (s->ctl.choice[k] != before[k]) apply(app, &s->ctl.knobs[k], s->ctl.choice[k]);
     apply_lod(app, s, false);
-    if (s->skip_observation) SL_DEBUG("budget %.0f ms: %s", b, sl_budget_status(app));
+    /* a new choice, or the view just came to rest (its best settings may be the moving choice) */
+    if (s->skip_observation || s->ctl.still == SL_BUDGET_STILL_FRAMES) SL_DEBUG("budget %.0f ms: %s", b, sl_budget_status(app));
     s->seen_params = app->params.version;
     memcpy(s->last_choice, s->ctl.choice, sizeof s->last_choice);
 }
