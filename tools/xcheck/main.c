@@ -32,7 +32,8 @@ static const char usage[] =
     "  --plugin NAME      load a plugin (repeatable)\n"
     "  --camera NAME      the scene camera to use\n"
     "  --data DIR         data directory for scene assets\n"
-    "  --frames N         shadelab frames rendered (TAA converges; default 8); the last is compared\n"
+    "  --frames N         shadelab frames rendered, at least (default 8; more where the still needs\n"
+    "                     them: TAA's history); the last is compared\n"
     "  --reference-only   export and render Cycles only (DIR/cycles.exr, DIR/index.exr; with --eevee,\n"
     "                     DIR/eevee-N.exr and their times in DIR/eevee.tsv)\n"
     "  --export-only      export the Blender scene only (DIR/blender/) and print what is not\n"
@@ -299,18 +300,22 @@ static int cmp_double(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
-/* Renders o->frames frames (the first `warm-up` ones untimed) and reads the last one's linear
- * colour; *ms = the median CPU time of the timed frames. */
+/* Renders the scene's still, as a headless still does: every frame at scene time 0, at least
+ * o->frames frames and at least the frames the plugins' still needs (TAA's history: the image
+ * compared is its converged mean, not a part of it), the first untimed; reads the last one's
+ * linear colour; *ms = the median CPU time of the timed frames. */
 static bool render_shadelab(sl_app *app, const options *o, float *rgba, double *ms, char *err, size_t n) {
     if (!sl_app_start_gl(app, err, n)) return false;
-    double times[1024];
+    enum { MAX_FRAMES = 1024 };
+    double times[MAX_FRAMES];
     int timed = 0;
-    for (int f = 0; f < o->frames; f++) {
-        app->time = f * app->opt.fixed_dt;
+    for (int f = 0; f < MAX_FRAMES; f++) {
+        app->time = 0;
         if (!sl_app_render_frame(app)) { snprintf(err, n, "shadelab could not render frame %d", f); return false; }
         sl_tool_frame_times t;
         sl_tool_frame_times_of(app, &t);
         if (f > 0 || o->frames == 1) times[timed++] = t.frame_ms;
+        if (f + 1 >= o->frames && f + 1 >= sl_tool_still_frames(app)) break;
     }
     qsort(times, timed, sizeof *times, cmp_double);
     *ms = timed ? times[timed / 2] : NAN;

@@ -183,7 +183,7 @@ with open(out, "w") as f:
             "against a %s-sample Cycles reference over every object's interior and the background "
             "(silhouettes left out), before tone mapping (FLIP: LDR-FLIP with both images at one exposure, "
             "Cycles' 99th-percentile luminance at 1), and shadelab's mean ratio; the reference's own noise "
-            "is part of every figure. shadelab: the median frame of 8 (TAA converged), llvmpipe. EEVEE: "
+            "is part of every figure. shadelab: its still (the frames TAA averages, at least 8), the median frame time, llvmpipe. EEVEE: "
             "Blender's real-time renderer on the same llvmpipe under Xvfb, one render of N samples after a "
             "one-sample render that compiles its shaders, once per scene. *EEVEE's time at shadelab's error*: "
             "EEVEE's time at the fewest samples whose relative RMS is at most shadelab's, over shadelab's "
