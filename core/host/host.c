@@ -157,6 +157,7 @@ static unsigned host_material_texture(const sl_host *h, int m, const char *key) 
 }
 static void host_set_jitter(const sl_host *h, float x, float y) { sl_renderer_set_jitter(HOST_APP(h), x, y); }
 static void host_set_still_frames(const sl_host *h, int frames) { sl_renderer_set_still_frames(HOST_APP(h), frames); }
+static void host_set_texture_lod_bias(const sl_host *h, float bias) { sl_renderer_set_texture_lod_bias(HOST_APP(h), bias); }
 
 static const char *host_environment(const sl_host *h, float o[5]) {
     const sl_environment *e = &HOST_APP(h)->scene.environment;
@@ -236,6 +237,7 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->read_image = host_read_image;
     h->scene_uses_uniform = host_scene_uses_uniform;
     h->compile_ahead = host_compile_ahead;
+    h->set_texture_lod_bias = host_set_texture_lod_bias;
     return &impl->host;
 }
 

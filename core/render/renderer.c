@@ -308,6 +308,11 @@ void sl_renderer_set_jitter(sl_app *app, float x, float y) {
     r->jitter_req[1] = y < -0.5f ? -0.5f : y > 0.5f ? 0.5f : y;
 }
 
+void sl_renderer_set_texture_lod_bias(sl_app *app, float bias) {
+    sl_renderer *r = R(app);
+    if (r && bias == bias) r->lod_bias_req = bias < -4 ? -4 : bias > 4 ? 4 : bias;
+}
+
 void sl_renderer_set_still_frames(sl_app *app, int frames) {
     sl_renderer *r = R(app);
     if (r && frames > r->still_frames) r->still_frames = frames > 4096 ? 4096 : frames;
@@ -338,6 +343,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     r->timing_next = false;
     r->stats.timing_mode = !r->timing ? "off" : r->finish_timing ? "glfinish" : "timer-query";
     r->jitter_req[0] = r->jitter_req[1] = 0;
+    r->lod_bias_req = 0;
     r->still_frames = 0;
     fill_frame(app, 0, 1);
     r->frames_run++;
@@ -349,6 +355,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     }
     if (sl_startup_recording()) sl_startup_mark("frame %d: plugins' begin_frame", (int)app->frame_index);
     apply_jitter(r);
+    sl_gpu_apply_lod_bias(app, r->lod_bias_req);
     int count = app->opt.accumulate > 1 && !r->forced_count ? app->opt.accumulate : 1;
     fill_sample(r, 0, count);
     int post_begin = r->pass_count;

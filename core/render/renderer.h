@@ -82,6 +82,7 @@ void sl_renderer_compile_ahead(struct sl_app *app);
 const sl_light_info *sl_renderer_lights(struct sl_app *app, int *count);
 void sl_renderer_set_jitter(struct sl_app *app, float x, float y);
 void sl_renderer_set_still_frames(struct sl_app *app, int frames);
+void sl_renderer_set_texture_lod_bias(struct sl_app *app, float bias); /* this frame (ABI 1.21) */
 /* The largest frame count a still image needs that a plugin asked for during the last frame
  * (host set_still_frames; TAA's history), at least 1. */
 int sl_renderer_still_frames(struct sl_app *app);

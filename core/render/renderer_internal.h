@@ -70,6 +70,7 @@ typedef struct sl_renderer {
     gpu_texture *textures; int texture_count;
     material_rt *materials;
     int anisotropy;                               /* core.anisotropy applied to the material textures */
+    float lod_bias;                               /* the LOD bias applied to them (ABI 1.21) */
     unsigned empty_vao;                           /* for attribute-less full-screen triangles */
     unsigned deform_prog; bool deform_failed;     /* deform.c's compute program (0: not built yet) */
 
@@ -124,6 +125,7 @@ typedef struct sl_renderer {
     /* ---- the frame and its sample (renderer.c) ---- */
     sl_frame frame;
     float jitter_req[2];      /* the jitter plugins asked for this frame (ABI 1.6) */
+    float lod_bias_req;       /* the texture LOD bias they asked for (ABI 1.21) */
     int still_frames;         /* the frames a still needs (set_still_frames) */
     /* ABI 1.9 sample index: frames since the view or an edit last changed, and what it compares */
     int still_run;
@@ -162,6 +164,7 @@ void sl_deform_upload(sl_app *app, int mi);
 void sl_deform_frame(sl_app *app);
 void sl_deform_free(gpu_mesh *g);
 void sl_gpu_apply_anisotropy(sl_app *app);   /* core.anisotropy onto every material texture */
+void sl_gpu_apply_lod_bias(sl_app *app, float bias); /* this frame's LOD bias onto them */
 bool sl_gpu_lights_animated(sl_app *app);
 void sl_gpu_pack_lights(sl_app *app);        /* the light buffer and sl_host.lights, at app->time */
 /* Lights a uniform block holds (SlLight records in GL_MAX_UNIFORM_BLOCK_SIZE, at most 64 KiB). */

@@ -96,6 +96,15 @@ void sl_gpu_apply_anisotropy(sl_app *app) {
     for (int i = 0; i < r->texture_count; i++) glTextureParameterf(r->textures[i].id, GL_TEXTURE_MAX_ANISOTROPY, (float)a);
 }
 
+/* The texture LOD bias plugins asked for this frame (ABI 1.21: a TAA still's) onto every material
+ * texture, when it changed. */
+void sl_gpu_apply_lod_bias(sl_app *app, float bias) {
+    sl_renderer *r = R(app);
+    if (bias == r->lod_bias) return;
+    r->lod_bias = bias;
+    for (int i = 0; i < r->texture_count; i++) glTextureParameterf(r->textures[i].id, GL_TEXTURE_LOD_BIAS, bias);
+}
+
 /* 8-bit files: every level as bytes, the mip chain made on the CPU (sl_image_mip_rgba8, a box
  * filter, sRGB-correct for sRGB storage) — what glGenerateTextureMipmap makes, without llvmpipe
  * compiling a blit shader per format at start-up (60-180 ms each, issue 18 item 5) and without
@@ -220,6 +229,7 @@ static unsigned load_texture(sl_app *app, const char *spec, bool linear_data, bo
         if (smp && smp->min_filter) glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, smp->min_filter);
         if (!r->anisotropy) sl_gpu_apply_anisotropy(app);
         glTextureParameterf(tex, GL_TEXTURE_MAX_ANISOTROPY, (float)r->anisotropy);
+        glTextureParameterf(tex, GL_TEXTURE_LOD_BIAS, r->lod_bias);
     }
     sl_image_free(&img);
     gpu_texture *grown = realloc(r->textures, (r->texture_count + 1) * sizeof *r->textures);

@@ -43,6 +43,11 @@ static const sl_param_desc params[] = {
     P(.id = "taa_reject", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "taa",
       .description = "TAA: drop the history where the reprojected surface is not this one (disocclusion: the depth "
                      "there does not match) or falls outside the last frame."),
+    P(.id = "taa_lod_bias", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "taa",
+      .description = "TAA: in a still's jittered frames, sample the materials' textures one mip level sharper per "
+                     "factor 4 of frames (LOD bias -0.5 log2 taa_frames), so the still is the pixel's box filter of "
+                     "the texture, as a path tracer's, not of its mip-blurred copy (see README). Off: every frame "
+                     "at the pixel's own mip level."),
     P(.id = "taa_upscale", .type = SL_PARAM_BOOL, .default_value = {.b = false}, .group = "taa",
       .description = "TAA: with core.render_scale below 1, keep the history at the output (window) size and "
                      "reconstruct it from the jittered frames (TAAU, see README: a sharper still, but on a CPU "
@@ -149,6 +154,18 @@ static int sequence_frames(aa *a, const sl_frame *f) {
     return m < 64 ? m : n > 64 ? n : 64;
 }
 
+/* The jittered frames of an n-frame still (not its first, the pixel centre: one frame stays the
+ * image without antialiasing) sample the materials' textures with a mip LOD bias of
+ * -0.5·log2(n): n samples spread over a pixel each cover 1/n of its area, a footprint sqrt(n)
+ * times narrower than the pixel's, so their mean is the box filter of the texture over the pixel
+ * (what Cycles and the 8x8 supersampled reference compute) instead of the box filter of the mip
+ * level the whole pixel selects, which blurs texture detail a second time. In motion every frame
+ * keeps the pixel's own level: a sharper frame would alias where the history is clipped. */
+static void still_lod_bias(aa *a, int n) {
+    if (!param(a, "taa_lod_bias").b || a->host->abi_minor < 21 || n < 2) return;
+    a->host->set_texture_lod_bias(a->host, -0.5f * log2f((float)n));
+}
+
 static void begin_frame(void *user, const sl_frame *f) {
     aa *a = user;
     a->frames_begun++;
@@ -169,8 +186,10 @@ static void begin_frame(void *user, const sl_frame *f) {
     a->cut = cut;
     a->converged = a->still >= n;
     if (a->still >= 0) {
-        if (!a->converged && a->still > 0)
+        if (!a->converged && a->still > 0) {
             a->host->set_jitter(a->host, halton((unsigned)a->still, 2) - 0.5f, halton((unsigned)a->still, 3) - 0.5f);
+            still_lod_bias(a, n);
+        }
         return;
     }
     /* Frame k of each run of n samples the pixel centre (k = 0), then Halton points 1..n-1

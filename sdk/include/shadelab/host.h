@@ -193,6 +193,12 @@ struct sl_host {
      * programs were compiled ahead already. Call it once every texture the materials bind exists
      * (an empty texture unit is another state, compiled again by the forward pass itself). */
     void (*compile_ahead)(const sl_host *host);
+    /* ABI 1.21, begin_frame only: this frame samples the materials' textures (sl_mat_*) with this
+     * mip level-of-detail bias (GL_TEXTURE_LOD_BIAS; negative = sharper; clamped to [-4, 4]). A
+     * temporal method averaging N jittered frames into a still asks for -0.5·log2(N): each frame
+     * then filters the texture over its share of the pixel, so the mean is the pixel's box filter
+     * of the texture rather than a mip-blurred one. Cleared at the start of every frame. */
+    void (*set_texture_lod_bias)(const sl_host *host, float bias);
 };
 
 #ifdef __cplusplus
