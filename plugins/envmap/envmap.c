@@ -143,7 +143,11 @@ typedef struct envmap {
     int unit_spec_blinn;          /* the Blinn-Phong lobes' chain */
     em_gpu gpu;
     sl_program *progs[6];
-    sl_program *bg_prog[2], *bg_in_place_prog[2]; /* [1]: a cube source (ENVMAP_SOURCE_CUBE) */
+    /* [source kind]: 0 a lat-long, 1 a cube (ENVMAP_SOURCE_CUBE), 2 the procedural sky evaluated
+     * per pixel (ENVMAP_SOURCE_SKY) */
+    sl_program *bg_prog[3], *bg_in_place_prog[3];
+    bool is_sky;   /* the source is the procedural sky (sky: its parameters) */
+    em_sky sky;
     unsigned empty_vao; /* the in-place background's full-screen triangle */
     char glsl_dir[2048];
     uint64_t glsl_hash;
@@ -455,6 +459,17 @@ static bool host_read(void *ctx, const char *path, em_image *out, em_io_info *in
     return true;
 }
 
+/* The procedural sky of the current parameters. */
+static em_sky sky_params(envmap *e) {
+    em_sky sky;
+    em_sky_default(&sky);
+    sky.sun_elevation_deg = param(e, "sun_elevation").f[0];
+    sky.sun_azimuth_deg = param(e, "sun_azimuth").f[0];
+    sky.sun_irradiance = param(e, "sun_irradiance").f[0];
+    memcpy(sky.ground, param(e, "ground_color").f, sizeof sky.ground);
+    return sky;
+}
+
 static void load_source(envmap *e, const char *map, const float env[5]) {
     free_derived(e);
     delete_tex(&e->src_tex);
@@ -488,12 +503,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     }
     if (!ok) {
         em_env_free(&loaded);
-        em_sky sky;
-        em_sky_default(&sky);
-        sky.sun_elevation_deg = param(e, "sun_elevation").f[0];
-        sky.sun_azimuth_deg = param(e, "sun_azimuth").f[0];
-        sky.sun_irradiance = param(e, "sun_irradiance").f[0];
-        memcpy(sky.ground, param(e, "ground_color").f, sizeof sky.ground);
+        em_sky sky = sky_params(e);
         loaded.kind = EM_ENV_LATLONG;
         em_sky_latlong(&sky, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
         name = "procedural sky";
@@ -507,7 +517,8 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     if (s->clamped)
         e->host->log(e->host, SL_LOG_INFO, "%s: %ld values above 65504 (largest %g) clamped to the half-float limit",
                      name, s->clamped, s->max_value);
-    if (is_sky) upload_sky(e, &loaded);
+    e->is_sky = is_sky;
+    if (is_sky) upload_sky(e, &loaded), e->sky = sky_params(e);
     else upload_source(e, &loaded, name);
     em_env_free(&loaded);
     e->have_src = true;
@@ -907,16 +918,36 @@ static bool background_ssaa_active(void *user, const sl_frame *f) {
     return background_shown(user) && core_supersampled(user);
 }
 
+/* The procedural sky's terms (em_sky_radiance) for envmap_background.frag's ENVMAP_SOURCE_SKY:
+ * the disk has a sharp edge at any resolution, so a still's jittered frames box-filter it over the
+ * pixel as a path tracer does (the lat-long's texels blurred it over about two pixels). */
+static void bind_sky(envmap *e, unsigned prog) {
+    const em_sky *s = &e->sky;
+    double el = s->sun_elevation_deg * M_PI / 180, az = s->sun_azimuth_deg * M_PI / 180;
+    double r = s->sun_radius_deg * M_PI / 180, omega = 2 * M_PI * (1 - cos(r));
+    float on = s->sun_irradiance > 0 ? (float)(s->sun_irradiance / omega) : 0.0f;
+    glUniform3f(glGetUniformLocation(prog, "envmap_sky_sun"), (float)(cos(el) * sin(az)), (float)sin(el),
+                (float)(cos(el) * cos(az)));
+    glUniform1f(glGetUniformLocation(prog, "envmap_sky_sun_radius"), (float)r);
+    glUniform3f(glGetUniformLocation(prog, "envmap_sky_sun_radiance"), on * 1.0f, on * 0.95f, on * 0.88f);
+    glUniform3fv(glGetUniformLocation(prog, "envmap_sky_ground"), 1, s->ground);
+}
+
 static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     envmap *e = user;
     const sl_host *h = e->host;
     bool in_place = !core_supersampled(e);
     unsigned color = in_place ? 0 : h->pass_texture(h, ctx, "color"), depth = in_place ? 0 : h->pass_texture(h, ctx, "depth");
     if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
-    int cube = e->kind == EM_ENV_CUBE;
-    unsigned prog = h->program_id(h, in_place ? e->bg_in_place_prog[cube] : e->bg_prog[cube]);
+    int kind = e->is_sky ? 2 : e->kind == EM_ENV_CUBE;
+    unsigned prog = h->program_id(h, in_place ? e->bg_in_place_prog[kind] : e->bg_prog[kind]);
     if (!prog) return;
     glUseProgram(prog);
+    if (e->is_sky) bind_sky(e, prog);
+    /* the frames of a still after its first (the pixel centre) each stand for 1/n of the pixel:
+     * a footprint sqrt(n) narrower (aa's taa_lod_bias; one frame keeps the pixel's own) */
+    float lod_bias = f->sample_index > 0 && f->sample_count > 1 ? -0.5f * log2f((float)f->sample_count) : 0.0f;
+    glUniform1f(glGetUniformLocation(prog, "envmap_lod_bias"), lod_bias);
     /* the lighting units are free during this pass (bind() sets them again per material) */
     glBindTextureUnit(e->unit_spec, color);
     glBindTextureUnit(e->unit_lut, depth);
@@ -1041,15 +1072,16 @@ static sl_status envmap_activate(void *user) {
     }
     /* the background per source kind, drawn in place or (supersampled) as a pass of its own; each
      * compiled at its first program_id() (lazy): a scene compiles the one it draws */
-    static const char *const bg_defines[2][2] = {{NULL, "ENVMAP_SOURCE_CUBE 1"},
-                                                 {"ENVMAP_IN_PLACE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_CUBE 1"}};
-    for (int cube = 0; cube < 2; cube++) {
-        sl_program **slot[2] = {&e->bg_prog[cube], &e->bg_in_place_prog[cube]};
+    static const char *const bg_defines[2][3] = {
+        {NULL, "ENVMAP_SOURCE_CUBE 1", "ENVMAP_SOURCE_SKY 1"},
+        {"ENVMAP_IN_PLACE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_CUBE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_SKY 1"}};
+    for (int kind = 0; kind < 3; kind++) {
+        sl_program **slot[2] = {&e->bg_prog[kind], &e->bg_in_place_prog[kind]};
         for (int in_place = 0; in_place < 2; in_place++) {
             *slot[in_place] = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                                  .vertex = "sl:fullscreen.vert",
                                                                                  .fragment = "envmap_background.frag",
-                                                                                 .defines = bg_defines[in_place][cube]});
+                                                                                 .defines = bg_defines[in_place][kind]});
             if (!*slot[in_place]) return SL_ERR_GL;
         }
     }

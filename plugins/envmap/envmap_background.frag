@@ -6,12 +6,28 @@
 #include "envmap_common.glsl"
 uniform sampler2D envmap_color;
 uniform sampler2D envmap_depth;
-// ENVMAP_SOURCE_CUBE: the source is a cube, else a lat-long (a permutation: see envmap_to_cube.frag)
-#ifdef ENVMAP_SOURCE_CUBE
+// ENVMAP_SOURCE_CUBE: the source is a cube; ENVMAP_SOURCE_SKY: the procedural sky, evaluated here
+// per pixel (cube.c, em_sky_radiance: the same terms), so its sun disk has a sharp edge at any
+// resolution; else a lat-long (a permutation: see envmap_to_cube.frag)
+#if defined(ENVMAP_SOURCE_CUBE)
 uniform samplerCube envmap_srccube;
+#elif defined(ENVMAP_SOURCE_SKY)
+uniform vec3 envmap_sky_sun;          // unit, towards the sun (map frame)
+uniform float envmap_sky_sun_radius;  // radians
+uniform vec3 envmap_sky_sun_radiance; // E / Ω times the sun's colour; 0: no sun
+uniform vec3 envmap_sky_ground;       // below the horizon
+vec3 envmap_sky(vec3 d) {
+    const vec3 zenith = vec3(0.16, 0.30, 0.72), horizon = vec3(0.70, 0.78, 0.92);
+    float y = d.y;
+    float angle = acos(clamp(dot(d, envmap_sky_sun), -1.0, 1.0));
+    vec3 sky = y >= 0.0 ? mix(zenith, horizon, pow(1.0 - y, 4.0)) : mix(envmap_sky_ground, horizon, exp(y * 25.0));
+    float halo = (y > -0.05 ? 1.0 : 0.0) * (0.6 * exp(-angle * 8.0) + 0.15 * exp(-angle * 1.5));
+    return sky + halo * vec3(1.0, 0.9, 0.75) + (angle < envmap_sky_sun_radius ? envmap_sky_sun_radiance : vec3(0.0));
+}
 #else
 uniform sampler2D envmap_src2d;
 #endif
+uniform float envmap_lod_bias;    // a still's frames after its first: -0.5 log2(frames) (envmap.c)
 uniform vec2 envmap_src_size;
 uniform mat3 envmap_rot;
 uniform float envmap_scale;
@@ -43,11 +59,13 @@ void main() {
     vec4 a = envmap_inv_view_proj * vec4(ndc, -1.0, 1.0), b = envmap_inv_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
     vec3 sky;
-#ifdef ENVMAP_SOURCE_CUBE
-    float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)));
+#if defined(ENVMAP_SOURCE_CUBE)
+    float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)) + envmap_lod_bias);
     sky = textureLod(envmap_srccube, d, lod).rgb;
+#elif defined(ENVMAP_SOURCE_SKY)
+    sky = envmap_sky(normalize(d));
 #else
-    float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)));
+    float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)) + envmap_lod_bias);
     sky = textureLod(envmap_src2d, envmap_dir_latlong(d), lod).rgb;
 #endif
     sky *= envmap_scale;
