@@ -944,10 +944,6 @@ static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
     if (!prog) return;
     glUseProgram(prog);
     if (e->is_sky) bind_sky(e, prog);
-    /* the frames of a still after its first (the pixel centre) each stand for 1/n of the pixel:
-     * a footprint sqrt(n) narrower (aa's taa_lod_bias; one frame keeps the pixel's own) */
-    float lod_bias = f->sample_index > 0 && f->sample_count > 1 ? -0.5f * log2f((float)f->sample_count) : 0.0f;
-    glUniform1f(glGetUniformLocation(prog, "envmap_lod_bias"), lod_bias);
     /* the lighting units are free during this pass (bind() sets them again per material) */
     glBindTextureUnit(e->unit_spec, color);
     glBindTextureUnit(e->unit_lut, depth);

@@ -27,7 +27,6 @@ vec3 envmap_sky(vec3 d) {
 #else
 uniform sampler2D envmap_src2d;
 #endif
-uniform float envmap_lod_bias;    // a still's frames after its first: -0.5 log2(frames) (envmap.c)
 uniform vec2 envmap_src_size;
 uniform mat3 envmap_rot;
 uniform float envmap_scale;
@@ -60,12 +59,12 @@ void main() {
     vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
     vec3 sky;
 #if defined(ENVMAP_SOURCE_CUBE)
-    float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)) + envmap_lod_bias);
+    float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)));
     sky = textureLod(envmap_srccube, d, lod).rgb;
 #elif defined(ENVMAP_SOURCE_SKY)
     sky = envmap_sky(normalize(d));
 #else
-    float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)) + envmap_lod_bias);
+    float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)));
     sky = textureLod(envmap_src2d, envmap_dir_latlong(d), lod).rgb;
 #endif
     sky *= envmap_scale;
