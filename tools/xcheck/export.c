@@ -669,11 +669,8 @@ static void blender_latlong_dir(double u, double v, double d[3]) {
     d[2] = sin(theta) * sin(phi);
 }
 
-/* envmap's procedural sky, evaluated per direction of Blender's lat-long, w×h RGBA: one sample at
- * each texel's centre where the sky is smooth, 4×4 in the texels the sun disk's edge may cross
- * (its edge antialiased). At 4096×2048 a texel is 0.09°: Blender interpolates the map linearly, so
- * a coarser map widened the 1.5° disk's edge by half a texel, a quarter of a pixel in the
- * cross-check tables' views, which was most of env_sky's error against shadelab's exact disk. */
+/* envmap's procedural sky, evaluated per direction of Blender's lat-long (3×3 samples a texel, so
+ * the sun disk's edge is antialiased), w×h RGBA. */
 static float *sky_latlong(sl_app *app, int w, int h) {
     em_sky sky;
     em_sky_default(&sky);
@@ -682,30 +679,22 @@ static float *sky_latlong(sl_app *app, int w, int h) {
     sky.sun_irradiance = global_float(app, "envmap.sun_irradiance", sky.sun_irradiance);
     const sl_param *ground = global_param(app, "envmap.ground_color");
     if (ground) memcpy(sky.ground, ground->value.f, sizeof sky.ground);
-    double el = sky.sun_elevation_deg * M_PI / 180, az = sky.sun_azimuth_deg * M_PI / 180;
-    double sun[3] = {cos(el) * sin(az), sin(el), cos(el) * cos(az)}, r = sky.sun_radius_deg * M_PI / 180;
     float *px = malloc((size_t)w * h * 4 * sizeof *px);
     if (!px) return NULL;
-    for (int y = 0; y < h; y++) {
-        /* a texel's half-diagonal, radians: u spacing shrinks with sin θ */
-        double st = sin((y + 0.5) / h * M_PI), reach = 0.5 * M_PI / h * sqrt(1 + 4 * st * st) + 1e-9;
+    for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            double c[3], sum[3] = {0, 0, 0};
-            blender_latlong_dir((x + 0.5) / w, (y + 0.5) / h, c);
-            double angle = acos(fmin(1, fmax(-1, c[0] * sun[0] + c[1] * sun[1] + c[2] * sun[2])));
-            int k = fabs(angle - r) < 2 * reach && sky.sun_irradiance > 0 ? 4 : 1;
-            for (int sy = 0; sy < k; sy++)
-                for (int sx = 0; sx < k; sx++) {
+            double sum[3] = {0, 0, 0};
+            for (int sy = 0; sy < 3; sy++)
+                for (int sx = 0; sx < 3; sx++) {
                     double d[3], L[3];
-                    blender_latlong_dir((x + (sx + 0.5) / k) / w, (y + (sy + 0.5) / k) / h, d);
+                    blender_latlong_dir((x + (sx + 0.5) / 3) / w, (y + (sy + 0.5) / 3) / h, d);
                     em_sky_radiance(&sky, d, L);
-                    for (int i = 0; i < 3; i++) sum[i] += L[i] / (k * k);
+                    for (int i = 0; i < 3; i++) sum[i] += L[i] / 9;
                 }
             float *p = px + ((size_t)y * w + x) * 4;
             for (int i = 0; i < 3; i++) p[i] = (float)fmin(sum[i], 65504.0);
             p[3] = 1;
         }
-    }
     return px;
 }
 
@@ -731,7 +720,7 @@ static bool export_world(ctx *c, cJSON *root) {
     float *px = NULL;
     int width = 0, height = 0;
     if (!env->map) {
-        width = 4096, height = 2048;
+        width = 2048, height = 1024;
         px = sky_latlong(app, width, height);
         if (!px) { snprintf(c->err, c->n, "out of memory"); return false; }
     } else {
