@@ -14,6 +14,8 @@
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${1:-$ROOT/build}" && pwd) || exit 1
+# the figures are the checkout's: bring the build up to date first (a no-op when it is)
+cmake --build "$BUILD" -j"$(nproc)" > /dev/null || { echo "benchmarks-table: $BUILD does not build: fix it or pass another build directory" >&2; exit 1; }
 ROUNDS=${2:-3}
 SHARED=${SHARED:-$ROOT/../shared}
 OUT=${OUT:-$ROOT/docs/benchmarks.md}

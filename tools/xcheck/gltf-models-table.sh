@@ -20,6 +20,8 @@
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${1:-$ROOT/build}" && pwd) || exit 1
+# the figures are the checkout's: bring the build up to date first (a no-op when it is)
+cmake --build "$BUILD" -j"$(nproc)" > /dev/null || { echo "gltf-models-table: $BUILD does not build: fix it or pass another build directory" >&2; exit 1; }
 SIZE=${SIZE:-128x128}
 SAMPLES=${SAMPLES:-64}
 REFERENCE=${REFERENCE:-unoccluded}

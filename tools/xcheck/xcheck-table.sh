@@ -21,6 +21,8 @@
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${1:-$ROOT/build}" && pwd) || exit 1
+# the figures are the checkout's: bring the build up to date first (a no-op when it is)
+cmake --build "$BUILD" -j"$(nproc)" > /dev/null || { echo "xcheck-table: $BUILD does not build: fix it or pass another build directory" >&2; exit 1; }
 SIZE=${SIZE:-256x144}
 SAMPLES=${SAMPLES:-256}
 EEVEE=${EEVEE:-1,16}
