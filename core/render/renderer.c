@@ -563,6 +563,10 @@ bool sl_renderer_create(sl_app *app, char *err, size_t n) {
     r->finish_timing = app->opt.finish_timing || !app->backend.is_gpu;
     glGenQueries(64, r->queries);
     glCreateVertexArrays(1, &r->empty_vao);
+    /* vertex colours (location 6, scene_gpu.c): a mesh without them drawn by a program that reads
+     * them gets the attribute's current value, context state set once here: white (1, 1, 1, 1),
+     * where a generic attribute's default is (0, 0, 0, 1) */
+    glVertexAttrib4f(6, 1, 1, 1, 1);
     /* created lazily like every stand-alone program: most frames never display to a window,
      * accumulate or resolve supersampling */
     r->display_prog = sl_program_from_files_deferred(NULL, "sl:fullscreen.vert", "sl:display.frag", NULL, err, n);

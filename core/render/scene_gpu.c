@@ -49,9 +49,8 @@ void sl_gpu_upload_mesh(gpu_mesh *g, const sl_mesh_data *m) {
         bind_float_attrib(g->vao, 4, g->vbo[4], 2);
     }
     /* vertex colours (location 6) likewise: read by the programs of materials a coloured mesh uses
-     * (SL_MAT_USES_VERTEX_COLOR); a mesh without them drawn by such a program reads the attribute's
-     * current value, white (1, 1, 1, 1): a generic attribute's default is (0, 0, 0, 1) */
-    glVertexAttrib4f(6, 1, 1, 1, 1);
+     * (SL_MAT_USES_VERTEX_COLOR); a mesh without them drawn by such a program reads white (the
+     * attribute's current value, set once at the renderer's creation) */
     if (m->colors && m->vertex_count > 0) {
         glNamedBufferData(g->vbo[5], (size_t)m->vertex_count * 4 * sizeof(float), m->colors, GL_STATIC_DRAW);
         bind_float_attrib(g->vao, 6, g->vbo[5], 4);
