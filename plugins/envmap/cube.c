@@ -478,11 +478,15 @@ void em_sky_default(em_sky *s) {
     s->ground[0] = 0.10f, s->ground[1] = 0.09f, s->ground[2] = 0.08f;
 }
 
-static void sun_dir(const em_sky *s, double d[3]) {
+void em_sky_sun(const em_sky *s, double dir[3], double *radius, double radiance[3]) {
     double e = s->sun_elevation_deg * M_PI / 180, a = s->sun_azimuth_deg * M_PI / 180;
-    d[0] = cos(e) * sin(a);
-    d[1] = sin(e);
-    d[2] = cos(e) * cos(a);
+    dir[0] = cos(e) * sin(a);
+    dir[1] = sin(e);
+    dir[2] = cos(e) * cos(a);
+    double r = s->sun_radius_deg * M_PI / 180, omega = 2 * M_PI * (1 - cos(r));
+    static const double sun_col[3] = {1.0, 0.95, 0.88};
+    for (int c = 0; c < 3; c++) radiance[c] = s->sun_irradiance > 0 ? s->sun_irradiance / omega * sun_col[c] : 0.0;
+    *radius = r;
 }
 
 /* A simple analytic clear sky: zenith-to-horizon gradient, a brighter halo around the sun, the
@@ -492,8 +496,8 @@ static void sun_dir(const em_sky *s, double d[3]) {
 void em_sky_radiance(const em_sky *s, const double d[3], double out[3]) {
     static const double zenith[3] = {0.16, 0.30, 0.72}, horizon[3] = {0.70, 0.78, 0.92};
     const float *ground = s->ground;
-    double sd[3];
-    sun_dir(s, sd);
+    double sd[3], r, sun[3];
+    em_sky_sun(s, sd, &r, sun);
     double y = d[1];
     double cos_sun = d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2];
     double angle = acos(cos_sun < -1 ? -1 : cos_sun > 1 ? 1 : cos_sun);
@@ -510,12 +514,8 @@ void em_sky_radiance(const em_sky *s, const double d[3], double out[3]) {
         static const double halo_col[3] = {1.0, 0.9, 0.75};
         out[c] = sky + halo * halo_col[c];
     }
-    double r = s->sun_radius_deg * M_PI / 180;
-    if (angle < r && s->sun_irradiance > 0) {
-        double omega = 2 * M_PI * (1 - cos(r));
-        static const double sun_col[3] = {1.0, 0.95, 0.88};
-        for (int c = 0; c < 3; c++) out[c] += s->sun_irradiance / omega * sun_col[c];
-    }
+    if (angle < r && s->sun_irradiance > 0)
+        for (int c = 0; c < 3; c++) out[c] += sun[c];
 }
 
 /* The sky of one texel centre with the row's terms precomputed: em_sky_radiance's expressions,
@@ -547,9 +547,9 @@ void em_sky_latlong(const em_sky *s, int w, int h, em_image *out) {
     out->w = w;
     out->h = h;
     out->px = malloc((size_t)w * h * 4 * sizeof(float));
-    double sd[3];
-    sun_dir(s, sd);
-    double r = s->sun_radius_deg * M_PI / 180, texel = M_PI / h;
+    double sd[3], r, sun[3];
+    em_sky_sun(s, sd, &r, sun);
+    double texel = M_PI / h;
     /* each column's horizontal direction (em_latlong_dir on the horizon) and each row's sines,
      * computed once (start-up, issue 19: a third of the time it took when every texel called
      * em_latlong_dir and em_sky_radiance; same values) */

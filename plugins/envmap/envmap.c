@@ -503,9 +503,9 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     }
     if (!ok) {
         em_env_free(&loaded);
-        em_sky sky = sky_params(e);
+        e->sky = sky_params(e);
         loaded.kind = EM_ENV_LATLONG;
-        em_sky_latlong(&sky, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
+        em_sky_latlong(&e->sky, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
         name = "procedural sky";
         is_sky = true;
     }
@@ -518,7 +518,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
         e->host->log(e->host, SL_LOG_INFO, "%s: %ld values above 65504 (largest %g) clamped to the half-float limit",
                      name, s->clamped, s->max_value);
     e->is_sky = is_sky;
-    if (is_sky) upload_sky(e, &loaded), e->sky = sky_params(e);
+    if (is_sky) upload_sky(e, &loaded);
     else upload_source(e, &loaded, name);
     em_env_free(&loaded);
     e->have_src = true;
@@ -922,15 +922,12 @@ static bool background_ssaa_active(void *user, const sl_frame *f) {
  * the disk has a sharp edge at any resolution, so a still's jittered frames box-filter it over the
  * pixel as a path tracer does (the lat-long's texels blurred it over about two pixels). */
 static void bind_sky(envmap *e, unsigned prog) {
-    const em_sky *s = &e->sky;
-    double el = s->sun_elevation_deg * M_PI / 180, az = s->sun_azimuth_deg * M_PI / 180;
-    double r = s->sun_radius_deg * M_PI / 180, omega = 2 * M_PI * (1 - cos(r));
-    float on = s->sun_irradiance > 0 ? (float)(s->sun_irradiance / omega) : 0.0f;
-    glUniform3f(glGetUniformLocation(prog, "envmap_sky_sun"), (float)(cos(el) * sin(az)), (float)sin(el),
-                (float)(cos(el) * cos(az)));
+    double dir[3], r, sun[3];
+    em_sky_sun(&e->sky, dir, &r, sun);
+    glUniform3f(glGetUniformLocation(prog, "envmap_sky_sun"), (float)dir[0], (float)dir[1], (float)dir[2]);
     glUniform1f(glGetUniformLocation(prog, "envmap_sky_sun_radius"), (float)r);
-    glUniform3f(glGetUniformLocation(prog, "envmap_sky_sun_radiance"), on * 1.0f, on * 0.95f, on * 0.88f);
-    glUniform3fv(glGetUniformLocation(prog, "envmap_sky_ground"), 1, s->ground);
+    glUniform3f(glGetUniformLocation(prog, "envmap_sky_sun_radiance"), (float)sun[0], (float)sun[1], (float)sun[2]);
+    glUniform3fv(glGetUniformLocation(prog, "envmap_sky_ground"), 1, e->sky.ground);
 }
 
 static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {

@@ -141,6 +141,9 @@ typedef struct em_sky {
 } em_sky;
 void em_sky_default(em_sky *s);
 void em_sky_radiance(const em_sky *s, const double d[3], double out[3]);
+/* Its sun: the unit direction towards it, its angular radius (radians) and the disk's uniform
+ * radiance E/Ω times the sun's colour (0 without a sun) — what em_sky_radiance adds inside it. */
+void em_sky_sun(const em_sky *s, double dir[3], double *radius, double radiance[3]);
 /* Renders the sky as a lat-long image (the sun disk supersampled). */
 void em_sky_latlong(const em_sky *s, int w, int h, em_image *out);
 /* The procedural sky's set-up on the CPU (issue 19: no GPU programs to compile before the first
