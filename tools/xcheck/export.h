@@ -5,7 +5,7 @@
  *
  *   blender -b --factory-startup --python DIR/scene.py -- OUTDIR
  *
- * renders OUTDIR/combined_0001.exr (linear radiance) and OUTDIR/index_0001.exr (object index,
+ * renders OUTDIR/combined_0000.exr (linear radiance) and OUTDIR/index_0000.exr (object index,
  * 0 = background). The unit conversions and what is not cross-checked are in docs/xcheck.md. */
 #ifndef XCHECK_EXPORT_H
 #define XCHECK_EXPORT_H

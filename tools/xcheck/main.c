@@ -237,8 +237,8 @@ static bool cycles_reference(const options *o, const char *dir, uint64_t key, co
     int status = system(cmd);
     *seconds = now_seconds() - t0;
     char img[4300], idx[4300], obj[4300];
-    snprintf(img, sizeof img, "%s/combined_0001.exr", render_dir);
-    snprintf(idx, sizeof idx, "%s/index_0001.exr", render_dir);
+    snprintf(img, sizeof img, "%s/combined_0000.exr", render_dir);
+    snprintf(idx, sizeof idx, "%s/index_0000.exr", render_dir);
     snprintf(obj, sizeof obj, "%s/objects.json", render_dir);
     if (status != 0 || stat(img, &st) != 0 || stat(idx, &st) != 0 || (gltf && stat(obj, &st) != 0)) {
         snprintf(err, n, "Blender failed (exit status %d) for %s; its output is in %s", WIFEXITED(status) ? WEXITSTATUS(status) : -1,
@@ -277,7 +277,7 @@ static bool eevee_render(const char *dir, const char *blender, int samples, doub
     fprintf(stderr, "[xcheck] EEVEE: %d samples (log: %s)\n", samples, log);
     int status = system(cmd);
     char img[4300], out[4300];
-    snprintf(img, sizeof img, "%s/eevee_0001.exr", render_dir);
+    snprintf(img, sizeof img, "%s/eevee_0000.exr", render_dir);
     snprintf(out, sizeof out, "%s/eevee-%d.exr", dir, samples);
     struct stat st;
     if (status != 0 || stat(img, &st) != 0) {

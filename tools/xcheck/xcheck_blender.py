@@ -371,7 +371,10 @@ def setup_render(S, out_dir):
     sc.view_settings.look = "None"
     sc.view_settings.exposure = r.get("exposure", 0.0)
     sc.view_settings.gamma = 1.0
-    sc.frame_current = 1
+    # scene time 0, the time shadelab renders: Blender's glTF importer puts a key at time t on frame
+    # t * fps (io_scene_gltf2/blender/imp/gltf2_blender_animation_node.py), so time 0 is frame 0;
+    # frame 1 (the scene's start) would show an animated model 1/fps seconds later
+    sc.frame_current = 0
     layer = sc.view_layers[0]
     layer.use_pass_object_index = True
     # compositor: the linear combined image and the object index as 32-bit EXRs
@@ -456,7 +459,7 @@ def camera_rays_only():
 def setup_eevee(S, samples, out_dir):
     """EEVEE as a peer: the same scene, soft shadows, ambient occlusion and screen-space
     reflections on (off for an unoccluded reference: what they add is occlusion and
-    inter-reflection), `samples` anti-aliasing samples, the linear image to OUT/eevee_0001.exr."""
+    inter-reflection), `samples` anti-aliasing samples, the linear image to OUT/eevee_0000.exr."""
     sc = bpy.context.scene
     sc.render.engine = "BLENDER_EEVEE"
     ee = sc.eevee

@@ -13,6 +13,8 @@
  *   spot       spots over a plane (linear and glTF fall-off, one tilted): L = ρ/π · I·f(θ)·cos θ_i / d²
  *   mirror     mirror sphere in a lat-long whose colour is a linear function of the direction, in
  *              Blender's orientation (u = ½ at +X growing towards +Z, v = 0 up), turned by yaw
+ *   gltf-quad  an animated glTF quad opened directly (Blender's importer): its edges where the
+ *              spec's projection puts them at time 0 through the file's camera
  *   unmapped   a ggx layer set on a material (clear coat) is listed as not cross-checked, naming
  *              the key and the material; a layer key at its default is not (no Blender needed)
  *
@@ -43,15 +45,13 @@ static void write_text(const char *path, const char *text) {
     fclose(f);
 }
 
-/* Renders scene text with Cycles through shadelab-xcheck (with the options `extra`); exits 77
- * when Blender is missing. */
-static bool cycles_with(const char *name, const char *scene, int samples, const char *extra, render *r) {
-    char path[4096], out[4096], cmd[9000];
-    snprintf(path, sizeof path, "%s/%s.json", sl_test_dir(), name);
+/* Renders the scene file `scene` with Cycles through shadelab-xcheck (with the options `extra`);
+ * exits 77 when Blender is missing. */
+static bool cycles_file(const char *name, const char *scene, int samples, const char *extra, render *r) {
+    char path[4200], out[4096], cmd[9000];
     snprintf(out, sizeof out, "%s/%s", sl_test_dir(), name);
-    write_text(path, scene);
     snprintf(cmd, sizeof cmd, "'%s' --reference-only %s --size %dx%d --samples %d --out '%s' '%s'", SL_XCHECK_EXE, extra,
-             W, H, samples, out, path);
+             W, H, samples, out, scene);
     int status = system(cmd);
     if (WIFEXITED(status) && WEXITSTATUS(status) == SKIP) {
         fprintf(stderr, "SKIPPED: Blender is not installed (tools/install-deps.sh --with-tests installs it)\n");
@@ -65,6 +65,14 @@ static bool cycles_with(const char *name, const char *scene, int samples, const 
     ok = ok && sl_image_load(&r->index, path, err, sizeof err);
     CHECK_MSG(ok, "%s: %s", name, err);
     return ok;
+}
+
+/* The same for scene text, written to NAME.json. */
+static bool cycles_with(const char *name, const char *scene, int samples, const char *extra, render *r) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s.json", sl_test_dir(), name);
+    write_text(path, scene);
+    return cycles_file(name, path, samples, extra, r);
 }
 
 static bool cycles(const char *name, const char *scene, int samples, render *r) {
@@ -354,6 +362,98 @@ static void write_pattern_map(const char *path) {
     free(px);
 }
 
+/* ---- glTF model: camera and time -------------------------------------------------------- */
+
+/* A glTF file opened directly (Blender's importer reads it): an unlit black quad [−1, 1]² at z = 0
+ * whose translation is animated from (0, 0, 0) at 0 s to (2.4, 0, 0) at 1 s, seen by the file's
+ * camera at (0, 0, 3) looking down −Z (yfov 0.8, no aspectRatio: the image's). shadelab renders
+ * scene time 0, so the reference must show the quad at the origin. By the spec's perspective
+ * projection (glTF 2.0 §3.10.3: x_ndc = x / (−z · aspect · tan(yfov/2))), its edges are at pixel
+ * x = W/2 · (1 ± 1 / (3 · (W/H) · tan 0.4)), y = H/2 · (1 ± 1 / (3 · tan 0.4)): centred, and
+ * H / (3 tan 0.4) px across both ways (50.46 at H = 64). At Blender's frame 1 (1/24 s) the quad
+ * would be 0.1 m, 2.5 px, to the right. */
+
+static void write_quad_gltf(const char *gltf) {
+    const float pos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, nrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const unsigned short idx[6] = {0, 1, 2, 0, 2, 3};
+    const float times[2] = {0, 1}, moves[6] = {0, 0, 0, 2.4f, 0, 0};
+    char bin[4200];
+    snprintf(bin, sizeof bin, "%s/quad.bin", sl_test_dir());
+    FILE *f = fopen(bin, "wb");
+    bool ok = f && fwrite(pos, sizeof pos, 1, f) && fwrite(nrm, sizeof nrm, 1, f) && fwrite(idx, sizeof idx, 1, f) &&
+              fwrite(times, sizeof times, 1, f) && fwrite(moves, sizeof moves, 1, f);
+    if (f) ok &= fclose(f) == 0;
+    if (!ok) { fprintf(stderr, "cannot write %s\n", bin); exit(1); }
+    write_text(gltf,
+        "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0, 1]}],\n"
+        " \"extensionsUsed\": [\"KHR_materials_unlit\"],\n"
+        " \"nodes\": [{\"name\": \"quad\", \"mesh\": 0}, {\"name\": \"eye\", \"camera\": 0, \"translation\": [0, 0, 3]}],\n"
+        " \"cameras\": [{\"type\": \"perspective\", \"perspective\": {\"yfov\": 0.8, \"znear\": 0.1, \"zfar\": 20}}],\n"
+        " \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0, \"NORMAL\": 1}, \"indices\": 2, \"material\": 0}]}],\n"
+        " \"materials\": [{\"name\": \"black\", \"pbrMetallicRoughness\": {\"baseColorFactor\": [0, 0, 0, 1]},\n"
+        "                \"extensions\": {\"KHR_materials_unlit\": {}}}],\n"
+        " \"animations\": [{\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": \"translation\"}}],\n"
+        "                 \"samplers\": [{\"input\": 3, \"output\": 4}]}],\n"
+        " \"buffers\": [{\"uri\": \"quad.bin\", \"byteLength\": 140}],\n"
+        " \"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48}, {\"buffer\": 0, \"byteOffset\": 48, \"byteLength\": 48},\n"
+        "                 {\"buffer\": 0, \"byteOffset\": 96, \"byteLength\": 12}, {\"buffer\": 0, \"byteOffset\": 108, \"byteLength\": 8},\n"
+        "                 {\"buffer\": 0, \"byteOffset\": 116, \"byteLength\": 24}],\n"
+        " \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\", \"min\": [-1, -1, 0], \"max\": [1, 1, 0]},\n"
+        "               {\"bufferView\": 1, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"},\n"
+        "               {\"bufferView\": 2, \"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"},\n"
+        "               {\"bufferView\": 3, \"componentType\": 5126, \"count\": 2, \"type\": \"SCALAR\", \"min\": [0], \"max\": [1]},\n"
+        "               {\"bufferView\": 4, \"componentType\": 5126, \"count\": 2, \"type\": \"VEC3\"}]}\n");
+}
+
+/* The black quad's extent along one row (vertical = false) or column k of the image: each pixel's
+ * coverage 1 − v/b, b the background's mean over the 4 pixels at that end of the line (the near
+ * end's, so the environment's gradient across the line plays no part), summed over the quad's
+ * pixels and 3 either side: the span in pixels; the coverage-weighted mean of pixel centres: its
+ * centre (both exact for a box filter). */
+static void quad_extent(const render *r, int k, bool vertical, double *span, double *centre) {
+    int n = vertical ? H : W;
+    double v[W > H ? W : H], lo = 0, hi = 0;
+    for (int i = 0; i < n; i++) {
+        size_t px = 4 * (vertical ? (size_t)i * W + k : (size_t)k * W + i);
+        v[i] = r->img.pixels[px] + r->img.pixels[px + 1] + r->img.pixels[px + 2];
+    }
+    for (int i = 0; i < 4; i++) lo += v[i] / 4, hi += v[n - 1 - i] / 4;
+    int a = n, b = -1;
+    for (int i = 0; i < n; i++)
+        if (v[i] < 0.5 * (i < n / 2 ? lo : hi)) a = i < a ? i : a, b = i;
+    double sum = 0, moment = 0;
+    for (int i = a - 3 < 4 ? 4 : a - 3; i <= b + 3 && i < n - 4; i++) {
+        double c = 1 - v[i] / (i < n / 2 ? lo : hi);
+        sum += c, moment += c * (i + 0.5);
+    }
+    *span = sum, *centre = sum > 0 ? moment / sum : NAN;
+}
+
+static void gltf_case(void) {
+    char gltf[4200];
+    snprintf(gltf, sizeof gltf, "%s/quad.gltf", sl_test_dir());
+    write_quad_gltf(gltf);
+    render r = {0};
+    if (!cycles_file("gltf-quad", gltf, 64, "--unoccluded", &r)) return;
+    for (int vertical = 0; vertical < 2; vertical++) {
+        double span = 0, centre = 0, e_span = H / (3 * tan(0.4)), e_centre = 0.5 * (vertical ? H : W);
+        int lines = 0;
+        for (int k = 16; k < (vertical ? W : H) - 16; k++, lines++) {
+            double s, c;
+            quad_extent(&r, k, vertical, &s, &c);
+            span += s, centre += c;
+        }
+        span /= lines, centre /= lines;
+        printf("%-12s %s: centre %.3f px (closed form %.3f), span %.3f px (closed form %.3f), %d lines\n", "gltf-quad",
+               vertical ? "columns" : "rows", centre, e_centre, span, e_span, lines);
+        CHECK_MSG(fabs(centre - e_centre) <= 0.15, "gltf-quad: the quad's centre along the %s is %.3f px, expected %.3f",
+                  vertical ? "columns" : "rows", centre, e_centre);
+        CHECK_MSG(fabs(span - e_span) <= 0.3, "gltf-quad: the quad spans %.3f px along the %s, expected %.3f", span,
+                  vertical ? "columns" : "rows", e_span);
+    }
+    free_render(&r);
+}
+
 int main(void) {
     render r = {0};
     /* sun: plane facing +Z (a +Y plane turned 90° about X), sun 40° from its normal */
@@ -413,5 +513,6 @@ int main(void) {
         compare("mirror-bg", &r, 0, mirror_background, NULL, false, 1.2, 0, 0.01, 0.005, 0.01);
     }
     free_render(&r);
+    gltf_case();
     return check_result();
 }
