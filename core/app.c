@@ -452,6 +452,7 @@ static bool apply_scene_values(sl_app *app, char *err, size_t n) {
             char text[1024], why[1024];
             prop_text(p, text, sizeof text);
             if (!sl_params_find_key(&app->params, SL_SCOPE_LIGHT, p->key, L->type)) {
+                if (L->plugin) continue; /* a plugin's light: keys of plugins not loaded (add_light) */
                 light_key_error(app, L, p->key, why, sizeof why);
                 SL_WARN("%s:%d: %s (ignored)", s->path, p->line, why);
                 continue;

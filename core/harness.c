@@ -1,6 +1,7 @@
 /* The test harness (sdk/include/shadelab/harness.h) over the application object. */
 #include <shadelab/harness.h>
 #include "app.h"
+#include "core_plugin.h"
 #include "image/image.h"
 #include "log.h"
 #include "render/composer.h"
@@ -72,7 +73,27 @@ bool sl_harness_render(sl_harness *h, float *rgba) {
     return sl_app_render_frame(&h->app) && (!rgba || sl_app_read_color(&h->app, rgba));
 }
 
+/* "light.NAME.KEY" of a core light key (core_plugin.h) */
+static bool get_light_key(sl_harness *h, const char *id, char *text, size_t n) {
+    char name[512];
+    const char *dot = strrchr(id, '.');
+    if (strncmp(id, "light.", 6) || !dot || dot - id - 6 <= 0 || (size_t)(dot - id - 6) >= sizeof name) return false;
+    snprintf(name, sizeof name, "%.*s", (int)(dot - id - 6), id + 6);
+    for (int i = 0; i < h->app.scene.light_count; i++) {
+        sl_value v;
+        if (strcmp(h->app.scene.lights[i].name, name) || !sl_core_light_get(&h->app.scene.lights[i], dot + 1, &v)) continue;
+        if (!strcmp(dot + 1, "enabled") || !strcmp(dot + 1, "cast_shadows")) snprintf(text, n, "%s", v.b ? "true" : "false");
+        else if (!strcmp(dot + 1, "color") || !strcmp(dot + 1, "position") || !strcmp(dot + 1, "direction"))
+            snprintf(text, n, "%.9g,%.9g,%.9g", v.f[0], v.f[1], v.f[2]);
+        else if (!strcmp(dot + 1, "animate")) snprintf(text, n, "%d", v.i);
+        else snprintf(text, n, "%.9g", v.f[0]);
+        return true;
+    }
+    return false;
+}
+
 bool sl_harness_get(sl_harness *h, const char *id, char *text, size_t n) {
+    if (get_light_key(h, id, text, n)) return true;
     const sl_param *q = sl_params_find(&h->app.params, id);
     if (!q) return false;
     const float *f = q->value.f; /* floats in full (sl_param_format rounds for display) */

@@ -63,6 +63,7 @@ typedef struct sl_app {
     sl_mat_state *materials;     /* one per scene material */
     float (*light_params)[8];    /* light-scope keys packed by light_slot, one row per light */
     uint64_t materials_version, lights_version;
+    bool plugin_lights_moved;    /* a plugin set its own light (plugin_lights.h): the renderer repacks */
     char *debug_view;            /* NULL = final render */
     double time;
     uint64_t frame_index;

@@ -9,6 +9,7 @@
 #include "render/post.h"
 #include "budget/budget.h"
 #include "image/image.h"
+#include "plugin_lights.h"
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -192,6 +193,15 @@ static bool host_read_image(const sl_host *h, const char *path, sl_image_file *o
 static bool host_scene_uses_uniform(const sl_host *h, const char *name) {
     return sl_renderer_materials_use_uniform((sl_app *)HOST_APP(h), name);
 }
+static int host_add_light(const sl_host *h, const sl_plugin_light_desc *d) {
+    char err[512];
+    int li = d ? sl_plugin_light_add(HOST_APP(h), HOST_IDX(h), d, err, sizeof err) : -1;
+    if (li < 0) host_log(h, SL_LOG_ERROR, "%s", d ? err : "add_light: no description");
+    return li;
+}
+static bool host_set_light(const sl_host *h, int light, const sl_plugin_light_state *s) {
+    return s && sl_plugin_light_set(HOST_APP(h), HOST_IDX(h), light, s);
+}
 static void host_compile_ahead(const sl_host *h) { sl_renderer_compile_ahead((sl_app *)HOST_APP(h)); }
 void sl_host_set_gl_app(sl_app *app) { g_gl_app = app; }
 
@@ -238,6 +248,8 @@ sl_host *sl_host_make(sl_app *app, int index) {
     h->scene_uses_uniform = host_scene_uses_uniform;
     h->compile_ahead = host_compile_ahead;
     h->set_texture_lod_bias = host_set_texture_lod_bias;
+    h->add_light = host_add_light;
+    h->set_light = host_set_light;
     return &impl->host;
 }
 

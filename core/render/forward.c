@@ -1,5 +1,6 @@
 #include "render/forward.h"
 #include "render/renderer_internal.h"
+#include "plugin_lights.h"
 #include "state.h"
 #include "log.h"
 #include <ctype.h>
@@ -20,11 +21,15 @@ void sl_glsl_ident(const char *in, char *out, size_t n, bool upper) {
 /* The light types the forward programs specialise on: the SET of types of the scene's lights,
  * enabled or not (issue 18). A type with no enabled light keeps its loop and gets an empty range,
  * so toggling or adding a light of a present type changes only the light buffer and the range
- * uniforms, never a program; only a light of a new type composes new programs. */
+ * uniforms, never a program; only a light of a new type composes new programs. A plugin's light
+ * (plugin_lights.h) counts only while it is on: a scene pays nothing for one it does not use. */
+static bool counts(sl_app *app, const sl_light *L) { return !L->plugin || sl_light_on(app, L); }
+
 int sl_forward_light_types(sl_app *app, const char **types, int max) {
     int n = 0;
     for (int i = 0; i < app->scene.light_count; i++) {
         const sl_light *L = &app->scene.lights[i];
+        if (!counts(app, L)) continue;
         bool seen = false;
         for (int k = 0; k < n; k++) seen |= !strcmp(types[k], L->type);
         if (!seen && n < max) types[n++] = L->type;
@@ -38,8 +43,10 @@ int sl_forward_light_types(sl_app *app, const char **types, int max) {
  * light buffer, in ranges sl_shadowed_<type>, the rest in sl_lights_<type>; only the casters' loop
  * calls the SHADOW hook. */
 bool sl_forward_shadow_casters(sl_app *app) {
-    for (int i = 0; i < app->scene.light_count; i++)
-        if (app->scene.lights[i].cast_shadows && sl_forward_light_type_lit(app, app->scene.lights[i].type)) return true;
+    for (int i = 0; i < app->scene.light_count; i++) {
+        const sl_light *L = &app->scene.lights[i];
+        if (counts(app, L) && L->cast_shadows && sl_forward_light_type_lit(app, L->type)) return true;
+    }
     return false;
 }
 
@@ -341,7 +348,8 @@ static void choose_lights(composition *c) {
     c->ntypes = sl_forward_light_types(app, c->types, SL_MAX_LIGHT_TYPES);
     for (int t = 0; t < c->ntypes; t++) c->light_chunks[t] = find_named(app, SL_HOOK_LIGHT, c->types[t]);
     for (int i = 0; i < app->scene.light_count && !c->shadow; i++)
-        for (int k = 0; k < P->chunk_count && !c->shadow && app->scene.lights[i].cast_shadows; k++)
+        for (int k = 0; k < P->chunk_count && !c->shadow && app->scene.lights[i].cast_shadows &&
+                        counts(app, &app->scene.lights[i]); k++)
             if (P->chunks[k].d.hook == SL_HOOK_SHADOW && sl_plugin_enabled(P, P->chunks[k].owner)) c->shadow = &P->chunks[k];
     c->casters = sl_forward_shadow_casters(app); /* the casters' ranges and loop (sl_gpu_pack_lights) */
     bool forward = c->req->kind == SL_VARIANT_FORWARD && !c->req->model_override;

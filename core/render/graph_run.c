@@ -339,6 +339,7 @@ static uint64_t depends_key(sl_app *app, graph_pass *g) {
     uint64_t h = sl_hash64(&dep, sizeof dep, 0);
     if (dep & SL_DEPENDS_LIGHTS) {
         h = sl_hash64(&f->lights_version, sizeof f->lights_version, h);
+        h = sl_hash64(&r->plugin_light_moves, sizeof r->plugin_light_moves, h); /* plugin_lights.h */
         /* a pass after the shadow stage sees the shadow maps through the material programs */
         if (g->d->stage >= SL_STAGE_PREPASS) h = sl_hash64(&r->shadow_runs, sizeof r->shadow_runs, h);
     }

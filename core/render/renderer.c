@@ -2,6 +2,7 @@
  * See renderer.h (its interface) and renderer_internal.h (how its files divide the work). */
 #include "render/texture_prefetch.h"
 #include "render/renderer_internal.h"
+#include "plugin_lights.h"
 #include "render/post.h"
 #include "log.h"
 #include "startup.h"
@@ -157,26 +158,33 @@ static uint64_t plan_key(sl_app *app) {
     return h;
 }
 
+static void recompose(sl_app *app) {
+    sl_renderer *r = R(app);
+    /* a new debug view changes every program's output without any other version moving */
+    if ((r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
+        (app->debug_view && strcmp(app->debug_view, r->seen_debug_view)))
+        r->programs_version++;
+    sl_gpu_compose_all(app);
+    free(r->seen_debug_view);
+    r->seen_debug_view = app->debug_view ? strdup(app->debug_view) : NULL;
+    r->seen_recompile = app->params.recompile_version;
+    r->seen_materials = app->materials_version;
+}
+
 static void refresh(sl_app *app) {
     sl_renderer *r = R(app);
-    bool recompose = sl_renderer_compose_pending(app); /* before the lights' version is marked seen */
+    /* a plugin owning lights switched on or off: its lights with it (plugin_lights.h) */
+    uint64_t owners = sl_plugin_lights_owners_on(app);
+    if (owners != r->seen_light_owners) app->lights_version++;
+    r->seen_light_owners = owners;
+    bool compose = sl_renderer_compose_pending(app); /* before the lights' version is marked seen */
     bool lights_changed = r->seen_lights_version != app->lights_version;
     if (lights_changed || (sl_gpu_lights_animated(app) && r->seen_light_time != app->time)) sl_gpu_pack_lights(app);
     r->seen_light_time = app->time;
     /* node TRS animations (glTF): the nodes posed at this frame's time */
     if (app->scene.anim_channel_count) sl_scene_animate(&app->scene, app->time);
     sl_deform_frame(app); /* skinned and morphing meshes posed for every pass of the frame */
-    if (recompose) {
-        /* a new debug view changes every program's output without any other version moving */
-        if ((r->seen_debug_view == NULL) != (app->debug_view == NULL) ||
-            (app->debug_view && strcmp(app->debug_view, r->seen_debug_view)))
-            r->programs_version++;
-        sl_gpu_compose_all(app);
-        free(r->seen_debug_view);
-        r->seen_debug_view = app->debug_view ? strdup(app->debug_view) : NULL;
-        r->seen_recompile = app->params.recompile_version;
-        r->seen_materials = app->materials_version;
-    }
+    if (compose) recompose(app);
     r->seen_lights_version = app->lights_version;
     /* a material became blended or stopped being (alpha_blend): the forward-blend pass comes or goes */
     if (sl_gpu_scene_has_blended(app) != r->blend_planned) r->plan_dirty = true;
@@ -275,13 +283,16 @@ static void apply_jitter(sl_renderer *r) {
  * a TAA still averages: consecutive frames with the same camera, geometry, lights, edits and
  * size; the jitter is not part of it, it is applied after). Called once per frame, before the
  * plugins' begin_frame. */
-static void still_count(sl_renderer *r) {
-    const sl_frame *f = &r->frame;
+static uint64_t still_key(const sl_frame *f) {
     uint64_t v[] = {f->camera_version, f->geometry_version, f->lights_version, f->edits_version,
                     (uint64_t)f->width << 32 | (uint32_t)f->height};
     uint64_t key = sl_hash64(v, sizeof v, 0);
     key = sl_hash64(f->view, sizeof f->view, key);
-    key = sl_hash64(f->proj, sizeof f->proj, key);
+    return sl_hash64(f->proj, sizeof f->proj, key);
+}
+
+static void still_count(sl_renderer *r) {
+    uint64_t key = still_key(&r->frame);
     bool same = r->still_valid && key == r->still_key && r->still_last_frame + 1 == r->frames_run;
     r->still_run = same && r->still_run < (1 << 30) ? r->still_run + 1 : 0;
     r->still_key = key;
@@ -331,6 +342,21 @@ int sl_renderer_still_frames(sl_app *app) {
     return r && r->still_frames > 1 ? r->still_frames : 1;
 }
 
+/* A plugin set its own light in begin_frame (host set_light, ABI 1.22): this frame is lit by the
+ * new state. The frame's versions stay as the plugins saw them in begin_frame (what moved the
+ * light, an edit, changed them already; a version that moved now would look like motion to a
+ * temporal method in the next frame and restart its still); passes that depend on the lights
+ * see the move through plugin_light_moves (graph_run.c). */
+static void plugin_lights_moved(sl_app *app) {
+    sl_renderer *r = R(app);
+    app->plugin_lights_moved = false;
+    recompose(app); /* a plugin light that came or went changes the programs' light types */
+    uint64_t packed = r->lights_packed;
+    sl_gpu_pack_lights(app);
+    r->lights_packed = packed;
+    r->plugin_light_moves++;
+}
+
 bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
     sl_renderer *r = R(app);
     if (!r) return false;
@@ -353,6 +379,7 @@ bool sl_renderer_frame(sl_app *app, int unused_index, int unused_count) {
         sl_plugin_rec *pr = app->plugins.items[i];
         if (pr->active && pr->desc.begin_frame && sl_plugin_enabled(&app->plugins, i)) pr->desc.begin_frame(pr->user, &r->frame);
     }
+    if (app->plugin_lights_moved) plugin_lights_moved(app);
     if (sl_startup_recording()) sl_startup_mark("frame %d: plugins' begin_frame", (int)app->frame_index);
     apply_jitter(r);
     sl_gpu_apply_lod_bias(app, r->lod_bias_req);

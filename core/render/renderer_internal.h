@@ -117,6 +117,8 @@ typedef struct sl_renderer {
 
     /* ---- what the last frame saw (renderer.c): a change recomposes or re-plans ---- */
     uint64_t seen_recompile, seen_materials, seen_lights_version, seen_param_version;
+    uint64_t seen_light_owners; /* which plugins owning lights were on (plugin_lights.h) */
+    uint64_t plugin_light_moves; /* times a plugin moved its own light (SL_DEPENDS_LIGHTS passes re-run) */
     /* edits of global parameters (sl_frame.edits_version): counted when their values other than
      * the viewport-only ones (sl_graph_viewport_only) changed since the parameters' last version */
     uint64_t param_edits, edits_seen_version, edits_key;

@@ -7,6 +7,7 @@
 #include <string.h>
 #include "image/image.h"
 #include "render/texture_prefetch.h"
+#include "plugin_lights.h"
 #include "render/composer.h"
 #include <cglm/cglm.h>
 #include <math.h>
@@ -309,7 +310,7 @@ void sl_gpu_pack_lights(sl_app *app) {
             }
             for (int i = 0; i < s->light_count; i++) {
                 const sl_light *L = &s->lights[i];
-                if (!L->enabled || strcmp(L->type, r->types[t])) continue;
+                if (!sl_light_on(app, L) || strcmp(L->type, r->types[t])) continue;
                 if (casters && lit && L->cast_shadows != (pass == 0)) continue;
                 sl_light_info *info = &r->lights[i];
                 info->index = k;
@@ -330,9 +331,10 @@ void sl_gpu_pack_lights(sl_app *app) {
         sl_light_at_time(L, app->time, info->position, info->direction); /* where the animation puts it */
         light_radiant(L, info->color);
         memcpy(info->params, app->light_params[i], sizeof info->params);
-        info->enabled = L->enabled;
+        info->enabled = sl_light_on(app, L);
         info->cast_shadows = L->cast_shadows;
-        if (!L->enabled) info->index = -1;
+        info->owner = L->plugin ? app->plugins.items[L->plugin - 1]->id : NULL;
+        if (!info->enabled) info->index = -1;
     }
     if (!r->light_buffer) glCreateBuffers(1, &r->light_buffer);
     /* a uniform block is read as its declared size: the buffer holds the whole capacity */

@@ -162,6 +162,7 @@ typedef struct sl_light {
     float animate_amount;   /* degrees, default 15 */
     sl_prop_list props;     /* type-specific keys (cone_angle, falloff, radius, …) */
     int line;
+    int plugin;             /* 1 + the index of the plugin that added it (SDK add_light); 0: the scene's */
 } sl_light;
 
 typedef struct sl_camera {

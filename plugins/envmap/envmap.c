@@ -125,6 +125,11 @@ static const sl_param_desc params[] = {
     P(.id = "ground_color", .type = SL_PARAM_COLOR, .default_value = {.f = {0.10f, 0.09f, 0.08f}}, .group = "sky",
       .description = "Procedural sky: radiance below the horizon, the ground beyond the scene (a scene whose floor ends "
                      "sets it to the floor's lit radiance, so no band shows between floor and sky)."),
+    P(.id = "sun_light", .type = SL_PARAM_BOOL, .group = "sky",
+      .description = "Procedural sky: its sun lights the scene as a directional light of its own (light envmap.sun: "
+                     "shadowed where a shadow plugin is on, exact for every BRDF) and the sky's image-based "
+                     "lighting leaves the disk out; the background still shows it. Off: the disk lights through "
+                     "the environment, unshadowed."),
 };
 
 #define C(...) {.struct_size = sizeof(sl_shader_chunk_desc), __VA_ARGS__}
@@ -148,6 +153,10 @@ typedef struct envmap {
     sl_program *bg_prog[3], *bg_in_place_prog[3];
     bool is_sky;   /* the source is the procedural sky (sky: its parameters) */
     em_sky sky;
+    /* the sky's sun as a light (sun_light): its handle (host add_light; -1: none) and whether the
+     * sky's lighting leaves the disk to it */
+    int sun_handle;
+    bool sun_is_light;
     unsigned empty_vao; /* the in-place background's full-screen triangle */
     char glsl_dir[2048];
     uint64_t glsl_hash;
@@ -459,6 +468,9 @@ static bool host_read(void *ctx, const char *path, em_image *out, em_io_info *in
     return true;
 }
 
+/* Whether the sky's sun should be a light of its own: asked for, and the host can add one. */
+static bool sun_light_wanted(envmap *e) { return e->sun_handle >= 0 && param(e, "sun_light").b; }
+
 /* The procedural sky of the current parameters. */
 static em_sky sky_params(envmap *e) {
     em_sky sky;
@@ -474,6 +486,7 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     free_derived(e);
     delete_tex(&e->src_tex);
     e->have_src = false;
+    e->sun_is_light = false;
     e->constant = e->bg_is_clear = false;
     e->scale = env[3];
     e->scene_yaw = env[4];
@@ -504,8 +517,13 @@ static void load_source(envmap *e, const char *map, const float env[5]) {
     if (!ok) {
         em_env_free(&loaded);
         e->sky = sky_params(e);
+        /* the sun as a light of its own: the sky's lighting leaves the disk out (the background,
+         * drawn from e->sky, keeps it) */
+        e->sun_is_light = sun_light_wanted(e) && e->sky.sun_irradiance > 0;
+        em_sky lit = e->sky;
+        if (e->sun_is_light) lit.sun_irradiance = 0;
         loaded.kind = EM_ENV_LATLONG;
-        em_sky_latlong(&e->sky, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
+        em_sky_latlong(&lit, SKY_WIDTH, SKY_WIDTH / 2, &loaded.latlong);
         name = "procedural sky";
         is_sky = true;
     }
@@ -783,6 +801,7 @@ static void prefilter_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     gpu_work_end(e, &st);
 }
 
+static void update_sun_light(envmap *e);
 static void envmap_begin_frame(void *user, const sl_frame *f) {
     envmap *e = user;
     store_pending(e);
@@ -792,10 +811,10 @@ static void envmap_begin_frame(void *user, const sl_frame *f) {
     char key[4400];
     bool sky = !map && !(env[0] > 0 || env[1] > 0 || env[2] > 0);
     const float *ground = param(e, "ground_color").f;
-    snprintf(key, sizeof key, "%s|%g %g %g|%g %g %g|%g %g %g", map ? map : "", env[0], env[1], env[2],
+    snprintf(key, sizeof key, "%s|%g %g %g|%g %g %g|%g %g %g|%d", map ? map : "", env[0], env[1], env[2],
              sky ? param(e, "sun_elevation").f[0] : 0.0f, sky ? param(e, "sun_azimuth").f[0] : 0.0f,
              sky ? param(e, "sun_irradiance").f[0] : 0.0f, sky ? ground[0] : 0.0f, sky ? ground[1] : 0.0f,
-             sky ? ground[2] : 0.0f);
+             sky ? ground[2] : 0.0f, sky && sun_light_wanted(e));
     if (!e->src_key || strcmp(key, e->src_key)) {
         free(e->src_key);
         e->src_key = strdup(key);
@@ -808,6 +827,7 @@ static void envmap_begin_frame(void *user, const sl_frame *f) {
     e->scene_yaw = env[4];
     for (int c = 0; c < 3; c++) e->clear[c] = env[c] * env[3];
     (param(e, "seamless").b ? glEnable : glDisable)(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    update_sun_light(e);
     prepare(e);
 }
 
@@ -815,6 +835,26 @@ static void rotation(envmap *e, float m[9]) { /* world → map: R_y(−yaw), col
     double a = -(e->scene_yaw + param(e, "yaw").f[0]) * M_PI / 180, c = cos(a), s = sin(a);
     float r[9] = {(float)c, 0, (float)-s, 0, 1, 0, (float)s, 0, (float)c};
     memcpy(m, r, sizeof r);
+}
+
+/* Light envmap.sun (sun_light): the disk's direction in the world (the map's turned by the yaw),
+ * its colour, and the irradiance the disk gives at normal incidence, ∫ L cos over the disk =
+ * (E/Ω)·π sin²r = E (1 + cos r)/2, times the environment's intensity. Set only when it changed. */
+static void update_sun_light(envmap *e) {
+    if (e->sun_handle < 0) return;
+    sl_plugin_light_state st = {.struct_size = sizeof st, .enabled = e->have_src && e->sun_is_light};
+    if (st.enabled) {
+        double dir[3], r, radiance[3];
+        em_sky_sun(&e->sky, dir, &r, radiance);
+        float m[9];
+        rotation(e, m); /* world → map; its transpose turns the map's direction into the world's */
+        for (int i = 0; i < 3; i++)
+            st.direction[i] = -(float)(m[i * 3 + 0] * dir[0] + m[i * 3 + 1] * dir[1] + m[i * 3 + 2] * dir[2]);
+        double e_disk = radiance[0] * M_PI * sin(r) * sin(r); /* radiance[0]: E/Ω, the colour's red is 1 */
+        for (int c = 0; c < 3; c++) st.color[c] = (float)(radiance[c] / radiance[0]);
+        st.intensity = (float)(e_disk * e->scale);
+    }
+    e->host->set_light(e->host, e->sun_handle, &st);
 }
 
 static void bind_source(envmap *e, unsigned prog) {
@@ -828,6 +868,20 @@ static void bind_source(envmap *e, unsigned prog) {
     rotation(e, m);
     glUniformMatrix3fv(glGetUniformLocation(prog, "envmap_rot"), 1, GL_FALSE, m);
     glUniform1f(glGetUniformLocation(prog, "envmap_scale"), e->scale);
+}
+
+/* envmap_sun_disk's uniforms (mirror and environment programs): the disk the texels leave out. */
+static void bind_sun_disk(envmap *e, unsigned prog, const sl_frame *f) {
+    int l = glGetUniformLocation(prog, "envmap_sun_radiance");
+    if (l < 0) return;
+    double dir[3], r, radiance[3];
+    em_sky_sun(&e->sky, dir, &r, radiance);
+    float k = e->sun_is_light ? e->scale : 0.0f;
+    glUniform3f(l, (float)radiance[0] * k, (float)radiance[1] * k, (float)radiance[2] * k);
+    glUniform3f(glGetUniformLocation(prog, "envmap_sun_dir"), (float)dir[0], (float)dir[1], (float)dir[2]);
+    glUniform1f(glGetUniformLocation(prog, "envmap_sun_radius"), (float)r);
+    bool jittered = f && f->sample_count > 1 && f->sample_index % f->sample_count > 0;
+    glUniform1f(glGetUniformLocation(prog, "envmap_sun_footprint"), jittered ? 1.0f / sqrtf((float)f->sample_count) : 1.0f);
 }
 
 static void envmap_bind(void *user, unsigned prog, int material, const sl_frame *f) {
@@ -879,6 +933,7 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
         glUniform1f(glGetUniformLocation(prog, "envmap_base_size"), (float)(e->base ? e->base_size : 1));
     }
     if (l_sh >= 0) glUniform3fv(l_sh, 9, &e->sh[0][0]);
+    bind_sun_disk(e, prog, f);
     glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
     /* a precomputed chain (shadelab-cube --ggx) is always the sqrt mapping */
     glUniform1i(glGetUniformLocation(prog, "envmap_spec_map"), e->spec_from_chain ? 0 : param(e, "level_map").i);
@@ -980,6 +1035,21 @@ static const sl_target_desc bg_outputs[] = {{.name = "color", .format = SL_FORMA
 static const sl_target_desc bg_in_place_outputs[] = {{.name = "color", .format = SL_FORMAT_RGBA16F},
                                                      {.name = "depth", .format = SL_FORMAT_DEPTH32F}};
 
+/* Light envmap.sun: a directional light whose shadow is as soft as the disk is wide (the shadow
+ * plugin's angular_radius). Hosts before ABI 1.22 have no add_light: the disk lights as part of
+ * the sky (-1). */
+static int add_sun_light(const sl_host *host) {
+    if (host->struct_size < offsetof(sl_host, set_light) + sizeof host->set_light || !host->add_light) return -1;
+    em_sky sky;
+    em_sky_default(&sky);
+    char radius[32];
+    snprintf(radius, sizeof radius, "%g", sky.sun_radius_deg);
+    const char *keys[] = {"angular_radius", radius, NULL};
+    sl_plugin_light_desc d = {.struct_size = sizeof d, .name = "sun", .type = "directional", .cast_shadows = true,
+                              .keys = keys};
+    return host->add_light(host, &d);
+}
+
 static sl_status envmap_create(const sl_host *host, void **user) {
     if (host->struct_size < offsetof(sl_host, environment) + sizeof host->environment || !host->environment) {
         host->log(host, SL_LOG_ERROR, "this host has no environment query (needs the SDK ABI 1.1)");
@@ -990,6 +1060,7 @@ static sl_status envmap_create(const sl_host *host, void **user) {
     *user = e;
     for (size_t i = 0; i < sizeof params / sizeof *params; i++)
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
+    e->sun_handle = add_sun_light(host);
     /* specular for the window's frame-time budget (ext/budget.h, docs/budget.md): dominant (one
      * lookup) while the view moves, the configured setting when it is still. bench/budget.sh:
      * the built-in scene's whole frame at 1280x720 relative to filtered's, RMSE of one frame

@@ -526,6 +526,27 @@ SlLobes envmap_mirror_lobes(SlSurface s) {
 }
 SlLobes envmap_environment_lobes(SlSurface s) { return sl_lobes_none(); }
 
+#if defined(SL_MODEL_MIRROR) || defined(SL_MODEL_ENVIRONMENT)
+// The procedural sky's sun where it is a light of its own (sun_light): the source's texels leave
+// the disk out, so what shows it along one direction adds it here (a light is a delta to these).
+// Filtered over the lookup's footprint (a cone `footprint` radians wide, as the texels' level is):
+// the disk spreads to a radius of at least half the footprint with its energy kept, and its edge
+// ramps over one footprint, so a sub-pixel reflection of it is a soft spot, not one sample's spark.
+// A still's jittered frames each cover 1/n of the pixel (aa's taa_lod_bias for textures): their
+// footprint is 1/√n as wide, so the still's mean is the pixel's box filter of the disk.
+uniform vec3 envmap_sun_dir;      // towards the sun, map frame
+uniform float envmap_sun_radius;  // the disk's angular radius, radians
+uniform vec3 envmap_sun_radiance; // E/Ω × colour × the environment's intensity; 0: in the texels
+uniform float envmap_sun_footprint; // 1, or 1/√n in the jittered frames of an n-frame still
+vec3 envmap_sun_disk(vec3 d, float footprint) {
+    footprint *= envmap_sun_footprint;
+    float angle = acos(clamp(dot(envmap_rot * d, envmap_sun_dir), -1.0, 1.0));
+    float r = envmap_sun_radius, spread = max(r, 0.5 * footprint);
+    float cover = clamp((spread - angle) / max(footprint, 1e-6) + 0.5, 0.0, 1.0);
+    return envmap_sun_radiance * (r * r / (spread * spread)) * cover;
+}
+#endif
+
 vec3 envmap_ambient(SlSurface s) {
     // screen-space footprint of the lookup direction, before any branch (derivatives)
 #if defined(SL_MODEL_MIRROR)
@@ -535,7 +556,7 @@ vec3 envmap_ambient(SlSurface s) {
 #endif
     float footprint = max(length(dFdx(d)), length(dFdy(d)));
 #if defined(SL_MODEL_MIRROR) || defined(SL_MODEL_ENVIRONMENT)
-    return envmap_tint(s) * envmap_source(d, envmap_source_lod(footprint));
+    return envmap_tint(s) * (envmap_source(d, envmap_source_lod(footprint)) + envmap_sun_disk(d, footprint));
 #else
     SlLobes lobes = sl_model_lobes(s);
     // a model lit at the dominant light is defined by that evaluation: every mode gives it

@@ -584,6 +584,13 @@ static bool export_objects(ctx *c, cJSON *root, const bool *mat_checked) {
 static bool export_light(ctx *c, int li, cJSON *list) {
     sl_app *app = c->app;
     const sl_light *L = &app->scene.lights[li];
+    if (L->plugin && !strcmp(app->plugins.items[L->plugin - 1]->id, "envmap")) {
+        /* envmap.sun (envmap.sun_light): the sky's own sun, which the exported sky holds as its disk */
+        if (plugin_on(app, "envmap") && !app->scene.environment.map)
+            note(c, "light %s: the procedural sky's sun, exported as the sky's disk (Cycles samples it there)",
+                 L->name);
+        return true;
+    }
     if (!L->enabled) return true;
     if (!light_type_handled(app, L->type)) {
         note(c, "not cross-checked: light %s: type \"%s\" is drawn by no enabled plugin (it lights nothing in "

@@ -60,7 +60,31 @@ typedef struct sl_light_info {
     bool enabled;
     bool cast_shadows;
     int index;                 /* index in the GLSL light buffer; -1 when disabled */
+    /* ABI 1.22: the id of the plugin that added the light (add_light), NULL for the scene's own */
+    const char *owner;
 } sl_light_info;
+
+/* ABI 1.22: a light a plugin adds to the scene (add_light) — e.g. the sun of envmap's procedural
+ * sky, lit and shadowed like the scene's own lights. It is named "<plugin id>.<name>", so users
+ * address it as light.<plugin id>.<name>.KEY; `keys` are light keys as a scene gives them
+ * ({"angular_radius", "1.5", …, NULL}); one that no loaded plugin declares is skipped in silence. */
+typedef struct sl_plugin_light_desc {
+    uint32_t struct_size;
+    const char *name;          /* [a-z0-9-] */
+    const char *type;          /* "directional", "point", or a plugin light type */
+    bool cast_shadows;
+    const char *const *keys;   /* NULL-terminated key, value pairs, or NULL */
+} sl_plugin_light_desc;
+
+/* ABI 1.22: what a plugin sets of its own light each time it changes (set_light). */
+typedef struct sl_plugin_light_state {
+    uint32_t struct_size;
+    bool enabled;
+    float position[3];         /* world (point and spot lights) */
+    float direction[3];        /* world, the direction light travels (normalised by the host) */
+    float color[3];            /* linear RGB */
+    float intensity;           /* directional: irradiance E; point/spot: intensity I */
+} sl_plugin_light_state;
 
 /* Texture units: the one layout, for the core and every plugin (GL 4.5 guarantees 80 combined
  * units, MAX_COMBINED_TEXTURE_IMAGE_UNITS; one program still samples at most
@@ -199,6 +223,14 @@ struct sl_host {
      * then filters the texture over its share of the pixel, so the mean is the pixel's box filter
      * of the texture rather than a mip-blurred one. Cleared at the start of every frame. */
     void (*set_texture_lod_bias)(const sl_host *host, float bias);
+    /* ABI 1.22, create() only: adds a light this plugin owns to the scene (sl_plugin_light_desc),
+     * disabled until set_light enables it; returns its handle for set_light, or -1 with an error
+     * (a name taken, no memory). While the plugin is switched off its lights are off too. */
+    int (*add_light)(const sl_host *host, const sl_plugin_light_desc *desc);
+    /* ABI 1.22, begin_frame only: the light's state from this frame on. Call it when what the
+     * light follows changed (the plugin's parameters: an edit restarts the still anyway), not
+     * every frame; an unchanged state costs nothing. false: not this plugin's handle. */
+    bool (*set_light)(const sl_host *host, int light, const sl_plugin_light_state *state);
 };
 
 #ifdef __cplusplus
