@@ -42,6 +42,9 @@ static const light_key light_keys[] = {
                     .description = "Direction light travels (directional and spot lights); normalised."),
     LIGHT_KEY(cast_shadows, .type = SL_PARAM_BOOL,
               .description = "Whether a shadow plugin renders a shadow map for this light."),
+    LIGHT_KEY(angular_radius, .type = SL_PARAM_FLOAT, .default_value = {.f = {0.5f}}, .min = 0, .max = 45, .unit = "deg",
+              .description = "Directional lights: the angular radius of the light's disk (the sun: 0.27). Specular "
+                             "highlights widen to its reflection (sl_light_spread); shadow plugins soften by it."),
     LIGHT_KEY(animate, .type = SL_PARAM_ENUM, .enum_values = animations,
               .description = "orbit: position and direction circle the world Y axis (a directional light rotates); "
                              "wobble: the direction swings about the horizontal axis across it."),

@@ -5,6 +5,16 @@
 const float SL_PI = 3.14159265358979323846;
 const float SL_INV_PI = 0.31830988618379067154;
 
+// The angular radius (radians) of the light whose l and E the shading model is evaluating: the
+// core's directional light sets it from its angular_radius key, every other light leaves 0, and
+// the light loop sets it back to 0 after each model evaluation. Specular lobes widen to the
+// light's reflected disk by it (ggx_brdf.glsl). Declared here and in ggx_brdf.glsl (which some
+// programs include alone), once.
+#ifndef SL_LIGHT_SPREAD_DECLARED
+#define SL_LIGHT_SPREAD_DECLARED 1
+float sl_light_spread = 0.0;
+#endif
+
 // Object-space vertex, edited by VERTEX hooks.
 struct SlVertex {
     vec3 position;

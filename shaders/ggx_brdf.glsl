@@ -7,6 +7,21 @@
 // stays far inside half-float range after multiplying by E and F.
 const float GGX_MIN_ALPHA = 2e-3;
 
+#ifndef SL_LIGHT_SPREAD_DECLARED // common.glsl's: the evaluated light's angular radius
+#define SL_LIGHT_SPREAD_DECLARED 1
+float sl_light_spread = 0.0;
+#endif
+
+// A light's disk of angular radius r reflects into half vectors within r/2 of the mirror one. The
+// lobe widens to it, α'² = α² + (0.777 r)²: 0.777 = 1/(2 · 0.6436) puts D's half maximum
+// (tan θ_h = 0.6436 α', where (α² + tan²θ)² doubles) at the disk image's edge, and D stays
+// normalised, so the highlight keeps its energy (a polished sphere shows a disk of radius
+// R sin(r/2) with flux E R²/4: test_ggx_render). A point light (r = 0) keeps α.
+float ggx_light_alpha(float alpha) {
+    float w = 0.777 * sl_light_spread;
+    return sqrt(alpha * alpha + w * w);
+}
+
 // The g1_angle parameter's "half-vector" value selects the variant below.
 #if defined(GGX_G1_ANGLE) && defined(GGX_G1_ANGLE_HALF_VECTOR)
 #if GGX_G1_ANGLE == GGX_G1_ANGLE_HALF_VECTOR
@@ -92,7 +107,7 @@ float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     float len2 = dot(hv, hv);
     h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
-    alpha = max(alpha, GGX_MIN_ALPHA);
+    alpha = max(ggx_light_alpha(alpha), GGX_MIN_ALPHA);
 #ifdef GGX_G1_HALF_VECTOR
     float D = ggx_D(dot(n, h), alpha);
     float G = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha);

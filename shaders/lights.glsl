@@ -1,7 +1,9 @@
 // The core's light types (LIGHT hooks). E is irradiance at normal incidence.
+// A directional light's disk: angular_radius (radians in direction.w) for the specular lobes.
 bool sl_light_directional(SlLight L, SlSurface s, out vec3 l, out vec3 E) {
     l = -L.direction.xyz;
     E = L.color.rgb;
+    sl_light_spread = L.direction.w;
     return true;
 }
 

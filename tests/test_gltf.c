@@ -600,6 +600,11 @@ static void test_emissive(void) {
     free(img);
 }
 
+/* The tests' sun: point-like (angular_radius 0, the lobes not widened to a disk), so the closed
+ * forms below are the BRDF's own. */
+static const char *const point_sun =
+    "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2, \"angular_radius\": 0}";
+
 /* Occlusion (strength 0.5, the texels' red channel, linear) scales only indirect light: under a
  * directional light alone the image equals the one without occlusion; under the constant
  * environment alone it is the one without, times ao = 1 + 0.5 (r - 1), r the bilinear red. */
@@ -610,7 +615,7 @@ static void test_occlusion(void) {
     CHECK(write_glb(with, ", \"occlusionTexture\": {\"index\": 0, \"strength\": 0.5}", NULL));
     CHECK(write_glb(without, NULL, NULL));
     float *a = malloc(sizeof(float) * 4 * W * H), *b = malloc(sizeof(float) * 4 * W * H);
-    const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2}";
+    const char *sun = point_sun;
     if (render_wrapped(with, sun, 0, a) && render_wrapped(without, sun, 0, b)) {
         double worst = 0, peak = 0;
         for (int i = 0; i < W * H * 4; i++) worst = fmax(worst, fabs(a[i] - b[i])), peak = fmax(peak, b[i]);
@@ -803,7 +808,7 @@ static void test_metal_channel(void) {
     g_sampler = "{\"magFilter\": 9729, \"minFilter\": 9987, \"wrapS\": 10497, \"wrapT\": 10497}";
     float *img = malloc(sizeof(float) * 4 * W * H);
     const double cam[3] = {0, 0, 5}, sun_to[3] = {-0.3, 0.2, 1};
-    const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2}";
+    const char *sun = point_sun;
     if (render_wrapped(path, sun, 0, img)) {
         double worst = 0, rel = 0, quad[4] = {0};
         for (int j = 0; j < H; j++)
@@ -871,7 +876,7 @@ static void test_shared_image(void) {
     }
     float *img = malloc(sizeof(float) * 4 * W * H);
     const double cam[3] = {0, 0, 5}, sun_to[3] = {-0.3, 0.2, 1};
-    const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2}";
+    const char *sun = point_sun;
     if (render_wrapped(path, sun, 0, img)) {
         double worst = 0, rel = 0;
         for (int j = 0; j < H; j++)
@@ -940,7 +945,7 @@ static void test_ior(void) {
     g_pbr = pbr_default;
     float *img = malloc(sizeof(float) * 4 * W * H);
     const double cam[3] = {0, 0, 5}, sun_to[3] = {-0.3, 0.2, 1}, base[3] = {0.3, 0.6, 0.2};
-    const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2}";
+    const char *sun = point_sun;
     sl_log_capture(logbuf, sizeof logbuf);
     bool ok = render_wrapped(path, sun, 0, img);
     sl_log_capture(NULL, 0);
@@ -972,7 +977,7 @@ static void test_unlit(void) {
     snprintf(path, sizeof path, "%s/unlit.glb", sl_test_dir());
     CHECK(write_glb(path, ", \"extensions\": {\"KHR_materials_unlit\": {}}", ", \"extensionsUsed\": [\"KHR_materials_unlit\"]"));
     float *img = malloc(sizeof(float) * 4 * W * H);
-    const char *sun = "{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.3, -0.2, -1], \"intensity\": 2}";
+    const char *sun = point_sun;
     if (render_wrapped(path, sun, 0.5f, img)) {
         double worst = 0;
         for (int j = 0; j < H; j++)

@@ -316,6 +316,7 @@ void sl_gpu_pack_lights(sl_app *app) {
                 info->index = k;
                 gpu_light *g = &buf[k++];
                 sl_light_at_time(L, app->time, g->position, g->direction);
+                g->direction[3] = L->angular_radius * (float)M_PI / 180; /* SlLight.direction.w */
                 light_radiant(L, g->color);
                 memcpy(g->params, app->light_params[i], sizeof g->params);
             }
@@ -334,6 +335,7 @@ void sl_gpu_pack_lights(sl_app *app) {
         info->enabled = sl_light_on(app, L);
         info->cast_shadows = L->cast_shadows;
         info->owner = L->plugin ? app->plugins.items[L->plugin - 1]->id : NULL;
+        info->angular_radius = L->angular_radius;
         if (!info->enabled) info->index = -1;
     }
     if (!r->light_buffer) glCreateBuffers(1, &r->light_buffer);

@@ -242,6 +242,7 @@ int sl_scene_add_light(sl_scene *scene, const char *name, const char *type) {
     l->direction[1] = -1.0f;
     l->color[0] = l->color[1] = l->color[2] = 1.0f;
     l->intensity = 1.0f;
+    l->angular_radius = 0.5f;
     l->enabled = true;
     l->animate_speed = 0.5f;
     l->animate_amount = 15.0f;

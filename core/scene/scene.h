@@ -154,6 +154,7 @@ typedef struct sl_light {
     float intensity;        /* directional: irradiance E; point/spot: intensity I (E = I/d²) */
     bool enabled;           /* default true */
     bool cast_shadows;      /* default false */
+    float angular_radius;   /* degrees, directional lights: the disk's (default 0.5; the sun 0.27) */
     /* Animation (core light keys animate / animate_speed / animate_amount), for every type:
      * orbit turns position and direction about the world Y axis at speed rad/s; wobble swings
      * the direction by ±amount° about the horizontal axis across it, angle amount·sin(speed·t). */

@@ -125,7 +125,7 @@ static const sl_param_desc params[] = {
     P(.id = "ground_color", .type = SL_PARAM_COLOR, .default_value = {.f = {0.10f, 0.09f, 0.08f}}, .group = "sky",
       .description = "Procedural sky: radiance below the horizon, the ground beyond the scene (a scene whose floor ends "
                      "sets it to the floor's lit radiance, so no band shows between floor and sky)."),
-    P(.id = "sun_light", .type = SL_PARAM_BOOL, .group = "sky",
+    P(.id = "sun_light", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "sky",
       .description = "Procedural sky: its sun lights the scene as a directional light of its own (light envmap.sun: "
                      "shadowed where a shadow plugin is on, exact for every BRDF) and the sky's image-based "
                      "lighting leaves the disk out; the background still shows it. Off: the disk lights through "
@@ -881,7 +881,7 @@ static void bind_sun_disk(envmap *e, unsigned prog, const sl_frame *f) {
     glUniform3f(glGetUniformLocation(prog, "envmap_sun_dir"), (float)dir[0], (float)dir[1], (float)dir[2]);
     glUniform1f(glGetUniformLocation(prog, "envmap_sun_radius"), (float)r);
     bool jittered = f && f->sample_count > 1 && f->sample_index % f->sample_count > 0;
-    glUniform1f(glGetUniformLocation(prog, "envmap_sun_footprint"), jittered ? 1.0f / sqrtf((float)f->sample_count) : 1.0f);
+    glUniform1f(glGetUniformLocation(prog, "envmap_sun_footprint"), jittered ? fminf(1.0f, 2.0f / sqrtf((float)f->sample_count)) : 1.0f);
 }
 
 static void envmap_bind(void *user, unsigned prog, int material, const sl_frame *f) {

@@ -533,11 +533,12 @@ SlLobes envmap_environment_lobes(SlSurface s) { return sl_lobes_none(); }
 // the disk spreads to a radius of at least half the footprint with its energy kept, and its edge
 // ramps over one footprint, so a sub-pixel reflection of it is a soft spot, not one sample's spark.
 // A still's jittered frames each cover 1/n of the pixel (aa's taa_lod_bias for textures): their
-// footprint is 1/√n as wide, so the still's mean is the pixel's box filter of the disk.
+// footprint is 2/√n as wide, two samples' spacing, so the still's mean is close to the pixel's
+// box filter of the disk and a sub-pixel reflection of it is not one sample's hit or miss.
 uniform vec3 envmap_sun_dir;      // towards the sun, map frame
 uniform float envmap_sun_radius;  // the disk's angular radius, radians
 uniform vec3 envmap_sun_radiance; // E/Ω × colour × the environment's intensity; 0: in the texels
-uniform float envmap_sun_footprint; // 1, or 1/√n in the jittered frames of an n-frame still
+uniform float envmap_sun_footprint; // 1, or 2/√n in the jittered frames of an n-frame still
 vec3 envmap_sun_disk(vec3 d, float footprint) {
     footprint *= envmap_sun_footprint;
     float angle = acos(clamp(dot(envmap_rot * d, envmap_sun_dir), -1.0, 1.0));

@@ -302,6 +302,7 @@ float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out ve
     float len2 = dot(hv, hv);
     h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
+    a = vec2(ggx_light_alpha(a.x), ggx_light_alpha(a.y)); // the light's disk, as ggx_DG_over_4
     float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
     vec2 pl = a * vec2(dot(l, t), dot(l, b)), pv = a * vec2(dot(v, t), dot(v, b));
     return ggx_aniso_D(n, t, b, h, a) / ((cl + sqrt(cl * cl + dot(pl, pl))) * (cv + sqrt(cv * cv + dot(pv, pv))));

@@ -110,10 +110,8 @@ static const sl_param_desc params[] = {
     P(.id = "radius", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT, .light_type = "spot", .light_slot = 3,
       .default_value = {.f = {0.05f}}, .min = 0, .max = 100, .unit = "m", .group = "spot",
       .description = "Radius of the light's disk (facing along its axis): PCSS penumbrae and the reference."),
-    /* light keys: the core's types, for soft shadows */
-    P(.id = "angular_radius", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT, .light_type = "directional", .light_slot = 0,
-      .default_value = {.f = {0.5f}}, .min = 0, .max = 45, .unit = "deg", .group = "shadows",
-      .description = "Angular radius of a directional light's disk (the sun: 0.27): PCSS and the reference."),
+    /* light keys: the core's types, for soft shadows (a directional light's disk is the core's
+     * angular_radius, sl_light_info.angular_radius, ABI 1.22) */
     P(.id = "radius", .type = SL_PARAM_FLOAT, .scope = SL_SCOPE_LIGHT, .light_type = "point", .light_slot = 0,
       .default_value = {.f = {0.05f}}, .min = 0, .max = 100, .unit = "m", .group = "shadows",
       .description = "Radius of a point light's sphere: PCSS and the reference."),
@@ -279,7 +277,7 @@ static void build_views(ss *s, const sl_frame *f, int size, bool reference) {
             v->size = radius;
             v->count = 1;
         } else if (kind == KIND_DIRECTIONAL) {
-            float t = tanf(glm_rad(L->params[0]));
+            float t = tanf(glm_rad(L->angular_radius));
             if (reference) {
                 glm_vec3_muladds(t1, t * jx, dir);
                 glm_vec3_muladds(t2, t * jy, dir);
@@ -442,6 +440,7 @@ static uint64_t pass_signature(void *user, const sl_frame *f) {
         h = fnv(L->position, sizeof L->position, h);
         h = fnv(L->direction, sizeof L->direction, h);
         h = fnv(L->params, sizeof L->params, h);
+        h = fnv(&L->angular_radius, sizeof L->angular_radius, h);
         if (kind == KIND_DIRECTIONAL && param(s, "filter").i != FILTER_REFERENCE) {
             /* views another plugin supplies (cascades follow the camera): re-render when one moves */
             sl_shadow_view pv[SL_SHADOW_MAX_VIEWS_PER_LIGHT];

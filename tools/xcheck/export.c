@@ -609,7 +609,7 @@ static bool export_light(ctx *c, int li, cJSON *list) {
     if (!strcmp(L->type, "directional")) {
         cJSON_AddStringToObject(j, "blender_type", "SUN");
         cJSON_AddNumberToObject(j, "energy", L->intensity);
-        if (light_key(app, li, "angular_radius", v, NULL)) cJSON_AddNumberToObject(j, "angle", 2 * v[0] * M_PI / 180);
+        cJSON_AddNumberToObject(j, "angle", 2 * L->angular_radius * M_PI / 180);
         frame_matrix(dir, NULL, pos, m);
     } else if (!strcmp(L->type, "point") || !strcmp(L->type, "spot")) {
         cJSON_AddStringToObject(j, "blender_type", "POINT");

@@ -51,7 +51,9 @@ static sl_harness *make(const char *material_keys, const char *const *settings, 
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 3, 4], \"target\": [0, 0, 0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}],\n"
              " \"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"base_color\": [0.4, 0.3, 0.2], %s}],\n"
              " \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}],\n"
-             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.1, -0.6, 0.8], \"intensity\": 3}]}",
+             /* a point-like sun (angular_radius 0: no widening of the lobes), so the closed forms are the BRDF's */
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.1, -0.6, 0.8], \"intensity\": 3,"
+             " \"angular_radius\": 0}]}",
              material_keys);
     return ggx_test_harness(json, W, H, settings, view);
 }

@@ -106,6 +106,63 @@ static bool aa_case(float cam_y, const float sun_dir[3], float min_dist, double 
     return true;
 }
 
+/* A light's disk in a polished sphere (the core's angular_radius, sl_light_spread): a white metal
+ * sphere (radius R = 1) lit along the view by a directional light (E = 3) of angular radius r,
+ * seen from 40 m (nearly parallel rays), aa off. On paper a mirror sphere shows the disk where the
+ * normal is within r/2 of the view (the reflected ray within r of the light): a spot of radius
+ * R sin(r/2). Polished (roughness 0.05, α = 0.0025) and zoomed on the spot (fov 0.4°), r = 3° and
+ * 6°: the half-maximum spot's radius is R sin(r/2), 0.026 and 0.052 (9 and 18 px), where the lobe
+ * of a delta light is 0.6436 α R = 0.0016. Widening keeps the energy: on a rougher sphere
+ * (roughness 0.3), the whole sphere in view, r = 3° changes the highlight's flux Σ L·(pixel area)
+ * by less than 1 % from r = 0. */
+static void disk_highlight(double r_deg, double roughness, double fov, double *flux, double *radius) {
+    enum { DW = 96, DH = 96 };
+    static float px[DW * DH * 4];
+    char json[2048], err[4096];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"ggx\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],\n"
+             " \"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1,"
+             "   \"base_color\": [1, 1, 1], \"roughness\": %g}],\n"
+             " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128},"
+             "   \"material\": \"m\"}],\n"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3,"
+             "   \"angular_radius\": %g}]}", fov, roughness, r_deg);
+    const char *const settings[] = {"aa.enabled=false", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = DW, .height = DH,
+                                                          .scene_json = json, .settings = settings, .float32 = true,
+                                                          .strict = true}, err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    *flux = *radius = 0;
+    if (!h) return;
+    CHECK(sl_harness_render(h, px));
+    sl_harness_destroy(h);
+    double pixel = 2 * 40 * tan(fov / 2 * M_PI / 180) / DH, peak = 0, sum = 0, above = 0;
+    for (int i = 0; i < DW * DH; i++) peak = fmax(peak, px[i * 4]);
+    for (int i = 0; i < DW * DH; i++) {
+        sum += px[i * 4];
+        above += px[i * 4] >= 0.5 * peak;
+    }
+    *flux = sum * pixel * pixel;
+    *radius = sqrt(above / M_PI) * pixel; /* the half-maximum spot's radius, from its area */
+}
+
+static void test_disk_highlight(void) {
+    const double radii[2] = {3, 6};
+    for (int k = 0; k < 2; k++) {
+        double flux, radius, expect = sin(radii[k] / 2 * M_PI / 180);
+        disk_highlight(radii[k], 0.05, 0.4, &flux, &radius);
+        printf("disk of %g deg in a polished sphere: half-maximum radius %.5f, on paper R sin(r/2) = %.5f\n", radii[k],
+               radius, expect);
+        CHECK_MSG(fabs(radius / expect - 1) < 0.15, "the highlight's radius %.5f is not R sin(r/2) = %.5f", radius, expect);
+    }
+    double f0, f3, r0, r3;
+    disk_highlight(0, 0.3, 3.2, &f0, &r0);
+    disk_highlight(3, 0.3, 3.2, &f3, &r3);
+    printf("roughness 0.3: highlight flux %.4f for a point, %.4f for a disk of 3 deg (ratio %.4f)\n", f0, f3, f3 / f0);
+    CHECK_MSG(fabs(f3 / f0 - 1) < 0.01, "widening changed the highlight's flux by %.2f %%", 100 * (f3 / f0 - 1));
+}
+
 int main(void) {
     /* 1. per-pixel closed form: L = (k_d/π + k_s F D G/(4 n·l n·v)) E n·l */
     char json[4096];
@@ -308,5 +365,6 @@ int main(void) {
         CHECK_MSG(count > 100 && worst_rel < 1e-3, "facing-away mapped normal: worst relative error %g against k_d/pi E n.l", worst_rel);
         sl_harness_destroy(h);
     }
+    test_disk_highlight();
     return check_result();
 }

@@ -62,6 +62,9 @@ typedef struct sl_light_info {
     int index;                 /* index in the GLSL light buffer; -1 when disabled */
     /* ABI 1.22: the id of the plugin that added the light (add_light), NULL for the scene's own */
     const char *owner;
+    /* ABI 1.22: directional lights' disk, its angular radius in degrees (the core's light key
+     * angular_radius; before 1.22 spotlight-shadow's) */
+    float angular_radius;
 } sl_light_info;
 
 /* ABI 1.22: a light a plugin adds to the scene (add_light) — e.g. the sun of envmap's procedural

@@ -25,6 +25,11 @@
  *                      emission leave of it, 1 by default; SURFACE hooks of a layered model set
  *                      it (ggx's clear coat: 1 − w·F_c(n_c·v)) and sl_emission(s) applies it
  *   struct SlLight   { vec4 position; vec4 direction; vec4 color; vec4 params[2]; };
+ *                      direction.w (ABI 1.22): the angular_radius key in radians (directional
+ *                      lights' disk); float sl_light_spread: the angular radius of the light a
+ *                      model is being evaluated for (the core's directional light sets it, 0 for
+ *                      every other light and outside the light loop); sl:ggx_brdf.glsl's lobes
+ *                      widen by it (ggx_light_alpha), so a polished surface shows the disk.
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size;
  *             int sl_sample_index, sl_sample_count (ABI 1.9: sl_frame.sample_index/count, a

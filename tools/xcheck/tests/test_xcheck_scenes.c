@@ -1,9 +1,11 @@
 /* shadelab against Cycles on the default scene and the IBL spheres (issue 40 item 4): each
  * object's distance from the reference may not grow beyond today's. Bounds are today's figures
- * (160×90, 32 Cycles samples, 8 bounces, the reference cached) with a margin for the shadelab
+ * (160×90, 256 Cycles samples, 8 bounces, the reference cached) with a margin for the shadelab
  * side's run-to-run spread: relative RMS ≤ 1.15 × today + 0.02 and |1 − mean ratio| ≤ today's +
  * 0.03. Better is always allowed; a regression fails and names the object. Blender missing:
- * exit 77 (skipped). */
+ * exit 77 (skipped). 256 samples, not 32: the sun's reflection in the mirror sphere is a
+ * sub-pixel spot that 32 samples resolve poorly (a 15 × 15 window round it sums 125 at 32
+ * samples, 186 at 1024), so a bound at 32 bounded the reference's noise, not shadelab. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -17,14 +19,14 @@
 
 typedef struct bound { const char *object; double rel_rms, ratio; } bound;
 
-/* today's figures (shadelab-xcheck --size 160x90 --samples 32: the converged still) */
+/* today's figures (shadelab-xcheck --size 160x90 --samples 256: the converged still) */
 static const bound default_scene[] = {
-    {"floor", 0.565, 1.029}, {"teapot", 0.430, 0.925}, {"rough_95", 0.173, 0.967}, {"rough_65", 0.146, 0.996},
-    {"rough_35", 0.121, 1.020}, {"rough_10", 0.583, 0.938}, {"gold", 0.408, 0.946}, {NULL, 0, 0}};
+    {"floor", 0.160, 1.037}, {"teapot", 0.190, 0.919}, {"rough_95", 0.127, 0.968}, {"rough_65", 0.109, 1.005},
+    {"rough_35", 0.097, 1.010}, {"rough_10", 0.294, 1.038}, {"gold", 0.361, 0.955}, {NULL, 0, 0}};
 static const bound ibl_spheres[] = {
-    {"floor", 0.399, 0.976}, {"sd0", 0.772, 0.593}, {"sd1", 0.264, 0.813}, {"sd2", 0.208, 0.818},
-    {"sd3", 0.212, 0.814}, {"sg0", 0.561, 0.639}, {"sg1", 0.257, 0.859}, {"sg2", 0.235, 0.892},
-    {"sg3", 0.183, 0.937}, {"smirror", 0.372, 0.922}, {"swhite", 0.187, 0.832}, {NULL, 0, 0}};
+    {"floor", 0.234, 1.022}, {"sd0", 0.588, 0.766}, {"sd1", 0.202, 0.821}, {"sd2", 0.186, 0.822},
+    {"sd3", 0.192, 0.811}, {"sg0", 0.304, 0.757}, {"sg1", 0.293, 0.823}, {"sg2", 0.567, 0.800},
+    {"sg3", 0.119, 0.939}, {"smirror", 0.246, 0.930}, {"swhite", 0.178, 0.831}, {NULL, 0, 0}};
 
 static char *read_text(const char *path) {
     FILE *f = fopen(path, "rb");
@@ -43,7 +45,7 @@ static void check_scene(const char *scene, const bound *bounds) {
     char out[4096], cmd[9000], report[4200];
     const char *base = strrchr(scene, '/') + 1;
     snprintf(out, sizeof out, "%s/%.*s", sl_test_dir(), (int)(strlen(base) - 5), base);
-    snprintf(cmd, sizeof cmd, "'%s' --size 160x90 --samples 32 --out '%s' '%s/%s'", SL_XCHECK_EXE, out, SL_SOURCE_DIR, scene);
+    snprintf(cmd, sizeof cmd, "'%s' --size 160x90 --samples 256 --out '%s' '%s/%s'", SL_XCHECK_EXE, out, SL_SOURCE_DIR, scene);
     int status = system(cmd);
     if (WIFEXITED(status) && WEXITSTATUS(status) == SKIP) {
         fprintf(stderr, "SKIPPED: Blender is not installed (tools/install-deps.sh --with-tests installs it)\n");
