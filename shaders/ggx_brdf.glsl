@@ -12,22 +12,16 @@ const float GGX_MIN_ALPHA = 2e-3;
 float sl_light_spread = 0.0;
 #endif
 
-// A light's disk of angular radius r reflects into half vectors within r/2 of the mirror one. The
-// lobe widens to it, α'² = α² + (0.777 r)²: 0.777 = 1/(2 · 0.6436) puts D's half maximum
-// (tan θ_h = 0.6436 α', where (α² + tan²θ)² doubles) at the disk image's edge, and D stays
-// normalised, so the highlight keeps its energy (a polished sphere shows a disk of radius
-// R sin(r/2) with flux E R²/4: test_ggx_render). A point light (r = 0) keeps α.
+// A light's disk of angular radius r reflects into half vectors within ρ = r/2 of the mirror one.
+// The lobe widens to it, α'² = α² + ρ² (1 + 1.414 ρ²/(ρ² + α²)), which meets both ends: for
+// α ≫ ρ the peak of D convolved with the disk, D(0)(1 − ρ²/α²) (α'² = α² + ρ²), and for α → 0
+// GGX's half maximum (tan θ_h = 0.6436 α', where (α² + tan²θ)² doubles) at the disk image's edge
+// (α' = 0.777 r). D stays normalised, so the highlight keeps its energy (a polished sphere shows a
+// disk of radius R sin(r/2): test_ggx_render). A point light (r = 0) keeps α.
 float ggx_light_alpha(float alpha) {
-    float w = 0.777 * sl_light_spread;
-    return sqrt(alpha * alpha + w * w);
+    float rho2 = 0.25 * sl_light_spread * sl_light_spread, a2 = alpha * alpha;
+    return sqrt(a2 + rho2 * (1.0 + 1.414 * rho2 / max(rho2 + a2, 1e-20)));
 }
-
-// The g1_angle parameter's "half-vector" value selects the variant below.
-#if defined(GGX_G1_ANGLE) && defined(GGX_G1_ANGLE_HALF_VECTOR)
-#if GGX_G1_ANGLE == GGX_G1_ANGLE_HALF_VECTOR
-#define GGX_G1_HALF_VECTOR 1
-#endif
-#endif
 
 // Normal distribution D(n, h) = α² / (π cos⁴θ_h (α² + tan²θ_h)²) for n·h > 0, else 0.
 // cos⁴θ (α² + tan²θ)² = (cos²θ (α² − 1) + 1)², which has no tan() blow-up at grazing angles.
