@@ -38,7 +38,7 @@ int sl_plugin_light_add(sl_app *app, int plugin, const sl_plugin_light_desc *d, 
     }
     sl_light *L = &s->lights[li];
     L->plugin = plugin + 1;
-    L->enabled = false;
+    L->plugin_on = false; /* until set_light; L->enabled is the user's switch (light.NAME.enabled) */
     L->cast_shadows = desc.cast_shadows;
     for (int k = 0; desc.keys && desc.keys[k] && desc.keys[k + 1]; k += 2)
         if (!sl_prop_set_string(&L->props, desc.keys[k], desc.keys[k + 1], 0)) {
@@ -67,8 +67,8 @@ bool sl_plugin_light_set(sl_app *app, int plugin, int light, const sl_plugin_lig
     /* the ranges a scene's lights obey (colour <= 65504, intensity <= 1e10): finite in the shaders */
     float color[3], intensity = isfinite(st.intensity) && st.intensity > 0 ? fminf(st.intensity, 1e10f) : 0;
     for (int c = 0; c < 3; c++) color[c] = isfinite(st.color[c]) && st.color[c] > 0 ? fminf(st.color[c], 65504) : 0;
-    bool changed = L->enabled != st.enabled;
-    L->enabled = st.enabled;
+    bool changed = L->plugin_on != st.enabled;
+    L->plugin_on = st.enabled;
     changed |= set_vec(L->position, st.position, 3);
     changed |= set_vec(L->direction, dir, 3);
     changed |= set_vec(L->color, color, 3);
@@ -78,7 +78,7 @@ bool sl_plugin_light_set(sl_app *app, int plugin, int light, const sl_plugin_lig
 }
 
 bool sl_light_on(const sl_app *app, const sl_light *L) {
-    return L->enabled && (!L->plugin || sl_plugin_enabled(&app->plugins, L->plugin - 1));
+    return L->enabled && (!L->plugin || (L->plugin_on && sl_plugin_enabled(&app->plugins, L->plugin - 1)));
 }
 
 uint64_t sl_plugin_lights_owners_on(const sl_app *app) {

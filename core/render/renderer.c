@@ -283,16 +283,13 @@ static void apply_jitter(sl_renderer *r) {
  * a TAA still averages: consecutive frames with the same camera, geometry, lights, edits and
  * size; the jitter is not part of it, it is applied after). Called once per frame, before the
  * plugins' begin_frame. */
-static uint64_t still_key(const sl_frame *f) {
+static void still_count(sl_renderer *r) {
+    const sl_frame *f = &r->frame;
     uint64_t v[] = {f->camera_version, f->geometry_version, f->lights_version, f->edits_version,
                     (uint64_t)f->width << 32 | (uint32_t)f->height};
     uint64_t key = sl_hash64(v, sizeof v, 0);
     key = sl_hash64(f->view, sizeof f->view, key);
-    return sl_hash64(f->proj, sizeof f->proj, key);
-}
-
-static void still_count(sl_renderer *r) {
-    uint64_t key = still_key(&r->frame);
+    key = sl_hash64(f->proj, sizeof f->proj, key);
     bool same = r->still_valid && key == r->still_key && r->still_last_frame + 1 == r->frames_run;
     r->still_run = same && r->still_run < (1 << 30) ? r->still_run + 1 : 0;
     r->still_key = key;

@@ -164,6 +164,7 @@ typedef struct sl_light {
     sl_prop_list props;     /* type-specific keys (cone_angle, falloff, radius, …) */
     int line;
     int plugin;             /* 1 + the index of the plugin that added it (SDK add_light); 0: the scene's */
+    bool plugin_on;         /* such a light: its plugin's switch (set_light); `enabled` stays the user's */
 } sl_light;
 
 typedef struct sl_camera {

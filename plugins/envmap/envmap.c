@@ -839,7 +839,7 @@ static void rotation(envmap *e, float m[9]) { /* world → map: R_y(−yaw), col
 
 /* Light envmap.sun (sun_light): the disk's direction in the world (the map's turned by the yaw),
  * its colour, and the irradiance the disk gives at normal incidence, ∫ L cos over the disk =
- * (E/Ω)·π sin²r = E (1 + cos r)/2, times the environment's intensity. Set only when it changed. */
+ * (E/Ω)·π sin²r = E (1 + cos r)/2, times the environment's intensity. */
 static void update_sun_light(envmap *e) {
     if (e->sun_handle < 0) return;
     sl_plugin_light_state st = {.struct_size = sizeof st, .enabled = e->have_src && e->sun_is_light};
@@ -880,8 +880,10 @@ static void bind_sun_disk(envmap *e, unsigned prog, const sl_frame *f) {
     glUniform3f(l, (float)radiance[0] * k, (float)radiance[1] * k, (float)radiance[2] * k);
     glUniform3f(glGetUniformLocation(prog, "envmap_sun_dir"), (float)dir[0], (float)dir[1], (float)dir[2]);
     glUniform1f(glGetUniformLocation(prog, "envmap_sun_radius"), (float)r);
+    /* a still's jittered frames: two samples' spacing of the footprint (envmap_sun_disk) */
     bool jittered = f && f->sample_count > 1 && f->sample_index % f->sample_count > 0;
-    glUniform1f(glGetUniformLocation(prog, "envmap_sun_footprint"), jittered ? fminf(1.0f, 2.0f / sqrtf((float)f->sample_count)) : 1.0f);
+    float footprint = jittered ? fminf(1.0f, 2.0f / sqrtf((float)f->sample_count)) : 1.0f;
+    glUniform1f(glGetUniformLocation(prog, "envmap_sun_footprint"), footprint);
 }
 
 static void envmap_bind(void *user, unsigned prog, int material, const sl_frame *f) {
@@ -1035,9 +1037,9 @@ static const sl_target_desc bg_outputs[] = {{.name = "color", .format = SL_FORMA
 static const sl_target_desc bg_in_place_outputs[] = {{.name = "color", .format = SL_FORMAT_RGBA16F},
                                                      {.name = "depth", .format = SL_FORMAT_DEPTH32F}};
 
-/* Light envmap.sun: a directional light whose shadow is as soft as the disk is wide (the shadow
- * plugin's angular_radius). Hosts before ABI 1.22 have no add_light: the disk lights as part of
- * the sky (-1). */
+/* Light envmap.sun: a directional light as wide as the disk (the core's angular_radius: its
+ * highlights and its shadow's softness). Hosts before ABI 1.22 have no add_light: the disk lights
+ * as part of the sky (-1). */
 static int add_sun_light(const sl_host *host) {
     if (host->struct_size < offsetof(sl_host, set_light) + sizeof host->set_light || !host->add_light) return -1;
     em_sky sky;

@@ -5,7 +5,8 @@
  *            ∫ (E/Ω) cos over the disk = E (1 + cos r)/2; off with sun_light=false;
  *   energy   a white Lambert floor (no shadow plugin): the sky without its disk plus the light
  *            gives what the sky with its disk gave (the SH irradiance of the disk is not exact:
- *            within 3 %), where leaving the disk in the sky as well would add E sin e / π;
+ *            within 3 %), where leaving the disk in the sky as well would add E sin e / π; the
+ *            user's light.envmap.sun.enabled=false takes exactly the light's term away;
  *   shadow   with spotlight-shadow: a ball's umbra on the floor (6° inside its edge: past the
  *            penumbra) is darker than the same pixels with the light's cast_shadows off by exactly ρ/π · E (1 + cos r)/2 · sin e (the sky's
  *            lighting has no visibility, so only the sun's direct term goes), and the floor
@@ -89,7 +90,7 @@ static void test_state(void) {
     char err[512];
     CHECK(sl_harness_set(h, "envmap.sun_light=false", err, sizeof err));
     CHECK(sl_harness_render(h, img_a));
-    CHECK(sl_harness_get(h, "light.envmap.sun.enabled", text, sizeof text) && !strcmp(text, "false"));
+    CHECK(sl_harness_get(h, "light.envmap.sun.intensity", text, sizeof text) && sscanf(text, "%lf", &e) == 1 && e == 0);
     sl_harness_destroy(h);
 }
 
@@ -136,6 +137,14 @@ static void test_energy(void) {
     CHECK(n > 1000);
     CHECK_MSG(fabs(lit / in_sky - 1) < 0.03, "the sky without its disk plus the light gives %.4f, the sky with it %.4f",
               lit, in_sky);
+    /* the user's switch of the light (light.envmap.sun.enabled, as the panel sets it) holds: the
+     * floor keeps the sky without its disk */
+    const char *const user_off[] = {"light.envmap.sun.enabled=false", NULL};
+    if (!render_scene(user_off, NULL, img_b)) return;
+    double dark = floor_mean(img_b, far_from_ball, &n);
+    printf("the light switched off by the user: %.4f, the sky without the sun on paper %.4f\n", dark, lit - sun_term);
+    CHECK_MSG(fabs(dark - (lit - sun_term)) < 1e-3, "light.envmap.sun.enabled=false gives %.4f, not %.4f", dark,
+              lit - sun_term);
 }
 
 static void test_shadow(void) {

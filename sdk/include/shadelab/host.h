@@ -79,7 +79,9 @@ typedef struct sl_plugin_light_desc {
     const char *const *keys;   /* NULL-terminated key, value pairs, or NULL */
 } sl_plugin_light_desc;
 
-/* ABI 1.22: what a plugin sets of its own light each time it changes (set_light). */
+/* ABI 1.22: what a plugin sets of its own light each time it changes (set_light): the light's
+ * direction, colour and intensity are the plugin's; `enabled` is the plugin's switch, and the
+ * light shines while it and the user's light.NAME.enabled are both on. */
 typedef struct sl_plugin_light_state {
     uint32_t struct_size;
     bool enabled;
