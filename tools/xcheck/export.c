@@ -13,7 +13,8 @@
  *   ggx (metallic-roughness)  Principled BSDF (base, metallic, roughness, specular = F0/0.08)
  *   mirror             Glossy BSDF, sharp
  *   environment        a lat-long EXR in Blender's own orientation (files are read as Blender
- *                      reads them; envmap's procedural sky is evaluated per direction), yaw as a
+ *                      reads them; envmap's procedural sky is evaluated per direction, its sun
+ *                      disk included, so envmap's sun light is not a lamp too), yaw as a
  *                      rotation of the lookup about the up axis
  * Nothing is approximated silently: what differs is a note (xc_export.notes). */
 #include "export.h"
@@ -584,13 +585,9 @@ static bool export_objects(ctx *c, cJSON *root, const bool *mat_checked) {
 static bool export_light(ctx *c, int li, cJSON *list) {
     sl_app *app = c->app;
     const sl_light *L = &app->scene.lights[li];
-    if (L->plugin && !strcmp(app->plugins.items[L->plugin - 1]->id, "envmap")) {
-        /* envmap.sun (envmap.sun_light): the sky's own sun, which the exported sky holds as its disk */
-        if (plugin_on(app, "envmap") && !app->scene.environment.map)
-            note(c, "light %s: the procedural sky's sun, exported as the sky's disk (Cycles samples it there)",
-                 L->name);
-        return true;
-    }
+    /* envmap.sun (envmap.sun_light): the procedural sky's own sun, which the exported sky holds as
+     * its disk (docs/xcheck.md): Cycles samples it there, so no lamp doubles it */
+    if (L->plugin && !strcmp(app->plugins.items[L->plugin - 1]->id, "envmap")) return true;
     if (!L->enabled) return true;
     if (!light_type_handled(app, L->type)) {
         note(c, "not cross-checked: light %s: type \"%s\" is drawn by no enabled plugin (it lights nothing in "
