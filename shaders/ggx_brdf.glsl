@@ -19,6 +19,7 @@ float sl_light_spread = 0.0;
 // (α' = 0.777 r). D stays normalised, so the highlight keeps its energy (a polished sphere shows a
 // disk of radius R sin(r/2): test_ggx_render). A point light (r = 0) keeps α.
 float ggx_light_alpha(float alpha) {
+    if (sl_light_spread <= 0.0) return alpha; // points: the same for every lane, so skipped
     float rho2 = 0.25 * sl_light_spread * sl_light_spread, a2 = alpha * alpha;
     return sqrt(a2 + rho2 * (1.0 + 1.414 * rho2 / max(rho2 + a2, 1e-20)));
 }
