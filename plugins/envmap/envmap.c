@@ -157,6 +157,10 @@ typedef struct envmap {
      * sky's lighting leaves the disk to it */
     int sun_handle;
     bool sun_is_light;
+    /* the environment as other plugins see it (shadelab.environment/1) while the sun is a light:
+     * the base cube with the disk put back (ensure_ext_base), its key */
+    unsigned ext_base;
+    uint64_t ext_base_key;
     unsigned empty_vao; /* the in-place background's full-screen triangle */
     char glsl_dir[2048];
     uint64_t glsl_hash;
@@ -362,6 +366,7 @@ static void store_pending_blinn(envmap *e) {
 static void free_derived(envmap *e) {
     e->store_pending = false;
     delete_tex(&e->base);
+    delete_tex(&e->ext_base);
     delete_tex(&e->spec); /* ours, also when it came from a precomputed chain */
     delete_tex(&e->spec_blinn);
     e->blinn_store_pending = false;
@@ -560,6 +565,28 @@ static void ensure_base(envmap *e) {
     e->base = em_make_base_cube(&e->gpu, e->src_tex, e->kind == EM_ENV_CUBE, e->src_w, e->src_h, size);
     e->base_size = size;
     e->base_key = key;
+}
+
+/* The extension's cube while the sun is a light: the base cube leaves the disk to the light, but
+ * a plugin looking radiance up along a direction (refraction's glass ignores lights) must see the
+ * sky as it is. The full sky converted on the CPU as upload_sky does, at the base cube's size. */
+static uint64_t ext_base_key(envmap *e) { return e->base_key ^ 0x5355u; /* "SU": with the sun */ }
+static bool ext_base_current(envmap *e) { return e->ext_base && e->ext_base_key == ext_base_key(e); }
+static void ensure_ext_base(envmap *e) {
+    uint64_t key = ext_base_key(e);
+    if (ext_base_current(e)) return;
+    delete_tex(&e->ext_base);
+    em_image full = {0}, mips[16];
+    int n = 0, size = e->base_size, levels = em_max_levels(size);
+    em_sky_latlong(&e->sky, SKY_WIDTH, SKY_WIDTH / 2, &full);
+    em_latlong_mips(&full, mips, 16, &n);
+    float *faces[16] = {0};
+    em_latlong_to_cube_levels(mips, n, size, levels, faces);
+    e->ext_base = em_upload_cube_levels(faces, size, levels);
+    e->ext_base_key = key;
+    for (int l = 0; l < levels; l++) free(faces[l]);
+    for (int l = 1; l < n; l++) free(mips[l].px);
+    em_image_free(&full);
 }
 
 /* The GGX chain's settings and the key of everything it is made from (source, GLSL, settings). */
@@ -1195,19 +1222,20 @@ static void envmap_destroy(void *user) {
 static bool envmap_ext_environment_get(void *ctx, sl_environment_cube *out) {
     envmap *e = ctx;
     if (!e || !out || out->struct_size < sizeof *out || !e->have_src) return false;
-    if (!e->base) {
+    if (!e->base || (e->sun_is_light && !ext_base_current(e))) {
         gl_state st;
         gpu_work_begin(&st);
         ensure_base(e);
+        if (e->sun_is_light && e->base) ensure_ext_base(e);
         gpu_work_end(e, &st);
     }
     if (!e->base) return false;
-    out->texture = e->base;
+    out->texture = e->sun_is_light && e->ext_base ? e->ext_base : e->base;
     out->size = e->base_size;
     out->levels = em_max_levels(e->base_size);
     rotation(e, out->world_to_map);
     out->scale = e->scale;
-    out->version = e->base_key;
+    out->version = e->sun_is_light ? e->ext_base_key : e->base_key;
     return true;
 }
 static sl_ext_environment envmap_ext_environment = {.struct_size = sizeof(sl_ext_environment),

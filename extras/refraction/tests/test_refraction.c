@@ -346,6 +346,35 @@ int main(void) {
     }
     free(live), free(fresh), free(single_img), free(bg);
 
+    /* The environment envmap serves (shadelab.environment/1) is the sky as it is, its sun disk
+     * included, whether or not envmap lights with the sun as a light of its own
+     * (envmap.sun_light): glass ignores lights, so it looks the same both ways, the sun's glint
+     * reflected on its front included. */
+    {
+        static char json[1024];
+        snprintf(json, sizeof json,
+                 "{\"plugins\": [\"envmap\"],"
+                 " \"cameras\": [{\"name\": \"main\", \"position\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y\": %g}],"
+                 " \"materials\": [{\"name\": \"glass\", \"model\": \"dielectric\", \"ior\": 1.5}],"
+                 " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1,"
+                 " \"segments\": 256, \"rings\": 128}, \"material\": \"glass\"}],"
+                 " \"lights\": []}", FOV);
+        const char *sky[] = {"envmap.sun_elevation=20", "envmap.sun_azimuth=10", "envmap.sun_light=true", NULL};
+        sl_harness *h = make(json, sky);
+        float *as_light = render(h);
+        set(h, "envmap.sun_light=false");
+        float *in_sky = render(h);
+        sl_harness_destroy(h);
+        double sum = 0, peak = 0;
+        for (int i = 0; i < W * H; i++) {
+            sum += fabs(as_light[i * 4 + 1] - in_sky[i * 4 + 1]);
+            peak = fmax(peak, in_sky[i * 4 + 1]);
+        }
+        printf("glass under the sky: mean |sun_light on - off| %.2e, the glint's peak %.1f\n", sum / (W * H), peak);
+        CHECK(peak > 5 && sum / (W * H) < 1e-3, "the glass sees another sky when the sun is a light");
+        free(as_light), free(in_sky);
+    }
+
     printf(failures ? "FAILED: %d\n" : "PASS\n", failures);
     return failures ? 1 : 0;
 }
