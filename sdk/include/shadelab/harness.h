@@ -41,8 +41,9 @@ void sl_harness_destroy(sl_harness *h);
 bool sl_harness_set(sl_harness *h, const char *assignment, char *err, size_t err_size);
 bool sl_harness_set_debug_view(sl_harness *h, const char *view, char *err, size_t err_size);
 /* The current value of a global parameter ("plugin.param"), or of a core key of a light
- * ("light.NAME.KEY": enabled, intensity, color, direction, …, as the light holds it; a plugin's
- * light as its plugin last set it), as --set text; false when unknown. */
+ * ("light.NAME.KEY": enabled, intensity, color, direction, …, as the light holds it: a plugin's
+ * light's direction, colour and intensity as its plugin last set them, `enabled` the user's
+ * switch), as --set text; false when unknown. */
 bool sl_harness_get(sl_harness *h, const char *id, char *text, size_t text_size);
 /* Pins the frame index of the next render (sl_time = index × the fixed frame time; a render
  * advances it by one), so that a frame after live changes compares with a fresh start. */
