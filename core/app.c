@@ -340,7 +340,9 @@ static bool ground_option(sl_app *app, char *err, size_t n) {
     return true;
 }
 
-/* --shadows: every light casts them; a key light from the upper front left (E = 3) casts them too. */
+/* --shadows: every light casts them; a key light from the upper front left (E = 3) casts them too,
+ * standing in for a sun: it is off while a plugin's own shadow-casting directional light shines
+ * (plugin_lights.h; envmap's sky sun), which is added later, with the plugins. */
 static bool shadows_option(sl_app *app, char *err, size_t n) {
     sl_scene *s = &app->scene;
     for (int i = 0; i < s->light_count; i++) s->lights[i].cast_shadows = true;
@@ -354,6 +356,7 @@ static bool shadows_option(sl_app *app, char *err, size_t n) {
     for (int c = 0; c < 3; c++) s->lights[li].direction[c] = dir[c] / l;
     s->lights[li].intensity = 3;
     s->lights[li].cast_shadows = true;
+    s->lights[li].stand_in = true;
     return true;
 }
 

@@ -140,7 +140,8 @@ static const option options[] = {
     {"--env", NULL, "FILE", "an environment map (`.hdr`, `.exr`: lat-long) lighting the scene, in place of its own",
      TEXT(opt.env_map)},
     {"--ground", NULL, NULL, "a grey floor under the scene's bounds that receives its shadows", FLAG(opt.ground)},
-    {"--shadows", NULL, NULL, "every light casts shadows, and a key light that casts them is added", FLAG(opt.shadows)},
+    {"--shadows", NULL, NULL, "every light casts shadows, and a key light that casts them is added (off while a plugin "
+                              "lights the scene with a shadow-casting sun of its own)", FLAG(opt.shadows)},
     {"--variant", NULL, "NAME", "the glTF `KHR_materials_variants` variant shown (name or index)", TEXT(opt.gltf_variant)},
     {"--animation", NULL, "N|NAME", "the glTF animation played (index or name; default the first)",
      TEXT(opt.gltf_animation)},

@@ -77,8 +77,22 @@ bool sl_plugin_light_set(sl_app *app, int plugin, int light, const sl_plugin_lig
     return true;
 }
 
+static bool plugin_light_on(const sl_app *app, const sl_light *L) {
+    return L->enabled && L->plugin_on && sl_plugin_enabled(&app->plugins, L->plugin - 1);
+}
+
+/* A plugin's shadow-casting directional light shines (a sun of its own: envmap's sky sun). */
+static bool plugin_sun_on(const sl_app *app) {
+    for (int i = 0; i < app->scene.light_count; i++) {
+        const sl_light *L = &app->scene.lights[i];
+        if (L->plugin && L->cast_shadows && !strcmp(L->type, "directional") && plugin_light_on(app, L)) return true;
+    }
+    return false;
+}
+
 bool sl_light_on(const sl_app *app, const sl_light *L) {
-    return L->enabled && (!L->plugin || (L->plugin_on && sl_plugin_enabled(&app->plugins, L->plugin - 1)));
+    if (L->plugin) return plugin_light_on(app, L);
+    return L->enabled && !(L->stand_in && plugin_sun_on(app));
 }
 
 uint64_t sl_plugin_lights_owners_on(const sl_app *app) {

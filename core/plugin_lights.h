@@ -13,7 +13,8 @@ int sl_plugin_light_add(sl_app *app, int plugin, const sl_plugin_light_desc *d, 
  * app->plugin_lights_moved when anything changed. false: not that plugin's light. */
 bool sl_plugin_light_set(sl_app *app, int plugin, int light, const sl_plugin_light_state *s);
 /* Whether a scene light lights the frame: enabled (the user's switch), and for a plugin's light
- * its plugin on and the light on by that plugin's last set_light. */
+ * its plugin on and the light on by that plugin's last set_light; --shadows' stand-in key light
+ * not while a plugin's shadow-casting directional light shines. */
 bool sl_light_on(const sl_app *app, const sl_light *L);
 /* The plugins' lights' owners' switches as bits, to notice a plugin switched on or off. */
 uint64_t sl_plugin_lights_owners_on(const sl_app *app);

@@ -10,7 +10,8 @@
  *    file is an error naming it.
  *  - shadow_render: with --ground --shadows the floor behind the quad, where the key light's ray
  *    meets the quad (computed here), is darker than a lit floor point by more than the shadow's
- *    share of the light; without --shadows the two agree. */
+ *    share of the light; without --shadows the two agree. With the sky's sun a light of its own
+ *    (envmap.sun_light, the default) the key light stands down: --shadows adds no light. */
 #include "app.h"
 #include "camera.h"
 #include "check.h"
@@ -90,15 +91,20 @@ static void test_animation(const char *path) {
     sl_scene_free(&s);
 }
 
-static bool init(sl_app *app, const char *path, const char *env, bool ground, bool shadows) {
+/* `setting`: one more --set (NULL: none) */
+static bool init_with(sl_app *app, const char *path, const char *env, bool ground, bool shadows, const char *setting) {
     sl_app_options opt = {.scene_path = path, .backend = SL_BACKEND_OSMESA, .width = 96, .height = 96, .keep_color = true,
                           .env_map = env, .ground = ground, .shadows = shadows};
     opt.settings[opt.setting_count++] = "tonemap.enabled=false";
     opt.settings[opt.setting_count++] = "aa.enabled=false";
+    if (setting) opt.settings[opt.setting_count++] = setting;
     sl_log_capture(logbuf, sizeof logbuf);
     bool ok = sl_app_init(app, &opt, err, sizeof err);
     sl_log_capture(NULL, 0);
     return ok;
+}
+static bool init(sl_app *app, const char *path, const char *env, bool ground, bool shadows) {
+    return init_with(app, path, env, ground, shadows, NULL);
 }
 
 static bool has_plugin(const sl_app *app, const char *id) {
@@ -156,6 +162,29 @@ static float radiance_at(sl_app *app, const float *img, const float p[3]) {
     return (px[0] + px[1] + px[2]) / 3;
 }
 
+/* The floor's radiance at `shadowed` and `lit` (below), with and without --shadows ([k][point]),
+ * the sky's sun a light of its own or not (setting). */
+static bool floor_points(const char *dir, const char *path, const char *setting, const float shadowed[3],
+                         const float lit[3], float at[2][2]) {
+    bool all = true;
+    for (int k = 0; k < 2; k++) {
+        sl_app app;
+        bool ok = init_with(&app, path, NULL, true, k == 0, setting);
+        CHECK_MSG(ok, "%s", err);
+        float *img = malloc(sizeof(float) * 4 * 96 * 96);
+        ok = ok && sl_app_start_gl(&app, err, sizeof err) && sl_app_render_frame(&app) && sl_app_read_color(&app, img);
+        CHECK_MSG(ok, "render: %s", err);
+        if (ok) at[k][0] = radiance_at(&app, img, shadowed), at[k][1] = radiance_at(&app, img, lit);
+        char out[4300];
+        snprintf(out, sizeof out, "%s/shadow_%s_%s.exr", dir, k ? "off" : "on", setting ? "sky_sun_off" : "sky_sun");
+        if (ok) sl_app_save(&app, out, err, sizeof err);
+        free(img);
+        sl_app_shutdown(&app);
+        all = all && ok;
+    }
+    return all;
+}
+
 static void test_shadow_render(const char *dir) {
     char path[4200];
     gw_doc g;
@@ -169,20 +198,8 @@ static void test_shadow_render(const char *dir) {
      * light past it */
     const float shadowed[3] = {1.4f, -1, -0.55f}, lit[3] = {1.4f, -1, 0.55f};
     float at[2][2] = {{0}}; /* [--shadows on/off][shadowed, lit] */
-    for (int k = 0; k < 2; k++) {
-        sl_app app;
-        bool ok = init(&app, path, NULL, true, k == 0);
-        CHECK_MSG(ok, "%s", err);
-        float *img = malloc(sizeof(float) * 4 * 96 * 96);
-        ok = ok && sl_app_start_gl(&app, err, sizeof err) && sl_app_render_frame(&app) && sl_app_read_color(&app, img);
-        CHECK_MSG(ok, "render: %s", err);
-        if (ok) at[k][0] = radiance_at(&app, img, shadowed), at[k][1] = radiance_at(&app, img, lit);
-        char out[4300];
-        snprintf(out, sizeof out, "%s/shadow_%s.exr", dir, k ? "off" : "on");
-        if (ok) sl_app_save(&app, out, err, sizeof err);
-        free(img);
-        sl_app_shutdown(&app);
-    }
+    /* the sky's sun in the sky's image (envmap.sun_light=false): the key light stands */
+    floor_points(dir, path, "envmap.sun_light=false", shadowed, lit, at);
     /* the key light adds E cos θ · albedo / π to the lit floor (Lambert, albedo 0.5, E = 3,
      * cos θ = 0.7 / |d|) and nothing to the shadowed one, where only the sky remains */
     double cos_t = 0.7 / sqrt(0.45 * 0.45 + 0.7 * 0.7 + 0.55 * 0.55), key = 3 * cos_t * 0.5 / M_PI;
@@ -192,6 +209,16 @@ static void test_shadow_render(const char *dir) {
     CHECK_MSG(fabs(at[0][1] - at[1][1] - key) < 0.03 * key, "the lit floor gains %.4f, not the key light's %.4f",
               at[0][1] - at[1][1], key);
     CHECK_MSG(fabs(at[1][0] - at[1][1]) < 0.05 * at[1][1], "without --shadows the two floor points differ");
+    /* the sky's sun a light of its own (the default): it casts the shadows and the key light
+     * stands down, so --shadows adds no light where the sun's shadow does not fall: both floor
+     * points (in the key light's would-be shadow and beside it) are as without --shadows */
+    float sun[2][2] = {{0}};
+    floor_points(dir, path, NULL, shadowed, lit, sun);
+    printf("shadow_render, the sky's sun a light: with --shadows %.4f / %.4f, without %.4f / %.4f\n", sun[0][0],
+           sun[0][1], sun[1][0], sun[1][1]);
+    for (int p = 0; p < 2; p++)
+        CHECK_MSG(fabs(sun[0][p] - sun[1][p]) < 0.02 * sun[1][p], "--shadows added light (%.4f against %.4f) where the "
+                  "sky's sun stands for the key light", sun[0][p], sun[1][p]);
 }
 
 int main(void) {

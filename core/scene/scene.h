@@ -165,6 +165,8 @@ typedef struct sl_light {
     int line;
     int plugin;             /* 1 + the index of the plugin that added it (SDK add_light); 0: the scene's */
     bool plugin_on;         /* such a light: its plugin's switch (set_light); `enabled` stays the user's */
+    bool stand_in;          /* --shadows' key light: off while a plugin's shadow-casting directional
+                               light shines (envmap's sky sun), so a model gets one sun */
 } sl_light;
 
 typedef struct sl_camera {
