@@ -73,20 +73,26 @@ bool sl_harness_render(sl_harness *h, float *rgba) {
     return sl_app_render_frame(&h->app) && (!rgba || sl_app_read_color(&h->app, rgba));
 }
 
-/* "light.NAME.KEY" of a core light key (core_plugin.h) */
+/* A value of parameter q as --set text: floats in full (sl_param_format rounds for display). */
+static void format_value(const sl_param *q, const sl_value *v, char *text, size_t n) {
+    const float *f = v->f;
+    if (q->desc.type == SL_PARAM_FLOAT) snprintf(text, n, "%.9g", f[0]);
+    else if (q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3) snprintf(text, n, "%.9g,%.9g,%.9g", f[0], f[1], f[2]);
+    else sl_param_format(q, v, text, n);
+}
+
+/* "light.NAME.KEY" of a core light key (core_plugin.h), formatted by the key's schema */
 static bool get_light_key(sl_harness *h, const char *id, char *text, size_t n) {
     char name[512];
     const char *dot = strrchr(id, '.');
     if (strncmp(id, "light.", 6) || !dot || dot - id - 6 <= 0 || (size_t)(dot - id - 6) >= sizeof name) return false;
     snprintf(name, sizeof name, "%.*s", (int)(dot - id - 6), id + 6);
     for (int i = 0; i < h->app.scene.light_count; i++) {
+        const sl_light *L = &h->app.scene.lights[i];
+        const sl_param *q = sl_params_find_key(&h->app.params, SL_SCOPE_LIGHT, dot + 1, L->type);
         sl_value v;
-        if (strcmp(h->app.scene.lights[i].name, name) || !sl_core_light_get(&h->app.scene.lights[i], dot + 1, &v)) continue;
-        if (!strcmp(dot + 1, "enabled") || !strcmp(dot + 1, "cast_shadows")) snprintf(text, n, "%s", v.b ? "true" : "false");
-        else if (!strcmp(dot + 1, "color") || !strcmp(dot + 1, "position") || !strcmp(dot + 1, "direction"))
-            snprintf(text, n, "%.9g,%.9g,%.9g", v.f[0], v.f[1], v.f[2]);
-        else if (!strcmp(dot + 1, "animate")) snprintf(text, n, "%d", v.i);
-        else snprintf(text, n, "%.9g", v.f[0]);
+        if (strcmp(L->name, name) || !q || !sl_core_light_get(L, dot + 1, &v)) continue;
+        format_value(q, &v, text, n);
         return true;
     }
     return false;
@@ -96,10 +102,7 @@ bool sl_harness_get(sl_harness *h, const char *id, char *text, size_t n) {
     if (get_light_key(h, id, text, n)) return true;
     const sl_param *q = sl_params_find(&h->app.params, id);
     if (!q) return false;
-    const float *f = q->value.f; /* floats in full (sl_param_format rounds for display) */
-    if (q->desc.type == SL_PARAM_FLOAT) snprintf(text, n, "%.9g", f[0]);
-    else if (q->desc.type == SL_PARAM_COLOR || q->desc.type == SL_PARAM_VEC3) snprintf(text, n, "%.9g,%.9g,%.9g", f[0], f[1], f[2]);
-    else sl_param_format(q, &q->value, text, n);
+    format_value(q, &q->value, text, n);
     return true;
 }
 

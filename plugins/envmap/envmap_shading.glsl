@@ -540,6 +540,7 @@ uniform float envmap_sun_radius;  // the disk's angular radius, radians
 uniform vec3 envmap_sun_radiance; // E/Ω × colour × the environment's intensity; 0: in the texels
 uniform float envmap_sun_footprint; // 1, or 2/√n in the jittered frames of an n-frame still
 vec3 envmap_sun_disk(vec3 d, float footprint) {
+    if (envmap_sun_radiance.r <= 0.0) return vec3(0.0); // the disk is in the texels (uniform: skipped)
     footprint *= envmap_sun_footprint;
     float angle = acos(clamp(dot(envmap_rot * d, envmap_sun_dir), -1.0, 1.0));
     float r = envmap_sun_radius, spread = max(r, 0.5 * footprint);
