@@ -14,6 +14,7 @@
 #include <shadelab/ext/budget.h>
 #include "envmap/io.h"
 #include "envmap/prefilter.h"
+#include "reflections.h"
 #include <errno.h>
 #include <stddef.h>
 #include <math.h>
@@ -32,6 +33,7 @@ static const char *const modes[] = {"split-sum", "reference", NULL};
 static const char *const speculars[] = {"mirror", "dominant", "fis", "hybrid", "filtered", NULL};
 static const char *const irradiance_methods[] = {"sh", "convolved", NULL};
 static const char *const level_maps[] = {"sqrt", "log", NULL}; /* em_level_map's order */
+static const char *const reflection_methods[] = {"sky", "screen", NULL};
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
 static const sl_param_desc params[] = {
@@ -116,6 +118,21 @@ static const sl_param_desc params[] = {
       .description = "Keep prefiltered cubes on disk ($SHADELAB_CACHE, else ~/.cache/shadelab), keyed by input and parameters."),
     P(.id = "seamless", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "prefilter",
       .description = "GL_TEXTURE_CUBE_MAP_SEAMLESS: filter across cube face edges (off shows the seams)."),
+    P(.id = "reflections", .type = SL_PARAM_ENUM, .enum_values = reflection_methods, .flags = SL_PARAM_NEEDS_RECOMPILE,
+      .group = "reflections",
+      .description = "What smooth surfaces reflect: sky: the environment alone; screen: the scene itself where a "
+                     "reflected ray meets it on screen (one more draw of the opaque scene, at reflections_scale, "
+                     "when the view or the scene changes; the environment elsewhere)."),
+    P(.id = "reflections_alpha", .type = SL_PARAM_FLOAT, .default_value = {.f = {0.2f}}, .min = 0.01f, .max = 1,
+      .step = 0.01f, .group = "reflections",
+      .description = "reflections=screen: GGX alpha from which a lobe reflects the environment alone (one ray cannot "
+                     "stand for a wide lobe); fading in from half of it."),
+    P(.id = "reflections_scale", .type = SL_PARAM_FLOAT, .default_value = {.f = {0.5f}}, .min = 0.25f, .max = 1,
+      .step = 0.25f, .group = "reflections",
+      .description = "reflections=screen: the size of the scene's image the rays read, relative to the frame."),
+    P(.id = "reflections_steps", .type = SL_PARAM_INT, .default_value = {.i = 32}, .min = 4, .max = 128,
+      .group = "reflections",
+      .description = "reflections=screen: steps along each ray before bisecting to the surface it crossed."),
     P(.id = "sun_elevation", .type = SL_PARAM_FLOAT, .default_value = {.f = {35}}, .min = -EM_SKY_ELEVATION_MAX, .max = EM_SKY_ELEVATION_MAX, .unit = "deg",
       .group = "sky", .description = "Procedural sky (used when the scene gives no environment): sun elevation."),
     P(.id = "sun_azimuth", .type = SL_PARAM_FLOAT, .default_value = {.f = {60}}, .min = -EM_SKY_AZIMUTH_MAX, .max = EM_SKY_AZIMUTH_MAX, .unit = "deg",
@@ -200,6 +217,7 @@ typedef struct envmap {
     bool store_pending;
     uint64_t store_key;
     int store_size, store_levels;
+    em_reflections refl; /* reflections=screen */
 } envmap;
 
 static double now_s(void) {
@@ -489,6 +507,7 @@ static em_sky sky_params(envmap *e) {
 
 static void load_source(envmap *e, const char *map, const float env[5]) {
     free_derived(e);
+    em_reflections_free(&e->refl);
     delete_tex(&e->src_tex);
     e->have_src = false;
     e->sun_is_light = false;
@@ -963,6 +982,7 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     }
     if (l_sh >= 0) glUniform3fv(l_sh, 9, &e->sh[0][0]);
     bind_sun_disk(e, prog, f);
+    em_reflections_bind(&e->refl, prog);
     glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
     /* a precomputed chain (shadelab-cube --ggx) is always the sqrt mapping */
     glUniform1i(glGetUniformLocation(prog, "envmap_spec_map"), e->spec_from_chain ? 0 : param(e, "level_map").i);
@@ -1079,6 +1099,8 @@ static int add_sun_light(const sl_host *host) {
     return host->add_light(host, &d);
 }
 
+static bool envmap_lit(void *user) { return ((envmap *)user)->have_src; }
+
 static sl_status envmap_create(const sl_host *host, void **user) {
     if (host->struct_size < offsetof(sl_host, environment) + sizeof host->environment || !host->environment) {
         host->log(host, SL_LOG_ERROR, "this host has no environment query (needs the SDK ABI 1.1)");
@@ -1121,6 +1143,7 @@ static sl_status envmap_create(const sl_host *host, void **user) {
                                     .stage = SL_STAGE_SHADOW + 50, .execute = prefilter_execute,
                                     .is_active = prefilter_active, .signature = prefilter_signature, .user = e};
     if (host->add_pass(host, &prefilter) != SL_OK) return SL_ERR_FAILED;
+    if (em_reflections_create(&e->refl, host, envmap_lit, e) != SL_OK) return SL_ERR_FAILED;
     static const sl_reference_desc ref = {
         .struct_size = sizeof ref, .settings = "envmap.mode=reference envmap.reference_samples=64",
         .accumulate_frames = 64,
@@ -1178,6 +1201,7 @@ static sl_status envmap_activate(void *user) {
             if (!*slot[in_place]) return SL_ERR_GL;
         }
     }
+    if (em_reflections_activate(&e->refl) != SL_OK) return SL_ERR_GL;
     glCreateVertexArrays(1, &e->empty_vao);
     e->glsl_hash = em_glsl_hash(e->glsl_dir, e->host->shader_dir(e->host));
     /* 1×1 stand-ins so every sampler always has a texture of its own type on its own unit */
@@ -1197,6 +1221,7 @@ static void envmap_deactivate(void *user) {
     store_pending(e);
     store_pending_blinn(e);
     free_derived(e);
+    em_reflections_free(&e->refl);
     delete_tex(&e->src_tex);
     delete_tex(&e->lut);
     delete_tex(&e->dummy_2d);

@@ -101,6 +101,43 @@ vec3 envmap_lookup_dir(vec3 n, vec3 r, float alpha) {
 #endif
 }
 
+// Screen-space reflections (reflections=screen; README, "Reflections of the scene"): before the
+// forward pass envmap draws the opaque scene (envmap_scene.frag) and traces, once per texel of that
+// image, a ray along the smoothest lobe's lookup direction (envmap_reflections.frag). Here a lobe
+// smoother than envmap_refl_alpha takes the radiance the ray found where it found one — one
+// bilinear read of the premultiplied (radiance × weight, weight), so texels where nothing was
+// found or traced (a rough neighbour, the sky) only thin the reflection at a silhouette — fading to
+// the environment alone between half of envmap_refl_alpha and it (one ray cannot stand for a wide
+// lobe). One read: on llvmpipe a branch's body costs every pixel that could take it.
+#if defined(ENVMAP_REFLECTIONS) && ENVMAP_REFLECTIONS == ENVMAP_REFLECTIONS_SCREEN && !defined(SL_CUSTOM_MAIN) && \
+    !defined(SL_FULLSCREEN_MATERIAL)
+#define ENVMAP_SCREEN_RAYS 1
+uniform sampler2D envmap_refl;       // (radiance × weight, weight) per texel of the scene's image
+uniform mat4 envmap_refl_view_proj;  // the view it was drawn with (no jitter)
+uniform float envmap_refl_alpha;     // lobes this rough or rougher: the environment alone
+#endif
+// What the screen-space ray of this pixel found: (radiance × weight, weight); 0 without rays
+vec4 envmap_scene_found(SlSurface s) {
+#ifdef ENVMAP_SCREEN_RAYS
+    vec4 c = envmap_refl_view_proj * vec4(s.position, 1.0);
+    return c.w > 0.0 ? textureLod(envmap_refl, c.xy / c.w * 0.5 + 0.5, 0.0) : vec4(0.0);
+#else
+    return vec4(0.0);
+#endif
+}
+// How much of a lobe of this alpha the scene found replaces (0 without rays)
+float envmap_scene_weight(vec4 found, float alpha) {
+#ifdef ENVMAP_SCREEN_RAYS
+    return found.a * (1.0 - smoothstep(0.5 * envmap_refl_alpha, envmap_refl_alpha, alpha));
+#else
+    return 0.0;
+#endif
+}
+// radiance along a lobe of this alpha: the environment's (env), or the scene's where the ray met it
+vec3 envmap_with_scene(vec4 found, float alpha, vec3 env) {
+    return mix(env, found.rgb / max(found.a, 1e-6), envmap_scene_weight(found, alpha));
+}
+
 // (A, B, C): texel i ↔ n·v = i/(n−1), j ↔ r = j/(n−1); C(n·v) the diffuse Fresnel weight
 vec3 envmap_brdf(float mu, float alpha) {
     vec2 x = vec2(mu, sqrt(alpha));
@@ -318,6 +355,7 @@ vec3 envmap_split_sum(SlSurface s) {
     // in the reference below
     float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
     vec3 kd = L.diffuse, lit = vec3(0.0);
+    vec4 found = envmap_scene_found(s);
     for (int k = 0; k < L.count && k < SL_MAX_LOBES; ++k) {
         SlLobe lobe = L.lobe[k];
         float alpha = max(lobe.alpha, GGX_MIN_ALPHA);
@@ -355,6 +393,11 @@ vec3 envmap_split_sum(SlSurface s) {
         vec3 d = envmap_lookup_dir(n, r, alpha);
         vec3 specular = spec * (sl_lobe_blinn_phong(L, k) ? envmap_specular_blinn(d, alpha, mu) : envmap_specular(d, alpha)) *
                         envmap_horizon(d, s.geometric_normal);
+#endif
+#ifdef ENVMAP_SCREEN_RAYS
+        // every mode: the scene where this pixel's ray met it, for the smooth lobes (the radiance
+        // the ray found stands for the lobe's: times the same albedo)
+        specular = mix(specular, spec * found.rgb / max(found.a, 1e-6), envmap_scene_weight(found, alpha));
 #endif
         lit += lobe.weight * visible * envmap_specular_occlusion(mu, s.ao, alpha) * specular;
     }
@@ -558,7 +601,11 @@ vec3 envmap_ambient(SlSurface s) {
 #endif
     float footprint = max(length(dFdx(d)), length(dFdy(d)));
 #if defined(SL_MODEL_MIRROR) || defined(SL_MODEL_ENVIRONMENT)
-    return envmap_tint(s) * (envmap_source(d, envmap_source_lod(footprint)) + envmap_sun_disk(d, footprint));
+    vec3 env = envmap_source(d, envmap_source_lod(footprint)) + envmap_sun_disk(d, footprint);
+#if defined(SL_MODEL_MIRROR)
+    env = envmap_with_scene(envmap_scene_found(s), 0.0, env);
+#endif
+    return envmap_tint(s) * env;
 #else
     SlLobes lobes = sl_model_lobes(s);
     // a model lit at the dominant light is defined by that evaluation: every mode gives it

@@ -44,7 +44,7 @@ data_args=()
 # declares no quality knob (ssao), or is not compared (tonemap: before tone mapping).
 declare -A HIGHEST=(
     [core]="core.ssaa=4"
-    [envmap]="envmap.specular=fis envmap.fis_samples=32 envmap.irradiance=convolved"
+    [envmap]="envmap.specular=fis envmap.fis_samples=32 envmap.irradiance=convolved envmap.reflections=screen envmap.reflections_scale=1"
     [spotlight-shadow]="spotlight-shadow.filter=pcss spotlight-shadow.map_size=4096 spotlight-shadow.pcss_blocker_taps=64 spotlight-shadow.pcss_filter_taps=64"
 )
 note() { echo "xcheck-table: $*" >&2; }
@@ -180,7 +180,7 @@ with open(out, "w") as f:
             "[--set …] SCENE` per row) on %s at commit %s, %s cores (%s); load average %s at the start and %s at "
             "the end, %s min in all%s. Rows: every bundled scene Cycles can represent (the exporter lists nothing "
             "but tone mapping left out) at its defaults, then at each of its plugins' highest settings "
-            "(`core.ssaa=4`; envmap's fis 32 with convolved irradiance; spotlight-shadow's PCSS at 4096² with 64 "
+            "(`core.ssaa=4`; envmap's fis 32 with convolved irradiance and screen-space reflections; spotlight-shadow's PCSS at 4096² with 64 "
             "taps; aa, ggx and normal-map are at their highest by default). Error: relative RMS / FLIP "
             "against a %s-sample Cycles reference over every object's interior and the background "
             "(silhouettes left out), before tone mapping (FLIP: LDR-FLIP with both images at one exposure, "
