@@ -1,5 +1,5 @@
-/* envmap.specular under the frame-time budget (docs/budget.md): envmap registers a cost and error
- * model for it (dominant, filtered), so that in the window a scene configured with `filtered`
+/* envmap.specular and envmap.reflections under the frame-time budget (docs/budget.md): envmap
+ * registers a cost and error model for each (dominant, filtered; sky, screen), so that in the window a scene configured with `filtered`
  * gets the one-lookup `dominant` while the view moves and `filtered` back when it is still.
  * A 64² GGX sphere under the procedural sky, "envmap.specular": "filtered" and "core.budget": 1
  * (ms; nothing fits, so the budget takes the cheapest choice) in the scene's params: rendered
@@ -7,7 +7,9 @@
  * moving frame on), then still again (filtered after the budget's still frames, and the image of
  * the still equals a render with filtered and no budget: the configured setting is back). The
  * same with "envmap.specular" given as a setting (--set: the user's choice, which the budget
- * leaves alone): filtered throughout. */
+ * leaves alone): filtered throughout. And a scene configured with "envmap.reflections": "screen":
+ * the sky alone while the view moves, screen again when it is still, and the settled still equals
+ * screen without a budget. */
 #include "check.h"
 #include <shadelab/harness.h>
 #include <math.h>
@@ -37,9 +39,10 @@ static sl_harness *make(const char *params, const char *const *settings) {
     return h;
 }
 
+static const char *knob = "envmap.specular";
 static const char *specular(sl_harness *h) {
     static char v[32];
-    return sl_harness_get(h, "envmap.specular", v, sizeof v) ? v : "?";
+    return sl_harness_get(h, knob, v, sizeof v) ? v : "?";
 }
 
 /* Renders `n` frames, moving the camera round the sphere before each when `moving`; returns how
@@ -102,8 +105,36 @@ static void test_user_choice(void) {
     sl_harness_destroy(h);
 }
 
+static void test_reflections_model(void) {
+    const char *const none[] = {"aa.enabled=false", "envmap.cube_size=32", "envmap.samples=64", "envmap.cache=false", NULL};
+    knob = "envmap.reflections";
+    sl_harness *h = make("\"envmap.reflections\": \"screen\", \"core.budget\": 1", none);
+    CHECK(h != NULL);
+    if (!h) return;
+    int still = frames_with(h, 4, 0, false, "screen", img);
+    int moving = frames_with(h, 6, 1, true, "sky", img);
+    int back = frames_with(h, 6, 3, false, "screen", img);
+    printf("scene configures reflections=screen, budget 1 ms: still %d/4 frames screen, moving frames 2-6 %d/5 sky, "
+           "still again frames 4-6 %d/3 screen\n", still, moving, back);
+    CHECK_MSG(moving == 5, "the budget left envmap.reflections=%s in %d of 5 moving frames", specular(h), 5 - moving);
+    CHECK_MSG(back == 3, "the still did not go back to screen (%d of 3)", back);
+    sl_harness_destroy(h);
+    h = make("\"envmap.reflections\": \"screen\"", none);
+    CHECK(h != NULL);
+    if (!h) return;
+    camera_at(h, angle);
+    CHECK(sl_harness_render(h, ref));
+    double worst = 0;
+    for (int i = 0; i < W * H * 4; i++) worst = fmax(worst, fabs(img[i] - ref[i]));
+    printf("the settled still against reflections=screen without a budget: largest difference %.3g\n", worst);
+    CHECK_MSG(worst <= 1e-4, "the settled still differs from screen without a budget by %.3g", worst);
+    sl_harness_destroy(h);
+    knob = "envmap.specular";
+}
+
 int main(void) {
     test_budget_model();
+    test_reflections_model();
     test_user_choice();
     return check_result();
 }
