@@ -32,7 +32,11 @@ static bool pass_active(void *user, const sl_frame *f) {
     return em_reflections_on(r) && r->lit(r->lit_user) && r->host->scene_uses_uniform(r->host, "envmap_refl");
 }
 
-static float scale_of(const em_reflections *r) { return param(r, "reflections_scale").f[0]; }
+/* Of the forward pass's size, which core.ssaa multiplies: the image never finer than the output. */
+static float scale_of(const em_reflections *r) {
+    int ssaa = r->host->get_param(r->host, "core.ssaa").i;
+    return param(r, "reflections_scale").f[0] / (float)(ssaa > 1 ? ssaa : 1);
+}
 
 static void scene_io(void *user, const char *const **in, const sl_target_desc **out, int *n) {
     em_reflections *r = user;
