@@ -189,21 +189,26 @@ sl_status em_reflections_activate(em_reflections *r) {
     r->trace_prog = r->host->load_program(r->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                        .vertex = "sl:fullscreen.vert",
                                                                        .fragment = "envmap_reflections.frag"});
+    static const float zero[4] = {0, 0, 0, 0};
+    glCreateTextures(GL_TEXTURE_2D, 1, &r->nothing);
+    glTextureStorage2D(r->nothing, 1, GL_RGBA16F, 1, 1);
+    glTextureSubImage2D(r->nothing, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, zero);
     return r->trace_prog ? SL_OK : SL_ERR_GL;
 }
 
 void em_reflections_bind(em_reflections *r, unsigned prog) {
     int l = glGetUniformLocation(prog, "envmap_refl");
     if (l < 0) return;
-    /* until the passes have run (no image yet) nothing was found: alpha 0 keeps the environment */
-    glBindTextureUnit(r->unit_found, r->found);
+    /* until the passes have run (no image yet) nothing was found: a texel of weight 0 */
+    glBindTextureUnit(r->unit_found, r->found ? r->found : r->nothing);
     glUniform1i(l, r->unit_found);
     glUniformMatrix4fv(glGetUniformLocation(prog, "envmap_refl_view_proj"), 1, GL_FALSE, r->view_proj);
-    glUniform1f(glGetUniformLocation(prog, "envmap_refl_alpha"), r->found ? param(r, "reflections_alpha").f[0] : 0.0f);
+    glUniform1f(glGetUniformLocation(prog, "envmap_refl_alpha"), param(r, "reflections_alpha").f[0]);
 }
 
 void em_reflections_free(em_reflections *r) {
     if (r->color) glDeleteTextures(1, &r->color);
-    r->color = 0, r->depth = 0, r->found = 0, r->w = r->h = 0;
+    if (r->nothing) glDeleteTextures(1, &r->nothing);
+    r->color = 0, r->depth = 0, r->found = 0, r->nothing = 0, r->w = r->h = 0;
     r->generation++;
 }

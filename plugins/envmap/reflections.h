@@ -16,6 +16,7 @@ typedef struct em_reflections {
     int unit_found;         /* the forward programs' */
     unsigned color, depth;  /* the scene's image with mips (envmap's own), its depth (the pass's) */
     unsigned found;         /* what the rays found (the trace pass's) */
+    unsigned nothing;       /* 1x1, weight 0: bound until the trace pass has run */
     int w, h, levels;
     uint32_t generation;    /* moves when the image is freed: the pass draws it again */
     float view_proj[16], depth_lin[4], texel[2], length;
