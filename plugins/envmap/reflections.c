@@ -1,6 +1,7 @@
 /* envmap's screen-space reflections (reflections=screen): the pass that draws the opaque scene,
- * lit as the forward pass lights it but without these reflections, for the forward programs'
- * reflected rays (envmap_shading.glsl, envmap_screen_ray), and the uniforms those programs read.
+ * lit as the forward pass lights it but without these reflections (envmap_scene.frag), the pass
+ * that traces one reflected ray per texel of it (envmap_reflections.frag), and the uniforms with
+ * which the forward programs read what the rays found (envmap_shading.glsl).
  * README.md, "Reflections of the scene". */
 #include "reflections.h"
 
@@ -55,7 +56,7 @@ static void trace_io(void *user, const char *const **in, const sl_target_desc **
 }
 
 /* The frame's projection without the jitter a temporal method added (sl_frame.jitter, pixels):
- * the jitter is a clip-space shift by 2j/size times w, so row 0 (1) lost 2j/size times row 3. */
+ * the jitter shifts clip x (y) by 2j/size times w, so rows 0 and 1 hold 2j/size times row 3 more. */
 static void unjittered_proj(const sl_frame *f, float p[16]) {
     memcpy(p, f->proj, 16 * sizeof *p);
     for (int c = 0; c < 4; c++) {
