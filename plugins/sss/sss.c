@@ -97,6 +97,10 @@ static const sl_shader_chunk_desc chunks[] = {
       .name = "sss-irradiance"),
     C(.hook = SL_HOOK_SHADING_MODEL, .file = "sss_model.glsl", .function = "sss_stretch", .name = "sss-stretch"),
     C(.hook = SL_HOOK_MODEL_AMBIENT, .file = "sss_model.glsl", .function = "sss_stretch_ambient", .name = "sss-stretch"),
+    /* what light integrators (envmap, area-light) give the override models: the pre-scatter
+     * albedo's Lambert to the irradiance, nothing to the stretch (the lobe contract) */
+    C(.hook = SL_HOOK_MODEL_LOBES, .file = "sss_model.glsl", .function = "sss_irradiance_lobes", .name = "sss-irradiance"),
+    C(.hook = SL_HOOK_MODEL_LOBES, .file = "sss_model.glsl", .function = "sss_stretch_lobes", .name = "sss-stretch"),
     /* first of the surface hooks: curvature from the interpolated normal, before normal maps */
     C(.hook = SL_HOOK_SURFACE, .file = "sss_model.glsl", .function = "sss_surface", .when_material_has = "sss_radius",
       .order = -100),

@@ -227,6 +227,13 @@ vec3 sss_irradiance_ambient(SlSurface s, vec3 ambient_irradiance) {
     return sss_albedo_pre(s.base_color) * SL_INV_PI * ambient_irradiance * s.ao;
 }
 
+// Its lobes: a Lambert of the pre-scatter albedo, as sss_irradiance_ambient gives the ambient
+SlLobes sss_irradiance_lobes(SlSurface s) {
+    SlLobes L = sl_lobes_none();
+    L.diffuse = sss_albedo_pre(s.base_color);
+    return L;
+}
+
 // "sss-stretch" (d'Eon & Luebke's stretch correction): drawn in UV space, the length of
 // one texel on the surface along u and v, in millimetres of the profile (world length divided
 // by sss_radius, the world length of 1 mm).
@@ -235,6 +242,8 @@ vec3 sss_stretch_ambient(SlSurface s, vec3 ambient_irradiance) {
     float mm = max(sl_mat_sss_radius, 1e-12);
     return vec3(length(dFdx(s.position)) / mm, length(dFdy(s.position)) / mm, 0.0);
 }
+// no lobes: an environment or area light adds nothing to the stretch
+SlLobes sss_stretch_lobes(SlSurface s) { return sl_lobes_none(); }
 
 // ---- debug views -----------------------------------------------------------------------------
 // The scattered diffuse radiance the skin model uses (texture/screen space), without specular.
