@@ -18,10 +18,15 @@ float sl_light_spread = 0.0;
 // GGX's half maximum (tan θ_h = 0.6436 α', where (α² + tan²θ)² doubles) at the disk image's edge
 // (α' = 0.777 r). D stays normalised, so the highlight keeps its energy (a polished sphere shows a
 // disk of radius R sin(r/2): test_ggx_render). A point light (r = 0) keeps α.
+// ggx_disk_alpha: the same for a lobe whose half maximum sits elsewhere, given the ρ to widen by
+// (blinn-gloss's, phong.glsl: its half maximum is at 0.8326 α, so ρ × 0.6436/0.8326).
+float ggx_disk_alpha(float alpha, float rho) {
+    float rho2 = rho * rho, a2 = alpha * alpha;
+    return sqrt(a2 + rho2 * (1.0 + 1.414 * rho2 / max(rho2 + a2, 1e-20)));
+}
 float ggx_light_alpha(float alpha) {
     if (sl_light_spread <= 0.0) return alpha; // points: the same for every lane, so skipped
-    float rho2 = 0.25 * sl_light_spread * sl_light_spread, a2 = alpha * alpha;
-    return sqrt(a2 + rho2 * (1.0 + 1.414 * rho2 / max(rho2 + a2, 1e-20)));
+    return ggx_disk_alpha(alpha, 0.5 * sl_light_spread);
 }
 
 // Normal distribution D(n, h) = α² / (π cos⁴θ_h (α² + tan²θ_h)²) for n·h > 0, else 0.

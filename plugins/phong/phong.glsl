@@ -7,6 +7,7 @@
 // The plugin's own: phong_toksvig (sampler2D on a reserved unit, bound by phong.c per material):
 //   RG, explicit mips: R = gloss with the level's normal variance baked in, G = |N̄|.
 #include "phong_brdf.glsl"
+#include "sl:ggx_brdf.glsl" // ggx_light_alpha: a light's disk widens the lobe (the core's angular_radius)
 
 #if defined(SL_MAT_HAS_PROPERTY_MAP) && PHONG_SPECULAR_AA && defined(SL_MAT_HAS_NORMAL_MAP)
 #define PHONG_TOKSVIG 1
@@ -34,11 +35,17 @@ vec3 phong_model_classic(SlSurface s, vec3 l, vec3 E) {
 }
 vec3 phong_model_classic_ambient(SlSurface s, vec3 Ea) { return phong_classic_ambient(phong_albedo(s), s.ao, Ea); }
 
+// Lit by a light of angular radius r (sl_light_spread, set per light by the core), the lobe is
+// widened to the disk's reflection (half vectors within r/2) as GGX's is (ggx_disk_alpha),
+// through the power's α (Walter's mapping, whose lobe has its half maximum at 0.8326 α where
+// GGX's is at 0.6436 α: ρ = r/2 × 0.773), so a polished surface shows the sun's disk, not a dot.
 vec3 phong_model_blinn_gloss(SlSurface s, vec3 l, vec3 E) {
+    float a = sl_light_spread > 0.0 ? ggx_disk_alpha(s.alpha, 0.3865 * sl_light_spread) : s.alpha;
+    float p = phong_power_from_alpha(a);
 #if defined(PHONG_TOKSVIG)
-    return phong_blinn_gloss_filtered(s.normal, s.view, l, phong_albedo(s), phong_power(s), s.specular, E, phong_filter_w);
+    return phong_blinn_gloss_filtered(s.normal, s.view, l, phong_albedo(s), p, s.specular, E, phong_filter_w);
 #else
-    return phong_blinn_gloss(s.normal, s.view, l, phong_albedo(s), phong_power(s), s.specular, E);
+    return phong_blinn_gloss(s.normal, s.view, l, phong_albedo(s), p, s.specular, E);
 #endif
 }
 // blinn-gloss's lobes (ABI 1.14): the diffuse (1 − F(n·v))·albedo exactly (F depends on n·v

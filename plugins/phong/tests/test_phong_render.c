@@ -16,7 +16,8 @@ static const char *plane_scene(const char *model, const char *keys, const char *
              "{\"cameras\": [{\"name\": \"c\", \"position\": [0,5,5], \"target\": [0,0,0], \"fov_y\": 50, \"near\": 0.1, \"far\": 100}],"
              " \"materials\": [{\"name\": \"m\", \"model\": \"%s\", \"base_color\": [0.7, 0.5, 0.3] %s}],"
              " \"nodes\": [{\"name\": \"floor\", \"mesh\": {\"primitive\": \"plane\", \"size\": 20}, \"material\": \"m\"}],"
-             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [%s], \"intensity\": 2}],"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [%s], \"intensity\": 2,"
+             " \"angular_radius\": 0}],"
              " \"environment\": {\"color\": [1, 1, 1], \"intensity\": %g}}",
              model, keys, light_dir, env);
     return json;
@@ -311,8 +312,48 @@ static void test_scenes(void) {
     }
 }
 
+/* A light's disk in a polished blinn-gloss sphere (the core's angular_radius): a black sphere of
+ * radius R = 1 (specular only) lit along the view by a directional light of angular radius r, seen
+ * from 40 m, aa off. On paper a mirror shows the disk where the normal is within r/2 of the view:
+ * a spot of radius R sin(r/2). Gloss 1 (SpecPower 4096, α = 0.022) and r = 6°: the half-maximum
+ * spot's radius is sin 3° = 0.052, where the lobe of a delta light is ≈ 0.018. Widening keeps the
+ * energy: at gloss 0.5 (SpecPower 64) the highlight's flux moves by less than 1 % from r = 0 to 3°. */
+static void disk_highlight(double r_deg, double gloss, double fov, double *flux, double *radius) {
+    enum { DW = 96, DH = 96 };
+    static float px[DW * DH * 4];
+    static char scene[2048];
+    snprintf(scene, sizeof scene,
+             "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],"
+             " \"materials\": [{\"name\": \"m\", \"model\": \"blinn-gloss\", \"base_color\": [0, 0, 0], \"gloss\": %g}],"
+             " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256,"
+             " \"rings\": 128}, \"material\": \"m\"}],"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3,"
+             " \"angular_radius\": %g}]}", fov, gloss, r_deg);
+    const char *const settings[] = {"aa.enabled=false", NULL};
+    *flux = *radius = 0;
+    CHECK(pt_render(scene, DW, DH, PLUGINS, settings, NULL, px));
+    double pixel = 2 * 40 * tan(fov / 2 * M_PI / 180) / DH, peak = 0, sum = 0, above = 0;
+    for (int i = 0; i < DW * DH; i++) peak = fmax(peak, px[i * 4]);
+    for (int i = 0; i < DW * DH; i++) sum += px[i * 4], above += px[i * 4] >= 0.5 * peak;
+    *flux = sum * pixel * pixel;
+    *radius = sqrt(above / M_PI) * pixel; /* the half-maximum spot's radius, from its area */
+}
+
+static void test_disk_highlight(void) {
+    double flux, radius, expect = sin(3 * M_PI / 180), f0, f3, r0, r3;
+    disk_highlight(6, 1, 0.4, &flux, &radius);
+    printf("disk of 6 deg in a gloss-1 blinn-gloss sphere: half-maximum radius %.5f, on paper R sin(r/2) = %.5f\n",
+           radius, expect);
+    CHECK_MSG(fabs(radius / expect - 1) < 0.15, "the highlight's radius %.5f is not R sin(r/2) = %.5f", radius, expect);
+    disk_highlight(0, 0.5, 8, &f0, &r0);
+    disk_highlight(3, 0.5, 8, &f3, &r3);
+    printf("gloss 0.5: highlight flux %.5f for a point, %.5f for a disk of 3 deg (ratio %.4f)\n", f0, f3, f3 / f0);
+    CHECK_MSG(fabs(f3 / f0 - 1) < 0.01, "widening changed the highlight's flux by %.2f %%", 100 * (f3 / f0 - 1));
+}
+
 int main(void) {
     const char *dir = pt_scratch("phong");
+    test_disk_highlight();
     const char *nm = "bumps:16:0.8"; /* the core's procedural normal map */
     test_closed_form();
     test_property_map_and_keys();
