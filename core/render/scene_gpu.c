@@ -381,9 +381,16 @@ void sl_gpu_compose_all(sl_app *app) {
         material_rt *mr = &r->materials[m];
         compose(app, m, SL_VARIANT_FORWARD, NULL, NULL, false, &mr->forward);
         compose(app, m, SL_VARIANT_DEPTH, NULL, NULL, false, &mr->depth);
-        for (int k = 0; k < mr->override_count; k++)
-            compose(app, m, SL_VARIANT_FORWARD, mr->overrides[k].model, mr->overrides[k].fragment, mr->overrides[k].fullscreen,
-                    &mr->overrides[k].v);
+        /* draw_scene's variants are dropped, not composed again: the next draw that asks composes
+         * its own (its programs from the cache when the sources match). Composing them here would
+         * compile a switched-off plugin's main without its chunks, and blame that plugin. */
+        for (int k = 0; k < mr->override_count; k++) {
+            free(mr->overrides[k].model);
+            free(mr->overrides[k].fragment);
+            free(mr->overrides[k].v.chunks);
+        }
+        mr->override_count = 0;
+        mr->override_overflow_reported = false;
         for (int t = 0; t < mr->forward.texture_count; t++) {
             const sl_param *q = &app->params.items[mr->forward.texture_params[t]];
             sl_mat_value *v = sl_app_material_value(app, m, q->full_id);

@@ -18,7 +18,6 @@ void main() {
     vec3 c = sl_shade_surface(s);
     o_color = vec4(mix(c, vec3(SL_MAX_RADIANCE), greaterThan(c, vec3(SL_MAX_RADIANCE))), 1.0);
     o_lobe = vec4(0.0, 0.0, 0.0, 2.0);
-#ifdef ENVMAP_SHADING // the program has envmap's chunks (not while a toggle re-composes without them)
     SlLobes L = sl_model_lobes(s);
     if (dot(s.normal, s.view) <= 0.0 || (L.flags & SL_LOBES_MODEL_AT_DOMINANT_LIGHT) != 0) return;
     float alpha = 2.0;
@@ -26,6 +25,5 @@ void main() {
         if (L.lobe[k].weight > 0.0) alpha = min(alpha, max(L.lobe[k].alpha, GGX_MIN_ALPHA));
     if (alpha < 2.0)
         o_lobe = vec4(envmap_lookup_dir(s.normal, reflect(-s.view, s.normal), alpha), alpha);
-#endif
 #endif
 }

@@ -11,7 +11,6 @@
 //   environment L(n), likewise
 #include "envmap_common.glsl"
 #include "sl:ggx_brdf.glsl"
-#define ENVMAP_SHADING 1 // envmap_scene.frag: these chunks are in the program
 
 uniform sampler2D envmap_src2d;   // the source as loaded (lat-long) …
 uniform samplerCube envmap_srccube; // … or as a cube; envmap_is_cube says which
