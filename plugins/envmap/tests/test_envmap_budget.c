@@ -39,57 +39,64 @@ static sl_harness *make(const char *params, const char *const *settings) {
     return h;
 }
 
-static const char *knob = "envmap.specular";
-static const char *specular(sl_harness *h) {
+static const char *value_of(sl_harness *h, const char *knob) {
     static char v[32];
     return sl_harness_get(h, knob, v, sizeof v) ? v : "?";
 }
 
 /* Renders `n` frames, moving the camera round the sphere before each when `moving`; returns how
- * many of them rendered with `want` (read after the frame: the setting it was rendered with),
+ * many of them rendered `knob` at `want` (read after the frame: the setting it was rendered with),
  * not counting the first `grace` frames. */
 static float angle = 0;
 static void camera_at(sl_harness *h, float a) {
     const float pos[3] = {4 * sinf(a), 0, 4 * cosf(a)}, target[3] = {0, 0, 0};
     CHECK(sl_harness_set_camera(h, pos, target));
 }
-static int frames_with(sl_harness *h, int n, int grace, bool moving, const char *want, float *out) {
+static int frames_with(sl_harness *h, const char *knob, int n, int grace, bool moving, const char *want, float *out) {
     int hits = 0;
     for (int i = 0; i < n; i++) {
         if (moving) camera_at(h, angle += 0.05f);
         CHECK(sl_harness_render(h, out));
-        hits += i >= grace && !strcmp(specular(h), want);
+        hits += i >= grace && !strcmp(value_of(h, knob), want);
     }
     return hits;
 }
 
-static void test_budget_model(void) {
-    const char *const none[] = {"aa.enabled=false", "envmap.cube_size=32", "envmap.samples=64", "envmap.cache=false", NULL};
-    sl_harness *h = make("\"envmap.specular\": \"filtered\", \"core.budget\": 1", none);
+static const char *const base_settings[] = {"aa.enabled=false", "envmap.cube_size=32", "envmap.samples=64",
+                                            "envmap.cache=false", NULL};
+
+/* A scene configures `knob` (envmap.NAME) at `best`; with a 1 ms budget the moving frames get
+ * `cheap` and the still goes back to `best`, equal to a render of `best` without a budget. */
+static void test_knob_model(const char *name, const char *best, const char *cheap) {
+    char knob[64], params[256];
+    snprintf(knob, sizeof knob, "envmap.%s", name);
+    snprintf(params, sizeof params, "\"%s\": \"%s\", \"core.budget\": 1", knob, best);
+    sl_harness *h = make(params, base_settings);
     CHECK(h != NULL);
     if (!h) return;
-    int still = frames_with(h, 4, 0, false, "filtered", img);
+    int still = frames_with(h, knob, 4, 0, false, best, img);
     /* the first moving frame may keep the still's choice: the controller knows no frame time
      * until a moving frame has been observed (core/budget/controller.c) */
-    int moving = frames_with(h, 6, 1, true, "dominant", img);
+    int moving = frames_with(h, knob, 6, 1, true, cheap, img);
     /* the budget's still frames (3) at the moving choice, then the best (configured) one */
-    int back = frames_with(h, 6, 3, false, "filtered", img);
-    printf("scene configures filtered, budget 1 ms: still %d/4 frames filtered, moving frames 2-6 %d/5 dominant, "
-           "still again frames 4-6 %d/3 filtered\n", still, moving, back);
-    CHECK_MSG(moving == 5, "the budget left envmap.specular=%s in %d of 5 moving frames", specular(h), 5 - moving);
-    CHECK_MSG(back == 3, "the still did not go back to filtered (%d of 3)", back);
+    int back = frames_with(h, knob, 6, 3, false, best, img);
+    printf("scene configures %s=%s, budget 1 ms: still %d/4 frames %s, moving frames 2-6 %d/5 %s, "
+           "still again frames 4-6 %d/3 %s\n", knob, best, still, best, moving, cheap, back, best);
+    CHECK_MSG(moving == 5, "the budget left %s=%s in %d of 5 moving frames", knob, value_of(h, knob), 5 - moving);
+    CHECK_MSG(back == 3, "the still did not go back to %s (%d of 3)", best, back);
     sl_harness_destroy(h);
 
-    /* the settled still is what filtered renders without a budget from the same camera */
-    h = make("\"envmap.specular\": \"filtered\"", none);
+    /* the settled still is what `best` renders without a budget from the same camera */
+    snprintf(params, sizeof params, "\"%s\": \"%s\"", knob, best);
+    h = make(params, base_settings);
     CHECK(h != NULL);
     if (!h) return;
     camera_at(h, angle);
     CHECK(sl_harness_render(h, ref));
     double worst = 0;
     for (int i = 0; i < W * H * 4; i++) worst = fmax(worst, fabs(img[i] - ref[i]));
-    printf("the settled still against filtered without a budget: largest difference %.3g\n", worst);
-    CHECK_MSG(worst <= 1e-4, "the settled still differs from filtered without a budget by %.3g", worst);
+    printf("the settled still against %s without a budget: largest difference %.3g\n", best, worst);
+    CHECK_MSG(worst <= 1e-4, "the settled still differs from %s without a budget by %.3g", best, worst);
     sl_harness_destroy(h);
 }
 
@@ -99,42 +106,15 @@ static void test_user_choice(void) {
     sl_harness *h = make("\"core.budget\": 1", user);
     CHECK(h != NULL);
     if (!h) return;
-    int moving = frames_with(h, 4, 0, true, "filtered", img);
+    int moving = frames_with(h, "envmap.specular", 4, 0, true, "filtered", img);
     printf("--set envmap.specular=filtered, budget 1 ms: moving %d/4 frames filtered\n", moving);
-    CHECK_MSG(moving == 4, "the budget changed the user's envmap.specular to %s", specular(h));
+    CHECK_MSG(moving == 4, "the budget changed the user's envmap.specular to %s", value_of(h, "envmap.specular"));
     sl_harness_destroy(h);
-}
-
-static void test_reflections_model(void) {
-    const char *const none[] = {"aa.enabled=false", "envmap.cube_size=32", "envmap.samples=64", "envmap.cache=false", NULL};
-    knob = "envmap.reflections";
-    sl_harness *h = make("\"envmap.reflections\": \"screen\", \"core.budget\": 1", none);
-    CHECK(h != NULL);
-    if (!h) return;
-    int still = frames_with(h, 4, 0, false, "screen", img);
-    int moving = frames_with(h, 6, 1, true, "sky", img);
-    int back = frames_with(h, 6, 3, false, "screen", img);
-    printf("scene configures reflections=screen, budget 1 ms: still %d/4 frames screen, moving frames 2-6 %d/5 sky, "
-           "still again frames 4-6 %d/3 screen\n", still, moving, back);
-    CHECK_MSG(moving == 5, "the budget left envmap.reflections=%s in %d of 5 moving frames", specular(h), 5 - moving);
-    CHECK_MSG(back == 3, "the still did not go back to screen (%d of 3)", back);
-    sl_harness_destroy(h);
-    h = make("\"envmap.reflections\": \"screen\"", none);
-    CHECK(h != NULL);
-    if (!h) return;
-    camera_at(h, angle);
-    CHECK(sl_harness_render(h, ref));
-    double worst = 0;
-    for (int i = 0; i < W * H * 4; i++) worst = fmax(worst, fabs(img[i] - ref[i]));
-    printf("the settled still against reflections=screen without a budget: largest difference %.3g\n", worst);
-    CHECK_MSG(worst <= 1e-4, "the settled still differs from screen without a budget by %.3g", worst);
-    sl_harness_destroy(h);
-    knob = "envmap.specular";
 }
 
 int main(void) {
-    test_budget_model();
-    test_reflections_model();
+    test_knob_model("specular", "filtered", "dominant");
+    test_knob_model("reflections", "screen", "sky");
     test_user_choice();
     return check_result();
 }

@@ -3,6 +3,7 @@
  * a Lambert material's program is untouched by loading ggx. */
 #include "check.h"
 #include "camera_rays.h"
+#include "disk_highlight.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
 
@@ -116,35 +117,10 @@ static bool aa_case(float cam_y, const float sun_dir[3], float min_dist, double 
  * (roughness 0.3), the whole sphere in view, r = 3° changes the highlight's flux Σ L·(pixel area)
  * by less than 1 % from r = 0. */
 static void disk_highlight(double r_deg, double roughness, double fov, double *flux, double *radius) {
-    enum { DW = 96, DH = 96 };
-    static float px[DW * DH * 4];
-    char json[2048], err[4096];
-    snprintf(json, sizeof json,
-             "{\"plugins\": [\"ggx\"],\n"
-             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],\n"
-             " \"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1,"
-             "   \"base_color\": [1, 1, 1], \"roughness\": %g}],\n"
-             " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128},"
-             "   \"material\": \"m\"}],\n"
-             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3,"
-             "   \"angular_radius\": %g}]}", fov, roughness, r_deg);
-    const char *const settings[] = {"aa.enabled=false", NULL};
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = DW, .height = DH,
-                                                          .scene_json = json, .settings = settings, .float32 = true,
-                                                          .strict = true}, err, sizeof err);
-    CHECK_MSG(h != NULL, "%s", err);
-    *flux = *radius = 0;
-    if (!h) return;
-    CHECK(sl_harness_render(h, px));
-    sl_harness_destroy(h);
-    double pixel = 2 * 40 * tan(fov / 2 * M_PI / 180) / DH, peak = 0, sum = 0, above = 0;
-    for (int i = 0; i < DW * DH; i++) peak = fmax(peak, px[i * 4]);
-    for (int i = 0; i < DW * DH; i++) {
-        sum += px[i * 4];
-        above += px[i * 4] >= 0.5 * peak;
-    }
-    *flux = sum * pixel * pixel;
-    *radius = sqrt(above / M_PI) * pixel; /* the half-maximum spot's radius, from its area */
+    char keys[256];
+    snprintf(keys, sizeof keys, "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, "
+             "\"base_color\": [1, 1, 1], \"roughness\": %g", roughness);
+    sl_test_disk_highlight("ggx", keys, r_deg, fov, flux, radius);
 }
 
 static void test_disk_highlight(void) {

@@ -4,6 +4,7 @@
  * away, gloss 0 and 1, light grazing and behind), the specular antialiasing test against a
  * supersampled reference, and the plugin's scenes. */
 #include "plane_scene.h"
+#include "disk_highlight.h"
 
 #define W 96
 #define H 72
@@ -319,24 +320,9 @@ static void test_scenes(void) {
  * spot's radius is sin 3° = 0.052, where the lobe of a delta light is ≈ 0.018. Widening keeps the
  * energy: at gloss 0.5 (SpecPower 64) the highlight's flux moves by less than 1 % from r = 0 to 3°. */
 static void disk_highlight(double r_deg, double gloss, double fov, double *flux, double *radius) {
-    enum { DW = 96, DH = 96 };
-    static float px[DW * DH * 4];
-    static char scene[2048];
-    snprintf(scene, sizeof scene,
-             "{\"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],"
-             " \"materials\": [{\"name\": \"m\", \"model\": \"blinn-gloss\", \"base_color\": [0, 0, 0], \"gloss\": %g}],"
-             " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256,"
-             " \"rings\": 128}, \"material\": \"m\"}],"
-             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3,"
-             " \"angular_radius\": %g}]}", fov, gloss, r_deg);
-    const char *const settings[] = {"aa.enabled=false", NULL};
-    *flux = *radius = 0;
-    CHECK(pt_render(scene, DW, DH, PLUGINS, settings, NULL, px));
-    double pixel = 2 * 40 * tan(fov / 2 * M_PI / 180) / DH, peak = 0, sum = 0, above = 0;
-    for (int i = 0; i < DW * DH; i++) peak = fmax(peak, px[i * 4]);
-    for (int i = 0; i < DW * DH; i++) sum += px[i * 4], above += px[i * 4] >= 0.5 * peak;
-    *flux = sum * pixel * pixel;
-    *radius = sqrt(above / M_PI) * pixel; /* the half-maximum spot's radius, from its area */
+    char keys[256];
+    snprintf(keys, sizeof keys, "\"model\": \"blinn-gloss\", \"base_color\": [0, 0, 0], \"gloss\": %g", gloss);
+    sl_test_disk_highlight("phong", keys, r_deg, fov, flux, radius);
 }
 
 static void test_disk_highlight(void) {

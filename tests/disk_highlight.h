@@ -1,0 +1,43 @@
+/* A light's disk in a polished sphere (the core's angular_radius, sl_light_spread), for the shading
+ * models' tests (ggx, phong): a sphere of radius R = 1 with the material `material_keys` (the
+ * model and its keys, as JSON members) lit along the view by a directional light (E = 3) of angular
+ * radius r_deg, seen from 40 m (nearly parallel rays) through a field of view of fov_deg, aa off.
+ * On paper a mirror shows the disk where the normal is within r/2 of the view: a spot of radius
+ * R sin(r/2). Gives the highlight's flux Σ L·(pixel area) and the half-maximum spot's radius
+ * (from its area), red channel. */
+#ifndef SL_TEST_DISK_HIGHLIGHT_H
+#define SL_TEST_DISK_HIGHLIGHT_H
+#include "check.h"
+#include <shadelab/harness.h>
+#include <math.h>
+#include <stdio.h>
+
+static inline void sl_test_disk_highlight(const char *plugin, const char *material_keys, double r_deg, double fov_deg,
+                                          double *flux, double *radius) {
+    enum { DW = 96, DH = 96 };
+    static float px[DW * DH * 4];
+    char json[2048], err[4096];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"%s\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],\n"
+             " \"materials\": [{\"name\": \"m\", %s}],\n"
+             " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128},"
+             "   \"material\": \"m\"}],\n"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3,"
+             "   \"angular_radius\": %g}]}", plugin, fov_deg, material_keys, r_deg);
+    const char *const settings[] = {"aa.enabled=false", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = DW, .height = DH,
+                                                          .scene_json = json, .settings = settings, .float32 = true,
+                                                          .strict = true}, err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    *flux = *radius = 0;
+    if (!h) return;
+    CHECK(sl_harness_render(h, px));
+    sl_harness_destroy(h);
+    double pixel = 2 * 40 * tan(fov_deg / 2 * M_PI / 180) / DH, peak = 0, sum = 0, above = 0;
+    for (int i = 0; i < DW * DH; i++) peak = fmax(peak, px[i * 4]);
+    for (int i = 0; i < DW * DH; i++) sum += px[i * 4], above += px[i * 4] >= 0.5 * peak;
+    *flux = sum * pixel * pixel;
+    *radius = sqrt(above / M_PI) * pixel;
+}
+#endif
