@@ -8,13 +8,15 @@
 
 typedef struct test_camera { float pos[3], target[3], fov_deg; int width, height; } test_camera;
 
-static inline void test_camera_ray(const test_camera *c, int px, int py, float origin[3], float dir[3]) {
+/* The ray through window position (fx, fy) in pixels from the top-left corner (a pixel's centre is
+ * at +0.5). */
+static inline void test_camera_ray_at(const test_camera *c, float fx, float fy, float origin[3], float dir[3]) {
     mat4 view, proj, vp, inv;
     glm_lookat((float *)c->pos, (float *)c->target, (vec3){0, 1, 0}, view);
     glm_perspective(glm_rad(c->fov_deg), (float)c->width / c->height, 0.1f, 100.f, proj);
     glm_mat4_mul(proj, view, vp);
     glm_mat4_inv(vp, inv);
-    float nx = (px + 0.5f) / c->width * 2 - 1, ny = 1 - (py + 0.5f) / c->height * 2;
+    float nx = fx / c->width * 2 - 1, ny = 1 - fy / c->height * 2;
     vec4 a = {nx, ny, -1, 1}, b = {nx, ny, 1, 1}, wa, wb;
     glm_mat4_mulv(inv, a, wa);
     glm_mat4_mulv(inv, b, wb);
@@ -23,6 +25,10 @@ static inline void test_camera_ray(const test_camera *c, int px, int py, float o
         dir[i] = wb[i] / wb[3] - origin[i];
     }
     glm_vec3_normalize(dir);
+}
+
+static inline void test_camera_ray(const test_camera *c, int px, int py, float origin[3], float dir[3]) {
+    test_camera_ray_at(c, px + 0.5f, py + 0.5f, origin, dir);
 }
 
 /* Hit point on the plane y = 0 within |x|, |z| < half_size; false when missed. */

@@ -168,7 +168,7 @@ typedef struct envmap {
     sl_program *progs[6];
     /* [source kind]: 0 a lat-long, 1 a cube (ENVMAP_SOURCE_CUBE), 2 the procedural sky evaluated
      * per pixel (ENVMAP_SOURCE_SKY) */
-    sl_program *bg_prog[3], *bg_in_place_prog[3];
+    sl_program *bg_prog[4], *bg_in_place_prog[4]; /* lat-long, cube, sky, sky with its sun disk */
     bool is_sky;   /* the source is the procedural sky (sky: its parameters) */
     em_sky sky;
     /* the sky's sun as a light (sun_light): its handle (host add_light; -1: none) and whether the
@@ -1024,8 +1024,8 @@ static bool background_ssaa_active(void *user, const sl_frame *f) {
 }
 
 /* The procedural sky's terms (em_sky_radiance) for envmap_background.frag's ENVMAP_SOURCE_SKY:
- * the disk has a sharp edge at any resolution, so a still's jittered frames box-filter it over the
- * pixel as a path tracer does (the lat-long's texels blurred it over about two pixels). */
+ * the disk is box-filtered over each pixel in closed form, sharp at any resolution (the lat-long's
+ * texels blurred it over about two pixels). */
 static void bind_sky(envmap *e, unsigned prog) {
     double dir[3], r, sun[3];
     em_sky_sun(&e->sky, dir, &r, sun);
@@ -1041,11 +1041,14 @@ static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
     bool in_place = !core_supersampled(e);
     unsigned color = in_place ? 0 : h->pass_texture(h, ctx, "color"), depth = in_place ? 0 : h->pass_texture(h, ctx, "depth");
     if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
-    int kind = e->is_sky ? 2 : e->kind == EM_ENV_CUBE;
+    int kind = e->is_sky ? 2 + (e->sky.sun_irradiance > 0) : e->kind == EM_ENV_CUBE;
     unsigned prog = h->program_id(h, in_place ? e->bg_in_place_prog[kind] : e->bg_prog[kind]);
     if (!prog) return;
     glUseProgram(prog);
-    if (e->is_sky) bind_sky(e, prog);
+    if (e->is_sky) {
+        bind_sky(e, prog);
+        glUniform2f(glGetUniformLocation(prog, "envmap_jitter"), f->jitter[0], f->jitter[1]);
+    }
     /* the lighting units are free during this pass (bind() sets them again per material) */
     glBindTextureUnit(e->unit_spec, color);
     glBindTextureUnit(e->unit_lut, depth);
@@ -1199,10 +1202,11 @@ static sl_status envmap_activate(void *user) {
     }
     /* the background per source kind, drawn in place or (supersampled) as a pass of its own; each
      * compiled at its first program_id() (lazy): a scene compiles the one it draws */
-    static const char *const bg_defines[2][3] = {
-        {NULL, "ENVMAP_SOURCE_CUBE 1", "ENVMAP_SOURCE_SKY 1"},
-        {"ENVMAP_IN_PLACE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_CUBE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_SKY 1"}};
-    for (int kind = 0; kind < 3; kind++) {
+    static const char *const bg_defines[2][4] = {
+        {NULL, "ENVMAP_SOURCE_CUBE 1", "ENVMAP_SOURCE_SKY 1", "ENVMAP_SOURCE_SKY 1\nENVMAP_SKY_SUN 1"},
+        {"ENVMAP_IN_PLACE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_CUBE 1", "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_SKY 1",
+         "ENVMAP_IN_PLACE 1\nENVMAP_SOURCE_SKY 1\nENVMAP_SKY_SUN 1"}};
+    for (int kind = 0; kind < 4; kind++) {
         sl_program **slot[2] = {&e->bg_prog[kind], &e->bg_in_place_prog[kind]};
         for (int in_place = 0; in_place < 2; in_place++) {
             *slot[in_place] = e->host->load_program(e->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),

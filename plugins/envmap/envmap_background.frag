@@ -6,27 +6,6 @@
 #include "envmap_common.glsl"
 uniform sampler2D envmap_color;
 uniform sampler2D envmap_depth;
-// ENVMAP_SOURCE_CUBE: the source is a cube; ENVMAP_SOURCE_SKY: the procedural sky, evaluated here
-// per pixel (cube.c, em_sky_radiance: the same terms), so its sun disk has a sharp edge at any
-// resolution; else a lat-long (a permutation: see envmap_to_cube.frag)
-#if defined(ENVMAP_SOURCE_CUBE)
-uniform samplerCube envmap_srccube;
-#elif defined(ENVMAP_SOURCE_SKY)
-uniform vec3 envmap_sky_sun;          // unit, towards the sun (map frame)
-uniform float envmap_sky_sun_radius;  // radians
-uniform vec3 envmap_sky_sun_radiance; // E / Ω times the sun's colour; 0: no sun
-uniform vec3 envmap_sky_ground;       // below the horizon
-vec3 envmap_sky(vec3 d) {
-    const vec3 zenith = vec3(0.16, 0.30, 0.72), horizon = vec3(0.70, 0.78, 0.92);
-    float y = d.y;
-    float angle = acos(clamp(dot(d, envmap_sky_sun), -1.0, 1.0));
-    vec3 sky = y >= 0.0 ? mix(zenith, horizon, pow(1.0 - y, 4.0)) : mix(envmap_sky_ground, horizon, exp(y * 25.0));
-    float halo = (y > -0.05 ? 1.0 : 0.0) * (0.6 * exp(-angle * 8.0) + 0.15 * exp(-angle * 1.5));
-    return sky + halo * vec3(1.0, 0.9, 0.75) + (angle < envmap_sky_sun_radius ? envmap_sky_sun_radiance : vec3(0.0));
-}
-#else
-uniform sampler2D envmap_src2d;
-#endif
 uniform vec2 envmap_src_size;
 uniform mat3 envmap_rot;
 uniform float envmap_scale;
@@ -34,9 +13,74 @@ uniform vec3 envmap_clear;        // what the core cleared "color" to
 uniform mat4 envmap_inv_view_proj;
 uniform vec2 envmap_viewport;
 uniform float envmap_pixel_angle; // radians per pixel at the centre of the view
+// ENVMAP_SOURCE_CUBE: the source is a cube; ENVMAP_SOURCE_SKY: the procedural sky, evaluated here
+// per pixel (cube.c, em_sky_radiance: the same terms), with its sun disk box-filtered over the
+// pixel in closed form; else a lat-long (a permutation: see envmap_to_cube.frag)
+#if defined(ENVMAP_SOURCE_CUBE)
+uniform samplerCube envmap_srccube;
+#elif defined(ENVMAP_SOURCE_SKY)
+uniform vec3 envmap_sky_sun;          // unit, towards the sun (map frame)
+uniform float envmap_sky_sun_radius;  // radians
+uniform vec3 envmap_sky_sun_radiance; // E / Ω times the sun's colour (ENVMAP_SKY_SUN: not 0)
+uniform vec3 envmap_sky_ground;       // below the horizon
+// The sky without its sun disk.
+vec3 envmap_sky(vec3 d) {
+    const vec3 zenith = vec3(0.16, 0.30, 0.72), horizon = vec3(0.70, 0.78, 0.92);
+    float y = d.y;
+    float angle = acos(clamp(dot(d, envmap_sky_sun), -1.0, 1.0));
+    vec3 sky = y >= 0.0 ? mix(zenith, horizon, pow(1.0 - y, 4.0)) : mix(envmap_sky_ground, horizon, exp(y * 25.0));
+    float halo = (y > -0.05 ? 1.0 : 0.0) * (0.6 * exp(-angle * 8.0) + 0.15 * exp(-angle * 1.5));
+    return sky + halo * vec3(1.0, 0.9, 0.75);
+}
+// Share of a unit square (side 1, centred) on the inner side of a line at signed distance s from
+// its centre, with unit normal n: the box filter of a straight edge, exact (linear in the middle,
+// quadratic where the line cuts a corner).
+float envmap_square_share(float s, vec2 n) {
+    float p = max(abs(n.x), abs(n.y)), q = min(abs(n.x), abs(n.y));
+    float h = 0.5 * (p + q), k = 0.5 * (p - q), corner = 2.0 * p * max(q, 1e-6);
+    if (s <= -h) return 0.0;
+    if (s < -k) return (s + h) * (s + h) / corner;
+    if (s <= k) return 0.5 + s / p;
+    if (s < h) return 1.0 - (h - s) * (h - s) / corner;
+    return 1.0;
+}
+// Share of this pixel covered by the sun's disk, d the (jittered) ray of this fragment, dx and dy
+// its change per pixel. The disk is box-filtered over the pixel of the unjittered view, so every
+// frame of a TAA still, and a frame in motion, gives the value a path tracer's pixel converges to
+// (16 jittered point samples left 1/16 steps along the edge). The chord c = |d − sun| is linear
+// across the pixel: its gradient g (pixels) moves it from the jittered sample to the pixel's centre
+// (jitter: sl_frame.jitter), and the disk's edge is a straight line at distance (c_r − c)/|g|; a
+// disk under about a pixel across is an axis-aligned square of the same area instead (two 1-D
+// overlaps: it keeps the sun's energy where the straight edge would fill whole pixels).
+uniform vec2 envmap_jitter;
+float envmap_sun_share(vec3 d, vec3 dx, vec3 dy) {
+    float cr = 2.0 * sin(0.5 * envmap_sky_sun_radius);
+    vec3 e = d - envmap_sky_sun;
+    float c = length(e);
+    vec2 g = vec2(dot(e, dx), dot(e, dy)) / max(c, 1e-9);
+    c += dot(g, envmap_jitter);
+    float gl = length(g);
+    if (!(gl > 1e-9)) return c < cr ? 1.0 : 0.0;
+    vec2 n = g / gl;
+    float r = cr / gl; // the disk's radius in pixels
+    // the circle bends away from its tangent by t²/2r at t along it: 1/24r on average over the pixel
+    float edge = envmap_square_share((cr - c) / gl - 1.0 / (24.0 * r), n);
+    vec2 o = -n * (c / gl), side = vec2(1.7724539 * r); // √π r: the square of the disk's area
+    vec2 ov = clamp(min(o + 0.5 * side, 0.5) - max(o - 0.5 * side, -0.5), 0.0, 1.0);
+    return mix(ov.x * ov.y, edge, smoothstep(0.75, 1.5, r));
+}
+#else
+uniform sampler2D envmap_src2d;
+#endif
 layout(location = 0) out vec4 o_color;
 
 void main() {
+    vec2 ndc = gl_FragCoord.xy / envmap_viewport * 2.0 - 1.0;
+    vec4 a = envmap_inv_view_proj * vec4(ndc, -1.0, 1.0), b = envmap_inv_view_proj * vec4(ndc, 1.0, 1.0);
+    vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
+#if defined(ENVMAP_SKY_SUN)
+    float sun = envmap_sun_share(d, dFdx(d), dFdy(d)); // derivatives before any return
+#endif
 #ifndef ENVMAP_IN_PLACE
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 c = texelFetch(envmap_color, p, 0);
@@ -54,15 +98,15 @@ void main() {
         return;
     }
 #endif
-    vec2 ndc = gl_FragCoord.xy / envmap_viewport * 2.0 - 1.0;
-    vec4 a = envmap_inv_view_proj * vec4(ndc, -1.0, 1.0), b = envmap_inv_view_proj * vec4(ndc, 1.0, 1.0);
-    vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
     vec3 sky;
 #if defined(ENVMAP_SOURCE_CUBE)
     float lod = max(0.0, log2(envmap_pixel_angle / (0.5 * ENVMAP_PI / envmap_src_size.x)));
     sky = textureLod(envmap_srccube, d, lod).rgb;
 #elif defined(ENVMAP_SOURCE_SKY)
-    sky = envmap_sky(normalize(d));
+    sky = envmap_sky(d);
+#if defined(ENVMAP_SKY_SUN)
+    sky += sun * envmap_sky_sun_radiance;
+#endif
 #else
     float lod = max(0.0, log2(envmap_pixel_angle / (ENVMAP_PI / envmap_src_size.y)));
     sky = textureLod(envmap_src2d, envmap_dir_latlong(d), lod).rgb;

@@ -673,9 +673,8 @@ static void blender_latlong_dir(double u, double v, double d[3]) {
     d[2] = sin(theta) * sin(phi);
 }
 
-/* envmap's procedural sky, evaluated per direction of Blender's lat-long (3×3 samples a texel, so
- * the sun disk's edge is antialiased), w×h RGBA. */
-static float *sky_latlong(sl_app *app, int w, int h) {
+/* envmap's procedural sky as the scene's parameters set it. */
+static em_sky export_sky(sl_app *app) {
     em_sky sky;
     em_sky_default(&sky);
     sky.sun_elevation_deg = global_float(app, "envmap.sun_elevation", sky.sun_elevation_deg);
@@ -683,6 +682,16 @@ static float *sky_latlong(sl_app *app, int w, int h) {
     sky.sun_irradiance = global_float(app, "envmap.sun_irradiance", sky.sun_irradiance);
     const sl_param *ground = global_param(app, "envmap.ground_color");
     if (ground) memcpy(sky.ground, ground->value.f, sizeof sky.ground);
+    return sky;
+}
+
+/* The sky without its sun disk, evaluated per direction of Blender's lat-long (3×3 samples a
+ * texel), w×h RGBA. The disk goes to the world's nodes instead (export_sun_disk): in a texture its
+ * edge would be blurred over the texels, while shadelab's background box-filters the exact disk
+ * over each pixel, as Cycles' pixel does with the disk drawn by nodes. */
+static float *sky_latlong(const em_sky *with_sun, int w, int h) {
+    em_sky sky = *with_sun;
+    sky.sun_irradiance = 0;
     float *px = malloc((size_t)w * h * 4 * sizeof *px);
     if (!px) return NULL;
     for (int y = 0; y < h; y++)
@@ -700,6 +709,19 @@ static float *sky_latlong(sl_app *app, int w, int h) {
             p[3] = 1;
         }
     return px;
+}
+
+/* world.sun: the sky's sun disk for the world's nodes, in the frame of the lat-long's lookup
+ * (Blender's axes, before the map's turn): direction, cos of the angular radius, radiance. */
+static void export_sun_disk(const em_sky *sky, cJSON *w) {
+    double dir[3], r, L[3];
+    em_sky_sun(sky, dir, &r, L);
+    if (!(L[0] > 0 || L[1] > 0 || L[2] > 0)) return;
+    cJSON *sun = cJSON_AddObjectToObject(w, "sun");
+    float b[3] = {(float)dir[0], (float)-dir[2], (float)dir[1]}, rad[3] = {(float)L[0], (float)L[1], (float)L[2]};
+    cJSON_AddItemToObject(sun, "direction", vec(b, 3));
+    cJSON_AddNumberToObject(sun, "cos_radius", cos(r));
+    cJSON_AddItemToObject(sun, "radiance", vec(rad, 3));
 }
 
 static float *core_pattern(void *user, const char *spec, int size, char *err, size_t n) {
@@ -725,8 +747,10 @@ static bool export_world(ctx *c, cJSON *root) {
     int width = 0, height = 0;
     if (!env->map) {
         width = 2048, height = 1024;
-        px = sky_latlong(app, width, height);
+        em_sky sky = export_sky(app);
+        px = sky_latlong(&sky, width, height);
         if (!px) { snprintf(c->err, c->n, "out of memory"); return false; }
+        export_sun_disk(&sky, w);
     } else {
         em_env e = {0};
         bool ok;

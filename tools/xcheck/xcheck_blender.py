@@ -300,6 +300,31 @@ def make_light(l, root, eevee, unoccluded):
 
 # ----------------------------------------------------------------------------------- world --
 
+def add_sun_disk(tree, direction, colour, sun):
+    """The procedural sky's sun disk, drawn exactly: colour + radiance where the lookup direction is
+    within the disk's angular radius (dot > cos r); returns the sum's output socket."""
+    def vmath(op):
+        n = tree.nodes.new("ShaderNodeVectorMath")
+        n.operation = op
+        return n
+    unit = vmath("NORMALIZE")
+    tree.links.new(direction, unit.inputs[0])
+    dot = vmath("DOT_PRODUCT")
+    tree.links.new(unit.outputs["Vector"], dot.inputs[0])
+    dot.inputs[1].default_value = sun["direction"]
+    inside = tree.nodes.new("ShaderNodeMath")
+    inside.operation = "GREATER_THAN"
+    tree.links.new(dot.outputs["Value"], inside.inputs[0])
+    inside.inputs[1].default_value = sun["cos_radius"]
+    disk = vmath("SCALE")
+    disk.inputs[0].default_value = sun["radiance"]
+    tree.links.new(inside.outputs["Value"], disk.inputs["Scale"])
+    total = vmath("ADD")
+    tree.links.new(colour, total.inputs[0])
+    tree.links.new(disk.outputs["Vector"], total.inputs[1])
+    return total.outputs["Vector"]
+
+
 def make_world(d, w):
     world = bpy.data.worlds.new("shadelab")
     world.use_nodes = True
@@ -318,7 +343,10 @@ def make_world(d, w):
         rot.inputs["Rotation"].default_value = (0.0, 0.0, w["map"]["rotate_z"])
         tree.links.new(coord.outputs["Generated"], rot.inputs["Vector"])
         tree.links.new(rot.outputs["Vector"], tex.inputs["Vector"])
-        tree.links.new(tex.outputs["Color"], bg.inputs["Color"])
+        colour = tex.outputs["Color"]
+        if "sun" in w:
+            colour = add_sun_disk(tree, rot.outputs["Vector"], colour, w["sun"])
+        tree.links.new(colour, bg.inputs["Color"])
     else:
         bg.inputs["Color"].default_value = list(w.get("color", [0, 0, 0])) + [1.0]
     world.cycles.sampling_method = "AUTOMATIC" if "map" in w else "NONE"

@@ -11,6 +11,8 @@
  *              carries the option as scene.json's render.object_rays ("camera"; absent without it)
  *   point      point light over a plane, perspective camera: L = ρ/π · I·h / d³
  *   spot       spots over a plane (linear and glTF fall-off, one tilted): L = ρ/π · I·f(θ)·cos θ_i / d²
+ *   sky-sun    the procedural sky's sun disk seen through a narrow camera: its energy (E) and its
+ *              edge (each pixel's share of the disk, box-filtered)
  *   mirror     mirror sphere in a lat-long whose colour is a linear function of the direction, in
  *              Blender's orientation (u = ½ at +X growing towards +Z, v = 0 up), turned by yaw
  *   gltf-quad  an animated glTF quad opened directly (Blender's importer): its edges where the
@@ -26,6 +28,7 @@
 #include <string.h>
 #include <sys/wait.h>
 
+#include "camera_rays.h"
 #include "test_tmp.h"
 #include "toolkit.h"
 
@@ -310,6 +313,78 @@ static void spot_case(const char *name, const spot *s, const char *falloff) {
     free_render(&r);
 }
 
+/* ---- sky-sun ----------------------------------------------------------------------------- */
+
+/* envmap's procedural sky's sun disk as its README documents it: towards (cos e sin a, sin e,
+ * cos e cos a) for elevation e and azimuth a, angular radius 1.5°, radiance E/Ω times the colour
+ * (1, 0.95, 0.88), Ω = 2π(1 − cos r). Looking at it (elevation 30°, azimuth 20°, E = 3) through a
+ * 12° camera at the origin, a third of a pixel off its centre: the sky under the disk is taken as
+ * the mean of a ring 3–5 pixels outside it (smooth: sky and halo), and each pixel's excess over
+ * it, over the disk's radiance, is the share of the pixel inside the disk (16 × 16 rays per
+ * pixel: the 1-pixel box filter the export asks of Cycles). The disk's energy (excess times the
+ * pixels' solid angles) is E in red; the pixels along the edge match their shares. A disk baked
+ * into the exported lat-long (2048 texels around) was blurred over its texels: rms 0.08 along
+ * the edge (measured before the disk went to the world's nodes). */
+static const double SUN_E = 3, SUN_R = 1.5 * PI / 180, SUN_FOV = 12;
+
+static void sun_dir(double d[3]) {
+    double e = 30 * PI / 180, a = 20 * PI / 180;
+    d[0] = cos(e) * sin(a), d[1] = sin(e), d[2] = cos(e) * cos(a);
+}
+
+static void sun_case(void) {
+    double sun[3], px = 2 * tan(SUN_FOV * PI / 360) / H;
+    sun_dir(sun);
+    test_camera cam = {{0, 0, 0}, {(float)(sun[0] + px / 3), (float)(sun[1] + px / 3), (float)sun[2]}, SUN_FOV, W, H};
+    char scene[1024];
+    snprintf(scene, sizeof scene,
+             "{ \"plugins\": [\"envmap\"],\n"
+             "  \"params\": { \"envmap.sun_elevation\": 30, \"envmap.sun_azimuth\": 20, \"envmap.sun_irradiance\": %g,"
+             " \"envmap.sun_light\": false },\n"
+             "  \"cameras\": [{ \"position\": [0, 0, 0], \"target\": [%.9g, %.9g, %.9g], \"fov_y\": %g }],\n"
+             "  \"materials\": [{ \"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5] }],\n"
+             "  \"nodes\": [{ \"name\": \"speck\", \"translate\": [0, -50, 0], \"mesh\": { \"primitive\": \"sphere\", \"radius\": 0.1 }, \"material\": \"m\" }] }\n",
+             SUN_E, cam.target[0], cam.target[1], cam.target[2], SUN_FOV);
+    render r = {0};
+    if (!cycles("sky-sun", scene, 64, &r)) { free_render(&r); return; }
+    double L = SUN_E / (2 * PI * (1 - cos(SUN_R))), fwd[3] = {cam.target[0], cam.target[1], cam.target[2]};
+    double fl = sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
+    for (int i = 0; i < 3; i++) fwd[i] /= fl;
+    double ring = 0, energy = 0, sum2 = 0, worst = 0;
+    int ring_n = 0, edge_n = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                float o[3], d[3];
+                test_camera_ray(&cam, x, y, o, d);
+                double mu = d[0] * fwd[0] + d[1] * fwd[1] + d[2] * fwd[2];
+                double off = (acos(fmin(1, d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2])) - SUN_R) / (px * mu * mu);
+                double v = r.img.pixels[((size_t)y * W + x) * 4];
+                if (pass == 0) {
+                    if (off > 3 && off < 5) ring += v, ring_n++;
+                    continue;
+                }
+                if (off > 3) continue;
+                energy += (v - ring / ring_n) * px * px * mu * mu * mu;
+                if (fabs(off) > 1.5) continue;
+                double share = 0;
+                for (int j = 0; j < 16; j++)
+                    for (int i = 0; i < 16; i++) {
+                        test_camera_ray_at(&cam, x + (i + 0.5f) / 16, y + (j + 0.5f) / 16, o, d);
+                        share += (d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2] > cos(SUN_R)) / 256.0;
+                    }
+                double e = (v - ring / ring_n) / L - share;
+                sum2 += e * e, worst = fmax(worst, fabs(e)), edge_n++;
+            }
+    double rms = sqrt(sum2 / (edge_n ? edge_n : 1));
+    printf("%-12s energy %.4f (closed form %g), %d edge pixels: rms %.4f, largest %.4f of the disk's radiance\n",
+           "sky-sun", energy, SUN_E, edge_n, rms, worst);
+    CHECK_MSG(ring_n > 100 && edge_n > 50, "sky-sun: %d ring and %d edge pixels", ring_n, edge_n);
+    CHECK_MSG(fabs(energy / SUN_E - 1) < 0.01, "sky-sun: the disk's energy is %.4f, expected %g", energy, SUN_E);
+    CHECK_MSG(rms < 0.03, "sky-sun: the disk's edge differs from the box filter by rms %.4f", rms);
+    free_render(&r);
+}
+
 /* ---- mirror ------------------------------------------------------------------------------ */
 
 /* The lat-long convention of Blender and three.js, from its statement: u = ½ at +X, growing
@@ -513,6 +588,7 @@ int main(void) {
         compare("mirror-bg", &r, 0, mirror_background, NULL, false, 1.2, 0, 0.01, 0.005, 0.01);
     }
     free_render(&r);
+    sun_case();
     gltf_case();
     return check_result();
 }
