@@ -30,8 +30,19 @@ float phong_power(SlSurface s) { return phong_power_from_alpha(s.alpha); }
 // 64); runs before every other surface hook (order -100), so any of them may override it.
 void phong_surface_gloss(inout SlSurface s) { s.alpha = phong_alpha_from_power(phong_power_from_gloss(sl_mat_gloss)); }
 
+// Lit by a light of angular radius r (sl_light_spread), the lobe about reflect(−l, n) widens to the
+// disk's reflection (reflected directions within r of the light's): the half maximum of
+// max(0, r·v)^s, at θ² ≈ 2 ln 2/s, grows in quadrature, θ'² = θ² + r², so s' = 1/(1/s + r²/2 ln 2),
+// and k_s scales by (s' + 1)/(s + 1), which keeps the lobe's integral 2π/(s + 1): the classic
+// model's k_s is not normalised, and the light it reflects stays the same.
 vec3 phong_model_classic(SlSurface s, vec3 l, vec3 E) {
-    return phong_classic(s.normal, s.view, l, phong_albedo(s), sl_mat_specular_color * s.specular, sl_mat_shininess, E);
+    float p = max(sl_mat_shininess, 0.0), k = 1.0;
+    if (sl_light_spread > 0.0) {
+        float q = 1.0 / (1.0 / max(p, 1e-6) + sl_light_spread * sl_light_spread / 1.3862944);
+        k = (q + 1.0) / (p + 1.0);
+        p = q;
+    }
+    return phong_classic(s.normal, s.view, l, phong_albedo(s), sl_mat_specular_color * s.specular * k, p, E);
 }
 vec3 phong_model_classic_ambient(SlSurface s, vec3 Ea) { return phong_classic_ambient(phong_albedo(s), s.ao, Ea); }
 
