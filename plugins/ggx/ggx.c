@@ -26,8 +26,7 @@ static const sl_param_desc params[] = {
     P(.id = "specular_aa", .type = SL_PARAM_BOOL, .default_value = {.b = true},
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB,
       .group = "quality",
-      .description = "Toksvig specular antialiasing: normal-map variance from its mip chain widens alpha, and the "
-                     "diffuse takes the filtered normal's length (Lambert's mean over the pixel)."),
+      .description = "Toksvig specular antialiasing: normal-map variance from its mip chain widens alpha."),
     P(.id = "layer_clearcoat", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,
       .group = "layers", .description = "Render the clear coat of materials that carry one (KHR_materials_clearcoat)."),
     P(.id = "layer_sheen", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .flags = SL_PARAM_NEEDS_RECOMPILE,

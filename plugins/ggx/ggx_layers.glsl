@@ -6,13 +6,6 @@
 
 #include "sl:ggx_brdf.glsl"
 
-// The length |N̄| of the normal map's average over this pixel's footprint (the trilinear fetch of
-// its box-filtered mips), 1 without a map or with ggx.specular_aa off; set by
-// ggx_surface_specular_aa. The diffuse takes it as the mean of n·l over the footprint, N̄·l =
-// |N̄|·(n·l) for the unit normal n the other terms use (Toksvig 2005: the unnormalised filtered
-// normal gives Lambert's average where no normal below the pixel faces away from the light).
-float ggx_normal_length = 1.0;
-
 // Schlick's Fresnel with its own F90: F0 + (F90 − F0)(1 − c)⁵.
 vec3 ggx_schlick_f90(float c, vec3 f0, vec3 f90) {
     float m = clamp(1.0 - abs(c), 0.0, 1.0);

@@ -166,12 +166,12 @@ vec3 ggx_model(SlSurface s, vec3 l, vec3 E) {
              ggx_irid.weight);
 #endif
     vec3 diffuse = (1.0 - max(Fd.r, max(Fd.g, Fd.b))) * (1.0 - s.metallic) * ggx_diffuse_share() * s.base_color * SL_INV_PI;
-    vec3 base = (diffuse * ggx_normal_length + F * dg) * E * n_dot_l;
+    vec3 base = (diffuse + F * dg) * E * n_dot_l;
 #elif SL_MAT_FRESNEL == SL_MAT_FRESNEL_METALLIC_ROUGHNESS
     vec3 diffuse = (1.0 - F) * (1.0 - s.metallic) * ggx_diffuse_share() * s.base_color * SL_INV_PI;
-    vec3 base = (diffuse * ggx_normal_length + F * dg) * E * n_dot_l;
+    vec3 base = (diffuse + F * dg) * E * n_dot_l;
 #else
-    vec3 base = (ggx_diffuse_share() * s.base_color * SL_INV_PI * ggx_normal_length + s.specular * F * dg) * E * n_dot_l;
+    vec3 base = (ggx_diffuse_share() * s.base_color * SL_INV_PI + s.specular * F * dg) * E * n_dot_l;
 #endif
 #ifdef GGX_HAS_TRANSMISSION
     base += ggx_transmitted_light(s, n, v, l, E);

@@ -47,15 +47,13 @@ void ggx_surface_specular_map(inout SlSurface s) {
 // mip chain of the normal map is a box filter of the encoded normals, so the trilinear fetch
 // at this pixel's footprint gives the average normal N̄ over it; the shorter it is, the more
 // the normals below the pixel vary, and that variance widens the lobe. At the finest level
-// |N̄| = 1 and α is unchanged. The same |N̄| scales the diffuse's n·l (ggx_normal_length).
-// Runs after the material inputs and the normal-map plugin's hook (order 20).
+// |N̄| = 1 and α is unchanged. Runs after the material inputs and the normal-map plugin's hook (order 20).
 void ggx_surface_specular_aa(inout SlSurface s) {
 #if GGX_SPECULAR_AA
     vec3 avg = texture(sl_mat_normal_map, sl_uv_normal_map(s)).xyz * 2.0 - 1.0;
     float len = clamp(length(avg), 1e-3, 1.0);
     float variance = (1.0 - len) / len;
     s.alpha = sqrt(min(s.alpha * s.alpha + variance, 1.0));
-    ggx_normal_length = len;
 #endif
 }
 #endif

@@ -4,7 +4,6 @@
 #include "check.h"
 #include "camera_rays.h"
 #include "disk_highlight.h"
-#include "plane_scene.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
 
@@ -138,56 +137,6 @@ static void test_disk_highlight(void) {
     disk_highlight(3, 0.3, 3.2, &f3, &r3);
     printf("roughness 0.3: highlight flux %.4f for a point, %.4f for a disk of 3 deg (ratio %.4f)\n", f0, f3, f3 / f0);
     CHECK_MSG(fabs(f3 / f0 - 1) < 0.01, "widening changed the highlight's flux by %.2f %%", 100 * (f3 / f0 - 1));
-}
-
-/* The diffuse under a filtered normal map (ggx_normal_length): a plane facing +Z whose tangent-space
- * map alternates per texel column between (±sin θ, 0, cos θ), θ = 35° (a half-float EXR, 512²
- * over 4 m: 3.6 texels a pixel, so every level the lookup reads, 1 and up, holds the two columns'
- * average (0, 0, cos θ)), specular 0 (Lambert alone), ρ = 0.5, lit by a directional light 30°
- * from the normal (E = 3), orthographic camera, aa off, core.anisotropy 1. No normal below a
- * pixel faces away from the light (cos θ cos 30° > sin θ sin 30°), so Lambert's average over the
- * footprint is exactly ρ/π·E·cos θ·cos 30° — the unit normal alone gives ρ/π·E·cos 30°, 1/cos θ
- * (22 %) too bright, which ggx.specular_aa=false keeps. */
-static void test_filtered_normal_diffuse(void) {
-    const double theta = 35 * M_PI / 180, rho = 0.5, E = 3, tilt = 30 * M_PI / 180;
-    const int n = 512;
-    sl_image map = {0};
-    if (!pt_constant_image(&map, n, 0.5f, 0.5f, 1.0f)) return;
-    for (int y = 0; y < n; y++)
-        for (int x = 0; x < n; x++) {
-            float *p = map.pixels + ((size_t)y * n + x) * 4;
-            p[0] = (float)(0.5 + 0.5 * (x % 2 ? -sin(theta) : sin(theta)));
-            p[2] = (float)(0.5 + 0.5 * cos(theta));
-        }
-    char path[1100], json[4096];
-    snprintf(path, sizeof path, "%s/columns.exr", pt_scratch("ggx"));
-    CHECK(pt_write(path, &map));
-    sl_image_free(&map);
-    snprintf(json, sizeof json,
-             "{\"plugins\": [\"ggx\", \"normal-map\"],\n"
-             " \"cameras\": [{\"name\": \"c\", \"type\": \"orthographic\", \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"ymag\": 1}],\n"
-             " \"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"specular\": 0, \"base_color\": [%g, %g, %g],"
-             " \"normal_map\": \"%s\"}],\n"
-             " \"nodes\": [{\"name\": \"p\", \"rotate\": [90, 0, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 4}, \"material\": \"m\"}],\n"
-             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, %.9g, %.9g], \"intensity\": %g}]}",
-             rho, rho, rho, path, -sin(tilt), -cos(tilt), E);
-    double mean[2];
-    for (int k = 0; k < 2; k++) {
-        const char *const settings[] = {"aa.enabled=false", "core.anisotropy=1",
-                                        k ? "ggx.specular_aa=false" : "ggx.specular_aa=true", NULL};
-        sl_harness *h = make(json, settings);
-        CHECK(h && sl_harness_render(h, img));
-        double sum = 0;
-        int count = 0;
-        for (int y = 8; y < H - 8; y++)
-            for (int x = 8; x < W - 8; x++) sum += img[((size_t)y * W + x) * 4], count++;
-        mean[k] = sum / count;
-        sl_harness_destroy(h);
-    }
-    double want = rho / M_PI * E * cos(theta) * cos(tilt), unit = rho / M_PI * E * cos(tilt);
-    printf("filtered normal map, Lambert: mean %.5f, closed form %.5f (the unit normal's %.5f; specular_aa off "
-           "%.5f)\n", mean[0], want, unit, mean[1]);
-    CHECK_MSG(fabs(mean[0] / want - 1) < 0.01, "the diffuse under a filtered map is %.5f, expected %.5f", mean[0], want);
 }
 
 int main(void) {
@@ -393,6 +342,5 @@ int main(void) {
         sl_harness_destroy(h);
     }
     test_disk_highlight();
-    test_filtered_normal_diffuse();
     return check_result();
 }
