@@ -468,26 +468,82 @@ static xc_stats report_regions(const report_ctx *r, FILE *txt, FILE *json, const
     return region_row(r, txt, json, flip, mask, "(interiors)", "", true, true);
 }
 
-/* EEVEE's renders over the interiors (mask), beside shadelab's figures. */
-static void report_eevee(const report_ctx *r, FILE *txt, FILE *json, const xc_stats *inner, double scale, float *flip,
-                         const unsigned char *mask) {
+/* One image's statistics against the reference over mask, with its FLIP from map (or none). */
+static xc_stats masked_stats(const report_ctx *r, const float *img, const float *map, const unsigned char *mask) {
+    xc_stats s;
+    xc_region_stats(img, r->ref, mask, r->w, r->h, &s);
+    s.flip = map ? xc_masked_mean(map, mask, r->w, r->h) : NAN;
+    return s;
+}
+
+/* Per object, shadelab beside each EEVEE render (relative RMS / FLIP), and on how many objects
+ * shadelab is at or below each. flips[k]: EEVEE k's FLIP map (or NULL); flip: shadelab's. */
+static void report_eevee_objects(const report_ctx *r, FILE *txt, const float *flip, float *const *flips,
+                                 unsigned char *mask) {
+    int n = r->ex->object_count, better_rr[16] = {0}, better_flip[16] = {0}, visible = 0;
+    fprintf(txt, "\nPer object, relative RMS / FLIP:\n  %-24s %-16s", "object", "shadelab");
+    for (int k = 0; k < r->o->eevee_count; k++) fprintf(txt, "  EEVEE %-10d", r->o->eevee[k]);
+    fprintf(txt, "\n");
+    for (int i = 0; i < n; i++) {
+        xc_region_mask(r->index, r->w, r->h, i + 1, mask);
+        xc_stats s = masked_stats(r, r->test, flip, mask);
+        if (!s.pixels) continue;
+        visible++;
+        fprintf(txt, "  %-24s %.4f / %.4f ", r->ex->objects[i].name, s.rel_rms, s.flip);
+        for (int k = 0; k < r->o->eevee_count; k++) {
+            xc_stats e = masked_stats(r, r->eevee[k], flips[k], mask);
+            fprintf(txt, "  %.4f / %.4f ", e.rel_rms, e.flip);
+            better_rr[k] += s.rel_rms <= e.rel_rms, better_flip[k] += s.flip <= e.flip;
+        }
+        fprintf(txt, "\n");
+    }
+    for (int k = 0; k < r->o->eevee_count; k++)
+        fprintf(txt, "  shadelab at or below EEVEE %d on %d of %d objects by relative RMS, %d by FLIP\n", r->o->eevee[k],
+                better_rr[k], visible, better_flip[k]);
+}
+
+/* EEVEE k's objects for the report's JSON: name, relative RMS, mean ratio, FLIP. */
+static void json_eevee_objects(const report_ctx *r, FILE *json, int k, const float *map, unsigned char *mask) {
+    fprintf(json, ", \"objects\": [");
+    for (int i = 0; i < r->ex->object_count; i++) {
+        xc_region_mask(r->index, r->w, r->h, i + 1, mask);
+        xc_stats e = masked_stats(r, r->eevee[k], map, mask);
+        fprintf(json, "%s{\"name\": ", i ? ", " : "");
+        json_string(json, r->ex->objects[i].name);
+        fprintf(json, ", \"pixels\": %ld, \"rel_rms\": %.6g, \"mean_ratio\": %.6g, \"flip\": %.6g}", e.pixels,
+                isfinite(e.rel_rms) ? e.rel_rms : -1, isfinite(e.mean_ratio) ? e.mean_ratio : -1,
+                isfinite(e.flip) ? e.flip : -1);
+    }
+    fprintf(json, "]");
+}
+
+/* EEVEE's renders over the interiors (interiors: their mask), beside shadelab's figures, then per
+ * object. flip: shadelab's FLIP map (kept); scratch: a mask to overwrite. */
+static void report_eevee(const report_ctx *r, FILE *txt, FILE *json, const xc_stats *inner, double scale,
+                         const float *flip, const unsigned char *interiors, unsigned char *scratch) {
     if (!r->o->eevee_count) return;
+    float *flips[16] = {0};
     fprintf(txt, "\nEEVEE against Cycles (the same interiors; shadelab: rel-RMS %.4f, ratio %.4f, FLIP %.4f, %.2f ms):\n",
             inner->rel_rms, inner->mean_ratio, inner->flip, r->shadelab_ms);
     fprintf(json, "  , \"eevee\": [\n");
     for (int k = 0; k < r->o->eevee_count; k++) {
-        xc_stats e;
-        xc_region_stats(r->eevee[k], r->ref, mask, r->w, r->h, &e);
-        if (flip && isfinite(xc_flip_map(r->eevee[k], r->ref, r->w, r->h, scale, flip)))
-            e.flip = xc_masked_mean(flip, mask, r->w, r->h);
+        flips[k] = malloc((size_t)r->w * r->h * sizeof *flips[k]);
+        if (flips[k] && !isfinite(xc_flip_map(r->eevee[k], r->ref, r->w, r->h, scale, flips[k]))) {
+            free(flips[k]);
+            flips[k] = NULL;
+        }
+        xc_stats e = masked_stats(r, r->eevee[k], flips[k], interiors);
         fprintf(txt, "  %4d samples: rel-RMS %.4f, ratio %.4f, FLIP %.4f, %.1f ms per render (%.1fx shadelab's frame)\n",
                 r->o->eevee[k], e.rel_rms, e.mean_ratio, e.flip, r->eevee_ms[k], r->eevee_ms[k] / r->shadelab_ms);
         fprintf(json, "    {\"samples\": %d, \"ms\": %.3f, \"interiors\": {\"rel_rms\": %.6g, \"mean_ratio\": %.6g, "
-                      "\"flip\": %.6g}}%s\n",
-                r->o->eevee[k], r->eevee_ms[k], e.rel_rms, e.mean_ratio, isfinite(e.flip) ? e.flip : -1,
-                k + 1 < r->o->eevee_count ? "," : "");
+                      "\"flip\": %.6g}",
+                r->o->eevee[k], r->eevee_ms[k], e.rel_rms, e.mean_ratio, isfinite(e.flip) ? e.flip : -1);
+        json_eevee_objects(r, json, k, flips[k], scratch);
+        fprintf(json, "}%s\n", k + 1 < r->o->eevee_count ? "," : "");
     }
     fprintf(json, "  ]\n");
+    report_eevee_objects(r, txt, flip, flips, scratch);
+    for (int k = 0; k < r->o->eevee_count; k++) free(flips[k]);
 }
 
 static void report_notes(const xc_export *ex, FILE *txt, FILE *json) {
@@ -513,7 +569,9 @@ static double report(const report_ctx *r, FILE *txt, FILE *json) {
     double worst = report_objects(r, txt, json, flip, mask);
     report_materials(r, txt, json, flip, mask);
     xc_stats inner = report_regions(r, txt, json, flip, mask);
-    report_eevee(r, txt, json, &inner, scale, flip, mask);
+    unsigned char *scratch = malloc((size_t)r->w * r->h);
+    if (scratch) report_eevee(r, txt, json, &inner, scale, flip, mask, scratch);
+    free(scratch);
     report_notes(r->ex, txt, json);
     free(flip);
     free(mask);

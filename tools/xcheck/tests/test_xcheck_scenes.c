@@ -10,7 +10,8 @@
  * spheres' smooth spheres reflect the floor and each other (envmap.reflections=screen in the
  * scene), the sky's sun casts shadows (spotlight-shadow) and the sky's ground is the lit floor's
  * radiance: with the sky alone in the reflections sg0's and smirror's FLIP fail (0.282, 0.272),
- * with the sky's default dark ground every rough sphere's and the white one's ratio (0.81-0.83). */
+ * with the sky's default dark ground every rough sphere's and the white one's ratio (0.81-0.83).
+ * And with --eevee, the report's per-object EEVEE figures against their definition. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -19,6 +20,7 @@
 #include <sys/wait.h>
 
 #include "test_tmp.h"
+#include "toolkit.h"
 
 #define SKIP 77
 
@@ -87,8 +89,67 @@ static void check_scene(const char *scene, const bound *bounds) {
     cJSON_Delete(doc);
 }
 
+/* EEVEE per object (--eevee 1, on scenes/aa_edges.json at 96×54, 32 samples): the report lists
+ * EEVEE's figures for every object the report's own table lists, in its order, and each relative
+ * RMS is the definition's, recomputed here from the written images: sqrt(Σ(e − c)²/Σc²) over
+ * R, G, B of the object's interior (its pixels whose four neighbours are it too). */
+static void check_eevee_objects(void) {
+    char out[4096], cmd[9000], path[4200], err[512];
+    snprintf(out, sizeof out, "%s/eevee", sl_test_dir());
+    snprintf(cmd, sizeof cmd, "'%s' --size 96x54 --samples 32 --eevee 1 --out '%s' '%s/scenes/aa_edges.json' > /dev/null",
+             SL_XCHECK_EXE, out, SL_SOURCE_DIR);
+    int status = system(cmd);
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 0, "aa_edges with --eevee 1: shadelab-xcheck failed (%d)", status);
+    snprintf(path, sizeof path, "%s/report.json", out);
+    char *text = read_text(path);
+    cJSON *doc = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    CHECK_MSG(doc, "no readable %s", path);
+    if (!doc) return;
+    sl_image ee = {0}, cy = {0}, ix = {0};
+    bool ok = true;
+    const char *names[3] = {"eevee-1.exr", "cycles.exr", "index.exr"};
+    sl_image *imgs[3] = {&ee, &cy, &ix};
+    for (int i = 0; i < 3; i++) {
+        snprintf(path, sizeof path, "%s/%s", out, names[i]);
+        ok = ok && sl_image_load(imgs[i], path, err, sizeof err);
+    }
+    CHECK_MSG(ok, "%s", err);
+    const cJSON *objects = cJSON_GetObjectItemCaseSensitive(doc, "objects");
+    const cJSON *eevee = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "eevee"), 0);
+    const cJSON *eo = cJSON_GetObjectItemCaseSensitive(eevee, "objects");
+    CHECK_MSG(cJSON_GetArraySize(eo) == cJSON_GetArraySize(objects) && cJSON_GetArraySize(objects) == 2,
+              "EEVEE lists %d objects, the report %d", cJSON_GetArraySize(eo), cJSON_GetArraySize(objects));
+    int w = cy.width, h = cy.height;
+    for (int i = 0; ok && i < cJSON_GetArraySize(objects) && i < cJSON_GetArraySize(eo); i++) {
+        const cJSON *a = cJSON_GetArrayItem(objects, i), *b = cJSON_GetArrayItem(eo, i);
+        const char *an = cJSON_GetObjectItemCaseSensitive(a, "name")->valuestring;
+        const char *bn = cJSON_GetObjectItemCaseSensitive(b, "name")->valuestring;
+        CHECK_MSG(!strcmp(an, bn), "EEVEE's object %d is %s, the report's %s", i, bn, an);
+        double d2 = 0, c2 = 0;
+#define IDX(x, y) ((int)lroundf(ix.pixels[((size_t)(y) * w + (x)) * 4]))
+        for (int y = 1; y < h - 1; y++)
+            for (int x = 1; x < w - 1; x++) {
+                int k = i + 1;
+                if (IDX(x, y) != k || IDX(x - 1, y) != k || IDX(x + 1, y) != k || IDX(x, y - 1) != k || IDX(x, y + 1) != k)
+                    continue;
+                for (int c = 0; c < 3; c++) {
+                    size_t p = ((size_t)y * w + x) * 4 + c;
+                    d2 += (ee.pixels[p] - cy.pixels[p]) * (ee.pixels[p] - cy.pixels[p]), c2 += cy.pixels[p] * cy.pixels[p];
+                }
+            }
+#undef IDX
+        double want = sqrt(d2 / c2), got = cJSON_GetObjectItemCaseSensitive(b, "rel_rms")->valuedouble;
+        printf("EEVEE 1 on aa_edges: %-8s relative RMS %.5f (recomputed %.5f)\n", bn, got, want);
+        CHECK_MSG(fabs(got - want) <= 1e-4 * want + 1e-6, "%s: EEVEE's relative RMS %.6f, recomputed %.6f", bn, got, want);
+    }
+    for (int i = 0; i < 3; i++) sl_image_free(imgs[i]);
+    cJSON_Delete(doc);
+}
+
 int main(void) {
     check_scene("scenes/default.json", default_scene);
+    check_eevee_objects();
     check_scene("scenes/ibl_spheres.json", ibl_spheres);
     return check_result();
 }
