@@ -139,6 +139,10 @@ static sl_status core_create(const sl_host *host, void **user) {
          .min = 0.25f, .max = 1, .step = 0.05f, .unit = "x", .group = "quality", .flags = SL_PARAM_QUALITY_KNOB,
          .description = "Render at this fraction of the window per axis; the window shows it scaled up (bilinear, "
                         "or by an upscaler pass: aa.taa_upscale). The budget lowers it while the view moves."},
+        {.struct_size = sizeof(sl_param_desc), .id = "rerun_passes", .type = SL_PARAM_BOOL, .group = "debug",
+         .description = "Run every pass in every frame, none skipped because nothing it depends on changed: what a "
+                        "frame costs while everything moves (benchmarks of passes that a still runs once: sss, "
+                        "shadow maps). The image is the same."},
         /* material keys */
         {.struct_size = sizeof(sl_param_desc), .id = "base_color", .type = SL_PARAM_COLOR, .scope = SL_SCOPE_MATERIAL,
          .default_value = {.f = {0.8f, 0.8f, 0.8f}}, .group = "material", .material_input = "base_color",

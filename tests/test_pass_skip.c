@@ -7,6 +7,7 @@
  *    passes and the shadow maps were skipped (nothing changed; then the camera moved; then a
  *    parameter of a plugin without shader chunks changed) equals a fresh start's first frame,
  *    which runs every pass; a light change re-runs them and still equals a fresh start.
+ *    core.rerun_passes runs every pass in every frame while it is on.
  * 3. The built-in default scene as shipped (aa's TAA on): its shadow map is rendered by the first
  *    frame only, not by the frames of a still (a jittered camera each), nor while the camera
  *    orbits; moving the sun renders it again, once. */
@@ -119,6 +120,14 @@ static void test_counts(void) {
     set(h, "tonemap.enabled=false");
     expect("a plugin switched off (new plan)", frame_at(h, 1), ALL);
     expect("  and then nothing", frame_at(h, 1), ALWAYS);
+    /* core.rerun_passes (what a frame costs while everything moves): every pass in every frame;
+     * off again, skipping resumes from keys kept current meanwhile */
+    set(h, "core.rerun_passes=true");
+    expect("core.rerun_passes", frame_at(h, 1), ALL);
+    expect("  and the next frame", frame_at(h, 1), ALL);
+    set(h, "core.rerun_passes=false");
+    frame_at(h, 1); /* a core parameter: the graph is planned again */
+    expect("  off, and then nothing", frame_at(h, 1), ALWAYS);
     sl_harness_destroy(h);
 
     /* geometry: tp-good's vertex hook (material key tp_lift) animates the geometry over time */
