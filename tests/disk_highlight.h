@@ -40,4 +40,24 @@ static inline void sl_test_disk_highlight(const char *plugin, const char *materi
     *flux = sum * pixel * pixel;
     *radius = sqrt(above / M_PI) * pixel;
 }
+
+/* The half-maximum spot's radius under a disk of r_deg, against R sin(r/2) within 15 %. */
+static inline void sl_test_disk_radius(const char *plugin, const char *what, const char *material_keys, double r_deg,
+                                       double fov_deg) {
+    double flux, radius, expect = sin(r_deg / 2 * M_PI / 180);
+    sl_test_disk_highlight(plugin, material_keys, r_deg, fov_deg, &flux, &radius);
+    printf("%s, disk of %g deg: half-maximum radius %.5f, on paper R sin(r/2) = %.5f\n", what, r_deg, radius, expect);
+    CHECK_MSG(fabs(radius / expect - 1) < 0.15, "%s: the highlight's radius %.5f is not R sin(r/2) = %.5f", what, radius,
+              expect);
+}
+
+/* Widening keeps the energy: the highlight's flux under a disk of r_deg within 1 % of a point's. */
+static inline void sl_test_disk_flux(const char *plugin, const char *what, const char *material_keys, double r_deg,
+                                     double fov_deg) {
+    double f0, f, r0, r;
+    sl_test_disk_highlight(plugin, material_keys, 0, fov_deg, &f0, &r0);
+    sl_test_disk_highlight(plugin, material_keys, r_deg, fov_deg, &f, &r);
+    printf("%s: highlight flux %.5f for a point, %.5f for a disk of %g deg (ratio %.4f)\n", what, f0, f, r_deg, f / f0);
+    CHECK_MSG(fabs(f / f0 - 1) < 0.01, "%s: widening changed the highlight's flux by %.2f %%", what, 100 * (f / f0 - 1));
+}
 #endif
