@@ -123,6 +123,8 @@ void sl_graph_plan(sl_app *app) {
      * pass box-filters it into the viewport-sized "color" everything downstream sees. */
     sl_param *ssaa = sl_params_find(&app->params, "core.ssaa");
     r->ssaa = ssaa && ssaa->value.i > 1 ? ssaa->value.i : 1;
+    const sl_param *rerun = sl_params_find(&app->params, "core.rerun_passes");
+    r->rerun_passes = rerun && rerun->value.b;
     forward_outputs[0] = app->opt.float32 ? core_color32 : core_color;
     forward_outputs[1] = core_depth;
     /* "motion" (pass.h, ABI 1.6) and "normal" (ABI 1.13) only while an enabled plugin's pass reads

@@ -433,8 +433,6 @@ static void upscale_bilinear(sl_renderer *r, graph_pass *g) {
  * size as their viewport (sl_frame.width, height: pass.h, ABI 1.18). */
 void sl_graph_run_range(sl_app *app, int begin, int end) {
     sl_renderer *r = R(app);
-    const sl_param *rerun_param = sl_params_find(&app->params, "core.rerun_passes");
-    bool rerun = rerun_param && rerun_param->value.b;
     for (int i = begin; i < end; i++) {
         graph_pass *g = &r->passes[i];
         bool after = r->upscaler >= 0 && i > r->upscaler;
@@ -462,7 +460,7 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
             continue;
         }
         /* unchanged() keeps its keys current even when core.rerun_passes runs the pass anyway */
-        if (unchanged(app, g) && !rerun) { /* its declared inputs and its signature did not move */
+        if (unchanged(app, g) && !r->rerun_passes) { /* its declared inputs and its signature did not move */
             if (st) st->reused = true;
             r->stats.reused_draw_calls += g->last_draws;
             continue;

@@ -106,6 +106,7 @@ typedef struct sl_renderer {
     int out_width, out_height; /* the output's size (ABI 1.18, pass.h: SL_SIZE_OUTPUT) */
     int upscaler;             /* graph index of the upscaler (its "color" output at SL_SIZE_OUTPUT), or -1 */
     int ssaa;                 /* core.ssaa the plan was made with */
+    bool rerun_passes;        /* core.rerun_passes the plan was made with: no pass skipped */
     bool blend_planned;       /* the plan holds the "forward-blend" pass (a blended material exists) */
     bool behind_planned;      /* ... the "forward-behind" pass (a material reads the scene behind it) */
     unsigned behind_tex;      /* the captured opaque scene, mipmapped (graph_run.c), and its size */
