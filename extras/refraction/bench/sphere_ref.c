@@ -5,11 +5,15 @@
  *   refraction_sphere_ref SCENE W H LABEL "SETTINGS" [LABEL "SETTINGS" …]
  *
  * For each setting (space-separated --set assignments) prints one CSV line
- *   label,rmse,max_abs,pixels
+ *   label,rmse,max_abs,pixels,flip
  * over every pixel whose ray hits the sphere: channels green (v, continuous everywhere) and red
  * (u) where every contributing lookup stays 0.03 away from the map's u seam; blue (0) too.
- * Settings with "material.glass.ior_rgb=" are compared channel by channel with their own η. */
+ * Settings with "material.glass.ior_rgb=" are compared channel by channel with their own η.
+ * flip: the mean FLIP (Andersson et al. 2020; shadelab-bench's sl_metric_flip, the SDK's
+ * shadelab::metrics) over the same pixels, of the whole image against the image with the
+ * sphere's pixels replaced by the reference (red kept where it is not compared: near the seam). */
 #include <shadelab/harness.h>
+#include <shadelab/bench/metrics.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,8 +43,10 @@ int main(int argc, char **argv) {
     const double cam_pos[3] = {0, 0, 4}, target[3] = {0, 0, 0}; /* scenes/sphere.json */
     rf_camera cam = rf_camera_make(cam_pos, target, 40, w, h);
     rf_sphere S = {{0, 0, 0}, 1};
-    float *img = malloc(sizeof(float) * 4 * w * h);
-    printf("label,rmse,max_abs,pixels\n");
+    float *img = malloc(sizeof(float) * 4 * w * h), *refimg = malloc(sizeof(float) * 4 * w * h),
+          *fmap = malloc(sizeof(float) * w * h);
+    unsigned char *on = malloc((size_t)w * h);
+    printf("label,rmse,max_abs,pixels,flip\n");
     for (int a = 4; a + 1 < argc; a += 2) {
         const char *settings[64];
         int ns = 0;
@@ -65,26 +71,35 @@ int main(int argc, char **argv) {
         sl_harness_destroy(hh);
         double se = 0, worst = 0;
         long n = 0, px = 0;
+        memcpy(refimg, img, sizeof(float) * 4 * w * h);
         for (int y = 0; y < h; y++)
             for (int x = 0; x < w; x++) {
                 double dir[3], ref[3], ci;
+                on[(size_t)y * w + x] = 0;
                 rf_camera_ray(&cam, x, y, w, h, dir);
                 rf_seam_margin = 1;
                 rf_trace(&S, cam_pos, dir, ior, false, ref, &ci);
                 if (ci < 0) continue;
                 px++;
+                on[(size_t)y * w + x] = 1;
                 const float *p = img + ((size_t)y * w + x) * 4;
+                float *q = refimg + ((size_t)y * w + x) * 4;
                 for (int k = 0; k < 3; k++) {
                     if (k == 0 && rf_seam_margin < 0.03) continue;
                     double e = p[k] - ref[k];
                     se += e * e, n++;
                     worst = fmax(worst, fabs(e));
+                    q[k] = (float)ref[k];
                 }
             }
-        printf("%s,%.6f,%.6f,%ld\n", argv[a], sqrt(se / (n ? n : 1)), worst, px);
+        double fsum = 0;
+        if (!isfinite(sl_metric_flip(img, refimg, w, h, 0, fmap))) return fprintf(stderr, "flip failed\n"), 1;
+        for (size_t i = 0; i < (size_t)w * h; i++)
+            if (on[i]) fsum += fmap[i];
+        printf("%s,%.6f,%.6f,%ld,%.6f\n", argv[a], sqrt(se / (n ? n : 1)), worst, px, fsum / (px ? px : 1));
         fflush(stdout);
         free(copy);
     }
-    free(img), free(json);
+    free(img), free(refimg), free(fmap), free(on), free(json);
     return 0;
 }
