@@ -14,9 +14,13 @@
  * where gloss ∈ [0, 1], the model's range: roughness 0.2 … 0.9), against its own reference (the
  * blinn-gloss model itself per point). Cost: the
  * same scene with the rectangle light and with one point light at its centre, rendered in turn
- * (interleaved, median of --frames each) on the same harness build. Writes PREFIX.csv and
- * PREFIX.png (gnuplot). Not a test: it prints figures. */
+ * (interleaved, median of --frames each) on the same harness build. Beside each relative RMSE,
+ * the mean FLIP (Andersson et al. 2020, shadelab-bench's sl_metric_flip from the SDK's
+ * shadelab::metrics) of the same pair; the LTC is deterministic (no noise of its own), the
+ * references' noise is the estimate above, and in FLIP the first quarter's FLIP against the whole.
+ * Writes PREFIX.csv, PREFIX.png and PREFIX-flip.png (gnuplot). Not a test: it prints figures. */
 #include <shadelab/harness.h>
+#include <shadelab/bench/metrics.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,6 +61,8 @@ static double rel_rmse(const float *a, const float *ref) {
     return sqrt(s / fmax(r, 1e-30));
 }
 
+static double flip(const float *a, const float *ref) { return sl_metric_flip(a, ref, W, H, 0, NULL); }
+
 /* one frame of json (accumulating `accumulate` frames) into img, on a harness of its own */
 static void render_once(const char *json, const char *const *settings, int accumulate, float *img) {
     sl_harness *h = make(json, settings, accumulate);
@@ -84,13 +90,16 @@ int main(int argc, char **argv) {
     }
     if (W < 16 || H < 16 || W > 4096 || H > 4096 || frames < 1 || accumulate < 1) { fprintf(stderr, "area_light_chart: bad arguments\n"); return 2; }
     float *img = malloc(sizeof(float) * 4 * W * H), *ref = malloc(sizeof(float) * 4 * W * H);
-    char csv[1024], png[1024], json[4096];
+    char csv[1024], png[1024], pngf[1024], json[4096];
     snprintf(csv, sizeof csv, "%s.csv", out);
     snprintf(png, sizeof png, "%s.png", out);
+    snprintf(pngf, sizeof pngf, "%s-flip.png", out);
     FILE *f = fopen(csv, "w");
     if (!f) { fprintf(stderr, "area_light_chart: cannot write %s\n", csv); return 1; }
     fprintf(f, "roughness,ggx_ltc_relrmse,lambert_relrmse,ggx_reference_noise,ggx_ltc_vs_shadowed_relrmse,"
-               "blinn_gloss,blinn_gloss_ltc_relrmse,blinn_gloss_reference_noise\n");
+               "blinn_gloss,blinn_gloss_ltc_relrmse,blinn_gloss_reference_noise,"
+               "ggx_ltc_flip,lambert_flip,ggx_reference_quarter_flip,ggx_ltc_vs_shadowed_flip,blinn_gloss_ltc_flip,"
+               "blinn_gloss_reference_quarter_flip\n");
     const char *const refset[] = {"area-light.method=reference", "area-light.reference_samples=8",
                                   "area-light.reference_visibility=false", NULL};
     /* the declared reference: with visibility (the ball shadows the floor; the LTC has no shadows) */
@@ -99,40 +108,48 @@ int main(int argc, char **argv) {
     const double rough[] = {0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
     printf("roughness  ggx LTC vs reference  lambert vs reference  ggx reference noise  ggx LTC vs shadowed reference  "
            "blinn-gloss (gloss)  LTC vs reference  reference noise "
-           "(relative RMSE; reference: %d frames x 64 points, unshadowed; shadowed: %d frames x 1 point + cube map)\n",
+           "(relative RMSE; reference: %d frames x 64 points, unshadowed; shadowed: %d frames x 1 point + cube map); "
+           "then FLIP: ggx, lambert, ggx reference's quarter, ggx vs shadowed, blinn-gloss, its reference's quarter\n",
            accumulate, accumulate);
     float *quarter = malloc(sizeof(float) * 4 * W * H);
     for (size_t k = 0; k < sizeof rough / sizeof *rough; k++) {
-        double e[2], noise = 0, shadowed = 0;
+        double e[2], noise = 0, shadowed = 0, fl[2], fl_quarter = NAN, fl_shadowed = NAN;
         for (int m = 0; m < 2; m++) {
             snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, m ? "lambert" : "ggx", "roughness", rough[k]);
             render_once(json, NULL, 1, img);
             render_once(json, refset, accumulate, ref);
             e[m] = rel_rmse(img, ref);
+            fl[m] = flip(img, ref);
             if (m == 0 && accumulate >= 4) {
                 /* the reference's own noise: its first quarter against it, rms(q - ref) = √3 σ */
                 render_once(json, refset, accumulate / 4, quarter);
                 noise = rel_rmse(quarter, ref) / sqrt(3.0);
+                fl_quarter = flip(quarter, ref);
                 render_once(json, shadowset, accumulate, ref);
                 shadowed = rel_rmse(img, ref);
+                fl_shadowed = flip(img, ref);
             }
         }
         /* blinn-gloss at Walter's power of the same α = roughness² (NaN outside the gloss range) */
-        double alpha = rough[k] * rough[k], gloss = log2(2 / (alpha * alpha) - 2) / 12, eb = NAN, noise_b = NAN;
+        double alpha = rough[k] * rough[k], gloss = log2(2 / (alpha * alpha) - 2) / 12, eb = NAN, noise_b = NAN,
+               fl_b = NAN, fl_b_quarter = NAN;
         if (gloss >= 0 && gloss <= 1) {
             snprintf(json, sizeof json, SCENE_HEAD RECT_LIGHT, "blinn-gloss", "gloss", gloss);
             render_once(json, NULL, 1, img);
             render_once(json, refset, accumulate, ref);
             eb = rel_rmse(img, ref);
+            fl_b = flip(img, ref);
             if (accumulate >= 4) {
                 render_once(json, refset, accumulate / 4, quarter);
                 noise_b = rel_rmse(quarter, ref) / sqrt(3.0);
+                fl_b_quarter = flip(quarter, ref);
             }
         }
         else gloss = NAN;
-        printf("%9.2f  %20.4f  %20.4f  %19.4f  %29.4f  %19.3f  %16.4f  %15.4f\n", rough[k], e[0], e[1], noise, shadowed, gloss,
-               eb, noise_b);
-        fprintf(f, "%g,%g,%g,%g,%g,%g,%g,%g\n", rough[k], e[0], e[1], noise, shadowed, gloss, eb, noise_b);
+        printf("%9.2f  %20.4f  %20.4f  %19.4f  %29.4f  %19.3f  %16.4f  %15.4f  FLIP %.4f %.4f %.4f %.4f %.4f %.4f\n", rough[k],
+               e[0], e[1], noise, shadowed, gloss, eb, noise_b, fl[0], fl[1], fl_quarter, fl_shadowed, fl_b, fl_b_quarter);
+        fprintf(f, "%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g\n", rough[k], e[0], e[1], noise, shadowed, gloss, eb, noise_b,
+                fl[0], fl[1], fl_quarter, fl_shadowed, fl_b, fl_b_quarter);
     }
     fclose(f);
 
@@ -194,6 +211,21 @@ int main(int argc, char **argv) {
              png, out, W, H, out);
     if (system(cmd) != 0) fprintf(stderr, "area_light_chart: gnuplot failed (CSV written)\n");
     else printf("wrote %s.csv, %s-cost.csv, %s\n", out, out, png);
+    /* the FLIP chart: the same pairs, mean FLIP at 67 pixels per degree */
+    snprintf(cmd, sizeof cmd,
+             "gnuplot -e \"set terminal pngcairo size 800,540 font ',10'; set output '%s'; set datafile separator ',';"
+             " set title 'area-light: LTC vs Monte Carlo reference, %dx%d'; set xlabel 'roughness (blinn-gloss: power 2/roughness^4 - 2)';"
+             " set ylabel 'mean FLIP (perceptual, 67 px/degree)';"
+             " set key outside bottom center vertical maxrows 3 font ',8'; set grid; set logscale y;"
+             " plot '%s.csv' using 1:9 skip 1 with linespoints lc rgb 'dark-violet' pt 1 title 'ggx (LTC specular + Lambert)',"
+             " '' using 1:10 skip 1 with linespoints lc rgb 'dark-green' pt 2 title 'lambert (exact formula)',"
+             " '' using 1:11 skip 1 with lines lc rgb 'dark-violet' dashtype 2 title 'ggx reference: its first quarter vs it',"
+             " '' using 1:12 skip 1 with linespoints lc rgb 'dark-orange' pt 4 title 'ggx (LTC, no shadows) vs shadowed reference',"
+             " '' using 1:13 skip 1 with linespoints lc rgb 'red' lw 2 pt 7 ps 0.8 title 'blinn-gloss (Blinn-Phong LTC + Lambert)',"
+             " '' using 1:14 skip 1 with lines lc rgb 'red' dashtype 3 title 'blinn-gloss reference: its first quarter vs it'\"",
+             pngf, W, H, out);
+    if (system(cmd) != 0) fprintf(stderr, "area_light_chart: gnuplot failed for %s\n", pngf);
+    else printf("wrote %s\n", pngf);
     free(img), free(ref), free(quarter), free(t_rect), free(t_point), free(t_shadow);
     return 0;
 }
