@@ -1,6 +1,6 @@
 # Sourced by envmap's bench scripts after they set $here (this directory): the repository root,
-# the build directory (the script's first argument, else build/), blender_hdr, metal_row, pareto_front
-# and gp.
+# the build directory (the script's first argument, else build/), blender_hdr, metal_row, pareto_front,
+# gp and gp_noisy.
 root=$(cd "$here/../../.." && pwd)
 build=${1:-$root/build}
 # blender_hdr NAME: the path of Blender's studio-light environment NAME.exr (Debian blender-data,
@@ -35,12 +35,20 @@ metal_row() {
     echo '  "lights": []'
     echo '}'; }
 }
-# pareto_front MEAN.csv: the rows of MEAN.csv (alpha,method,ms,error,..., sorted by alpha then ms)
-# that are more accurate than every faster row of the same alpha: the error-vs-ms Pareto front.
+# pareto_front MEAN.csv [COLUMN]: the rows of MEAN.csv (alpha,method,ms,error,..., sorted by alpha
+# then ms) that are more accurate (the error in COLUMN, default 4) than every faster row of the same
+# alpha: the error-vs-ms Pareto front.
 pareto_front() {
-    awk -F, '{ a = $1; if (a != last) { best = 1e30; last = a } if ($4 < best) { best = $4; print $0 } }' "$1"
+    awk -F, -v c="${2:-4}" '{ a = $1; if (a != last) { best = 1e30; last = a } if ($c < best) { best = $c; print $0 } }' "$1"
 }
 # gp WxH FONTSIZE COMMANDS: gnuplot to PNG (pngcairo when the build has it, else png)
 gp() {
     gnuplot -e "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size $1 font 'sans,$2' } else { set terminal png size $1 }; set termoption noenhanced; $3"
+}
+# gp_noisy FILE XCOL YCOL: a gnuplot plot element marking FILE's rows as shadelab-bench marks a
+# noisy setting (tools/bench/report.c, tools/bench/README.md "Noisy settings": an orange cross; its
+# noise in its label, off every Pareto front). Noisy = the benches' `noisy` column, which compares
+# the noise with SL_NOISE_VISIBLE (tools/bench/include/bench/metrics.h).
+gp_noisy() {
+    printf "%s" "'$1' using $2:$3 with points pt 2 ps 1.8 lw 2 lc rgb '#ff7f0e' title 'noisy (its frames scatter visibly: on no front)'"
 }

@@ -6,10 +6,17 @@
  * Relative RMS of a sphere = √(mean over its pixels of |x − ref|²) / mean over its pixels of ref
  * (luminance-free: all three channels), the sphere's pixels given by the depth of the frame (not
  * background). Milliseconds: the fastest of `--frames` single-frame renders with read-back.
+ * FLIP and noise, shadelab-bench's measures (tools/bench/include/bench/metrics.h, library
+ * shadelab_metrics), over the sphere's pixels: flip = the mean over them of the per-pixel LDR-FLIP
+ * map of the timed frame against the reference (the whole images enter the filters); noise = the
+ * RMS over them of the per-pixel spread of samples k = 0 … n−1 of an n-frame still, each rendered
+ * on its own (sl_harness_render_sample; n = --noise-samples, SL_NOISE_SAMPLES unless told, 0 = not
+ * measured: empty), measured for every method, deterministic ones included; noisy = 1 when the
+ * noise exceeds SL_NOISE_VISIBLE (shadelab-bench's "noisy setting": on no Pareto front).
  * Output: CSV on stdout, one row per (environment, material, α, method).
  * Usage: envmap_bench_methods [--size N] [--frames N] [--reference-frames N] [--env PATH|sky]...
  *        [--method NAME="id=value ..."]... [--material NAME="JSON keys"]... [--plugin NAME]... [--alphas A,B,...]
- *        [--min-nv X] [--blocks] [--no-accumulated]
+ *        [--min-nv X] [--blocks] [--no-accumulated] [--noise-samples N]
  * --material replaces the two GGX spheres (any model: the reference integrates the model's own f;
  * α is set through the material key `alpha`, which ggx's surface hook writes to s.alpha for every
  * model that reads it), --plugin adds a plugin to the scene's list (a model's), --alphas the
@@ -21,6 +28,7 @@
  * (plugins/envmap/bench/methods.sh runs it and draws the charts; bench/lobes.sh, the lobe
  * contract's chart, runs it with phong's blinn-gloss beside ggx). */
 #include "ibl_sphere.h"
+#include "ibl_metrics.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,8 +53,15 @@ static int NA;
 static const char *materials[MAX_MATERIALS][2];
 static int NMAT;
 
+
+/* ",flip,noise,noisy": noise and noisy empty when not measured */
+static void print_flip_noise(double flip, double noise) {
+    if (isnan(noise)) printf(",%.5f,,\n", flip);
+    else printf(",%.5f,%.6f,%d\n", flip, noise, noise > SL_NOISE_VISIBLE);
+}
+
 int main(int argc, char **argv) {
-    int size = 96, frames = 5, ref_frames = 64;
+    int size = 96, frames = 5, ref_frames = 64, noise_samples = SL_NOISE_SAMPLES;
     const char *envs[8];
     int ne = 0;
     bool accumulated = true;
@@ -76,6 +91,7 @@ int main(int argc, char **argv) {
         }
         else if (!strcmp(argv[i], "--min-nv") && i + 1 < argc) min_nv = atof(argv[++i]);
         else if (!strcmp(argv[i], "--blocks")) blocks = true;
+        else if (!strcmp(argv[i], "--noise-samples") && i + 1 < argc) noise_samples = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--alphas") && i + 1 < argc) {
             NA = 0;
             for (char *tok = strtok(argv[++i], ","); tok && NA < MAX_ALPHAS; tok = strtok(NULL, ",")) alphas[NA++] = atof(tok);
@@ -83,7 +99,7 @@ int main(int argc, char **argv) {
         else {
             fprintf(stderr, "usage: %s [--size N] [--frames N] [--reference-frames N] [--env PATH|sky]... "
                             "[--method NAME=\"id=value ...\"]... [--material NAME=\"JSON keys\"]... [--plugin NAME]... [--alphas A,B,...] "
-                            "[--min-nv X] [--blocks] [--no-accumulated]\n", argv[0]);
+                            "[--min-nv X] [--blocks] [--no-accumulated] [--noise-samples N]\n", argv[0]);
             return 2;
         }
     }
@@ -107,7 +123,9 @@ int main(int argc, char **argv) {
     int n = size * size;
     float *ref = malloc((size_t)NA * n * 16), *img = malloc((size_t)n * 16);
     unsigned char *mask = malloc((size_t)NA * n);
-    printf("env,material,alpha,method,ms,rel_rms,rel_mean\n");
+    float *map = malloc((size_t)n * sizeof *map);
+    if (noise_samples == 1) noise_samples = 0; /* one frame has no spread */
+    printf("env,material,alpha,method,ms,rel_rms,rel_mean,flip,noise,noisy\n");
     for (int e = 0; e < ne; e++)
         for (int m = 0; m < NMAT; m++) {
             const char *envname = strrchr(envs[e], '/') ? strrchr(envs[e], '/') + 1 : envs[e];
@@ -120,7 +138,7 @@ int main(int argc, char **argv) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
                 double t0 = ibl_now_ms();
                 if (!ibl_set(h, buf) || !sl_harness_render(h, ref + (size_t)a * n * 4)) return 1;
-                printf("%s,%s,%.2f,reference,%.2f,0,0\n", envname, materials[m][0], alphas[a], (ibl_now_ms() - t0) / ref_frames);
+                printf("%s,%s,%.2f,reference,%.2f,0,0,0,,\n", envname, materials[m][0], alphas[a], (ibl_now_ms() - t0) / ref_frames);
                 for (int i = 0; i < n; i++) {
                     const float *r = ref + ((size_t)a * n + i) * 4;
                     mask[(size_t)a * n + i] = r[0] + r[1] + r[2] > 0 && (min_nv < -1 || ibl_sphere_nv(i % size, i / size, size) > min_nv);
@@ -145,7 +163,11 @@ int main(int argc, char **argv) {
                     double rr, rm;
                     if (blocks) ibl_compare_blocks(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, size, &rr, &rm);
                     else ibl_compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
-                    printf("%s,%s,%.2f,%s,%.2f,%.5f,%+.5f\n", envname, materials[m][0], alphas[a], methods[k][0], best, rr, rm);
+                    double flip = ibl_flip_over(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, size, map);
+                    double noise = noise_samples ? ibl_noise_over(h, noise_samples, mask + (size_t)a * n, size, img, map) : NAN;
+                    if (noise_samples && isnan(noise)) return 1;
+                    printf("%s,%s,%.2f,%s,%.2f,%.5f,%+.5f", envname, materials[m][0], alphas[a], methods[k][0], best, rr, rm);
+                    print_flip_noise(flip, noise);
                     fflush(stdout);
                 }
             }
@@ -162,11 +184,12 @@ int main(int argc, char **argv) {
                 double rr, rm;
                 if (blocks) ibl_compare_blocks(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, size, &rr, &rm);
                 else ibl_compare(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, n, &rr, &rm);
-                printf("%s,%s,%.2f,fis32-accumulated,0,%.5f,%+.5f\n", envname, materials[m][0], alphas[a], rr, rm);
+                printf("%s,%s,%.2f,fis32-accumulated,0,%.5f,%+.5f", envname, materials[m][0], alphas[a], rr, rm);
+                print_flip_noise(ibl_flip_over(img, ref + (size_t)a * n * 4, mask + (size_t)a * n, size, map), NAN);
                 fflush(stdout);
             }
             sl_harness_destroy(h);
         }
-    free(ref), free(img), free(mask);
+    free(ref), free(img), free(mask), free(map);
     return 0;
 }
