@@ -10,11 +10,17 @@
  * Also the first frame of each still alone (pixel centre, no jitter: what a frame in motion shows,
  * TAA's history aside) against a pixel-centre reference (aa off, taa_frames × R sub-frames).
  * Relative RMS and mean per sphere as bench/ibl_methods.c. The bench's spheres (ibl_sphere.h).
- * Output: CSV env,material,alpha,method,ms,still_rms,still_mean,frame_rms,frame_mean
- * (ms: the fastest frame of the still, read-back included).
+ * FLIP and noise as bench/ibl_methods.c (shadelab-bench's measures, tools/bench/include/bench/
+ * metrics.h, over the sphere's pixels): still_flip, the still's against the reference still;
+ * noise, the spread of the still's frames 0 … taa_frames−1, each rendered on its own
+ * (sl_harness_render_sample: TAA restarts, so each is a pixel-centre frame), the sparkle while the
+ * still settles; noisy = 1 above SL_NOISE_VISIBLE.
+ * Output: CSV env,material,alpha,method,ms,still_rms,still_mean,frame_rms,frame_mean,still_flip,
+ * noise,noisy (ms: the fastest frame of the still, read-back included).
  * Usage: envmap_bench_still [--size N] [--reference-accumulate R] [--env PATH|sky:E]...
  *        [--method NAME=SETTINGS]... (default: the list below). bench/still.sh runs it. */
 #include "ibl_sphere.h"
+#include "ibl_metrics.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,6 +47,7 @@ static bool still(sl_harness *h, int frames, float *first, float *img, double *b
     return true;
 }
 
+
 int main(int argc, char **argv) {
     int size = 48, racc = 8, taa = 16;
     const char *envs[8], *methods[MAXM];
@@ -64,7 +71,8 @@ int main(int argc, char **argv) {
     size_t img_bytes = (size_t)n * 4 * sizeof(float);
     float *sref = malloc(NA * img_bytes), *fref = malloc(NA * img_bytes), *img = malloc(img_bytes), *first = malloc(img_bytes);
     unsigned char *mask = malloc((size_t)NA * n);
-    printf("env,material,alpha,method,ms,still_rms,still_mean,frame_rms,frame_mean\n");
+    float *map = malloc((size_t)n * sizeof *map);
+    printf("env,material,alpha,method,ms,still_rms,still_mean,frame_rms,frame_mean,still_flip,noise,noisy\n");
     for (int e = 0; e < ne; e++)
         for (int m = 0; m < 2; m++) {
             if (only && strcmp(only, ibl_materials[m][0])) continue;
@@ -127,12 +135,15 @@ int main(int argc, char **argv) {
                     if (!still(h, taa, first, img, &best)) return 1;
                     ibl_compare(img, sref + (size_t)a * n * 4, mask + (size_t)a * n, n, &sr, &sm);
                     ibl_compare(first, fref + (size_t)a * n * 4, mask + (size_t)a * n, n, &fr, &fm);
-                    printf("%s,%s,%.2f,%.*s,%.2f,%.5f,%+.5f,%.5f,%+.5f\n", envname, ibl_materials[m][0], ibl_alphas[a],
-                           (int)(eq - methods[k]), methods[k], best, sr, sm, fr, fm);
+                    double flip = ibl_flip_over(img, sref + (size_t)a * n * 4, mask + (size_t)a * n, size, map);
+                    double noise = ibl_noise_over(h, taa, mask + (size_t)a * n, size, img, map);
+                    if (isnan(noise)) return 1;
+                    printf("%s,%s,%.2f,%.*s,%.2f,%.5f,%+.5f,%.5f,%+.5f,%.5f,%.6f,%d\n", envname, ibl_materials[m][0], ibl_alphas[a],
+                           (int)(eq - methods[k]), methods[k], best, sr, sm, fr, fm, flip, noise, noise > SL_NOISE_VISIBLE);
                     fflush(stdout);
                 }
             sl_harness_destroy(h);
         }
-    free(sref), free(fref), free(img), free(first), free(mask);
+    free(sref), free(fref), free(img), free(first), free(mask), free(map);
     return 0;
 }
