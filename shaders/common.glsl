@@ -7,12 +7,21 @@ const float SL_INV_PI = 0.31830988618379067154;
 
 // The angular radius (radians) of the light whose l and E the shading model is evaluating: the
 // core's directional light sets it from its angular_radius key, every other light leaves 0, and
-// the light loop sets it back to 0 after each model evaluation. Specular lobes widen to the
-// light's reflected disk by it (ggx_brdf.glsl). Declared here and in ggx_brdf.glsl (which some
+// the light loop sets it back to 0 after each model evaluation. GGX's D is convolved with the
+// light's reflected disk by it, blinn-gloss's lobe widens to it (ggx_brdf.glsl). Declared here and in ggx_brdf.glsl (which some
 // programs include alone), once.
 #ifndef SL_LIGHT_SPREAD_DECLARED
 #define SL_LIGHT_SPREAD_DECLARED 1
 float sl_light_spread = 0.0;
+#endif
+// ABI 1.23: the pixel's footprint of the surface's interpolated normal, for filtering a lobe over
+// the pixel (sl:ggx_brdf.glsl filters D over it under a light's disk): the area of the
+// parallelogram the normal's screen derivatives span, /π (a disk's r², in slopes). Fragment stage:
+// sl_surface_from_varyings sets it, a pass that builds its surface otherwise (a deferred lighting
+// pass) calls sl_set_normal_footprint(n); 0 where nothing did.
+#ifndef SL_NORMAL_FOOTPRINT_DECLARED
+#define SL_NORMAL_FOOTPRINT_DECLARED 1
+float sl_normal_footprint = 0.0;
 #endif
 
 // Object-space vertex, edited by VERTEX hooks.

@@ -29,6 +29,10 @@ layout(location = SL_NORMAL_LOCATION) out vec4 o_normal; // "normal" (pass.h, AB
 // none sets it). The forward pass and the depth pre-pass (prepass.frag) write the same.
 vec4 sl_normal_target(SlSurface s) { return vec4(normalize(mat3(sl_view) * s.normal), s.alpha); }
 
+// The pixel's footprint of the normal n (common.glsl, ABI 1.23), from its screen derivatives: call
+// in uniform control flow, before any discard.
+void sl_set_normal_footprint(vec3 n) { sl_normal_footprint = length(cross(dFdx(n), dFdy(n))) / SL_PI; }
+
 #ifndef SL_FULLSCREEN_MATERIAL
 SlSurface sl_surface_from_varyings() {
     SlSurface s;
@@ -42,6 +46,7 @@ SlSurface sl_surface_from_varyings() {
     // geometric normal, then to the view direction, so shading never sees NaN.
     n = nlen > 1e-12 ? n / nlen : (glen > 1e-20 ? g / glen : s.view);
     if (!gl_FrontFacing && sl_uv_space == 0) n = -n;
+    sl_set_normal_footprint(n);
     s.normal = n;
     s.geometric_normal = glen > 1e-20 ? g / glen : n;
     if (dot(s.geometric_normal, n) < 0.0) s.geometric_normal = -s.geometric_normal;

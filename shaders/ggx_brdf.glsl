@@ -12,21 +12,72 @@ const float GGX_MIN_ALPHA = 2e-3;
 float sl_light_spread = 0.0;
 #endif
 
-// A light's disk of angular radius r reflects into half vectors within ρ = r/2 of the mirror one.
-// The lobe widens to it, α'² = α² + ρ² (1 + 1.414 ρ²/(ρ² + α²)), which meets both ends: for
-// α ≫ ρ the peak of D convolved with the disk, D(0)(1 − ρ²/α²) (α'² = α² + ρ²), and for α → 0
-// GGX's half maximum (tan θ_h = 0.6436 α', where (α² + tan²θ)² doubles) at the disk image's edge
-// (α' = 0.777 r). D stays normalised, so the highlight keeps its energy (a polished sphere shows a
-// disk of radius R sin(r/2): test_ggx_render). A point light (r = 0) keeps α.
-// ggx_disk_alpha: the same for a lobe whose half maximum sits elsewhere, given the ρ to widen by
-// (blinn-gloss's, phong.glsl: its half maximum is at 0.8326 α, so ρ × 0.6436/0.8326).
+// A light's disk of angular radius r reflects into half vectors within about ρ = r/2 of the mirror
+// one. ggx_DG_over_4 convolves D with that disk (ggx_D_disk, below). ggx_disk_alpha widens
+// a lobe instead, α'² = α² + ρ² (1 + 1.414 ρ²/(ρ² + α²)), which meets both ends in the peak's width
+// (for α ≫ ρ the peak of the convolution, α'² = α² + ρ²; for α → 0 GGX's half maximum, tan θ_h =
+// 0.6436 α', at the disk image's edge, α' = 0.777 r) but not in shape: a widened GGX keeps its
+// long tails (half its energy outside the disk's image as α → 0). The anisotropic lobe (ggx_layers)
+// and blinn-gloss (phong.glsl, its half maximum at 0.8326 α: ρ × 0.6436/0.8326) use it.
 float ggx_disk_alpha(float alpha, float rho) {
     float rho2 = rho * rho, a2 = alpha * alpha;
     return sqrt(a2 + rho2 * (1.0 + 1.414 * rho2 / max(rho2 + a2, 1e-20)));
 }
-float ggx_light_alpha(float alpha) {
-    if (sl_light_spread <= 0.0) return alpha; // points: the same for every lane, so skipped
-    return ggx_disk_alpha(alpha, 0.5 * sl_light_spread);
+
+// D seen through the light's disk (sl_light_spread = r > 0), in slope space: D = P(m)/cos⁴θ_h with
+// m = (h − n cos θ_h)/cos θ_h and GGX's slope density P(m) = α²/(π (α² + |m|²)²) — the kernel of the
+// form factor from a point at height α to a plane. So P's mean over a disk of slopes of radius s
+// whose centre is |m| = t away is the form factor of a parallel disk offset by t, over π s² (the
+// differential element to a parallel disk: F = ½ (1 − (α² + t² − s²)/√((α² + t² + s²)² − 4t²s²))):
+// ggx_slope_disk = 2α²/(π y (y + x)), x = α² + t² − s², y = √(x² + 4α²s²), as (y − x)/(2π y s²)
+// where x < 0 (no cancellation). Normalised for any α and s, and P itself as s → 0.
+float ggx_slope_disk(float t2, float s2, float a2) {
+    float x = a2 + t2 - s2;
+    float y = sqrt((t2 - s2) * (t2 - s2) + a2 * (a2 + 2.0 * (t2 + s2)));
+    return x >= 0.0 ? 2.0 * a2 / (SL_PI * y * (y + x)) : (y - x) / (2.0 * SL_PI * y * s2);
+}
+// The pixel's footprint of normals (sl_normal_footprint, common.glsl, ABI 1.23; declared here too
+// for programs that include this file alone): D is filtered over it, as a disk of its area,
+// together with the light's disk (their areas add), so a sun's glint smaller than a pixel lights the
+// pixels round it by their share of it rather than the samples that happen to hit it. A TAA still
+// moves the footprint over the pixel with its jitter, so whatever the glint's position its energy is
+// kept (a unit-area kernel box-filtered over the pixel sums to 1 over the pixels); the still's
+// filter of it is that disk moved over the pixel, about two pixels wide (a share of the footprint in
+// the still's jittered frames, sharper, left the glint's energy 0.82-1.28 of itself by position
+// and the IBL spheres' polished gold further from Cycles: 0.326 against 0.228). Only for lights with a
+// disk (directional ones): point lights and the directions an integrator samples (envmap's
+// reference: sl_light_spread 0) see D itself, whose importance sampling it is.
+#ifndef SL_NORMAL_FOOTPRINT_DECLARED
+#define SL_NORMAL_FOOTPRINT_DECLARED 1
+float sl_normal_footprint = 0.0;
+#endif
+// The disk of half vectors is an ellipse: r/2 in the plane of l and v, r/(2 cos θ_d) across it
+// (θ_d: l·h), and its slopes wider off the normal (s² = (r/2)²/cos³θ_h, area-matched; short of
+// the normal's slope 0 unless it is within r/2 of h: s ≤ 0.9 tan θ_h once that exceeds r/2, for
+// near the horizon the linear map of angles to slopes would reach back to the lobe's peak):
+// ggx_disk_light. Squeezing slopes across the plane by k = cos θ_d makes it a disk (the density ×
+// k), but squeezes the lobe as well, so k blends from 1 (the lobe wider than the disk: GGX's shape
+// kept) to cos θ_d (the disk wider: its image kept) by w = s²/(s² + α² + footprint); the lobe keeps
+// its α in the squeezed slopes (measured closer to the integral than α√k, the squeezed lobe's mean,
+// or w² or √w: test_ggx_render). Returns k; m becomes the squeezed slope, s2 the disk's with the
+// footprint's.
+float ggx_disk_light(float c, vec3 m) {
+    float rho = 0.5 * sl_light_spread;
+    return min(rho * rho / (c * c * c), max(rho * rho, 0.81 * dot(m, m)));
+}
+float ggx_disk_squeeze(vec3 l, vec3 v, vec3 h, float light, float a2, inout vec3 m, out float s2) {
+    s2 = light + sl_normal_footprint;
+    float k = 1.0 - (1.0 - clamp(dot(l, h), 0.0, 1.0)) * light / max(s2 + a2, 1e-20);
+    vec3 across = cross(l, v);
+    across *= inversesqrt(max(dot(across, across), 1e-20));
+    m -= (1.0 - k) * dot(m, across) * across;
+    return k;
+}
+float ggx_D_disk(vec3 n, vec3 h, vec3 l, vec3 v, float alpha) {
+    float c = max(dot(n, h), 1e-4), c2 = c * c, a2 = alpha * alpha, s2;
+    vec3 m = (h - n * c) / c;
+    float k = ggx_disk_squeeze(l, v, h, ggx_disk_light(c, m), a2, m, s2);
+    return k * ggx_slope_disk(dot(m, m), s2, a2) / (c2 * c2);
 }
 
 // Normal distribution D(n, h) = α² / (π cos⁴θ_h (α² + tan²θ_h)²) for n·h > 0, else 0.
@@ -107,14 +158,16 @@ float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     float len2 = dot(hv, hv);
     h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
-    alpha = max(ggx_light_alpha(alpha), GGX_MIN_ALPHA);
+    alpha = max(alpha, GGX_MIN_ALPHA);
+    float D; // a light with a disk (uniform per light): its disk and the pixel's footprint
+    if (sl_light_spread > 0.0) D = ggx_D_disk(n, h, l, v, alpha);
+    else D = ggx_D(dot(n, h), alpha);
 #ifdef GGX_G1_HALF_VECTOR
-    float D = ggx_D(dot(n, h), alpha);
     float G = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha);
     return D * G / (4.0 * max(n_dot_l, 1e-4) * max(n_dot_v, 1e-4));
 #else
     float a2 = alpha * alpha, b = 1.0 - a2;
     float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
-    return ggx_D(dot(n, h), alpha) / ((cl + sqrt(a2 + b * cl * cl)) * (cv + sqrt(a2 + b * cv * cv)));
+    return D / ((cl + sqrt(a2 + b * cl * cl)) * (cv + sqrt(a2 + b * cv * cv)));
 #endif
 }

@@ -12,8 +12,11 @@
 #include <math.h>
 #include <stdio.h>
 
-static inline void sl_test_disk_highlight(const char *plugin, const char *material_keys, double r_deg, double fov_deg,
-                                          double *flux, double *radius) {
+/* As sl_test_disk_highlight, with the harness's settings (NULL-terminated; NULL: aa off), the
+ * sphere moved by (dx, dy) m across the view, and the image the last of `frames` (a TAA still). */
+static inline void sl_test_disk_highlight_at(const char *plugin, const char *material_keys, double r_deg, double fov_deg,
+                                             const char *const *settings, int frames, double dx, double dy,
+                                             double *flux, double *radius) {
     enum { DW = 96, DH = 96 };
     static float px[DW * DH * 4];
     char json[2048], err[4096];
@@ -21,17 +24,20 @@ static inline void sl_test_disk_highlight(const char *plugin, const char *materi
              "{\"plugins\": [\"%s\"],\n"
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],\n"
              " \"materials\": [{\"name\": \"m\", %s}],\n"
-             " \"nodes\": [{\"name\": \"s\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128},"
+             " \"nodes\": [{\"name\": \"s\", \"translate\": [%g, %g, 0],"
+             "   \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128},"
              "   \"material\": \"m\"}],\n"
              " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3,"
-             "   \"angular_radius\": %g}]}", plugin, fov_deg, material_keys, r_deg);
-    const char *const settings[] = {"aa.enabled=false", NULL};
+             "   \"angular_radius\": %g}]}", plugin, fov_deg, material_keys, dx, dy, r_deg);
+    static const char *const aa_off[] = {"aa.enabled=false", NULL};
+    if (!settings) settings = aa_off;
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = DW, .height = DH,
                                                           .scene_json = json, .settings = settings, .float32 = true,
                                                           .strict = true}, err, sizeof err);
     CHECK_MSG(h != NULL, "%s", err);
     *flux = *radius = 0;
     if (!h) return;
+    for (int f = 1; f < frames; f++) CHECK(sl_harness_render(h, NULL));
     CHECK(sl_harness_render(h, px));
     sl_harness_destroy(h);
     double pixel = 2 * 40 * tan(fov_deg / 2 * M_PI / 180) / DH, peak = 0, sum = 0, above = 0;
@@ -39,6 +45,10 @@ static inline void sl_test_disk_highlight(const char *plugin, const char *materi
     for (int i = 0; i < DW * DH; i++) sum += px[i * 4], above += px[i * 4] >= 0.5 * peak;
     *flux = sum * pixel * pixel;
     *radius = sqrt(above / M_PI) * pixel;
+}
+static inline void sl_test_disk_highlight(const char *plugin, const char *material_keys, double r_deg, double fov_deg,
+                                          double *flux, double *radius) {
+    sl_test_disk_highlight_at(plugin, material_keys, r_deg, fov_deg, NULL, 1, 0, 0, flux, radius);
 }
 
 /* The half-maximum spot's radius under a disk of r_deg, against R sin(r/2) within 15 %. */

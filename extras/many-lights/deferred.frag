@@ -8,9 +8,12 @@ layout(location = 0) out vec4 many_lights_out;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec4 g0 = texelFetch(many_lights_g0, p, 0);
+    vec4 g0 = texelFetch(many_lights_g0, p, 0), g1 = texelFetch(many_lights_g1, p, 0);
+    // the forward pass's footprint of normals (ABI 1.23), from the G-buffer's, before the discard
+    // (screen derivatives need every pixel of the quad)
+    sl_set_normal_footprint(normalize(g1.xyz));
     if (int(g0.w + 0.5) != sl_material_index + 1) discard;
-    vec4 g1 = texelFetch(many_lights_g1, p, 0), g2 = texelFetch(many_lights_g2, p, 0), g3 = texelFetch(many_lights_g3, p, 0);
+    vec4 g2 = texelFetch(many_lights_g2, p, 0), g3 = texelFetch(many_lights_g3, p, 0);
     SlSurface s;
     s.position = g0.xyz;
     s.normal = normalize(g1.xyz);

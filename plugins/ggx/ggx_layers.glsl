@@ -294,6 +294,16 @@ float ggx_aniso_D(vec3 n, vec3 t, vec3 b, vec3 h, vec2 a) {
     float ht = dot(h, t) / a.x, hb = dot(h, b) / a.y, k = ht * ht + hb * hb + hn * hn;
     return 1.0 / (SL_PI * a.x * a.y * k * k);
 }
+// D of the anisotropic lobe seen through the light's disk, as ggx_D_disk: in slopes scaled by
+// 1/α_t, 1/α_b the lobe is the isotropic one of α = 1, and the squeezed disk of radius s becomes an
+// ellipse, taken as the disk of the same area (s²/(α_t α_b)); ggx_D_disk's where α_t = α_b.
+float ggx_aniso_D_disk(vec3 n, vec3 t, vec3 b, vec3 h, vec3 l, vec3 v, vec2 a) {
+    float c = max(dot(h, n), 1e-4), c2 = c * c, ab = a.x * a.y, s2;
+    vec3 m = (h - n * c) / c;
+    float k = ggx_disk_squeeze(l, v, h, ggx_disk_light(c, m), ab, m, s2);
+    vec2 q = vec2(dot(m, t), dot(m, b)) / a;
+    return k * ggx_slope_disk(dot(q, q), s2 / ab, 1.0) / (ab * c2 * c2);
+}
 // D·G/(4|n·l||n·v|) of the anisotropic lobe, written as ggx_DG_over_4 with the divisions cancelled:
 // G₁(x) = 2c/(c + √(c² + α_t²(x·t)² + α_b²(x·b)²)), c = n·x. 0 below either horizon.
 float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out vec3 h) {
@@ -302,10 +312,12 @@ float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out ve
     float len2 = dot(hv, hv);
     h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
-    a = vec2(ggx_light_alpha(a.x), ggx_light_alpha(a.y)); // the light's disk, as ggx_DG_over_4
+    float D; // as ggx_DG_over_4
+    if (sl_light_spread > 0.0) D = ggx_aniso_D_disk(n, t, b, h, l, v, a);
+    else D = ggx_aniso_D(n, t, b, h, a);
     float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
     vec2 pl = a * vec2(dot(l, t), dot(l, b)), pv = a * vec2(dot(v, t), dot(v, b));
-    return ggx_aniso_D(n, t, b, h, a) / ((cl + sqrt(cl * cl + dot(pl, pl))) * (cv + sqrt(cv * cv + dot(pv, pv))));
+    return D / ((cl + sqrt(cl * cl + dot(pl, pl))) * (cv + sqrt(cv * cv + dot(pv, pv))));
 }
 // Smith's G = G₁(v)·G₁(l) of the anisotropic lobe (the ggx-g debug view).
 float ggx_aniso_G(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a) {

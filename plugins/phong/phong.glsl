@@ -7,7 +7,7 @@
 // The plugin's own: phong_toksvig (sampler2D on a reserved unit, bound by phong.c per material):
 //   RG, explicit mips: R = gloss with the level's normal variance baked in, G = |N̄|.
 #include "phong_brdf.glsl"
-#include "sl:ggx_brdf.glsl" // ggx_light_alpha: a light's disk widens the lobe (the core's angular_radius)
+#include "sl:ggx_brdf.glsl" // ggx_disk_alpha: a light's disk widens the lobe (the core's angular_radius)
 
 #if defined(SL_MAT_HAS_PROPERTY_MAP) && PHONG_SPECULAR_AA && defined(SL_MAT_HAS_NORMAL_MAP)
 #define PHONG_TOKSVIG 1

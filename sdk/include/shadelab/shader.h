@@ -28,14 +28,19 @@
  *                      direction.w (ABI 1.22): the angular_radius key in radians (directional
  *                      lights' disk); float sl_light_spread: the angular radius of the light a
  *                      model is being evaluated for (the core's directional light sets it, 0 for
- *                      every other light and outside the light loop); sl:ggx_brdf.glsl's lobes
- *                      widen by it (ggx_light_alpha), so a polished surface shows the disk.
+ *                      every other light and outside the light loop); sl:ggx_brdf.glsl's D is
+ *                      convolved with it (ggx_D_disk), so a polished surface shows the disk.
  *   uniforms: float sl_time; mat4 sl_view, sl_proj, sl_view_proj; vec3 sl_camera_pos;
  *             int sl_frame_index; vec2 sl_viewport_size;
  *             int sl_sample_index, sl_sample_count (ABI 1.9: sl_frame.sample_index/count, a
  *             sample sequence that continues across a TAA still's frames and accumulated frames).
  *   function (ABI 1.6, fragment stage of forward programs):
  *             vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E)   the material's SHADING_MODEL
+ *   footprint (ABI 1.23, fragment stage): float sl_normal_footprint, the pixel's footprint of
+ *             the interpolated normal (its screen derivatives' parallelogram /π, in slopes);
+ *             sl_surface_from_varyings sets it, a pass building its surface otherwise calls
+ *             sl_set_normal_footprint(n) in uniform control flow; 0 elsewhere.
+ *             sl:ggx_brdf.glsl filters D over it under a light's disk.
  *   lobes (ABI 1.14, common.glsl): struct SlLobe, struct SlLobes, SL_MAX_LOBES, sl_lobes_none(),
  *             and in forward programs  SlLobes sl_model_lobes(SlSurface s)  the material's
  *             MODEL_LOBES description, or the fallback (Lambert diffuse of s.base_color, no

@@ -11,6 +11,10 @@
  * scene), the sky's sun casts shadows (spotlight-shadow) and the sky's ground is the lit floor's
  * radiance: with the sky alone in the reflections sg0's and smirror's FLIP fail (0.282, 0.272),
  * with the sky's default dark ground every rough sphere's and the white one's ratio (0.81-0.83).
+ * The sun's glint on the polished spheres (rough_10, gold, sg0) is smaller than a pixel: ggx
+ * filters D over each pixel's footprint of normals, so the still holds its energy: rough_10's
+ * glint adds 4.7 over its 4 × 4 pixels, Cycles' 4.3 (1.1 with point samples of D); gold's
+ * relative RMS 0.145 (0.398), sg0's 0.401 (0.303: spread over two pixels where Cycles has one).
  * And with --eevee, the report's per-object EEVEE figures against their definition. */
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -28,14 +32,14 @@ typedef struct bound { const char *object; double rel_rms, ratio, flip; } bound;
 
 /* today's figures (shadelab-xcheck --size 160x90 --samples 256: the converged still) */
 static const bound default_scene[] = {
-    {"floor", 0.160, 1.037, 0.146},    {"teapot", 0.190, 0.919, 0.134},   {"rough_95", 0.127, 0.968, 0.210},
-    {"rough_65", 0.109, 1.005, 0.170}, {"rough_35", 0.097, 1.010, 0.140}, {"rough_10", 0.311, 1.033, 0.213},
-    {"gold", 0.398, 0.946, 0.305},     {NULL, 0, 0, 0}};
+    {"floor", 0.160, 1.037, 0.146}, {"teapot", 0.189, 0.922, 0.132}, {"rough_95", 0.127, 0.968, 0.210},
+    {"rough_65", 0.109, 1.005, 0.170}, {"rough_35", 0.107, 1.009, 0.138}, {"rough_10", 0.174, 1.117, 0.206},
+    {"gold", 0.145, 1.008, 0.302}, {NULL, 0, 0, 0}};
 static const bound ibl_spheres[] = {
-    {"floor", 0.210, 1.003, 0.095}, {"sd0", 0.535, 0.864, 0.144},     {"sd1", 0.130, 0.947, 0.122},
-    {"sd2", 0.067, 0.960, 0.114},   {"sd3", 0.061, 0.958, 0.101},     {"sg0", 0.303, 0.853, 0.213},
-    {"sg1", 0.313, 0.929, 0.246},   {"sg2", 0.553, 0.926, 0.233},     {"sg3", 0.112, 1.083, 0.181},
-    {"smirror", 0.240, 1.089, 0.204}, {"swhite", 0.043, 0.987, 0.110}, {NULL, 0, 0, 0}};
+    {"floor", 0.238, 1.004, 0.101}, {"sd0", 0.575, 0.858, 0.149}, {"sd1", 0.118, 0.954, 0.109},
+    {"sd2", 0.064, 0.967, 0.105}, {"sd3", 0.058, 0.963, 0.094}, {"sg0", 0.401, 0.940, 0.225},
+    {"sg1", 0.266, 0.931, 0.236}, {"sg2", 0.556, 0.932, 0.232}, {"sg3", 0.115, 1.087, 0.184},
+    {"smirror", 0.247, 1.089, 0.201}, {"swhite", 0.041, 0.992, 0.106}, {NULL, 0, 0, 0}};
 
 static char *read_text(const char *path) {
     FILE *f = fopen(path, "rb");
