@@ -17,8 +17,8 @@ float sl_light_spread = 0.0;
 // a lobe instead, α'² = α² + ρ² (1 + 1.414 ρ²/(ρ² + α²)), which meets both ends in the peak's width
 // (for α ≫ ρ the peak of the convolution, α'² = α² + ρ²; for α → 0 GGX's half maximum, tan θ_h =
 // 0.6436 α', at the disk image's edge, α' = 0.777 r) but not in shape: a widened GGX keeps its
-// long tails (half its energy outside the disk's image as α → 0). The anisotropic lobe (ggx_layers)
-// and blinn-gloss (phong.glsl, its half maximum at 0.8326 α: ρ × 0.6436/0.8326) use it.
+// long tails (71 % of its energy outside the disk's image as α → 0). Blinn-gloss (phong.glsl, its
+// half maximum at 0.8326 α: ρ × 0.6436/0.8326) uses it.
 float ggx_disk_alpha(float alpha, float rho) {
     float rho2 = rho * rho, a2 = alpha * alpha;
     return sqrt(a2 + rho2 * (1.0 + 1.414 * rho2 / max(rho2 + a2, 1e-20)));
@@ -36,6 +36,7 @@ float ggx_slope_disk(float t2, float s2, float a2) {
     float y = sqrt((t2 - s2) * (t2 - s2) + a2 * (a2 + 2.0 * (t2 + s2)));
     return x >= 0.0 ? 2.0 * a2 / (SL_PI * y * (y + x)) : (y - x) / (2.0 * SL_PI * y * s2);
 }
+
 // The pixel's footprint of normals (sl_normal_footprint, common.glsl, ABI 1.23; declared here too
 // for programs that include this file alone): D is filtered over it, as a disk of its area,
 // together with the light's disk (their areas add), so a sun's glint smaller than a pixel lights the
@@ -51,6 +52,7 @@ float ggx_slope_disk(float t2, float s2, float a2) {
 #define SL_NORMAL_FOOTPRINT_DECLARED 1
 float sl_normal_footprint = 0.0;
 #endif
+
 // The disk of half vectors is an ellipse: r/2 in the plane of l and v, r/(2 cos θ_d) across it
 // (θ_d: l·h), and its slopes wider off the normal (s² = (r/2)²/cos³θ_h, area-matched; short of
 // the normal's slope 0 unless it is within r/2 of h: s ≤ 0.9 tan θ_h once that exceeds r/2, for
