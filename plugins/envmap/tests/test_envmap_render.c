@@ -721,6 +721,49 @@ static void test_default_speckle(void) {
     CHECK_MSG(noise[1] > 0.002, "the measure does not see hybrid's Monte Carlo: %.5f", noise[1]);
 }
 
+/* specular=hybrid's sample 0 (every frame in motion, a still's first) is the dominant lookup
+ * alone (README, "hybrid"): with aa on, sample 0 of a 16-frame still (sl_harness_render_sample)
+ * and the first frame after an edit (a still's first) equal specular=dominant's bit for bit, at
+ * α = 0.2, 0.4 and 1 (β(α) > 0: hybrid samples there); sample 1 differs, so the comparison sees
+ * hybrid's samples. Procedural sky with its sun. */
+static void test_hybrid_sample0(void) {
+    const char *mat = "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, "
+                      "\"base_color\": [0.95, 0.64, 0.54], \"alpha\": 0.3";
+    static const char *const dom[] = {"aa.enabled=true", "envmap.specular=dominant", "envmap.background=false", NULL};
+    static const char *const hyb[] = {"aa.enabled=true", "envmap.specular=hybrid", "envmap.fis_samples=16",
+                                      "envmap.background=false", NULL};
+    enum { NA = 3 };
+    const double alphas[NA] = {0.2, 0.4, 1.0};
+    static float d[NA][W * H * 4], y0[W * H * 4], yc[W * H * 4], y1[W * H * 4];
+    for (int k = 0; k < 2; k++) { /* one harness a process: dominant's frames, then hybrid's */
+        sl_harness *h = make_with(", \"aa\"", 40, NULL, mat, k ? hyb : dom, 1);
+        CHECK(h != NULL);
+        if (!h) return;
+        for (int a = 0; a < NA; a++) {
+            char buf[64], err[256];
+            snprintf(buf, sizeof buf, "material.m.alpha=%g", alphas[a]);
+            CHECK_MSG(sl_harness_set(h, buf, err, sizeof err), "%s", err);
+            /* the first frame after the edit: a still's first */
+            CHECK(sl_harness_render(h, k ? yc : d[a]));
+            if (!k) continue;
+            CHECK(sl_harness_render_sample(h, 0, 16, y0) && sl_harness_render_sample(h, 1, 16, y1));
+            long differ0 = 0, differc = 0, differ1 = 0, lit = 0;
+            for (int i = 0; i < W * H * 4; i++) {
+                differ0 += y0[i] != d[a][i], differc += yc[i] != d[a][i], differ1 += y1[i] != d[a][i];
+                lit += i % 4 != 3 && d[a][i] > 0;
+            }
+            printf("hybrid vs dominant, alpha %.1f: %ld lit values; differing: sample 0 %ld, a still's first frame "
+                   "%ld, sample 1 %ld\n", alphas[a], lit, differ0, differc, differ1);
+            CHECK(lit > W * H / 2);
+            CHECK_MSG(differ0 == 0, "hybrid's sample 0 differs from dominant in %ld values (alpha %.1f)", differ0, alphas[a]);
+            CHECK_MSG(differc == 0, "hybrid's first frame of a still differs from dominant in %ld values (alpha %.1f)",
+                      differc, alphas[a]);
+            CHECK_MSG(differ1 > lit / 4, "hybrid's sample 1 takes no sample: %ld values differ (alpha %.1f)", differ1, alphas[a]);
+        }
+        sl_harness_destroy(h);
+    }
+}
+
 /* ---------------------------------------------------------------- SH ringing */
 
 /* A sun-only environment (a bright 3° disk on black): order-2 SH rings negative on the far
@@ -1216,6 +1259,7 @@ int main(void) {
     test_default_horizon();
     test_sky_background();
     test_default_speckle();
+    test_hybrid_sample0();
     test_sun_highlight();
     test_procedural();
     test_bad_input();
