@@ -61,13 +61,13 @@ static inline void sl_test_disk_radius(const char *plugin, const char *what, con
               expect);
 }
 
-/* Widening keeps the energy: the highlight's flux under a disk of r_deg within 1 % of a point's. */
+/* A disk keeps the highlight's energy: its flux under a disk of r_deg within 1 % of a point's. */
 static inline void sl_test_disk_flux(const char *plugin, const char *what, const char *material_keys, double r_deg,
                                      double fov_deg) {
     double f0, f, r0, r;
     sl_test_disk_highlight(plugin, material_keys, 0, fov_deg, &f0, &r0);
     sl_test_disk_highlight(plugin, material_keys, r_deg, fov_deg, &f, &r);
     printf("%s: highlight flux %.5f for a point, %.5f for a disk of %g deg (ratio %.4f)\n", what, f0, f, r_deg, f / f0);
-    CHECK_MSG(fabs(f / f0 - 1) < 0.01, "%s: widening changed the highlight's flux by %.2f %%", what, 100 * (f / f0 - 1));
+    CHECK_MSG(fabs(f / f0 - 1) < 0.01, "%s: the disk changed the highlight's flux by %.2f %%", what, 100 * (f / f0 - 1));
 }
 #endif

@@ -53,7 +53,6 @@ static int NA;
 static const char *materials[MAX_MATERIALS][2];
 static int NMAT;
 
-
 /* ",flip,noise,noisy": noise and noisy empty when not measured */
 static void print_flip_noise(double flip, double noise) {
     if (isnan(noise)) printf(",%.5f,,\n", flip);

@@ -47,7 +47,6 @@ static bool still(sl_harness *h, int frames, float *first, float *img, double *b
     return true;
 }
 
-
 int main(int argc, char **argv) {
     int size = 48, racc = 8, taa = 16;
     const char *envs[8], *methods[MAXM];

@@ -113,7 +113,7 @@ static bool aa_case(float cam_y, const float sun_dir[3], float min_dist, double 
  * normal is within r/2 of the view (the reflected ray within r of the light): a spot of radius
  * R sin(r/2). Polished (roughness 0.05, α = 0.0025) and zoomed on the spot (fov 0.4°), r = 3° and
  * 6°: the half-maximum spot's radius is R sin(r/2), 0.026 and 0.052 (9 and 18 px), where the lobe
- * of a delta light is 0.6436 α R = 0.0016. Widening keeps the energy: on a rougher sphere
+ * of a delta light is 0.6436 α R = 0.0016. The disk keeps the energy: on a rougher sphere
  * (roughness 0.3), the whole sphere in view, r = 3° changes the highlight's flux Σ L·(pixel area)
  * by less than 1 % from r = 0. */
 static const char *metal_keys(double roughness) {
