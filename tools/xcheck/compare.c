@@ -62,6 +62,7 @@ void xc_region_stats(const float *test, const float *ref, const unsigned char *m
     s->mean_test = count ? lt / count : 0;
     s->mean_ref = count ? lr / count : 0;
     s->flip = NAN;
+    s->noise = NAN;
 }
 
 void xc_error_map(const float *test, const float *ref, int w, int h, float *out) {

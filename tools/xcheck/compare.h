@@ -11,6 +11,7 @@ typedef struct xc_stats {
     double mean_ratio;  /* Σ lum(t) / Σ lum(r): 1 = the same mean brightness */
     double mean_test, mean_ref; /* mean luminance */
     double flip;        /* mean LDR-FLIP over the region (xc_flip_map), NaN when not computed */
+    double noise;       /* RMS over the region of the per-pixel spread of --noise's frames (NaN: not measured) */
 } xc_stats;
 
 /* The pixels whose object index is `index` (rounded) and whose four neighbours have it too: the

@@ -14,6 +14,7 @@
 
 #include "compare.h"
 #include "export.h"
+#include "bench/metrics.h"
 #include "toolkit.h"
 
 #define XC_EXIT_NO_BLENDER 77 /* ctest's skip code: the cross-check cannot run without Blender */
@@ -34,6 +35,8 @@ static const char usage[] =
     "  --data DIR         data directory for scene assets\n"
     "  --frames N         shadelab frames rendered, at least (default 8; more where the still needs\n"
     "                     them: TAA's history); the last is compared\n"
+    "  --noise N          also measure each region's noise: the spread of samples 0..N-1 of an\n"
+    "                     N-frame still, each rendered on its own, at FLIP's exposure (2..1024)\n"
     "  --reference-only   export and render Cycles only (DIR/cycles.exr, DIR/index.exr; with --eevee,\n"
     "                     DIR/eevee-N.exr and their times in DIR/eevee.tsv)\n"
     "  --export-only      export the Blender scene only (DIR/blender/) and print what is not\n"
@@ -52,7 +55,7 @@ static const char usage[] =
 
 typedef struct options {
     const char *scene, *out, *blender, *cache, *camera, *data;
-    int width, height, samples, bounces, frames;
+    int width, height, samples, bounces, frames, noise;
     bool reference_only, export_only, no_cache, unoccluded;
     double max_rel_rms;
     const char *settings[128]; int setting_count;
@@ -79,17 +82,19 @@ static bool parse(int argc, char **argv, options *o) {
                 fprintf(stderr, "shadelab-xcheck: --size %s: expected WxH, 8..8192 each\n", v);
                 return false;
             }
-        } else if (!strcmp(a, "--samples") || !strcmp(a, "--bounces") || !strcmp(a, "--frames")) {
+        } else if (!strcmp(a, "--samples") || !strcmp(a, "--bounces") || !strcmp(a, "--frames") ||
+                   !strcmp(a, "--noise")) {
             const char *v = NEXT();
             char *end;
             long x = strtol(v, &end, 10);
-            long lo = !strcmp(a, "--bounces") ? 0 : 1, hi = !strcmp(a, "--samples") ? 1 << 20 : 1024;
+            long lo = !strcmp(a, "--bounces") ? 0 : !strcmp(a, "--noise") ? 2 : 1, hi = !strcmp(a, "--samples") ? 1 << 20 : 1024;
             if (*end || x < lo || x > hi) {
                 fprintf(stderr, "shadelab-xcheck: %s %s: expected an integer in [%ld, %ld]\n", a, v, lo, hi);
                 return false;
             }
             if (!strcmp(a, "--samples")) o->samples = (int)x;
             else if (!strcmp(a, "--bounces")) o->bounces = (int)x;
+            else if (!strcmp(a, "--noise")) o->noise = (int)x;
             else o->frames = (int)x;
         } else if (!strcmp(a, "--max-rel-rms")) {
             const char *v = NEXT();
@@ -324,6 +329,31 @@ static bool render_shadelab(sl_app *app, const options *o, float *rgba, double *
     return true;
 }
 
+/* The noise measure (shadelab-bench's, tools/bench/include/bench/metrics.h: sl_noise_*): samples
+ * k = 0 … N−1 of an N-frame still (N = --noise), each rendered on its own at time 0
+ * (sl_tool_render_sample: no TAA history, no accumulation), at the exposure FLIP reads them at
+ * (`scale`, xc_display_scale); each pixel's variance (its standard deviation, RMS over R, G, B,
+ * squared) into var, w*h floats. img: w*h RGBA floats of scratch. */
+static bool render_noise(sl_app *app, const options *o, double scale, float *img, float *var, char *err, size_t n) {
+    sl_noise_acc acc;
+    if (!sl_noise_begin(&acc, o->width, o->height)) { snprintf(err, n, "out of memory"); return false; }
+    size_t px = (size_t)o->width * o->height;
+    for (int k = 0; k < o->noise; k++) {
+        app->time = 0;
+        if (!sl_tool_render_sample(app, k, o->noise) || !sl_app_read_color(app, img)) {
+            sl_noise_end(&acc, NULL);
+            snprintf(err, n, "shadelab could not render noise sample %d of %d", k, o->noise);
+            return false;
+        }
+        for (size_t p = 0; p < px; p++)
+            for (int c = 0; c < 3; c++) img[p * 4 + c] *= (float)scale;
+        sl_noise_add(&acc, img);
+    }
+    sl_noise_end(&acc, var);
+    for (size_t p = 0; p < px; p++) var[p] *= var[p];
+    return true;
+}
+
 /* ------------------------------------------------------------------------------- report -- */
 
 static void print_row(FILE *f, const char *name, const char *material, const xc_stats *s, bool checked) {
@@ -331,8 +361,10 @@ static void print_row(FILE *f, const char *name, const char *material, const xc_
         fprintf(f, "  %-24s %-18s %8s  (not visible)\n", name, material, "");
         return;
     }
-    fprintf(f, "  %-24s %-18s %8ld  %8.4f  %8.4f  %8.4f  %10.4g  %10.4g%s\n", name, material, s->pixels, s->rel_rms,
-            s->mean_ratio, s->flip, s->mean_test, s->mean_ref, checked ? "" : "  (not cross-checked)");
+    fprintf(f, "  %-24s %-18s %8ld  %8.4f  %8.4f  %8.4f  %10.4g  %10.4g", name, material, s->pixels, s->rel_rms,
+            s->mean_ratio, s->flip, s->mean_test, s->mean_ref);
+    if (isfinite(s->noise)) fprintf(f, "  %8.5f", s->noise);
+    fprintf(f, "%s\n", checked ? "" : "  (not cross-checked)");
 }
 
 /* s as a JSON string (quotes, backslashes and control characters escaped). */
@@ -352,9 +384,10 @@ static void json_stats(FILE *f, const char *name, const char *material, const xc
     fprintf(f, ", \"material\": ");
     json_string(f, material);
     fprintf(f, ", \"pixels\": %ld, \"rel_rms\": %.6g, \"mean_ratio\": %.6g, \"flip\": %.6g, \"mean_shadelab\": %.6g, "
-               "\"mean_cycles\": %.6g, \"cross_checked\": %s}%s\n",
+               "\"mean_cycles\": %.6g, \"noise\": %.6g, \"cross_checked\": %s}%s\n",
             s->pixels, isfinite(s->rel_rms) ? s->rel_rms : -1, isfinite(s->mean_ratio) ? s->mean_ratio : -1,
-            isfinite(s->flip) ? s->flip : -1, s->mean_test, s->mean_ref, checked ? "true" : "false", last ? "" : ",");
+            isfinite(s->flip) ? s->flip : -1, s->mean_test, s->mean_ref, isfinite(s->noise) ? s->noise : -1,
+            checked ? "true" : "false", last ? "" : ",");
 }
 
 typedef struct report_ctx {
@@ -362,6 +395,7 @@ typedef struct report_ctx {
     sl_app *app;
     const xc_export *ex;
     const float *test, *ref, *index;
+    const float *noise_var; /* --noise: each pixel's variance over the samples (NULL: not measured) */
     int w, h;
     const char *blender_version;
     double cycles_seconds, shadelab_ms;
@@ -376,6 +410,7 @@ static xc_stats region_row(const report_ctx *r, FILE *txt, FILE *json, const flo
     xc_stats s;
     xc_region_stats(r->test, r->ref, mask, r->w, r->h, &s);
     s.flip = flip ? xc_masked_mean(flip, mask, r->w, r->h) : NAN;
+    s.noise = r->noise_var ? sqrt(xc_masked_mean(r->noise_var, mask, r->w, r->h)) : NAN;
     print_row(txt, name, material, &s, checked);
     json_stats(json, name, material, &s, checked, last);
     return s;
@@ -392,6 +427,9 @@ static void report_header(const report_ctx *r, FILE *txt, FILE *json) {
     fprintf(txt, "shadelab: %.2f ms per frame (median)\n", r->shadelab_ms);
     fprintf(txt, "compared before tone mapping, on each object's interior (its pixels whose four neighbours are it too);\n"
                  "FLIP: LDR-FLIP of both images at one exposure (Cycles' 99th-percentile luminance at 1)\n");
+    if (r->noise_var)
+        fprintf(txt, "noise (last column): the spread of %d samples of shadelab's still, each rendered on its own, at\n"
+                     "FLIP's exposure, sRGB-encoded, RMS over the region (shadelab-bench's noise)\n", r->o->noise);
     fprintf(json, "{\n  \"scene\": ");
     json_string(json, r->o->scene);
     fprintf(json, ", \"plugins\": \"");
@@ -402,10 +440,11 @@ static void report_header(const report_ctx *r, FILE *txt, FILE *json) {
         first = 0;
     }
     fprintf(json, "\", \"width\": %d, \"height\": %d, \"samples\": %d, \"bounces\": %d, \"object_rays\": \"%s\",\n"
-                  "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n",
+                  "  \"blender\": \"%s\", \"reference_key\": \"%016llx\", \"cycles_seconds\": %.3f, \"shadelab_ms\": %.4f,\n"
+                  "  \"noise_samples\": %d,\n",
             r->w, r->h, r->o->samples, r->o->bounces, r->o->unoccluded ? "camera" : "all", r->blender_version,
             (unsigned long long)r->key, r->cycles_seconds,
-            r->shadelab_ms);
+            r->shadelab_ms, r->noise_var ? r->o->noise : 0);
 }
 
 static void table_heading(FILE *txt, const char *first, const char *second) {
@@ -747,7 +786,7 @@ int main(int argc, char **argv) {
     xc_export ex = {0};
     sl_image ref = {0}, index = {0}, eevee[16];
     memset(eevee, 0, sizeof eevee);
-    float *test = NULL;
+    float *test = NULL, *scratch = NULL, *noise_var = NULL;
     bool ok = open_app(&o, &app, err, sizeof err);
     snprintf(blender_dir, sizeof blender_dir, "%s/blender", out);
     xc_export_options eo = {.width = o.width, .height = o.height, .samples = o.samples, .bounces = o.bounces,
@@ -772,7 +811,17 @@ int main(int argc, char **argv) {
         if (!test) snprintf(err, sizeof err, "out of memory");
         r.test = test, r.ref = ref.pixels, r.index = index.pixels;
         ok = test && render_shadelab(&app, &o, test, &r.shadelab_ms, err, sizeof err) &&
-             write_images(out, test, ref.pixels, o.width, o.height, err, sizeof err) &&
+             write_images(out, test, ref.pixels, o.width, o.height, err, sizeof err);
+        if (ok && o.noise) {
+            scratch = malloc((size_t)o.width * o.height * 4 * sizeof *scratch);
+            noise_var = malloc((size_t)o.width * o.height * sizeof *noise_var);
+            ok = scratch && noise_var;
+            if (!ok) snprintf(err, sizeof err, "out of memory");
+            ok = ok && render_noise(&app, &o, xc_display_scale(ref.pixels, o.width, o.height), scratch, noise_var, err,
+                                    sizeof err);
+            r.noise_var = noise_var;
+        }
+        ok = ok &&
              render_eevee(&o, out, blender, eevee, &r, err, sizeof err) && write_report(out, &r, &worst, err, sizeof err);
     }
     int rc = ok ? 0 : 1;
@@ -792,6 +841,8 @@ int main(int argc, char **argv) {
     }
     for (int k = 0; k < 16; k++) sl_image_free(&eevee[k]);
     free(test);
+    free(scratch);
+    free(noise_var);
     sl_image_free(&ref);
     sl_image_free(&index);
     xc_export_free(&ex);

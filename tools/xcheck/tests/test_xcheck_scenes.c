@@ -15,7 +15,9 @@
  * filters D over each pixel's footprint of normals, so the still holds its energy: rough_10's
  * glint adds 4.7 over its 4 × 4 pixels, Cycles' 4.3 (1.1 with point samples of D); gold's
  * relative RMS 0.145 (0.398), sg0's 0.401 (0.303: spread over two pixels where Cycles has one).
- * And with --eevee, the report's per-object EEVEE figures against their definition. */
+ * And with --eevee, the report's per-object EEVEE figures against their definition; with --noise,
+ * each object's noise: 0 where every sample is the same frame, above 0 where the samples differ,
+ * -1 (not measured) without it. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -82,6 +84,8 @@ static void check_scene(const char *scene, const bound *bounds) {
         double rr = cJSON_GetObjectItemCaseSensitive(o, "rel_rms")->valuedouble;
         double ratio = cJSON_GetObjectItemCaseSensitive(o, "mean_ratio")->valuedouble;
         double flip = cJSON_GetObjectItemCaseSensitive(o, "flip")->valuedouble;
+        const cJSON *noise = cJSON_GetObjectItemCaseSensitive(o, "noise");
+        CHECK_MSG(cJSON_IsNumber(noise) && noise->valuedouble == -1, "%s: %s: noise not -1 without --noise", scene, b->object);
         double rr_max = 1.15 * b->rel_rms + 0.02, off_max = fabs(1 - b->ratio) + 0.03, flip_max = 1.15 * b->flip + 0.02;
         printf("%-22s %-9s rel-RMS %.3f (bound %.3f)  mean ratio %.3f (|1 - r| bound %.3f)  FLIP %.3f (bound %.3f)\n",
                scene, b->object, rr, rr_max, ratio, off_max, flip, flip_max);
@@ -151,9 +155,61 @@ static void check_eevee_objects(void) {
     cJSON_Delete(doc);
 }
 
+/* The noise (--noise 4, on scenes/ibl_spheres.json at 96×54, 32 Cycles samples, aa off, one
+ * frame): with specular=dominant every sample is the same frame, so every object's noise is 0
+ * exactly; with specular=filtered sample k reads the set turned by R2(k), so a glossy sphere's
+ * interior scatters (noise above 0). */
+static void noise_of(const char *specular, cJSON **doc) {
+    char out[4096], cmd[9000], path[4200];
+    snprintf(out, sizeof out, "%s/noise-%s", sl_test_dir(), specular);
+    snprintf(cmd, sizeof cmd, "'%s' --size 96x54 --samples 32 --frames 1 --noise 4 --set aa.enabled=false "
+             "--set envmap.specular=%s --out '%s' '%s/scenes/ibl_spheres.json' > /dev/null",
+             SL_XCHECK_EXE, specular, out, SL_SOURCE_DIR);
+    int status = system(cmd);
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 0, "ibl_spheres, %s, --noise 4: shadelab-xcheck failed (%d)",
+              specular, status);
+    snprintf(path, sizeof path, "%s/report.json", out);
+    char *text = read_text(path);
+    *doc = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    CHECK_MSG(*doc, "no readable %s", path);
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(*doc, "noise_samples");
+    CHECK_MSG(cJSON_IsNumber(n) && n->valueint == 4, "%s: noise_samples is not 4", path);
+}
+
+static double object_noise(const cJSON *o) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, "noise");
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+static void check_noise(void) {
+    cJSON *dominant = NULL, *filtered = NULL;
+    noise_of("dominant", &dominant);
+    noise_of("filtered", &filtered);
+    if (!dominant || !filtered) { cJSON_Delete(dominant); cJSON_Delete(filtered); return; }
+    const cJSON *it;
+    int count = 0;
+    cJSON_ArrayForEach(it, cJSON_GetObjectItemCaseSensitive(dominant, "objects")) {
+        const char *name = cJSON_GetObjectItemCaseSensitive(it, "name")->valuestring;
+        double v = object_noise(it);
+        CHECK_MSG(v == 0, "ibl_spheres, dominant: %s's noise %g, expected 0 (one frame whatever the sample)", name, v);
+        count++;
+    }
+    CHECK_MSG(count == 11, "ibl_spheres, dominant: %d objects in the report, expected 11", count);
+    cJSON_ArrayForEach(it, cJSON_GetObjectItemCaseSensitive(filtered, "objects")) {
+        const char *name = cJSON_GetObjectItemCaseSensitive(it, "name")->valuestring;
+        double v = object_noise(it);
+        printf("ibl_spheres, filtered, --noise 4: %-8s noise %.6f\n", name, v);
+        if (!strcmp(name, "sg1")) CHECK_MSG(v > 0, "ibl_spheres, filtered: sg1's noise %g, expected above 0", v);
+    }
+    cJSON_Delete(dominant);
+    cJSON_Delete(filtered);
+}
+
 int main(void) {
     check_scene("scenes/default.json", default_scene);
     check_eevee_objects();
+    check_noise();
     check_scene("scenes/ibl_spheres.json", ibl_spheres);
     return check_result();
 }
