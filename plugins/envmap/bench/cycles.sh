@@ -2,11 +2,16 @@
 # envmap's specular methods against Blender's Cycles (docs/xcheck.md), first frame: a row of
 # white metal spheres (GGX alpha 0.05 / 0.2 / 0.4 / 0.7 / 1, F0 = 1) under Blender's forest.exr,
 # environment only, 480x96, aa off, one frame (no accumulation, no TAA still); relative RMS per
-# sphere interior from shadelab-xcheck, plus EEVEE (1 and 16 samples) against the same Cycles
-# image. REFERENCE: `full` (the default: the row path-traced, each sphere seeing its neighbours)
+# sphere interior from shadelab-xcheck, its FLIP (LDR-FLIP at the exposure that puts Cycles'
+# 99th-percentile luminance at 1) and the noise of the setting's frames (shadelab-xcheck --noise
+# 16: shadelab-bench's measure, the per-pixel spread of samples 0..15 of a 16-frame still, each
+# rendered on its own, sRGB at FLIP's exposure, RMS over the sphere; tools/bench/include/bench/
+# metrics.h), plus EEVEE (1 and 16 samples) against the same Cycles image (its noise not measured:
+# empty). REFERENCE: `full` (the default: the row path-traced, each sphere seeing its neighbours)
 # or `unoccluded` (shadelab-xcheck --unoccluded: spheres seen by camera rays only, so each is lit
 # by the environment alone, the quantity envmap computes; docs/xcheck.md). Writes
-# bench/cycles.csv (full) or bench/cycles-unoccluded.csv: method, alpha, relative RMS, mean ratio.
+# bench/cycles.csv (full) or bench/cycles-unoccluded.csv: method, alpha, relative RMS, mean ratio,
+# FLIP, noise.
 # The Cycles image is rendered once (SAMPLES per pixel, ≈ 8–30 min at 2048 on 2 loaded cores) and
 # cached by xcheck.
 # MAP (default forest) is another of Blender's studio lights (courtyard, city, …): its CSV is
@@ -42,10 +47,13 @@ xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles imag
   local name=$1; shift
   wanted "$name" || return 0
   "$build/shadelab-xcheck" "$tmp/metal_row.json" --size 480x96 --samples "$samples" --set aa.enabled=false \
-    --frames 1 --out "$tmp/$name" ${ref_opt[@]+"${ref_opt[@]}"} "$@" > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log" >&2; exit 1; }
-  jq -r --arg m "$name" '.objects[] | [$m, (.name | ltrimstr("s")), .rel_rms, .mean_ratio] | @csv' "$tmp/$name/report.json"
+    --frames 1 --noise 16 --out "$tmp/$name" ${ref_opt[@]+"${ref_opt[@]}"} "$@" > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log" >&2; exit 1; }
+  jq -r --arg m "$name" '.objects[] | [$m, (.name | ltrimstr("s")), .rel_rms, .mean_ratio, .flip, .noise] | @csv' "$tmp/$name/report.json"
+  # EEVEE per sphere, on the interiors xcheck used (its report's eevee[k].objects)
+  jq -r '.eevee // [] | .[] | .samples as $n | .objects[] |
+    ["eevee-\($n)", (.name | ltrimstr("s")), .rel_rms, .mean_ratio, .flip, ""] | @csv' "$tmp/$name/report.json"
 }
-{ echo "method,alpha,rel_rms,mean_ratio"
+{ echo "method,alpha,rel_rms,mean_ratio,flip,noise"
   xcheck dominant --eevee 1,16
   xcheck mirror --set envmap.specular=mirror
   F=(--set envmap.specular=filtered)
@@ -64,10 +72,5 @@ xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles imag
   for e in ${extra[@]+"${extra[@]}"}; do
     read -ra words <<< "$e"
     [ ${#words[@]} -eq 0 ] || xcheck "${words[@]}"
-  done
-  for e in "$tmp"/dominant/eevee-*.exr; do
-    [ -e "$e" ] || continue # EEVEE per sphere, on the interiors xcheck used
-    n=$(basename "$e" .exr)
-    python3 "$here/cycles_objects.py" "$tmp/dominant" "$e" | sed "s/^/$n,/"
-  done; } | tr -d '"' > "$out/$csv"
+  done; } | tr -d '"' | awk -F, 'NR == 1 || $1 !~ /^eevee-/ { print; next } { e[++n] = $0 } END { for (i = 1; i <= n; i++) print e[i] }' > "$out/$csv"
 echo "$out/$csv" >&2
