@@ -6,16 +6,22 @@
  * (mean ratio split sum / reference per bin), which tells a view-angle weighting error (it grows
  * towards the rim) from an irradiance error (it follows the environment).
  * Output: CSV on stdout, one row per (environment, material, α, term, method):
- *   env,material,alpha,term,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5
+ *   env,material,alpha,term,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5,flip,noise,noisy
  * rel_rms = √(mean |x − ref|²) / mean ref over the sphere's pixels (all three channels), each
- * term against the reference's same term.
+ * term against the reference's same term. flip, noise, noisy: shadelab-bench's measures over the
+ * sphere's pixels as bench/ibl_methods.c takes them (bench/ibl_metrics.h: the mean LDR-FLIP of the
+ * image against the reference; the spread of samples 0 … n−1 of an n-frame still, n =
+ * --noise-samples, SL_NOISE_SAMPLES unless told, 0 = not measured; noisy above SL_NOISE_VISIBLE),
+ * for the whole image (terms "all" and "irradiance"); empty for the diffuse and specular terms,
+ * which are differences of images.
  * Usage: envmap_bench_terms [--size N] [--reference-frames N] [--accumulate N] [--specular METHOD] [--set "ID=V ..."]
  *                           [--material metal|dielectric|lambert] [--env PATH|sky[:E]]...
- *                           [--sweep "LABEL=ID=V ID=V;LABEL=…"]
+ *                           [--sweep "LABEL=ID=V ID=V;LABEL=…"] [--noise-samples N]
  * --sweep: instead of the terms, the whole sphere ("all") for each labelled group of settings
  * (applied after --set), against one reference per environment and material (bench/levels.sh).
  * (plugins/envmap/bench/terms.sh runs it.) */
 #include "ibl_sphere.h"
+#include "ibl_metrics.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,9 +46,11 @@ static double pixel_mu(int i, int size) {
     double nx = s * dx, ny = s * dy, nz = oz + s * dz;
     return -(nx * dx + ny * dy + nz * dz);
 }
-/* x, ref: a term of the method and of the reference, each (a − b) when b is given */
+/* x, ref: a term of the method and of the reference, each (a − b) when b is given; flip, noise:
+ * NaN = empty */
 static void row(const char *env, const char *mat, double alpha, const char *term, const char *method, const float *xa,
-                const float *xb, const float *ra, const float *rb, const unsigned char *mask, int size) {
+                const float *xb, const float *ra, const float *rb, const unsigned char *mask, int size, double flip,
+                double noise) {
     int n = size * size;
     double se = 0, sr = 0, sx = 0, bx[NB] = {0}, br[NB] = {0};
     long count = 0;
@@ -59,12 +67,15 @@ static void row(const char *env, const char *mat, double alpha, const char *term
     }
     printf("%s,%s,%.2f,%s,%s,%.5f,%+.5f", env, mat, alpha, term, method, sqrt(se / count) / (sr / count), sx / sr - 1);
     for (int b = 0; b < NB; b++) printf(",%.4f", br[b] > 0 ? bx[b] / br[b] : 0);
-    printf("\n");
+    if (isnan(flip)) printf(",");
+    else printf(",%.5f", flip);
+    if (isnan(noise)) printf(",,\n");
+    else printf(",%.6f,%d\n", noise, noise > SL_NOISE_VISIBLE);
     fflush(stdout);
 }
 
 int main(int argc, char **argv) {
-    int size = 48, ref_frames = 32, accumulate = 1;
+    int size = 48, ref_frames = 32, accumulate = 1, noise_samples = SL_NOISE_SAMPLES;
     const char *envs[8], *spec = "dominant", *extra = "", *only = NULL, *sweep = NULL;
     int ne = 0;
     for (int i = 1; i < argc; i++) {
@@ -76,19 +87,23 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--material") && i + 1 < argc) only = argv[++i]; /* metal, dielectric or lambert */
         else if (!strcmp(argv[i], "--sweep") && i + 1 < argc) sweep = argv[++i];
         else if (!strcmp(argv[i], "--env") && i + 1 < argc && ne < 8) envs[ne++] = argv[++i];
+        else if (!strcmp(argv[i], "--noise-samples") && i + 1 < argc) noise_samples = atoi(argv[++i]);
         else {
             fprintf(stderr, "usage: %s [--size N] [--reference-frames N] [--specular METHOD] [--set \"ID=V ...\"] "
-                    "[--material NAME] [--env PATH|sky[:E]]...\n", argv[0]);
+                    "[--material NAME] [--env PATH|sky[:E]]... [--sweep ...] [--noise-samples N]\n", argv[0]);
             return 2;
         }
     }
     if (!ne) envs[ne++] = "sky:0";
+    if (noise_samples == 1) noise_samples = 0; /* one frame has no spread */
     int n = size * size;
     size_t img = (size_t)n * 4;
     float *refF = malloc(NA * img * 4), *refD = malloc(NA * img * 4), *x = malloc(img * 4), *xd = malloc(img * 4);
+    float *scratch = malloc(img * 4), *map = malloc((size_t)n * sizeof *map);
     unsigned char *mask = malloc((size_t)n);
+    if (!refF || !refD || !x || !xd || !scratch || !map || !mask) return 1;
     char buf[160];
-    printf("env,material,alpha,term,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5\n");
+    printf("env,material,alpha,term,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5,flip,noise,noisy\n");
     for (int e = 0; e < ne; e++) {
         const char *envname = strrchr(envs[e], '/') ? strrchr(envs[e], '/') + 1 : envs[e];
         for (int m = 0; m < 3; m++) {
@@ -115,7 +130,9 @@ int main(int argc, char **argv) {
                 for (int k = 0; k < 2; k++) {
                     snprintf(buf, sizeof buf, "envmap.irradiance=%s", irr[k]);
                     if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
-                    row(envname, "lambert", 0, "irradiance", irr[k], x, NULL, refF, NULL, mask, size);
+                    double flip = ibl_flip_over(x, refF, mask, size, map), noise = NAN;
+                    if (noise_samples && isnan(noise = ibl_noise_over(h, noise_samples, mask, size, scratch, map))) return 1;
+                    row(envname, "lambert", 0, "irradiance", irr[k], x, NULL, refF, NULL, mask, size, flip, noise);
                 }
             }
             char list[4096];
@@ -130,21 +147,27 @@ int main(int argc, char **argv) {
                 for (int a = 0; a < na; a++) {
                     snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                     if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
-                    row(envname, materials[m][0], ibl_alphas[a], "all", item, x, NULL, refF + a * img, NULL, mask, size);
+                    double flip = ibl_flip_over(x, refF + a * img, mask, size, map), noise = NAN;
+                    if (noise_samples && isnan(noise = ibl_noise_over(h, noise_samples, mask, size, scratch, map))) return 1;
+                    row(envname, materials[m][0], ibl_alphas[a], "all", item, x, NULL, refF + a * img, NULL, mask, size, flip,
+                        noise);
                 }
             }
             for (int a = 0; a < na && !lambert && !sweep; a++) {
                 snprintf(buf, sizeof buf, "material.m.alpha=%g", ibl_alphas[a]);
                 if (!ibl_set(h, buf) || !sl_harness_render(h, x)) return 1;
-                row(envname, materials[m][0], ibl_alphas[a], "all", spec, x, NULL, refF + a * img, NULL, mask, size);
+                double flip = ibl_flip_over(x, refF + a * img, mask, size, map), noise = NAN;
+                if (noise_samples && isnan(noise = ibl_noise_over(h, noise_samples, mask, size, scratch, map))) return 1;
+                row(envname, materials[m][0], ibl_alphas[a], "all", spec, x, NULL, refF + a * img, NULL, mask, size, flip, noise);
                 if (m == 0) continue; /* metal: all specular */
                 if (!ibl_set(h, "ggx.zero_specular=true") || !sl_harness_render(h, xd) || !ibl_set(h, "ggx.zero_specular=false")) return 1;
-                row(envname, materials[m][0], ibl_alphas[a], "diffuse", spec, xd, NULL, refD + a * img, NULL, mask, size);
-                row(envname, materials[m][0], ibl_alphas[a], "specular", spec, x, xd, refF + a * img, refD + a * img, mask, size);
+                row(envname, materials[m][0], ibl_alphas[a], "diffuse", spec, xd, NULL, refD + a * img, NULL, mask, size, NAN, NAN);
+                row(envname, materials[m][0], ibl_alphas[a], "specular", spec, x, xd, refF + a * img, refD + a * img, mask, size, NAN,
+                    NAN);
             }
             sl_harness_destroy(h);
         }
     }
-    free(refF), free(refD), free(x), free(xd), free(mask);
+    free(refF), free(refD), free(x), free(xd), free(scratch), free(map), free(mask);
     return 0;
 }

@@ -6,7 +6,7 @@
 # 2048 samples instead of 512), on courtyard.exr (Debian blender-data; skipped when absent) and the
 # procedural sky without its sun.
 # Usage: plugins/envmap/bench/level_map.sh [BUILD_DIR] [OUT_DIR] [SIZE] [REFERENCE_FRAMES]
-# Writes OUT_DIR/level-map.csv (the columns of levels.csv). ≈ 25 min on 2 loaded cores.
+# Writes OUT_DIR/level-map.csv (the columns of levels.csv). ≈ 1–2 min on 2 loaded cores.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/common.sh"

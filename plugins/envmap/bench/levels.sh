@@ -6,8 +6,11 @@
 # the count decides both the spacing of the roughness levels and the resolution of the roughest
 # (level m is a (size/2^m)² mip), so sweeping it measures the mapping's two halves.
 # Usage: plugins/envmap/bench/levels.sh [BUILD_DIR] [OUT_DIR] [SIZE] [REFERENCE_FRAMES]
-# Writes OUT_DIR/levels.csv (env,material,alpha,term,setting,rel_rms,rel_mean,ratios by n·v) and
-# levels.png (rel. RMS vs level count per alpha, one line per cube size and environment).
+# Writes OUT_DIR/levels.csv (env,material,alpha,term,setting,rel_rms,rel_mean,ratios by n·v,flip,
+# noise,noisy: bench/ibl_terms.c), levels.png (rel. RMS vs level count per alpha, one line per cube
+# size and environment) and levels-flip.png (FLIP the same way); both titles state the noise of
+# the settings' frames (shadelab-bench's measure: the spread of a 16-frame still's samples), the
+# largest over the rows, and noisy rows are marked as shadelab-bench marks them.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/common.sh"
@@ -31,20 +34,37 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-cmd="set output '$out/levels.png'; set datafile separator ','; set multiplot layout 2,3 title 'envmap prefiltered chain: metal sphere rel. RMS vs the reference (${refs}x64 spp), specular=dominant, ${size}x${size}'; set logscale y; set grid; set key top right font ',7'; set xrange [4.5:10.5]; set xlabel 'mip_count (level m = roughness m/(count-1))'; set ylabel 'relative RMS';"
+noise=$(awk -F, 'NR > 1 { if ($12 == "") u = 1; else if ($12 > n) n = $12 }
+  END { print u ? "not measured" : n == 0 ? "0 (every sample the same frame)" : sprintf("%.2g", n) }' "$out/levels.csv")
 for a in 0.05 0.20 0.40 0.70 1.00; do
-  cmd+="set title 'alpha $a'; plot "
-  sep=""
-  lc=1
   for e in courtyard sky; do for c in 128 256 512; do
-    awk -F, -v e="$e" -v c="c$c-" -v a="$a" 'index($1, e) == 1 && $3 == a && index($5, c) == 1 { split($5, p, "-l"); print p[2] "," $6 }' "$out/levels.csv" > "$tmp/$e-$c-$a.csv"
-    dt=1; [ $e = sky ] && dt=2
-    cmd+="$sep'$tmp/$e-$c-$a.csv' using 1:2 with linespoints dt $dt lc $lc pt 7 title '$e, cube $c'"
-    sep=", "
-    lc=$((lc + 1))
-  done; lc=1; done
-  cmd+=";"
+    awk -F, -v e="$e" -v c="c$c-" -v a="$a" 'index($1, e) == 1 && $3 == a && index($5, c) == 1 { split($5, p, "-l"); print p[2] "," $6 "," $11 }' "$out/levels.csv" > "$tmp/$e-$c-$a.csv"
+  done; done
+  awk -F, -v a="$a" '$3 == a && $13 == 1 { split($5, p, "-l"); print p[2] "," $6 "," $11 }' "$out/levels.csv" > "$tmp/noisy-$a.csv"
 done
-cmd+="unset multiplot"
-gp 1200,700 9 "$cmd"
-echo "wrote $out/levels.csv, $out/levels.png"
+# chart PNG WHAT COLUMN (2: relative RMS, 3: FLIP, of the files above): one panel per alpha, the
+# key in the sixth slot
+chart() {
+  local cmd a e c sep lc dt
+  cmd="set output '$1'; set datafile separator ','; set multiplot layout 2,3 title \"envmap prefiltered chain: metal sphere $2 vs the reference (${refs}x64 spp), specular=dominant, ${size}x${size}\nthe noise of the settings' frames (spread of a 16-frame still's samples, the largest over all rows): $noise\"; set logscale y; set grid; unset key; set xrange [4.5:10.5]; set xlabel 'mip_count (level m = roughness m/(count-1))'; set ylabel '$2';"
+  for a in 0.05 0.20 0.40 0.70 1.00; do
+    t() { [ $a = 1.00 ] && echo "title '$1'" || echo notitle; }
+    [ $a = 1.00 ] && cmd+="set key at screen 0.72,0.40 left top Left reverse font ',10' spacing 1.4 samplen 3;"
+    cmd+="set title 'alpha $a'; plot "
+    sep=""
+    lc=1
+    for e in courtyard sky; do for c in 128 256 512; do
+      dt=1; [ $e = sky ] && dt=2
+      cmd+="$sep'$tmp/$e-$c-$a.csv' using 1:$3 with linespoints dt $dt lc $lc pt 7 $(t "$e, cube $c")"
+      sep=", "
+      lc=$((lc + 1))
+    done; lc=1; done
+    [ -s "$tmp/noisy-$a.csv" ] && cmd+=", $(gp_noisy "$tmp/noisy-$a.csv" 1 "$3" | sed "s/ title '.*'$/ $(t 'noisy (its frames scatter visibly)')/")"
+    cmd+=";"
+  done
+  cmd+="unset multiplot"
+  gp 1200,720 9 "$cmd"
+}
+chart "$out/levels.png" "relative RMS" 2
+chart "$out/levels-flip.png" "mean FLIP" 3
+echo "wrote $out/levels.csv, $out/levels.png, $out/levels-flip.png"
