@@ -10,7 +10,11 @@
  * online to the frame times observed, by least squares weighted towards recent frames. While
  * anything moves the controller picks the choice of lowest predicted error among those predicted
  * within the budget (the cheapest choice when none is); when the view has been still for a few
- * frames it picks every knob's best, which the still then accumulates at. */
+ * frames it picks every knob's best, which the still then accumulates at. A step up is taken when
+ * predicted within 85 % of the budget once the fit has told the fixed part from the scaled one,
+ * and within 95 % while it cannot (frames at one work so far: its prediction for more work is then
+ * an upper bound, and the step is what lets it learn the slope); a step down when the current
+ * choice is predicted over 95 % (controller.c: HEADROOM, EXPLORE_HEADROOM, OVER). */
 #ifndef SL_BUDGET_CONTROLLER_H
 #define SL_BUDGET_CONTROLLER_H
 #include <stdbool.h>
@@ -42,7 +46,10 @@ typedef struct sl_budget {
     double fixed_ms, unit_ms;
     double w, wx, wy, wxx, wxy;
     int observations;
+    bool identified;                              /* a fit has separated fixed_ms from unit_ms (kept
+                                                     while later frames have one work) */
     int still;                                    /* consecutive frames without motion */
+    int motion[SL_BUDGET_MAX_KNOBS];              /* the choice when the last still began */
     float lod_pixels;                             /* motion's level-of-detail tolerance (0: none) */
     int lod_over;                                 /* consecutive motion frames over at the cheapest */
 } sl_budget;
