@@ -9,12 +9,12 @@
 # date, machine and load) and OUT.png (gnuplot): motion FLIP against the budget for both, and
 # each fixed scale at its p95. A benchmark: it prints figures and asserts nothing.
 #   tools/bench/budget-chart.sh [BUILD_DIR]
-#   environment: SIZE (320x180), SECONDS_ (8), POINTS (2), ROUNDS (1), BUDGETS (33,50,66,100,150),
+#   environment: SIZE (1280x720, the window's default), SECONDS_ (8), POINTS (2), ROUNDS (1), BUDGETS (33,50,66,100,150),
 #                SCALES (0.25,0.35,0.5,0.7,1), OUT (docs/budget-error)
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${1:-$ROOT/build}" && pwd) || exit 1
-SIZE=${SIZE:-320x180} SECS=${SECONDS_:-8} POINTS=${POINTS:-2} ROUNDS=${ROUNDS:-1}
+SIZE=${SIZE:-1280x720} SECS=${SECONDS_:-8} POINTS=${POINTS:-2} ROUNDS=${ROUNDS:-1}
 BUDGETS=${BUDGETS:-33,50,66,100,150} SCALES=${SCALES:-0.25,0.35,0.5,0.7,1}
 OUT=${OUT:-$ROOT/docs/budget-error}
 BENCH=$BUILD/shadelab-bench

@@ -252,6 +252,10 @@ static bool orbit_and_stills(const sl_orbit_options *o, double speed, orbit_pair
     double *ms = NULL, *cpu = NULL;
     bool ok = open_app(o, o->variant, buf, sizeof buf, &app, &inited, err, n);
     if (ok) {
+        /* without --budget, the budget the orbit's own settings run under (a variant's
+         * core.budget=100 is judged against 100 ms, not the default 66) */
+        const sl_param *budget = sl_params_find(&app.params, "core.budget");
+        if (!(o->budget_ms > 0) && budget && budget->value.f[0] > 0) res->budget_ms = budget->value.f[0];
         res->width = app.backend.width, res->height = app.backend.height;
         res->backend = strdup(app.backend.name);
         const char *rs = (const char *)glGetString(GL_RENDERER);
