@@ -119,19 +119,19 @@ static sl_status core_create(const sl_host *host, void **user) {
          .description = "Supersampling: the forward pass renders at ssaa x the viewport per axis and is box-filtered "
                         "down in linear HDR."},
         {.struct_size = sizeof(sl_param_desc), .id = "anisotropy", .type = SL_PARAM_INT, .default_value = {.i = 0},
-         .min = 0, .max = 16, .step = 1, .unit = "x", .group = "quality",
+         .min = 0, .max = 16, .step = 1, .unit = "x", .group = "quality", .zero_label = "auto",
          .description = "Maximum anisotropic filtering of material textures; 0 = what looks right on the backend: 8 on "
                         "a GPU, 1 on a CPU renderer (llvmpipe's anisotropic filter scallops edges seen at grazing "
                         "angles). References set 1: anisotropic taps average a normal map along the view direction, "
                         "a prefilter a ground truth must not have. (Not a swept quality knob: a reference setting.)"},
         {.struct_size = sizeof(sl_param_desc), .id = "budget", .type = SL_PARAM_FLOAT, .min = 0, .max = 10000,
-         .step = 1, .unit = "ms", .group = "budget",
+         .step = 1, .unit = "ms", .group = "budget", .zero_label = "off",
          .description = "Frame-time budget: while anything moves, the render scale and the plugins' quality knobs "
                         "are chosen per frame for the least predicted error within it; a still view refines to the "
                         "best settings. 0 = off (headless default); the window starts at 66 (--budget). See "
                         "docs/budget.md."},
         {.struct_size = sizeof(sl_param_desc), .id = "lod_pixels", .type = SL_PARAM_FLOAT, .min = 0, .max = 16,
-         .step = 0.25f, .unit = "px", .group = "quality",
+         .step = 0.25f, .unit = "px", .group = "quality", .zero_label = "off",
          .description = "Level of detail: a mesh of 2048 triangles or more is drawn with the coarsest of its "
                         "simplified versions (meshoptimizer, made at first use) whose geometric error, projected "
                         "onto the image, is at most this many pixels. 0 = off (the default): every mesh in full."},

@@ -17,6 +17,7 @@ static void free_desc(sl_param_desc *d) {
     free((char *)d->description);
     free((char *)d->light_type);
     free((char *)d->material_input);
+    free((char *)d->zero_label);
     free((char *)d->default_value.s);
     if (d->enum_values) {
         for (const char *const *e = d->enum_values; *e; e++) free((char *)*e);
@@ -127,6 +128,7 @@ sl_status sl_params_add(sl_params *p, const char *owner, const sl_param_desc *in
     q->desc.description = dupstr(d.description);
     q->desc.light_type = dupstr(d.light_type);
     q->desc.material_input = dupstr(d.material_input);
+    q->desc.zero_label = dupstr(d.zero_label);
     q->desc.default_value.s = dupstr(d.default_value.s);
     if (nenum) {
         const char **e = calloc(nenum + 1, sizeof *e);
@@ -325,6 +327,7 @@ void sl_params_dump_json(sl_params *p, FILE *f) {
         }
         if (q->desc.step) cJSON_AddNumberToObject(o, "step", q->desc.step);
         if (q->desc.unit) cJSON_AddStringToObject(o, "unit", q->desc.unit);
+        if (q->desc.zero_label) cJSON_AddStringToObject(o, "zero_label", q->desc.zero_label);
         if (q->desc.group) cJSON_AddStringToObject(o, "group", q->desc.group);
         if (q->desc.description) cJSON_AddStringToObject(o, "description", q->desc.description);
         if (q->desc.enum_values) {

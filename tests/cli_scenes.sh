@@ -29,6 +29,11 @@ check test -s "$out/quiet.png"
 msg=$("$exe" --headless --frames 2 --size 32x32 --output "$out/quiet.png" 2>&1)
 check grep -qF "wrote $out/quiet.png" <<<"$msg"
 check "$exe" --dump-params
+# a numeric parameter says what its 0 means (the GUI shows it instead of "0 x")
+params=$("$exe" --dump-params)
+check grep -qE '"id":[[:space:]]*"core.anisotropy"' <<<"$params"
+check python3 -c 'import json, sys; p = {q["id"]: q for q in json.load(sys.stdin)}
+sys.exit(0 if p["core.anisotropy"].get("zero_label") == "auto" and p["core.budget"].get("zero_label") == "off" and "zero_label" not in p["core.ssaa"] else 1)' <<<"$params"
 check "$exe" --list-plugins
 
 printf '{\n  "nodes": [\n    { "name": "a" ,, }\n  ]\n}\n' > "$out/malformed.json"

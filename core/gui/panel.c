@@ -82,6 +82,7 @@ static void tooltip_for(const char *id, const sl_param *q, bool show_source) {
     if ((q->desc.type == SL_PARAM_INT || q->desc.type == SL_PARAM_FLOAT) && q->desc.min < q->desc.max)
         u += snprintf(tip + u, sizeof tip - u, ", %g .. %g", q->desc.min, q->desc.max);
     if (q->desc.unit && *q->desc.unit) u += snprintf(tip + u, sizeof tip - u, " %s", q->desc.unit);
+    if (q->desc.zero_label) u += snprintf(tip + u, sizeof tip - u, "; 0 = %s", q->desc.zero_label);
     u += snprintf(tip + u, sizeof tip - u, ")");
     if (q->desc.flags & SL_PARAM_NEEDS_RECOMPILE) u += snprintf(tip + u, sizeof tip - u, "\nchanging it recompiles shaders");
     if (q->desc.flags & SL_PARAM_QUALITY_KNOB) u += snprintf(tip + u, sizeof tip - u, "\nquality knob (swept by the benchmark)");
@@ -95,16 +96,25 @@ static int decimals_for(float step) {
     return d < 0 ? 0 : d > 6 ? 6 : d;
 }
 
-/* printf format for a numeric widget with its unit ('%' in units escaped). */
-static void number_format(const sl_param *q, bool is_int, char *fmt, size_t n) {
-    char unit[64] = "";
-    const char *u = q->desc.unit ? q->desc.unit : "";
+/* s with '%' doubled, for a printf format */
+static void escape_percent(const char *s, char *out, size_t n) {
     size_t k = 0;
-    for (; *u && k + 2 < sizeof unit; u++) {
-        if (*u == '%') unit[k++] = '%';
-        unit[k++] = *u;
+    for (; s && *s && k + 2 < n; s++) {
+        if (*s == '%') out[k++] = '%';
+        out[k++] = *s;
     }
-    unit[k] = 0;
+    out[k] = 0;
+}
+
+/* printf format for a numeric widget holding `zero` (value 0) with its unit: the parameter's
+ * zero_label ("auto", "off") in place of "0 <unit>" where it has one. */
+static void number_format(const sl_param *q, bool is_int, bool zero, char *fmt, size_t n) {
+    char unit[64];
+    if (zero && q->desc.zero_label) {
+        escape_percent(q->desc.zero_label, fmt, n);
+        return;
+    }
+    escape_percent(q->desc.unit, unit, sizeof unit);
     if (is_int) snprintf(fmt, n, "%%d%s%s", *unit ? " " : "", unit);
     else snprintf(fmt, n, "%%.%df%s%s", decimals_for(q->desc.step), *unit ? " " : "", unit);
 }
@@ -128,11 +138,11 @@ static void param_widget(sl_panel *p, const char *id, const sl_param *q, const s
     switch (q->desc.type) {
     case SL_PARAM_BOOL: changed = sl_ui_checkbox(label, &v.b); break;
     case SL_PARAM_INT:
-        number_format(q, true, fmt, sizeof fmt);
+        number_format(q, true, v.i == 0, fmt, sizeof fmt);
         changed = sl_ui_int(label, &v.i, (int)q->desc.min, (int)q->desc.max, q->desc.step > 0 ? q->desc.step : 0.2f, fmt);
         break;
     case SL_PARAM_FLOAT: {
-        number_format(q, false, fmt, sizeof fmt);
+        number_format(q, false, v.f[0] == 0, fmt, sizeof fmt);
         float speed = q->desc.step > 0 ? q->desc.step
                       : q->desc.min < q->desc.max ? (q->desc.max - q->desc.min) / 500.f : 0.01f;
         changed = sl_ui_float(label, &v.f[0], q->desc.min, q->desc.max, speed, fmt);
@@ -146,7 +156,7 @@ static void param_widget(sl_panel *p, const char *id, const sl_param *q, const s
     }
     case SL_PARAM_COLOR: changed = sl_ui_color3(label, v.f); break;
     case SL_PARAM_VEC3:
-        number_format(q, false, fmt, sizeof fmt);
+        number_format(q, false, false, fmt, sizeof fmt);
         changed = sl_ui_float3(label, v.f, q->desc.step > 0 ? q->desc.step : 0.01f, fmt);
         break;
     case SL_PARAM_TEXTURE: {

@@ -51,7 +51,7 @@ static const sl_param_desc params[] = {
     P(.id = "stabilize", .type = SL_PARAM_BOOL, .default_value = {.b = true}, .group = "cascades",
       .description = "Bounding spheres + texel snapping: shadow edges stay put while the camera moves (off: tight fits)."),
     P(.id = "max_distance", .type = SL_PARAM_FLOAT, .default_value = {.f = {0}}, .min = 0, .max = 100000, .step = 1,
-      .unit = "m", .group = "cascades",
+      .unit = "m", .group = "cascades", .zero_label = "far plane",
       .description = "Shadows end at this camera depth; 0 = the camera's far plane."),
 };
 

@@ -139,7 +139,7 @@ static const sl_param_desc params[] = {
     P(.id = "sun_azimuth", .type = SL_PARAM_FLOAT, .default_value = {.f = {60}}, .min = -EM_SKY_AZIMUTH_MAX, .max = EM_SKY_AZIMUTH_MAX, .unit = "deg",
       .group = "sky", .description = "Procedural sky: sun azimuth, 0 towards +Z, 90 towards +X."),
     P(.id = "sun_irradiance", .type = SL_PARAM_FLOAT, .default_value = {.f = {3}}, .min = 0, .max = EM_SKY_IRRADIANCE_MAX, .unit = "W/m2",
-      .group = "sky", .description = "Procedural sky: irradiance of the sun disk (1.5 deg radius) at normal incidence; 0 = no sun."),
+      .zero_label = "no sun", .group = "sky", .description = "Procedural sky: irradiance of the sun disk (1.5 deg radius) at normal incidence; 0 = no sun."),
     P(.id = "ground_color", .type = SL_PARAM_COLOR, .default_value = {.f = {0.10f, 0.09f, 0.08f}}, .group = "sky",
       .description = "Procedural sky: radiance below the horizon, the ground beyond the scene (a scene whose floor ends "
                      "sets it to the floor's lit radiance, so no band shows between floor and sky)."),

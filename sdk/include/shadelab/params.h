@@ -78,6 +78,9 @@ typedef struct sl_param_desc {
      * these names only; the host writes each into the key that declares it, so the core never
      * names a plugin's key. List the same names in sl_plugin_desc.material_inputs. */
     const char *material_input;
+    /* ABI 1.24, INT/FLOAT: what the value 0 means ("auto", "off"), shown by the GUI and
+     * --dump-params in place of "0 <unit>"; NULL: the number. */
+    const char *zero_label;
 } sl_param_desc;
 
 /* ABI 1.6: the standard material inputs an importer publishes, named after the glTF 2.0
