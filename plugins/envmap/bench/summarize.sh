@@ -26,9 +26,10 @@ prefilter_s() { # SIZE SAMPLES LEVELS → seconds (base conversion + GGX chain),
 out=$dir/ibl-summary.csv
 if [ "${PLOT_ONLY:-0}" != 1 ]; then
 declare -A pre
-for s in "samples=512:256 512 9" "samples=16:256 16 9" "samples=64:256 64 9" "samples=128:256 128 9" \
-         "samples=1024:256 1024 9" "cube_size=32:32 512 6" "cube_size=64:64 512 7" "cube_size=128:128 512 8" \
-         "mip_count=4:256 512 4" "mip_count=6:256 512 6" "lut_size=16:256 512 9"; do
+# the levels the plugin builds: mip_count (default 7), at most one fewer than the full chain (envmap.c)
+for s in "samples=512:256 512 7" "samples=16:256 16 7" "samples=64:256 64 7" "samples=128:256 128 7" \
+         "samples=1024:256 1024 7" "cube_size=32:32 512 5" "cube_size=64:64 512 6" "cube_size=128:128 512 7" \
+         "mip_count=4:256 512 4" "mip_count=6:256 512 6" "lut_size=16:256 512 7"; do
   pre[${s%%:*}]=$(prefilter_s ${s#*:})
 done
 echo "roughness,setting,method,rmse,relmse,frame_ms_median,frame_ms_min,forward_ms,prefilter_s,flip,noise,noisy" > "$out"
