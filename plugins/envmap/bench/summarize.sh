@@ -66,20 +66,24 @@ ms_chart() {
       set xlabel 'frame time, ms (fastest of 20 frames, 320x180, llvmpipe)'; set ylabel '$3';
       set key below maxrows 3 font ',9'; set title 'envmap: split sum vs Monte Carlo, per roughness r (scenes/ibl_bench.json)'; plot $plot${noisy//YCOL/$2}"
 }
+# the settings' names at roughness 0.1, ordered by prefilter time, in three rows above their
+# points (neighbours in time would overlap in one): x, RMSE, FLIP, name, row 0-2
+awk -F, '$1 == 0.1 && $3 == "split-sum" { gsub(/"/, "", $2); n = $2
+    sub(/^samples=/, "", n); if (n != $2) n = n " samples"; else if (sub(/^cube_size=/, "", n)) n = "cube " n; \
+    else if (sub(/^mip_count=/, "", n)) n = n " levels"; else if (sub(/^lut_size=/, "", n)) n = "LUT " n
+    if ($2 == "samples=512") n = "base"
+    print $9 "," $4 "," $10 "," n }' "$out" | sort -t, -k1,1g | awk '{ print $0 "," (NR - 1) % 3 }' > "$tmp/names.csv"
 # prefilter_chart PNG YCOL YLABEL: the split sum's error vs its one-off prefilter time
 prefilter_chart() {
-  local plot="" i=0 r
+  local plot="" i=0 r y=$(( $2 == 4 ? 2 : 3 ))
   for r in 0.1 0.3 0.6 0.9; do
-    if [ $r = 0.1 ]; then # labels on one series only, for legibility
-      plot+="${plot:+, }'< grep -E \"^$r,.*split-sum\" $out' using 9:$2:2 with labels point pt ${pt[$i]} lc ${lc[$i]} offset 0.5,0.5 font ',8' title 'roughness $r'"
-    else
-      plot+="${plot:+, }'< grep -E \"^$r,.*split-sum\" $out' using 9:$2 with points pt ${pt[$i]} ps 1.4 lc ${lc[$i]} title 'roughness $r'"
-    fi
+    plot+="${plot:+, }'< grep -E \"^$r,.*split-sum\" $out' using 9:$2 with points pt ${pt[$i]} ps 1.4 lc ${lc[$i]} title 'roughness $r'"
     i=$((i+1))
   done
+  plot+=", '$tmp/names.csv' using 1:(\$$y * 1.35**\$5):4 with labels offset 0,0.9 font ',8' notitle"
   gp 900,520 10 "set output '$1'; set datafile separator ','; set logscale xy; set grid;
-      set xlabel 'one-off prefilter time, s (shadelab-cube, llvmpipe)'; set ylabel '$3';
-      set key outside right; set title 'envmap: split-sum error vs prefilter cost, one knob at a time'; plot $plot${noisy_split//YCOL/$2}"
+      set xlabel 'one-off prefilter time, s (shadelab-cube, best of 2, llvmpipe)'; set ylabel '$3';
+      set key outside right; set title 'envmap: split-sum error vs prefilter cost, one knob at a time (names: roughness 0.1)'; plot $plot${noisy_split//YCOL/$2}"
 }
 ms_chart "$dir/ibl-error-vs-ms.png" 4 'RMSE vs reference (8192 spp)'
 ms_chart "$dir/ibl-flip-vs-ms.png" 10 'mean FLIP vs reference (8192 spp)'
