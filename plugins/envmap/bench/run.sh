@@ -7,7 +7,7 @@
 # "Metrics"). TAA is off: every row is one frame's error, Monte Carlo at N spp per frame not
 # accumulated. The load average at the start and end of each roughness goes to stdout and
 # ibl-load.txt.
-# Usage: plugins/envmap/bench/run.sh [BUILD_DIR] [OUT_DIR]     (about 15 minutes on 2 cores)
+# Usage: plugins/envmap/bench/run.sh [BUILD_DIR] [OUT_DIR]     (about 13 minutes on 2 loaded cores)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/common.sh"
