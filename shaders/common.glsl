@@ -23,6 +23,14 @@ float sl_light_spread = 0.0;
 #define SL_NORMAL_FOOTPRINT_DECLARED 1
 float sl_normal_footprint = 0.0;
 #endif
+// ABI 1.25: true while the light loop evaluates the model for one of its lights (one direction
+// per pixel, which a lobe may filter over the pixel's footprint), false for the directions an
+// integrator samples (they see the lobe itself, whose importance sampling they use). Declared
+// here and in ggx_brdf.glsl, once.
+#ifndef SL_LIGHT_IN_LOOP_DECLARED
+#define SL_LIGHT_IN_LOOP_DECLARED 1
+bool sl_light_in_loop = false;
+#endif
 
 // Object-space vertex, edited by VERTEX hooks.
 struct SlVertex {

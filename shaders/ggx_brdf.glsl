@@ -45,12 +45,17 @@ float ggx_slope_disk(float t2, float s2, float a2) {
 // kept (a unit-area kernel box-filtered over the pixel sums to 1 over the pixels); the still's
 // filter of it is that disk moved over the pixel, about two pixels wide (a share of the footprint in
 // the still's jittered frames, sharper, left the glint's energy 0.82-1.28 of itself by position
-// and the IBL spheres' polished gold further from Cycles: 0.326 against 0.228). Only for lights with a
-// disk (directional ones): point lights and the directions an integrator samples (envmap's
-// reference: sl_light_spread 0) see D itself, whose importance sampling it is.
+// and the IBL spheres' polished gold further from Cycles: 0.326 against 0.228). For every light the
+// light loop evaluates (sl_light_in_loop, ABI 1.25; a point or spot light's disk has no area, the
+// footprint alone), not for the directions an integrator samples (envmap's reference: it sees D
+// itself, whose importance sampling it is).
 #ifndef SL_NORMAL_FOOTPRINT_DECLARED
 #define SL_NORMAL_FOOTPRINT_DECLARED 1
 float sl_normal_footprint = 0.0;
+#endif
+#ifndef SL_LIGHT_IN_LOOP_DECLARED // common.glsl's: the light loop's own evaluations
+#define SL_LIGHT_IN_LOOP_DECLARED 1
+bool sl_light_in_loop = false;
 #endif
 
 // The disk of half vectors is an ellipse: r/2 in the plane of l and v, r/(2 cos θ_d) across it
@@ -161,8 +166,8 @@ float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     alpha = max(alpha, GGX_MIN_ALPHA);
-    float D; // a light with a disk (uniform per light): its disk and the pixel's footprint
-    if (sl_light_spread > 0.0) D = ggx_D_disk(n, h, l, v, alpha);
+    float D; // a light of the light loop (uniform per light): its disk and the pixel's footprint
+    if (sl_light_spread > 0.0 || (sl_light_in_loop && sl_normal_footprint > 0.0)) D = ggx_D_disk(n, h, l, v, alpha);
     else D = ggx_D(dot(n, h), alpha);
 #ifdef GGX_G1_HALF_VECTOR
     float G = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha);

@@ -86,15 +86,18 @@ static void emit_lit_loop(sl_strbuf *gen, const char *prefix, const char (*ids)[
                           const char *vis) {
     sl_strbuf b = {0};
     if (n == 1) {
-        sl_sb_printf(&b, "            vec3 l, E;\n            if (i < end && %s(L, s, l, E)) Lo += %s(s, l, %s);\n"
-                         "            sl_light_spread = 0.0;\n",
+        sl_sb_printf(&b, "            vec3 l, E;\n            sl_light_in_loop = true;\n"
+                         "            if (i < end && %s(L, s, l, E)) Lo += %s(s, l, %s);\n"
+                         "            sl_light_spread = 0.0;\n            sl_light_in_loop = false;\n",
                      light_chunks[lit_types[0]]->d.function, per_light, vis);
     } else {
-        sl_sb_append(&b, "            vec3 l = vec3(0.0), E = vec3(0.0);\n            bool lit = false;\n");
+        sl_sb_append(&b, "            vec3 l = vec3(0.0), E = vec3(0.0);\n            bool lit = false;\n"
+                         "            sl_light_in_loop = true;\n");
         for (int k = 0; k < n; k++)
             sl_sb_printf(&b, "            %sif (i >= %s_%s.x && i < %s_%s.y) lit = %s(L, s, l, E);\n", k ? "else " : "",
                          prefix, ids[k], prefix, ids[k], light_chunks[lit_types[k]]->d.function);
-        sl_sb_printf(&b, "            if (lit) Lo += %s(s, l, %s);\n            sl_light_spread = 0.0;\n", per_light, vis);
+        sl_sb_printf(&b, "            if (lit) Lo += %s(s, l, %s);\n            sl_light_spread = 0.0;\n"
+                         "            sl_light_in_loop = false;\n", per_light, vis);
     }
     emit_light_loop(gen, prefix, ids, n, b.s ? b.s : "");
     sl_sb_free(&b);
@@ -694,7 +697,7 @@ static void emit_light_radiance(const composition *c, const light_kinds *k, sl_s
     bool untested = c->ntypes == 1 && k->nlit + k->nrad == 1;
     sl_sb_append(gen, "vec3 sl_light_radiance(int i, SlSurface s) {\n    vec3 Lo = vec3(0.0);\n"
                       "    SlLight L = sl_lights[i];\n");
-    if (k->nlit) sl_sb_append(gen, "    vec3 l = vec3(0.0), E = vec3(0.0);\n    bool lit = false;\n");
+    if (k->nlit) sl_sb_append(gen, "    vec3 l = vec3(0.0), E = vec3(0.0);\n    bool lit = false;\n    sl_light_in_loop = true;\n");
     int emitted = 0;
     for (int t = 0; t < c->ntypes; t++) {
         bool is_lit = false, is_rad = false;
@@ -711,7 +714,9 @@ static void emit_light_radiance(const composition *c, const light_kinds *k, sl_s
         if (is_rad) sl_sb_printf(gen, "Lo += %s(L, s);\n", c->light_chunks[t]->d.function);
         else sl_sb_printf(gen, "lit = %s(L, s, l, E);\n", c->light_chunks[t]->d.function);
     }
-    if (k->nlit) sl_sb_printf(gen, "    if (lit) Lo += %s(s, l, %s);\n    sl_light_spread = 0.0;\n", per_light, vis);
+    if (k->nlit)
+        sl_sb_printf(gen, "    if (lit) Lo += %s(s, l, %s);\n    sl_light_spread = 0.0;\n    sl_light_in_loop = false;\n",
+                     per_light, vis);
 }
 
 /* Without one: sl_direct_lighting(s) loops over the lights itself, in the order of types[]: a

@@ -3,16 +3,14 @@
 // comes from the G-buffer (gbuffer.frag) and sl_direct_lighting() is the same composed light
 // loop (many_lights_loop → sl_light_radiance → the material's model) as the forward programs.
 // The forward pass already holds everything but the direct light (ambient, emission): add it.
-uniform sampler2D many_lights_g0, many_lights_g1, many_lights_g2, many_lights_g3, many_lights_color;
+uniform sampler2D many_lights_g0, many_lights_g1, many_lights_g2, many_lights_g3, many_lights_g4, many_lights_color;
 layout(location = 0) out vec4 many_lights_out;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 g0 = texelFetch(many_lights_g0, p, 0), g1 = texelFetch(many_lights_g1, p, 0);
-    // the forward pass's footprint of normals (ABI 1.23), from the G-buffer's, before the discard
-    // (screen derivatives need every pixel of the quad)
-    sl_set_normal_footprint(normalize(g1.xyz));
     if (int(g0.w + 0.5) != sl_material_index + 1) discard;
+    sl_normal_footprint = texelFetch(many_lights_g4, p, 0).r; // the forward pass's own (gbuffer.frag)
     vec4 g2 = texelFetch(many_lights_g2, p, 0), g3 = texelFetch(many_lights_g3, p, 0);
     SlSurface s;
     s.position = g0.xyz;

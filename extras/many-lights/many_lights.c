@@ -25,8 +25,8 @@ typedef struct ml {
     unsigned buf[3];         /* list spheres, cells, index */
     unsigned vao;            /* empty: the deferred pass's own full-screen triangle */
     sl_program *copy;
-    int unit_prepass, unit_g[4], unit_color;
-    unsigned tex_prepass, tex_g[4], tex_color;
+    int unit_prepass, unit_g[5], unit_color;
+    unsigned tex_prepass, tex_g[5], tex_color;
     bool in_deferred;        /* inside the deferred lighting pass */
     bool prepass_ok;         /* the froxel pre-pass ran this frame */
     /* per frame */
@@ -382,8 +382,8 @@ static void gbuffer_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
 static void deferred_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     ml *m = user;
     const sl_host *h = m->host;
-    static const char *const g[4] = {ML_ID ".g0", ML_ID ".g1", ML_ID ".g2", ML_ID ".g3"};
-    for (int i = 0; i < 4; i++) m->tex_g[i] = h->pass_texture(h, ctx, g[i]);
+    static const char *const g[5] = {ML_ID ".g0", ML_ID ".g1", ML_ID ".g2", ML_ID ".g3", ML_ID ".g4"};
+    for (int i = 0; i < 5; i++) m->tex_g[i] = h->pass_texture(h, ctx, g[i]);
     m->tex_color = h->pass_texture(h, ctx, "color");
     h->bind_outputs(h, ctx, 0);
     unsigned copy = h->program_id(h, m->copy);
@@ -433,8 +433,9 @@ static void ml_bind(void *user, unsigned prog, int material, const sl_frame *f) 
     glUniform1i(glGetUniformLocation(prog, "many_lights_prepass_depth"), m->unit_prepass);
     if (pre) glBindTextureUnit(m->unit_prepass, m->tex_prepass);
     if (m->in_deferred) {
-        static const char *const names[4] = {"many_lights_g0", "many_lights_g1", "many_lights_g2", "many_lights_g3"};
-        for (int i = 0; i < 4; i++) {
+        static const char *const names[5] = {"many_lights_g0", "many_lights_g1", "many_lights_g2", "many_lights_g3",
+                                             "many_lights_g4"};
+        for (int i = 0; i < 5; i++) {
             glBindTextureUnit(m->unit_g[i], m->tex_g[i]);
             glUniform1i(glGetUniformLocation(prog, names[i]), m->unit_g[i]);
         }
@@ -469,8 +470,8 @@ static sl_status ml_create(const sl_host *host, void **user) {
     static const sl_target_desc gbuf_out[] = {
         {.name = ML_ID ".g0", .format = SL_FORMAT_RGBA32F}, {.name = ML_ID ".g1", .format = SL_FORMAT_RGBA16F},
         {.name = ML_ID ".g2", .format = SL_FORMAT_RGBA16F}, {.name = ML_ID ".g3", .format = SL_FORMAT_RGBA16F},
-        {.name = ML_ID ".gdepth", .format = SL_FORMAT_DEPTH32F}};
-    static const char *const deferred_in[] = {"color", ML_ID ".g0", ML_ID ".g1", ML_ID ".g2", ML_ID ".g3", NULL};
+        {.name = ML_ID ".g4", .format = SL_FORMAT_R32F}, {.name = ML_ID ".gdepth", .format = SL_FORMAT_DEPTH32F}};
+    static const char *const deferred_in[] = {"color", ML_ID ".g0", ML_ID ".g1", ML_ID ".g2", ML_ID ".g3", ML_ID ".g4", NULL};
     static const sl_target_desc color_out[] = {{.name = "color", .format = SL_FORMAT_RGBA16F},
                                                {.name = ML_ID ".matdepth", .format = SL_FORMAT_DEPTH32F}};
     const sl_pass_desc passes[] = {
@@ -478,7 +479,7 @@ static sl_status ml_create(const sl_host *host, void **user) {
          .outputs = depth_out, .output_count = 1, .execute = clustered_execute, .is_active = clustered_active, .user = m,
          .depends = SL_DEPENDS_CAMERA | SL_DEPENDS_GEOMETRY | SL_DEPENDS_LIGHTS | SL_DEPENDS_MATERIALS},
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-gbuffer", .stage = SL_STAGE_PREPASS + 50,
-         .outputs = gbuf_out, .output_count = 5, .execute = gbuffer_execute, .is_active = gbuffer_active, .user = m,
+         .outputs = gbuf_out, .output_count = 6, .execute = gbuffer_execute, .is_active = gbuffer_active, .user = m,
          .depends = SL_DEPENDS_CAMERA | SL_DEPENDS_GEOMETRY | SL_DEPENDS_MATERIALS},
         {.struct_size = sizeof(sl_pass_desc), .name = "many-lights-deferred", .stage = SL_STAGE_OPAQUE + 50,
          .inputs = deferred_in, .outputs = color_out, .output_count = 2, .execute = deferred_execute,
@@ -488,7 +489,7 @@ static sl_status ml_create(const sl_host *host, void **user) {
         if (host->add_pass(host, &passes[i]) != SL_OK) return SL_ERR_FAILED;
     if (host->set_bind_callback(host, ml_bind, m) != SL_OK) return SL_ERR_FAILED;
     if ((m->unit_prepass = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 5; i++)
         if ((m->unit_g[i] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     if ((m->unit_color = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     const sl_reference_desc ref = {

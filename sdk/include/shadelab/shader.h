@@ -40,7 +40,11 @@
  *             the interpolated normal (its screen derivatives' parallelogram /π, in slopes);
  *             sl_surface_from_varyings sets it, a pass building its surface otherwise calls
  *             sl_set_normal_footprint(n) in uniform control flow; 0 elsewhere.
- *             sl:ggx_brdf.glsl filters D over it under a light's disk.
+ *             sl:ggx_brdf.glsl filters D over it for the light loop's lights.
+ *   bool sl_light_in_loop (ABI 1.25, common.glsl): true while the core's light loop (or
+ *             sl_light_radiance) evaluates the model for one of its lights, false elsewhere:
+ *             a model filters its lobe over the footprint only then, never for the directions an
+ *             integrator samples.
  *   lobes (ABI 1.14, common.glsl): struct SlLobe, struct SlLobes, SL_MAX_LOBES, sl_lobes_none(),
  *             and in forward programs  SlLobes sl_model_lobes(SlSurface s)  the material's
  *             MODEL_LOBES description, or the fallback (Lambert diffuse of s.base_color, no
