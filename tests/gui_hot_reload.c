@@ -71,9 +71,10 @@ int main(void) {
     char plugdir[512], shaderdir[512];
     snprintf(plugdir, sizeof plugdir, "%s/example", tmp);
     snprintf(shaderdir, sizeof shaderdir, "%s/shaders", tmp);
-    sh("mkdir -p '%s' && cp -L " SL_EXAMPLE_DIR "/example.so " SL_EXAMPLE_DIR "/tint.glsl " SL_EXAMPLE_DIR "/vignette.frag '%s'",
-       plugdir, plugdir);
-    sh("cp -r " SL_SOURCE_SHADER_DIR " '%s'%s", shaderdir, "");
+    /* quoted: a checkout's path may hold spaces */
+    sh("mkdir -p '%s' && cp -L '" SL_EXAMPLE_DIR "/example.so' '" SL_EXAMPLE_DIR "/tint.glsl' '" SL_EXAMPLE_DIR
+       "/vignette.frag' '%s'", plugdir, plugdir);
+    sh("cp -r '" SL_SOURCE_SHADER_DIR "' '%s'%s", shaderdir, "");
     setenv("SHADELAB_SHADER_DIR", shaderdir, 1);
 
     char so[600];

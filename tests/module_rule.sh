@@ -55,6 +55,7 @@ grep -E '^(plugins|tools|extras)/[^/]+/include/' "$T/code" >"$T/pubheaders" || t
 (cd "$SRC" && xargs -d '\n' -r grep -oHE '[A-Za-z_][A-Za-z0-9_]*' <"$T/pubheaders" || true) | LC_ALL=C sort -u >"$T/pubids"
 # the CMake files of the modules that may not reach into others
 grep -E '^(plugins|tools|extras)/.*(CMakeLists\.txt|\.cmake)$' "$T/files" | sed "s|^|$SRC/|" >"$T/cmakefiles" || true
+mapfile -t cmakefiles <"$T/cmakefiles" # one per line: a checkout's path may hold spaces
 
 # ---- the build: target folders, include paths, dependency files, symbols --------------------
 if [ -f "$BUILD/CMakeFiles/TargetDirectories.txt" ]; then
@@ -91,7 +92,7 @@ fi
 # ---- the check --------------------------------------------------------------------------------
 awk -v SRC="$SRC" -v CMSRC="$CMSRC" -v BUILD="$BUILD" -v PUBLIC_HEADERS="$PUBLIC_HEADERS" -f - \
     sec=files "$T/files" sec=inc "$T/includes" sec=pubids "$T/pubids" sec=tdirs "$T/tdirs" \
-    sec=flags "$T/flags" sec=deps "$T/deps" sec=nm "$T/nm" sec=cmake $(cat "$T/cmakefiles") <<'AWK'
+    sec=flags "$T/flags" sec=deps "$T/deps" sec=nm "$T/nm" sec=cmake "${cmakefiles[@]}" <<'AWK'
 function norm(p,   a, n, i, k, out, res) {
   n = split(p, a, "/"); k = 0
   for (i = 1; i <= n; i++) {

@@ -877,8 +877,8 @@ static void test_conventions(void) {
     write_latlong(latlong, 256, 128, colour_fn);
     snprintf(cross_exr, sizeof cross_exr, "%s/colour_cross.exr", dir);
     snprintf(cross_png, sizeof cross_png, "%s/colour_cross.png", dir);
-    snprintf(cmd, sizeof cmd, "%s %s --convert %s --size 64 -q && %s %s --convert %s --size 64 -q", SHADELAB_CUBE, latlong,
-             cross_exr, SHADELAB_CUBE, latlong, cross_png);
+    snprintf(cmd, sizeof cmd, "'%s' '%s' --convert '%s' --size 64 -q && '%s' '%s' --convert '%s' --size 64 -q", SHADELAB_CUBE,
+             latlong, cross_exr, SHADELAB_CUBE, latlong, cross_png);
     CHECK(run(cmd) == 0);
     /* six face files from the cross */
     char faces[512];
@@ -1127,7 +1127,7 @@ static void test_chain_and_cache(void) {
     snprintf(src, sizeof src, "%s/colour.exr", dir);
     snprintf(chain, sizeof chain, "%s/colour_ggx.exr", dir);
     snprintf(head, sizeof head, "%s/colour_ggx.1.exr", dir);
-    snprintf(cmd, sizeof cmd, "%s %s --ggx %s --size 16 --samples 128 --levels 3 -q", SHADELAB_CUBE, src, chain);
+    snprintf(cmd, sizeof cmd, "'%s' '%s' --ggx '%s' --size 16 --samples 128 --levels 3 -q", SHADELAB_CUBE, src, chain);
     CHECK(run(cmd) == 0);
     const char *mat = "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, \"base_color\": [1, 1, 1], \"roughness\": 0.6";
     const char *own[] = {"envmap.mip_count=3", NULL};
