@@ -12,16 +12,18 @@
 #                                         instrumented: sdk_install (and the extras, not built
 #                                         there) load the instrumented harness into
 #                                         uninstrumented executables ("ASan runtime does not
-#                                         come first"), gui_smoke runs
-#                                         under Xvfb (covered uninstrumented; the GLX driver's
-#                                         leaks come from unloaded modules LSan cannot attribute),
-#                                         fuzz_scene is instrumented already.
+#                                         come first"), the window's tests under Xvfb
+#                                         (gui_smoke, gui_budget, gui_gltf_animation: covered
+#                                         uninstrumented; the GLX driver's leaks come from
+#                                         unloaded modules LSan cannot attribute, so no
+#                                         suppression names them), fuzz_scene is instrumented
+#                                         already.
 # Both use one tree (build/sanitize; RESOURCE_LOCK keeps them apart), incremental between runs.
 # Leaks inside the GL drivers are suppressed (tests/sanitizers/lsan.supp, with one of
 # OpenImageIO's); leaks in shadelab are failures.
 # By hand:  ctest --test-dir build -R '^sanitize$' --output-on-failure     (ctest -L long: all)
 #     or:   cmake -B build-asan -DSL_SANITIZE=ON -DSL_BUILD_EXTRAS=OFF && cmake --build build-asan -j2 && \
-#           ctest --test-dir build-asan -E '^(gui_smoke|sdk_install|fuzz_scene)$'
+#           ctest --test-dir build-asan -E '^(gui_smoke|gui_budget|gui_gltf_animation|sdk_install|fuzz_scene)$'
 if(CMAKE_SCRIPT_MODE_FILE)
   foreach(v SRC BIN)
     if(NOT DEFINED ${v})
@@ -57,7 +59,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   if(SELECT)
     set(select -R "${SELECT}")
   else()
-    set(select -E "^(gui_smoke|sdk_install|fuzz_scene)$")
+    set(select -E "^(gui_smoke|gui_budget|gui_gltf_animation|sdk_install|fuzz_scene)$")
   endif()
   # One test at a time, so that each failure's output is its own. The sanitizers' options are the
   # tests' environment in that tree (tests/CMakeLists.txt, SL_SANITIZE).
