@@ -21,9 +21,9 @@
 /* Until a fit has separated the fixed part from the scaled one (every frame so far at about one
  * work, or since a fit put the fixed part below 0), fixed_ms is 0 and a prediction for more work is
  * the proportional one, an upper bound: a step up is taken within this share of the budget, so
- * that the next frames teach the fit the slope. With HEADROOM
- * alone a frame at half the budget could stay there for good: at the default scene's render scale
- * 0.35 (28 ms at 1280x720) the bound for 0.5 was 60 ms, over 0.85 x 66. */
+ * that the next frames teach the fit the slope. With HEADROOM alone a frame at half the budget
+ * could stay there for good: at the default scene's render scale 0.35 (28 ms at 1280x720) the
+ * bound for 0.5 was 60 ms, over 0.85 x 66. */
 #define EXPLORE_HEADROOM 0.95
 
 void sl_budget_init(sl_budget *b, double budget_ms) {
@@ -96,8 +96,7 @@ static bool fit(sl_budget *b) {
     if (var > 0.01 * mx * mx && cov > 0) {
         b->unit_ms = cov / var;
         b->fixed_ms = my - b->unit_ms * mx;
-        consistent = b->fixed_ms >= 0;
-        b->identified = consistent && b->fixed_ms <= my;
+        consistent = b->identified = b->fixed_ms >= 0;
     }
     if (b->fixed_ms < 0 || b->fixed_ms > my) b->fixed_ms = b->fixed_ms < 0 ? 0 : 0.5 * my;
     b->unit_ms = fmax((my - b->fixed_ms) / mx, 1e-6);

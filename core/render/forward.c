@@ -79,6 +79,10 @@ static void emit_light_loop(sl_strbuf *gen, const char *prefix, const char (*ids
                  prefix, ids[0], prefix, ids[n - 1], body);
 }
 
+/* After a model evaluated one light of the loop: the light's state (common.glsl) back to what
+ * the code outside the light loop sees. */
+#define LIGHT_DONE "sl_light_spread = 0.0; sl_light_in_loop = false;"
+
 /* The loop over the lights of the types with an l/E pair (ids, in buffer order) in the ranges
  * <prefix>_<type>: the type found by range (else-if), one evaluation of the model with E × `vis`. */
 static void emit_lit_loop(sl_strbuf *gen, const char *prefix, const char (*ids)[128], int n,
@@ -88,7 +92,7 @@ static void emit_lit_loop(sl_strbuf *gen, const char *prefix, const char (*ids)[
     if (n == 1) {
         sl_sb_printf(&b, "            vec3 l, E;\n            sl_light_in_loop = true;\n"
                          "            if (i < end && %s(L, s, l, E)) Lo += %s(s, l, %s);\n"
-                         "            sl_light_spread = 0.0;\n            sl_light_in_loop = false;\n",
+                         "            " LIGHT_DONE "\n",
                      light_chunks[lit_types[0]]->d.function, per_light, vis);
     } else {
         sl_sb_append(&b, "            vec3 l = vec3(0.0), E = vec3(0.0);\n            bool lit = false;\n"
@@ -96,8 +100,7 @@ static void emit_lit_loop(sl_strbuf *gen, const char *prefix, const char (*ids)[
         for (int k = 0; k < n; k++)
             sl_sb_printf(&b, "            %sif (i >= %s_%s.x && i < %s_%s.y) lit = %s(L, s, l, E);\n", k ? "else " : "",
                          prefix, ids[k], prefix, ids[k], light_chunks[lit_types[k]]->d.function);
-        sl_sb_printf(&b, "            if (lit) Lo += %s(s, l, %s);\n            sl_light_spread = 0.0;\n"
-                         "            sl_light_in_loop = false;\n", per_light, vis);
+        sl_sb_printf(&b, "            if (lit) Lo += %s(s, l, %s);\n            " LIGHT_DONE "\n", per_light, vis);
     }
     emit_light_loop(gen, prefix, ids, n, b.s ? b.s : "");
     sl_sb_free(&b);
@@ -715,8 +718,7 @@ static void emit_light_radiance(const composition *c, const light_kinds *k, sl_s
         else sl_sb_printf(gen, "lit = %s(L, s, l, E);\n", c->light_chunks[t]->d.function);
     }
     if (k->nlit)
-        sl_sb_printf(gen, "    if (lit) Lo += %s(s, l, %s);\n    sl_light_spread = 0.0;\n    sl_light_in_loop = false;\n",
-                     per_light, vis);
+        sl_sb_printf(gen, "    if (lit) Lo += %s(s, l, %s);\n    " LIGHT_DONE "\n", per_light, vis);
 }
 
 /* Without one: sl_direct_lighting(s) loops over the lights itself, in the order of types[]: a
