@@ -80,6 +80,9 @@ float ggx_disk_squeeze(vec3 l, vec3 v, vec3 h, float light, float a2, inout vec3
     m -= (1.0 - k) * dot(m, across) * across;
     return k;
 }
+// Whether this evaluation filters D (ggx_D_disk, ggx_layers.glsl's ggx_aniso_D_disk): under a
+// light's disk, or for a light of the light loop where the pixel has a footprint. Uniform per light.
+bool ggx_D_filtered() { return sl_light_spread > 0.0 || (sl_light_in_loop && sl_normal_footprint > 0.0); }
 float ggx_D_disk(vec3 n, vec3 h, vec3 l, vec3 v, float alpha) {
     float c = max(dot(n, h), 1e-4), c2 = c * c, a2 = alpha * alpha, s2;
     vec3 m = (h - n * c) / c;
@@ -167,7 +170,7 @@ float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     alpha = max(alpha, GGX_MIN_ALPHA);
     float D; // a light of the light loop (uniform per light): its disk and the pixel's footprint
-    if (sl_light_spread > 0.0 || (sl_light_in_loop && sl_normal_footprint > 0.0)) D = ggx_D_disk(n, h, l, v, alpha);
+    if (ggx_D_filtered()) D = ggx_D_disk(n, h, l, v, alpha);
     else D = ggx_D(dot(n, h), alpha);
 #ifdef GGX_G1_HALF_VECTOR
     float G = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha);

@@ -313,7 +313,7 @@ float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out ve
     h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     float D; // as ggx_DG_over_4
-    if (sl_light_spread > 0.0) D = ggx_aniso_D_disk(n, t, b, h, l, v, a);
+    if (ggx_D_filtered()) D = ggx_aniso_D_disk(n, t, b, h, l, v, a);
     else D = ggx_aniso_D(n, t, b, h, a);
     float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
     vec2 pl = a * vec2(dot(l, t), dot(l, b)), pv = a * vec2(dot(v, t), dot(v, b));
