@@ -218,8 +218,12 @@ void sl_budget_before_frame(sl_app *app) {
          * (the controller itself leaves out frames rendered still) */
         if (!s->skip_observation && s->last_ms < 10000) sl_budget_observe(&s->ctl, s->last_choice, s->last_ms);
     }
+    /* the opening frame (or the first after the budget was switched on) is no motion: it
+     * compiles programs and fills caches, and taken for motion it would open the window at the
+     * cheapest settings until a still refines them */
+    bool opening = !(s->last_start_ms > 0);
     s->last_start_ms = t;
-    bool moving = moved(app, s);
+    bool moving = moved(app, s) && !opening;
     int before[SL_BUDGET_MAX_KNOBS];
     memcpy(before, s->ctl.choice, sizeof before);
     s->skip_observation = sl_budget_step(&s->ctl, moving);
@@ -246,8 +250,9 @@ void sl_budget_settle(sl_app *app) {
 const char *sl_budget_status(sl_app *app) {
     sl_budget_state *s = app->budget;
     if (!s || !s->built) return "";
-    int n = snprintf(s->status, sizeof s->status, "%s; last frame %.0f ms", s->ctl.still >= SL_BUDGET_STILL_FRAMES
-                     ? "still: best settings" : "moving", s->last_ms);
+    const char *what = s->ctl.still >= SL_BUDGET_STILL_FRAMES ? "still: best settings"
+                       : s->ctl.still > 0 ? "coming to rest" : "moving";
+    int n = snprintf(s->status, sizeof s->status, "%s; last frame %.0f ms", what, s->last_ms);
     if (s->ctl.observations) n += snprintf(s->status + n, sizeof s->status - n, " (predicted %.0f)",
                                            sl_budget_predict_ms(&s->ctl, s->ctl.choice));
     for (int k = 0; k < s->ctl.knob_count && n < (int)sizeof s->status; k++)
