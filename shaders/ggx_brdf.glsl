@@ -46,9 +46,9 @@ float ggx_slope_disk(float t2, float s2, float a2) {
 // filter of it is that disk moved over the pixel, about two pixels wide (a share of the footprint in
 // the still's jittered frames, sharper, left the glint's energy 0.82-1.28 of itself by position
 // and the IBL spheres' polished gold further from Cycles: 0.326 against 0.228). For every light the
-// light loop evaluates (sl_light_in_loop, ABI 1.25; a point or spot light's disk has no area, the
-// footprint alone), not for the directions an integrator samples (envmap's reference: it sees D
-// itself, whose importance sampling it is).
+// light loop evaluates (sl_light_in_loop, ABI 1.25; a point or spot light, without a disk: the
+// footprint alone, ggx_D_footprint), not for the directions an integrator samples (envmap's
+// reference: it sees D itself, whose importance sampling it is).
 #ifndef SL_NORMAL_FOOTPRINT_DECLARED
 #define SL_NORMAL_FOOTPRINT_DECLARED 1
 float sl_normal_footprint = 0.0;
@@ -80,9 +80,24 @@ float ggx_disk_squeeze(vec3 l, vec3 v, vec3 h, float light, float a2, inout vec3
     m -= (1.0 - k) * dot(m, across) * across;
     return k;
 }
-// Whether this evaluation filters D (ggx_D_disk, ggx_layers.glsl's ggx_aniso_D_disk): under a
-// light's disk, or for a light of the light loop where the pixel has a footprint. Uniform per light.
-bool ggx_D_filtered() { return sl_light_spread > 0.0 || (sl_light_in_loop && sl_normal_footprint > 0.0); }
+// Whether this evaluation convolves D with a disk (ggx_D_disk, ggx_layers.glsl's ggx_aniso_D_disk):
+// under a light's disk, its area and the pixel's footprint together. Uniform per light.
+bool ggx_D_filtered() { return sl_light_spread > 0.0; }
+// For a light of the light loop without a disk (a point or spot light), D over the pixel's
+// footprint alone: ggx_slope_disk(tan²θ_h, footprint, α²)/cos⁴θ_h (ggx_D_disk without a light's
+// disk to squeeze), with both brought over u = cos²θ_h, X = u(α² − s²) + 1 − u and
+// Y = √((1 − u − u s²)² + α²u(α²u + 2(1 − u) + 2u s²)): D = 2α²/(π Y (Y + X)) where X ≥ 0, else
+// (Y − X)/(2π Y s² u²), as one division, (X ≥ 0 ? 4α²s²u² : (Y + |X|)²)/(2π Y (Y + |X|) s² u²) —
+// a square root more than D itself, where ggx_D_disk's path took 64 point lights' forward pass to
+// 1.6× plain D's (ratio_sphere at 256²; this form 1.1×). s² = 0 gives D (X = Y). Integrators' directions
+// (sl_light_in_loop false) see D itself.
+bool ggx_D_footprint_filtered() { return sl_light_in_loop && sl_normal_footprint > 0.0; }
+float ggx_D_footprint(float n_dot_h, float alpha) {
+    float u = max(n_dot_h * n_dot_h, 1e-8), a2 = alpha * alpha, s2 = max(sl_normal_footprint, 1e-12), w = 1.0 - u;
+    float X = u * (a2 - s2) + w, e = w - u * s2;
+    float Y = sqrt(e * e + a2 * u * (a2 * u + 2.0 * w + 2.0 * u * s2)), q = Y + abs(X), k = s2 * u * u;
+    return (X >= 0.0 ? 4.0 * a2 * k : q * q) / (2.0 * SL_PI * Y * q * k);
+}
 float ggx_D_disk(vec3 n, vec3 h, vec3 l, vec3 v, float alpha) {
     float c = max(dot(n, h), 1e-4), c2 = c * c, a2 = alpha * alpha, s2;
     vec3 m = (h - n * c) / c;
@@ -171,6 +186,7 @@ float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     alpha = max(alpha, GGX_MIN_ALPHA);
     float D; // a light of the light loop (uniform per light): its disk and the pixel's footprint
     if (ggx_D_filtered()) D = ggx_D_disk(n, h, l, v, alpha);
+    else if (ggx_D_footprint_filtered()) D = ggx_D_footprint(dot(n, h), alpha);
     else D = ggx_D(dot(n, h), alpha);
 #ifdef GGX_G1_HALF_VECTOR
     float G = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha);

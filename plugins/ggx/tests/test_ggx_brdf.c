@@ -49,6 +49,21 @@ static double d_c(double nh, double a) {
     return a * a / (M_PI * pow(nh, 4) * pow(a * a + t2, 2));
 }
 
+/* D over the pixel's footprint (ggx_D_footprint): GGX's slope density P(m) = α²/(π(α² + |m|²)²)
+ * averaged over the disk of slopes of radius s (s² the footprint) centred at the half vector's
+ * slope, tan θ_h away, by the midpoint rule in polar coordinates about the centre, over cos⁴θ_h. */
+static double d_footprint_c(double nh, double a, double s2) {
+    const int NR = 400, NA = 400;
+    double t = sqrt(1 - nh * nh) / nh, s = sqrt(s2), sum = 0;
+    for (int i = 0; i < NR; i++)
+        for (int j = 0; j < NA; j++) {
+            double r = s * (i + 0.5) / NR, ph = 2 * M_PI * (j + 0.5) / NA;
+            double m2 = t * t + 2 * t * r * cos(ph) + r * r;
+            sum += a * a / (M_PI * (a * a + m2) * (a * a + m2)) * r;
+        }
+    return sum * (s / NR) * (2 * M_PI / NA) / (M_PI * s2) / pow(nh, 4);
+}
+
 static double g1_c(const double x[3], const double n[3], const double hh[3], double a) {
     double xn = x[0] * n[0] + x[1] * n[1] + x[2] * n[2], xh = x[0] * hh[0] + x[1] * hh[1] + x[2] * hh[2];
     if (xn == 0 || xh / xn <= 0) return 0;
@@ -89,6 +104,24 @@ int main(void) {
         if (rel > worst) worst = rel;
     }
     CHECK_MSG(worst < 1e-3, "D vs C: relative %g", worst);
+
+    /* D over the pixel's footprint (a point or spot light of the light loop) against the disk
+     * average in C, on both sides of its two forms (the footprint narrower and wider than the lobe
+     * at the half vector), and D itself where the footprint is negligible */
+    const double fp_cases[][3] = {{0.999, 0.01, 1e-4}, {0.9999, 0.01, 1e-3}, {0.98, 0.05, 0.002}, {0.95, 0.3, 0.01},
+                                  {0.7, 0.5, 0.05}, {0.999, 0.2, 0.3}, {0.6, 0.1, 0.2}, {0.9, 0.3, 1e-9}};
+    const int nfp = (int)(sizeof fp_cases / sizeof *fp_cases);
+    for (int i = 0; i < nfp; i++)
+        for (int k = 0; k < 3; k++) in0[i * 4 + k] = (float)fp_cases[i][k];
+    CHECK(eval("sl_normal_footprint = in0.z, vec4(ggx_D_footprint(in0.x, in0.y))", NULL));
+    for (int i = 0; i < nfp; i++) {
+        double e = d_footprint_c(fp_cases[i][0], fp_cases[i][1], fp_cases[i][2]);
+        double plain = d_c(fp_cases[i][0], fp_cases[i][1]);
+        printf("D over a footprint of %g, n.h %g, alpha %g: %.6g (C %.6g; D itself %.6g)\n", fp_cases[i][2],
+               fp_cases[i][0], fp_cases[i][1], out[i * 4], e, plain);
+        CHECK_MSG(fabs(out[i * 4] - e) < 2e-3 * e + 1e-6, "footprint %g, n.h %g, alpha %g: %g against %g",
+                  fp_cases[i][2], fp_cases[i][0], fp_cases[i][1], out[i * 4], e);
+    }
 
     /* Masking normalisation (Heitz 2014): ∫ G1(v,h) max(0, v·h) D(h) dω_h = n·v, within 2% */
     const float mask_alphas[] = {0.1f, 0.3f, 0.6f, 1.0f};
