@@ -106,6 +106,8 @@ struct SlLobes {
     int count;             // lobes in use, 0 … SL_MAX_LOBES
     SlLobe lobe[SL_MAX_LOBES];
     int flags;             // ABI 1.16: SL_LOBES_MODEL_AT_DOMINANT_LIGHT | (1.19) SL_LOBES_BLINN_PHONG << k
+    vec3 normal[SL_MAX_LOBES]; // ABI 1.26: lobe k's own shading normal (a clear coat's normal
+                               // texture), unit length; vec3(0): the surface's, s.normal
 };
 // Lobe shapes (ABI 1.19): whether lobe k is Blinn-Phong, and the power ↔ α of the contract. The
 // α of power p has Blinn's median: half of each D's projected microfacet area lies within the same
@@ -124,7 +126,11 @@ float sl_lobe_blinn_power(float alpha) {
 // An empty description: no diffuse, no lobe; a hook starts from it.
 SlLobes sl_lobes_none() {
     SlLobe z = SlLobe(vec3(0.0), vec3(1.0), 1.0, 0.0, 0.0);
-    return SlLobes(vec3(0.0), false, 0, SlLobe[SL_MAX_LOBES](z, z), 0);
+    return SlLobes(vec3(0.0), false, 0, SlLobe[SL_MAX_LOBES](z, z), 0, vec3[SL_MAX_LOBES](vec3(0.0), vec3(0.0)));
+}
+// The normal lobe k is integrated about (ABI 1.26): its own where the model set one, else s.normal.
+vec3 sl_lobe_normal(SlLobes L, int k, SlSurface s) {
+    return dot(L.normal[k], L.normal[k]) > 0.5 ? L.normal[k] : s.normal;
 }
 
 // One light as packed by the core (std430, 80 bytes).

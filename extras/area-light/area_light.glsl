@@ -260,10 +260,16 @@ vec3 area_light_radiance(SlLight L, SlSurface s) {
         for (int k = 0; k < lobes.count && k < SL_MAX_LOBES; ++k) {
             // diffuse_coupled: (1 − F) of lobe 0 approximated by (1 − F0)
             if (k == 0 && lobes.diffuse_coupled) kd *= 1.0 - lobes.lobe[0].f0;
-            // no specular for a normal facing away (the contract's lobes are masked there)
-            if (lobes.lobe[k].weight > 0.0 && dot(s.normal, s.view) > 0.0)
-                spec += area_light_lobe(lobes.lobe[k], sl_lobe_blinn_phong(lobes, k), poly, frame, ndv, layer, c - s.position,
+            // no specular for a normal facing away (the contract's lobes are masked there); a
+            // lobe with its own normal (ABI 1.26: a clear coat's) in its own frame
+            vec3 nk = sl_lobe_normal(lobes, k, s);
+            if (lobes.lobe[k].weight > 0.0 && dot(nk, s.view) > 0.0) {
+                bool own = nk != s.normal;
+                mat3 fk = own ? area_light_frame(nk, s.view) : frame;
+                float ndvk = own ? clamp(dot(nk, s.view), 0.0, 1.0) : ndv;
+                spec += area_light_lobe(lobes.lobe[k], sl_lobe_blinn_phong(lobes, k), poly, fk, ndvk, layer, c - s.position,
                                         hx, hy);
+            }
         }
         return Le * (kd * SL_INV_PI * phi.z * Td + spec);
     }

@@ -345,19 +345,23 @@ uniform float envmap_fis_weight;
 // (envmap_lut.frag), split from the irradiance as Karis 2013 splits the specular. (1 − F(n·v))
 // instead — Schlick at the view angle — goes to 0 at the rim where the true weight stays ≈ 0.93:
 // dielectric spheres were 4 % too dark on average and 60 % at μ = 0.1 (measured, bench/terms.sh).
-// A lobe with exact dielectric Fresnel (eta) is approximated by Schlick with its F0.
+// A lobe with exact dielectric Fresnel (eta) is approximated by Schlick with its F0. Each lobe is
+// integrated about its own normal (sl_lobe_normal, ABI 1.26: a clear coat's normal texture); the
+// diffuse and the screen rays (reflections=screen) about the surface's.
 vec3 envmap_split_sum(SlSurface s) {
     SlLobes L = sl_model_lobes(s);
-    vec3 n = s.normal, v = s.view;
-    float mu = clamp(dot(n, v), 1e-4, 1.0);
-    vec3 r = reflect(-v, n);
-    // a (normal-mapped) normal facing away from the viewer is masked, G1(v) = 0: no specular, as
-    // in the reference below
-    float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
+    vec3 v = s.view;
     vec3 kd = L.diffuse, lit = vec3(0.0);
     vec4 found = envmap_scene_found(s);
     for (int k = 0; k < L.count && k < SL_MAX_LOBES; ++k) {
         SlLobe lobe = L.lobe[k];
+        SlSurface sk = s;
+        sk.normal = sl_lobe_normal(L, k, s);
+        vec3 n = sk.normal, r = reflect(-v, n);
+        float mu = clamp(dot(n, v), 1e-4, 1.0);
+        // a (normal-mapped) normal facing away from the viewer is masked, G1(v) = 0: no specular,
+        // as in the reference below
+        float visible = dot(n, v) > 0.0 ? 1.0 : 0.0;
         float alpha = max(lobe.alpha, GGX_MIN_ALPHA);
         vec3 abc = envmap_brdf(mu, alpha);
         if (k == 0 && L.diffuse_coupled) kd *= 1.0 - lobe.f0 - (lobe.f90 - lobe.f0) * abc.z;
@@ -379,7 +383,7 @@ vec3 envmap_split_sum(SlSurface s) {
             specular = spec * envmap_specular(d, alpha) * envmap_horizon(d, s.geometric_normal);
         }
         if (beta > 0.0)
-            specular = mix(specular, envmap_filtered_specular(s, alpha, lobe.f0, lobe.f90, albedo) * (spec / max(albedo, vec3(1e-6))), beta);
+            specular = mix(specular, envmap_filtered_specular(sk, alpha, lobe.f0, lobe.f90, albedo) * (spec / max(albedo, vec3(1e-6))), beta);
 #elif ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
         float beta = envmap_hybrid_beta(alpha) * envmap_fis_weight;
@@ -388,7 +392,7 @@ vec3 envmap_split_sum(SlSurface s) {
 #endif
         // fis estimates the single-scattering specular itself (albedo inside); multiscatter
         // scales it as it scales the split sum's
-        vec3 specular = envmap_fis_specular(s, alpha, r, lobe.f0, lobe.f90, albedo, beta) * (spec / max(albedo, vec3(1e-6)));
+        vec3 specular = envmap_fis_specular(sk, alpha, r, lobe.f0, lobe.f90, albedo, beta) * (spec / max(albedo, vec3(1e-6)));
 #else
         vec3 d = envmap_lookup_dir(n, r, alpha);
         vec3 specular = spec * (sl_lobe_blinn_phong(L, k) ? envmap_specular_blinn(d, alpha, mu) : envmap_specular(d, alpha)) *
@@ -401,7 +405,7 @@ vec3 envmap_split_sum(SlSurface s) {
 #endif
         lit += lobe.weight * visible * envmap_specular_occlusion(mu, s.ao, alpha) * specular;
     }
-    return kd * envmap_diffuse(n) * s.ao + lit;
+    return kd * envmap_diffuse(s.normal) * s.ao + lit;
 }
 
 // Environment importance sampling (a lat-long source; em_env_distribution in cube.c builds the
@@ -466,15 +470,15 @@ float envmap_env_pdf(vec3 d) {
 // take h = normalize(l + v) in world space alike (D at α → 0 is too steep for two roundings).
 // The source map is read at full resolution; light from under the geometric surface (normal
 // maps) is blocked for all but the contract's diffuse term (as the split sum's irradiance);
-// s.ao scales the result.
+// s.ao scales the result. A lobe with its own normal (sl_lobe_normal) is sampled about it.
 float envmap_reference_pdf(vec3 l, SlSurface s, SlLobes L, int lobes, bool cosine) {
-    float ndl = dot(s.normal, l), ndv = dot(s.normal, s.view);
+    float ndl = dot(s.normal, l);
     float pdf = (cosine ? max(ndl, 0.0) * SL_INV_PI : 0.0) + envmap_env_pdf(l);
     vec3 h = normalize(l + s.view);
-    float ndh = dot(s.normal, h);
     for (int j = 0; j < lobes; ++j) {
-        float a = max(L.lobe[j].alpha, GGX_MIN_ALPHA);
-        if (L.lobe[j].weight > 0.0 && ndh > 0.0) pdf += envmap_smith_g1(ndv, a) * ggx_D(ndh, a) / (4.0 * ndv);
+        vec3 nj = sl_lobe_normal(L, j, s);
+        float a = max(L.lobe[j].alpha, GGX_MIN_ALPHA), ndh = dot(nj, h), ndv = dot(nj, s.view);
+        if (L.lobe[j].weight > 0.0 && ndh > 0.0 && ndv > 0.0) pdf += envmap_smith_g1(ndv, a) * ggx_D(ndh, a) / (4.0 * ndv);
     }
     return pdf;
 }
@@ -492,6 +496,13 @@ vec3 envmap_reference(SlSurface s) {
     envmap_frame(n, t, b);
     vec3 vl = vec3(dot(v, t), dot(v, b), dot(v, n));
     int lobes = vl.z > 0.0 ? min(L.count, SL_MAX_LOBES) : 0;
+    // each lobe's frame about its own normal (where it has none, the surface's)
+    vec3 lt[SL_MAX_LOBES], lb[SL_MAX_LOBES], ln[SL_MAX_LOBES], lv[SL_MAX_LOBES];
+    for (int k = 0; k < SL_MAX_LOBES; ++k) {
+        ln[k] = sl_lobe_normal(L, k, s);
+        envmap_frame(ln[k], lt[k], lb[k]);
+        lv[k] = vec3(dot(v, lt[k]), dot(v, lb[k]), dot(v, ln[k]));
+    }
     bool any_lobe = false;
     for (int k = 0; k < lobes; ++k) any_lobe = any_lobe || L.lobe[k].weight > 0.0;
     bool cosine = max(L.diffuse.r, max(L.diffuse.g, L.diffuse.b)) > 0.0 || !any_lobe;
@@ -511,9 +522,12 @@ vec3 envmap_reference(SlSurface s) {
                 if (!cosine) continue;
                 ll = envmap_sample_cosine(fract(xi + vec2(0.5, 0.25)));
             } else {
-                if (!(L.lobe[k].weight > 0.0)) continue;
-                vec3 hl = envmap_sample_vndf(vl, max(L.lobe[k].alpha, GGX_MIN_ALPHA), fract(xi + vec2(0.375, 0.625) * float(k)));
-                ll = 2.0 * dot(vl, hl) * hl - vl;
+                if (!(L.lobe[k].weight > 0.0) || lv[k].z <= 0.0) continue;
+                vec3 hl = envmap_sample_vndf(lv[k], max(L.lobe[k].alpha, GGX_MIN_ALPHA), fract(xi + vec2(0.375, 0.625) * float(k)));
+                hl = 2.0 * dot(lv[k], hl) * hl - lv[k]; // the direction, in the lobe's frame
+                vec3 lw = lt[k] * hl.x + lb[k] * hl.y + ln[k] * hl.z;
+                if (dot(lw, ln[k]) <= 0.0) continue; // below the lobe's own horizon
+                ll = vec3(dot(lw, t), dot(lw, b), dot(lw, n));
             }
             if (ll.z <= 0.0) continue;
             vec3 l = t * ll.x + b * ll.y + n * ll.z;

@@ -246,13 +246,14 @@ SlLobes ggx_lobes(SlSurface s) {
 #endif
 #ifdef GGX_HAS_CLEARCOAT
     // the coat as lobe 1 with the constant Fresnel F_c(n_c·v) (F0 = F90), weight w; the layers
-    // below weighted by 1 − w·F_c, as for point lights. About s.normal: the contract's lobes share
-    // one normal, so the coat's own normal is followed by point lights only.
+    // below weighted by 1 − w·F_c, as for point lights; about the coat's own normal (ABI 1.26),
+    // as point lights see it.
     float fc = ggx_coat_fresnel(clamp(dot(ggx_coat_normal(s), s.view), 0.0, 1.0));
     L.diffuse *= 1.0 - ggx_coat.weight * fc;
     L.lobe[0].weight *= 1.0 - ggx_coat.weight * fc;
     L.count = 2;
     L.lobe[1] = SlLobe(vec3(fc), vec3(fc), max(ggx_coat.alpha, GGX_MIN_ALPHA), ggx_coat.weight, 0.0);
+    L.normal[1] = ggx_coat_normal(s);
 #endif
     return L;
 }

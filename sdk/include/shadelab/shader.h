@@ -55,6 +55,8 @@
  *             bands) instead of integrating lobes (common.glsl, sdk/example/toon).
  *             ABI 1.19: SL_LOBES_BLINN_PHONG << k in SlLobes.flags: lobe k is normalised
  *             Blinn-Phong of power sl_lobe_blinn_power(alpha), not GGX (sl_lobe_blinn_phong(L, k)).
+ *             ABI 1.26: SlLobes.normal[k], lobe k's own shading normal (vec3(0): s.normal; a clear
+ *             coat's normal texture), which integrators read through sl_lobe_normal(L, k, s).
  *
  * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX),
  * and "#define SL_MODEL_MASKS_FACING_AWAY 1" when that model's chunk carries
