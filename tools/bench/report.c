@@ -424,7 +424,8 @@ int sl_bench_write_chart(const sl_bench_result *res, const char *png, sl_metric 
     gp_string(g, xl);
     fprintf(g, "\nset ylabel ");
     gp_string(g, metric_title);
-    fprintf(g, "\nset grid\nset key top right box opaque\n");
+    /* the key below the plot: inside it, any corner can cover a point */
+    fprintf(g, "\nset grid\nset key below box\n");
     if (log_x) fprintf(g, "set logscale x\nset format x '%%g'\nset xrange [%.9g:%.9g]\n", x_start, x_end);
     else if (x_end > 0) fprintf(g, "set xrange [0:%.9g]\n", x_end);
     else fprintf(g, "set xrange [0:*]\nset offsets 0, graph %g, 0, 0\n", chart_x_room - 1);
