@@ -306,14 +306,27 @@ vec3 envmap_filtered_specular(SlSurface s, float alpha, vec3 f0, vec3 f90, vec3 
     float turn = (vl.x != 0.0 || vl.y != 0.0) ? atan(vl.x, -vl.y) * (0.5 / ENVMAP_PI) : 0.0;
     vec2 shift = envmap_r2(uint(sl_sample_index)) - vec2(0.0, 0.5); // (½, 0) at frame 0
     vec3 sum = vec3(0.0), wsum = vec3(0.0);
+    // What every sample shares, out of the loop: the visible-normal sampler's frame
+    // (envmap_sample_vndf's first lines) and the spiral's angle, turned by the golden angle from
+    // sample to sample (a rotation: no sine or cosine per sample)
+    vec3 vh = normalize(vec3(alpha * vl.x, alpha * vl.y, vl.z));
+    float lensq = vh.x * vh.x + vh.y * vh.y, sq = 0.5 * (1.0 + vh.z);
+    vec3 t1 = lensq > 1e-12 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0), t2 = cross(vh, t1);
+    float phi0 = 2.0 * ENVMAP_PI * (shift.y - turn), golden = 2.0 * ENVMAP_PI * 0.6180339887498949;
+    vec2 cs = vec2(cos(phi0), sin(phi0)), step = vec2(cos(golden), sin(golden));
     int i = 0; // a do-while: see envmap_fis_specular
     do {
-        vec2 xi = vec2((float(i) + shift.x) / float(count), fract(float(i) * 0.6180339887498949 - turn + shift.y));
-        vec3 hl = envmap_sample_vndf(vl, alpha, xi);
-        vec3 ll = 2.0 * dot(vl, hl) * hl - vl;
+        float r = sqrt((float(i) + shift.x) / float(count)), p1 = r * cs.x, p2 = r * cs.y;
+        cs = vec2(cs.x * step.x - cs.y * step.y, cs.y * step.x + cs.x * step.y);
+        p2 = (1.0 - sq) * sqrt(max(1.0 - p1 * p1, 0.0)) + sq * p2;
+        vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+        vec3 hl = normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0, nh.z)));
+        float vdh = dot(vl, hl);
+        vec3 ll = 2.0 * vdh * hl - vl;
         if (ll.z <= 0.0) continue; // below the horizon: weight 0
-        vec3 h = t * hl.x + b * hl.y + n * hl.z, l = t * ll.x + b * ll.y + n * ll.z;
-        vec3 w = envmap_schlick(dot(l, h), f0, f90) * (ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha) / g1v);
+        vec3 l = t * ll.x + b * ll.y + n * ll.z;
+        // F(v·h) G1(l)/G1(v)·G1(v): G1(v) divides out (a visible normal has v·h > 0), and l·h = v·h
+        vec3 w = envmap_schlick(vdh, f0, f90) * envmap_smith_g1(ll.z, alpha);
         float pdf = g1v * ggx_D(hl.z, alpha) / (4.0 * vl.z);
         float sub_alpha = min(1.0, spread * inversesqrt(max(pdf, 1e-20)));
         sum += w * envmap_above(l, s.geometric_normal) *
