@@ -59,7 +59,7 @@ chart() {
   cmd="set datafile separator ','; set output '$1';
   set title \"envmap first frame vs Cycles (unoccluded): worst $2 at alpha >= 0.2, forest/courtyard/city\nlabels: the noise of the method's frames (the noisiest sphere; the spread of 16 samples of a still)\";
   set xlabel 'forward pass / dominant''s (ibl_spheres 1280x720, llvmpipe)'; set ylabel 'worst $2';
-  set key bottom right box opaque; set grid; set yrange [0:*]; set offsets 0, 0, graph 0.08, 0; set xrange [0:17]; plot "
+  set key bottom right box opaque; set grid; set yrange [0:*]; set offsets 0, graph 0.3, graph 0.08, 0; set xrange [0:*]; plot "
   [ -n "$5" ] && cmd+="$5 with lines dt 2 lc rgb 'red' title 'target $5',"
   cmd+=" '$tmp/quiet.csv' using 2:$3 with points pt 7 ps 1.5 lc rgb 'blue' title 'all three maps',"
   [ -s "$tmp/noisy.csv" ] && cmd+=" '$tmp/noisy.csv' using 2:$3 with points pt 7 ps 1.5 lc rgb 'blue' notitle, $(gp_noisy "$tmp/noisy.csv" 2 "$3" | sed "s/ title '.*'$/ title 'noisy (its frames scatter visibly)'/"),"
