@@ -82,7 +82,7 @@ float ggx_disk_squeeze(vec3 l, vec3 v, vec3 h, float light, float a2, inout vec3
 }
 // Whether this evaluation convolves D with a disk (ggx_D_disk, ggx_layers.glsl's ggx_aniso_D_disk):
 // under a light's disk, its area and the pixel's footprint together. Uniform per light.
-bool ggx_D_filtered() { return sl_light_spread > 0.0; }
+bool ggx_D_disk_filtered() { return sl_light_spread > 0.0; }
 // For a light of the light loop without a disk (a point or spot light), D over the pixel's
 // footprint alone: ggx_slope_disk(tan²θ_h, footprint, α²)/cos⁴θ_h (ggx_D_disk without a light's
 // disk to squeeze), with both brought over u = cos²θ_h, X = u(α² − s²) + 1 − u and
@@ -185,7 +185,7 @@ float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     alpha = max(alpha, GGX_MIN_ALPHA);
     float D; // a light of the light loop (uniform per light): its disk and the pixel's footprint
-    if (ggx_D_filtered()) D = ggx_D_disk(n, h, l, v, alpha);
+    if (ggx_D_disk_filtered()) D = ggx_D_disk(n, h, l, v, alpha);
     else if (ggx_D_footprint_filtered()) D = ggx_D_footprint(dot(n, h), alpha);
     else D = ggx_D(dot(n, h), alpha);
 #ifdef GGX_G1_HALF_VECTOR

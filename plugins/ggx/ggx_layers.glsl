@@ -304,12 +304,6 @@ float ggx_aniso_D_disk(vec3 n, vec3 t, vec3 b, vec3 h, vec3 l, vec3 v, vec2 a) {
     vec2 q = vec2(dot(m, t), dot(m, b)) / a;
     return k * ggx_slope_disk(dot(q, q), s2 / ab, 1.0) / (ab * c2 * c2);
 }
-// The same over the pixel's footprint alone (ggx_D_footprint: a light without a disk).
-float ggx_aniso_D_footprint(vec3 n, vec3 t, vec3 b, vec3 h, vec2 a) {
-    float c = max(dot(h, n), 1e-4), c2 = c * c, ab = a.x * a.y;
-    vec2 q = vec2(dot(h, t), dot(h, b)) / (c * a);
-    return ggx_slope_disk(dot(q, q), sl_normal_footprint / ab, 1.0) / (ab * c2 * c2);
-}
 // D·G/(4|n·l||n·v|) of the anisotropic lobe, written as ggx_DG_over_4 with the divisions cancelled:
 // G₁(x) = 2c/(c + √(c² + α_t²(x·t)² + α_b²(x·b)²)), c = n·x. 0 below either horizon.
 float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out vec3 h) {
@@ -319,8 +313,8 @@ float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out ve
     h = len2 > 1e-16 ? hv * inversesqrt(len2) : n;
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     float D; // as ggx_DG_over_4
-    if (ggx_D_filtered()) D = ggx_aniso_D_disk(n, t, b, h, l, v, a);
-    else if (ggx_D_footprint_filtered()) D = ggx_aniso_D_footprint(n, t, b, h, a);
+    // a light without a disk squeezes nothing: the footprint alone (ggx_D_footprint's case)
+    if (ggx_D_disk_filtered() || ggx_D_footprint_filtered()) D = ggx_aniso_D_disk(n, t, b, h, l, v, a);
     else D = ggx_aniso_D(n, t, b, h, a);
     float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
     vec2 pl = a * vec2(dot(l, t), dot(l, b)), pv = a * vec2(dot(v, t), dot(v, b));
