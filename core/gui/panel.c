@@ -12,7 +12,7 @@
 #include <string.h>
 
 typedef struct text_field { char id[300]; char buf[1024]; } text_field;
-typedef struct pass_avg { char name[64]; double ms; } pass_avg;
+typedef struct pass_avg { char name[64]; double ms; bool timed; } pass_avg; /* timed: ms holds a measurement */
 
 struct sl_panel {
     sl_app *app;
@@ -330,12 +330,15 @@ static void section_timing(sl_panel *p, double dt) {
     if (dt > 1e-4) p->interval_avg = p->interval_avg > 0 ? 0.9 * p->interval_avg + 0.1 * dt : dt;
     sl_ui_text("%s  %dx%d  %.1f fps", app->backend.name, app->backend.width, app->backend.height,
                p->interval_avg > 0 ? 1.0 / p->interval_avg : 0.0);
+    /* the long lines wrap at the panel's edge rather than run out of it */
+    char line[512];
     const char *budget = sl_budget_status(app);
-    if (*budget) sl_ui_text("budget %s", budget);
+    if (*budget) snprintf(line, sizeof line, "budget %s", budget), sl_ui_text_wrapped(line);
     if (!st) return;
     bool timed = st->timing_mode && strcmp(st->timing_mode, "off");
-    sl_ui_text("frame %.2f ms (CPU), %d draw calls, %ld triangles, %d programs", st->frame_ms, st->draw_calls,
-               st->triangles, st->program_count);
+    snprintf(line, sizeof line, "frame %.2f ms (CPU), %d draw calls, %ld triangles, %d programs", st->frame_ms,
+             st->draw_calls, st->triangles, st->program_count);
+    sl_ui_text_wrapped(line);
     sl_ui_text_disabled("pass times: %s%s", st->timing_mode ? st->timing_mode : "?",
                         st->timing_mode && !strcmp(st->timing_mode, "glfinish") ? " (CPU rasteriser: honest, serialising)" : "");
     if (!sl_ui_begin_table("passes", 3)) return;
@@ -349,17 +352,18 @@ static void section_timing(sl_panel *p, double dt) {
         if (!a && p->avg_count < 64) {
             a = &p->avg[p->avg_count++];
             snprintf(a->name, sizeof a->name, "%s", ps->name);
-            a->ms = ps->ms;
         }
-        if (a && ps->ran && timed) a->ms = 0.7 * a->ms + 0.3 * ps->ms;
+        /* the average starts at the first timed frame (frames between timed ones report 0) */
+        if (a && ps->ran && timed) a->ms = a->timed ? 0.7 * a->ms + 0.3 * ps->ms : ps->ms, a->timed = true;
         sl_ui_table_next_row();
         sl_ui_table_next_column();
         sl_ui_text("%s", ps->name);
         sl_ui_table_next_column();
         sl_ui_text("%s", ps->owner ? ps->owner : "core");
         sl_ui_table_next_column();
-        if (ps->ran) sl_ui_text("%8.3f", a ? a->ms : ps->ms);
-        else sl_ui_text_disabled("skipped");
+        if (!ps->ran) sl_ui_text_disabled("skipped");
+        else if (a ? a->timed : timed) sl_ui_text("%8.3f", a ? a->ms : ps->ms);
+        else sl_ui_text_disabled("ran"); /* not timed yet: one frame in ten is */
     }
     sl_ui_end_table();
 }
