@@ -173,9 +173,11 @@ static void recompose(sl_app *app) {
 
 static void refresh(sl_app *app) {
     sl_renderer *r = R(app);
-    /* a plugin owning lights switched on or off: its lights with it (plugin_lights.h) */
+    /* a plugin owning lights switched on or off: its lights with it (plugin_lights.h). Not on the
+     * first frame, which packs every light anyway: a version moved there would read as motion to
+     * the frame-time budget, which samples the versions before this */
     uint64_t owners = sl_plugin_lights_owners_on(app);
-    if (owners != r->seen_light_owners) app->lights_version++;
+    if (owners != r->seen_light_owners && r->frames_run) app->lights_version++;
     r->seen_light_owners = owners;
     bool compose = sl_renderer_compose_pending(app); /* before the lights' version is marked seen */
     bool lights_changed = r->seen_lights_version != app->lights_version;
