@@ -92,9 +92,9 @@ sl_add_test(still_stop SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_still_stop.c)
 sl_add_test(frustum_cull SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_frustum_cull.c)
 # The frame-time budget's controller on synthetic cost models (no GL, no timing).
 sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT ${SL_HANG_GUARD})
-# ... and with a real scene: the window opens as a still, even where a plugin's own light (envmap's
-# sky sun) comes on as the first frame begins.
-sl_add_test(budget_opening SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget_opening.c)
+# ... and in a real scene: the window opens as a still, even where a plugin's own light (envmap's
+# sky sun) comes on as the first frame begins, and an edit switching that light is one motion frame.
+sl_add_test(budget_motion SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget_motion.c)
 
 # 100 000 overlapping blended quads under TAA: the still completes, each cell's colour is the
 # closed form of its layers.

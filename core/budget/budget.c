@@ -2,6 +2,7 @@
 #include "budget/budget.h"
 #include "budget/controller.h"
 #include "log.h"
+#include "render/composer.h"
 #include "state.h"
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +31,7 @@ typedef struct sl_budget_state {
     double last_start_ms;                  /* when the previous frame began (0: none yet) */
     int last_choice[SL_BUDGET_MAX_KNOBS];
     bool skip_observation;                 /* the previous frame changed settings (re-plan, compiles) */
+    unsigned long seen_builds;             /* sl_program_builds() when the previous frame began */
     unsigned long long seen_camera;
     uint64_t seen_lights, seen_materials, seen_params;
     double seen_time;
@@ -212,11 +214,16 @@ void sl_budget_before_frame(sl_app *app) {
     s = state_of(app);
     if (!s->built || knobs_key(app, s) != s->knobs_key) build_knobs(app, s);
     double t = now_ms();
+    /* programs built during the last frame (an edit that recompiles, a first use) */
+    unsigned long builds = sl_program_builds();
+    bool compiled = builds != s->seen_builds;
+    s->seen_builds = builds;
     if (s->last_start_ms > 0) {
         s->last_ms = t - s->last_start_ms;
-        /* the frame after a change re-plans targets and may compile: not what the settings cost
-         * (the controller itself leaves out frames rendered still) */
-        if (!s->skip_observation && s->last_ms < 10000) sl_budget_observe(&s->ctl, s->last_choice, s->last_ms);
+        /* the frame after a change re-plans targets and may compile, and a frame that compiled
+         * paid for that: not what the settings cost (the controller itself leaves out frames
+         * rendered still) */
+        if (!s->skip_observation && !compiled && s->last_ms < 10000) sl_budget_observe(&s->ctl, s->last_choice, s->last_ms);
     }
     /* the opening frame (or the first after the budget was switched on) is no motion: it
      * compiles programs and fills caches, and taken for motion it would open the window at the

@@ -254,7 +254,11 @@ static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size
 
 static void free_uniforms(sl_program *p);
 
+static unsigned long builds;
+unsigned long sl_program_builds(void) { return builds; }
+
 bool sl_program_build(sl_program *p, char *err, size_t n) {
+    builds++;
     char log[8192] = "";
     int err_owner = 0;
     double cpu0 = sl_startup_thread_cpu_ms(), wall0 = sl_startup_wall_ms();
