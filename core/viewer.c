@@ -171,6 +171,8 @@ typedef struct viewer {
     char errors[8192];       /* condensed for the screen */
     int frames_rendered;     /* frames rendered so far (a status line needs a previous image) */
     int status_frames;       /* frames shown with the "compiling" status before recompiling */
+    int events;              /* input events since the loop last looked (the callbacks count them) */
+    bool resting;            /* at rest: waiting for events instead of drawing (main loop) */
 } viewer;
 
 /* The errors in the captured log, condensed for the screen: a failing chunk breaks every
@@ -241,12 +243,14 @@ static void handle_key(viewer *v, int key, int mods) {
 
 static void on_key(GLFWwindow *w, int key, int sc, int action, int mods) {
     viewer *v = glfwGetWindowUserPointer(w);
+    v->events++;
     if (action != GLFW_PRESS || (v->gui && sl_gui_wants_keyboard())) return;
     handle_key(v, key, mods);
 }
 
 static void on_cursor(GLFWwindow *w, double x, double y) {
     viewer *v = glfwGetWindowUserPointer(w);
+    v->events++;
     double dx = x - v->last_x, dy = y - v->last_y;
     v->last_x = x;
     v->last_y = y;
@@ -256,6 +260,7 @@ static void on_cursor(GLFWwindow *w, double x, double y) {
 
 static void on_button(GLFWwindow *w, int button, int action, int mods) {
     viewer *v = glfwGetWindowUserPointer(w);
+    v->events++;
     if (button >= 3) return;
     if (action == GLFW_PRESS && v->gui && sl_gui_wants_mouse()) return; /* a click on the panel */
     v->dragging[button] = action == GLFW_PRESS;
@@ -263,9 +268,15 @@ static void on_button(GLFWwindow *w, int button, int action, int mods) {
 
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
     viewer *v = glfwGetWindowUserPointer(w);
+    v->events++;
     if (v->gui && sl_gui_wants_mouse()) return;
     sl_camera_zoom(&v->app->camera, powf(0.9f, (float)dy));
 }
+
+/* The window needs drawing again: uncovered, resized or refocused (a waiting loop wakes). */
+static void on_refresh(GLFWwindow *w) { ((viewer *)glfwGetWindowUserPointer(w))->events++; }
+static void on_size(GLFWwindow *w, int width, int height) { on_refresh(w); }
+static void on_focus(GLFWwindow *w, int focused) { on_refresh(w); }
 
 static bool file_exists(const char *p) {
     struct stat st;
@@ -318,6 +329,9 @@ static void grab_window(viewer *v, const char *path) {
 /* ------------------------------------------------------------------ script hook --------- */
 
 typedef struct script { char *text; char *cursor; int wait; char grab[1024]; double waiting_since; } script;
+
+/* The script has nothing to do this iteration but wait (or there is none, or it has ended). */
+static bool script_idle(const script *s) { return !s->text || s->wait > 0 || !s->cursor || !*s->cursor; }
 
 /* Runs the script's next command (one per frame, before the frame is rendered). */
 static void script_step(viewer *v, script *s) {
@@ -390,6 +404,9 @@ int sl_viewer_run(sl_app *app, double start_time) {
     glfwSetCursorPosCallback(w, on_cursor);
     glfwSetMouseButtonCallback(w, on_button);
     glfwSetScrollCallback(w, on_scroll);
+    glfwSetWindowRefreshCallback(w, on_refresh);
+    glfwSetFramebufferSizeCallback(w, on_size);
+    glfwSetWindowFocusCallback(w, on_focus);
 
     int nk = app->plugins.key_count;
     v->bindings = calloc(nk + 1, sizeof *v->bindings);
@@ -431,8 +448,19 @@ int sl_viewer_run(sl_app *app, double start_time) {
     if (st && *st) sc.cursor = sc.text = strdup(st);
 
     double t0 = glfwGetTime(), last_poll = t0, last = t0;
+    int turns = 0;
     while (!glfwWindowShouldClose(w) && !v->quit) {
-        glfwPollEvents();
+        turns++;
+        /* At rest (the still complete, nothing playing, the budget settled, the script only
+         * waiting) the same image would be drawn again: wait for an event, or for the half-second
+         * poll of the files, instead of keeping both cores busy. */
+        bool rest = v->frames_rendered && script_idle(&sc) && sl_budget_settled(app) && sl_renderer_at_rest(app);
+        bool entering = rest && !v->resting; /* one more frame, its panel saying so */
+        if (entering) SL_DEBUG("viewer: at rest after %d frames: waiting for events", v->frames_rendered);
+        v->resting = rest;
+        v->events = 0;
+        if (rest && !entering) glfwWaitEventsTimeout(0.5);
+        else glfwPollEvents();
         script_step(v, &sc);
         if (v->quit) break;
         double t = glfwGetTime(), dt = t - last;
@@ -449,6 +477,8 @@ int sl_viewer_run(sl_app *app, double start_time) {
         if (fw > 0 && fh > 0) sl_app_resize(app, fw, fh);
         if (v->reload) { do_reload(v, true); v->reload = false; }
         if (t - last_poll > 0.5) { do_reload(v, false); last_poll = t; }
+        if (rest && !entering && !v->events && !v->reload && !v->screenshot && !sl_renderer_compose_pending(app)) continue;
+        if (rest && v->panel) sl_panel_set_status(v->panel, "at rest: the still is complete; drawn again on input");
 
         /* widgets first: their changes apply to this frame (a frame boundary) */
         sl_panel_actions act = {.trigger_binding = -1};
@@ -492,6 +522,7 @@ int sl_viewer_run(sl_app *app, double start_time) {
         }
         sl_backend_swap(&app->backend);
     }
+    SL_DEBUG("viewer: drew %d frames in %d turns of the loop", v->frames_rendered, turns);
     if (v->gui) sl_gui_shutdown();
     sl_panel_destroy(v->panel);
     free(v->bindings);

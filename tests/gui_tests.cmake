@@ -38,6 +38,11 @@ target_link_libraries(sl-xkey PRIVATE ${CMAKE_DL_LIBS})
 add_test(NAME gui_budget COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_budget.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff>)
 set_tests_properties(gui_budget PROPERTIES LABELS "gui" TIMEOUT ${SL_HANG_GUARD} SKIP_RETURN_CODE 77 ENVIRONMENT "${SL_TEST_ENV}")
 
+# The window at rest: once the still is complete it waits for events; an animated scene keeps drawing.
+add_test(NAME gui_rest COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_rest.sh $<TARGET_FILE:shadelab>
+                               ${PROJECT_SOURCE_DIR}/scenes/shadow_many_spots.json)
+set_tests_properties(gui_rest PROPERTIES LABELS "gui" TIMEOUT ${SL_HANG_GUARD} SKIP_RETURN_CODE 77 ENVIRONMENT "${SL_TEST_ENV}")
+
 # A glTF skin and morph-target animation plays in the window as under --time (Xvfb; 77 = skipped).
 add_test(NAME gui_gltf_animation COMMAND ${CMAKE_CURRENT_LIST_DIR}/gui_gltf_animation.sh $<TARGET_FILE:shadelab> $<TARGET_FILE:sl-imgdiff>)
 set_tests_properties(gui_gltf_animation PROPERTIES LABELS "gui;gltf" TIMEOUT ${SL_HANG_GUARD} SKIP_RETURN_CODE 77 ENVIRONMENT "${SL_TEST_ENV}")

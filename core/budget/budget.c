@@ -3,6 +3,7 @@
 #include "budget/controller.h"
 #include "log.h"
 #include "render/composer.h"
+#include "render/renderer.h"
 #include "state.h"
 #include <math.h>
 #include <stdio.h>
@@ -163,23 +164,13 @@ static void apply(sl_app *app, const sl_budget_knob *k, int setting) {
     if (q && sl_param_parse(q, k->value[setting], &v, err, sizeof err)) sl_params_set_value(&app->params, q, v, q->source);
 }
 
-/* The scene plays by itself: animated lights or node animations (glTF) follow the clock. */
-static bool scene_animates(const sl_app *app) {
-    if (app->scene.anim_channel_count) return true;
-    for (int i = 0; i < app->scene.light_count; i++) {
-        const sl_light *L = &app->scene.lights[i];
-        if (L->enabled && L->animate != SL_ANIMATE_NONE && L->animate_speed != 0) return true;
-    }
-    return false;
-}
-
 /* Anything the image depends on moved since the last frame: the camera, lights, materials or a
  * parameter (not counting the budget's own settings, applied after this is read), or the clock
  * of a scene that animates. */
 static bool moved(sl_app *app, sl_budget_state *s) {
     bool m = app->camera.version != s->seen_camera || app->lights_version != s->seen_lights ||
              app->materials_version != s->seen_materials || app->params.version != s->seen_params ||
-             (app->time != s->seen_time && scene_animates(app));
+             (app->time != s->seen_time && sl_renderer_scene_animates(app));
     s->seen_camera = app->camera.version, s->seen_lights = app->lights_version;
     s->seen_materials = app->materials_version, s->seen_time = app->time;
     return m;
@@ -252,6 +243,11 @@ void sl_budget_settle(sl_app *app) {
     apply_lod(app, s, true);
     s->skip_observation = true;
     s->seen_params = app->params.version;
+}
+
+bool sl_budget_settled(sl_app *app) {
+    sl_budget_state *s = app->budget;
+    return !s || !s->built || s->ctl.still >= SL_BUDGET_STILL_FRAMES;
 }
 
 const char *sl_budget_status(sl_app *app) {

@@ -18,6 +18,8 @@ sl_status sl_budget_add_model(struct sl_app *app, int owner, const sl_quality_mo
 void sl_budget_before_frame(struct sl_app *app);
 /* Every knob to its best now (a screenshot: the still the window settles on). */
 void sl_budget_settle(struct sl_app *app);
+/* The budget is off or has set every knob to its best for a still ("still: best settings"). */
+bool sl_budget_settled(struct sl_app *app);
 /* What the budget does, one line for the panel ("66 ms: scale 0.5, spotlight-shadow.pcf_size=3;
  * last frame 58 ms (predicted 61)"); "" when off. */
 const char *sl_budget_status(struct sl_app *app);

@@ -341,6 +341,14 @@ int sl_renderer_still_frames(sl_app *app) {
     return r && r->still_frames > 1 ? r->still_frames : 1;
 }
 
+bool sl_renderer_scene_animates(sl_app *app) { return app->scene.anim_channel_count || sl_gpu_lights_animated(app); }
+
+bool sl_renderer_at_rest(sl_app *app) {
+    sl_renderer *r = R(app);
+    return r && r->still_valid && r->still_run + 1 >= sl_renderer_still_frames(app) && !sl_renderer_compose_pending(app) &&
+           !sl_renderer_scene_animates(app) && !sl_renderer_materials_use_uniform(app, "sl_time");
+}
+
 /* A plugin set its own light in begin_frame (host set_light, ABI 1.22): this frame is lit by the
  * new state. The frame's versions stay as the plugins saw them in begin_frame (what moved the
  * light, an edit, changed them already; a version that moved now would look like motion to a

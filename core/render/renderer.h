@@ -86,6 +86,13 @@ void sl_renderer_set_texture_lod_bias(struct sl_app *app, float bias); /* this f
 /* The largest frame count a still image needs that a plugin asked for during the last frame
  * (host set_still_frames; TAA's history), at least 1. */
 int sl_renderer_still_frames(struct sl_app *app);
+/* The scene plays by itself: glTF node animations or animated lights follow the clock. */
+bool sl_renderer_scene_animates(struct sl_app *app);
+/* The view is at rest: the still is complete (the frames since the view or an edit last changed
+ * cover every frame a plugin's still asked for: TAA's history), nothing plays by itself (the
+ * above, or a material reading sl_time) and no recompile is pending, so the next frame would
+ * show the same image. The window then waits for an event instead of drawing it again. */
+bool sl_renderer_at_rest(struct sl_app *app);
 /* For measurements (shadelab-bench's noise): the next frame is a fresh start (as after an edit:
  * temporal methods restart their history) rendered as sample `index` of `count`
  * (sl_frame.sample_index/count), with no accumulation. One frame only. */
