@@ -452,9 +452,11 @@ int sl_viewer_run(sl_app *app, double start_time) {
     while (!glfwWindowShouldClose(w) && !v->quit) {
         turns++;
         /* At rest (the still complete, nothing playing, the budget settled, the script only
-         * waiting) the same image would be drawn again: wait for an event, or for the half-second
-         * poll of the files, instead of keeping both cores busy. */
-        bool rest = v->frames_rendered && script_idle(&sc) && sl_budget_settled(app) && sl_renderer_at_rest(app);
+         * waiting, the panel not in use: its hover, tooltips and text cursor want frames) the same
+         * image would be drawn again: wait for an event, or for the half-second poll of the
+         * files, instead of keeping both cores busy. */
+        bool rest = v->frames_rendered && script_idle(&sc) && sl_budget_settled(app) && sl_renderer_at_rest(app) &&
+                    !(v->gui && (sl_gui_wants_mouse() || sl_gui_wants_keyboard()));
         bool entering = rest && !v->resting; /* one more frame, its panel saying so */
         if (entering) SL_DEBUG("viewer: at rest after %d frames: waiting for events", v->frames_rendered);
         v->resting = rest;
