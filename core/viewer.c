@@ -458,6 +458,7 @@ int sl_viewer_run(sl_app *app, double start_time) {
         bool rest = v->frames_rendered && script_idle(&sc) && sl_budget_settled(app) && sl_renderer_at_rest(app) &&
                     !(v->gui && (sl_gui_wants_mouse() || sl_gui_wants_keyboard()));
         bool entering = rest && !v->resting; /* one more frame, its panel saying so */
+        bool idle_before = v->resting;       /* the time since the last turn was waiting, not drawing */
         if (entering) SL_DEBUG("viewer: at rest after %d frames: waiting for events", v->frames_rendered);
         v->resting = rest;
         v->events = 0;
@@ -486,7 +487,7 @@ int sl_viewer_run(sl_app *app, double start_time) {
         sl_panel_actions act = {.trigger_binding = -1};
         if (v->gui) {
             sl_gui_new_frame();
-            sl_panel_draw(v->panel, dt, &act);
+            sl_panel_draw(v->panel, rest || idle_before ? 0.0 : dt, &act); /* 0: no frame rate from a wait */
         }
         if (act.trigger_binding >= 0) sl_viewer_trigger_binding(app, &v->bindings[act.trigger_binding]);
         if (act.reload_shaders) do_reload(v, true);
