@@ -32,7 +32,7 @@ XC=$BUILD/shadelab-xcheck
 [ -x "$XC" ] || { echo "xcheck-table: no $XC (build first, or pass the build dir)" >&2; exit 1; }
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
-WORK=${KEEP:-$TMP/rows}
+WORK=${KEEP:-$TMP/work} # the rows list is $TMP/rows
 mkdir -p "$WORK" || exit 1
 cd "$ROOT" || exit 1
 data_args=()
