@@ -15,6 +15,8 @@
 #include "envmap/io.h"
 #include "envmap/prefilter.h"
 #include "reflections.h"
+#include "lobe_fit.h"
+#include "lobe_fit_table.h"
 #include <errno.h>
 #include <stddef.h>
 #include <math.h>
@@ -30,7 +32,7 @@
 #define CONSTANT_CUBE 8 /* a constant environment prefilters to itself: no need for a big cube */
 
 static const char *const modes[] = {"split-sum", "reference", NULL};
-static const char *const speculars[] = {"mirror", "dominant", "fis", "hybrid", "filtered", NULL};
+static const char *const speculars[] = {"mirror", "dominant", "fis", "hybrid", "filtered", "fitted", NULL};
 static const char *const irradiance_methods[] = {"sh", "convolved", NULL};
 static const char *const level_maps[] = {"sqrt", "log", NULL}; /* em_level_map's order */
 static const char *const reflection_methods[] = {"sky", "screen", NULL};
@@ -44,17 +46,17 @@ static const sl_param_desc params[] = {
     P(.id = "mode", .type = SL_PARAM_ENUM, .enum_values = modes, .flags = SL_PARAM_NEEDS_RECOMPILE, .group = "lighting",
       .description = "split-sum: prefiltered image-based lighting (envmap.specular says how); reference: Monte Carlo "
                      "integration of the source with the exact BRDF (accumulate frames)."),
-    P(.id = "specular", .type = SL_PARAM_ENUM, .enum_values = speculars, .default_value = {.i = 1},
+    P(.id = "specular", .type = SL_PARAM_ENUM, .enum_values = speculars, .default_value = {.i = 5},
       .flags = SL_PARAM_NEEDS_RECOMPILE | SL_PARAM_QUALITY_KNOB, .group = "lighting",
       .description = "ggx's environment specular in split-sum mode: mirror: the prefiltered chain along the mirror "
-                     "direction (Karis 2013); dominant (default: deterministic, no noise, the first-frame chart's "
-                     "choice, bench/first.csv): along GGX's dominant, off-specular direction (Lagarde & de Rousiers "
-                     "2014); fis: filtered importance sampling, fis_samples GGX visible-normal samples per pixel "
-                     "from the base cube's mips (Krivanek & Colbert 2007), Monte Carlo, times the environment BRDF; "
-                     "hybrid: fis below hybrid_alpha, dominant above, its sequence continuing over a TAA still's "
-                     "frames (a still converges, its frames are noisy); filtered: deterministic fis with one "
-                     "sample set for every pixel reading the prefiltered chain, turned from frame to frame of a "
-                     "still."),
+                     "direction (Karis 2013); dominant: along GGX's dominant, off-specular direction (Lagarde & de "
+                     "Rousiers 2014), one lookup; fis: filtered importance sampling, fis_samples GGX visible-normal "
+                     "samples per pixel from the base cube's mips (Krivanek & Colbert 2007), Monte Carlo, times the "
+                     "environment BRDF; hybrid: fis below hybrid_alpha, dominant above, its sequence continuing over "
+                     "a TAA still's frames (a still converges, its frames are noisy); filtered: deterministic fis "
+                     "with one sample set for every pixel reading the prefiltered chain, turned from frame to frame "
+                     "of a still; fitted (default: deterministic, no noise, the first-frame chart's choice): three "
+                     "lookups of the chain fitted to GGX's real lobe per (n.v, alpha), along the plane of incidence."),
     P(.id = "fis_samples", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 1, .max = 32, .group = "lighting",
       .flags = SL_PARAM_QUALITY_KNOB,
       .description = "Samples per pixel of specular=fis and hybrid (1, 2, 4, 8, 16, 32: error falls with cost; the "
@@ -164,6 +166,7 @@ typedef struct envmap {
     int unit_2d, unit_cube, unit_spec, unit_irr, unit_lut, unit_base; /* unit_cube = unit_2d + 1 (em_gpu) */
     int unit_dist, unit_marginal; /* the reference's environment distribution */
     int unit_spec_blinn;          /* the Blinn-Phong lobes' chain */
+    int unit_lobes;               /* specular=fitted's table */
     em_gpu gpu;
     sl_program *progs[6];
     /* [source kind]: 0 a lat-long, 1 a cube (ENVMAP_SOURCE_CUBE), 2 the procedural sky evaluated
@@ -193,6 +196,7 @@ typedef struct envmap {
     float clear[3], scale, scene_yaw;
     /* derived, each with the key it was built for */
     unsigned base, spec, irr, lut;
+    unsigned lobe_table; /* specular=fitted's lobes (lobe_fit_table.h), made where a program reads them */
     int base_size, spec_levels, lut_size;
     uint64_t base_key, spec_key, irr_key, sh_key;
     bool spec_from_chain;
@@ -789,6 +793,24 @@ static void ensure_lut(envmap *e) {
     e->lut_size = size;
 }
 
+/* specular=fitted's table as a 2D array texture, (θ_v, α) with two layers: (t0, a0, w0, t1) and
+ * (a1, w1, t2, a2), read bilinearly (envmap_fitted_specular) */
+static void ensure_lobe_table(envmap *e) {
+    if (e->lobe_table) return;
+    enum { T = EM_LOBE_THETAS, A = EM_LOBE_ALPHAS };
+    static float texels[2][A][T][4];
+    for (int a = 0; a < A; a++)
+        for (int t = 0; t < T; t++)
+            for (int k = 0; k < 8; k++) texels[k / 4][a][t][k % 4] = em_lobe_table[a][t][k];
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &e->lobe_table);
+    glTextureStorage3D(e->lobe_table, 1, GL_RGBA32F, T, A, 2);
+    glTextureSubImage3D(e->lobe_table, 0, 0, 0, 0, T, A, 2, GL_RGBA, GL_FLOAT, texels);
+    glTextureParameteri(e->lobe_table, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(e->lobe_table, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(e->lobe_table, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(e->lobe_table, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
 /* ---------------------------------------------------------------- per frame */
 
 static bool host_scene_uses(envmap *e, const char *uniform) {
@@ -941,6 +963,7 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
     int l_base = glGetUniformLocation(prog, "envmap_base"); /* specular=fis reads the base cube's mips */
     int l_dist = glGetUniformLocation(prog, "envmap_dist"); /* the reference's environment sampling */
     int l_blinn = glGetUniformLocation(prog, "envmap_spec_blinn"); /* a material with Blinn-Phong lobes */
+    int l_lobes = glGetUniformLocation(prog, "envmap_lobe_table"); /* specular=fitted */
     /* compute what this program reads, the first time it is needed (a mirror-only scene never
      * prefilters); the forward pass is mid-flight, so GL state is saved and restored */
     bool need_spec = l_spec >= 0 && !e->spec_from_chain, need_lut = l_lut >= 0;
@@ -982,6 +1005,11 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
         glUniform1f(glGetUniformLocation(prog, "envmap_base_size"), (float)(e->base ? e->base_size : 1));
     }
     if (l_sh >= 0) glUniform3fv(l_sh, 9, &e->sh[0][0]);
+    if (l_lobes >= 0) {
+        ensure_lobe_table(e);
+        glBindTextureUnit(e->unit_lobes, e->lobe_table);
+        glUniform1i(l_lobes, e->unit_lobes);
+    }
     bind_sun_disk(e, prog, f);
     em_reflections_bind(&e->refl, prog);
     glUniform1f(glGetUniformLocation(prog, "envmap_spec_lod_max"), (float)(e->spec_levels > 0 ? e->spec_levels - 1 : 0));
@@ -1117,13 +1145,13 @@ static sl_status envmap_create(const sl_host *host, void **user) {
         if (host->add_param(host, &params[i]) != SL_OK) return SL_ERR_FAILED;
     e->sun_handle = add_sun_light(host);
     /* specular for the window's frame-time budget (ext/budget.h, docs/budget.md): dominant (one
-     * lookup) while the view moves, the configured setting when it is still. bench/budget.sh:
-     * the built-in scene's whole frame at 1280x720 relative to filtered's, RMSE of one frame
-     * against the reference at 320x180 (bench/budget.csv) */
-    static const char *const budget_speculars[] = {"dominant", "filtered"};
-    static const float budget_cost[] = {0.14f, 1}, budget_error[] = {0.0066f, 0.0039f};
+     * lookup) while the view moves when the frame does not fit, the configured setting when it is
+     * still. bench/budget.sh: the built-in scene's whole frame at 1280x720 relative to filtered's,
+     * RMSE of one frame against the reference at 320x180 (bench/budget.csv) */
+    static const char *const budget_speculars[] = {"dominant", "fitted", "filtered"};
+    static const float budget_cost[] = {0.158f, 0.218f, 1}, budget_error[] = {0.0066f, 0.0045f, 0.0039f};
     const sl_ext_budget *budget = host->get_extension(host, SL_EXT_BUDGET);
-    const sl_quality_model spec = {.struct_size = sizeof spec, .param = "specular", .count = 2,
+    const sl_quality_model spec = {.struct_size = sizeof spec, .param = "specular", .count = 3,
                                    .values = budget_speculars, .cost = budget_cost, .error = budget_error,
                                    .measured_with = "envmap bench/budget.sh, bench/budget.csv (built-in scene)"};
     if (budget && budget->add_quality_model(host, &spec) != SL_OK) return SL_ERR_FAILED;
@@ -1166,11 +1194,12 @@ static sl_status envmap_create(const sl_host *host, void **user) {
                        "combined with environment importance sampling by MIS), 64 frames x 64 samples per pixel."};
     host->set_reference(host, &ref);
     host->set_bind_callback(host, envmap_bind, e);
-    int units[9];
-    for (int i = 0; i < 9; i++)
+    int units[10];
+    for (int i = 0; i < 10; i++)
         if ((units[i] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     e->unit_2d = units[0], e->unit_cube = units[1], e->unit_spec = units[2], e->unit_irr = units[3], e->unit_lut = units[4];
     e->unit_base = units[5], e->unit_dist = units[6], e->unit_marginal = units[7], e->unit_spec_blinn = units[8];
+    e->unit_lobes = units[9];
     if (e->unit_cube != e->unit_2d + 1) return SL_ERR_FAILED;
     snprintf(e->glsl_dir, sizeof e->glsl_dir, "%s", host->resource_dir(host));
     return SL_OK;
@@ -1239,6 +1268,7 @@ static void envmap_deactivate(void *user) {
     em_reflections_free(&e->refl);
     delete_tex(&e->src_tex);
     delete_tex(&e->lut);
+    delete_tex(&e->lobe_table);
     delete_tex(&e->dummy_2d);
     delete_tex(&e->dummy_cube);
     if (e->empty_vao) glDeleteVertexArrays(1, &e->empty_vao);

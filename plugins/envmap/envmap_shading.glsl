@@ -94,7 +94,8 @@ vec3 envmap_dominant_dir(vec3 n, vec3 r, float alpha) {
     return normalize(mix(n, r, s * (sqrt(s) + alpha)));
 }
 vec3 envmap_lookup_dir(vec3 n, vec3 r, float alpha) {
-#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_DOMINANT || ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_DOMINANT || ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED || \
+    ENVMAP_SPECULAR == ENVMAP_SPECULAR_FITTED
     return envmap_dominant_dir(n, r, alpha);
 #else
     return r;
@@ -337,6 +338,37 @@ vec3 envmap_filtered_specular(SlSurface s, float alpha, vec3 f0, vec3 f90, vec3 
 }
 #endif
 
+#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FITTED
+uniform sampler2DArray envmap_lobe_table; // lobe_fit_table.h: (θ_v / 5°, (α − 0.1) / 0.1), 2 layers
+// specular=fitted: GGX's real lobe at (n·v, α) as three lobes of the prefiltered chain, laid along
+// the plane of incidence: tap k reads the chain at roughness a_k along r turned by t_k towards n,
+// weighted w_k (Σ w = 1: the furnace is exact). The real lobe is narrower across the plane than
+// the chain's n = v = r lobe (μ×: l moves 2μ× as far as h across it, 2× along it), leans
+// towards n and is cut by the horizon; the mix is fitted to it in L2 over the sphere, offline,
+// per cell of a (α, θ_v) table (lobe_fit.h, tools/lobe_fit_tool.c: α = 0.1…1 by 0.1, θ_v = 0…85°
+// by 5°), read bilinearly. Below α = 0.1 the α = 0.1 row is shrunk about r by α/0.1 (a narrow
+// GGX lobe keeps its shape as α scales it). Deterministic: a smooth function of (n, v, α).
+vec3 envmap_fitted_specular(vec3 n, vec3 r, float mu, float alpha, vec3 ng) {
+    const vec2 size = vec2(18.0, 10.0); // the table's θ_v and α cells (lobe_fit.h)
+    float shrink = min(alpha * 10.0, 1.0);
+    float fa = clamp((alpha - 0.1) * 10.0, 0.0, size.y - 1.0);
+    float ft = clamp(acos(clamp(mu, 0.0, 1.0)) * (36.0 / ENVMAP_PI), 0.0, size.x - 1.0); // θ_v / 5°
+    vec2 uv = (vec2(ft, fa) + 0.5) / size;
+    vec4 p = texture(envmap_lobe_table, vec3(uv, 0.0)), q = texture(envmap_lobe_table, vec3(uv, 1.0));
+    // e: perpendicular to r, towards n, in the plane of incidence (any at r = n, where every t is 0)
+    vec3 e = n - dot(n, r) * r;
+    float el = length(e);
+    e = el > 1e-7 ? e / el : vec3(0.0);
+    vec3 t = vec3(p.x, p.w, q.z) * shrink, a = vec3(p.y, q.x, q.w) * shrink, w = vec3(p.z, q.y, 1.0 - p.z - q.y);
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 3; k++) {
+        vec3 d = cos(t[k]) * r + sin(t[k]) * e;
+        sum += w[k] * envmap_specular(d, a[k]) * envmap_horizon(d, ng);
+    }
+    return sum;
+}
+#endif
+
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 // specular=hybrid: fis's correction at full weight up to α = hybrid_alpha − 0.25, fading linearly
 // to none at hybrid_alpha (dominant alone above, where its lobe error is below fis's noise:
@@ -397,6 +429,10 @@ vec3 envmap_split_sum(SlSurface s) {
         }
         if (beta > 0.0)
             specular = mix(specular, envmap_filtered_specular(sk, alpha, lobe.f0, lobe.f90, albedo) * (spec / max(albedo, vec3(1e-6))), beta);
+#elif ENVMAP_SPECULAR == ENVMAP_SPECULAR_FITTED
+        vec3 d = envmap_lookup_dir(n, r, alpha);
+        vec3 specular = spec * (sl_lobe_blinn_phong(L, k) ? envmap_specular_blinn(d, alpha, mu) * envmap_horizon(d, s.geometric_normal)
+                                                           : envmap_fitted_specular(n, r, mu, alpha, s.geometric_normal));
 #elif ENVMAP_SPECULAR == ENVMAP_SPECULAR_FIS || ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_HYBRID
         float beta = envmap_hybrid_beta(alpha) * envmap_fis_weight;

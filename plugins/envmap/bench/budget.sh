@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The cost and error model envmap registers for envmap.specular with the window's frame-time
-# budget (docs/budget.md, sdk/include/shadelab/ext/budget.h): settings dominant and filtered.
+# budget (docs/budget.md, sdk/include/shadelab/ext/budget.h): settings dominant, fitted and filtered.
 #   cost   the whole frame of SCENE (default: the built-in scene, as core.render_scale's model) at
 #          1280x720 on OSMesa, `shadelab --headless --bench` (median of 7 frames after 3), the
 #          settings interleaved round by round (the machine is shared: compare within a round);
@@ -19,7 +19,7 @@ rounds=${2:-3}
 scene=${3:-}
 scene_opt=()
 [ -z "$scene" ] || scene_opt=(--scene "$scene")
-settings=(dominant filtered)
+settings=(dominant fitted filtered)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for r in $(seq 1 "$rounds"); do

@@ -54,7 +54,8 @@ xcheck() { # NAME ARGS...: one shadelab setting against the (cached) Cycles imag
     ["eevee-\($n)", (.name | ltrimstr("s")), .rel_rms, .mean_ratio, .flip, ""] | @csv' "$tmp/$name/report.json"
 }
 { echo "method,alpha,rel_rms,mean_ratio,flip,noise"
-  xcheck dominant --eevee 1,16
+  xcheck dominant --set envmap.specular=dominant --eevee 1,16
+  xcheck fitted --set envmap.specular=fitted # the default: three lookups fitted to the lobe
   xcheck mirror --set envmap.specular=mirror
   F=(--set envmap.specular=filtered)
   xcheck filtered "${F[@]}" # its defaults: 48 samples, lod bias 1, deconvolve 3, dominant from alpha 1

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The lobe contract's chart: phong's blinn-gloss and ggx lit by envmap's default specular (the
+# The lobe contract's chart: phong's blinn-gloss and ggx lit by envmap's specular=dominant (the
 # split sum along the dominant direction, built from each model's lobes: a Blinn-Phong lobe read
 # from the Blinn-Phong chain, a GGX lobe from the GGX chain) against envmap's Monte Carlo
 # reference, which integrates each model's own f; error over alpha. The specular lobe alone (base

@@ -49,7 +49,7 @@ table() {
       print "| sphere | method | α = 0.05 | 0.2 | 0.4 | 0.7 | 1.0 |"
       print "|---|---|---|---|---|---|---|"
       nm = split("mirror dominant fis8 fis32 hybrid16 filtered16 fis32-accumulated", m, " ")
-      split("mirror|**dominant** (default)|fis 8|fis 32|hybrid 16, one frame|filtered 16|fis 32 + convolved, accumulated", label, "|")
+      split("mirror|dominant|fis 8|fis 32|hybrid 16, one frame|filtered 16|fis 32 + convolved, accumulated", label, "|")
       na = split("0.05 0.20 0.40 0.70 1.00", a, " ")
       for (s = 1; s <= ns; s++) {
         split(sph[s], p, "|"); name = p[1]; sub(/\.exr$/, "", name); sub(/^sky:0$/, "sky (no sun)", name)

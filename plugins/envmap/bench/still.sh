@@ -54,7 +54,7 @@ table() {
       print "| sphere | method | α = 0.05 | 0.2 | 0.4 | 0.7 | 1.0 |"
       print "|---|---|---|---|---|---|---|"
       nm = split("dominant fis8 fis16 hybrid8 hybrid16 filtered16 filtered48", m, " ")
-      split("**dominant** (default)|fis 8|fis 16|hybrid 8|hybrid 16|filtered 16|filtered 48", label, "|")
+      split("dominant|fis 8|fis 16|hybrid 8|hybrid 16|filtered 16|filtered 48", label, "|")
       na = split("0.05 0.20 0.40 0.70 1.00", a, " ")
       for (s = 1; s <= ns; s++) {
         split(sph[s], p, "|"); name = p[1]; sub(/\.exr$/, "", name); sub(/^sky:0$/, "sky (no sun)", name)

@@ -105,6 +105,7 @@ static const struct method methods[] = {
     {"fis N=32", "envmap.specular=fis envmap.fis_samples=32", 1},
     {"hybrid N=16", "envmap.specular=hybrid envmap.fis_samples=16", 1},
     {"filtered", "envmap.specular=filtered", 1}, /* its defaults: N = 48, dominant from alpha 1 */
+    {"fitted", "envmap.specular=fitted", 1},
     {"reference", "envmap.mode=reference envmap.reference_samples=64", 4},
 };
 enum { NM = sizeof methods / sizeof *methods };
@@ -179,8 +180,8 @@ static void test_dielectric_furnace(void) {
         ref_brdf_ab(mu, alpha, 600, 64, &A, &B);
         want[i] = (1 - f0) * (1 - ref_diffuse_fresnel(mu, 96)) + f0 * A + B;
     }
-    const int pick[] = {1, 3, 5, NM - 1}; /* dominant, fis N = 32, filtered, the reference */
-    for (int k = 0; k < 4; k++) {
+    const int pick[] = {1, 3, 5, 6, NM - 1}; /* dominant, fis N = 32, filtered, fitted, the reference */
+    for (int k = 0; k < 5; k++) {
         const struct method *m = &methods[pick[k]];
         sl_harness *h = make_method(path, m, m->accumulate);
         CHECK(h != NULL);
@@ -221,9 +222,10 @@ static double block(const float *im, int px, int py) {
 #define STILL_BOUND_005 0.12  /* α = 0.05: measured 0.072, mostly the jitter against pixel-centre values */
 #define FILTERED_BOUND 0.05     /* filtered, its defaults (single frame), α ≥ 0.2: measured 0.020–0.032 (N = 16 with bias 0.5, no deconvolution: 0.045–0.076) */
 #define FILTERED_BOUND_005 0.16 /* α = 0.05: measured 0.118, the band's sharp edges through the sub-lobes */
+#define FITTED_BOUND 0.07 /* fitted (three lobes of the chain): measured 0.046 / 0.015 / 0.026 / 0.052 / 0.027 (dominant 0.080 / 0.029 / 0.060 / 0.058 / 0.027) */
 #define FIS1_BOUND 0.035 /* measured ≤ 0.027; the former ratio estimator: 0.040 (α = 0.7), 0.068 (α = 1) */
 static void test_band(void) {
-    double split_rms[NA] = {0};
+    double split_rms[NA] = {0}, dominant_rms[NA] = {0};
     char path[512];
     snprintf(path, sizeof path, "%s/band.exr", dir);
     write_latlong(path, 256, 128, band_fn);
@@ -235,8 +237,8 @@ static void test_band(void) {
      * N = 1, i.e. it drops the sample weights (F G(v,l)/G1(v)) altogether */
     const struct method fis1_acc = {"fis N=1 x64", "envmap.specular=fis envmap.fis_samples=1", 64};
     const struct method filtered = {"filtered", "envmap.specular=filtered", 1}; /* its defaults (N = 48) */
-    const struct method *ms[6] = {&ref_acc, &methods[0], &methods[1], &fis_acc, &fis1_acc, &filtered};
-    for (int m = 0; m < 6; m++) {
+    const struct method *ms[7] = {&ref_acc, &methods[0], &methods[1], &fis_acc, &fis1_acc, &filtered, &methods[6]};
+    for (int m = 0; m < 7; m++) {
         sl_harness *h = make_method(path, ms[m], ms[m]->accumulate);
         CHECK(h != NULL);
         if (!h) continue;
@@ -270,11 +272,15 @@ static void test_band(void) {
             /* the other methods: bounds with margin over what they measured (README), so that a
              * regression (a wrong lookup direction, a lost sample weight) fails */
             if (m == 1 && alphas[a] >= 0.2) split_rms[a] = rms;
+            if (m == 2) dominant_rms[a] = rms;
             if (m == 2 && alphas[a] >= 0.2) CHECK_MSG(rms < split_rms[a] + 0.02 || rms < 0.06, "dominant alpha %.2f: rms %.4f (split sum %.4f)", alphas[a], rms, split_rms[a]);
             if (m == 3) CHECK_MSG(rms < 0.1, "fis alpha %.2f: rms %.4f", alphas[a], rms);
             if (m == 4) CHECK_MSG(rms < FIS1_BOUND, "fis N=1 x64 alpha %.2f: rms %.4f", alphas[a], rms);
             if (m == 5) CHECK_MSG(rms < (alphas[a] < 0.1 ? FILTERED_BOUND_005 : FILTERED_BOUND), "filtered alpha %.2f: rms %.4f",
                                   alphas[a], rms);
+            /* fitted: within the bound, and never further than the dominant lookup it refines */
+            if (m == 6) CHECK_MSG(rms < FITTED_BOUND && rms <= dominant_rms[a] + 0.002, "fitted alpha %.2f: rms %.4f (dominant %.4f)",
+                                  alphas[a], rms, dominant_rms[a]);
         }
         sl_harness_destroy(h);
     }
@@ -304,10 +310,10 @@ static void test_horizon(void) {
              " \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\", \"size\": 4}, \"material\": \"m\"}],\n"
              " \"environment\": {\"map\": \"%s\"}}",
              0.5 + 0.5 * ts, 0.5 + 0.5 * tc, path);
-    const char *modes[5] = {"envmap.mode=reference", "envmap.specular=fis", "envmap.specular=mirror", "envmap.specular=dominant",
-                            "envmap.specular=filtered"};
+    const char *modes[6] = {"envmap.mode=reference", "envmap.specular=fis", "envmap.specular=mirror", "envmap.specular=dominant",
+                            "envmap.specular=filtered", "envmap.specular=fitted"};
     double e = ref_albedo(cos(M_PI * 80 / 180), 0.2); /* μ = n·v = cos(45° + 35°) */
-    for (int m = 0; m < 5; m++) {
+    for (int m = 0; m < 6; m++) {
         const char *settings[] = {"envmap.cache=false", "envmap.cube_size=64", "envmap.background=false",
                                   "envmap.fis_samples=32", modes[m], NULL};
         sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,

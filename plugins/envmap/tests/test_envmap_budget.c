@@ -1,6 +1,7 @@
 /* envmap.specular and envmap.reflections under the frame-time budget (docs/budget.md): envmap
- * registers a cost and error model for each (dominant, filtered; sky, screen), so that in the window a scene configured with `filtered`
- * gets the one-lookup `dominant` while the view moves and `filtered` back when it is still.
+ * registers a cost and error model for each (dominant, fitted, filtered; sky, screen), so that in the window a scene
+ * configured with `filtered` — or with `fitted`, the default — gets the one-lookup `dominant` while the view moves and its
+ * setting back when it is still.
  * A 64² GGX sphere under the procedural sky, "envmap.specular": "filtered" and "core.budget": 0.001
  * (ms; nothing fits, so the budget takes the cheapest choice) in the scene's params: rendered
  * still (filtered), then 6 frames with the camera moving each frame (dominant from the second
@@ -115,6 +116,7 @@ static void test_user_choice(void) {
 
 int main(void) {
     test_knob_model("specular", "filtered", "dominant");
+    test_knob_model("specular", "fitted", "dominant"); /* the default */
     test_knob_model("reflections", "screen", "sky");
     test_user_choice();
     return check_result();

@@ -22,10 +22,11 @@
 
 #define W 32
 #define H 32
-/* relative RMS of the split sum (envmap's default specular, dominant) vs the reference (block
- * means), margin over what was measured (phong README, "Lobes"): with a diffuse albedo both
- * models share one bound (measured 0.008–0.012); the specular lobe alone (black), one bound for
- * both: ggx 0.083–0.105 (the split sum's own error), blinn-gloss 0.049 / 0.076 / 0.039 at gloss
+/* relative RMS of the split sum (envmap's default specular, fitted; a Blinn-Phong lobe reads its
+ * chain along the dominant direction) vs the reference (block means), margin over what was
+ * measured (phong README, "Lobes"): with a diffuse albedo both models share one bound (measured
+ * 0.007–0.010); the specular lobe alone (black), one bound for both: ggx 0.043–0.052 (0.083–0.105
+ * under specular=dominant: the split sum's own error), blinn-gloss 0.049 / 0.076 / 0.039 at gloss
  * 0.3 / 0.5 / 0.7 (a Blinn-Phong lobe, ABI 1.19: envmap's Blinn-Phong chain read at power p/n·v;
  * described as one GGX lobe of Blinn's median α it measured 0.085 / 0.179 / 0.145) */
 #define SPLIT_BOUND 0.03

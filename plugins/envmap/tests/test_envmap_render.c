@@ -642,7 +642,7 @@ static void test_sky_background(void) {
  * (sl_harness_render_sample: no TAA history), the per-pixel standard deviation of the display
  * value (sRGB, [0,1]), RMS over R, G, B and the pixels whose 3 × 3 neighbourhood lies on one
  * rough sphere (n·v > 0.3). What a still averages away shows as speckle while it settles and
- * in motion. The default (specular=dominant) must stay within 0.002 (half an 8-bit step);
+ * in motion. The default (specular=fitted) must stay within 0.002 (half an 8-bit step);
  * specular=hybrid (Monte Carlo in a still's frames) is measured beside it and must exceed it,
  * so the measure does see speckle. */
 static int rough_sphere_at(const test_camera *c, int x, int y, const float centres[][3], int count) {
@@ -708,7 +708,7 @@ static void test_default_speckle(void) {
         if (!h) continue;
         if (!k) {
             char v[32];
-            CHECK(sl_harness_get(h, "envmap.specular", v, sizeof v) && !strcmp(v, "dominant"));
+            CHECK(sl_harness_get(h, "envmap.specular", v, sizeof v) && !strcmp(v, "fitted"));
         }
         noise[k] = still_noise(h, SAMPLES, label, SW, SH, im);
         sl_harness_destroy(h);
