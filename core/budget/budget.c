@@ -32,7 +32,7 @@ typedef struct sl_budget_state {
     double last_start_ms;                  /* when the previous frame began (0: none yet) */
     int last_choice[SL_BUDGET_MAX_KNOBS];
     bool skip_observation;                 /* the previous frame changed settings (re-plan, compiles) */
-    unsigned long seen_builds;             /* sl_program_builds() when the previous frame began */
+    unsigned long seen_builds;             /* programs built when the previous frame began (composer.h) */
     unsigned long long seen_camera;
     uint64_t seen_lights, seen_materials, seen_params;
     double seen_time;
@@ -206,9 +206,7 @@ void sl_budget_before_frame(sl_app *app) {
     if (!s->built || knobs_key(app, s) != s->knobs_key) build_knobs(app, s);
     double t = now_ms();
     /* programs built during the last frame (an edit that recompiles, a first use) */
-    unsigned long builds = sl_program_builds();
-    bool compiled = builds != s->seen_builds;
-    s->seen_builds = builds;
+    bool compiled = sl_program_built_since(&s->seen_builds);
     if (s->last_start_ms > 0) {
         s->last_ms = t - s->last_start_ms;
         /* the frame after a change re-plans targets and may compile, and a frame that compiled

@@ -26,7 +26,7 @@ struct sl_panel {
     text_field *fields; int field_count;  /* edit buffers of texture fields */
     pass_avg avg[64]; int avg_count;      /* smoothed per-pass times */
     double interval_avg;                  /* smoothed seconds per frame */
-    unsigned long seen_builds;            /* sl_program_builds() at the last frame rate sample */
+    unsigned long seen_builds;            /* programs built at the last frame rate sample (composer.h) */
     unsigned timing_tick;                 /* frames drawn with the timing view open */
 };
 
@@ -332,9 +332,7 @@ static void section_timing(sl_panel *p, double dt) {
     /* an interval in which a program was built (the first frames, an edit that recompiles, the
      * first use of a program) times the compiler, not the frame: left out, as the budget leaves
      * it out of its cost model (budget.c) */
-    unsigned long builds = sl_program_builds();
-    bool compiled = builds != p->seen_builds;
-    p->seen_builds = builds;
+    bool compiled = sl_program_built_since(&p->seen_builds);
     if (dt > 1e-4 && !compiled) p->interval_avg = p->interval_avg > 0 ? 0.9 * p->interval_avg + 0.1 * dt : dt;
     sl_ui_text("%s  %dx%d  %.1f fps", app->backend.name, app->backend.width, app->backend.height,
                p->interval_avg > 0 ? 1.0 / p->interval_avg : 0.0);

@@ -255,7 +255,11 @@ static unsigned compile_stage(GLenum type, const sl_source *src, char *err, size
 static void free_uniforms(sl_program *p);
 
 static unsigned long builds;
-unsigned long sl_program_builds(void) { return builds; }
+bool sl_program_built_since(unsigned long *seen) {
+    bool built = builds != *seen;
+    *seen = builds;
+    return built;
+}
 
 bool sl_program_build(sl_program *p, char *err, size_t n) {
     builds++;

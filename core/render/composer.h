@@ -70,9 +70,10 @@ struct sl_program {
 
 /* Compiles and links; on failure keeps any previous id and stores the mapped error. */
 bool sl_program_build(sl_program *p, char *err, size_t n);
-/* How many programs sl_program_build has built so far (the frame-time budget leaves a frame that
- * built one out of its cost model: compiling is not what its settings cost). */
-unsigned long sl_program_builds(void);
+/* Whether sl_program_build has built a program since *seen was last set, and sets it: a frame
+ * (or interval) that compiled timed the compiler, not its settings (the frame-time budget's cost
+ * model and the panel's frame rate leave it out). */
+bool sl_program_built_since(unsigned long *seen);
 /* Loads a stand-alone program from files (relative to dir; "sl:" = core shader dir). */
 sl_program *sl_program_from_files(const char *dir, const char *vs, const char *fs, const char *defines,
                                   char *err, size_t n);

@@ -1009,6 +1009,9 @@ static void envmap_bind(void *user, unsigned prog, int material, const sl_frame 
         ensure_lobe_table(e);
         glBindTextureUnit(e->unit_lobes, e->lobe_table);
         glUniform1i(l_lobes, e->unit_lobes);
+        /* the table's grid (lobe_fit.h): α of its first row, rows per unit α, columns per radian */
+        glUniform3f(glGetUniformLocation(prog, "envmap_lobe_grid"), (float)EM_LOBE_ALPHA_MIN, (float)(1 / EM_LOBE_ALPHA_STEP),
+                    (float)(180 / (EM_LOBE_THETA_STEP * M_PI)));
     }
     bind_sun_disk(e, prog, f);
     em_reflections_bind(&e->refl, prog);

@@ -339,7 +339,8 @@ vec3 envmap_filtered_specular(SlSurface s, float alpha, vec3 f0, vec3 f90, vec3 
 #endif
 
 #if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FITTED
-uniform sampler2DArray envmap_lobe_table; // lobe_fit_table.h: (θ_v / 5°, (α − 0.1) / 0.1), 2 layers
+uniform sampler2DArray envmap_lobe_table; // lobe_fit_table.h: (θ_v, α) cells, 2 layers
+uniform vec3 envmap_lobe_grid; // its first row's α, rows per unit α, columns per radian of θ_v (lobe_fit.h)
 // specular=fitted: GGX's real lobe at (n·v, α) as three lobes of the prefiltered chain, laid along
 // the plane of incidence: tap k reads the chain at roughness a_k along r turned by t_k towards n,
 // weighted w_k (Σ w = 1: the furnace is exact). The real lobe is narrower across the plane than
@@ -349,10 +350,10 @@ uniform sampler2DArray envmap_lobe_table; // lobe_fit_table.h: (θ_v / 5°, (α 
 // by 5°), read bilinearly. Below α = 0.1 the α = 0.1 row is shrunk about r by α/0.1 (a narrow
 // GGX lobe keeps its shape as α scales it). Deterministic: a smooth function of (n, v, α).
 vec3 envmap_fitted_specular(vec3 n, vec3 r, float mu, float alpha, vec3 ng) {
-    const vec2 size = vec2(18.0, 10.0); // the table's θ_v and α cells (lobe_fit.h)
-    float shrink = min(alpha * 10.0, 1.0);
-    float fa = clamp((alpha - 0.1) * 10.0, 0.0, size.y - 1.0);
-    float ft = clamp(acos(clamp(mu, 0.0, 1.0)) * (36.0 / ENVMAP_PI), 0.0, size.x - 1.0); // θ_v / 5°
+    vec2 size = vec2(textureSize(envmap_lobe_table, 0).xy); // the table's θ_v and α cells
+    float shrink = min(alpha / envmap_lobe_grid.x, 1.0);
+    float fa = clamp((alpha - envmap_lobe_grid.x) * envmap_lobe_grid.y, 0.0, size.y - 1.0);
+    float ft = clamp(acos(clamp(mu, 0.0, 1.0)) * envmap_lobe_grid.z, 0.0, size.x - 1.0);
     vec2 uv = (vec2(ft, fa) + 0.5) / size;
     vec4 p = texture(envmap_lobe_table, vec3(uv, 0.0)), q = texture(envmap_lobe_table, vec3(uv, 1.0));
     // e: perpendicular to r, towards n, in the plane of incidence (any at r = n, where every t is 0)
