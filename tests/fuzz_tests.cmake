@@ -4,11 +4,11 @@
 #                cases) loads without crashing: a clean error or a scene. Runs in the normal
 #                build and, instrumented, in the `sanitize` test's ASan/UBSan build.
 #  fuzz_scene    builds fuzz/ with clang + libFuzzer (+ ASan/UBSan) into build/fuzz and fuzzes
-#                sl_scene_load_text for 20 s from the seed corpus scenes/*.json,
+#                sl_scene_load_text for 10 s from the seed corpus scenes/*.json,
 #                tests/data/scenes/*.json and tests/data/fuzz/*. Skipped (with the reason) when
 #                clang or libFuzzer (libclang-rt-14-dev) is missing. A crash fails the test and
 #                leaves the input in build/fuzz/artifacts/: copy it into tests/data/fuzz/.
-#  fuzz_gltf     the same for the glTF reader (fuzz/gltf_fuzzer.c, sl_scene_import_gltf) for 20 s
+#  fuzz_gltf     the same for the glTF reader (fuzz/gltf_fuzzer.c, sl_scene_import_gltf) for 10 s
 #                from tests/data/fuzz_gltf/ (the files tests/test_gltf_hostile.c writes, whose
 #                gltf_hostile test loads every file there: a found crash goes there).
 # Longer runs: fuzz/README.md.
@@ -86,10 +86,10 @@ endif()
 
 sl_add_test(fuzz_regress SOURCES ${CMAKE_CURRENT_LIST_DIR}/fuzz_regress.c LABELS hardening)
 add_test(NAME fuzz_scene COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DBIN=${PROJECT_BINARY_DIR}/fuzz
-                                 -DSECONDS=20 -P ${CMAKE_CURRENT_LIST_FILE})
+                                 -DSECONDS=10 -P ${CMAKE_CURRENT_LIST_FILE})
 set_tests_properties(fuzz_scene PROPERTIES TIMEOUT ${SL_HANG_GUARD} LABELS hardening SKIP_REGULAR_EXPRESSION "SKIP: ")
 add_test(NAME fuzz_gltf COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DBIN=${PROJECT_BINARY_DIR}/fuzz
-                                -DSECONDS=20 -DFUZZER=gltf_fuzzer -P ${CMAKE_CURRENT_LIST_FILE})
+                                -DSECONDS=10 -DFUZZER=gltf_fuzzer -P ${CMAKE_CURRENT_LIST_FILE})
 set_tests_properties(fuzz_gltf PROPERTIES TIMEOUT ${SL_HANG_GUARD} LABELS "hardening;gltf" SKIP_REGULAR_EXPRESSION "SKIP: "
                      RESOURCE_LOCK fuzz_build)
 set_tests_properties(fuzz_scene PROPERTIES RESOURCE_LOCK fuzz_build)
