@@ -938,6 +938,10 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
         /* geometry and materials: Blender's own reading of the file */
         note(&c, "glTF: geometry and materials as Blender's glTF importer reads the file; lights as shadelab reads "
                  "them (Blender's importer gives spots its own edge)");
+        /* the importer's materials are Principled BSDFs, as the exported scenes' glTF materials are */
+        note(&c, "approximated: glTF metallic-roughness as Blender's importer maps it, Cycles' Principled BSDF "
+                 "(Burley diffuse instead of Lambert x (1 - F), brighter at grazing view on rough surfaces; Cycles' "
+                 "normalised dielectric Fresnel instead of Schlick's)");
         cJSON_AddArrayToObject(root, "meshes");
         cJSON_AddArrayToObject(root, "objects");
         ok = export_gltf(&c, root);
