@@ -621,7 +621,8 @@ static void latlong_bilinear(const em_image *L, double u, double v, double out[3
     double x = u * L->w - 0.5, y = v * L->h - 0.5;
     double fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
     int x0 = (int)fx, y0 = (int)fy;
-    int xs[2] = {((x0 % L->w) + L->w) % L->w, (((x0 + 1) % L->w) + L->w) % L->w};
+    if (x0 < -1 || x0 >= L->w) x0 = ((x0 % L->w) + L->w) % L->w; /* u outside [0, 1]: wrap it first */
+    int xs[2] = {x0 < 0 ? x0 + L->w : x0, x0 + 1 >= L->w ? x0 + 1 - L->w : x0 + 1};
     int ys[2] = {y0 < 0 ? 0 : y0 >= L->h ? L->h - 1 : y0, y0 + 1 < 0 ? 0 : y0 + 1 >= L->h ? L->h - 1 : y0 + 1};
     double wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay};
     out[0] = out[1] = out[2] = 0;
@@ -652,9 +653,12 @@ void em_latlong_to_cube_levels(const em_image *mips, int mip_count, int size, in
                         double a = 2 * s - 1, b = 2 * t - 1, r2 = 1 + a * a + b * b;
                         double omega = (4.0 / ((double)size * K * size * K)) / (r2 * sqrt(r2));
                         em_dir_latlong(d, &u, &v);
-                        double omega_src = (2 * M_PI / mips[0].w) * texel_v * fmax(sin(v * M_PI), 1e-6);
-                        double lod = fmin(0.5 * log2(omega / omega_src), log2(sqrt(omega) / texel_v));
-                        lod = fmin(fmax(lod, 0.0), mip_count - 1);
+                        /* sin θ from d (unit) rather than sin(v π); lod = min(½ log2(ω/ω_src), log2(√ω/τ))
+                         * = ½ log2(ω / max(ω_src, τ²)): one log2, none where it magnifies (lod ≤ 0) */
+                        double sin_theta = sqrt(fmax(0.0, 1 - d[1] * d[1]));
+                        double omega_src = (2 * M_PI / mips[0].w) * texel_v * fmax(sin_theta, 1e-6);
+                        double footprint = fmax(omega_src, texel_v * texel_v);
+                        double lod = omega > footprint ? fmin(0.5 * log2(omega / footprint), mip_count - 1) : 0.0;
                         int l0 = (int)floor(lod), l1 = l0 + 1 < mip_count ? l0 + 1 : l0;
                         double fr = lod - l0, c0[3], c1[3];
                         latlong_bilinear(&mips[l0], u, v, c0);
