@@ -61,8 +61,8 @@ if(CMAKE_SCRIPT_MODE_FILE)
   else()
     set(select -E "^(gui_smoke|gui_budget|gui_gltf_animation|sdk_install|fuzz_scene)$")
   endif()
-  # Two at a time (the test holds both of ctest's slots: PROCESSORS 2 below); ctest prints a failing
-  # test's output as one block after its status line, so each failure's output stays its own. The
+  # Two at a time, as its build runs two compilers; ctest prints a failing test's output as one
+  # block after its status line, so each failure's output stays its own. The
   # sanitizers' options are the tests' environment in that tree (tests/CMakeLists.txt, SL_SANITIZE).
   execute_process(COMMAND "${CMAKE_CTEST_COMMAND}" -N ${select} WORKING_DIRECTORY "${BIN}"
                   OUTPUT_VARIABLE listing RESULT_VARIABLE rc)
@@ -105,9 +105,6 @@ if(SL_SANITIZE_TEST AND NOT SL_SANITIZE)
            -P ${CMAKE_CURRENT_LIST_FILE})
   sl_add_long_test(sanitize_all COMMAND ${sl_sanitize_command} -P ${CMAKE_CURRENT_LIST_FILE}
                    LABELS hardening TIMEOUT 5400 RESOURCE_LOCK sanitize_tree)
-  # PROCESSORS 2: it builds with -j2 and runs two tests at a time; with another test beside it the
-  # three or four busy processes starved that test's llvmpipe threads (toggle_matrix beside it on a
-  # fresh clone: 290 s instead of 105)
   set_tests_properties(sanitize PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT 3600 LABELS hardening
-                       RESOURCE_LOCK sanitize_tree PROCESSORS 2)
+                       RESOURCE_LOCK sanitize_tree)
 endif()
