@@ -61,6 +61,11 @@ bool xc_mkdirs(const char *path, char *err, size_t n) {
 }
 
 /* Adds `item` to the note "text (items)", one note per text. */
+/* glTF's metallic-roughness in Cycles, exported or read by Blender's importer: its Burley diffuse is
+ * brighter than Lambert at grazing view on rough surfaces */
+#define PRINCIPLED_NOTE                                                                                         \
+    "approximated: glTF metallic-roughness as Cycles' Principled BSDF (Burley diffuse instead of Lambert x (1 - " \
+    "F); Cycles' normalised dielectric Fresnel instead of Schlick's)"
 static void note_item(ctx *c, const char *text, const char *item) {
     size_t len = strlen(text);
     for (int i = 0; i < c->out->note_count; i++) {
@@ -402,8 +407,7 @@ static bool export_ggx(ctx *c, int m, cJSON *j, bool *checked) {
         if (!mat_value(app, m, "ior")) f0 = 0.04f;
         if (f0 / 0.08f > 1) note(c, "approximated: material %s: F0 %.3f above Principled's 0.08 (ior %.2f)", name, f0, ior);
         cJSON_AddNumberToObject(j, "specular_level", fminf(f0 / 0.08f, 1));
-        note_item(c, "approximated: glTF metallic-roughness as Cycles' Principled BSDF (Burley diffuse instead of "
-                     "Lambert x (1 - F); Cycles' normalised dielectric Fresnel instead of Schlick's)", name);
+        note_item(c, PRINCIPLED_NOTE, name);
         if (zero_specular) {
             note(c, "not cross-checked: ggx.zero_specular with metallic-roughness materials (%s)", name);
             *checked = false;
@@ -938,10 +942,7 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
         /* geometry and materials: Blender's own reading of the file */
         note(&c, "glTF: geometry and materials as Blender's glTF importer reads the file; lights as shadelab reads "
                  "them (Blender's importer gives spots its own edge)");
-        /* the importer's materials are Principled BSDFs, as the exported scenes' glTF materials are */
-        note(&c, "approximated: glTF metallic-roughness as Blender's importer maps it, Cycles' Principled BSDF "
-                 "(Burley diffuse instead of Lambert x (1 - F), brighter at grazing view on rough surfaces; Cycles' "
-                 "normalised dielectric Fresnel instead of Schlick's)");
+        note(&c, "%s", PRINCIPLED_NOTE); /* the importer's materials are Principled BSDFs too */
         cJSON_AddArrayToObject(root, "meshes");
         cJSON_AddArrayToObject(root, "objects");
         ok = export_gltf(&c, root);

@@ -122,7 +122,7 @@ for row in open(listed):
     r = json.load(open(what))
     s = summary(r)
     notes = [n for n in r.get("notes", []) if not n.startswith(("not cross-checked: tonemap", "glTF: geometry",
-                                                                         "approximated: glTF metallic-roughness as Blender's importer"))]
+                                                                         "approximated: glTF metallic-roughness as Cycles' Principled"))]
     note = "; ".join(n.replace("|", "/") for n in notes)[:300]
     if s is None:
         unmeasured += 1

@@ -30,30 +30,23 @@ static inline double ref_ggx_G1(double xn, double xh, double a) {
  * D(h)(n·h) dω_h = du dφ/2π, and ∫ f cos dl = ∫ D G F (v·h)/(mu) dω_h. Midpoint rule. v lies in
  * the xz plane, so the integrand at φ equals the one at 2π − φ (h_y changes sign, nothing it
  * enters does): the nodes j and nphi − 1 − j are mirrors, and each pair is evaluated once with
- * weight 2 (the node at φ = π, odd nphi, is its own mirror: weight 1) — the same sum, a quarter
- * of the time with cos φ tabulated once per call (these integrals were most of the envmap tests'
- * time). */
+ * weight 2 (the node at φ = π, odd nphi, is its own mirror: weight 1) — the same sum in a
+ * quarter of the time (these integrals were most of the envmap tests' time). */
 static inline void ref_brdf_ab(double mu, double a, int nu, int nphi, double *A, double *B) {
     double v[3] = {sqrt(1 - mu * mu), 0, mu};
     double sa = 0, sb = 0;
-    int half = (nphi + 1) / 2;
-    double cphi[4096], weight[4096];
-    if (half > 4096) half = 4096; /* nphi ≤ 8192: every caller's is far below */
-    for (int j = 0; j < half; j++) {
-        cphi[j] = cos(2 * M_PI * (j + 0.5) / nphi);
-        weight[j] = 2 * j + 1 == nphi ? 1 : 2;
-    }
-    for (int i = 0; i < nu; i++) {
-        double u = (i + 0.5) / nu;
-        double c2 = (1 - u) / (1 + (a * a - 1) * u), ch = sqrt(c2), sh = sqrt(fmax(0, 1 - c2));
-        for (int j = 0; j < half; j++) {
-            double vh = v[0] * sh * cphi[j] + v[2] * ch;
+    for (int j = 0; j < (nphi + 1) / 2; j++) { /* φ outside: cos φ once per node */
+        double cphi = cos(2 * M_PI * (j + 0.5) / nphi), weight = 2 * j + 1 == nphi ? 1 : 2;
+        for (int i = 0; i < nu; i++) {
+            double u = (i + 0.5) / nu;
+            double c2 = (1 - u) / (1 + (a * a - 1) * u), ch = sqrt(c2), sh = sqrt(fmax(0, 1 - c2));
+            double vh = v[0] * sh * cphi + v[2] * ch;
             if (vh <= 0) continue;
             double lz = 2 * vh * ch - v[2];
             if (lz <= 0) continue;
             double G = ref_ggx_G1(mu, vh, a) * ref_ggx_G1(lz, vh, a);
             /* D(h) dω_h = du dφ/(2π ch): integrand D G F vh / mu → G F vh/(mu ch) du dφ/2π */
-            double w = weight[j] * G * vh / (mu * ch);
+            double w = weight * G * vh / (mu * ch);
             double m = 1 - vh, fc = m * m * m * m * m;
             sa += w * (1 - fc);
             sb += w * fc;
