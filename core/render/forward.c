@@ -465,6 +465,7 @@ static void write_defines(composition *c) {
     if (req->fragment) sl_sb_append(pre, "#define SL_CUSTOM_MAIN 1\n"); /* a plugin's main (draw_scene fragment, ABI 1.7) */
     if (req->fullscreen) sl_sb_append(pre, "#define SL_FULLSCREEN_MATERIAL 1\n");
     if (c->nb) sl_sb_append(pre, "#define SL_SCENE_BEHIND 1\n"); /* drawn by forward-behind (ABI 1.17) */
+    if (sl_environment_is_constant(&c->app->scene.environment)) sl_sb_append(pre, "#define SL_ENVIRONMENT_CONSTANT 1\n");
     if (c->motion) sl_sb_append(pre, "#define SL_MOTION_VECTORS 1\n");
     if (c->normal) sl_sb_printf(pre, "#define SL_NORMAL_TARGET 1\n#define SL_NORMAL_LOCATION %d\n", c->motion ? 2 : 1);
     if (c->view) {

@@ -167,6 +167,10 @@ int sl_scene_find_material(const sl_scene *scene, const char *name) { FIND_BY_NA
 int sl_scene_find_node(const sl_scene *scene, const char *name) { FIND_BY_NAME(nodes, node_count) }
 int sl_scene_find_light(const sl_scene *scene, const char *name) { FIND_BY_NAME(lights, light_count) }
 
+bool sl_environment_is_constant(const sl_environment *env) {
+    return !env->map && (env->color[0] > 0 || env->color[1] > 0 || env->color[2] > 0);
+}
+
 bool sl_scene_node_has_tag(const sl_scene *scene, int node, const char *tag) {
     /* parents come before children (sl_scene_add_node), so the walk up ends */
     for (int n = node; n >= 0 && n < scene->node_count; n = scene->nodes[n].parent)

@@ -189,6 +189,10 @@ typedef struct sl_environment {
     sl_prop_list props;     /* plugin keys */
 } sl_environment;
 
+/* The environment is one constant radiance, color × intensity: no map and a colour that is not
+ * black (a black one without a map is no environment at all; plugins light it as they choose). */
+bool sl_environment_is_constant(const sl_environment *env);
+
 typedef struct sl_scene {
     char *path;             /* file it came from ("<default>" for the built-in one) */
     char *dir;              /* directory used to resolve relative asset paths */

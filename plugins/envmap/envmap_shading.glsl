@@ -28,8 +28,22 @@ uniform samplerCube envmap_base;  // the base cube with its solid-angle-weighted
 uniform float envmap_base_size;   // its face size
 #endif
 
+// A scene whose environment is one constant radiance (SL_ENVIRONMENT_CONSTANT, ABI 1.27: no map,
+// a colour) has these programs: every lookup below returns that radiance, sl_ambient_irradiance/π
+// (colour × intensity, the core's uniform), so the prefiltered chain, the SH and the lobe table are
+// neither read nor made, and the split sum's specular is each lobe's albedo × it — what every
+// specular mode gives in a uniform environment (its furnace; a normal-mapped lobe is faded at the
+// horizon along its dominant direction, as specular=dominant); envmap_render checks it against the
+// general path over a "constant:" map (README, "What it does").
+#ifdef SL_ENVIRONMENT_CONSTANT
+#define ENVMAP_CONSTANT_RADIANCE (sl_ambient_irradiance * SL_INV_PI)
+#endif
+
 // Radiance arriving from world direction d.
 vec3 envmap_source(vec3 d, float lod) {
+#ifdef SL_ENVIRONMENT_CONSTANT
+    return ENVMAP_CONSTANT_RADIANCE;
+#endif
     vec3 m = envmap_rot * d;
     vec3 c = envmap_is_cube ? textureLod(envmap_srccube, m, lod).rgb
                             : textureLod(envmap_src2d, envmap_dir_latlong(m), lod).rgb;
@@ -43,6 +57,9 @@ float envmap_source_lod(float angle) {
 }
 
 vec3 envmap_diffuse(vec3 n) { // E(n)/π: the outgoing radiance of a white Lambert surface
+#ifdef SL_ENVIRONMENT_CONSTANT
+    return ENVMAP_CONSTANT_RADIANCE;
+#endif
     vec3 m = envmap_rot * n;
 #if defined(ENVMAP_IRRADIANCE) && ENVMAP_IRRADIANCE == ENVMAP_IRRADIANCE_CONVOLVED
     vec3 e = textureLod(envmap_irr, m, 0.0).rgb;
@@ -67,6 +84,9 @@ float envmap_spec_lod(float alpha) {
     return envmap_spec_map == 1 ? envmap_spec_lod_log(alpha) : sqrt(alpha) * envmap_spec_lod_max;
 }
 vec3 envmap_specular(vec3 r, float alpha) {
+#ifdef SL_ENVIRONMENT_CONSTANT
+    return ENVMAP_CONSTANT_RADIANCE;
+#endif
     return textureLod(envmap_spec, envmap_rot * r, envmap_spec_lod(alpha)).rgb * envmap_scale;
 }
 // The chain of Blinn-Phong lobes (the lobe contract's shapes, ABI 1.19; envmap.c makes it only
@@ -80,6 +100,9 @@ vec3 envmap_specular(vec3 r, float alpha) {
 // of two widths gives the lobe a tail, which a tail-free Blinn-Phong lobe shows next to a sun.
 uniform samplerCube envmap_spec_blinn;
 vec3 envmap_specular_blinn(vec3 r, float alpha, float mu) {
+#ifdef SL_ENVIRONMENT_CONSTANT
+    return ENVMAP_CONSTANT_RADIANCE;
+#endif
     float a = sl_lobe_blinn_alpha(sl_lobe_blinn_power(alpha) / max(mu, 0.05));
     return textureLod(envmap_spec_blinn, envmap_rot * r, envmap_spec_lod_log(a)).rgb * envmap_scale;
 }
@@ -416,7 +439,11 @@ vec3 envmap_split_sum(SlSurface s) {
         vec3 spec = albedo;
         if (envmap_multiscatter) // Fdez-Agüera 2019: the energy single scattering loses, F0-tinted
             spec *= 1.0 + lobe.f0 * (1.0 / max(abc.x + abc.y, 1e-3) - 1.0);
-#if ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
+#if defined(SL_ENVIRONMENT_CONSTANT)
+        // a uniform environment: every mode's answer, the lobe's albedo × the radiance
+        vec3 d = envmap_lookup_dir(n, r, alpha);
+        vec3 specular = spec * ENVMAP_CONSTANT_RADIANCE * envmap_horizon(d, s.geometric_normal);
+#elif ENVMAP_SPECULAR == ENVMAP_SPECULAR_FILTERED
         // the dominant lookup alone from α = filtered_alpha (1: rough lobes, where it measured
         // closer to Cycles than the samples and costs one lookup), the samples alone up to
         // filtered_alpha − 0.25, blended between; the branch is uniform per material unless a

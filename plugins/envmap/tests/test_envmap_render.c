@@ -15,6 +15,8 @@
  *   chains       a shadelab-cube --ggx chain loads and matches the plugin's own prefilter
  *   cache        the second load reads the disk cache and renders the same image
  *   cost         a mirror-only scene never prefilters; envmap disabled changes no program
+ *   constant     a colour as the environment: the general path's image from a "constant:" map,
+ *                nothing prefiltered
  *   poles        looking straight up and down at a lat-long: finite and smooth */
 #include "check.h"
 #include "camera_rays.h"
@@ -41,19 +43,20 @@ static void normalize3(double v[3]) {
     for (int i = 0; i < 3; i++) v[i] /= l;
 }
 
-/* A unit sphere at the origin with material `mat` (JSON keys), the given environment map, seen
- * from (0, 0, 4) with a vertical field of view of `fov_y` degrees (`cam`'s 40 but where a test
- * zooms in); `more_plugins` (JSON list items after "envmap", "" for none) loads others. */
-static sl_harness *make_with(const char *more_plugins, double fov_y, const char *map, const char *mat,
-                             const char *const *settings, int accumulate) {
+/* A unit sphere at the origin with material `mat` (JSON keys), the environment `env` (the JSON
+ * object's keys), seen from (0, 0, 4) with a vertical field of view of `fov_y` degrees (`cam`'s 40
+ * but where a test zooms in); `more_plugins` (JSON list items after "envmap", "" for none) loads
+ * others. */
+static sl_harness *make_env(const char *more_plugins, double fov_y, const char *env, const char *mat,
+                            const char *const *settings, int accumulate) {
     char json[4096], err[4096];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"envmap\"%s],\n"
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y\": %g, \"near\": 0.1, \"far\": 100}],\n"
              " \"materials\": [{\"name\": \"m\", %s}],\n"
              " \"nodes\": [{\"name\": \"ball\", \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 128, \"rings\": 64}, \"material\": \"m\"}],\n"
-             " \"environment\": {%s%s%s}}",
-             more_plugins, fov_y, mat, map ? "\"map\": \"" : "", map ? map : "", map ? "\"" : "");
+             " \"environment\": {%s}}",
+             more_plugins, fov_y, mat, env);
     const char *base[24];
     int n = 0;
     base[n++] = "envmap.cube_size=16";
@@ -68,6 +71,13 @@ static sl_harness *make_with(const char *more_plugins, double fov_y, const char 
                                       err, sizeof err);
     if (!h) fprintf(stderr, "harness: %s\n", err);
     return h;
+}
+/* make_env with the given environment map (NULL: none) */
+static sl_harness *make_with(const char *more_plugins, double fov_y, const char *map, const char *mat,
+                             const char *const *settings, int accumulate) {
+    char env[1024] = "";
+    if (map) snprintf(env, sizeof env, "\"map\": \"%s\"", map);
+    return make_env(more_plugins, fov_y, env, mat, settings, accumulate);
 }
 static sl_harness *make(const char *map, const char *mat, const char *const *settings, int accumulate) {
     return make_with("", 40, map, mat, settings, accumulate);
@@ -1214,6 +1224,40 @@ static void test_cost(void) {
            a.pass_count, a.program_count);
 }
 
+/* A constant environment (a colour, no map: SL_ENVIRONMENT_CONSTANT) renders what the general
+ * path renders from the same radiance as a "constant:" map, per specular mode and for a dielectric,
+ * a metal and a mirror, and prefilters nothing. */
+static void test_constant_environment(void) {
+    const char *mats[3] = {"\"model\": \"ggx\", \"base_color\": [0.6, 0.08, 0.05], \"roughness\": 0.3",
+                           "\"model\": \"ggx\", \"fresnel\": \"metallic-roughness\", \"metallic\": 1, "
+                           "\"base_color\": [1, 0.77, 0.34], \"roughness\": 0.35",
+                           "\"model\": \"mirror\""};
+    const char *modes[3] = {"envmap.specular=fitted", "envmap.specular=fis", "envmap.specular=filtered"};
+    for (int m = 0; m < 3; m++)
+        for (int k = 0; k < (m < 2 ? 3 : 1); k++) {
+            const char *const settings[] = {modes[k], NULL};
+            sl_log_capture(logbuf, sizeof logbuf);
+            sl_harness *h = make_env("", 40, "\"color\": [0.3, 0.35, 0.45], \"intensity\": 0.5", mats[m], settings, 1);
+            CHECK(h && sl_harness_render(h, img));
+            sl_log_capture(NULL, 0);
+            sl_harness_destroy(h);
+            CHECK_MSG(!strstr(logbuf, "prefiltering"), "a constant environment prefiltered:\n%s", logbuf);
+            sl_log_capture(logbuf, sizeof logbuf);
+            h = make_env("", 40, "\"map\": \"constant:0.3,0.35,0.45\", \"intensity\": 0.5", mats[m], settings, 1);
+            CHECK(h && sl_harness_render(h, img2));
+            sl_log_capture(NULL, 0);
+            sl_harness_destroy(h);
+            /* the general path it is compared with does read the chain */
+            CHECK_MSG(m == 2 || strstr(logbuf, "prefiltering"), "the \"constant:\" map did not prefilter:\n%s", logbuf);
+            double worst = 0, mean = 0;
+            for (int i = 0; i < W * H * 4; i++)
+                if (i % 4 != 3) worst = fmax(worst, fabs(img[i] - img2[i]) / fmax(img2[i], 0.05)), mean += img2[i];
+            printf("constant environment, material %d, %s: max rel. difference to the general path %.2g (mean %.3f)\n", m,
+                   modes[k], worst, mean / (W * H * 3));
+            CHECK_MSG(worst < 2e-3 && mean > 0, "material %d, %s: %.4f", m, modes[k], worst);
+        }
+}
+
 /* ---------------------------------------------------------------- poles */
 
 static void test_poles(void) {
@@ -1265,6 +1309,7 @@ int main(void) {
     test_bad_input();
     test_chain_and_cache();
     test_cost();
+    test_constant_environment();
     test_poles();
     return check_result();
 }

@@ -34,6 +34,12 @@
  *             int sl_frame_index; vec2 sl_viewport_size;
  *             int sl_sample_index, sl_sample_count (ABI 1.9: sl_frame.sample_index/count, a
  *             sample sequence that continues across a TAA still's frames and accumulated frames).
+ *   constant environment (ABI 1.27, forward programs): uniform vec3 sl_ambient_irradiance, π ×
+ *             the scene environment's colour × intensity (the irradiance it gives an unoccluded
+ *             surface). SL_ENVIRONMENT_CONSTANT is defined when that colour is the whole
+ *             environment (no map, a colour that is not black): an integrator reads
+ *             sl_ambient_irradiance/π in place of its environment lookups (envmap does), a
+ *             permutation, so a constant environment pays for no texture read.
  *   function (ABI 1.6, fragment stage of forward programs):
  *             vec3 sl_shading_model(SlSurface s, vec3 l, vec3 E)   the material's SHADING_MODEL
  *   footprint (ABI 1.23, fragment stage): float sl_normal_footprint, the pixel's footprint of
