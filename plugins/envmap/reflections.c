@@ -55,6 +55,14 @@ static void trace_io(void *user, const char *const **in, const sl_target_desc **
     *in = trace_inputs, *out = &r->trace_target, *n = 1;
 }
 
+static const char *const resolve_inputs[] = {"envmap.reflections", "envmap.scene_depth", NULL};
+static void resolve_io(void *user, const char *const **in, const sl_target_desc **out, int *n) {
+    em_reflections *r = user;
+    r->resolve_target = (sl_target_desc){.name = "envmap.reflections_resolved", .format = SL_FORMAT_RGBA16F,
+                                         .scale = scale_of(r)};
+    *in = resolve_inputs, *out = &r->resolve_target, *n = 1;
+}
+
 /* The frame's projection without the jitter a temporal method added (sl_frame.jitter, pixels):
  * the jitter shifts clip x (y) by 2j/size times w, so rows 0 and 1 hold 2j/size times row 3 more. */
 static void unjittered_proj(const sl_frame *f, float p[16]) {
@@ -144,7 +152,6 @@ static void trace_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     const sl_host *h = r->host;
     unsigned lobe = h->pass_texture(h, ctx, "envmap.scene_lobe");
     if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
-    r->found = h->pass_texture(h, ctx, "envmap.reflections");
     unsigned prog = h->program_id(h, r->trace_prog);
     if (!prog || !r->color) return;
     glUseProgram(prog);
@@ -169,10 +176,33 @@ static void trace_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     h->draw_fullscreen(h, ctx);
 }
 
+/* The rays' hits filtered over their neighbours (envmap_reflections_resolve.frag): what the
+ * forward programs read. */
+static void resolve_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
+    (void)f;
+    em_reflections *r = user;
+    const sl_host *h = r->host;
+    unsigned found = h->pass_texture(h, ctx, "envmap.reflections"), depth = h->pass_texture(h, ctx, "envmap.scene_depth");
+    if (h->bind_outputs(h, ctx, 0) != SL_OK) return;
+    r->found = h->pass_texture(h, ctx, "envmap.reflections_resolved");
+    unsigned prog = h->program_id(h, r->resolve_prog);
+    if (!prog) return;
+    glUseProgram(prog);
+    glBindTextureUnit(0, found);
+    glBindTextureUnit(1, depth);
+    glUniform1i(glGetUniformLocation(prog, "envmap_refl_found"), 0);
+    glUniform1i(glGetUniformLocation(prog, "envmap_refl_depth"), 1);
+    glUniform4fv(glGetUniformLocation(prog, "envmap_refl_depth_lin"), 1, r->depth_lin);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    h->draw_fullscreen(h, ctx);
+}
+
 sl_status em_reflections_create(em_reflections *r, const sl_host *host, bool (*lit)(void *), void *lit_user) {
     *r = (em_reflections){.host = host, .lit = lit, .lit_user = lit_user};
     scene_io(r, &(const char *const *){NULL}, &(const sl_target_desc *){NULL}, &(int){0});
     trace_io(r, &(const char *const *){NULL}, &(const sl_target_desc *){NULL}, &(int){0});
+    resolve_io(r, &(const char *const *){NULL}, &(const sl_target_desc *){NULL}, &(int){0});
     const sl_pass_desc scene = {.struct_size = sizeof scene, .name = "envmap-reflections", .stage = SL_STAGE_PREPASS + 10,
                                 .outputs = r->scene_targets, .output_count = 3, .execute = scene_execute,
                                 .is_active = pass_active, .io = scene_io, .signature = pass_signature, .user = r,
@@ -181,7 +211,13 @@ sl_status em_reflections_create(em_reflections *r, const sl_host *host, bool (*l
                                 .stage = SL_STAGE_PREPASS + 11, .inputs = trace_inputs, .outputs = &r->trace_target,
                                 .output_count = 1, .execute = trace_execute, .is_active = pass_active, .io = trace_io,
                                 .user = r, .depends = SL_DEPENDS_INPUTS | SL_DEPENDS_OWN_PARAMS};
-    if (host->add_pass(host, &scene) != SL_OK || host->add_pass(host, &trace) != SL_OK) return SL_ERR_FAILED;
+    const sl_pass_desc resolve = {.struct_size = sizeof resolve, .name = "envmap-reflections-resolve",
+                                  .stage = SL_STAGE_PREPASS + 12, .inputs = resolve_inputs, .outputs = &r->resolve_target,
+                                  .output_count = 1, .execute = resolve_execute, .is_active = pass_active,
+                                  .io = resolve_io, .user = r, .depends = SL_DEPENDS_INPUTS};
+    if (host->add_pass(host, &scene) != SL_OK || host->add_pass(host, &trace) != SL_OK ||
+        host->add_pass(host, &resolve) != SL_OK)
+        return SL_ERR_FAILED;
     if ((r->unit_found = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;
     return SL_OK;
 }
@@ -190,11 +226,14 @@ sl_status em_reflections_activate(em_reflections *r) {
     r->trace_prog = r->host->load_program(r->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
                                                                        .vertex = "sl:fullscreen.vert",
                                                                        .fragment = "envmap_reflections.frag"});
+    r->resolve_prog = r->host->load_program(r->host, &(sl_program_desc){.struct_size = sizeof(sl_program_desc),
+                                                                         .vertex = "sl:fullscreen.vert",
+                                                                         .fragment = "envmap_reflections_resolve.frag"});
     static const float zero[4] = {0, 0, 0, 0};
     glCreateTextures(GL_TEXTURE_2D, 1, &r->nothing);
     glTextureStorage2D(r->nothing, 1, GL_RGBA16F, 1, 1);
     glTextureSubImage2D(r->nothing, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, zero);
-    return r->trace_prog ? SL_OK : SL_ERR_GL;
+    return r->trace_prog && r->resolve_prog ? SL_OK : SL_ERR_GL;
 }
 
 void em_reflections_bind(em_reflections *r, unsigned prog) {

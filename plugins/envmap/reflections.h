@@ -11,11 +11,11 @@ typedef struct em_reflections {
     const sl_host *host;
     bool (*lit)(void *);    /* envmap has an environment to light with */
     void *lit_user;
-    sl_target_desc scene_targets[3], trace_target;
-    struct sl_program *trace_prog;
+    sl_target_desc scene_targets[3], trace_target, resolve_target;
+    struct sl_program *trace_prog, *resolve_prog;
     int unit_found;         /* the forward programs' */
     unsigned color, depth;  /* the scene's image with mips (envmap's own), its depth (the pass's) */
-    unsigned found;         /* what the rays found (the trace pass's) */
+    unsigned found;         /* what the rays found, filtered (the resolve pass's) */
     unsigned nothing;       /* 1x1, weight 0: bound until the trace pass has run */
     int w, h, levels;
     uint32_t generation;    /* moves when the image is freed: the pass draws it again */
