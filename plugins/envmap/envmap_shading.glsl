@@ -664,8 +664,11 @@ SlLobes envmap_environment_lobes(SlSurface s) { return sl_lobes_none(); }
 // The procedural sky's sun where it is a light of its own (sun_light): the source's texels leave
 // the disk out, so what shows it along one direction adds it here (a light is a delta to these).
 // Filtered over the lookup's footprint (a cone `footprint` radians wide, as the texels' level is):
-// the disk spreads to a radius of at least half the footprint with its energy kept, and its edge
-// ramps over one footprint, so a sub-pixel reflection of it is a soft spot, not one sample's spark.
+// the disk spreads to a radius s of at least half the footprint, and its edge ramps linearly over
+// one footprint f about s, so a sub-pixel reflection of it is a soft spot, not one sample's spark.
+// The ramp's solid angle is π(s² + f²/12) (the flat disk's ∫ 2πρ cover dρ), which the radiance
+// divides to keep the disk's energy πr²·L (over πs² alone: 4/3 of it where s = f/2, a sun seen in a
+// mirror whose pixel is wider than the disk; test_envmap_render, "mirror floor").
 // A still's jittered frames each cover 1/n of the pixel (aa's taa_lod_bias for textures): their
 // footprint is 2/√n as wide, two samples' spacing, so the still's mean is close to the pixel's
 // box filter of the disk and a sub-pixel reflection of it is not one sample's hit or miss.
@@ -679,7 +682,7 @@ vec3 envmap_sun_disk(vec3 d, float footprint) {
     float angle = acos(clamp(dot(envmap_rot * d, envmap_sun_dir), -1.0, 1.0));
     float r = envmap_sun_radius, spread = max(r, 0.5 * footprint);
     float cover = clamp((spread - angle) / max(footprint, 1e-6) + 0.5, 0.0, 1.0);
-    return envmap_sun_radiance * (r * r / (spread * spread)) * cover;
+    return envmap_sun_radiance * (r * r / (spread * spread + footprint * footprint / 12.0)) * cover;
 }
 #endif
 

@@ -15,6 +15,7 @@
  *   chains       a shadelab-cube --ggx chain loads and matches the plugin's own prefilter
  *   cache        the second load reads the disk cache and renders the same image
  *   cost         a mirror-only scene never prefilters; envmap disabled changes no program
+ *   mirror sun   the sky's sun seen in a mirror floor carries the disk's energy, E = 3, within 2 %
  *   constant     a colour as the environment: the general path's image from a "constant:" map,
  *                nothing prefiltered
  *   poles        looking straight up and down at a lat-long: finite and smooth */
@@ -1028,6 +1029,52 @@ static void test_probe(void) {
  * centroid must be within 1.5 pixels of n's projection. The previous convention (u = ½ at −Z)
  * put this texel at (½, √½, −½), behind the sphere: its highlight lay 5 pixels away, near the
  * upper-right rim; a mirrored map puts it on the left. */
+/* The sun's disk seen in a flat mirror (the sky's sun a light of its own: the mirror model adds the
+ * disk filtered over the lookup's footprint, envmap_sun_disk) carries the disk's energy, E = 3,
+ * like the background's: the reflected radiance above the sky's, summed over solid angle within 6°
+ * of the disk's reflection. At 120° (a pixel 3.1°, wider than the 1.5° disk: the footprint sets the
+ * spread) a footprint-wide ramp about a disk of the footprint's half width carried 4/3 of it. */
+static void test_mirror_sun_energy(double fov) {
+    double t = tan(fov * M_PI / 360), px = 2 * t / H, off = px / 3;
+    const double fwd0[3] = {sky_sun[0], -sky_sun[1], sky_sun[2]}; /* the sun's direction seen in a mirror floor */
+    test_camera c = {{0, 0, 0}, {(float)(fwd0[0] + off), (float)(fwd0[1] + off), (float)fwd0[2]}, (float)fov, W, H};
+    char json[1024], err[4096];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"envmap\"],"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 0], \"target\": [%.9g, %.9g, %.9g], \"fov_y\": %g}],"
+             " \"materials\": [{\"name\": \"m\", \"model\": \"mirror\"}],"
+             " \"nodes\": [{\"name\": \"n\", \"translate\": [0, -1, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 400},"
+             "             \"material\": \"m\"}]}",
+             c.target[0], c.target[1], c.target[2], c.fov_deg);
+    const char *const settings[] = {"aa.enabled=false", "envmap.sun_elevation=30", "envmap.sun_azimuth=0",
+                                    "envmap.sun_irradiance=3", "envmap.cache=false", NULL};
+    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
+                                                          .scene_json = json, .settings = settings, .float32 = true,
+                                                          .strict = true},
+                                      err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    if (!h) return;
+    CHECK(sl_harness_render(h, img));
+    em_sky no_sun;
+    em_sky_default(&no_sun);
+    no_sun.sun_elevation_deg = 30, no_sun.sun_azimuth_deg = 0, no_sun.sun_irradiance = 0;
+    double fwd[3] = {c.target[0], c.target[1], c.target[2]}, E = 0;
+    normalize3(fwd);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float o[3], df[3];
+            test_camera_ray(&c, x, y, o, df);
+            double r[3] = {df[0], -df[1], df[2]}, L[3], mu = df[0] * fwd[0] + df[1] * fwd[1] + df[2] * fwd[2];
+            if (r[0] * sky_sun[0] + r[1] * sky_sun[1] + r[2] * sky_sun[2] < cos(6 * M_PI / 180)) continue;
+            em_sky_radiance(&no_sun, r, L);
+            E += (img[((size_t)y * W + x) * 4] - L[0]) * px * px * mu * mu * mu;
+        }
+    printf("  the sun in a mirror floor, %g° field of view (disk radius %.2f px): irradiance in the image %.4f "
+           "(E = 3)\n", fov, sky_sun_r / px, E);
+    CHECK_MSG(fabs(E / 3 - 1) < 0.02, "the sun's energy in a mirror: %.4f against 3", E);
+    sl_harness_destroy(h);
+}
+
 static void test_sun_highlight(void) {
     enum { SW = 512, SH = 256 };
     char path[512], err[1024];
@@ -1311,6 +1358,7 @@ int main(void) {
     test_default_speckle();
     test_hybrid_sample0();
     test_sun_highlight();
+    for (int i = 0; i < 2; i++) test_mirror_sun_energy((const double[]){120, 60}[i]);
     test_procedural();
     test_bad_input();
     test_chain_and_cache();
