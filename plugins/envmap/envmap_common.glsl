@@ -9,6 +9,10 @@ layout(binding = ENVMAP_PROBE_UNIT) uniform samplerCube envmap_probe;
 #endif
 const float ENVMAP_HALF_MAX = 65504.0;
 
+// View distance from NDC z through the inverse projection's z and w rows, k = (−inv[10], −inv[14],
+// inv[11], inv[15]) (perspective and orthographic alike; reflections.c, depth_lin).
+float envmap_view_distance(vec4 k, float ndc_z) { return (k.x * ndc_z + k.y) / (k.z * ndc_z + k.w); }
+
 // Lat-long, the orientation of Blender and three.js: d = (−sinθ cosφ, cosθ, −sinθ sinφ),
 // φ = atan2(−z, −x), u = φ/2π wrapped to [0,1) (three.js: atan(z, x)/2π + ½), v = θ/π (v = 0 up).
 // Seen from inside, u grows to the right: u = 0 faces −X, ¼ faces −Z, ½ faces +X, ¾ faces +Z.

@@ -5,22 +5,20 @@
 // passes behind an object's silhouette. Writes (radiance × weight, weight), weight 0 where the ray
 // found nothing, left the image or the lobe is too rough: the forward pass then keeps the
 // environment (envmap_shading.glsl, envmap_reflected). Deterministic: the same steps everywhere.
+#include "envmap_common.glsl"
 in vec2 v_uv;
 uniform sampler2D envmap_refl_color; // the scene's image, with mips
 uniform sampler2D envmap_refl_depth; // its window depth
 uniform sampler2D envmap_refl_lobe;  // its smoothest lobe: lookup direction (world), GGX alpha
 uniform mat4 envmap_refl_view_proj, envmap_refl_inv_view_proj; // the view it was drawn with
-uniform vec4 envmap_refl_depth_lin;  // view distance from NDC z: (x z + y) / (z z + w)
+uniform vec4 envmap_refl_depth_lin;  // view distance from NDC z (envmap_view_distance)
 uniform vec2 envmap_refl_texel;      // a texel's world size: x times (y > 0: the view distance; else 1)
 uniform float envmap_refl_alpha;     // lobes this rough or rougher: not traced
 uniform float envmap_refl_length;    // the longest ray, world units (the scene's diagonal)
 uniform int envmap_refl_steps;
 layout(location = 0) out vec4 o_found;
 
-float envmap_refl_distance(float ndc_z) {
-    vec4 k = envmap_refl_depth_lin;
-    return (k.x * ndc_z + k.y) / (k.z * ndc_z + k.w);
-}
+float envmap_refl_distance(float ndc_z) { return envmap_view_distance(envmap_refl_depth_lin, ndc_z); }
 float envmap_refl_scene(vec2 ndc) { // the view distance of the scene's surface at an NDC point
     ivec2 size = textureSize(envmap_refl_depth, 0);
     ivec2 at = clamp(ivec2((ndc * 0.5 + 0.5) * vec2(size)), ivec2(0), size - 1);

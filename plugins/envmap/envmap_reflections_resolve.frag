@@ -7,16 +7,15 @@
 // partial weight. Neighbours on another surface (view distance more than 3 % apart: the silhouette
 // of the object the texel is on) are left out. Five taps (the texel and its four neighbours) cost
 // half as much and left a faint speckle.
+#include "envmap_common.glsl"
 in vec2 v_uv;
 uniform sampler2D envmap_refl_found; // (radiance × weight, weight) per texel, the trace's
 uniform sampler2D envmap_refl_depth; // the scene image's window depth
-uniform vec4 envmap_refl_depth_lin;  // view distance from NDC z: (x z + y) / (z z + w)
+uniform vec4 envmap_refl_depth_lin;  // view distance from NDC z (envmap_view_distance)
 layout(location = 0) out vec4 o_found;
 
 float envmap_refl_distance_at(ivec2 p) {
-    vec4 k = envmap_refl_depth_lin;
-    float z = texelFetch(envmap_refl_depth, p, 0).r * 2.0 - 1.0;
-    return (k.x * z + k.y) / (k.z * z + k.w);
+    return envmap_view_distance(envmap_refl_depth_lin, texelFetch(envmap_refl_depth, p, 0).r * 2.0 - 1.0);
 }
 
 void main() {

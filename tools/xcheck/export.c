@@ -60,12 +60,13 @@ bool xc_mkdirs(const char *path, char *err, size_t n) {
     return true;
 }
 
-/* Adds `item` to the note "text (items)", one note per text. */
 /* glTF's metallic-roughness in Cycles, exported or read by Blender's importer: its Burley diffuse is
  * brighter than Lambert at grazing view on rough surfaces */
 #define PRINCIPLED_NOTE                                                                                         \
     "approximated: glTF metallic-roughness as Cycles' Principled BSDF (Burley diffuse instead of Lambert x (1 - " \
     "F); Cycles' normalised dielectric Fresnel instead of Schlick's)"
+
+/* Adds `item` to the note "text (items)", one note per text. */
 static void note_item(ctx *c, const char *text, const char *item) {
     size_t len = strlen(text);
     for (int i = 0; i < c->out->note_count; i++) {

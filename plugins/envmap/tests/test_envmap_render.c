@@ -527,15 +527,14 @@ static double sun_angle(const float df[3]) {
     return acos(fmin(1, df[0] * sky_sun[0] + df[1] * sky_sun[1] + df[2] * sky_sun[2]));
 }
 
-static sl_harness *sky_harness(bool aa, const test_camera *c) {
-    char json[1024];
+/* The procedural sky (its sun at 30° elevation, azimuth 0, 3 W/m²) seen through `c`, with
+ * `objects` (the scene's "materials" and "nodes" members), aa on or off. */
+static sl_harness *sky_harness_with(bool aa, const test_camera *c, const char *objects) {
+    char json[2048];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"envmap\"],"
-             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 0], \"target\": [%.9g, %.9g, %.9g], \"fov_y\": %g}],"
-             " \"materials\": [{\"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5]}],"
-             " \"nodes\": [{\"name\": \"n\", \"translate\": [0, 0, -50], \"mesh\": {\"primitive\": \"sphere\", \"radius\": 0.1},"
-             "             \"material\": \"m\"}]}",
-             c->target[0], c->target[1], c->target[2], c->fov_deg);
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 0], \"target\": [%.9g, %.9g, %.9g], \"fov_y\": %g}], %s}",
+             c->target[0], c->target[1], c->target[2], c->fov_deg, objects);
     const char *const settings[] = {aa ? "aa.enabled=true" : "aa.enabled=false", "aa.taa_frames=16",
                                     "envmap.sun_elevation=30", "envmap.sun_azimuth=0", "envmap.sun_irradiance=3",
                                     "envmap.cache=false", NULL};
@@ -547,7 +546,13 @@ static sl_harness *sky_harness(bool aa, const test_camera *c) {
     CHECK_MSG(h != NULL, "%s", err);
     return h;
 }
-
+/* the sky alone but for a small ball far below the view */
+static sl_harness *sky_harness(bool aa, const test_camera *c) {
+    return sky_harness_with(aa, c,
+                            "\"materials\": [{\"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5]}],"
+                            " \"nodes\": [{\"name\": \"n\", \"translate\": [0, 0, -50], \"mesh\": {\"primitive\": \"sphere\", \"radius\": 0.1},"
+                            "             \"material\": \"m\"}]");
+}
 /* Pixels whose centre lies within 1.5 pixels of the disk's edge: relative RMS and largest error of
  * red against the box filter of em_sky_radiance over the pixel, over the disk's radiance. */
 static void sun_edge_error(const em_sky *sky, const float *im, double *rms, double *worst, int *count) {
@@ -573,36 +578,46 @@ static void sun_edge_error(const em_sky *sky, const float *im, double *rms, doub
     *rms = sqrt(sum / fmax(*count, 1));
 }
 
-/* The disk's energy at any size on screen: looking at the sun (a third of a pixel off a pixel
- * corner) with a wide field of view, one frame without antialiasing, the pixels' radiance less
- * the sky's (em_sky_radiance without the sun) times their solid angles sums to the sun's
- * irradiance E = 3 (red: colour 1). Fields of view 120°, 60°, 30° on 64 pixels put the disk's
- * radius at 0.5, 1.4 and 3.2 pixels: the small disk drawn as a square of its area, the blend,
- * the straight edge. A point-sampled disk lit whole pixels (+36 % at 120°, measured before the
- * filter). */
-static void test_sun_energy(double fov) {
-    double t = tan(fov * M_PI / 360), px = 2 * t / H, off = px / 3;
-    test_camera c = {{0, 0, 0}, {(float)(sky_sun[0] + off), (float)(sky_sun[1] + off), (float)sky_sun[2]}, (float)fov, W, H};
-    sl_harness *h = sky_harness(false, &c);
+
+/* The disk's energy at any size on screen: one frame without antialiasing, the pixels' radiance
+ * less the sky's (em_sky_radiance without the sun) times their solid angles sums to the sun's
+ * irradiance E = 3 (red: colour 1).
+ * mirror = false: looking at the sun (a third of a pixel off a pixel corner), every pixel summed.
+ * Fields of view 120°, 60°, 30° on 64 pixels put the disk's radius at 0.5, 1.4 and 3.2 pixels: the
+ * small disk drawn as a square of its area, the blend, the straight edge. A point-sampled disk lit
+ * whole pixels (+36 % at 120°, measured before the filter).
+ * mirror = true: the sun seen in a mirror floor (the sky's sun a light of its own: the mirror model
+ * adds the disk filtered over the lookup's footprint, envmap_sun_disk), within 6° of the disk's
+ * reflection; at 120° (a pixel 3.1°, wider than the 1.5° disk: the footprint sets the spread) a
+ * footprint-wide ramp about a disk of the footprint's half width carried 4/3 of it. */
+static void test_sun_energy(double fov, bool mirror) {
+    double t = tan(fov * M_PI / 360), px = 2 * t / H, off = px / 3, flip = mirror ? -1 : 1;
+    test_camera c = {{0, 0, 0}, {(float)(sky_sun[0] + off), (float)(flip * sky_sun[1] + off), (float)sky_sun[2]}, (float)fov, W, H};
+    sl_harness *h = mirror ? sky_harness_with(false, &c,
+                                              "\"materials\": [{\"name\": \"m\", \"model\": \"mirror\"}],"
+                                              " \"nodes\": [{\"name\": \"n\", \"translate\": [0, -1, 0],"
+                                              " \"mesh\": {\"primitive\": \"plane\", \"size\": 400}, \"material\": \"m\"}]")
+                           : sky_harness(false, &c);
     if (!h) return;
     CHECK(sl_harness_render(h, img));
-    em_sky sky, no_sun;
-    em_sky_default(&sky);
-    sky.sun_elevation_deg = 30, sky.sun_azimuth_deg = 0, sky.sun_irradiance = 3;
-    no_sun = sky, no_sun.sun_irradiance = 0;
+    em_sky no_sun;
+    em_sky_default(&no_sun);
+    no_sun.sun_elevation_deg = 30, no_sun.sun_azimuth_deg = 0, no_sun.sun_irradiance = 0;
     double fwd[3] = {c.target[0], c.target[1], c.target[2]}, E = 0;
     normalize3(fwd);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             float o[3], df[3];
             test_camera_ray(&c, x, y, o, df);
-            double d[3] = {df[0], df[1], df[2]}, L[3], mu = d[0] * fwd[0] + d[1] * fwd[1] + d[2] * fwd[2];
+            double d[3] = {df[0], flip * df[1], df[2]}, L[3], mu = df[0] * fwd[0] + df[1] * fwd[1] + df[2] * fwd[2];
+            if (mirror && d[0] * sky_sun[0] + d[1] * sky_sun[1] + d[2] * sky_sun[2] < cos(6 * M_PI / 180)) continue;
             em_sky_radiance(&no_sun, d, L);
             E += (img[((size_t)y * W + x) * 4] - L[0]) * px * px * mu * mu * mu;
         }
-    printf("  looking at the sun with a %g° field of view (disk radius %.2f px): irradiance in the image %.4f "
-           "(E = 3)\n", fov, sky_sun_r / px, E);
-    CHECK_MSG(fabs(E / 3 - 1) < 0.01, "the sun's energy in the background: %.4f against 3", E);
+    printf("  %s with a %g° field of view (disk radius %.2f px): irradiance in the image %.4f (E = 3)\n",
+           mirror ? "the sun in a mirror floor" : "looking at the sun", fov, sky_sun_r / px, E);
+    CHECK_MSG(fabs(E / 3 - 1) < (mirror ? 0.02 : 0.01), "the sun's energy %s: %.4f against 3",
+              mirror ? "in a mirror" : "in the background", E);
     sl_harness_destroy(h);
 }
 
@@ -648,7 +663,8 @@ static void test_sky_background(void) {
     printf("  the still (16 frames): rms %.4f, largest %.4f\n", rms, edge_worst);
     CHECK_MSG(rms < 0.01 && edge_worst < 0.03, "the still's disk edge: rms %.4f, largest %.4f", rms, edge_worst);
     sl_harness_destroy(h);
-    for (int i = 0; i < 3; i++) test_sun_energy((const double[]){120, 60, 30}[i]);
+    for (int i = 0; i < 3; i++) test_sun_energy((const double[]){120, 60, 30}[i], false);
+    for (int i = 0; i < 2; i++) test_sun_energy((const double[]){120, 60}[i], true);
 }
 
 /* ---------------------------------------------------------------- the default has no speckle */
@@ -1029,52 +1045,6 @@ static void test_probe(void) {
  * centroid must be within 1.5 pixels of n's projection. The previous convention (u = ½ at −Z)
  * put this texel at (½, √½, −½), behind the sphere: its highlight lay 5 pixels away, near the
  * upper-right rim; a mirrored map puts it on the left. */
-/* The sun's disk seen in a flat mirror (the sky's sun a light of its own: the mirror model adds the
- * disk filtered over the lookup's footprint, envmap_sun_disk) carries the disk's energy, E = 3,
- * like the background's: the reflected radiance above the sky's, summed over solid angle within 6°
- * of the disk's reflection. At 120° (a pixel 3.1°, wider than the 1.5° disk: the footprint sets the
- * spread) a footprint-wide ramp about a disk of the footprint's half width carried 4/3 of it. */
-static void test_mirror_sun_energy(double fov) {
-    double t = tan(fov * M_PI / 360), px = 2 * t / H, off = px / 3;
-    const double fwd0[3] = {sky_sun[0], -sky_sun[1], sky_sun[2]}; /* the sun's direction seen in a mirror floor */
-    test_camera c = {{0, 0, 0}, {(float)(fwd0[0] + off), (float)(fwd0[1] + off), (float)fwd0[2]}, (float)fov, W, H};
-    char json[1024], err[4096];
-    snprintf(json, sizeof json,
-             "{\"plugins\": [\"envmap\"],"
-             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 0], \"target\": [%.9g, %.9g, %.9g], \"fov_y\": %g}],"
-             " \"materials\": [{\"name\": \"m\", \"model\": \"mirror\"}],"
-             " \"nodes\": [{\"name\": \"n\", \"translate\": [0, -1, 0], \"mesh\": {\"primitive\": \"plane\", \"size\": 400},"
-             "             \"material\": \"m\"}]}",
-             c.target[0], c.target[1], c.target[2], c.fov_deg);
-    const char *const settings[] = {"aa.enabled=false", "envmap.sun_elevation=30", "envmap.sun_azimuth=0",
-                                    "envmap.sun_irradiance=3", "envmap.cache=false", NULL};
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W, .height = H,
-                                                          .scene_json = json, .settings = settings, .float32 = true,
-                                                          .strict = true},
-                                      err, sizeof err);
-    CHECK_MSG(h != NULL, "%s", err);
-    if (!h) return;
-    CHECK(sl_harness_render(h, img));
-    em_sky no_sun;
-    em_sky_default(&no_sun);
-    no_sun.sun_elevation_deg = 30, no_sun.sun_azimuth_deg = 0, no_sun.sun_irradiance = 0;
-    double fwd[3] = {c.target[0], c.target[1], c.target[2]}, E = 0;
-    normalize3(fwd);
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            float o[3], df[3];
-            test_camera_ray(&c, x, y, o, df);
-            double r[3] = {df[0], -df[1], df[2]}, L[3], mu = df[0] * fwd[0] + df[1] * fwd[1] + df[2] * fwd[2];
-            if (r[0] * sky_sun[0] + r[1] * sky_sun[1] + r[2] * sky_sun[2] < cos(6 * M_PI / 180)) continue;
-            em_sky_radiance(&no_sun, r, L);
-            E += (img[((size_t)y * W + x) * 4] - L[0]) * px * px * mu * mu * mu;
-        }
-    printf("  the sun in a mirror floor, %g° field of view (disk radius %.2f px): irradiance in the image %.4f "
-           "(E = 3)\n", fov, sky_sun_r / px, E);
-    CHECK_MSG(fabs(E / 3 - 1) < 0.02, "the sun's energy in a mirror: %.4f against 3", E);
-    sl_harness_destroy(h);
-}
-
 static void test_sun_highlight(void) {
     enum { SW = 512, SH = 256 };
     char path[512], err[1024];
@@ -1358,7 +1328,6 @@ int main(void) {
     test_default_speckle();
     test_hybrid_sample0();
     test_sun_highlight();
-    for (int i = 0; i < 2; i++) test_mirror_sun_energy((const double[]){120, 60}[i]);
     test_procedural();
     test_bad_input();
     test_chain_and_cache();
