@@ -19,9 +19,13 @@ float sl_light_spread = 0.0;
 // parallelogram the normal's screen derivatives span, /π (a disk's r², in slopes). Fragment stage:
 // sl_surface_from_varyings sets it, a pass that builds its surface otherwise (a deferred lighting
 // pass) calls sl_set_normal_footprint(n); 0 where nothing did.
+// ABI 1.28: the change of that normal from the fragment's (jittered) sample to its pixel's centre,
+// sl_jitter.x·dFdx(n) + sl_jitter.y·dFdy(n), set with it: a lobe filtered over the footprint can
+// centre its filter on the pixel in every frame of a TAA still.
 #ifndef SL_NORMAL_FOOTPRINT_DECLARED
 #define SL_NORMAL_FOOTPRINT_DECLARED 1
 float sl_normal_footprint = 0.0;
+vec3 sl_normal_to_centre = vec3(0.0);
 #endif
 // ABI 1.25: true while the light loop evaluates the model for one of its lights (one direction
 // per pixel, which a lobe may filter over the pixel's footprint), false for the directions an
@@ -149,6 +153,7 @@ uniform vec3 sl_camera_pos;
 uniform int sl_frame_index;
 uniform int sl_sample_index, sl_sample_count; // ABI 1.9: sl_frame.sample_index/count
 uniform vec2 sl_viewport_size;
+uniform vec2 sl_jitter; // ABI 1.28: sl_frame.jitter, the frame's projection offset in pixels
 uniform mat4 sl_model;
 uniform mat3 sl_normal_matrix;
 

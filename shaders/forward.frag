@@ -29,9 +29,15 @@ layout(location = SL_NORMAL_LOCATION) out vec4 o_normal; // "normal" (pass.h, AB
 // none sets it). The forward pass and the depth pre-pass (prepass.frag) write the same.
 vec4 sl_normal_target(SlSurface s) { return vec4(normalize(mat3(sl_view) * s.normal), s.alpha); }
 
-// The pixel's footprint of the normal n (common.glsl, ABI 1.23), from its screen derivatives: call
-// in uniform control flow, before any discard.
-void sl_set_normal_footprint(vec3 n) { sl_normal_footprint = length(cross(dFdx(n), dFdy(n))) / SL_PI; }
+// The pixel's footprint of the normal n (common.glsl, ABI 1.23) and its change to the pixel's
+// centre (ABI 1.28), from its screen derivatives: call in uniform control flow, before any discard.
+// The jitter moved the image by sl_jitter pixels, so the fragment samples the surface sl_jitter
+// pixels short of its pixel's centre.
+void sl_set_normal_footprint(vec3 n) {
+    vec3 dx = dFdx(n), dy = dFdy(n);
+    sl_normal_footprint = length(cross(dx, dy)) / SL_PI;
+    sl_normal_to_centre = sl_jitter.x * dx + sl_jitter.y * dy;
+}
 
 #ifndef SL_FULLSCREEN_MATERIAL
 SlSurface sl_surface_from_varyings() {

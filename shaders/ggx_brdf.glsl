@@ -40,19 +40,30 @@ float ggx_slope_disk(float t2, float s2, float a2) {
 // The pixel's footprint of normals (sl_normal_footprint, common.glsl, ABI 1.23; declared here too
 // for programs that include this file alone): D is filtered over it, as a disk of its area,
 // together with the light's disk (their areas add), so a sun's glint smaller than a pixel lights the
-// pixels round it by their share of it rather than the samples that happen to hit it. A TAA still
-// moves the footprint over the pixel with its jitter, so whatever the glint's position its energy is
-// kept (a unit-area kernel box-filtered over the pixel sums to 1 over the pixels); the still's
-// filter of it is that disk moved over the pixel, about two pixels wide (a share of the footprint in
-// the still's jittered frames, sharper, left the glint's energy 0.82-1.28 of itself by position
-// and the IBL spheres' polished gold further from Cycles: 0.326 against 0.228). For every light the
-// light loop evaluates (sl_light_in_loop, ABI 1.25; a point or spot light, without a disk: the
-// footprint alone, ggx_D_footprint), not for the directions an integrator samples (envmap's
-// reference: it sees D itself, whose importance sampling it is).
+// pixels round it by their share of it rather than the samples that happen to hit it. For every
+// light the light loop evaluates (sl_light_in_loop, ABI 1.25; a point or spot light, without a
+// disk: the footprint alone, ggx_D_footprint), not for the directions an integrator samples
+// (envmap's reference: it sees D itself, whose importance sampling it is).
+// Where the filter sits in a TAA still's jittered frames (ggx_footprint_normal): a disk of a pixel's
+// area does not tile the pixels, so a glint far narrower than a pixel keeps its energy only as the
+// jitter moves the disk over the pixel (the still's filter then that disk moved over the pixel,
+// about two pixels wide); a lobe about a pixel wide needs no such help and is box-filtered
+// closest to what a path tracer's pixel gives (Cycles' 1-pixel box) by the disk at the pixel's
+// centre in every frame. The normal moves from the sample towards the pixel's centre
+// (sl_normal_to_centre, ABI 1.28) by 4g/(s² + 4g), g the lobe's own slope area (α² and the
+// light's disk). Modelled for a 4-frame still against the box filter: a lobe of 0.53 pixel (the
+// default scene's gold under its sun) 0.163 → 0.035 relative RMS, 0.3 pixel 0.22 → 0.10, a
+// 0.03-pixel glint unchanged (λ ≈ 1); a share of the footprint instead, sharper, left the glint's
+// energy 0.82-1.28 of itself by position. test_ggx_render measures it against supersampling.
 #ifndef SL_NORMAL_FOOTPRINT_DECLARED
 #define SL_NORMAL_FOOTPRINT_DECLARED 1
 float sl_normal_footprint = 0.0;
+vec3 sl_normal_to_centre = vec3(0.0);
 #endif
+vec3 ggx_footprint_normal(vec3 n, float alpha2) {
+    float g = alpha2 + 0.25 * sl_light_spread * sl_light_spread, s2 = sl_normal_footprint;
+    return normalize(n + sl_normal_to_centre * (4.0 * g / max(s2 + 4.0 * g, 1e-20)));
+}
 #ifndef SL_LIGHT_IN_LOOP_DECLARED // common.glsl's: the light loop's own evaluations
 #define SL_LIGHT_IN_LOOP_DECLARED 1
 bool sl_light_in_loop = false;
@@ -185,8 +196,8 @@ float ggx_DG_over_4(vec3 n, vec3 l, vec3 v, float alpha, out vec3 h) {
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     alpha = max(alpha, GGX_MIN_ALPHA);
     float D; // a light of the light loop (uniform per light): its disk and the pixel's footprint
-    if (ggx_D_disk_filtered()) D = ggx_D_disk(n, h, l, v, alpha);
-    else if (ggx_D_footprint_filtered()) D = ggx_D_footprint(dot(n, h), alpha);
+    if (ggx_D_disk_filtered()) D = ggx_D_disk(ggx_footprint_normal(n, alpha * alpha), h, l, v, alpha);
+    else if (ggx_D_footprint_filtered()) D = ggx_D_footprint(dot(ggx_footprint_normal(n, alpha * alpha), h), alpha);
     else D = ggx_D(dot(n, h), alpha);
 #ifdef GGX_G1_HALF_VECTOR
     float G = ggx_G1(v, n, h, alpha) * ggx_G1(l, n, h, alpha);

@@ -314,7 +314,8 @@ float ggx_aniso_DG_over_4(vec3 n, vec3 t, vec3 b, vec3 l, vec3 v, vec2 a, out ve
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
     float D; // as ggx_DG_over_4
     // a light without a disk squeezes nothing: the footprint alone (ggx_D_footprint's case)
-    if (ggx_D_disk_filtered() || ggx_D_footprint_filtered()) D = ggx_aniso_D_disk(n, t, b, h, l, v, a);
+    if (ggx_D_disk_filtered() || ggx_D_footprint_filtered())
+        D = ggx_aniso_D_disk(ggx_footprint_normal(n, a.x * a.y), t, b, h, l, v, a);
     else D = ggx_aniso_D(n, t, b, h, a);
     float cl = min(n_dot_l, 1.0), cv = min(n_dot_v, 1.0);
     vec2 pl = a * vec2(dot(l, t), dot(l, b)), pv = a * vec2(dot(v, t), dot(v, b));

@@ -47,6 +47,10 @@
  *             sl_surface_from_varyings sets it, a pass building its surface otherwise calls
  *             sl_set_normal_footprint(n) in uniform control flow; 0 elsewhere.
  *             sl:ggx_brdf.glsl filters D over it for the light loop's lights.
+ *             ABI 1.28: vec3 sl_normal_to_centre, set with it: the normal's change from the
+ *             fragment's jittered sample to its pixel's centre (uniform vec2 sl_jitter,
+ *             sl_frame.jitter in pixels); ggx centres the footprint of a lobe about a pixel
+ *             wide on the pixel in every frame of a TAA still.
  *   bool sl_light_in_loop (ABI 1.25, common.glsl): true while the core's light loop (or
  *             sl_light_radiance) evaluates the model for one of its lights, false elsewhere:
  *             a model filters its lobe over the footprint only then, never for the directions an
