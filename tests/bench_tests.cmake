@@ -35,7 +35,7 @@ add_test(NAME bench_cli_orbit_budget COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_in_tm
          $<TARGET_FILE:shadelab-bench> --orbit 1.5 --scene ${PROJECT_SOURCE_DIR}/scenes/basic.json --size 32x24
          --orbit-points 2 --orbit-hq "" --orbit-variant "core.budget=1" --orbit-variant "" --orbit-rounds 2
          --out @TMP@/orbit -q)
-set_tests_properties(bench_cli_orbit_budget PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD} LABELS bench
+set_tests_properties(bench_cli_orbit_budget PROPERTIES ENVIRONMENT "${SL_TEST_ENV_OPTIMISED}" TIMEOUT ${SL_HANG_GUARD} LABELS bench
                      PASS_REGULAR_EXPRESSION "variant \"core.budget=1\", 2 round\\(s\\):\n[^\n]*\n[^\n]*\n[^\n]*\n[^\n]*mean of 4 frame pairs:\n[^\n]*\n[^\n]*converged still \\([ 0-9]+ f\\): FLIP 0.0000  RMSE 0\n.*mean of 4 frame pairs.*converged still \\([ 0-9]+ f\\): FLIP 0.0000  RMSE 0\n")
 
 # --orbit-passes: every pass timed in every orbit frame, medians pooled over two rounds; the forward

@@ -52,12 +52,6 @@ endforeach()
 add_test(NAME cli_scenes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_scenes
          ${CMAKE_CURRENT_SOURCE_DIR}/cli_scenes.sh $<TARGET_FILE:shadelab> ${PROJECT_SOURCE_DIR}/scenes @TMP@)
 set_tests_properties(cli_scenes PROPERTIES ENVIRONMENT "${SL_TEST_ENV}" TIMEOUT ${SL_HANG_GUARD})
-# It renders every scene at 64×48, so its time is LLVM compiling their programs: unoptimised, as
-# the toggle matrix's (toggle_tests.cmake), in the toggle matrix's shader cache, which holds the
-# same scenes' programs (cold cache, alone: 73 -> 48 s). It asserts that each scene renders, not
-# how fast or to which value.
-set_property(TEST cli_scenes APPEND PROPERTY ENVIRONMENT "GALLIVM_PERF=nopt"
-             "MESA_SHADER_CACHE_DIR=${PROJECT_BINARY_DIR}/test-cache/mesa-nopt")
 
 # Pass order by stage value, not load order; dependencies switch off with what they need.
 sl_add_test(pass_order SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_pass_order.c)
@@ -97,10 +91,10 @@ sl_add_test(still_stop SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_still_stop.c)
 # view's edge is drawn.
 sl_add_test(frustum_cull SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_frustum_cull.c)
 # The frame-time budget's controller on synthetic cost models (no GL, no timing).
-sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT ${SL_HANG_GUARD})
+sl_add_test(budget SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget.c TIMEOUT ${SL_HANG_GUARD} OPTIMISED_SHADERS)
 # ... and in a real scene: the window opens as a still, even where a plugin's own light (envmap's
 # sky sun) comes on as the first frame begins, and an edit switching that light is one motion frame.
-sl_add_test(budget_motion SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget_motion.c)
+sl_add_test(budget_motion SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_budget_motion.c OPTIMISED_SHADERS)
 
 # 100 000 overlapping blended quads under TAA: the still completes, each cell's colour is the
 # closed form of its layers.

@@ -12,13 +12,7 @@ if(SL_BUILD_EXTRAS)
 endif()
 sl_add_test(toggle_matrix SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_toggle_matrix.c ARGS ${SL_TOGGLE_SCENE_DIRS}
             TIMEOUT 3600 LABELS toggle)
-# Its cells render 48×32 images with hundreds of distinct programs (each plugin set's permutations),
-# so on llvmpipe the test's time is mostly LLVM optimising shaders it runs on a few pixels:
-# GALLIVM_PERF=nopt (Mesa's "disable optimization passes") cuts its CPU time by a fifth (163 s ->
-# 127 s, cold shader cache; 200 s -> 148 s wall). What it checks (a toggle equals a fresh start, keys change the image)
-# is compared within one process, so the unoptimised code changes nothing it asserts. Its own
-# shader cache, so that no other test runs the unoptimised code it leaves there.
-set_property(TEST toggle_matrix APPEND PROPERTY ENVIRONMENT "GALLIVM_PERF=nopt"
-             "MESA_SHADER_CACHE_DIR=${PROJECT_BINARY_DIR}/test-cache/mesa-nopt")
+# Its cells render 48×32 images with hundreds of distinct programs: unoptimised shaders
+# (SL_TEST_ENV, tests/CMakeLists.txt) cut its CPU time by a fifth (163 s -> 127 s, cold cache).
 sl_add_long_test(toggle_matrix_exhaustive COMMAND $<TARGET_FILE:test_toggle_matrix> --exhaustive ${SL_TOGGLE_SCENE_DIRS}
                  LABELS toggle)
