@@ -53,8 +53,9 @@ float ggx_slope_disk(float t2, float s2, float a2) {
 // (sl_normal_to_centre, ABI 1.28) by 4g/(s² + 4g), g the lobe's own slope area (α² and the
 // light's disk). Modelled for a 4-frame still against the box filter: a lobe of 0.53 pixel (the
 // default scene's gold under its sun) 0.163 → 0.035 relative RMS, 0.3 pixel 0.22 → 0.10, a
-// 0.03-pixel glint unchanged (λ ≈ 1); a share of the footprint instead, sharper, left the glint's
-// energy 0.82-1.28 of itself by position. test_ggx_render measures it against supersampling.
+// 0.03-pixel glint as before (1 % of the way); a share of the footprint instead, sharper, left
+// the glint's energy 0.82-1.28 of itself by position. test_ggx_render measures it against
+// supersampling.
 #ifndef SL_NORMAL_FOOTPRINT_DECLARED
 #define SL_NORMAL_FOOTPRINT_DECLARED 1
 float sl_normal_footprint = 0.0;

@@ -249,17 +249,18 @@ static void test_subpixel_glint(void) {
  * peak: relative RMS and flux. With the footprint's disk where the jitter put it in every frame
  * (before ABI 1.28) the still was that disk moved over the pixel, two pixels wide: 0.12–0.21;
  * centred by ggx_footprint_normal: 0.025–0.054, flux 1.002–1.017. */
+#define GLINT_FOV 8.9
 static void render_glint(const char *const *settings, int frames, double dx, float *px, int w) {
     char json[2048], err[4096];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"ggx\"],\n"
-             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": 8.9}],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],\n"
              " \"materials\": [{\"name\": \"m\", %s}],\n"
              " \"nodes\": [{\"name\": \"s\", \"translate\": [%g, %g, 0],"
              "   \"mesh\": {\"primitive\": \"sphere\", \"radius\": 1, \"segments\": 256, \"rings\": 128},"
              "   \"material\": \"m\"}],\n"
              " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0.2, -0.15, -1], \"intensity\": 3,"
-             "   \"angular_radius\": 1.5}]}", metal_keys(0.18), dx, 0.6 * dx);
+             "   \"angular_radius\": 1.5}]}", GLINT_FOV, metal_keys(0.18), dx, 0.6 * dx);
     sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = w, .height = w,
                                                           .scene_json = json, .settings = settings, .float32 = true,
                                                           .strict = true}, err, sizeof err);
@@ -272,7 +273,7 @@ static void render_glint(const char *const *settings, int frames, double dx, flo
 static void test_pixel_wide_glint(void) {
     enum { GW = 96 };
     static float still[GW * GW * 4], box[GW * GW * 4];
-    const double pixel = 2 * 40 * tan(4.45 * M_PI / 180) / GW;
+    const double pixel = 2 * 40 * tan(GLINT_FOV / 2 * M_PI / 180) / GW;
     for (int i = 0; i < 4; i++) {
         double at = 0.25 * i * pixel; /* moved by (at, 0.6 at) m */
         render_glint((const char *[]){"aa.enabled=true", "aa.taa_frames=4", NULL}, 4, at, still, GW);
