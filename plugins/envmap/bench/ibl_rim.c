@@ -136,6 +136,14 @@ static double halton(unsigned i, unsigned b) {
     for (; i > 0; i /= b) f /= b, r += f * (i % b);
     return r;
 }
+/* The aa plugin's jitter of frame k of an n-frame still (its jitter_offset): 0 for k = 0, Halton
+ * point k − ½ less the mean of points 1..n−1, so the n offsets average to the pixel's centre. */
+static double jitter(unsigned k, unsigned n, unsigned b) {
+    if (!k || n < 2) return 0;
+    double mean = 0;
+    for (unsigned i = 1; i < n; i++) mean += halton(i, b) - 0.5;
+    return halton(k, b) - 0.5 - mean / (n - 1);
+}
 
 /* --still: what the viewer shows at rest. T averaged over the aa plugin's TAA still (taa_frames
  * Halton (2, 3) jitter points a pixel, frame 0 at the centre; a ray that misses counts 0, as the
@@ -179,7 +187,7 @@ static int run_still(const char *path, const char *mat, double only_alpha) {
         for (int i = 0; i < n; i++)
             for (int k = 0; k < frames; k++) {
                 double nn[3], vv[3], t3[3], lb[3], A, B;
-                double jx = k ? halton((unsigned)k, 2) - 0.5 : 0, jy = k ? halton((unsigned)k, 3) - 0.5 : 0;
+                double jx = jitter((unsigned)k, (unsigned)frames, 2), jy = jitter((unsigned)k, (unsigned)frames, 3);
                 double sx = getenv("RIM_SX") ? atof(getenv("RIM_SX")) : 1, sy = getenv("RIM_SY") ? atof(getenv("RIM_SY")) : 1;
                 if (!pixel_at(i, sx * jx, sy * jy, nn, vv)) continue;
                 truth(nn, vv, al, t3, lb, &A, &B);
