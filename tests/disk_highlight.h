@@ -12,6 +12,24 @@
 #include <math.h>
 #include <stdio.h>
 
+/* Renders scene `json` at w × h with `settings` (NULL-terminated) and writes the last of `frames`
+ * frames (a TAA still) to px (RGBA floats); false, with a failed check, when it cannot. */
+static inline bool sl_test_render_frames(const char *json, const char *const *settings, int w, int h, int frames,
+                                         float *px) {
+    char err[4096];
+    sl_harness *hn = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = w, .height = h,
+                                                           .scene_json = json, .settings = settings, .float32 = true,
+                                                           .strict = true}, err, sizeof err);
+    CHECK_MSG(hn != NULL, "%s", err);
+    if (!hn) return false;
+    bool ok = true;
+    for (int f = 1; f < frames; f++) ok = ok && sl_harness_render(hn, NULL);
+    ok = ok && sl_harness_render(hn, px);
+    CHECK(ok);
+    sl_harness_destroy(hn);
+    return ok;
+}
+
 /* As sl_test_disk_highlight, with the harness's settings (NULL-terminated; NULL: aa off), the
  * sphere moved by (dx, dy) m across the view, and the image the last of `frames` (a TAA still). */
 static inline void sl_test_disk_highlight_at(const char *plugin, const char *material_keys, double r_deg, double fov_deg,
@@ -19,7 +37,7 @@ static inline void sl_test_disk_highlight_at(const char *plugin, const char *mat
                                              double *flux, double *radius) {
     enum { DW = 96, DH = 96 };
     static float px[DW * DH * 4];
-    char json[2048], err[4096];
+    char json[2048];
     snprintf(json, sizeof json,
              "{\"plugins\": [\"%s\"],\n"
              " \"cameras\": [{\"name\": \"c\", \"position\": [0, 0, 40], \"target\": [0, 0, 0], \"fov_y\": %g}],\n"
@@ -31,15 +49,8 @@ static inline void sl_test_disk_highlight_at(const char *plugin, const char *mat
              "   \"angular_radius\": %g}]}", plugin, fov_deg, material_keys, dx, dy, r_deg);
     static const char *const aa_off[] = {"aa.enabled=false", NULL};
     if (!settings) settings = aa_off;
-    sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = DW, .height = DH,
-                                                          .scene_json = json, .settings = settings, .float32 = true,
-                                                          .strict = true}, err, sizeof err);
-    CHECK_MSG(h != NULL, "%s", err);
     *flux = *radius = 0;
-    if (!h) return;
-    for (int f = 1; f < frames; f++) CHECK(sl_harness_render(h, NULL));
-    CHECK(sl_harness_render(h, px));
-    sl_harness_destroy(h);
+    if (!sl_test_render_frames(json, settings, DW, DH, frames, px)) return;
     double pixel = 2 * 40 * tan(fov_deg / 2 * M_PI / 180) / DH, peak = 0, sum = 0, above = 0;
     for (int i = 0; i < DW * DH; i++) peak = fmax(peak, px[i * 4]);
     for (int i = 0; i < DW * DH; i++) sum += px[i * 4], above += px[i * 4] >= 0.5 * peak;

@@ -121,15 +121,16 @@ static float halton(unsigned i, unsigned b) {
     for (; i > 0; i /= b) f /= (float)b, r += f * (float)(i % b);
     return r;
 }
-/* Frame k of an n-frame sequence, as set_jitter's offset in pixels: the pixel centre for k = 0,
- * Halton (2, 3) point k for the others, less their mean, so the n offsets average to the pixel's
- * centre, as a path tracer's box filter does. Halton's first points are not centred: their mean
- * was (0, -0.097) of a pixel over 4 frames, (0, -0.043) over 16, which moved a still's image
- * that far off its pixels. */
-static void jitter_offset(unsigned k, unsigned n, float out[2]) {
+/* Jitters frame k (1..n-1) of an n-frame sequence: Halton (2, 3) point k less the mean of points
+ * 1..n-1, so that with frame 0 at the pixel's centre the n offsets average to it, as a path
+ * tracer's box filter does. Halton's first points are not centred: their mean was (0, -0.097) of
+ * a pixel over 4 frames, (0, -0.043) over 16, which moved a still's image that far off its
+ * pixels. */
+static void set_frame_jitter(aa *a, unsigned k, unsigned n) {
     float mean[2] = {0, 0};
     for (unsigned i = 1; i < n; i++) mean[0] += halton(i, 2) - 0.5f, mean[1] += halton(i, 3) - 0.5f;
-    for (int c = 0; c < 2; c++) out[c] = k && n > 1 ? halton(k, c ? 3 : 2) - 0.5f - mean[c] / (float)(n - 1) : 0.0f;
+    a->host->set_jitter(a->host, halton(k, 2) - 0.5f - mean[0] / (float)(n - 1),
+                        halton(k, 3) - 0.5f - mean[1] / (float)(n - 1));
 }
 
 /* What moves the image (camera, animated geometry and lights): while it stays, the view is
@@ -184,8 +185,9 @@ static void begin_frame(void *user, const sl_frame *f) {
     a->host->set_still_frames(a->host, n);
     /* A still view (nothing changed since the last frame, which TAA rendered) accumulates
      * exactly: the first frame of the still restarts the history at the pixel centre, the next
-     * n-1 frames add Halton points 1..n-1 (centred: jitter_offset) with equal weights, and then the history is
-     * shown as it is (no jitter): the window shows what a headless still (n frames) gives. */
+     * n-1 frames add Halton points 1..n-1 (centred: set_frame_jitter) with equal weights, and
+     * from then on the history is shown as it is (no jitter): the window shows what a headless
+     * still (n frames) gives. */
     uint64_t sig = motion_signature(f, a->upscales), cut = cut_signature(f, a->upscales);
     bool consecutive = a->history_valid && a->taa_ran_at + 1 == a->frames_begun;
     if (!consecutive || cut != a->cut) a->still = 0, a->restart = 1; /* a first frame starts a still */
@@ -197,9 +199,7 @@ static void begin_frame(void *user, const sl_frame *f) {
     a->converged = a->still >= n;
     if (a->still >= 0) {
         if (!a->converged && a->still > 0) {
-            float j[2];
-            jitter_offset((unsigned)a->still, (unsigned)n, j);
-            a->host->set_jitter(a->host, j[0], j[1]);
+            set_frame_jitter(a, (unsigned)a->still, (unsigned)n);
             still_lod_bias(a, n);
         }
         return;
@@ -208,9 +208,7 @@ static void begin_frame(void *user, const sl_frame *f) {
      * (Halton 0 is a corner). A first frame is therefore the image without antialiasing, so a
      * single-frame render is the same with TAA on (a TAA still is the mean of n frames). */
     unsigned k = (unsigned)(f->index % (uint64_t)(n > 0 ? n : 1));
-    float j[2];
-    jitter_offset(k, (unsigned)(n > 0 ? n : 1), j);
-    if (k) a->host->set_jitter(a->host, j[0], j[1]);
+    if (k) set_frame_jitter(a, k, (unsigned)n);
 }
 
 static bool taa_active(void *user, const sl_frame *f) {

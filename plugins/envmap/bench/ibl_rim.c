@@ -23,6 +23,7 @@
  * Usage: envmap_bench_rim --env PATH [--size N] [--nu N] [--nphi N] [--gl]
  * Output: CSV rows env,alpha,method,rel_rms,rel_mean,ratio_mu<0.25,ratio_mu0.25-0.5,ratio_mu>0.5 */
 #include "ibl_sphere.h"
+#include "../tests/still_jitter.h"
 #include <envmap/io.h>
 #include <math.h>
 #include <stdio.h>
@@ -131,19 +132,6 @@ static int pixel_at(int i, double jx, double jy, double n[3], double v[3]) { /* 
     return dot(n, v) > 0;
 }
 static int pixel(int i, double n[3], double v[3]) { return pixel_at(i, 0, 0, n, v); }
-static double halton(unsigned i, unsigned b) {
-    double f = 1, r = 0;
-    for (; i > 0; i /= b) f /= b, r += f * (i % b);
-    return r;
-}
-/* The aa plugin's jitter of frame k of an n-frame still (its jitter_offset): 0 for k = 0, Halton
- * point k − ½ less the mean of points 1..n−1, so the n offsets average to the pixel's centre. */
-static double jitter(unsigned k, unsigned n, unsigned b) {
-    if (!k || n < 2) return 0;
-    double mean = 0;
-    for (unsigned i = 1; i < n; i++) mean += halton(i, b) - 0.5;
-    return halton(k, b) - 0.5 - mean / (n - 1);
-}
 
 /* --still: what the viewer shows at rest. T averaged over the aa plugin's TAA still (taa_frames
  * Halton (2, 3) jitter points a pixel, frame 0 at the centre; a ray that misses counts 0, as the
@@ -187,7 +175,7 @@ static int run_still(const char *path, const char *mat, double only_alpha) {
         for (int i = 0; i < n; i++)
             for (int k = 0; k < frames; k++) {
                 double nn[3], vv[3], t3[3], lb[3], A, B;
-                double jx = jitter((unsigned)k, (unsigned)frames, 2), jy = jitter((unsigned)k, (unsigned)frames, 3);
+                double jx = still_jitter((unsigned)k, (unsigned)frames, 2), jy = still_jitter((unsigned)k, (unsigned)frames, 3);
                 double sx = getenv("RIM_SX") ? atof(getenv("RIM_SX")) : 1, sy = getenv("RIM_SY") ? atof(getenv("RIM_SY")) : 1;
                 if (!pixel_at(i, sx * jx, sy * jy, nn, vv)) continue;
                 truth(nn, vv, al, t3, lb, &A, &B);

@@ -17,6 +17,7 @@
 #include "envmap/prefilter.h"
 #include "ggx_ref.h"
 #include "ibl_quadrature_values.h"
+#include "still_jitter.h"
 #include "test_tmp.h"
 #include <shadelab/harness.h>
 #include <stdlib.h>
@@ -399,22 +400,9 @@ static void test_specular_occlusion(void) {
 
 /* ABI 1.9: a TAA still (the aa plugin on, its taa_frames jittered frames averaged), as the viewer
  * shows a view at rest. Sub-pixel rays at the aa plugin's Halton (2, 3) points: frame k's jitter
- * j_k (jitter(), below: the centre for k = 0) moves the projection by j_k pixels (x right, y up,
+ * j_k (still_jitter.h: the centre for k = 0) moves the projection by j_k pixels (x right, y up,
  * sl_frame.jitter), so the pixel sees the scene at its centre − j_k (x right, y up), i.e. at
  * (x + ½ − j_x, y + ½ + j_y) counted from the top left. */
-static double halton(unsigned i, unsigned b) {
-    double f = 1, r = 0;
-    for (; i > 0; i /= b) f /= b, r += f * (i % b);
-    return r;
-}
-/* The aa plugin's jitter of frame k of an n-frame still (its jitter_offset): 0 for k = 0, Halton
- * point k − ½ less the mean of points 1..n−1, so the n offsets average to the pixel's centre. */
-static double jitter(unsigned k, unsigned n, unsigned b) {
-    if (!k || n < 2) return 0;
-    double mean = 0;
-    for (unsigned i = 1; i < n; i++) mean += halton(i, b) - 0.5;
-    return halton(k, b) - 0.5 - mean / (n - 1);
-}
 static bool sphere_at(double fx, double fy, double n[3], double v[3]) { /* fx, fy from the top left */
     mat4 view, proj, vp, inv;
     glm_lookat((float *)cam.pos, (float *)cam.target, (vec3){0, 1, 0}, view);
@@ -472,7 +460,7 @@ static void test_still(void) {
                 double want = 0, nn[3], vv[3], centre = 0;
                 bool ok = true;
                 for (int k = 0; k < n && ok; k++) {
-                    double jx = jitter((unsigned)k, (unsigned)n, 2), jy = jitter((unsigned)k, (unsigned)n, 3);
+                    double jx = still_jitter((unsigned)k, (unsigned)n, 2), jy = still_jitter((unsigned)k, (unsigned)n, 3);
                     ok = sphere_at(x + 0.5 - jx, y + 0.5 + jy, nn, vv) && nn[0] * vv[0] + nn[1] * vv[1] + nn[2] * vv[2] > 0.2;
                     double mu = fmin(1, nn[0] * vv[0] + nn[1] * vv[1] + nn[2] * vv[2]);
                     if (ok) want += ETAB(mu) / n;
