@@ -5,4 +5,4 @@ sl_add_test(pass_skip SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_pass_skip.c TIMEO
 target_compile_definitions(test_pass_skip PRIVATE SL_TEST_PLUGIN_DIR="${SL_TP_DIR}")
 target_compile_definitions(test_pass_skip PRIVATE SL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 add_dependencies(test_pass_skip tp_tp-deps tp_tp-good plugin_sss plugin_spotlight-shadow plugin_tonemap plugin_ggx
-                 plugin_envmap plugin_normal-map plugin_aa)
+                 plugin_envmap plugin_normal-map plugin_aa plugin_ssao)

@@ -130,6 +130,22 @@ static void test_counts(void) {
     expect("  off, and then nothing", frame_at(h, 1), ALWAYS);
     sl_harness_destroy(h);
 
+    /* a pass that reads "depth" (ssao) brings the core's depth pre-pass, which runs every frame:
+     * it draws the camera's view, not the lights', so the passes that declared LIGHTS stay skipped */
+    h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 32, .height = 32,
+                                             .scene_json = scene, .strict = true,
+                                             .settings = (const char *[]){"aa.enabled=false", NULL},
+                                             .plugins = (const char *[]){"ggx", "tonemap", "ssao", "tp-deps", NULL}},
+                          err, sizeof err);
+    CHECK_MSG(h != NULL, "%s", err);
+    if (!h) return;
+    expect("with the depth pre-pass (ssao): first frame", frame_at(h, 0), ALL);
+    expect("  nothing changed", frame_at(h, 0), ALWAYS);
+    expect("  nothing changed again", frame_at(h, 0), ALWAYS);
+    set(h, "light.sun.intensity=3");
+    expect("  a light's intensity", frame_at(h, 0), ALWAYS | B(P_LIGHTS) | B(P_PARAMS));
+    sl_harness_destroy(h);
+
     /* geometry: tp-good's vertex hook (material key tp_lift) animates the geometry over time */
     snprintf(scene, sizeof scene, SCENE, ", \"tp_lift\": 0.25");
     h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = 32, .height = 32,

@@ -484,7 +484,10 @@ void sl_graph_run_range(sl_app *app, int begin, int end) {
         }
         if (sl_startup_recording()) sl_startup_mark("frame %d: %s", (int)app->frame_index, g->d->name);
         g->has_run = true;
-        if (g->d->stage < SL_STAGE_PREPASS) r->shadow_runs++; /* SL_DEPENDS_LIGHTS of later passes */
+        /* SL_DEPENDS_LIGHTS of later passes: what the light-space passes made. Not the core's depth
+         * pre-pass (the camera's view, every frame while a pass reads "depth" or "normal"): counted,
+         * it re-ran every pass that declared LIGHTS in every frame of a still. */
+        if (g->d->stage < SL_STAGE_DEPTH_PREPASS) r->shadow_runs++;
         g->last_ms = ms;
         if (st) { st->ms += ms; st->ran = true; }
     }

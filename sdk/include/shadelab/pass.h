@@ -156,8 +156,9 @@ typedef struct sl_pass_ctx sl_pass_ctx; /* opaque: valid only inside execute() *
  * the categories cannot: textures of the plugin's own that it re-made). */
 typedef enum sl_depends {
     SL_DEPENDS_LIGHTS = 1u << 0,    /* light values and their animation, and whatever a shadow-stage
-                                       pass (stage < SL_STAGE_PREPASS) ran for since (shadow maps,
-                                       cascades following the camera) */
+                                       pass (stage < SL_STAGE_DEPTH_PREPASS) ran for since (shadow
+                                       maps, cascades following the camera); not the core's depth
+                                       pre-pass */
     SL_DEPENDS_GEOMETRY = 1u << 1,  /* meshes, node animation, active VERTEX/DISPLACEMENT hooks,
                                        the scene's bounds */
     SL_DEPENDS_CAMERA = 1u << 2,    /* view and projection (jitter included), viewport size */
