@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the cross-check section of docs/benchmarks.md: every bundled scene Cycles can
-# represent, at the plugins' defaults and at each plugin's highest setting, shadelab and EEVEE
-# against a Cycles reference (shadelab-xcheck, docs/xcheck.md), and the issue's figure per row.
+# represent, at the plugins' defaults, at each plugin's highest setting and with the screen-space
+# effects EEVEE renders with, shadelab and EEVEE against a Cycles reference (shadelab-xcheck,
+# docs/xcheck.md), and the issue's figure per row.
 #
 #   tools/xcheck/xcheck-table.sh [BUILD_DIR]          (default build)
 #
@@ -47,6 +48,14 @@ declare -A HIGHEST=(
     [envmap]="envmap.specular=fis envmap.fis_samples=32 envmap.irradiance=convolved envmap.reflections=screen envmap.reflections_scale=1"
     [spotlight-shadow]="spotlight-shadow.filter=pcss spotlight-shadow.map_size=4096 spotlight-shadow.pcss_blocker_taps=64 spotlight-shadow.pcss_filter_taps=64"
 )
+# EEVEE renders with ambient occlusion and screen-space reflections (xcheck_blender.py: use_gtao,
+# use_ssr): shadelab's counterparts are the ssao plugin and envmap's screen-space reflections,
+# which the scenes (and the defaults) leave off for their cost. One row per scene with them on.
+eevee_effects() { # PLUGINS...: the arguments of that row
+    local a=(--plugin ssao)
+    [[ " $* " == *" envmap "* ]] && a+=(--set envmap.reflections=screen)
+    echo "${a[@]}"
+}
 note() { echo "xcheck-table: $*" >&2; }
 
 # The scenes: what the exporter says Cycles represents (left out: a reason per scene).
@@ -66,15 +75,16 @@ if [ -z "${SCENES:-}" ]; then
     done
 fi
 
-# row SCENE NAME ARGS...: one shadelab-xcheck run into $WORK/NAME; its report's path on rows.
+# row SCENE KIND NAME ARGS...: one shadelab-xcheck run into $WORK/NAME; its report's path on rows
+# (KIND: defaults, highest or effects).
 : > "$TMP/rows"
 : > "$TMP/not_measured"
 row() {
-    local scene=$1 name=$2 status
-    shift 2
+    local scene=$1 kind=$2 name=$3 status
+    shift 3
     if [ "${REUSE:-0}" = 1 ] && [ -f "$WORK/$name/report.json" ]; then
         note "$scene: $name (kept from an earlier run)"
-        echo "$scene|$WORK/$name/report.json|$*" >> "$TMP/rows"
+        echo "$scene|$kind|$WORK/$name/report.json|$*" >> "$TMP/rows"
         REUSED=$((REUSED + 1))
         return
     fi
@@ -86,7 +96,7 @@ row() {
     note "$scene: $name"
     if nice "$XC" --size "$SIZE" --samples "$SAMPLES" "${data_args[@]}" --out "$WORK/$name" "$@" "$scene" \
         > "$WORK/$name.log" 2>&1; then
-        echo "$scene|$WORK/$name/report.json|$*" >> "$TMP/rows"
+        echo "$scene|$kind|$WORK/$name/report.json|$*" >> "$TMP/rows"
     else
         status=$?
         note "$scene ($name) failed ($status): $(tail -2 "$WORK/$name.log")"
@@ -101,7 +111,7 @@ row() {
 REUSED=0 LOAD0=$(cut -d' ' -f1-3 /proc/loadavg) T0=$(date +%s)
 for s in $SCENES; do
     name=$(basename "$s" .json)
-    row "$s" "$name" --eevee "$EEVEE"
+    row "$s" defaults "$name" --eevee "$EEVEE"
     [ -f "$WORK/$name/report.json" ] || continue
     plugins=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["plugins"].replace(",", " "))' \
               "$WORK/$name/report.json")
@@ -109,8 +119,10 @@ for s in $SCENES; do
         [ -n "${HIGHEST[$p]:-}" ] || continue
         sets=()
         for a in ${HIGHEST[$p]}; do sets+=(--set "$a"); done
-        row "$s" "$name-$p-highest" "${sets[@]}"
+        row "$s" highest "$name-$p-highest" "${sets[@]}"
     done
+    # shellcheck disable=SC2046 # the words of eevee_effects
+    row "$s" effects "$name-eevee-effects" $(eevee_effects $plugins)
 done
 LOAD1=$(cut -d' ' -f1-3 /proc/loadavg) T1=$(date +%s)
 COMMIT=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
@@ -142,17 +154,16 @@ def describe(met, not_met):
     if not met: return "not met (EEVEE %s)" % "; ".join(not_met)
     return "met against EEVEE %s; not against %s" % (", ".join(met), "; ".join(not_met))
 
-rows, tally = [], {}
+rows, tally, scene_met = [], {}, {}
 scene_eevee = {}
 for line in open(rows_path).read().splitlines():
-    scene, path, args = line.split("|", 2)
+    scene, kind, path, args = line.split("|", 3)
     r = json.load(open(path))
     if r.get("eevee"): scene_eevee[scene] = r["eevee"]
     ee = scene_eevee.get(scene, [])
     setting = " ".join(a for a in args.split() if a != "--set")
-    if setting.startswith("--eevee"): setting = "defaults"
     s_err, s_flip, s_ms = r["interiors"]["rel_rms"], r["interiors"].get("flip", -1), r["shadelab_ms"]
-    first = setting == "defaults"
+    first = kind == "defaults"
     ee_err = ", ".join("%.3f / %.3f (%d)" % (e["interiors"]["rel_rms"], e["interiors"].get("flip", -1), e["samples"])
                        for e in ee) if first else "as above"
     ee_ms = ", ".join("%.0f (%d)" % (e["ms"], e["samples"]) for e in ee) if first else "as above"
@@ -166,8 +177,9 @@ for line in open(rows_path).read().splitlines():
         m_rms, n_rms = verdict(s_err, s_ms, ee, "rel_rms")
         m_flip, n_flip = verdict(s_flip, s_ms, ee, "flip")
         fig = "rel-RMS: %s; FLIP: %s" % (describe(m_rms, n_rms), describe(m_flip, n_flip))
-        t = tally.setdefault(setting if first else "highest", [0, 0, 0, 0])
+        t = tally.setdefault(kind, [0, 0, 0, 0])
         t[0] += not n_rms; t[1] += not n_flip; t[2] += not n_rms and not n_flip; t[3] += 1
+        scene_met[scene] = scene_met.get(scene, False) or (not n_rms and not n_flip)
     rows.append("| `%s` | %s | %s | %.3f / %.3f (%.2f) | %s | %.1f | %s | %s | %s |" % (
         scene, r.get("plugins") or "none", "`%s`" % setting if not first else "defaults", s_err, s_flip,
         r["interiors"]["mean_ratio"], ee_err, s_ms, ee_ms, ratio, fig))
@@ -181,7 +193,9 @@ with open(out, "w") as f:
             "the end, %s min in all%s. Rows: every bundled scene Cycles can represent (the exporter lists nothing "
             "but tone mapping left out) at its defaults, then at each of its plugins' highest settings "
             "(`core.ssaa=4`; envmap's fis 32 with convolved irradiance and screen-space reflections; spotlight-shadow's PCSS at 4096² with 64 "
-            "taps; aa, ggx and normal-map are at their highest by default). Error: relative RMS / FLIP "
+            "taps; aa, ggx and normal-map are at their highest by default), then with the screen-space effects "
+            "EEVEE renders with (its ambient occlusion and screen-space reflections): the ssao plugin loaded "
+            "and, where envmap is, `envmap.reflections=screen`. Error: relative RMS / FLIP "
             "against a %s-sample Cycles reference over every object's interior and the background "
             "(silhouettes left out), before tone mapping (FLIP: LDR-FLIP with both images at one exposure, "
             "Cycles' 99th-percentile luminance at 1), and shadelab's mean ratio; the reference's own noise "
@@ -198,10 +212,15 @@ with open(out, "w") as f:
             "shadelab ms/frame | EEVEE ms/render (samples) | EEVEE's time at shadelab's error | the target |\n"
             "|---|---|---|---|---|---|---|---|---|\n")
     f.write("\n".join(rows) + "\n\n")
+    kinds = {"defaults": "the defaults", "highest": "the highest settings",
+             "effects": "EEVEE's screen-space effects"}
     for k, (rms, flip, both, n) in tally.items():
         f.write("The target at %s: met against every EEVEE render on %d of %d rows by relative RMS, "
-                "%d by FLIP, %d by both.\n" % ("the defaults" if k == "defaults" else "the highest settings",
-                                              rms, n, flip, both))
+                "%d by FLIP, %d by both.\n" % (kinds[k], rms, n, flip, both))
+    missed = sorted(s for s, ok in scene_met.items() if not ok)
+    f.write("Per scene, at one of its rows at least: met by both on %d of %d scenes%s.\n"
+            % (len(scene_met) - len(missed), len(scene_met),
+               "; not on %s" % ", ".join("`%s`" % s for s in missed) if missed else ""))
     if left:
         f.write("\nLeft out (the exporter's reason): %s.\n" % "; ".join("`%s`: %s" % (s, why) for s, why in left))
     skipped = open(skipped_path).read().splitlines()
