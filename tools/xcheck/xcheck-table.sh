@@ -212,10 +212,10 @@ with open(out, "w") as f:
             "shadelab ms/frame | EEVEE ms/render (samples) | EEVEE's time at shadelab's error | the target |\n"
             "|---|---|---|---|---|---|---|---|---|\n")
     f.write("\n".join(rows) + "\n\n")
-    kinds = {"defaults": "the defaults", "highest": "the highest settings",
-             "effects": "EEVEE's screen-space effects"}
+    kinds = {"defaults": "at the defaults", "highest": "at the highest settings",
+             "effects": "with EEVEE's screen-space effects"}
     for k, (rms, flip, both, n) in tally.items():
-        f.write("The target at %s: met against every EEVEE render on %d of %d rows by relative RMS, "
+        f.write("The target %s: met against every EEVEE render on %d of %d rows by relative RMS, "
                 "%d by FLIP, %d by both.\n" % (kinds[k], rms, n, flip, both))
     missed = sorted(s for s, ok in scene_met.items() if not ok)
     f.write("Per scene, at one of its rows at least: met by both on %d of %d scenes%s.\n"
