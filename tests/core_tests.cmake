@@ -47,6 +47,9 @@ foreach(t core_render core_glsl core_bad_input core_plugins core_zero_cost)
   add_dependencies(test_${t} ${SL_TEST_PLUGINS})
 endforeach()
 
+# sl_program_uniform's cache of uniform locations against GL's own answers.
+sl_add_test(program_uniform SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_program_uniform.c)
+
 # The command line end to end: the bundled scenes render headless, and bad input exits
 # non-zero with the cause named.
 add_test(NAME cli_scenes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/run_in_tmpdir.sh cli_scenes

@@ -474,7 +474,7 @@ static void free_uniforms(sl_program *p) {
     for (int i = 0; i < p->uniform_slots; i++) free(p->uniforms[i].name);
     free(p->uniforms);
     p->uniforms = NULL;
-    p->uniform_slots = 0;
+    p->uniform_slots = p->uniform_count = 0;
     p->uniforms_of = 0;
 }
 
@@ -487,56 +487,42 @@ static sl_uniform_slot *uniform_slot(sl_program *p, const char *name, uint64_t h
     }
 }
 
-static void add_uniform(sl_program *p, const char *name, int location) {
-    uint64_t h = sl_hash64(name, strlen(name), 0);
-    sl_uniform_slot *s = uniform_slot(p, name, h);
-    if (s->name) return;
-    *s = (sl_uniform_slot){.hash = h, .name = strdup(name), .location = location};
-    if (!s->name) s->hash = 0;
+/* Twice the slots (64 at first), the names kept: at most half full, so that every probe ends. */
+static bool grow_uniforms(sl_program *p) {
+    sl_uniform_slot *old = p->uniforms;
+    int old_slots = p->uniform_slots, slots = old_slots ? 2 * old_slots : 64;
+    sl_uniform_slot *table = calloc((size_t)slots, sizeof *table);
+    if (!table) return false;
+    p->uniforms = table, p->uniform_slots = slots;
+    for (int i = 0; i < old_slots; i++)
+        if (old[i].name) *uniform_slot(p, old[i].name, old[i].hash) = old[i];
+    free(old);
+    return true;
 }
 
-/* The table of p->id's active uniforms with a location (block members have none), arrays also
- * under their bare name; at least twice as many slots as names, so that every probe ends. */
-static void make_uniforms(sl_program *p) {
-    free_uniforms(p);
-    int count = 0, longest = 0;
-    glGetProgramiv(p->id, GL_ACTIVE_UNIFORMS, &count);
-    glGetProgramiv(p->id, GL_ACTIVE_UNIFORM_MAX_LENGTH, &longest);
-    int slots = 16;
-    while (slots < 4 * (count + 1)) slots *= 2;
-    p->uniforms = calloc(slots, sizeof *p->uniforms);
-    char *name = malloc(longest + 1 > 1 ? longest + 1 : 2);
-    if (!p->uniforms || !name) {
-        free(name);
-        free(p->uniforms);
-        p->uniforms = NULL;
-        return;
-    }
-    p->uniform_slots = slots;
-    p->uniforms_of = p->id;
-    for (int i = 0; i < count; i++) {
-        int size = 0;
-        unsigned type = 0;
-        glGetActiveUniform(p->id, (unsigned)i, longest + 1, NULL, &size, &type, name);
-        int location = glGetUniformLocation(p->id, name);
-        if (location < 0) continue;
-        add_uniform(p, name, location);
-        size_t len = strlen(name);
-        if (len > 3 && !strcmp(name + len - 3, "[0]")) {
-            name[len - 3] = 0;
-            add_uniform(p, name, location);
-        }
-    }
-    free(name);
-}
-
+/* A location from the program's cache of the names asked for, each asked of GL once (−1 kept
+ * too: not an active uniform). Not a table of every active uniform made up front: enumerating
+ * them (glGetActiveUniform by index) is quadratic in Mesa, whose index lookup walks the program's
+ * resource list, and a forward program with arrays of light structs has thousands (ggx_layers'
+ * 17 programs took 307 ms at their first draw). An array's bare name is its element 0 (GL). */
 int sl_program_uniform(sl_program *p, const char *name) {
     if (!p || !p->id) return -1;
     if (strchr(name, '[')) return glGetUniformLocation(p->id, name);
-    if (p->uniforms_of != p->id) make_uniforms(p);
-    if (!p->uniforms) return glGetUniformLocation(p->id, name);
-    const sl_uniform_slot *s = uniform_slot(p, name, sl_hash64(name, strlen(name), 0));
-    return s->name ? s->location : -1;
+    if (p->uniforms_of != p->id) {
+        free_uniforms(p);
+        p->uniforms_of = p->id;
+    }
+    uint64_t h = sl_hash64(name, strlen(name), 0);
+    if (p->uniform_slots) {
+        const sl_uniform_slot *s = uniform_slot(p, name, h);
+        if (s->name) return s->location;
+    }
+    int location = glGetUniformLocation(p->id, name);
+    if (2 * (p->uniform_count + 1) > p->uniform_slots && !grow_uniforms(p)) return location;
+    sl_uniform_slot *s = uniform_slot(p, name, h);
+    char *copy = strdup(name);
+    if (copy) *s = (sl_uniform_slot){.hash = h, .name = copy, .location = location}, p->uniform_count++;
+    return location;
 }
 
 void sl_program_free(sl_program *p) {

@@ -64,8 +64,9 @@ struct sl_program {
      * composed of `points` in order (the identity when there are none) before the fragment file */
     bool epilogue;
     sl_epilogue_point points[SL_EPILOGUE_MAX]; int point_count;
-    /* sl_program_uniform's table of the active uniforms of GL program uniforms_of (0: none yet) */
-    struct sl_uniform_slot *uniforms; int uniform_slots; unsigned uniforms_of;
+    /* sl_program_uniform's cache for GL program uniforms_of (0: none yet): the names looked up,
+     * uniform_count of them in uniform_slots slots, with their locations */
+    struct sl_uniform_slot *uniforms; int uniform_slots, uniform_count; unsigned uniforms_of;
 };
 
 /* Compiles and links; on failure keeps any previous id and stores the mapped error. */
@@ -92,11 +93,11 @@ sl_program *sl_program_epilogue_variant(const sl_program *base, const char *dir,
 bool sl_program_rebuild_files(sl_program *p, const char *dir, char *err, size_t n);
 bool sl_source_changed(const sl_source *s);
 void sl_program_free(sl_program *p);
-/* glGetUniformLocation(p's GL program, name), from a table of its active uniforms made at the
- * first call after each link: Mesa's glGetUniformLocation compares the name with the program's
- * uniforms one by one on every call, and the forward pass asks for every material and plugin
- * parameter of every draw (on llvmpipe that cost more than rasterising a 320x180 frame). An
- * array's name alone is its element 0; an element "a[k]" is asked of GL. -1 when p has no GL
+/* glGetUniformLocation(p's GL program, name), from a cache of the names asked for since the
+ * last link, each asked of GL once: Mesa's glGetUniformLocation compares the name with the
+ * program's uniforms one by one on every call, and the forward pass asks for every material and
+ * plugin parameter of every draw (on llvmpipe that cost more than rasterising a 320x180 frame).
+ * An array's name alone is its element 0; an element "a[k]" is asked of GL. -1 when p has no GL
  * program or no such active uniform. */
 int sl_program_uniform(sl_program *p, const char *name);
 
