@@ -437,8 +437,12 @@ static void upload_source(envmap *e, em_env *env, const char *name) {
 /* The procedural sky, set up without a GPU program (start-up, issue 19): on llvmpipe each program
  * costs tens of ms of compile at its first draw, and the sky is at hand on the CPU. The lat-long
  * (for the background) gets its box mips from here instead of glGenerateMipmap, and the base cube
- * (what the prefilter and SH read) is em_make_base_cube's conversion done on the CPU at the
- * current cube size; a later cube_size change converts on the GPU from the uploaded lat-long. */
+ * (what the prefilter reads) is em_make_base_cube's conversion done on the CPU at the current
+ * cube size up to SKY_CPU_CUBE_MAX; a larger or later cube_size converts on the GPU from the
+ * uploaded lat-long when something first reads the cube (ensure_base). The CPU's cost grows with
+ * the faces' texels (16 sub-samples each: about 35 ms at 64², 0.55 s at 256² on one core), the
+ * GPU's compile does not: ggx_layers.json (256²) started in 1.46 s, 0.89 s on the GPU. */
+#define SKY_CPU_CUBE_MAX 64
 static int eff_cube_size(envmap *e);
 static void upload_sky(envmap *e, em_env *env) {
     em_image mips[16];
@@ -458,12 +462,14 @@ static void upload_sky(envmap *e, em_env *env) {
     e->src_w = mips[0].w, e->src_h = mips[0].h;
     e->src_hash = em_hash(mips[0].px, (size_t)e->src_w * e->src_h * 4 * sizeof(float), 1); /* as upload_source */
     int size = eff_cube_size(e), levels = em_max_levels(size);
-    float *faces[16] = {0};
-    em_latlong_to_cube_levels(mips, n, size, levels, faces);
-    e->base = em_upload_cube_levels(faces, size, levels);
-    e->base_size = size;
-    e->base_key = em_hash(&size, sizeof size, e->src_hash); /* ensure_base's key: it keeps this cube */
-    for (int l = 0; l < levels; l++) free(faces[l]);
+    if (size <= SKY_CPU_CUBE_MAX) {
+        float *faces[16] = {0};
+        em_latlong_to_cube_levels(mips, n, size, levels, faces);
+        e->base = em_upload_cube_levels(faces, size, levels);
+        e->base_size = size;
+        e->base_key = em_hash(&size, sizeof size, e->src_hash); /* ensure_base's key: it keeps this cube */
+        for (int l = 0; l < levels; l++) free(faces[l]);
+    }
     for (int l = 1; l < n; l++) free(mips[l].px);
 }
 
