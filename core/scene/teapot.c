@@ -160,10 +160,9 @@ static void eval_patch(int p, double u, double v, double pos[3], double du[3], d
         }
 }
 
-/* Outward unit normal: cross(∂P/∂v, ∂P/∂u) (the published patches are oriented that way). */
-static bool patch_normal(int p, double u, double v, double n[3]) {
-    double pos[3], du[3], dv[3];
-    eval_patch(p, u, v, pos, du, dv);
+/* Outward unit normal from the partial derivatives: cross(∂P/∂v, ∂P/∂u) (the published patches
+ * are oriented that way); false where they are degenerate. */
+static bool normal_of(const double du[3], const double dv[3], double n[3]) {
     n[0] = dv[1] * du[2] - dv[2] * du[1];
     n[1] = dv[2] * du[0] - dv[0] * du[2];
     n[2] = dv[0] * du[1] - dv[1] * du[0];
@@ -173,6 +172,12 @@ static bool patch_normal(int p, double u, double v, double n[3]) {
     if (!(len > 1e-9 * scale) || !(len > 1e-12)) return false;
     for (int c = 0; c < 3; c++) n[c] /= len;
     return true;
+}
+
+static bool patch_normal(int p, double u, double v, double n[3]) {
+    double pos[3], du[3], dv[3];
+    eval_patch(p, u, v, pos, du, dv);
+    return normal_of(du, dv, n);
 }
 
 /* Whether the edge of patch p at row i (0 or 3) / column j (0 or 3) collapses to one point. */
@@ -202,7 +207,7 @@ bool sl_mesh_teapot(sl_mesh_data *m, float size, int tessellation) {
             for (int j = 0; j < side; j++) {
                 double u = (double)i / t, v = (double)j / t, pos[3], du[3], dv[3], n[3];
                 eval_patch(p, u, v, pos, du, dv);
-                if (!patch_normal(p, u, v, n)) {
+                if (!normal_of(du, dv, n)) {
                     /* Degenerate derivative (collapsed edge): step toward the patch interior
                      * until the normal is defined; it converges to the pole's normal. */
                     bool ok = false;
