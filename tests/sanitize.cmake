@@ -5,9 +5,10 @@
 # UndefinedBehaviorSanitizer, -fno-sanitize-recover), builds what the selected tests need and runs
 # them there, two at a time:
 #   sanitize      (label hardening)       a representative subset, SL_SANITIZE_TESTS below: the
-#                                         core's library, plugin loader, scene and image readers,
-#                                         parser regressions, the CLI's plugin lifecycle, the
-#                                         viewer's keys and hot reload. Builds only their targets.
+#                                         core's library (its uniform cache too), plugin loader,
+#                                         scene and image readers, parser regressions, the CLI's
+#                                         plugin lifecycle, the viewer's keys and hot reload.
+#                                         Builds only their targets.
 #   sanitize_all  (labels hardening;long) every test, minus those that cannot or need not run
 #                                         instrumented: sdk_install (and the extras, not built
 #                                         there) load the instrumented harness into
@@ -92,7 +93,7 @@ option(SL_SANITIZE_TEST "Register the ASan+UBSan tests (they build a second tree
 # on 2 cores) and the plugins' own tests run in sanitize_all.
 set(SL_SANITIZE_TESTS core_render core_glsl core_bad_input core_plugins core_zero_cost cli_lazy_programs
     image scene scene_geometry scene_import stability_core gui_keys gui_hot_reload fuzz_regress gltf_hostile
-    gltf_models)
+    gltf_models program_uniform)
 if(SL_SANITIZE_TEST AND NOT SL_SANITIZE)
   list(JOIN SL_SANITIZE_TESTS "|" sl_select)
   set(sl_targets shadelab bundled_plugins)
