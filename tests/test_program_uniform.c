@@ -69,7 +69,7 @@ int main(void) {
     same(p, "weights[3]");
     CHECK_MSG(sl_program_uniform(p, "weights") == glGetUniformLocation(p->id, "weights[0]"),
               "an array's bare name is its element 0");
-    /* 2 × 40 struct members and the names above: the cache grows past its first 64 slots */
+    /* 2 × 40 struct members, cached as any name: the cache grows past its first 64 slots */
     int distinct = 0;
     for (int i = 0; i < LIGHTS; i++) {
         char name[64];
@@ -80,7 +80,7 @@ int main(void) {
         distinct += glGetUniformLocation(p->id, name) >= 0;
     }
     CHECK_MSG(distinct == LIGHTS, "%d of %d lights' ranges active", distinct, LIGHTS);
-    for (int i = 0; i < 100; i++) { /* names without '[' are the cache's: many of them */
+    for (int i = 0; i < 100; i++) { /* and unknown names, many of them */
         char name[64];
         snprintf(name, sizeof name, "missing_%d", i);
         same(p, name);

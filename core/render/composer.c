@@ -501,13 +501,13 @@ static bool grow_uniforms(sl_program *p) {
 }
 
 /* A location from the program's cache of the names asked for, each asked of GL once (−1 kept
- * too: not an active uniform). Not a table of every active uniform made up front: enumerating
- * them (glGetActiveUniform by index) is quadratic in Mesa, whose index lookup walks the program's
- * resource list, and a forward program with arrays of light structs has thousands (ggx_layers'
- * 17 programs took 307 ms at their first draw). An array's bare name is its element 0 (GL). */
+ * too: not an active uniform), array elements "a[k]" as any name. Not a table of every active
+ * uniform made up front: enumerating them (glGetActiveUniform by index) is quadratic in Mesa,
+ * whose index lookup walks the program's resource list, and a forward program with arrays of
+ * light structs has thousands (ggx_layers' 17 programs took 307 ms at their first draw). An
+ * array's bare name is its element 0 (GL). */
 int sl_program_uniform(sl_program *p, const char *name) {
     if (!p || !p->id) return -1;
-    if (strchr(name, '[')) return glGetUniformLocation(p->id, name);
     if (p->uniforms_of != p->id) {
         free_uniforms(p);
         p->uniforms_of = p->id;

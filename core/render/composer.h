@@ -97,8 +97,8 @@ void sl_program_free(sl_program *p);
  * last link, each asked of GL once: Mesa's glGetUniformLocation compares the name with the
  * program's uniforms one by one on every call, and the forward pass asks for every material and
  * plugin parameter of every draw (on llvmpipe that cost more than rasterising a 320x180 frame).
- * An array's name alone is its element 0; an element "a[k]" is asked of GL. -1 when p has no GL
- * program or no such active uniform. */
+ * An array's name alone is its element 0, "a[k]" its element k. -1 when p has no GL program or
+ * no such active uniform. */
 int sl_program_uniform(sl_program *p, const char *name);
 
 /* The directory holding the core's GLSL (source tree in a build tree; installed otherwise). */
