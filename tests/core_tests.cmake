@@ -39,6 +39,8 @@ sl_test_plugin(tp-input-agreed test_plugin.glsl DEFS TP_KEY_INPUT="tp_input" TP_
 sl_test_plugin(tp-model-unlisted test_plugin.glsl DEFS TP_UNLISTED_MODEL)
 sl_test_plugin(tp-model-unprovided test_plugin.glsl DEFS TP_UNPROVIDED_MODEL)
 sl_test_plugin(tp-bad-gate test_plugin.glsl DEFS TP_BAD_GATE)
+# a model that masks facing-away normals itself (SL_CHUNK_MASKS_FACING_AWAY; normal-map's test)
+sl_test_plugin(tp-masks test_plugin.glsl DEFS TP_MASKS_FACING_AWAY)
 
 foreach(t core_render core_glsl core_bad_input core_plugins core_zero_cost)
   sl_add_test(${t} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_${t}.c)

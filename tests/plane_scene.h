@@ -8,6 +8,7 @@
 #include "check.h"
 #include "image/image.h"
 #include "test_tmp.h"
+#include "view_guard.h"
 #include <cglm/cglm.h>
 #include <errno.h>
 #include <shadelab/harness.h>
@@ -58,16 +59,6 @@ static inline double pt_dot(const double a[3], const double b[3]) { return a[0] 
 static inline void pt_plane_tangent_to_world(const double nt[3], double out[3]) {
     out[0] = nt[0], out[1] = nt[2], out[2] = -nt[1];
     pt_normalize(out);
-}
-
-/* The view guard of nm_face_viewer (nm_lib.glsl), in double. */
-static inline void pt_face_viewer(double n[3], const float vf[3]) {
-    const double eps = 0.02;
-    double v[3] = {vf[0], vf[1], vf[2]};
-    double d = pt_dot(n, v);
-    if (d >= eps) return;
-    for (int i = 0; i < 3; i++) n[i] += (eps - d) * v[i];
-    pt_normalize(n);
 }
 
 /* Scratch directory for generated files: <test directory>/<name>/ (created; tests/test_tmp.h). */

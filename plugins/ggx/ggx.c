@@ -170,10 +170,9 @@ static const sl_param_desc params[] = {
 
 #define C(...) {.struct_size = sizeof(sl_shader_chunk_desc), __VA_ARGS__}
 static const sl_shader_chunk_desc chunks[] = {
-    /* Smith masking gives normals facing away from the viewer no specular (G1(v) = 0), so
-     * normal maps leave them unbent for this model (README, "Numerical guards") */
-    C(.hook = SL_HOOK_SHADING_MODEL, .file = "ggx_model.glsl", .function = "ggx_model", .name = "ggx",
-      .flags = SL_CHUNK_MASKS_FACING_AWAY),
+    /* no SL_CHUNK_MASKS_FACING_AWAY: normal maps bend this model's normals as Cycles does
+     * (README, "Numerical guards") */
+    C(.hook = SL_HOOK_SHADING_MODEL, .file = "ggx_model.glsl", .function = "ggx_model", .name = "ggx"),
     C(.hook = SL_HOOK_MODEL_LOBES, .file = "ggx_model.glsl", .function = "ggx_lobes", .name = "ggx"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_alpha", .when_material_has = "alpha"),
     C(.hook = SL_HOOK_SURFACE, .file = "ggx_surface.glsl", .function = "ggx_surface_roughness",

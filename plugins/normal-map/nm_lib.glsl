@@ -58,6 +58,46 @@ vec3 nm_face_viewer(vec3 n, vec3 v) {
     return normalize(n + (NM_MIN_NDOTV - d) * v);
 }
 
+// Guard for mapped normals whose mirror direction of v falls below the surface (Blender's
+// Cycles does the same in its Normal Map node, the reference the project is checked against):
+// n is tilted back toward the interpolated normal g, keeping its azimuth about g, until the
+// mirror direction r = 2(n·v)n − v rises t = min(0.9·(v·g), 0.01) above the surface (Cycles'
+// threshold).
+// With n' = a·x + b·g (x: n's direction in the surface plane, a² + b² = 1, a, b ≥ 0),
+// r·g = t reads 2b(a·vx + b·vz) − vz = t; squared, a quadratic in b² whose roots, written so
+// that nothing cancels in float near grazing views (p = vx² + vz², s = |vx|·√(p − t²)), are
+//   a² = (vz − t)² / (2(p − vz·t + s))   (n' near g: n leaned away from the viewer)
+//   b² = (vz + t)² / (2(vx² + vz(vz + t) + s))   (n' near the surface: n leaned toward it);
+// the one that solves the equation before squaring is taken. Continuous in n (at r·g = t the
+// root is n itself), so the shading has no edge where normals start to bend; n'·v > 0 (r' and
+// v both lie above the surface, so r' ≠ −v). Normals whose reflection is valid are returned
+// unchanged (bit for bit), and so is n when v lies below g's surface (a smooth mesh's
+// silhouette: there is no surface to reflect above; nm_face_viewer still guards). A normal
+// below the surface (n·g < 0: an object-space map on the wrong side) would mirror v like −n,
+// validly while facing away, so it is first laid onto the surface (continuous at n·g = 0).
+vec3 nm_valid_reflection(vec3 n, vec3 v, vec3 g) {
+    float vz = dot(v, g), t = min(0.9 * vz, 0.01);
+    if (vz <= 0.0) return n;
+    float ng = dot(n, g);
+    if (ng >= 0.0 && dot(2.0 * dot(n, v) * n - v, g) >= t) return n;
+    vec3 x = n - ng * g;
+    float xl = length(x);
+    if (xl < 1e-6) return g; // n = g reflects validly, so n = −g: no azimuth to keep
+    x /= xl;
+    float vx = dot(v, x), p = vx * vx + vz * vz, sq = abs(vx) * sqrt(max(p - t * t, 0.0));
+    float a2 = (vz - t) * (vz - t) / (2.0 * (p - vz * t + sq));
+    float b2 = (vz + t) * (vz + t) / (2.0 * (vx * vx + vz * (vz + t) + sq));
+    vec2 ab0 = vec2(sqrt(a2), sqrt(max(1.0 - a2, 0.0))), ab1 = vec2(sqrt(max(1.0 - b2, 0.0)), sqrt(b2));
+    float e0 = abs(2.0 * ab0.y * (ab0.x * vx + ab0.y * vz) - vz - t);
+    float e1 = abs(2.0 * ab1.y * (ab1.x * vx + ab1.y * vz) - vz - t);
+    vec2 ab = e0 <= e1 ? ab0 : ab1;
+    return normalize(ab.x * x + ab.y * g);
+}
+
+// The view guard of every mapped normal: a valid reflection first (the convention), then
+// n·v ≥ ε (what every BRDF needs, at views within ~1° of the horizon).
+vec3 nm_view_guard(vec3 n, vec3 v, vec3 g) { return nm_face_viewer(nm_valid_reflection(n, v, g), v); }
+
 // IEC 61966-2-1 sRGB decoding: debug views output decode(x) so that the display pass's sRGB
 // encoding shows x itself (the PNG holds the texel values, as the map file does).
 vec3 nm_srgb_decode(vec3 c) {

@@ -112,7 +112,11 @@ static sl_status tp_create(const sl_host *host, void **user) {
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SURFACE, .file = TP_GLSL,
          .function = "tp_surface", .when_material_has = "tp_mark"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_SHADING_MODEL, .file = TP_GLSL,
-         .function = "tp_model", .name = TP_MODEL},
+         .function = "tp_model", .name = TP_MODEL,
+#ifdef TP_MASKS_FACING_AWAY /* normal perturbation leaves facing-away normals to the model */
+         .flags = SL_CHUNK_MASKS_FACING_AWAY
+#endif
+        },
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_VERTEX, .file = TP_GLSL,
          .function = "tp_vertex", .when_material_has = "tp_lift"},
         {.struct_size = sizeof(sl_shader_chunk_desc), .hook = SL_HOOK_DEBUG_VIEW, .file = TP_GLSL,

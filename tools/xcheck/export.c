@@ -66,12 +66,6 @@ bool xc_mkdirs(const char *path, char *err, size_t n) {
     "approximated: glTF metallic-roughness as Cycles' Principled BSDF (Burley diffuse instead of Lambert x (1 - " \
     "F); Cycles' normalised dielectric Fresnel instead of Schlick's)"
 
-/* Normal maps seen at grazing angles: ggx masks a mapped normal that faces away from the viewer
- * (plugins/ggx/README.md), Cycles bends one whose mirror direction would fall below the surface */
-#define GRAZING_NORMALS_NOTE                                                                          \
-    "approximated: mapped normals at grazing views: Cycles bends those whose mirror direction falls " \
-    "below the surface, ggx masks those facing away (its bumps darker there)"
-
 /* Adds `item` to the note "text (items)", one note per text. */
 static void note_item(ctx *c, const char *text, const char *item) {
     size_t len = strlen(text);
@@ -494,9 +488,6 @@ static bool export_material(ctx *c, int m, cJSON *list, bool *checked) {
             note(c, "not cross-checked: normal-map.green=directx");
             *checked = false;
         }
-        /* Cycles' Normal Map node and closures bend such a normal (ensure_valid_reflection) */
-        if (!strcmp(model, "ggx"))
-            note_item(c, GRAZING_NORMALS_NOTE, mat->name);
         cJSON *t = export_texture(c, nmap, true);
         if (!t) return false;
         cJSON *nm = cJSON_AddObjectToObject(j, "normal_map");

@@ -3,8 +3,8 @@
  *   furnace      white Lambert → 1 within 1% (SH and convolved); ggx with F = 1 → E(μ, α)
  *                integrated in C within 2%, nothing above 1; multiple scattering → 1; the Monte
  *                Carlo reference → E(μ, α)
- *   facing away  a normal map turning every normal away from the viewer: ggx masks them, both
- *                the split sum and the reference give the diffuse part only
+ *   facing away  a normal map turning every normal away from the viewer, bent back by
+ *                normal-map's guard: the split sum agrees with the reference, nothing blows up
  *   linear       L = 1 + ω_y: white Lambert → 1 + ⅔ n_y within 2% (both irradiance methods)
  *   convention   a colour-coded map (colour = 0.5 + 0.5·direction) on mirror and environment
  *                spheres and the background, as lat-long, cube cross (EXR and RGBE8 PNG from
@@ -209,32 +209,44 @@ static void test_furnace(void) {
 }
 
 /* A normal-mapped ggx sphere whose every mapped normal faces away from the viewer (object-space
- * constant map n = −Z, camera on +Z): ggx masks such normals (Smith G1(v) = 0; normal-map leaves
- * them unbent for ggx), so in the white furnace both the split sum and the Monte Carlo reference
- * give the diffuse part only, k_d · 1 = 0.5 (F exact, k_s = 1). A split sum that still added
- * specular at n·v = 1e-4 would be brighter. */
+ * constant map n = −Z, camera on +Z): normal-map bends each back until its reflection rises
+ * just above the surface (Cycles' convention; a normal below the surface is first laid onto
+ * it), so both integrators shade the same valid normal, whose specular lobe the geometric
+ * horizon cuts (the split sum fades its lookup there, the reference blocks each sample: they
+ * differ by 0.020 on average, 0.072 at most). In the white furnace the split sum agrees with
+ * the Monte Carlo reference within that, and nothing exceeds k_d + 1 = 1.5 (F exact, k_s = 1):
+ * a split sum that shaded an unguarded normal at n·v → 0 would blow up. */
 static void test_facing_away(void) {
     const char *mat = "\"model\": \"ggx\", \"alpha\": 0.3, \"specular\": 1, \"base_color\": [0.5, 0.5, 0.5], "
                       "\"normal_map\": \"constant:0.5,0.5,0\", \"normal_space\": \"object\"";
+    static float modes[2][W * H * 4];
     for (int mode = 0; mode < 2; mode++) {
         sl_harness *h = make_with(", \"normal-map\"", 40, "constant:1,1,1", mat,
                                   (const char *[]){mode ? "envmap.mode=reference" : "envmap.mode=split-sum", NULL}, 1);
-        CHECK(h && sl_harness_render(h, img));
-        double worst = 0;
-        int count = 0;
-        for (int y = 0; y < H; y++)
-            for (int x = 0; x < W; x++) {
-                double n[3], v[3];
-                if (!sphere_pixel(x, y, n, v, 0.2)) continue;
-                for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(img[(y * W + x) * 4 + c] - 0.5));
-                count++;
-            }
-        printf("furnace, ggx with a normal map facing away, %s: %d pixels, max |L - 0.5| = %.4f\n",
-               mode ? "reference" : "split sum", count, worst);
-        CHECK(count > 500);
-        CHECK_MSG(worst < 0.01, "facing-away normals: %.4f from the diffuse-only 0.5", worst);
+        CHECK(h && sl_harness_render(h, modes[mode]));
+        CHECK(sl_harness_count_nonfinite(modes[mode], W, H) == 0);
         sl_harness_destroy(h);
     }
+    double worst = 0, mean = 0, lo = 1e9, hi = 0;
+    int count = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double n[3], v[3];
+            if (!sphere_pixel(x, y, n, v, 0.2)) continue;
+            for (int c = 0; c < 3; c++) {
+                double s = modes[0][(y * W + x) * 4 + c], r = modes[1][(y * W + x) * 4 + c];
+                worst = fmax(worst, fabs(s - r));
+                mean += fabs(s - r) / 3;
+                lo = fmin(lo, fmin(s, r)), hi = fmax(hi, fmax(s, r));
+            }
+            count++;
+        }
+    mean /= count;
+    printf("furnace, ggx with a normal map facing away: %d pixels in [%.4f, %.4f], split sum - reference: max %.4f, mean %.4f\n",
+           count, lo, hi, worst, mean);
+    CHECK(count > 500);
+    CHECK_MSG(lo > 0 && hi < 1.5, "facing-away normals: values in [%.4f, %.4f]", lo, hi);
+    CHECK_MSG(worst < 0.1 && mean < 0.03, "split sum against the reference: max %.4f, mean %.4f", worst, mean);
 }
 
 /* ---------------------------------------------------------------- direction of the lobe */

@@ -230,7 +230,7 @@ static void test_stability(const char *dir) {
             pt_view_dir(p, v);
             double n[3];
             pt_plane_tangent_to_world(nt, n);
-            pt_face_viewer(n, v);
+            vg_view_guard(n, v, (const double[3]){0, 1, 0});
             for (int c = 0; c < 3; c++) {
                 double ex = expected(&e, n, p, c), got = img[(y * W + x) * 4 + c];
                 worst = fmax(worst, fabs(got - ex) / fmax(1e-4, (1e-3 + 3e-7 * e.power) * ex));

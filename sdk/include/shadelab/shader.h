@@ -71,9 +71,10 @@
  * Every program also gets "#define SL_MODEL_<NAME> 1" for its material's shading model (SL_MODEL_GGX),
  * and "#define SL_MODEL_MASKS_FACING_AWAY 1" when that model's chunk carries
  * SL_CHUNK_MASKS_FACING_AWAY (ABI 1.4): SURFACE hooks that perturb the normal (normal maps) then
- * leave a normal facing away from the viewer (n·v ≤ 0) as it is, because the model gives it no
- * specular itself (Smith masking), instead of bending it toward the viewer as they do for
- * models without masking.
+ * leave a normal facing away from the viewer (n·v ≤ 0) as it is, because the model handles it
+ * itself (e.g. Smith masking gives it no specular), instead of guarding it as they do for other
+ * models (normal-map bends a normal whose reflection falls below the surface back above it, as
+ * Blender's Cycles does; no bundled model declares the flag).
  *
  * Hook signatures (FN is sl_shader_chunk_desc.function):
  *   VERTEX           void FN(inout SlVertex v)                   the mesh's object-space vertex,
@@ -264,8 +265,8 @@ typedef struct sl_shader_chunk_desc {
 
 typedef enum sl_chunk_flags {
     /* SHADING_MODEL: the model handles shading normals facing away from the viewer itself
-     * (e.g. Smith masking G1(v) = 0 for n·v <= 0), so normal perturbation must not bend them
-     * toward the viewer; defines SL_MODEL_MASKS_FACING_AWAY in its programs (see above). */
+     * (e.g. Smith masking G1(v) = 0 for n·v <= 0), so normal perturbation must not bend them;
+     * defines SL_MODEL_MASKS_FACING_AWAY in its programs (see above). */
     SL_CHUNK_MASKS_FACING_AWAY = 1u << 0,
     /* ABI 1.6, LIGHT: the light integrates the material's model over its own extent (area
      * lights) and returns outgoing radiance instead of a direction and an irradiance. Signature
