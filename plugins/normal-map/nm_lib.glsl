@@ -64,11 +64,12 @@ vec3 nm_face_viewer(vec3 n, vec3 v) {
 // mirror direction r = 2(n·v)n − v rises t = min(0.9·(v·g), 0.01) above the surface (Cycles'
 // threshold).
 // With n' = a·x + b·g (x: n's direction in the surface plane, a² + b² = 1, a, b ≥ 0),
-// r·g = t reads 2b(a·vx + b·vz) − vz = t; squared, a quadratic in b² whose roots, written so
+// r·g = t reads 2ab·vx = t + vz − 2b²·vz; squared, a quadratic in b² whose roots, written so
 // that nothing cancels in float near grazing views (p = vx² + vz², s = |vx|·√(p − t²)), are
-//   a² = (vz − t)² / (2(p − vz·t + s))   (n' near g: n leaned away from the viewer)
-//   b² = (vz + t)² / (2(vx² + vz(vz + t) + s))   (n' near the surface: n leaned toward it);
-// the one that solves the equation before squaring is taken. Continuous in n (at r·g = t the
+//   a² = (vz − t)² / (2(p − vz·t + s))   (n' near g), the solution when vx ≤ 0 (n leans away
+//       from the viewer: the left side ≤ 0, and this root makes the right side t − vz + 2a²vz ≤ 0);
+//   b² = (vz + t)² / (2(vx² + vz(vz + t) + s))   (n' near the surface), when vx > 0.
+// Continuous in n (at r·g = t the
 // root is n itself), so the shading has no edge where normals start to bend; n'·v > 0 (r' and
 // v both lie above the surface, so r' ≠ −v). Normals whose reflection is valid are returned
 // unchanged (bit for bit), and so is n when v lies below g's surface (a smooth mesh's
@@ -85,12 +86,9 @@ vec3 nm_valid_reflection(vec3 n, vec3 v, vec3 g) {
     if (xl < 1e-6) return g; // n = g reflects validly, so n = −g: no azimuth to keep
     x /= xl;
     float vx = dot(v, x), p = vx * vx + vz * vz, sq = abs(vx) * sqrt(max(p - t * t, 0.0));
-    float a2 = (vz - t) * (vz - t) / (2.0 * (p - vz * t + sq));
-    float b2 = (vz + t) * (vz + t) / (2.0 * (vx * vx + vz * (vz + t) + sq));
-    vec2 ab0 = vec2(sqrt(a2), sqrt(max(1.0 - a2, 0.0))), ab1 = vec2(sqrt(max(1.0 - b2, 0.0)), sqrt(b2));
-    float e0 = abs(2.0 * ab0.y * (ab0.x * vx + ab0.y * vz) - vz - t);
-    float e1 = abs(2.0 * ab1.y * (ab1.x * vx + ab1.y * vz) - vz - t);
-    vec2 ab = e0 <= e1 ? ab0 : ab1;
+    bool away = vx <= 0.0;
+    float e = away ? vz - t : vz + t, q = e * e / (2.0 * (away ? p - vz * t + sq : vx * vx + vz * (vz + t) + sq));
+    vec2 ab = away ? vec2(sqrt(q), sqrt(max(1.0 - q, 0.0))) : vec2(sqrt(max(1.0 - q, 0.0)), sqrt(q));
     return normalize(ab.x * x + ab.y * g);
 }
 
