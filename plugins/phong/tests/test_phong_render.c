@@ -213,8 +213,9 @@ static void test_stability(const char *dir) {
         printf("stability, %s light: centre radiance %.5f = ambient (1-F) k_d L_env\n", k ? "behind-the-surface" : "grazing", img[c]);
     }
     /* normal-mapped normals facing away from the viewer (n_t = (0, 0.99, 0.141): n·v ≈ −0.6 at
-     * the centre before the guard) under a light from the far side, gloss 0.9: the guard bends
-     * n to n·v = ε; stated value per pixel from C with the bent normal. */
+     * the centre before the guard) under a light from the far side, gloss 0.9: the guard tilts
+     * n back until its reflection rises above the plane (n'·v ≈ 0.38 at the centre); stated value
+     * per pixel from C with the guarded normal (tests/view_guard.h). */
     double nt[3] = {0, 0.99, sqrt(1 - 0.99 * 0.99)};
     char keys[300];
     snprintf(keys, sizeof keys, ", \"normal_map\": \"constant:0.5,%.9g,%.9g\", \"gloss\": 0.9", nt[1] * 0.5 + 0.5, nt[2] * 0.5 + 0.5);
@@ -238,10 +239,9 @@ static void test_stability(const char *dir) {
             count++;
         }
     CHECK_MSG(worst <= 1 && count > 200, "facing away: worst error %.3g x tolerance", worst);
-    /* stated: at the centre the bent normal has n·v = ε, so F ≈ 0.91 and the diffuse and ambient
-     * terms keep (1 − F) ≈ 0.09 of themselves: ≈ 0.064 (the C value above), not 0 */
+    /* stated: 0.401 at the centre (the C value above), not 0 */
     int c = (H / 2 * W + W / 2) * 4;
-    CHECK_MSG(img[c] > 0.04, "facing away: centre radiance %g (black hole)", img[c]);
+    CHECK_MSG(img[c] > 0.3, "facing away: centre radiance %g (black hole)", img[c]);
     printf("stability, mapped normals facing away (guarded): worst error %.3f x tolerance, centre radiance %.4f\n", worst, img[c]);
     (void)dir;
 }
