@@ -439,7 +439,7 @@ int main(void) {
      * have; with the low sun ahead at 1.2 and 3 m, half the reference's glint comes from normals
      * that lean away from the camera and are bent back until their reflection rises just above
      * the horizon (normal-map's guard, Cycles' convention), a spike of normals the lobe about
-     * the mean normal does not have (AA on gives the mean it gave before the guard: 0.63, 0.62).
+     * the mean normal does not have (AA on: 0.63 and 0.62, as with masking).
      * There the mean is printed, not asserted. */
     {
         static const float heights[3] = {1.2f, 3.0f, 6.0f};
