@@ -1,4 +1,4 @@
-/* normal-map's view guard (plugins/normal-map/nm_lib.glsl), derived again in double for the
+/* The view guard of perturbed normals (shaders/normal_guard.glsl), derived again in double for the
  * tests that state a mapped normal's shading per pixel. */
 #ifndef SHADELAB_TEST_VIEW_GUARD_H
 #define SHADELAB_TEST_VIEW_GUARD_H
@@ -10,7 +10,7 @@ static inline void vg_normalize(double v[3]) {
     for (int i = 0; i < 3; i++) v[i] /= l;
 }
 
-/* The view guard of nm_face_viewer (nm_lib.glsl), in double. */
+/* sl_face_viewer (shaders/normal_guard.glsl), in double. */
 static inline void vg_face_viewer(double n[3], const float vf[3]) {
     const double eps = 0.02;
     double v[3] = {vf[0], vf[1], vf[2]};
@@ -20,7 +20,7 @@ static inline void vg_face_viewer(double n[3], const float vf[3]) {
     vg_normalize(n);
 }
 
-/* The reflection guard of nm_valid_reflection (nm_lib.glsl), in double, derived again here:
+/* sl_valid_reflection (shaders/normal_guard.glsl), in double, derived again here:
  * n' = a·x + b·g (x: n's direction in the surface plane, a, b ≥ 0) whose mirror direction of v
  * rises t = min(0.9·(v·g), 0.01) above the surface: 2b(a·vx + b·vz) − vz = t, a quadratic in
  * b² after squaring, solved directly; of its two roots, the one that solves the equation before
@@ -48,7 +48,7 @@ static inline void vg_valid_reflection(double n[3], const double v[3], const dou
     vg_normalize(n);
 }
 
-/* normal-map's whole view guard (nm_view_guard): the reflection guard against the surface's
+/* sl_view_guard, the whole view guard: the reflection guard against the surface's
  * normal g, then the n·v ≥ ε guard. */
 static inline void vg_view_guard(double n[3], const float vf[3], const double g[3]) {
     const double v[3] = {vf[0], vf[1], vf[2]};

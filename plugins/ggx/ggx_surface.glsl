@@ -1,6 +1,7 @@
 // Surface hooks filling s.alpha (GGX α) and s.specular (k_s) from the material. Each runs only
 // for materials carrying its key (when_material_has), so a material pays only for its inputs.
 #include "ggx_layers.glsl"
+#include "sl:normal_guard.glsl" // the clear coat's normal texture
 #ifdef SL_MAT_HAS_ALPHA
 void ggx_surface_alpha(inout SlSurface s) { s.alpha = sl_mat_alpha; }
 #endif
@@ -82,7 +83,8 @@ void ggx_surface_clearcoat(inout SlSurface s) {
     t.xy *= sl_mat_clearcoat_normal_scale;
 #endif
     vec3 m = s.tangent * t.x + s.bitangent * t.y + s.normal * t.z;
-    if (dot(m, m) > 1e-12) n = normalize(m);
+    // guarded as normal-map guards the base's (sl:normal_guard.glsl), except without a viewer
+    if (dot(m, m) > 1e-12) n = sl_uv_space != 0 ? normalize(m) : sl_view_guard(normalize(m), s.view, s.normal);
 #endif
     ggx_coat = GgxClearcoat(clamp(w, 0.0, 1.0), r * r, n);
 #ifdef SL_MAT_HAS_EMISSIVE

@@ -49,13 +49,13 @@ void nm_surface(inout SlSurface s) {
 #if defined(SL_MAT_HAS_NORMAL_MAP)
     s.lod_bias = normal_map_lod_bias; // the SDK contract other plugins' lookups follow (phong's gloss)
     // The mapped normal is bent where its reflection would fall below the surface, as Cycles'
-    // Normal Map node does (nm_view_guard), except where there is no viewer (texture-space
+    // Normal Map node does (sl_view_guard), except where there is no viewer (texture-space
     // passes: sss irradiance) and for models that handle normals facing away from the viewer
     // themselves (SL_MODEL_MASKS_FACING_AWAY: the SDK's promise to such models, ABI 1.4).
 #if defined(SL_MODEL_MASKS_FACING_AWAY)
     vec3 n = nm_mapped_normal(s);
 #else
-    vec3 n = sl_uv_space != 0 ? nm_mapped_normal(s) : nm_view_guard(nm_mapped_normal(s), s.view, s.normal);
+    vec3 n = sl_uv_space != 0 ? nm_mapped_normal(s) : sl_view_guard(nm_mapped_normal(s), s.view, s.normal);
 #endif
     // Keep the frame orthonormal around the new normal (anisotropic models read it), with the
     // same handedness.

@@ -28,9 +28,15 @@
  *  8. the coat over the emission (the extension's "Emission"): an emissive black plane under a coat
  *     of weight 1, unlit, seen from above (n·v up to 1) and at grazing views (n·v down to 0.03),
  *     equals emission·(1 − F_c(n·v)) per pixel, F_c Schlick with F0 = 0.04; the emission
- *     itself with ggx.layer_clearcoat=false. */
+ *     itself with ggx.layer_clearcoat=false;
+ *  9. the coat's own normal texture is guarded as a mapped normal is (sl:normal_guard.glsl): a
+ *     constant texture leaning the coat's normal 20° away from the camera (its reflection valid
+ *     at some pixels, below the plane at others, facing away at some): the "ggx-clearcoat" view
+ *     equals per pixel w·F_c(n_c·v)·D·G/(4 n_c·l n_c·v)·E·(n_c·l) of the guarded n_c (the C
+ *     derivation, tests/view_guard.h). */
 #include "camera_rays.h"
 #include "ggx_layer_test.h"
+#include "view_guard.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -510,10 +516,47 @@ static void test_clearcoat_emission(void) {
     CHECK_MSG(worst_off < 1e-5, "without the layer the emission is undimmed: worst relative error %.2e", worst_off);
 }
 
+static void test_clearcoat_normal_guard(void) {
+    const double s20 = sin(20 * M_PI / 180), c20 = cos(20 * M_PI / 180), g[3] = {0, 1, 0};
+    char keys[512];
+    snprintf(keys, sizeof keys, COAT_KEYS ", \"clearcoat_normal_map\": \"constant:0.5,%.9g,%.9g\"", 0.5 + 0.5 * s20,
+             0.5 + 0.5 * c20);
+    if (!render(keys, NULL, "ggx-clearcoat", img)) return;
+    double worst = 0, peak = 0;
+    int checked = 0, bent = 0, away = 0;
+    static double want[W * H];
+    for (int y = 0; y < H; y += 2)
+        for (int x = 0; x < W; x += 2) {
+            double v[3], l[3], fc;
+            if (!floor_pixel(x, y, v, l, &fc)) continue;
+            const float vf[3] = {(float)v[0], (float)v[1], (float)v[2]};
+            double n[3] = {0, c20, -s20};
+            away += vg_dot(n, v) < 0;
+            vg_view_guard(n, vf, g);
+            bent += n[2] != -s20;
+            double nl = vg_dot(n, l), nv = vg_dot(n, v);
+            want[y * W + x] = coat_w * schlick(fmax(nv, 0), 0.04) * dg_over_4(n, v, l, coat_alpha) * E * fmax(nl, 0);
+            peak = fmax(peak, want[y * W + x]);
+            checked++;
+        }
+    for (int y = 0; y < H; y += 2)
+        for (int x = 0; x < W; x += 2) {
+            double v[3], l[3], fc;
+            if (!floor_pixel(x, y, v, l, &fc)) continue;
+            worst = fmax(worst, fabs(img[(y * W + x) * 4 + 1] - want[y * W + x]) / fmax(want[y * W + x], 0.01 * peak));
+        }
+    printf("clearcoat normal texture leaning 20 deg away: %d px (%d bent, %d facing away before), coat peak %.3f, worst "
+           "relative error %.2e\n", checked, bent, away, peak, worst);
+    CHECK_MSG(bent > 50 && checked - bent > 50 && away > 50, "%d of %d pixels bent, %d facing away", bent, checked, away);
+    CHECK_MSG(peak > 0.2, "the coat's highlight must be in view (peak %.3f)", peak);
+    CHECK_MSG(worst < 2e-3, "guarded coat normal: worst relative error %.2e", worst);
+}
+
 int main(void) {
     test_clearcoat_closed_form();
     test_clearcoat_fresnel_loss();
     test_clearcoat_emission();
+    test_clearcoat_normal_guard();
     test_furnace();
     test_envmap_lobes("coated white sphere", "\"metallic\": 0, \"roughness\": 1, \"base_color\": [1, 1, 1], \"clearcoat\": 1, "
                       "\"clearcoat_roughness\": 0.5", 1.0, 0.01);

@@ -462,7 +462,7 @@ int main(void) {
         printf("ggx specular AA grid: the AA mean is closer to the reference in %d of 9 configurations\n", better);
     }
     /* 8. mapped normals whose reflection falls below the plane: normal-map tilts them back as
-     * Cycles' Normal Map node does (nm_valid_reflection), for ggx as for every model. A constant
+     * Cycles' Normal Map node does (sl_valid_reflection), for ggx as for every model. A constant
      * map leans every normal 20° away from the camera: n = (0, cos 20°, −sin 20°) (T = +X, image
      * up = −Z on the plane primitive; normal-map's orientation test checks this); across the
      * image its reflection is valid at some pixels, below the plane at others, and the normal

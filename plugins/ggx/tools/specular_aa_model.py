@@ -16,7 +16,7 @@ channel of
          per-axis variance is Toksvig's (1 - |N|)/|N| for the whole map (40000 samples);
   toks   this plugin's Toksvig lobe at the mean normal (alpha'^2 = alpha^2 + variance in D and G);
   off    the unfiltered shading at the flat mean normal.
-The BRDF, guard and constants repeat shaders/ggx_brdf.glsl and normal-map's nm_lib.glsl.
+The BRDF, guard and constants repeat shaders/ggx_brdf.glsl and shaders/normal_guard.glsl.
 Usage: plugins/ggx/tools/specular_aa_model.py [alpha]   (default 0.05)
 """
 import os
@@ -29,7 +29,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 MAP = os.path.join(HERE, "..", "..", "phong", "assets", "bumps32_tangent.png")
 ALPHA = float(sys.argv[1]) if len(sys.argv) > 1 else 0.05
-NDOTV_MIN = 0.02  # NM_MIN_NDOTV
+NDOTV_MIN = 0.02  # SL_MIN_NDOTV (shaders/normal_guard.glsl)
 AW, AH, FOV_Y = 160, 90, 40.0
 
 
@@ -119,8 +119,9 @@ def face_viewer(n, v):
 
 
 def valid_reflection(n, v):
-    """normal-map's nm_valid_reflection on the plane (g = +Y): normals below the plane or whose
-    mirror direction of v rises less than t above it tilted back toward g, azimuth kept"""
+    """sl_valid_reflection (shaders/normal_guard.glsl) on the plane (g = +Y): normals below the
+    plane or whose mirror direction of v rises less than t above it tilted back toward g,
+    azimuth kept"""
     vz = v[1]
     t = min(0.9 * vz, 0.01)
     nv = n @ v

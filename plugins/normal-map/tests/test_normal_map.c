@@ -136,7 +136,7 @@ static void test_glsl(void) {
         }
         if (i < 4) for (int c = 0; c < 3; c++) in1[i * 4 + c] = -in0[i * 4 + c]; /* facing exactly away */
     }
-    d.expression = "vec4(nm_face_viewer(in0.xyz, in1.xyz), dot(nm_face_viewer(in0.xyz, in1.xyz), in1.xyz))";
+    d.expression = "vec4(sl_face_viewer(in0.xyz, in1.xyz), dot(sl_face_viewer(in0.xyz, in1.xyz), in1.xyz))";
     CHECK_MSG(sl_harness_eval_glsl(h, &d, out, err, sizeof err), "%s", err);
     const double eps = 0.02, bound = eps / sqrt(1 + eps * eps);
     double min_ndv = 1, worst_formula = 0;
@@ -165,8 +165,8 @@ static void test_glsl(void) {
      * direction rises at least t = min(0.9·v·g, 0.01) above the surface, exactly t where n was
      * bent, n' keeps n's azimuth about g, n'·v > 0 where n·g > 0, valid normals are returned bit
      * for bit, and the result equals the C derivation (tests/plane_scene.h) */
-    static const char *const guard_expr[2] = {"vec4(nm_valid_reflection(in0.xyz, in1.xyz, vec3(0.0, 1.0, 0.0)), 0.0)",
-                                              "vec4(nm_valid_reflection(in0.xyz, in1.xyz, vec3(0.6, 0.8, 0.0)), 0.0)"};
+    static const char *const guard_expr[2] = {"vec4(sl_valid_reflection(in0.xyz, in1.xyz, vec3(0.0, 1.0, 0.0)), 0.0)",
+                                              "vec4(sl_valid_reflection(in0.xyz, in1.xyz, vec3(0.6, 0.8, 0.0)), 0.0)"};
     static const double guard_g[2][3] = {{0, 1, 0}, {0.6, 0.8, 0}};
     for (int gi = 0; gi < 2; gi++) {
         const double *g = guard_g[gi], e1[3] = {g[1], -g[0], 0}, e2[3] = {0, 0, 1}; /* g's surface */
