@@ -28,13 +28,13 @@ vec3 sl_face_viewer(vec3 n, vec3 v) {
 //   a² = (vz − t)² / (2(p − vz·t + s))   (n' near g), the solution when vx ≤ 0 (n leans away
 //       from the viewer: the left side ≤ 0, and this root makes the right side t − vz + 2a²vz ≤ 0);
 //   b² = (vz + t)² / (2(vx² + vz(vz + t) + s))   (n' near the surface), when vx > 0.
-// Continuous in n (at r·g = t the
-// root is n itself), so the shading has no edge where normals start to bend; n'·v > 0 (r' and
-// v both lie above the surface, so r' ≠ −v). Normals whose reflection is valid are returned
-// unchanged (bit for bit), and so is n when v lies below g's surface (a smooth mesh's
-// silhouette: there is no surface to reflect above; sl_face_viewer still guards). A normal
-// below the surface (n·g < 0: an object-space map on the wrong side) would mirror v like −n,
-// validly while facing away, so it is first laid onto the surface (continuous at n·g = 0).
+// Continuous in n (at r·g = t the root is n itself), so the shading has no edge where normals
+// start to bend; n'·v > 0 (r' and v both lie above the surface, so r' ≠ −v). Normals whose
+// reflection is valid are returned unchanged (bit for bit), and so is n when v lies below g's
+// surface (a smooth mesh's silhouette: there is no surface to reflect above; sl_face_viewer
+// still guards). A normal below the surface (n·g < 0: an object-space map on the wrong side)
+// would mirror v like −n, validly while facing away, so it is first laid onto the surface
+// (continuous at n·g = 0).
 vec3 sl_valid_reflection(vec3 n, vec3 v, vec3 g) {
     float vz = dot(v, g), t = min(0.9 * vz, 0.01);
     if (vz <= 0.0) return n;
@@ -42,7 +42,7 @@ vec3 sl_valid_reflection(vec3 n, vec3 v, vec3 g) {
     if (ng >= 0.0 && dot(2.0 * dot(n, v) * n - v, g) >= t) return n;
     vec3 x = n - ng * g;
     float xl = length(x);
-    if (xl < 1e-6) return g; // n = g reflects validly, so n = −g: no azimuth to keep
+    if (xl < 1e-6) return g; // n = −g (n = g reflects validly): no azimuth to keep
     x /= xl;
     float vx = dot(v, x), p = vx * vx + vz * vz, sq = abs(vx) * sqrt(max(p - t * t, 0.0));
     bool away = vx <= 0.0;

@@ -73,8 +73,8 @@
  * SL_CHUNK_MASKS_FACING_AWAY (ABI 1.4): SURFACE hooks that perturb the normal (normal maps) then
  * leave a normal facing away from the viewer (n·v ≤ 0) as it is, because the model handles it
  * itself (e.g. Smith masking gives it no specular), instead of guarding it as they do for other
- * models (normal-map bends a normal whose reflection falls below the surface back above it, as
- * Blender's Cycles does; no bundled model declares the flag).
+ * models (sl_view_guard, "sl:normal_guard.glsl": a normal whose reflection falls below the
+ * surface is bent back above it, as Blender's Cycles does; no bundled model declares the flag).
  *
  * Hook signatures (FN is sl_shader_chunk_desc.function):
  *   VERTEX           void FN(inout SlVertex v)                   the mesh's object-space vertex,
