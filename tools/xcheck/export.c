@@ -14,8 +14,9 @@
  *   mirror             Glossy BSDF, sharp
  *   environment        a lat-long EXR in Blender's own orientation (files are read as Blender
  *                      reads them; envmap's procedural sky is evaluated per direction, its sun
- *                      disk included, so envmap's sun light is not a lamp too), yaw as a
- *                      rotation of the lookup about the up axis
+ *                      disk given as world.sun, which the script draws for camera rays and
+ *                      lights with as a Sun lamp, so envmap's sun light is not a lamp too),
+ *                      yaw as a rotation of the lookup about the up axis
  * Nothing is approximated silently: what differs is a note (xc_export.notes). */
 #include "export.h"
 
@@ -591,7 +592,7 @@ static bool export_light(ctx *c, int li, cJSON *list) {
     sl_app *app = c->app;
     const sl_light *L = &app->scene.lights[li];
     /* envmap.sun (envmap.sun_light): the procedural sky's own sun, which the exported sky holds as
-     * its disk (docs/xcheck.md): Cycles samples it there, so no lamp doubles it */
+     * its disk (world.sun, docs/xcheck.md), its lamp included: no second lamp doubles it */
     if (L->plugin && !strcmp(app->plugins.items[L->plugin - 1]->id, "envmap")) return true;
     if (!L->enabled) return true;
     if (!light_type_handled(app, L->type)) {
@@ -716,8 +717,9 @@ static float *sky_latlong(const em_sky *with_sun, int w, int h) {
     return px;
 }
 
-/* world.sun: the sky's sun disk for the world's nodes, in the frame of the lat-long's lookup
- * (Blender's axes, before the map's turn): direction, cos of the angular radius, radiance. */
+/* world.sun: the sky's sun disk, in the frame of the lat-long's lookup (Blender's axes, before the
+ * map's turn): direction, cos of the angular radius, radiance; xcheck_blender.py draws it by the
+ * world's nodes for camera rays and lights with it as a Sun lamp (add_sun_lamp). */
 static void export_sun_disk(const em_sky *sky, cJSON *w) {
     double dir[3], r, L[3];
     em_sky_sun(sky, dir, &r, L);

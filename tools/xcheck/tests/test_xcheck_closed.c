@@ -13,6 +13,7 @@
  *   spot       spots over a plane (linear and glTF fall-off, one tilted): L = ρ/π · I·f(θ)·cos θ_i / d²
  *   sky-sun    the procedural sky's sun disk seen through a narrow camera: its energy (E) and its
  *              edge (each pixel's share of the disk, box-filtered)
+ *   sky-sun-lit what the same disk adds to a Lambert plane: ρ/π · (E/Ω) · π sin²r · cos θc
  *   mirror     mirror sphere in a lat-long whose colour is a linear function of the direction, in
  *              Blender's orientation (u = ½ at +X growing towards +Z, v = 0 up), turned by yaw
  *   gltf-quad  an animated glTF quad opened directly (Blender's importer): its edges where the
@@ -391,6 +392,51 @@ static void sun_case(void) {
     free_render(&r);
 }
 
+/* The same sun lighting a Lambert plane facing +Z (ρ = 0.5): the render with the sun's irradiance E
+ * less the render with none (the sky's gradient, halo and ground do not depend on E) is what the
+ * disk adds, ρ/π · (E/Ω) · ∫cap cos θ dω = ρ/π · (E/Ω) · π sin²r · cos θc, θc the angle of the
+ * disk's centre from the normal (the whole cap above the plane's horizon), the sky turned by a yaw
+ * of 40° (shadelab looks up R_y(−yaw)·d: the sun is at R_y(yaw)·s). The export gives the
+ * disk's lighting to a sun lamp of the same cone (docs/xcheck.md), so this checks the lamp's
+ * strength and direction. */
+static const double SKY_YAW = 40;
+static double sky_sun_add[3];
+
+static double sky_sun_lit_form(const double p[3], int c, void *user) {
+    (void)p, (void)user;
+    return sky_sun_add[c];
+}
+
+static void sky_sun_lit_case(void) {
+    static const double colour[3] = {1.0, 0.95, 0.88};
+    render lit = {0}, unlit = {0};
+    char scene[1024], name[32];
+    for (int k = 0; k < 2; k++) {
+        snprintf(scene, sizeof scene,
+                 "{ \"plugins\": [\"envmap\"],\n"
+                 "  \"params\": { \"envmap.sun_elevation\": 30, \"envmap.sun_azimuth\": 20, \"envmap.sun_irradiance\": %g,"
+                 " \"envmap.sun_light\": false },\n"
+                 "  \"cameras\": [{ \"type\": \"orthographic\", \"position\": [0, 0, 5], \"target\": [0, 0, 0], \"ymag\": 1 }],\n"
+                 "  \"materials\": [{ \"name\": \"m\", \"base_color\": [0.5, 0.5, 0.5] }],\n"
+                 "  \"nodes\": [{ \"name\": \"plane\", \"rotate\": [90, 0, 0], \"mesh\": { \"primitive\": \"plane\", \"size\": 8 },"
+                 " \"material\": \"m\" }],\n"
+                 "  \"environment\": { \"yaw\": %g } }\n",
+                 k ? 0.0 : SUN_E, SKY_YAW);
+        snprintf(name, sizeof name, "sky-sun-lit-%d", k);
+        if (!cycles(name, scene, 32, k ? &unlit : &lit)) goto done;
+    }
+    double sun[3], yaw = SKY_YAW * PI / 180;
+    sun_dir(sun);
+    double cos_c = -sun[0] * sin(yaw) + sun[2] * cos(yaw); /* z of R_y(yaw)·sun */
+    for (int c = 0; c < 3; c++)
+        sky_sun_add[c] = 0.5 / PI * SUN_E / (2 * PI * (1 - cos(SUN_R))) * colour[c] * PI * sin(SUN_R) * sin(SUN_R) * cos_c;
+    for (size_t i = 0; i < (size_t)W * H * 4; i++) lit.img.pixels[i] -= unlit.img.pixels[i];
+    compare("sky-sun-lit", &lit, 1, sky_sun_lit_form, NULL, false, 1, 0, 0.01, 0.05, 0.25);
+done:
+    free_render(&lit);
+    free_render(&unlit);
+}
+
 /* ---- mirror ------------------------------------------------------------------------------ */
 
 /* The lat-long convention of Blender and three.js, from its statement: u = ½ at +X, growing
@@ -595,6 +641,7 @@ int main(void) {
     }
     free_render(&r);
     sun_case();
+    sky_sun_lit_case();
     gltf_case();
     return check_result();
 }
