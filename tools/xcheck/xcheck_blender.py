@@ -330,7 +330,7 @@ def add_sun_disk(tree, direction, colour, sun):
     return total.outputs["Vector"]
 
 
-def add_sun_lamp(sun, rotate_z):
+def add_sun_lamp(sun, rotate_z, unoccluded):
     """The sky's sun disk as a Sun lamp of the same angular radius r and radiance L: strength L·π·sin²r,
     the disk's irradiance on a surface facing it. Cycles samples a lamp by its cone; in the world's
     importance map the 1.5° disk was undersampled (fireflies on diffuse surfaces at 64 samples).
@@ -343,13 +343,14 @@ def add_sun_lamp(sun, rotate_z):
     data.energy = peak * math.pi * math.sin(r) ** 2
     data.color = [c / peak for c in sun["radiance"]]
     data.cycles.max_bounces = 1024
+    data.cycles.cast_shadow = data.use_shadow = not unoccluded  # EEVEE has no ray visibility
     to_sun = Matrix.Rotation(-rotate_z, 3, "Z") @ Vector(sun["direction"])
     obj = bpy.data.objects.new("sky sun", data)
     obj.rotation_euler = (-to_sun).to_track_quat("-Z", "Y").to_euler()
     link(obj, None)
 
 
-def make_world(d, w):
+def make_world(d, w, unoccluded):
     world = bpy.data.worlds.new("shadelab")
     world.use_nodes = True
     tree = world.node_tree
@@ -370,7 +371,7 @@ def make_world(d, w):
         colour = tex.outputs["Color"]
         if "sun" in w and max(w["sun"]["radiance"]) > 0:
             colour = add_sun_disk(tree, rot.outputs["Vector"], colour, w["sun"])
-            add_sun_lamp(w["sun"], w["map"]["rotate_z"])
+            add_sun_lamp(w["sun"], w["map"]["rotate_z"], unoccluded)
         tree.links.new(colour, bg.inputs["Color"])
     else:
         bg.inputs["Color"].default_value = list(w.get("color", [0, 0, 0])) + [1.0]
@@ -563,7 +564,7 @@ def main():
     eevee = int(argv[argv.index("--eevee") + 1]) if "--eevee" in argv else 0
     for l in S["lights"]:
         make_light(l, root, eevee > 0, rays == "camera")
-    bpy.context.scene.world = make_world(d, S["world"])
+    bpy.context.scene.world = make_world(d, S["world"], rays == "camera")
     make_camera(S["camera"], root)
     setup_render(S, out_dir)
     if argv[1:2] == ["--no-render"]:
