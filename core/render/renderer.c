@@ -266,19 +266,25 @@ static void fill_frame(sl_app *app, int acc_index, int acc_count) {
 }
 
 /* Offsets proj and view_proj by the requested jitter in pixels: NDC += 2·jitter/size, i.e. the
- * rows x and y of the projection gain the w row times the offset (perspective or orthographic). */
+ * rows x and y of the projection gain the w row times the offset (perspective or orthographic).
+ * With core.ssaa = k the offset is divided by k: the k × k samples of a pixel cover it already,
+ * and the jitter moves each within its own cell, so a still of jittered frames is the pixel's box
+ * filter (a whole pixel's jitter moved the grid across the neighbours: a box filtered by a box,
+ * two pixels wide). sl_frame.jitter is the offset applied. */
 static void apply_jitter(sl_renderer *r) {
     sl_frame *f = &r->frame;
-    float tx = 2.0f * r->jitter_req[0] / (float)(f->width ? f->width : 1);
-    float ty = 2.0f * r->jitter_req[1] / (float)(f->height ? f->height : 1);
+    float k = r->ssaa > 1 ? (float)r->ssaa : 1.0f;
+    float jx = r->jitter_req[0] / k, jy = r->jitter_req[1] / k;
+    float tx = 2.0f * jx / (float)(f->width ? f->width : 1);
+    float ty = 2.0f * jy / (float)(f->height ? f->height : 1);
     if (tx == 0 && ty == 0) return;
     for (int c = 0; c < 4; c++) {
         f->proj[c * 4 + 0] += tx * f->proj[c * 4 + 3];
         f->proj[c * 4 + 1] += ty * f->proj[c * 4 + 3];
     }
     glm_mat4_mul((vec4 *)f->proj, (vec4 *)f->view, (vec4 *)f->view_proj);
-    f->jitter[0] = r->jitter_req[0];
-    f->jitter[1] = r->jitter_req[1];
+    f->jitter[0] = jx;
+    f->jitter[1] = jy;
 }
 
 /* ABI 1.9, sl_frame.sample_index: counts the frames since the view or an edit last changed (what

@@ -126,6 +126,25 @@ static void test_taa_still(void) {
     }
 }
 
+/* TAA over supersampling (core.ssaa = k): each frame's pixel is already the box mean of its k × k
+ * samples, so the still's jitter spreads each sample over its own cell (the core divides the
+ * jitter by k) and the still is the pixel's box filter sampled 16·k² times. A jitter of a whole
+ * pixel moved the k × k grid across the pixel's neighbours: the still was a box filtered again by
+ * a box, a tent two pixels wide, further from the 8x8 reference than supersampling alone. */
+static void test_taa_over_ssaa(void) {
+    char json[2048];
+    edge_scene(json, sizeof json, 17);
+    const char *s_ref[] = {"aa.method=none", "core.ssaa=8", NULL};
+    const char *s_ssaa[] = {"aa.method=none", "core.ssaa=2", NULL};
+    const char *s_both[] = {"aa.method=taa", "aa.taa_frames=16", "core.ssaa=2", NULL};
+    if (!render_still(json, s_ref, 1, ref) || !render_still(json, s_ssaa, 1, base) || !render_still(json, s_both, 16, img))
+        return;
+    double e_ssaa = rmse(base, ref), e_both = rmse(img, ref);
+    printf("edge 17 deg: RMSE to ssaa=8: ssaa=2 %.5f, ssaa=2 with a 16-frame TAA still %.5f\n", e_ssaa, e_both);
+    CHECK_MSG(e_both <= 0.5 * e_ssaa, "TAA over core.ssaa=2: RMSE %.5f is not half of supersampling's alone (%.5f)",
+              e_both, e_ssaa);
+}
+
 /* A still is the exact mean of its jittered frames: neither the neighbourhood clip nor the
  * disocclusion rejection may act on it (nothing moved). With rejection on in a still, silhouette
  * pixels of a sphere on an empty background lost their history whenever their last jittered
@@ -372,6 +391,7 @@ static void test_fxaa_not_upscaled(void) {
 int main(int argc, char **argv) {
     test_taa_still();
     test_taa_still_exact();
+    test_taa_over_ssaa();
     test_taa_texture_still();
     if (argc > 1 && !strcmp(argv[1], "still")) return check_result();
     test_fxaa();

@@ -185,9 +185,11 @@ struct sl_host {
      * ggx_brdf.glsl, ...), for plugins that hash or read those files themselves. */
     const char *(*shader_dir)(const sl_host *host);
     /* ABI 1.6, begin_frame only: offsets this frame's projection by (x, y) pixels (x right, y up;
-     * |x|, |y| <= 0.5) for temporal antialiasing. Every pass's sl_frame (proj, view_proj, jitter)
-     * and the composed programs' sl_proj/sl_view_proj include it; "motion" excludes it. Cleared
-     * at the start of every frame. */
+     * |x|, |y| <= 0.5) for temporal antialiasing; with core.ssaa = k by (x, y)/k, which moves each
+     * of a pixel's k × k samples within its own cell (a still of jittered frames is then the
+     * pixel's box filter). Every pass's sl_frame (proj, view_proj, jitter: the offset applied) and
+     * the composed programs' sl_proj/sl_view_proj include it; "motion" excludes it. Cleared at
+     * the start of every frame. */
     void (*set_jitter)(const sl_host *host, float x, float y);
     /* ABI 1.6, GL context current (activate, begin_frame, passes): a still image of this plugin's
      * output needs `frames` frames rendered at one scene time (a temporal method's history). A
