@@ -1082,10 +1082,8 @@ static void background_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) 
     unsigned prog = h->program_id(h, in_place ? e->bg_in_place_prog[kind] : e->bg_prog[kind]);
     if (!prog) return;
     glUseProgram(prog);
-    if (e->is_sky) {
-        bind_sky(e, prog);
-        glUniform2f(glGetUniformLocation(prog, "envmap_jitter"), f->jitter[0], f->jitter[1]);
-    }
+    if (e->is_sky) bind_sky(e, prog);
+    glUniform2f(glGetUniformLocation(prog, "envmap_jitter"), f->jitter[0], f->jitter[1]);
     /* the lighting units are free during this pass (bind() sets them again per material) */
     glBindTextureUnit(e->unit_spec, color);
     glBindTextureUnit(e->unit_lut, depth);

@@ -13,6 +13,8 @@ uniform vec3 envmap_clear;        // what the core cleared "color" to
 uniform mat4 envmap_inv_view_proj;
 uniform vec2 envmap_viewport;
 uniform float envmap_pixel_angle; // radians per pixel at the centre of the view
+uniform vec2 envmap_jitter;       // the frame's projection offset (sl_frame.jitter), pixels
+vec2 envmap_to_centre;            // from this fragment's sample to its pixel's centre (main)
 // ENVMAP_SOURCE_CUBE: the source is a cube; ENVMAP_SOURCE_SKY: the procedural sky, evaluated here
 // per pixel (cube.c, em_sky_radiance: the same terms), with its sun disk box-filtered over the
 // pixel in closed form; else a lat-long (a permutation: see envmap_to_cube.frag)
@@ -49,16 +51,15 @@ float envmap_square_share(float s, vec2 n) {
 // frame of a TAA still, and a frame in motion, gives the value a path tracer's pixel converges to
 // (16 jittered point samples left 1/16 steps along the edge). The chord c = |d − sun| is linear
 // across the pixel: its gradient g (pixels) moves it from the jittered sample to the pixel's centre
-// (jitter: sl_frame.jitter), and the disk's edge is a straight line at distance (c_r − c)/|g|; a
+// (envmap_to_centre), and the disk's edge is a straight line at distance (c_r − c)/|g|; a
 // disk under about a pixel across is an axis-aligned square of the same area instead (two 1-D
 // overlaps: it keeps the sun's energy where the straight edge would fill whole pixels).
-uniform vec2 envmap_jitter;
 float envmap_sun_share(vec3 d, vec3 dx, vec3 dy) {
     float cr = 2.0 * sin(0.5 * envmap_sky_sun_radius);
     vec3 e = d - envmap_sky_sun;
     float c = length(e);
     vec2 g = vec2(dot(e, dx), dot(e, dy)) / max(c, 1e-9);
-    c += dot(g, envmap_jitter);
+    c += dot(g, envmap_to_centre);
     float gl = length(g);
     if (!(gl > 1e-9)) return c < cr ? 1.0 : 0.0;
     vec2 n = g / gl;
@@ -75,16 +76,26 @@ uniform sampler2D envmap_src2d;
 layout(location = 0) out vec4 o_color;
 
 void main() {
-    vec2 ndc = gl_FragCoord.xy / envmap_viewport * 2.0 - 1.0;
+    vec2 at = gl_FragCoord.xy;
+#ifndef ENVMAP_IN_PLACE
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    int k = max(textureSize(envmap_depth, 0).x / max(textureSize(envmap_color, 0).x, 1), 1);
+    // Under core.ssaa = k the frame's jitter is a TAA's request over k (each of the forward pass's
+    // k × k samples stays in its cell); this pass samples once per pixel, so it moves its sample
+    // k times as far: over a still's frames it sweeps the whole pixel, the box filter.
+    at -= float(k - 1) * envmap_jitter;
+    envmap_to_centre = float(k) * envmap_jitter;
+#else
+    envmap_to_centre = envmap_jitter;
+#endif
+    vec2 ndc = at / envmap_viewport * 2.0 - 1.0;
     vec4 a = envmap_inv_view_proj * vec4(ndc, -1.0, 1.0), b = envmap_inv_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 d = envmap_rot * normalize(b.xyz / b.w - a.xyz / a.w);
 #if defined(ENVMAP_SKY_SUN)
     float sun = envmap_sun_share(d, dFdx(d), dFdy(d)); // derivatives before any return
 #endif
 #ifndef ENVMAP_IN_PLACE
-    ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 c = texelFetch(envmap_color, p, 0);
-    int k = max(textureSize(envmap_depth, 0).x / max(textureSize(envmap_color, 0).x, 1), 1);
     int background = 0;
     // do-whiles (k >= 1): llvmpipe ran a for loop's body once more, every lane masked (4 fetches for 1)
     int j = 0;
