@@ -14,8 +14,8 @@
  *   mirror             Glossy BSDF, sharp
  *   environment        a lat-long EXR in Blender's own orientation (files are read as Blender
  *                      reads them; envmap's procedural sky is evaluated per direction, its sun
- *                      disk given as world.sun, which the script draws for camera rays and
- *                      lights with as a Sun lamp, so envmap's sun light is not a lamp too),
+ *                      disk drawn for camera rays by the world's nodes and lighting as a
+ *                      Sun lamp, so envmap's sun light is not a lamp too),
  *                      yaw as a rotation of the lookup about the up axis
  * Nothing is approximated silently: what differs is a note (xc_export.notes). */
 #include "export.h"
@@ -592,7 +592,7 @@ static bool export_light(ctx *c, int li, cJSON *list) {
     sl_app *app = c->app;
     const sl_light *L = &app->scene.lights[li];
     /* envmap.sun (envmap.sun_light): the procedural sky's own sun, which the exported sky holds as
-     * its disk (world.sun, docs/xcheck.md), its lamp included: no second lamp doubles it */
+     * its disk and lamp (export_sun, docs/xcheck.md): no second lamp doubles it */
     if (L->plugin && !strcmp(app->plugins.items[L->plugin - 1]->id, "envmap")) return true;
     if (!L->enabled) return true;
     if (!light_type_handled(app, L->type)) {
@@ -717,18 +717,35 @@ static float *sky_latlong(const em_sky *with_sun, int w, int h) {
     return px;
 }
 
-/* world.sun: the sky's sun disk, in the frame of the lat-long's lookup (Blender's axes, before the
- * map's turn): direction, cos of the angular radius, radiance; xcheck_blender.py draws it by the
- * world's nodes for camera rays and lights with it as a Sun lamp (add_sun_lamp). */
-static void export_sun_disk(const em_sky *sky, cJSON *w) {
+/* The sky's sun disk (radiance L, angular radius r), twice. world.sun, in the frame of the
+ * lat-long's lookup (Blender's axes, before the map's turn: direction, cos r, L), which
+ * xcheck_blender.py draws by the world's nodes for camera rays only; and a Sun lamp of angle 2r and
+ * strength L·π·sin²r (the disk's irradiance on a surface facing it) towards R_y(yaw)·sun, which
+ * lights every other ray: lit through the world's importance map, the 3° disk left fireflies on
+ * diffuse surfaces at 64 samples, while a lamp is sampled by its cone and hit by glossy rays. */
+static void export_sun(const em_sky *sky, double yaw, cJSON *w, cJSON *lights) {
     double dir[3], r, L[3];
     em_sky_sun(sky, dir, &r, L);
-    if (!(L[0] > 0 || L[1] > 0 || L[2] > 0)) return;
+    double peak = fmax(L[0], fmax(L[1], L[2]));
+    if (!(peak > 0)) return;
     cJSON *sun = cJSON_AddObjectToObject(w, "sun");
     float b[3] = {(float)dir[0], (float)-dir[2], (float)dir[1]}, rad[3] = {(float)L[0], (float)L[1], (float)L[2]};
     cJSON_AddItemToObject(sun, "direction", vec(b, 3));
     cJSON_AddNumberToObject(sun, "cos_radius", cos(r));
     cJSON_AddItemToObject(sun, "radiance", vec(rad, 3));
+    cJSON *j = cJSON_CreateObject();
+    float colour[3] = {(float)(L[0] / peak), (float)(L[1] / peak), (float)(L[2] / peak)}, m[16], zero[3] = {0, 0, 0};
+    float forward[3] = {(float)-(dir[0] * cos(yaw) + dir[2] * sin(yaw)), (float)-dir[1],
+                        (float)-(-dir[0] * sin(yaw) + dir[2] * cos(yaw))}; /* −R_y(yaw)·sun: the light's travel */
+    cJSON_AddStringToObject(j, "name", "sky sun");
+    cJSON_AddItemToObject(j, "color", vec(colour, 3));
+    cJSON_AddBoolToObject(j, "shadow", true); /* as the world's disk shadowed: the path tracer's truth */
+    cJSON_AddStringToObject(j, "blender_type", "SUN");
+    cJSON_AddNumberToObject(j, "energy", peak * M_PI * sin(r) * sin(r));
+    cJSON_AddNumberToObject(j, "angle", 2 * r);
+    frame_matrix(forward, NULL, zero, m);
+    cJSON_AddItemToObject(j, "matrix", vec(m, 16));
+    cJSON_AddItemToArray(lights, j);
 }
 
 static float *core_pattern(void *user, const char *spec, int size, char *err, size_t n) {
@@ -738,9 +755,11 @@ static float *core_pattern(void *user, const char *spec, int size, char *err, si
     return img.pixels; /* RGBA, size², owned by the caller */
 }
 
-static bool export_world(ctx *c, cJSON *root) {
+static bool export_world(ctx *c, cJSON *root, cJSON *lights) {
     sl_app *app = c->app;
     const sl_environment *env = &app->scene.environment;
+    /* shadelab looks up R_y(−yaw)·d; about Blender's up axis that is the same angle */
+    double yaw = (env->yaw_deg + global_float(app, "envmap.yaw", 0)) * M_PI / 180;
     cJSON *w = cJSON_AddObjectToObject(root, "world");
     float clear[3];
     for (int i = 0; i < 3; i++) clear[i] = env->color[i] * env->intensity;
@@ -757,7 +776,7 @@ static bool export_world(ctx *c, cJSON *root) {
         em_sky sky = export_sky(app);
         px = sky_latlong(&sky, width, height);
         if (!px) { snprintf(c->err, c->n, "out of memory"); return false; }
-        export_sun_disk(&sky, w);
+        export_sun(&sky, yaw, w, lights);
     } else {
         em_env e = {0};
         bool ok;
@@ -786,8 +805,6 @@ static bool export_world(ctx *c, cJSON *root) {
     cJSON *map = cJSON_AddObjectToObject(w, "map");
     cJSON_AddStringToObject(map, "file", "assets/environment.exr");
     cJSON_AddStringToObject(map, "colorspace", "Linear");
-    /* shadelab looks up R_y(−yaw)·d; about Blender's up axis that is the same angle */
-    double yaw = (env->yaw_deg + global_float(app, "envmap.yaw", 0)) * M_PI / 180;
     cJSON_AddNumberToObject(map, "rotate_z", -yaw);
     cJSON_AddNumberToObject(w, "strength", env->intensity);
     if (global_param(app, "envmap.background") && !global_param(app, "envmap.background")->value.b)
@@ -956,7 +973,7 @@ bool xc_export_scene(sl_app *app, const xc_export_options *o, const char *dir, x
     cJSON *lights = cJSON_AddArrayToObject(root, "lights");
     for (int li = 0; ok && li < app->scene.light_count; li++) ok = export_light(&c, li, lights);
     if (ok && o->unoccluded) note_unshadowed(&c, lights);
-    ok = ok && export_world(&c, root);
+    ok = ok && export_world(&c, root, lights);
     free(checked);
     if (ok) {
         char *text = cJSON_Print(root);

@@ -15,7 +15,7 @@ import sys
 import time
 
 import bpy
-from mathutils import Matrix, Vector
+from mathutils import Matrix
 
 
 def fail(msg):
@@ -303,7 +303,8 @@ def make_light(l, root, eevee, unoccluded):
 def add_sun_disk(tree, direction, colour, sun):
     """The procedural sky's sun disk as camera rays see it, drawn exactly: colour + radiance where
     the lookup direction is within the disk's angular radius (dot > cos r) and the ray is a camera
-    ray; every other ray finds the sun as its lamp (add_sun_lamp). Returns the sum's socket."""
+    ray; every other ray finds the sun as its lamp (one of scene.json's lights, export.c's
+    export_sun). Returns the sum's output socket."""
     def vmath(op):
         n = tree.nodes.new("ShaderNodeVectorMath")
         n.operation = op
@@ -330,27 +331,7 @@ def add_sun_disk(tree, direction, colour, sun):
     return total.outputs["Vector"]
 
 
-def add_sun_lamp(sun, rotate_z, unoccluded):
-    """The sky's sun disk as a Sun lamp of the same angular radius r and radiance L: strength L·π·sin²r,
-    the disk's irradiance on a surface facing it. Cycles samples a lamp by its cone; in the world's
-    importance map the 1.5° disk was undersampled (fireflies on diffuse surfaces at 64 samples).
-    Glossy rays hit the lamp as they hit the disk. The lookup direction is the world's turned by
-    rotate_z (the Mapping node), so the sun's world direction is the disk's turned back."""
-    r = math.acos(min(1.0, sun["cos_radius"]))
-    peak = max(sun["radiance"])
-    data = bpy.data.lights.new("sky sun", "SUN")
-    data.angle = 2 * r
-    data.energy = peak * math.pi * math.sin(r) ** 2
-    data.color = [c / peak for c in sun["radiance"]]
-    data.cycles.max_bounces = 1024
-    data.cycles.cast_shadow = data.use_shadow = not unoccluded  # EEVEE has no ray visibility
-    to_sun = Matrix.Rotation(-rotate_z, 3, "Z") @ Vector(sun["direction"])
-    obj = bpy.data.objects.new("sky sun", data)
-    obj.rotation_euler = (-to_sun).to_track_quat("-Z", "Y").to_euler()
-    link(obj, None)
-
-
-def make_world(d, w, unoccluded):
+def make_world(d, w):
     world = bpy.data.worlds.new("shadelab")
     world.use_nodes = True
     tree = world.node_tree
@@ -369,9 +350,8 @@ def make_world(d, w, unoccluded):
         tree.links.new(coord.outputs["Generated"], rot.inputs["Vector"])
         tree.links.new(rot.outputs["Vector"], tex.inputs["Vector"])
         colour = tex.outputs["Color"]
-        if "sun" in w and max(w["sun"]["radiance"]) > 0:
+        if "sun" in w:
             colour = add_sun_disk(tree, rot.outputs["Vector"], colour, w["sun"])
-            add_sun_lamp(w["sun"], w["map"]["rotate_z"], unoccluded)
         tree.links.new(colour, bg.inputs["Color"])
     else:
         bg.inputs["Color"].default_value = list(w.get("color", [0, 0, 0])) + [1.0]
@@ -564,7 +544,7 @@ def main():
     eevee = int(argv[argv.index("--eevee") + 1]) if "--eevee" in argv else 0
     for l in S["lights"]:
         make_light(l, root, eevee > 0, rays == "camera")
-    bpy.context.scene.world = make_world(d, S["world"], rays == "camera")
+    bpy.context.scene.world = make_world(d, S["world"])
     make_camera(S["camera"], root)
     setup_render(S, out_dir)
     if argv[1:2] == ["--no-render"]:
