@@ -594,6 +594,9 @@ static bool export_light(ctx *c, int li, cJSON *list) {
     /* envmap.sun (envmap.sun_light): the procedural sky's own sun, which the exported sky holds as
      * its disk and lamp (export_sun, docs/xcheck.md): no second lamp doubles it */
     if (L->plugin && !strcmp(app->plugins.items[L->plugin - 1]->id, "envmap")) return true;
+    /* a light of type "indirect" stands for light the scene bounces (bounce.indirect; the plugin
+     * guide reserves the type for such lights): Cycles traces those bounces itself */
+    if (!strcmp(L->type, "indirect")) return true;
     if (!L->enabled) return true;
     if (!light_type_handled(app, L->type)) {
         note(c, "not cross-checked: light %s: type \"%s\" is drawn by no enabled plugin (it lights nothing in "

@@ -45,6 +45,7 @@ data_args=()
 # declares no quality knob (ssao), or is not compared (tonemap: before tone mapping).
 declare -A HIGHEST=(
     [core]="core.ssaa=4"
+    [bounce]="bounce.vpls=32 bounce.grid=24"
     [envmap]="envmap.specular=fis envmap.fis_samples=32 envmap.irradiance=convolved envmap.reflections=screen envmap.reflections_scale=1"
     [spotlight-shadow]="spotlight-shadow.filter=pcss spotlight-shadow.map_size=4096 spotlight-shadow.pcss_blocker_taps=64 spotlight-shadow.pcss_filter_taps=64"
 )
