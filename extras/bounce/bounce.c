@@ -4,15 +4,19 @@
  *   1. reflective shadow maps (Dachsbacher & Stamminger 2005): each directional light's view of
  *      the scene (orthographic, fitted to the scene's bounds), every material's own surface hooks
  *      (bounce_rsm.frag), storing the light each texel's surface sends back: its diffuse albedo ×
- *      the light's irradiance, where the surface faces the light. Mipmapped, level m of a map is
- *      vpls × vpls virtual point lights (flux, flux-weighted position and normal);
- *   2. an irradiance probe grid over the scene's bounds (bounce_probes.frag, one full-screen
- *      triangle per slice): at each probe the virtual lights' irradiance e_j = Φ_j cos θ_j /
- *      (π d² + A_j) (a disk of the light's area seen on its axis: finite as d → 0) from directions
- *      ω_j, as order-2 spherical harmonics of irradiance (Ramamoorthi & Hanrahan 2001);
- *   3. the light "bounce.indirect" (SL_CHUNK_LIGHT_RADIANCE, bounce.glsl): trilinear in the grid,
+ *      the light's irradiance, where the surface faces the light; mipmapped;
+ *   2. virtual point lights (build_vpls, on the CPU from the maps read back): the texels of the
+ *      level with vpls × vpls a map (flux, flux-weighted position and normal), split into finer
+ *      ones where their positions spread (an edge over a surface far behind it);
+ *   3. an irradiance probe grid over the scene's bounds (bounce_probes.frag, one full-screen
+ *      triangle over the slices side by side): at each probe the virtual lights' irradiance
+ *      e_j = Φ_j cos θ_j / (π d² + A_j) (a disk of the light's area seen on its axis: finite as
+ *      d → 0) from directions ω_j, as order-2 spherical harmonics of irradiance (Ramamoorthi &
+ *      Hanrahan 2001);
+ *   4. the light "bounce.indirect" (SL_CHUNK_LIGHT_RADIANCE, bounce.glsl): trilinear in the grid,
  *      E(n) from the nine harmonics, lighting each model by its lobe contract's diffuse albedo.
- * Both passes run only when the lights, geometry, materials or this plugin's parameters change.
+ * Steps 1-3 are the pass "bounce", run only when the lights, geometry, materials or this plugin's
+ * parameters change.
  *
  *   globals      bounce.vpls (virtual lights per side of each map), bounce.grid (probes along the
  *                scene's longest side); both quality knobs */
@@ -54,11 +58,11 @@ typedef struct bounce {
 
 #define P(...) {.struct_size = sizeof(sl_param_desc), __VA_ARGS__}
 static const sl_param_desc params[] = {
-    P(.id = "vpls", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 4, .max = 64, .step = 4,
+    P(.id = "vpls", .type = SL_PARAM_INT, .default_value = {.i = 16}, .min = 4, .max = 32, .step = 4,
       .flags = SL_PARAM_QUALITY_KNOB, .group = "bounce",
       .description = "Virtual point lights per side of each directional light's reflective shadow map (its map has 8× as "
                      "many texels a side); rounded down to a power of two."),
-    P(.id = "grid", .type = SL_PARAM_INT, .default_value = {.i = 12}, .min = 2, .max = 48, .step = 1,
+    P(.id = "grid", .type = SL_PARAM_INT, .default_value = {.i = 12}, .min = 2, .max = 32, .step = 1,
       .flags = SL_PARAM_QUALITY_KNOB, .group = "bounce",
       .description = "Irradiance probes along the scene's longest side (the other sides in proportion, 2 at least)."),
 };
@@ -233,7 +237,8 @@ typedef struct vpl_maps {
 
 /* Texel (x, y) of layer `layer` at split depth k: a virtual light of the given area, or, where its
  * texels' positions spread wider than its side (an edge over a surface far behind it), its four
- * texels one level finer (BOUNCE_SPLIT_LEVELS deep at most). Texels that send no light are dropped. */
+ * texels one level finer (BOUNCE_SPLIT_LEVELS deep at most, while the list is under half its
+ * capacity: the gather's time stays bounded). Texels that send no light are dropped. */
 static void collect_vpl(vpl_maps *v, int layer, int k, int x, int y, float area) {
     int n = v->side[k];
     size_t i = ((size_t)layer * n * n + (size_t)y * n + x) * 4;
@@ -241,7 +246,7 @@ static void collect_vpl(vpl_maps *v, int layer, int k, int x, int y, float area)
     if (!(p[3] > 0) || !isfinite(p[3])) return;
     float m[3] = {p[0] / p[3], p[1] / p[3], p[2] / p[3]};
     float spread = nr[3] / p[3] - (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    if (spread > area && k < BOUNCE_SPLIT_LEVELS) {
+    if (spread > area && k < BOUNCE_SPLIT_LEVELS && v->count < v->capacity / 2) {
         for (int c = 0; c < 4; c++) collect_vpl(v, layer, k + 1, 2 * x + (c & 1), 2 * y + (c >> 1), 0.25f * area);
         return;
     }
@@ -257,7 +262,8 @@ static void collect_vpl(vpl_maps *v, int layer, int k, int x, int y, float area)
 static void build_vpls(bounce *b, int vpls) {
     int top = 0;
     while ((vpls << top) < b->rsm_size) top++;
-    vpl_maps v = {.capacity = b->light_count * vpls * vpls * 16};
+    /* at most 8 per top-level texel on average: splitting stops at half of that (collect_vpl) */
+    vpl_maps v = {.capacity = 8 * b->light_count * vpls * vpls + 64};
     v.out = malloc(sizeof(float) * 12 * (size_t)(v.capacity ? v.capacity : 1));
     bool ok = v.out != NULL && b->light_count > 0;
     for (int k = 0; k <= BOUNCE_SPLIT_LEVELS; k++) {

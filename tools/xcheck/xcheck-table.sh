@@ -194,7 +194,7 @@ with open(out, "w") as f:
             "the end, %s min in all%s. Rows: every bundled scene Cycles can represent (the exporter lists nothing "
             "but tone mapping left out) at its defaults, then at each of its plugins' highest settings "
             "(`core.ssaa=4`; envmap's fis 32 with convolved irradiance and screen-space reflections; spotlight-shadow's PCSS at 4096² with 64 "
-            "taps; aa, ggx and normal-map are at their highest by default), then with the screen-space effects "
+            "taps; bounce's 32² virtual lights a map and 24 probes along the scene; aa, ggx and normal-map are at their highest by default), then with the screen-space effects "
             "EEVEE renders with (its ambient occlusion and screen-space reflections): the ssao plugin loaded "
             "and, where envmap is, `envmap.reflections=screen`. Error: relative RMS / FLIP "
             "against a %s-sample Cycles reference over every object's interior and the background "
