@@ -13,6 +13,7 @@
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include <shadelab/shadelab.h>
+#include <shadelab/matrix.h>
 #include "ltc.h"
 
 #define AL_ID "area-light"
@@ -359,13 +360,6 @@ static uint64_t al_shadow_signature(void *user, const sl_frame *f) {
 static const float al_face_axis[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 static const float al_face_up[6][3] = {{0, 1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
 
-static void al_cross3(const float *a, const float *b, float *o) {
-    o[0] = a[1] * b[2] - a[2] * b[1], o[1] = a[2] * b[0] - a[0] * b[2], o[2] = a[0] * b[1] - a[1] * b[0];
-}
-static void al_normalize3(float *v) {
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0) v[0] /= l, v[1] /= l, v[2] /= l;
-}
 
 /* Radical inverse in base 2 (van der Corput): the second coordinate of the Hammersley set. */
 static double al_radical_inverse(unsigned k) {
@@ -412,16 +406,16 @@ static void al_shadow_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         memcpy(sh->direction, L->direction, sizeof sh->direction);
         /* the light's frame as the GLSL makes it (area_light_axes) */
         float nl[3] = {L->direction[0], L->direction[1], L->direction[2]}, ex[3], ey[3];
-        al_normalize3(nl);
+        sl_vec3_normalize(nl);
         const float *axis = L->params + 4;
         float d = axis[0] * nl[0] + axis[1] * nl[1] + axis[2] * nl[2];
         for (int c = 0; c < 3; c++) ex[c] = axis[c] - nl[c] * d;
         if (sqrtf(ex[0] * ex[0] + ex[1] * ex[1] + ex[2] * ex[2]) < 1e-6f) {
             const float up[3] = {0, 1, 0}, right[3] = {1, 0, 0};
-            al_cross3(fabsf(nl[1]) < 0.999f ? up : right, nl, ex);
+            sl_vec3_cross(fabsf(nl[1]) < 0.999f ? up : right, nl, ex);
         }
-        al_normalize3(ex);
-        al_cross3(nl, ex, ey);
+        sl_vec3_normalize(ex);
+        sl_vec3_cross(nl, ex, ey);
         double su = u, sv = v;
         if (L->params[2] > 0.5f) { /* disk: the ellipse, area-uniform */
             double r = sqrt(u), phi = 2 * M_PI * v;
@@ -447,9 +441,9 @@ static void al_shadow_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
         for (int face = 0; face < 6; face++) {
             const float *fa = al_face_axis[face];
             float sx[3], ux[3];
-            al_cross3(fa, al_face_up[face], sx);
-            al_normalize3(sx);
-            al_cross3(sx, fa, ux);
+            sl_vec3_cross(fa, al_face_up[face], sx);
+            sl_vec3_normalize(sx);
+            sl_vec3_cross(sx, fa, ux);
             const float *e = sh->point;
             float view[16] = {sx[0], ux[0], -fa[0], 0, sx[1], ux[1], -fa[1], 0, sx[2], ux[2], -fa[2], 0,
                               -(sx[0] * e[0] + sx[1] * e[1] + sx[2] * e[2]), -(ux[0] * e[0] + ux[1] * e[1] + ux[2] * e[2]),

@@ -23,6 +23,7 @@
 #define SL_GL_IMPLEMENTATION
 #include <shadelab/gl.h>
 #include <shadelab/shadelab.h>
+#include <shadelab/matrix.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -131,23 +132,15 @@ static void ensure_probes(bounce *b, const int grid[3]) {
 
 /* ---- the light's view: orthographic, fitted to the scene's bounds ------------------------------ */
 
-static void cross3(const float *a, const float *c, float *o) {
-    o[0] = a[1] * c[2] - a[2] * c[1], o[1] = a[2] * c[0] - a[0] * c[2], o[2] = a[0] * c[1] - a[1] * c[0];
-}
-static void normalize3(float *v) {
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0) v[0] /= l, v[1] /= l, v[2] /= l;
-}
-
 /* view and projection (column-major) of light direction `dir` (where the light travels) over the
  * box [lo, hi]; returns the area of one map texel, perpendicular to the light (world units²). */
 static float light_view(const float dir[3], const float lo[3], const float hi[3], int size, float view[16], float proj[16]) {
     float z[3] = {-dir[0], -dir[1], -dir[2]}, x[3], y[3];
-    normalize3(z);
+    sl_vec3_normalize(z);
     const float up[3] = {0, 1, 0}, side[3] = {1, 0, 0};
-    cross3(fabsf(z[1]) < 0.99f ? up : side, z, x);
-    normalize3(x);
-    cross3(z, x, y);
+    sl_vec3_cross(fabsf(z[1]) < 0.99f ? up : side, z, x);
+    sl_vec3_normalize(x);
+    sl_vec3_cross(z, x, y);
     float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < 8; k++) {
         float p[3] = {k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]};
