@@ -7,7 +7,8 @@
  *     floor 1.2-2.8 % dark, and the lookup half a cell out of the surface 0.8-4.4 % more;
  *   - the floor does not light itself: its radiance stays ρ/π × E within 2 % (order-2 harmonics
  *     give a light along the surface's plane 0.094 of its irradiance instead of 0);
- *   - switched off: no pass, no light: the side is black.
+ *   - switched off: no pass, no light: the side is black;
+ *   - hostile scenes (flat, lit from below, five suns, a huge ground, the camera inside): finite.
  * Live switching equals a fresh start: the toggle matrix (tests/test_toggle_matrix.c in shadelab)
  * runs this scene. */
 #include <shadelab/harness.h>
@@ -129,9 +130,48 @@ static void test_floor_and_off(void) {
     free(on_img), free(off_img);
 }
 
+/* Scenes a user may give it: flat (a plane alone, no height to place probes in), lit from below,
+ * more directional lights than it bounces, a ground plane 10⁵ m wide under a small block, a
+ * camera inside the block: finite pixels, no failure. */
+static void test_hostile(void) {
+    static const char *const scenes[] = {
+        "{\"plugins\": [\"bounce\"], \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\"}}], "
+        "\"lights\": [{\"name\": \"up\", \"type\": \"directional\", \"direction\": [0, 1, 0]}, "
+        "{\"name\": \"down\", \"type\": \"directional\", \"direction\": [0.3, -1, 0]}]}",
+        "{\"plugins\": [\"bounce\"], \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\", \"size\": 100000}}, "
+        "{\"name\": \"b\", \"translate\": [0, 0.5, 0], \"mesh\": {\"primitive\": \"cube\"}}], "
+        "\"lights\": [{\"name\": \"a\", \"type\": \"directional\", \"direction\": [0, -1, 0]}, "
+        "{\"name\": \"b\", \"type\": \"directional\", \"direction\": [1, -1, 0]}, "
+        "{\"name\": \"c\", \"type\": \"directional\", \"direction\": [-1, -1, 0]}, "
+        "{\"name\": \"d\", \"type\": \"directional\", \"direction\": [0, -1, 1]}, "
+        "{\"name\": \"e\", \"type\": \"directional\", \"direction\": [0, -1, -1]}]}",
+        "{\"plugins\": [\"bounce\"], \"cameras\": [{\"name\": \"in\", \"position\": [0, 0.5, 0], \"target\": [1, 0.5, 0]}], "
+        "\"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\"}}, "
+        "{\"name\": \"b\", \"translate\": [0, 0.5, 0], \"mesh\": {\"primitive\": \"cube\"}}], "
+        "\"lights\": [{\"name\": \"a\", \"type\": \"directional\", \"direction\": [0.2, -1, 0.1]}]}",
+    };
+    const char *plugins[] = {BOUNCE_PLUGIN, NULL}, *knobs[] = {"bounce.vpls=32", "bounce.grid=32", NULL};
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++)
+        for (int k = 0; k < 2; k++) {
+            char err[2048];
+            sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W,
+                .height = H, .scene_json = scenes[i], .plugins = plugins, .settings = k ? knobs : NULL, .strict = true},
+                err, sizeof err);
+            CHECK(h, "hostile scene %zu: %s", i, err);
+            if (!h) continue;
+            bool ok = sl_harness_render(h, img);
+            CHECK(ok && sl_harness_count_nonfinite(img, W, H) == 0, "hostile scene %zu (%s): render %d, non-finite pixels",
+                  i, k ? "highest" : "defaults", ok);
+            sl_harness_destroy(h);
+        }
+    free(img);
+}
+
 int main(void) {
     test_side_against_form_factor();
     test_floor_and_off();
+    test_hostile();
     if (failures) printf("%d failure(s)\n", failures);
     else printf("all bounce tests passed\n");
     return failures ? 1 : 0;
