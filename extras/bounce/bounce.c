@@ -368,6 +368,10 @@ static sl_status bounce_create(const sl_host *host, void **user) {
                                         .function = "bounce_radiance", .name = "indirect",
                                         .flags = SL_CHUNK_LIGHT_RADIANCE};
     if (host->add_shader_chunk(host, &light) != SL_OK) return SL_ERR_FAILED;
+    const sl_shader_chunk_desc view = {.struct_size = sizeof view, .hook = SL_HOOK_DEBUG_VIEW, .file = "bounce.glsl",
+                                       .function = "bounce_view", .name = "bounce",
+                                       .description = "the light bounce adds alone (one bounce of the directional lights)"};
+    if (host->add_shader_chunk(host, &view) != SL_OK) return SL_ERR_FAILED;
     if (host->set_bind_callback(host, bounce_bind, b) != SL_OK) return SL_ERR_FAILED;
     for (int k = 0; k < BOUNCE_PROBE_TEXTURES; k++)
         if ((b->unit_probe[k] = host->reserve_texture_unit(host)) < 0) return SL_ERR_FAILED;

@@ -6,11 +6,13 @@
 // albedo/π × E (its glossy lobes get no indirect light); a model asking for
 // SL_LOBES_MODEL_AT_DOMINANT_LIGHT gets its own response at the order-1 terms' direction d with
 // E_d = 2 (C_1..3 · d), and its diffuse the rest (common.glsl). s.ao scales it as it scales the
-// environment; so does the light's colour × intensity (white, 1: the plugin sets them).
+// environment; so does the light's colour × intensity (white, 1: the plugin sets them). The debug
+// view "bounce" shows it alone.
 uniform sampler3D bounce_probe[7];
 uniform vec3 bounce_box_min, bounce_box_max, bounce_cell;
 
-vec3 bounce_radiance(SlLight L, SlSurface s) {
+// The radiance the bounce gives s (the light's colour and intensity aside).
+vec3 bounce_outgoing(SlSurface s) {
     vec3 p = s.position + 0.25 * s.normal * bounce_cell;
     vec3 uvw = (p - bounce_box_min) / (bounce_box_max - bounce_box_min);
     vec4 q0 = texture(bounce_probe[0], uvw), q1 = texture(bounce_probe[1], uvw), q2 = texture(bounce_probe[2], uvw);
@@ -30,5 +32,10 @@ vec3 bounce_radiance(SlLight L, SlSurface s) {
         vec3 Ed = max(b * d, vec3(0.0));
         Lo = sl_shading_model(s, d, Ed) + lobes.diffuse * SL_INV_PI * max(E - Ed * max(dot(n, d), 0.0), vec3(0.0));
     }
-    return L.color.rgb * s.ao * Lo;
+    return s.ao * Lo;
 }
+
+vec3 bounce_radiance(SlLight L, SlSurface s) { return L.color.rgb * bounce_outgoing(s); }
+
+// Debug view "bounce": that radiance alone.
+vec3 bounce_view(SlSurface s) { return bounce_outgoing(s); }
