@@ -112,7 +112,7 @@ static void ensure_rsm(bounce *b, int size) {
     free_rsm(b);
     int levels = 1;
     while ((1 << (levels - 1)) < size) levels++;
-    const unsigned formats[3] = {GL_RGBA16F, GL_RGBA32F, GL_RGBA16F};
+    const unsigned formats[3] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F}; /* flux: lights up to 1e10 stay finite */
     for (int i = 0; i < 3; i++) b->rsm[i] = make_texture(GL_TEXTURE_2D_ARRAY, formats[i], levels, size, size, BOUNCE_MAX_LIGHTS);
     b->rsm_depth = make_texture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, 1, size, size, 1);
     b->rsm_size = size;
@@ -244,7 +244,7 @@ static void collect_vpl(vpl_maps *v, int layer, int k, int x, int y, float area)
         return;
     }
     float nl = sqrtf(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
-    if (!(nl > 0) || v->count == v->capacity) return;
+    if (!(nl > 0) || !isfinite(fl[0] + fl[1] + fl[2]) || v->count == v->capacity) return;
     float *o = v->out + (size_t)v->count++ * 12;
     const float rec[12] = {m[0], m[1], m[2], area, nr[0] / nl, nr[1] / nl, nr[2] / nl, 0,
                            fl[0] * area, fl[1] * area, fl[2] * area, 0};

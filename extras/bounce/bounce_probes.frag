@@ -38,6 +38,11 @@ void main() {
         s4 += e * (w.x * w.y), s5 += e * (w.y * w.z), s6 += e * (3.0 * w.z * w.z - 1.0);
         s7 += e * (w.x * w.z), s8 += e * (w.x * w.x - w.y * w.y);
     }
+    // the targets are half floats: a sum beyond their range is held at their largest value, finite
+    const float big = 65504.0;
+    s0 = min(s0, big), s1 = clamp(s1, -big, big), s2 = clamp(s2, -big, big), s3 = clamp(s3, -big, big);
+    s4 = clamp(s4, -big, big), s5 = clamp(s5, -big, big), s6 = clamp(s6, -big, big), s7 = clamp(s7, -big, big);
+    s8 = clamp(s8, -big, big);
     vec3 c0 = 0.25 * s0, c1 = 0.5 * s1, c2 = 0.5 * s2, c3 = 0.5 * s3;
     vec3 c4 = 0.9375 * s4, c5 = 0.9375 * s5, c6 = 0.078125 * s6, c7 = 0.9375 * s7, c8 = 0.234375 * s8;
     o_probe[0] = vec4(c0, c1.x), o_probe[1] = vec4(c1.yz, c2.xy), o_probe[2] = vec4(c2.z, c3);

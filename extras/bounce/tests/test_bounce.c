@@ -8,7 +8,8 @@
  *   - the floor does not light itself: its radiance stays ρ/π × E within 2 % (order-2 harmonics
  *     give a light along the surface's plane 0.094 of its irradiance instead of 0);
  *   - switched off: no pass, no light: the side is black;
- *   - hostile scenes (flat, lit from below, five suns, a huge ground, the camera inside): finite.
+ *   - hostile scenes (flat, lit from below, a 10¹⁰ sun, five suns, a huge ground, the camera
+ *     inside): finite.
  * Live switching equals a fresh start: the toggle matrix (tests/test_toggle_matrix.c in shadelab)
  * runs this scene. */
 #include <shadelab/harness.h>
@@ -130,14 +131,15 @@ static void test_floor_and_off(void) {
     free(on_img), free(off_img);
 }
 
-/* Scenes a user may give it: flat (a plane alone, no height to place probes in), lit from below,
+/* Scenes a user may give it: flat (a plane alone, no height to place probes in), lit from below
+ * and by a sun of the largest intensity a light takes (10¹⁰: sums past half floats' range),
  * more directional lights than it bounces, a ground plane 10⁵ m wide under a small block, a
  * camera inside the block: finite pixels, no failure. */
 static void test_hostile(void) {
     static const char *const scenes[] = {
         "{\"plugins\": [\"bounce\"], \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\"}}], "
         "\"lights\": [{\"name\": \"up\", \"type\": \"directional\", \"direction\": [0, 1, 0]}, "
-        "{\"name\": \"down\", \"type\": \"directional\", \"direction\": [0.3, -1, 0]}]}",
+        "{\"name\": \"down\", \"type\": \"directional\", \"direction\": [0.3, -1, 0], \"intensity\": 1e10}]}",
         "{\"plugins\": [\"bounce\"], \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\", \"size\": 100000}}, "
         "{\"name\": \"b\", \"translate\": [0, 0.5, 0], \"mesh\": {\"primitive\": \"cube\"}}], "
         "\"lights\": [{\"name\": \"a\", \"type\": \"directional\", \"direction\": [0, -1, 0]}, "
