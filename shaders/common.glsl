@@ -154,6 +154,7 @@ uniform int sl_frame_index;
 uniform int sl_sample_index, sl_sample_count; // ABI 1.9: sl_frame.sample_index/count
 uniform vec2 sl_viewport_size;
 uniform vec2 sl_jitter; // ABI 1.28: sl_frame.jitter, the frame's projection offset in pixels
+uniform float sl_texture_lod_bias; // ABI 1.30: the mip bias the materials' textures have this frame (set_texture_lod_bias)
 uniform mat4 sl_model;
 uniform mat3 sl_normal_matrix;
 

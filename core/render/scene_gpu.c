@@ -444,6 +444,7 @@ static void set_camera_uniforms(sl_app *app, sl_program *p, const float *view, c
     glUniform1i(sl_program_uniform(p, "sl_sample_count"), r->frame.sample_count);
     glUniform2f(sl_program_uniform(p, "sl_viewport_size"), (float)r->frame.width, (float)r->frame.height);
     glUniform2f(sl_program_uniform(p, "sl_jitter"), r->frame.jitter[0], r->frame.jitter[1]);
+    glUniform1f(sl_program_uniform(p, "sl_texture_lod_bias"), r->lod_bias);
     if (r->motion) { /* SL_MOTION_VECTORS programs (forward.vert) */
         glUniformMatrix4fv(sl_program_uniform(p, "sl_unjittered_view_proj"), 1, GL_FALSE, r->frame.unjittered_view_proj);
         glUniformMatrix4fv(sl_program_uniform(p, "sl_prev_view_proj"), 1, GL_FALSE,

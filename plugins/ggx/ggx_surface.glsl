@@ -49,8 +49,12 @@ void ggx_surface_specular_map(inout SlSurface s) {
 // at this pixel's footprint gives the average normal N̄ over it; the shorter it is, the more
 // the normals below the pixel vary, and that variance widens the lobe. At the finest level
 // |N̄| = 1 and α is unchanged. Runs after the material inputs and the normal-map plugin's hook (order 20).
+// Not in a TAA still's jittered frames (sl_texture_lod_bias < 0, ABI 1.30): they read the map at
+// their share of the pixel and their mean resolves the bumps itself; widening each frame's lobe
+// as well darkened and blurred the still (README). Motion and a still's first frame keep it.
 void ggx_surface_specular_aa(inout SlSurface s) {
 #if GGX_SPECULAR_AA
+    if (sl_texture_lod_bias < 0.0) return;
     vec3 avg = texture(sl_mat_normal_map, sl_uv_normal_map(s)).xyz * 2.0 - 1.0;
     float len = clamp(length(avg), 1e-3, 1.0);
     float variance = (1.0 - len) / len;

@@ -303,6 +303,41 @@ static void test_pixel_wide_glint(void) {
     }
 }
 
+/* Specular AA in a TAA still (SDK 1.30 sl_texture_lod_bias): only the still's first frame, at the
+ * pixel's own footprint, widens the lobe; its jittered frames read the normal map at their share
+ * of the pixel (aa's taa_lod_bias) and resolve the bumps themselves. So, per pixel, the 16-frame
+ * still with AA less the still without it is 1/16 of the same difference in a single frame (aa
+ * off). Widened in every frame (before 1.30) it was about the whole difference. */
+static void test_specular_aa_still(void) {
+    enum { SW = 96, SH = 54, N = 16 };
+    static float still_on[SW * SH * 4], still_off[SW * SH * 4], one_on[SW * SH * 4], one_off[SW * SH * 4];
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"plugins\": [\"ggx\", \"normal-map\"],\n"
+             " \"cameras\": [{\"name\": \"c\", \"position\": [0, 1.2, 19], \"target\": [0, 0, 0], \"fov_y\": 40}],\n"
+             " \"materials\": [{\"name\": \"bumpy\", \"model\": \"ggx\", \"alpha\": 0.05, \"base_color\": [0.18, 0.2, 0.24],\n"
+             "   \"normal_map\": \"%s/../plugins/phong/assets/bumps32_tangent.png\"}],\n"
+             " \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\", \"size\": 40}, \"material\": \"bumpy\"}],\n"
+             " \"lights\": [{\"name\": \"sun\", \"type\": \"directional\", \"direction\": [0, -0.6, 0.8], \"intensity\": 4}]}",
+             SL_SCENES_DIR);
+    bool ok = sl_test_render_frames(json, (const char *[]){"ggx.specular_aa=true", "aa.taa_frames=16", NULL}, SW, SH, N, still_on) &&
+              sl_test_render_frames(json, (const char *[]){"ggx.specular_aa=false", "aa.taa_frames=16", NULL}, SW, SH, N, still_off) &&
+              sl_test_render_frames(json, (const char *[]){"ggx.specular_aa=true", "aa.enabled=false", NULL}, SW, SH, 1, one_on) &&
+              sl_test_render_frames(json, (const char *[]){"ggx.specular_aa=false", "aa.enabled=false", NULL}, SW, SH, 1, one_off);
+    if (!ok) return;
+    double se = 0, s1 = 0;
+    for (int k = 0; k < SW * SH; k++)
+        for (int c = 0; c < 3; c++) {
+            double d1 = one_on[k * 4 + c] - one_off[k * 4 + c], ds = still_on[k * 4 + c] - still_off[k * 4 + c];
+            se += (N * ds - d1) * (N * ds - d1), s1 += d1 * d1;
+        }
+    double rel = sqrt(se / fmax(s1, 1e-30)); /* widening every frame: 5.72 */
+    printf("specular AA in a 16-frame still: 16 x (still on - off) against one frame's on - off: relative RMS %.4f "
+           "(one frame's RMS difference %.4f)\n", rel, sqrt(s1 / (3.0 * SW * SH)));
+    CHECK_MSG(s1 > 1e-4 * SW * SH, "specular AA changes nothing in a single frame (%.3g)", s1);
+    CHECK_MSG(rel < 0.05, "the still's difference is not the first frame's share: relative RMS %.4f", rel);
+}
+
 int main(void) {
     /* 1. per-pixel closed form: L = (k_d/π + k_s F D G/(4 n·l n·v)) E n·l */
     char json[4096];
@@ -517,5 +552,6 @@ int main(void) {
     test_disk_profile(0.3, &rms, &flux);
     test_subpixel_glint();
     test_pixel_wide_glint();
+    test_specular_aa_still();
     return check_result();
 }

@@ -19,7 +19,7 @@
 #define SL_ABI_MAJOR 1
 #endif
 #ifndef SL_ABI_MINOR
-#define SL_ABI_MINOR 29
+#define SL_ABI_MINOR 30
 #endif
 
 /* The one limit on decoded image size, for the core's loader and every plugin's or tool's own:

@@ -51,6 +51,11 @@
  *             fragment's jittered sample to its pixel's centre (uniform vec2 sl_jitter,
  *             sl_frame.jitter in pixels); ggx centres the footprint of a lobe about a pixel
  *             wide on the pixel in every frame of a TAA still.
+ *   texture bias (ABI 1.30): uniform float sl_texture_lod_bias, the mip LOD bias every material
+ *             texture has this frame (host set_texture_lod_bias: negative in a TAA still's
+ *             jittered frames, which then sample their share of the pixel; 0 otherwise). A
+ *             filter standing in for sub-pixel variance steps aside where it is negative (ggx's
+ *             specular antialiasing).
  *   bool sl_light_in_loop (ABI 1.25, common.glsl): true while the core's light loop (or
  *             sl_light_radiance) evaluates the model for one of its lights, false elsewhere:
  *             a model filters its lobe over the footprint only then, never for the directions an
