@@ -93,6 +93,9 @@ void phong_surface(inout SlSurface s) {
     float p0 = phong_power_from_gloss(phong_gloss_map ? prop.r : sl_mat_gloss);
     float p = phong_gloss_map ? phong_power_from_gloss(t.r) : phong_toksvig_power(p0, t.g);
     phong_filter_w = clamp(1.0 - p / p0, 0.0, 1.0);
+    // Not in a TAA still's jittered frames (sl_texture_lod_bias < 0, ABI 1.30): they read the maps
+    // at their share of the pixel and their mean resolves the bumps (as ggx_surface_specular_aa).
+    if (sl_texture_lod_bias < 0.0) p = p0, phong_filter_w = 0.0;
     // Never taken (sl_frame_index ≥ 0), but keeps both material samplers active wherever the
     // Toksvig texture is (e.g. the effective-gloss view, which uses neither map otherwise):
     // phong.c finds the core's textures through these uniforms to build the Toksvig texture.

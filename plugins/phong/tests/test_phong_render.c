@@ -252,16 +252,22 @@ static void test_stability(const char *dir) {
 #define AH 72
 static float aa_on[AW * AH * 4], aa_off[AW * AH * 4], aa_ref[AW * AH * 4];
 
-static bool render_scene_file(const char *path, const char *const *settings, int w, int h, float *out) {
+/* The last of `frames` frames (a TAA still when aa is on and frames is its length). */
+static bool render_scene_frames(const char *path, const char *const *settings, int w, int h, int frames, float *out) {
     char err[4096];
     sl_harness *hs = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = w, .height = h,
                                                            .scene_file = path, .settings = settings, .float32 = true,
                                                            .strict = true},
                                        err, sizeof err);
     if (!hs) { fprintf(stderr, "%s: %s\n", path, err); return false; }
-    bool ok = sl_harness_render(hs, out);
+    bool ok = true;
+    for (int f = 1; f < frames; f++) ok = ok && sl_harness_render(hs, NULL);
+    ok = ok && sl_harness_render(hs, out);
     sl_harness_destroy(hs);
     return ok;
+}
+static bool render_scene_file(const char *path, const char *const *settings, int w, int h, float *out) {
+    return render_scene_frames(path, settings, w, h, 1, out);
 }
 
 static void region_stats(const float *a, const float *ref, int y0, int y1, double *mean_a, double *mean_ref, double *rmse) {
@@ -295,6 +301,32 @@ static void test_specular_aa(void) {
     CHECK_MSG(fabs(m_on - m_ref) < fabs(m_off - m_ref), "antialiased far-field mean is not closer to the reference");
     CHECK_MSG(r_on < r_off, "antialiased far field has a larger RMSE against the reference");
     CHECK_MSG(fabs(m_off - m_ref) > 0.01 * m_ref, "no aliasing to fix: the test cannot fail");
+}
+
+/* In a TAA still only the first frame (the pixel's own footprint) is filtered; the jittered frames
+ * read the maps at their share of the pixel (SDK 1.30 sl_texture_lod_bias, as ggx): per pixel, a
+ * 16-frame still's on − off is 1/16 of a single frame's (widening every frame: 7.08). */
+static void test_specular_aa_still(void) {
+    enum { N = 16 };
+    static float still_on[AW * AH * 4], still_off[AW * AH * 4];
+    char path[1200];
+    snprintf(path, sizeof path, "%s/specular_aa_plane.json", SL_SCENES_DIR);
+    bool ok = render_scene_frames(path, (const char *[]){"phong.specular_aa=true", "aa.taa_frames=16", NULL}, AW, AH, N, still_on) &&
+              render_scene_frames(path, (const char *[]){"phong.specular_aa=false", "aa.taa_frames=16", NULL}, AW, AH, N, still_off) &&
+              render_scene_file(path, (const char *[]){"phong.specular_aa=true", "aa.enabled=false", NULL}, AW, AH, aa_on) &&
+              render_scene_file(path, (const char *[]){"phong.specular_aa=false", "aa.enabled=false", NULL}, AW, AH, aa_off);
+    CHECK(ok);
+    if (!ok) return;
+    double se = 0, s1 = 0;
+    for (int k = 0; k < AW * AH; k++)
+        for (int c = 0; c < 3; c++) {
+            double d1 = aa_on[k * 4 + c] - aa_off[k * 4 + c], ds = still_on[k * 4 + c] - still_off[k * 4 + c];
+            se += (N * ds - d1) * (N * ds - d1), s1 += d1 * d1;
+        }
+    double rel = sqrt(se / fmax(s1, 1e-30));
+    printf("specular AA in a 16-frame still: 16 x (still on - off) against one frame's on - off: relative RMS %.4f\n", rel);
+    CHECK_MSG(s1 > 1e-4 * AW * AH, "specular AA changes nothing in a single frame (%.3g)", s1);
+    CHECK_MSG(rel < 0.05, "the still's difference is not the first frame's share: relative RMS %.4f", rel);
 }
 
 static void test_scenes(void) {
@@ -351,6 +383,7 @@ int main(void) {
     test_zero_cost(nm);
     test_stability(dir);
     test_specular_aa();
+    test_specular_aa_still();
     test_scenes();
     return check_result();
 }

@@ -55,7 +55,7 @@
  *             texture has this frame (host set_texture_lod_bias: negative in a TAA still's
  *             jittered frames, which then sample their share of the pixel; 0 otherwise). A
  *             filter standing in for sub-pixel variance steps aside where it is negative (ggx's
- *             specular antialiasing).
+ *             and phong's specular antialiasing).
  *   bool sl_light_in_loop (ABI 1.25, common.glsl): true while the core's light loop (or
  *             sl_light_radiance) evaluates the model for one of its lights, false elsewhere:
  *             a model filters its lobe over the footprint only then, never for the directions an
