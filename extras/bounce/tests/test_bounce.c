@@ -134,7 +134,7 @@ static void test_floor_and_off(void) {
 /* Scenes a user may give it: flat (a plane alone, no height to place probes in), lit from below
  * and by a sun of the largest intensity a light takes (10¹⁰: sums past half floats' range),
  * more directional lights than it bounces, a ground plane 10⁵ m wide under a small block, a
- * camera inside the block: finite pixels, no failure. */
+ * camera inside the block: finite pixels, no failure (the ground at the highest knobs too). */
 static void test_hostile(void) {
     static const char *const scenes[] = {
         "{\"plugins\": [\"bounce\"], \"nodes\": [{\"name\": \"p\", \"mesh\": {\"primitive\": \"plane\"}}], "
@@ -155,7 +155,7 @@ static void test_hostile(void) {
     const char *plugins[] = {BOUNCE_PLUGIN, NULL}, *knobs[] = {"bounce.vpls=32", "bounce.grid=32", NULL};
     float *img = malloc(sizeof(float) * 4 * W * H);
     for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++)
-        for (int k = 0; k < 2; k++) {
+        for (int k = 0; k < (i == 1 ? 2 : 1); k++) { /* the highest knobs on the largest scene only */
             char err[2048];
             sl_harness *h = sl_harness_create(&(sl_harness_desc){.struct_size = sizeof(sl_harness_desc), .width = W,
                 .height = H, .scene_json = scenes[i], .plugins = plugins, .settings = k ? knobs : NULL, .strict = true},
