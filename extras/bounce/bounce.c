@@ -115,6 +115,7 @@ static void ensure_rsm(bounce *b, int size) {
     const unsigned formats[3] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F}; /* flux: lights up to 1e10 stay finite */
     for (int i = 0; i < 3; i++) b->rsm[i] = make_texture(GL_TEXTURE_2D_ARRAY, formats[i], levels, size, size, BOUNCE_MAX_LIGHTS);
     b->rsm_depth = make_texture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, 1, size, size, 1);
+    glNamedFramebufferTexture(b->rsm_fbo, GL_DEPTH_ATTACHMENT, b->rsm_depth, 0);
     b->rsm_size = size;
 }
 
@@ -181,7 +182,6 @@ static void draw_maps(bounce *b, sl_pass_ctx *ctx, const sl_frame *f, int size) 
         memcpy(b->rsm_dir[used], lights[i].direction, sizeof b->rsm_dir[used]);
         memcpy(b->rsm_E[used], lights[i].color, sizeof b->rsm_E[used]);
         for (int k = 0; k < 3; k++) glNamedFramebufferTextureLayer(b->rsm_fbo, GL_COLOR_ATTACHMENT0 + k, b->rsm[k], 0, used);
-        glNamedFramebufferTexture(b->rsm_fbo, GL_DEPTH_ATTACHMENT, b->rsm_depth, 0);
         glBindFramebuffer(GL_FRAMEBUFFER, b->rsm_fbo);
         glViewport(0, 0, size, size);
         glDepthMask(GL_TRUE);
@@ -293,9 +293,6 @@ static void gather_probes(bounce *b, sl_pass_ctx *ctx) {
     glUniform3fv(glGetUniformLocation(prog, "bounce_box_min"), 1, b->box_min);
     glUniform3fv(glGetUniformLocation(prog, "bounce_box_max"), 1, b->box_max);
     glUniform3f(glGetUniformLocation(prog, "bounce_grid"), (float)b->grid[0], (float)b->grid[1], (float)b->grid[2]);
-    unsigned bufs[BOUNCE_PROBE_TEXTURES];
-    for (int k = 0; k < BOUNCE_PROBE_TEXTURES; k++) bufs[k] = GL_COLOR_ATTACHMENT0 + k;
-    glNamedFramebufferDrawBuffers(b->probe_fbo, BOUNCE_PROBE_TEXTURES, bufs);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
@@ -317,8 +314,6 @@ static void bounce_execute(void *user, sl_pass_ctx *ctx, const sl_frame *f) {
     ensure_rsm(b, vpls * BOUNCE_RSM_SCALE);
     place_probes(b, f, grid);
     ensure_probes(b, grid);
-    const unsigned bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(b->rsm_fbo, 3, bufs);
     draw_maps(b, ctx, f, b->rsm_size);
     build_vpls(b, vpls);
     gather_probes(b, ctx);
@@ -394,6 +389,10 @@ static sl_status bounce_activate(void *user) {
     if (!sl_gl_load(b->host->gl_get_proc_address, NULL)) return SL_ERR_GL;
     glCreateFramebuffers(1, &b->rsm_fbo);
     glCreateFramebuffers(1, &b->probe_fbo);
+    unsigned bufs[BOUNCE_PROBE_TEXTURES]; /* the maps write 3 of them, the gather all */
+    for (int k = 0; k < BOUNCE_PROBE_TEXTURES; k++) bufs[k] = GL_COLOR_ATTACHMENT0 + k;
+    glNamedFramebufferDrawBuffers(b->rsm_fbo, 3, bufs);
+    glNamedFramebufferDrawBuffers(b->probe_fbo, BOUNCE_PROBE_TEXTURES, bufs);
     glCreateBuffers(1, &b->vpl_buffer);
     b->vpl_capacity = 0, b->vpl_count = 0;
     const int grid[3] = {2, 2, 2};
